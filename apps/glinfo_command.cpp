@@ -1,0 +1,26 @@
+// svo glinfo: which GL device and context svo gets, and what it offers.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <memory>
+
+#include "commands.h"
+#include "svo/gl/context.h"
+
+namespace svo::app {
+
+void addGlInfoCommand(CLI::App& app)
+{
+    auto device = std::make_shared<std::string>();
+    CLI::App* cmd = app.add_subcommand("glinfo", "Create the headless GL context and print what it is");
+    cmd->add_option("--device", *device, "EGL device: auto, hardware, software or an index (env SVO_EGL_DEVICE)");
+    cmd->callback([device] {
+        gl::Context context(gl::ContextOptions{*device, false});
+        const auto& i = context.info();
+        fmt::print("EGL        {}\nvendor     {}\nrenderer   {}\nversion    {}\n", i.eglDevice, i.vendor, i.renderer,
+                   i.version);
+        fmt::print("GL_NV_conservative_raster  {}\nmax viewport               {}\n",
+                   i.conservativeRasterNV ? "yes" : "no", i.maxViewport);
+    });
+}
+
+} // namespace svo::app

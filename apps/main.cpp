@@ -1,0 +1,26 @@
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "commands.h"
+#include "svo/core/error.h"
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"svo: voxelize triangle meshes on the GPU (OpenGL 4.5) into sparse voxel octrees and OpenVDB grids"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "svo " SVO_VERSION);
+    svo::app::addVoxelizeCommand(app);
+    svo::app::addGlInfoCommand(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const svo::Error& e) {
+        fmt::print(stderr, "svo: error: {}\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "svo: internal error: {}\n", e.what());
+        return 2;
+    }
+    return 0;
+}

@@ -1,0 +1,36 @@
+#include "progress.h"
+
+#include <chrono>
+#include <cstdio>
+#include <fmt/format.h>
+#include <unistd.h>
+
+namespace svo::app {
+
+Progress::Progress(std::string label) : label_(std::move(label)), thread_([this] { run(); }) {}
+
+Progress::~Progress()
+{
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        done_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+}
+
+void Progress::run()
+{
+    using namespace std::chrono;
+    const auto start = steady_clock::now();
+    const bool tty = ::isatty(STDERR_FILENO);
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (cv_.wait_for(lock, seconds(1), [this] { return done_; })) return;
+    if (!tty) fmt::print(stderr, "{} ...\n", label_);
+    while (!cv_.wait_for(lock, milliseconds(250), [this] { return done_; }))
+        if (tty) fmt::print(stderr, "\r{} ... {:.1f} s", label_, duration<double>(steady_clock::now() - start).count());
+    const double s = duration<double>(steady_clock::now() - start).count();
+    fmt::print(stderr, "{}{} done in {:.1f} s\n", tty ? "\r" : "", label_, s);
+}
+
+} // namespace svo::app

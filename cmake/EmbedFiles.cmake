@@ -1,0 +1,29 @@
+# svo_embed_files(<target> <namespace> <files...>)
+# Generates a C++ source that maps each file's base name to its text, so shaders
+# live as .glsl files in the tree but ship inside the binary.
+function(svo_embed_files target ns)
+  set(out "${CMAKE_CURRENT_BINARY_DIR}/${target}_embedded.cpp")
+  set(script "${CMAKE_CURRENT_BINARY_DIR}/${target}_embed.cmake")
+  file(WRITE "${script}" "
+set(content \"// Generated from shader files; edit those instead.\\n#include <map>\\n#include <string>\\nnamespace ${ns} {\\nconst std::map<std::string, std::string>& embeddedFiles() {\\n  static const std::map<std::string, std::string> files = {\\n\")
+foreach(f \${FILES})
+  get_filename_component(name \"\${f}\" NAME)
+  file(READ \"\${f}\" text)
+  string(APPEND content \"    {\\\"\${name}\\\", R\\\"svo_embed(\${text})svo_embed\\\"},\\n\")
+endforeach()
+string(APPEND content \"  };\\n  return files;\\n}\\n}\\n\")
+file(WRITE \"\${OUT}.tmp\" \"\${content}\")
+execute_process(COMMAND \${CMAKE_COMMAND} -E copy_if_different \"\${OUT}.tmp\" \"\${OUT}\")
+")
+  set(abs_files)
+  foreach(f ${ARGN})
+    get_filename_component(a "${f}" ABSOLUTE)
+    list(APPEND abs_files "${a}")
+  endforeach()
+  string(REPLACE ";" "\\;" files_arg "${abs_files}")
+  add_custom_command(OUTPUT "${out}"
+    COMMAND ${CMAKE_COMMAND} "-DFILES=${files_arg}" "-DOUT=${out}" -P "${script}"
+    DEPENDS ${abs_files} "${script}"
+    COMMENT "Embedding shader files for ${target}")
+  target_sources(${target} PRIVATE "${out}")
+endfunction()

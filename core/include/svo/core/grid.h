@@ -1,0 +1,65 @@
+#pragma once
+/// @file grid.h
+/// The voxel grid: OpenVDB's index convention plus the local frame the GPU works in.
+///
+/// Voxel (i,j,k) has its centre at index point (i,j,k) and covers the closed
+/// cube [i-1/2, i+1/2] x ... . World = voxelSize * index + translation, where
+/// the translation is a whole number of voxels (`shift`), zero unless the mesh
+/// lies so far from the origin that its indices would not fit OpenVDB's int32
+/// coordinates. Such a shift keeps the lattice, so a mesh moved by a multiple
+/// of the voxel size voxelizes identically.
+///
+/// Vertices go to index space in double precision, then to *local* coordinates
+/// relative to an integer `anchor` (a multiple of 8, so bricks align with
+/// OpenVDB leaves). Local coordinates lie in [0, dims) and are what the GPU gets
+/// in float. The guard band epsilon() bounds float rounding at that magnitude.
+#include <array>
+#include <cstdint>
+
+#include "svo/core/mesh.h"
+
+namespace svo {
+
+struct GridSpec {
+    double voxelSize = 1.0;
+    std::array<int64_t, 3> shift{};  ///< translation = voxelSize * shift
+    std::array<int64_t, 3> anchor{}; ///< index of local (0,0,0); multiple of 8
+    std::array<uint32_t, 3> dims{};  ///< local voxel range [0, dims) per axis
+
+    /// World position -> OpenVDB index space (double).
+    Vec3d toIndex(const Vec3d& world) const;
+    /// World position -> local index coordinates (double).
+    Vec3d toLocal(const Vec3d& world) const;
+    /// Local integer coordinate -> OpenVDB index coordinate.
+    std::array<int64_t, 3> toGlobal(const std::array<uint32_t, 3>& local) const
+    {
+        return {anchor[0] + local[0], anchor[1] + local[1], anchor[2] + local[2]};
+    }
+    std::array<double, 3> translation() const
+    {
+        return {voxelSize * double(shift[0]), voxelSize * double(shift[1]), voxelSize * double(shift[2])};
+    }
+    uint32_t maxDim() const;
+    /// Guard band, in voxels: 32 float ulps of the largest local coordinate.
+    /// The GPU grows each cube by epsilon()/2; see docs/precision.md.
+    double epsilon() const;
+};
+
+/// How the user asked for the grid: exactly one of the two is positive.
+struct GridRequest {
+    int64_t resolution = 0; ///< voxels along the longest bounding-box side (vdb_tool's dim)
+    double voxelSize = 0.0; ///< world units per voxel
+};
+
+/// Largest local extent per axis: voxel keys pack 21 bits per axis.
+constexpr uint32_t kMaxGridDim = 1u << 21;
+
+/// Chooses voxel size, shift, anchor and dims for a mesh. Throws svo::Error for
+/// a bad request (non-positive, non-finite), a mesh with zero extent under
+/// --resolution, or a grid beyond kMaxGridDim or OpenVDB's int32 coordinates.
+GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& request);
+
+/// The mesh's vertices in local coordinates, in float, as uploaded to the GPU.
+std::vector<Vec3f> localPositionsFloat(const TriangleMesh& mesh, const GridSpec& grid);
+
+} // namespace svo

@@ -1,0 +1,21 @@
+#pragma once
+/// @file mesh_io.h
+/// Mesh file input through OpenMesh's readers: OBJ, PLY (ASCII, binary), STL
+/// (ASCII, binary) and OFF. Polygons are fan-triangulated. Faces reach us
+/// exactly as the file lists them: degenerate, duplicate and non-manifold
+/// faces are kept, since they still cover the voxels they touch.
+#include <string>
+
+#include "svo/core/mesh.h"
+
+namespace svo {
+
+/// Reads a mesh file. Throws svo::Error naming the file and the problem for a
+/// missing or unreadable file, an unknown extension, an empty or truncated
+/// file, zero triangles, NaN/Inf coordinates or out-of-range indices.
+TriangleMesh loadMesh(const std::string& path);
+
+/// The file extensions loadMesh accepts, for help texts.
+const char* supportedMeshExtensions();
+
+} // namespace svo

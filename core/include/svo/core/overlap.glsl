@@ -1,0 +1,111 @@
+// Triangle / axis-aligned cube overlap by the separating-axis theorem
+// (Akenine-Moller, "Fast 3D triangle-box overlap testing", 2001): the three
+// cube normals, the triangle normal and the nine edge x cube-axis products.
+//
+// This text is the single source of truth for "does a triangle touch a voxel".
+// The GLSL shaders include it, and so does C++ (svo/core/overlap.h), which
+// defines SVO_FN, svo_real and svo_vec3 first.
+//
+// Guarantees, for any triangle, degenerate ones included:
+// - Any axis that separates proves disjointness, even one computed with
+//   rounding; so an inaccurate axis can only make the test more inclusive.
+// - A zero axis (the normal of a needle, the edges of a point) never separates;
+//   the remaining axes are exactly the separating axes of the segment or point.
+// - halfSide is the cube's halfSide side: 0.5 for the exact voxel, 0.5 + g for a cube
+//   grown by a guard band g, 0.5 - g for a shrunk one. Rounding errors move a
+//   projection by at most a few ulps of the coordinates' magnitude, which a
+//   guard band of that size covers (see docs/precision.md).
+
+SVO_FN bool svo_separated(svo_real p0, svo_real p1, svo_real p2, svo_real r)
+{
+    return min(p0, min(p1, p2)) > r || max(p0, max(p1, p2)) < -r;
+}
+
+// The three axes cross(e, X), cross(e, Y), cross(e, Z), written out.
+SVO_FN bool svo_edge_axes_separate(svo_vec3 e, svo_vec3 v0, svo_vec3 v1, svo_vec3 v2, svo_real halfSide)
+{
+    if (svo_separated(e.z * v0.y - e.y * v0.z, e.z * v1.y - e.y * v1.z,
+                      e.z * v2.y - e.y * v2.z, halfSide * (abs(e.y) + abs(e.z))))
+        return true;
+    if (svo_separated(e.x * v0.z - e.z * v0.x, e.x * v1.z - e.z * v1.x,
+                      e.x * v2.z - e.z * v2.x, halfSide * (abs(e.x) + abs(e.z))))
+        return true;
+    if (svo_separated(e.y * v0.x - e.x * v0.y, e.y * v1.x - e.x * v1.y,
+                      e.y * v2.x - e.x * v2.y, halfSide * (abs(e.x) + abs(e.y))))
+        return true;
+    return false;
+}
+
+// True when triangle (a, b, c) meets the closed cube of halfSide side `halfSide`
+// centred at `centre`.
+SVO_FN bool svo_triangle_box_overlap(svo_vec3 a, svo_vec3 b, svo_vec3 c, svo_vec3 centre, svo_real halfSide)
+{
+    svo_vec3 v0 = a - centre;
+    svo_vec3 v1 = b - centre;
+    svo_vec3 v2 = c - centre;
+    if (svo_separated(v0.x, v1.x, v2.x, halfSide)) return false;
+    if (svo_separated(v0.y, v1.y, v2.y, halfSide)) return false;
+    if (svo_separated(v0.z, v1.z, v2.z, halfSide)) return false;
+
+    svo_vec3 e0 = v1 - v0;
+    svo_vec3 e1 = v2 - v1;
+    svo_vec3 e2 = v0 - v2;
+    if (svo_edge_axes_separate(e0, v0, v1, v2, halfSide)) return false;
+    if (svo_edge_axes_separate(e1, v0, v1, v2, halfSide)) return false;
+    if (svo_edge_axes_separate(e2, v0, v1, v2, halfSide)) return false;
+
+    svo_vec3 n = cross(e0, e1);
+    if (svo_separated(dot(n, v0), dot(n, v1), dot(n, v2),
+                      halfSide * (abs(n.x) + abs(n.y) + abs(n.z))))
+        return false;
+    return true;
+}
+
+// Dominant axis of a normal; ties go to the higher axis (z over y over x), a
+// fixed rule so that every backend projects a tied triangle the same way.
+SVO_FN int svo_dominant_axis(svo_vec3 n)
+{
+    svo_real ax = abs(n.x);
+    svo_real ay = abs(n.y);
+    svo_real az = abs(n.z);
+    if (az >= ax && az >= ay) return 2;
+    if (ay >= ax) return 1;
+    return 0;
+}
+
+// Heights along axis w at which triangle (a, b, c) can meet a cube of halfSide side
+// `halfSide` in the column centred at (cu, cv) on axes u = (w+1)%3, v = (w+2)%3.
+// Returns (lo, hi, 0): the voxels to test are ceil(lo) .. floor(hi).
+//
+// The triangle's plane narrows the range to at most about three voxels when w
+// is dominant. With unit roundoff `ulp`, the computed normal is off by at most
+// dn = 8 ulp E^2 (E: longest edge); the resulting slope error widens the range,
+// and a triangle too degenerate for a reliable plane gets its full extent. The
+// range is therefore conservative in float as in double.
+SVO_FN svo_vec3 svo_column_range(svo_vec3 a, svo_vec3 b, svo_vec3 c, int w, svo_real cu, svo_real cv,
+                                 svo_real halfSide, svo_real ulp)
+{
+    int u = (w + 1) % 3;
+    int v = (w + 2) % 3;
+    svo_real lo = min(a[w], min(b[w], c[w])) - halfSide;
+    svo_real hi = max(a[w], max(b[w], c[w])) + halfSide;
+    svo_vec3 e0 = b - a;
+    svo_vec3 e1 = c - a;
+    svo_vec3 e2 = c - b;
+    svo_real E = max(max(max(abs(e0.x), abs(e0.y)), max(abs(e0.z), abs(e1.x))),
+                     max(max(abs(e1.y), abs(e1.z)), max(abs(e2.x), max(abs(e2.y), abs(e2.z)))));
+    svo_vec3 n = cross(e0, e1);
+    svo_real dn = 8.0 * ulp * E * E;
+    svo_real nw = abs(n[w]);
+    if (nw > 2.0 * dn) {
+        svo_real su = -n[u] / n[w];
+        svo_real sv = -n[v] / n[w];
+        svo_real h = a[w] + su * (cu - a[u]) + sv * (cv - a[v]);
+        svo_real mag = max(abs(a[w]), max(abs(cu), abs(cv))) + E;
+        svo_real err = 4.0 * dn / (nw - dn) * (E + 1.0) + 8.0 * ulp * mag;
+        svo_real dz = halfSide * (abs(su) + abs(sv)) + err;
+        lo = max(lo, h - dz - halfSide);
+        hi = min(hi, h + dz + halfSide);
+    }
+    return svo_vec3(lo, hi, 0.0);
+}

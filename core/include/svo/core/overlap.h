@@ -1,0 +1,48 @@
+#pragma once
+/// @file overlap.h
+/// Triangle / voxel overlap test, compiled from the same text as the shaders
+/// (overlap.glsl). See that file for the method and its guarantees.
+#include <algorithm>
+#include <cmath>
+
+#include "svo/core/vec3.h"
+
+namespace svo {
+namespace overlap_detail {
+using std::abs;
+using std::max;
+using std::min;
+} // namespace overlap_detail
+
+/// Double precision: the reference used by the CPU voxelizer.
+namespace overlap_double {
+using namespace overlap_detail;
+using svo_real = double;
+using svo_vec3 = Vec3<double>;
+#define SVO_FN inline
+#include "svo/core/overlap.glsl"
+#undef SVO_FN
+} // namespace overlap_double
+
+/// Single precision: what the GPU computes, for studying the guard band on the CPU.
+namespace overlap_float {
+using namespace overlap_detail;
+using svo_real = float;
+using svo_vec3 = Vec3<float>;
+#define SVO_FN inline
+#include "svo/core/overlap.glsl"
+#undef SVO_FN
+} // namespace overlap_float
+
+/// True when triangle (a, b, c) meets the closed cube of half side `half`
+/// centred at `centre` (all in index space).
+inline bool triangleBoxOverlap(Vec3d a, Vec3d b, Vec3d c, Vec3d centre, double half)
+{
+    return overlap_double::svo_triangle_box_overlap(a, b, c, centre, half);
+}
+inline bool triangleBoxOverlap(Vec3f a, Vec3f b, Vec3f c, Vec3f centre, float half)
+{
+    return overlap_float::svo_triangle_box_overlap(a, b, c, centre, half);
+}
+
+} // namespace svo

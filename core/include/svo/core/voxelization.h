@@ -1,0 +1,31 @@
+#pragma once
+/// @file voxelization.h
+/// The result every backend produces: a grid and its set of voxels.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "svo/core/grid.h"
+
+namespace svo {
+
+/// One timed stage of a run. gpuMs < 0 when the stage ran on the CPU only.
+struct StageTime {
+    std::string name;
+    double gpuMs = -1.0;
+    double wallMs = 0.0;
+};
+
+struct Voxelization {
+    GridSpec grid;
+    /// Sorted, unique voxel keys (svo/core/voxel_key.h), local coordinates.
+    std::vector<uint64_t> keys;
+    std::vector<StageTime> stages;
+    uint64_t listEntries = 0; ///< voxel-list entries written, duplicates included
+    int overflowRetries = 0;  ///< extra renders because the voxel list overflowed
+};
+
+/// Sorts and de-duplicates keys in place, in parallel.
+void sortUniqueKeys(std::vector<uint64_t>& keys);
+
+} // namespace svo

@@ -1,0 +1,100 @@
+#include "svo/core/grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "svo/core/error.h"
+
+namespace svo {
+
+Vec3d GridSpec::toIndex(const Vec3d& w) const
+{
+    return {w.x / voxelSize - double(shift[0]), w.y / voxelSize - double(shift[1]), w.z / voxelSize - double(shift[2])};
+}
+
+Vec3d GridSpec::toLocal(const Vec3d& w) const
+{
+    const Vec3d i = toIndex(w);
+    return {i.x - double(anchor[0]), i.y - double(anchor[1]), i.z - double(anchor[2])};
+}
+
+uint32_t GridSpec::maxDim() const { return std::max({dims[0], dims[1], dims[2]}); }
+
+double GridSpec::epsilon() const { return 32.0 * std::ldexp(1.0, -24) * std::max<double>(maxDim(), 1.0); }
+
+GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& req)
+{
+    const Bounds b = mesh.bounds();
+    if (b.empty()) throw Error(fmt::format("{}: the mesh has no triangles", mesh.source));
+    GridSpec g;
+    if (req.resolution > 0 && req.voxelSize > 0) throw Error("give either --resolution or --voxel-size, not both");
+    if (req.resolution > 0) {
+        if (req.resolution > int64_t(kMaxGridDim) - 16)
+            throw Error(fmt::format("--resolution {} is beyond the largest supported grid ({} voxels a side)",
+                                    req.resolution, kMaxGridDim - 16));
+        const Vec3d e = b.extent();
+        const double longest = std::max({e.x, e.y, e.z});
+        if (!(longest > 0))
+            throw Error(fmt::format("{}: the mesh has zero extent, so --resolution cannot define a voxel size; "
+                                    "give --voxel-size",
+                                    mesh.source));
+        g.voxelSize = longest / double(req.resolution);
+    } else if (req.voxelSize > 0 && std::isfinite(req.voxelSize)) {
+        g.voxelSize = req.voxelSize;
+    } else {
+        throw Error(fmt::format("the grid needs --resolution N (N >= 1) or --voxel-size h (h > 0); got "
+                                "resolution {} and voxel size {}",
+                                req.resolution, req.voxelSize));
+    }
+    if (!std::isfinite(g.voxelSize) || !(g.voxelSize > 0))
+        throw Error(fmt::format("{}: the voxel size {} is not usable", mesh.source, g.voxelSize));
+
+    // Shift the lattice by whole voxels when indices would approach int32 limits.
+    const double limit = std::ldexp(1.0, 30);
+    for (int a = 0; a < 3; ++a) {
+        const double lo = b.min[a] / g.voxelSize, hi = b.max[a] / g.voxelSize;
+        if (!std::isfinite(lo) || !std::isfinite(hi))
+            throw Error(fmt::format("{}: the voxel size {} is too small for coordinates of magnitude {}", mesh.source,
+                                    g.voxelSize, std::max(std::abs(b.min[a]), std::abs(b.max[a]))));
+        if (std::abs(lo) > limit || std::abs(hi) > limit) {
+            const double mid = std::round(0.5 * (lo + hi));
+            if (std::abs(mid) > 9.0e18)
+                throw Error(fmt::format("{}: coordinates of magnitude {} at voxel size {} exceed 64-bit indices",
+                                        mesh.source, std::abs(b.max[a]), g.voxelSize));
+            g.shift[a] = static_cast<int64_t>(mid);
+        }
+    }
+    // Anchor: a multiple of 8 at least one voxel below the lowest vertex, so that
+    // every touched voxel (including those reached by the guard band) has a
+    // local coordinate >= 0, and bricks align with OpenVDB leaves.
+    const Vec3d lo = g.toIndex(b.min), hi = g.toIndex(b.max);
+    for (int a = 0; a < 3; ++a) {
+        const int64_t first = static_cast<int64_t>(std::floor(lo[a])) - 1;
+        g.anchor[a] = first >= 0 ? first / 8 * 8 : -((-first + 7) / 8) * 8;
+        const double top = hi[a] - double(g.anchor[a]);
+        const double dim = std::floor(top) + 3; // the last touched voxel is <= top + 1
+        if (dim > double(kMaxGridDim))
+            throw Error(fmt::format("{}: the grid would be {} voxels along axis {}, beyond the supported {}; "
+                                    "use a larger voxel size",
+                                    mesh.source, dim, "xyz"[a], kMaxGridDim));
+        g.dims[a] = static_cast<uint32_t>(dim);
+        const int64_t lastGlobal = g.anchor[a] + int64_t(g.dims[a]);
+        if (g.anchor[a] < INT32_MIN + 8 || lastGlobal > INT32_MAX - 8)
+            throw Error(fmt::format("{}: voxel indices along {} would exceed OpenVDB's 32-bit coordinates",
+                                    mesh.source, "xyz"[a]));
+    }
+    return g;
+}
+
+std::vector<Vec3f> localPositionsFloat(const TriangleMesh& mesh, const GridSpec& grid)
+{
+    std::vector<Vec3f> out(mesh.positions.size());
+    for (size_t i = 0; i < out.size(); ++i) {
+        const Vec3d l = grid.toLocal(mesh.positions[i]);
+        out[i] = {float(l.x), float(l.y), float(l.z)};
+    }
+    return out;
+}
+
+} // namespace svo

@@ -1,0 +1,38 @@
+#pragma once
+/// @file raster_voxelizer.h
+/// The raster backend: conservative voxelization through the GL pipeline.
+///
+/// Method (raster.geom, raster.frag): each triangle is projected along its
+/// dominant axis and enlarged by Hasselgren's edge offsets (or drawn with
+/// GL_NV_conservative_raster where available), so every voxel column it
+/// touches gets a fragment. The fragment walks the voxels of its column that
+/// the triangle's plane can reach and keeps those passing the shared overlap
+/// test (overlap.glsl) on the cube grown by epsilon()/2. Survivors are
+/// appended to a voxel list through an atomic counter; if the list overflows,
+/// it is resized to the exact count and the draw runs once more.
+///
+/// Guarantee: the result holds every voxel whose cube, shrunk by
+/// grid.epsilon(), meets a triangle (nothing is missed) and only voxels whose
+/// cube, grown by grid.epsilon(), meets one.
+#include "svo/core/mesh.h"
+#include "svo/core/voxelization.h"
+#include "svo/gl/context.h"
+
+namespace svo::gl {
+
+enum class ConservativeMode { Auto, Hardware, Shader };
+
+struct RasterOptions {
+    /// Auto: GL_NV_conservative_raster when present, else shader dilation.
+    ConservativeMode conservative = ConservativeMode::Auto;
+    /// Voxel-list entries to allocate first; 0 estimates from triangle areas.
+    uint64_t initialCapacity = 0;
+};
+
+Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                            const RasterOptions& options = {});
+
+/// "hardware" or "shader": which dilation voxelizeRaster would use.
+const char* conservativeModeName(const Context& context, const RasterOptions& options);
+
+} // namespace svo::gl

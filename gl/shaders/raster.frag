@@ -1,0 +1,53 @@
+#version 450 core
+// One fragment is one voxel column. Every voxel of the column that the
+// triangle's plane can reach is put to the shared overlap test on the cube
+// grown by the guard band; those that pass go to the voxel list.
+#include "glsl_types.glsl"
+#include "overlap.glsl"
+
+flat in vec3 gA;
+flat in vec3 gB;
+flat in vec3 gC;
+flat in int gAxis;
+flat in vec4 gBox;
+
+layout(binding = 0, offset = 0) uniform atomic_uint uCount;
+layout(std430, binding = 0) writeonly restrict buffer VoxelList { uvec2 voxels[]; };
+
+uniform vec2 uTileOrigin;
+uniform float uHalf;
+uniform uint uCapacity;
+uniform ivec3 uDims;
+const float kUlp = 5.96046448e-08;
+
+// voxel_key.h's layout, split into two 32-bit words (low, high).
+uvec2 packKey(uvec3 p)
+{
+    uvec3 b = p >> 3u;
+    uint offset = ((p.x & 7u) << 6u) | ((p.y & 7u) << 3u) | (p.z & 7u);
+    return uvec2(offset | (b.z << 9u) | (b.y << 27u), (b.y >> 5u) | (b.x << 13u));
+}
+
+void main()
+{
+    vec2 col = floor(gl_FragCoord.xy) + uTileOrigin;
+    if (col.x + uHalf < gBox.x || col.x - uHalf > gBox.z || col.y + uHalf < gBox.y || col.y - uHalf > gBox.w)
+        discard;
+    int w = gAxis;
+    int u = (w + 1) % 3;
+    int v = (w + 2) % 3;
+    if (col.x < 0.0 || col.y < 0.0 || col.x >= float(uDims[u]) || col.y >= float(uDims[v])) discard;
+    vec3 r = svo_column_range(gA, gB, gC, w, col.x, col.y, uHalf, kUlp);
+    int k0 = max(int(ceil(r.x)), 0);
+    int k1 = min(int(floor(r.y)), uDims[w] - 1);
+    for (int k = k0; k <= k1; ++k) {
+        vec3 centre;
+        centre[u] = col.x;
+        centre[v] = col.y;
+        centre[w] = float(k);
+        if (svo_triangle_box_overlap(gA, gB, gC, centre, uHalf)) {
+            uint slot = atomicCounterIncrement(uCount);
+            if (slot < uCapacity) voxels[slot] = packKey(uvec3(centre));
+        }
+    }
+}

@@ -1,0 +1,128 @@
+#include "objects.h"
+
+#include <fmt/format.h>
+#include <vector>
+
+#include "shaders.h"
+#include "svo/core/error.h"
+
+namespace svo::gl {
+
+void checkGl(const char* what)
+{
+    GLenum first = glGetError();
+    if (first == GL_NO_ERROR) return;
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    if (first == GL_OUT_OF_MEMORY) throw Error(fmt::format("the GPU ran out of memory during {}", what));
+    throw Error(fmt::format("OpenGL error 0x{:04x} during {}", first, what));
+}
+
+Buffer::Buffer(const char* what, uint64_t bytes, const void* data, GLbitfield flags) : bytes_(bytes)
+{
+    GLuint n = 0;
+    glCreateBuffers(1, &n);
+    h_ = Handle<detail::deleteBuffer>(n);
+    glGetError(); // start clean so an out-of-memory below is ours
+    glNamedBufferStorage(n, GLsizeiptr(bytes ? bytes : 4), data, flags);
+    const GLenum err = glGetError();
+    if (err == GL_OUT_OF_MEMORY)
+        throw Error(fmt::format("the GPU cannot allocate {:.1f} MiB for the {}", double(bytes) / (1 << 20), what));
+    if (err != GL_NO_ERROR) throw Error(fmt::format("OpenGL error 0x{:04x} allocating the {}", err, what));
+}
+
+VertexArray::VertexArray()
+{
+    GLuint n = 0;
+    glCreateVertexArrays(1, &n);
+    h_ = Handle<detail::deleteVertexArray>(n);
+}
+
+void VertexArray::setPositions(const Buffer& vertices, GLuint location)
+{
+    glVertexArrayVertexBuffer(h_.get(), 0, vertices.h_.get(), 0, 3 * sizeof(float));
+    glEnableVertexArrayAttrib(h_.get(), location);
+    glVertexArrayAttribFormat(h_.get(), location, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(h_.get(), location, 0);
+}
+
+void VertexArray::setIndices(const Buffer& indices) { glVertexArrayElementBuffer(h_.get(), indices.h_.get()); }
+
+EmptyFramebuffer::EmptyFramebuffer(int width, int height)
+{
+    GLuint n = 0;
+    glCreateFramebuffers(1, &n);
+    h_ = Handle<detail::deleteFramebuffer>(n);
+    glNamedFramebufferParameteri(n, GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+    glNamedFramebufferParameteri(n, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    glNamedFramebufferParameteri(n, GL_FRAMEBUFFER_DEFAULT_SAMPLES, 0);
+    if (glCheckNamedFramebufferStatus(n, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw Error(fmt::format("cannot create an empty {}x{} framebuffer", width, height));
+}
+
+TimerQuery::TimerQuery()
+{
+    GLuint n[2] = {0, 0};
+    glCreateQueries(GL_TIMESTAMP, 2, n);
+    begin_ = Handle<detail::deleteQuery>(n[0]);
+    end_ = Handle<detail::deleteQuery>(n[1]);
+}
+
+double TimerQuery::milliseconds() const
+{
+    GLuint64 t0 = 0, t1 = 0;
+    glGetQueryObjectui64v(begin_.get(), GL_QUERY_RESULT, &t0);
+    glGetQueryObjectui64v(end_.get(), GL_QUERY_RESULT, &t1);
+    return t1 > t0 ? double(t1 - t0) * 1e-6 : 0.0;
+}
+
+namespace {
+GLenum stageOf(const std::string& file)
+{
+    if (file.size() > 5 && file.compare(file.size() - 5, 5, ".vert") == 0) return GL_VERTEX_SHADER;
+    if (file.size() > 5 && file.compare(file.size() - 5, 5, ".geom") == 0) return GL_GEOMETRY_SHADER;
+    if (file.size() > 5 && file.compare(file.size() - 5, 5, ".frag") == 0) return GL_FRAGMENT_SHADER;
+    if (file.size() > 5 && file.compare(file.size() - 5, 5, ".comp") == 0) return GL_COMPUTE_SHADER;
+    throw Error("unknown shader stage for " + file);
+}
+} // namespace
+
+Program::Program(std::initializer_list<const char*> files)
+{
+    h_ = Handle<detail::deleteProgram>(glCreateProgram());
+    std::vector<Handle<detail::deleteShader>> shaders;
+    for (const char* file : files) {
+        const std::string src = shaderSource(file);
+        Handle<detail::deleteShader> s(glCreateShader(stageOf(file)));
+        const char* text = src.c_str();
+        glShaderSource(s.get(), 1, &text, nullptr);
+        glCompileShader(s.get());
+        GLint ok = 0;
+        glGetShaderiv(s.get(), GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            GLint len = 0;
+            glGetShaderiv(s.get(), GL_INFO_LOG_LENGTH, &len);
+            std::string log(size_t(std::max(len, 1)), '\0');
+            glGetShaderInfoLog(s.get(), len, nullptr, log.data());
+            throw Error(fmt::format("shader {} does not compile on this driver: {}", file, log.c_str()));
+        }
+        glAttachShader(h_.get(), s.get());
+        shaders.push_back(std::move(s));
+    }
+    glLinkProgram(h_.get());
+    GLint ok = 0;
+    glGetProgramiv(h_.get(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetProgramiv(h_.get(), GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(std::max(len, 1)), '\0');
+        glGetProgramInfoLog(h_.get(), len, nullptr, log.data());
+        throw Error(fmt::format("shader program does not link: {}", log.c_str()));
+    }
+    for (auto& s : shaders) glDetachShader(h_.get(), s.get());
+    checkGl("shader program creation");
+}
+
+GLint Program::location(const char* name) const { return glGetUniformLocation(h_.get(), name); }
+
+} // namespace svo::gl

@@ -1,0 +1,131 @@
+#pragma once
+/// @file objects.h
+/// Small owners for GL objects. Each holds one name, deletes it on
+/// destruction, moves but never copies, and exposes operations rather than the
+/// name itself. All use 4.5 direct state access.
+#include <cstdint>
+#include <string>
+#include <utility>
+
+#include "gl_api.h"
+
+namespace svo::gl {
+
+/// Movable ownership of one GL name; Deleter frees it.
+template <void (*Deleter)(GLuint)>
+class Handle {
+public:
+    Handle() = default;
+    explicit Handle(GLuint name) : name_(name) {}
+    ~Handle() { reset(); }
+    Handle(Handle&& o) noexcept : name_(std::exchange(o.name_, 0)) {}
+    Handle& operator=(Handle&& o) noexcept
+    {
+        if (this != &o) { reset(); name_ = std::exchange(o.name_, 0); }
+        return *this;
+    }
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
+    GLuint get() const { return name_; }
+    void reset()
+    {
+        if (name_) Deleter(name_);
+        name_ = 0;
+    }
+
+private:
+    GLuint name_ = 0;
+};
+
+namespace detail {
+inline void deleteBuffer(GLuint n) { glDeleteBuffers(1, &n); }
+inline void deleteVertexArray(GLuint n) { glDeleteVertexArrays(1, &n); }
+inline void deleteFramebuffer(GLuint n) { glDeleteFramebuffers(1, &n); }
+inline void deleteQuery(GLuint n) { glDeleteQueries(1, &n); }
+inline void deleteProgram(GLuint n) { glDeleteProgram(n); }
+inline void deleteShader(GLuint n) { glDeleteShader(n); }
+} // namespace detail
+
+/// Immutable-storage buffer (glNamedBufferStorage). Allocation failure throws.
+class Buffer {
+public:
+    Buffer() = default;
+    /// `what` names the buffer in out-of-memory errors.
+    Buffer(const char* what, uint64_t bytes, const void* data = nullptr, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
+    uint64_t bytes() const { return bytes_; }
+    void bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, h_.get()); }
+    void bind(GLenum target) const { glBindBuffer(target, h_.get()); }
+    void write(uint64_t offset, uint64_t bytes, const void* data) const
+    {
+        glNamedBufferSubData(h_.get(), GLintptr(offset), GLsizeiptr(bytes), data);
+    }
+    void read(uint64_t offset, uint64_t bytes, void* out) const
+    {
+        glGetNamedBufferSubData(h_.get(), GLintptr(offset), GLsizeiptr(bytes), out);
+    }
+    void clearUint(uint32_t value) const
+    {
+        glClearNamedBufferData(h_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+    }
+
+private:
+    friend class VertexArray;
+    Handle<detail::deleteBuffer> h_;
+    uint64_t bytes_ = 0;
+};
+
+/// A vertex array with one float3 attribute and an element buffer.
+class VertexArray {
+public:
+    VertexArray();
+    void setPositions(const Buffer& vertices, GLuint location);
+    void setIndices(const Buffer& indices);
+    void bind() const { glBindVertexArray(h_.get()); }
+
+private:
+    Handle<detail::deleteVertexArray> h_;
+};
+
+/// A framebuffer with no attachments: rasterization without a colour target.
+class EmptyFramebuffer {
+public:
+    EmptyFramebuffer(int width, int height);
+    void bind() const { glBindFramebuffer(GL_FRAMEBUFFER, h_.get()); }
+
+private:
+    Handle<detail::deleteFramebuffer> h_;
+};
+
+/// GPU time between begin() and end(), from a pair of GL_TIMESTAMP queries.
+/// (Mesa's llvmpipe returns garbage for GL_TIME_ELAPSED; timestamps measure the
+/// same interval on every driver.) The result is read later.
+class TimerQuery {
+public:
+    TimerQuery();
+    void begin() const { glQueryCounter(begin_.get(), GL_TIMESTAMP); }
+    void end() const { glQueryCounter(end_.get(), GL_TIMESTAMP); }
+    /// Waits for the GPU; milliseconds.
+    double milliseconds() const;
+
+private:
+    Handle<detail::deleteQuery> begin_, end_;
+};
+
+/// A linked program from embedded shader files (see shaders.h).
+class Program {
+public:
+    /// Stage files by name, e.g. {"raster.vert", "raster.geom", "raster.frag"}.
+    /// Throws svo::Error with the compiler log on failure.
+    Program(std::initializer_list<const char*> files);
+    void use() const { glUseProgram(h_.get()); }
+    void set(const char* name, float v) const { glProgramUniform1f(h_.get(), location(name), v); }
+    void set(const char* name, float x, float y) const { glProgramUniform2f(h_.get(), location(name), x, y); }
+    void set(const char* name, int x, int y, int z) const { glProgramUniform3i(h_.get(), location(name), x, y, z); }
+    void set(const char* name, uint32_t v) const { glProgramUniform1ui(h_.get(), location(name), v); }
+
+private:
+    GLint location(const char* name) const;
+    Handle<detail::deleteProgram> h_;
+};
+
+} // namespace svo::gl
