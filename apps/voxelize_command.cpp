@@ -53,6 +53,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         Progress p("loading " + (a.mesh.empty() ? std::string("built-in scene") : a.mesh));
         mesh = a.mesh.empty() ? cornellBox() : loadMesh(a.mesh);
     }
+    for (const auto& w : mesh.warnings) fmt::print(stderr, "svo: warning: {}\n", w);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
     const std::string output = a.output.empty() ? scene + ".vdb" : a.output;
     vdb::checkWritable(output);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -127,6 +128,15 @@ void checkBinaryStl(const std::string& path, const std::string& bytes)
     if (bytes.size() < want)
         throw Error(fmt::format("{}: truncated binary STL: {} triangles need {} bytes, the file has {}", path, n,
                                 want, bytes.size()));
+    // OpenMesh welds STL vertices through an ordered map, where a NaN compares
+    // equal to anything and silently vanishes; screen the corners here.
+    for (uint32_t t = 0; t < n; ++t)
+        for (int c = 0; c < 9; ++c) {
+            float f;
+            std::memcpy(&f, bytes.data() + 84 + 50ull * t + 12 + 4 * c, 4);
+            if (!std::isfinite(f))
+                throw Error(fmt::format("{}: triangle {} has a non-finite coordinate ({})", path, t, f));
+        }
 }
 
 /// A PLY header declares its vertex and face counts; we hold the reader to them.
@@ -158,6 +168,66 @@ PlyCounts readPlyHeader(const std::string& path, const std::string& bytes)
     return c;
 }
 
+/// OpenMesh's text readers turn "nan"/"inf" into undefined values (or lose
+/// their place in the file), so ASCII coordinates are screened first.
+/// Returns the number of face records for formats that list one per line (OBJ).
+size_t screenAsciiNumbers(const std::string& path, const std::string& ext, const std::string& bytes)
+{
+    std::istringstream in(bytes);
+    std::string line;
+    size_t lineNo = 0, faces = 0;
+    bool body = ext == "obj" || ext == "stl";
+    int offHeaderLines = 0;
+    while (std::getline(in, line)) {
+        ++lineNo;
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || line[first] == '#') continue;
+        if (ext == "ply" && !body) {
+            if (line.rfind("format", first) == first && line.find("ascii") == std::string::npos) return 0;
+            body = line.rfind("end_header", first) == first;
+            continue;
+        }
+        if (ext == "off" && offHeaderLines < 2) {
+            // "OFF" and the counts line (the keyword may share the counts' line).
+            ++offHeaderLines;
+            if (offHeaderLines == 1 && line.find_first_of("0123456789", first) != std::string::npos) ++offHeaderLines;
+            continue;
+        }
+        bool coordinates = true;
+        if (ext == "obj") {
+            coordinates = line.compare(first, 2, "v ") == 0 || line.compare(first, 2, "v\t") == 0;
+            faces += line.compare(first, 2, "f ") == 0 || line.compare(first, 2, "f\t") == 0;
+        }
+        if (ext == "stl") coordinates = line.compare(first, 6, "vertex") == 0;
+        if (!coordinates) continue;
+        std::istringstream tokens(line);
+        std::string tok;
+        while (tokens >> tok) {
+            std::string lower = tok;
+            std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+            if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
+                throw Error(fmt::format("{}: line {}: non-finite coordinate '{}'", path, lineNo, tok));
+        }
+    }
+    return faces;
+}
+
+/// "OFF\nNV NF NE": the counts the reader must deliver.
+PlyCounts readOffHeader(const std::string& bytes)
+{
+    PlyCounts c;
+    std::istringstream in(bytes);
+    std::string word;
+    in >> word;
+    if (word.find("OFF") == std::string::npos) return c;
+    // Skip comment lines between the keyword and the counts.
+    std::string rest;
+    while (in >> std::ws && in.peek() == '#') std::getline(in, rest);
+    in >> c.vertices >> c.faces;
+    if (!in) c.vertices = c.faces = -1;
+    return c;
+}
+
 } // namespace
 
 const char* supportedMeshExtensions() { return ".obj, .ply, .stl, .off"; }
@@ -176,9 +246,11 @@ TriangleMesh loadMesh(const std::string& path)
     const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
     if (bytes.empty()) throw Error(fmt::format("{}: the file is empty", path));
 
-    PlyCounts ply;
+    PlyCounts declared; // counts the header promises (PLY, OFF)
     if (ext == "stl") checkBinaryStl(path, bytes);
-    if (ext == "ply") ply = readPlyHeader(path, bytes);
+    if (ext == "ply") declared = readPlyHeader(path, bytes);
+    if (ext == "off") declared = readOffHeader(bytes);
+    const size_t objFaces = screenAsciiNumbers(path, ext, bytes);
 
     TriangleMesh mesh;
     mesh.source = path;
@@ -199,12 +271,16 @@ TriangleMesh loadMesh(const std::string& path)
     std::replace(why.begin(), why.end(), '\n', ' ');
     if (!ok) throw Error(fmt::format("{}: OpenMesh could not read the file{}{}", path, why.empty() ? "" : ": ", why));
     if (!importer.indexError.empty()) throw Error(fmt::format("{}: {}", path, importer.indexError));
-    if (ext == "ply" && ply.faces >= 0 && long(importer.facesSeen) != ply.faces)
+    if (declared.faces >= 0 && long(importer.facesSeen) != declared.faces)
         throw Error(fmt::format("{}: the header declares {} faces but {} could be read (truncated file?)", path,
-                                ply.faces, importer.facesSeen));
-    if (ext == "ply" && ply.vertices >= 0 && long(mesh.positions.size()) != ply.vertices)
+                                declared.faces, importer.facesSeen));
+    if (declared.vertices >= 0 && long(mesh.positions.size()) != declared.vertices)
         throw Error(fmt::format("{}: the header declares {} vertices but {} could be read (truncated file?)", path,
-                                ply.vertices, mesh.positions.size()));
+                                declared.vertices, mesh.positions.size()));
+    if (ext == "obj" && importer.facesSeen < objFaces)
+        mesh.warnings.push_back(fmt::format("{}: OpenMesh's OBJ reader skipped {} of {} faces (faces that repeat a "
+                                            "vertex); they are not voxelized",
+                                            path, objFaces - importer.facesSeen, objFaces));
     validateMesh(mesh);
     return mesh;
 }

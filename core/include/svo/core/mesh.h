@@ -22,6 +22,8 @@ struct TriangleMesh {
     std::vector<std::array<uint32_t, 3>> triangles;
     /// Where the mesh came from (a path, or the built-in scene's name).
     std::string source;
+    /// Things the reader could not keep, for the user to see (never silent).
+    std::vector<std::string> warnings;
 
     Bounds bounds() const;
     /// The three corners of triangle t.

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# svo setup on Debian 12: install dependencies, build, then run a job.
+#   bash scripts/setup.sh run    # build, then `svo voxelize` on the built-in scene
+#   bash scripts/setup.sh test   # build, then the whole test suite through ctest
+# Idempotent: packages already present are skipped by apt, and the build is incremental.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mode=${1:-run}
+
+packages=(
+  build-essential cmake ninja-build pkg-config ccache
+  libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libtbb-dev
+  libopenmesh-dev libcgal-dev libcgal-demo
+  libglfw3-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  libvtk9-dev xvfb
+  libcli11-dev libfmt-dev libgtest-dev
+  pybind11-dev python3-dev python3-pytest python3-numpy
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "setup: installing ${missing[*]}"
+  $sudo apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+build=${SVO_BUILD_DIR:-build}
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build "$build" --parallel "$(nproc)"
+
+case "$mode" in
+  run)
+    "$build/bin/svo" voxelize -o "${SVO_OUTPUT:-cornell_box.vdb}" ;;
+  test)
+    ctest --test-dir "$build" --output-on-failure --timeout 1500 ;;
+  build) ;;
+  *) echo "usage: $0 run|test|build" >&2; exit 2 ;;
+esac

@@ -1,0 +1,69 @@
+#pragma once
+/// @file scenes.h
+/// Scenes the tests generate: no binary blobs in the repository.
+#include <cmath>
+#include <random>
+
+#include "svo/core/mesh.h"
+
+namespace svo::test {
+
+/// n random triangles, each inside its own well-separated 16^3 cell, with
+/// random orientation and shape; every 8th one is degenerate (a needle or a
+/// point) to exercise those paths too.
+inline TriangleMesh randomTriangles(int n, uint32_t seed)
+{
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 12.0);
+    TriangleMesh m;
+    m.source = "random triangles";
+    const int per = int(std::ceil(std::cbrt(double(n))));
+    for (int t = 0; t < n; ++t) {
+        const Vec3d cell{20.0 * (t % per), 20.0 * ((t / per) % per), 20.0 * (t / (per * per))};
+        Vec3d a = cell + Vec3d{u(rng), u(rng), u(rng)};
+        Vec3d b = cell + Vec3d{u(rng), u(rng), u(rng)};
+        Vec3d c = cell + Vec3d{u(rng), u(rng), u(rng)};
+        if (t % 8 == 3) c = a + 0.37 * (b - a); // collinear needle
+        if (t % 8 == 5) b = c = a;              // a point
+        const uint32_t base = uint32_t(m.positions.size());
+        m.positions.insert(m.positions.end(), {a, b, c});
+        m.triangles.push_back({base, base + 1, base + 2});
+    }
+    return m;
+}
+
+/// An axis-aligned box [lo, hi]^3, each face split into two triangles.
+inline TriangleMesh box(Vec3d lo, Vec3d hi)
+{
+    TriangleMesh m;
+    m.source = "box";
+    for (int i = 0; i < 8; ++i) m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+    const uint32_t q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (auto& f : q) {
+        m.triangles.push_back({f[0], f[1], f[2]});
+        m.triangles.push_back({f[0], f[2], f[3]});
+    }
+    return m;
+}
+
+/// A UV sphere of radius r at centre c.
+inline TriangleMesh sphere(Vec3d c, double r, int slices, int stacks)
+{
+    TriangleMesh m;
+    m.source = "sphere";
+    const double pi = 3.14159265358979323846;
+    for (int j = 0; j <= stacks; ++j)
+        for (int i = 0; i <= slices; ++i) {
+            const double th = pi * j / stacks, ph = 2 * pi * i / slices;
+            m.positions.push_back(c + r * Vec3d{std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph)});
+        }
+    auto at = [&](int i, int j) { return uint32_t(j * (slices + 1) + i); };
+    for (int j = 0; j < stacks; ++j)
+        for (int i = 0; i < slices; ++i) {
+            m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    return m;
+}
+
+} // namespace svo::test

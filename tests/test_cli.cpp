@@ -1,0 +1,102 @@
+// The svo command: exit codes, messages, and that bad input leaves no output.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+    int code;
+    std::string out;
+};
+
+Run svo(const std::string& args)
+{
+    const std::string cmd = std::string(SVO_EXE) + " " + args + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    std::string out;
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
+    const int status = pclose(p);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        dir_ = fs::temp_directory_path() / ("svo_cli_" + std::to_string(::getpid()));
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::string write(const std::string& name, const std::string& text) const
+    {
+        std::ofstream(path(name)) << text;
+        return path(name);
+    }
+    /// Nothing but the listed files in the folder: no temporaries left behind.
+    void expectOnly(std::initializer_list<std::string> names) const
+    {
+        size_t n = 0;
+        for (const auto& e : fs::directory_iterator(dir_)) {
+            ++n;
+            EXPECT_NE(std::find(names.begin(), names.end(), e.path().filename().string()), names.end())
+                << "unexpected file " << e.path();
+        }
+        EXPECT_EQ(n, names.size());
+    }
+    fs::path dir_;
+};
+
+} // namespace
+
+TEST_F(Cli, DefaultSceneWritesAVdbAndPrintsTheTable)
+{
+    const auto r = svo("voxelize -r 48 -o " + path("cb.vdb"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("triangles   3,136"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("voxelize"), std::string::npos);
+    EXPECT_GT(fs::file_size(path("cb.vdb")), 100u);
+    expectOnly({"cb.vdb"});
+}
+
+TEST_F(Cli, BadMeshFailsAndKeepsAnEarlierOutput)
+{
+    const std::string out = write("out.vdb", "earlier result");
+    const auto bad = write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+    const auto r = svo("voxelize " + bad + " -o " + out);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.out.find(bad), std::string::npos) << r.out;
+    std::ifstream in(out);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text, "earlier result");
+    expectOnly({"out.vdb", "bad.obj"});
+}
+
+TEST_F(Cli, BadArgumentsFailWithoutOutput)
+{
+    const auto missing = svo("voxelize " + path("missing.stl") + " -o " + path("a.vdb"));
+    EXPECT_NE(missing.code, 0);
+    EXPECT_NE(missing.out.find("no such file"), std::string::npos) << missing.out;
+    for (const char* r : {"0", "-5"}) {
+        const auto res = svo(std::string("voxelize -r ") + r + " -o " + path("a.vdb"));
+        EXPECT_NE(res.code, 0) << res.out;
+        EXPECT_NE(res.out.find("--resolution"), std::string::npos) << res.out;
+    }
+    const auto huge = svo("voxelize -r 100000000 -o " + path("a.vdb"));
+    EXPECT_NE(huge.code, 0);
+    const auto size = svo("voxelize --voxel-size -1 -o " + path("a.vdb"));
+    EXPECT_NE(size.code, 0);
+    const auto folder = svo("voxelize -r 16 -o /nonexistent-folder/a.vdb");
+    EXPECT_NE(folder.code, 0);
+    EXPECT_NE(folder.out.find("does not exist"), std::string::npos) << folder.out;
+    expectOnly({});
+}
