@@ -1,5 +1,6 @@
 // svo voxelize [MESH] -o out.vdb [--resolution N | --voxel-size h]
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
@@ -27,7 +28,25 @@ struct VoxelizeArgs {
     std::string device;
     bool fog = false;
     bool glDebug = false;
+    int repeat = 1;
 };
+
+/// Per-stage medians over repeated runs (the voxels of the last run are kept).
+Voxelization medianOf(std::vector<Voxelization> runs)
+{
+    std::vector<StageTime> stages = runs.back().stages;
+    for (size_t s = 0; s < stages.size(); ++s) {
+        std::vector<double> gpu, wall;
+        for (const auto& r : runs) gpu.push_back(r.stages[s].gpuMs), wall.push_back(r.stages[s].wallMs);
+        std::sort(gpu.begin(), gpu.end());
+        std::sort(wall.begin(), wall.end());
+        stages[s].gpuMs = gpu[gpu.size() / 2];
+        stages[s].wallMs = wall[wall.size() / 2];
+    }
+    Voxelization out = std::move(runs.back());
+    out.stages = std::move(stages);
+    return out;
+}
 
 std::string thousands(uint64_t n)
 {
@@ -77,11 +96,16 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         backendLine = fmt::format("raster, {} dilation, on {} | {} | {} ({}{})", gl::conservativeModeName(context, ro),
                                   info.vendor, info.renderer, info.version, info.eglDevice, exts);
         Progress p("voxelizing on the GPU");
-        vox = gl::voxelizeRaster(context, mesh, grid, ro);
+        if (a.repeat > 1) gl::voxelizeRaster(context, mesh, grid, ro); // warm-up
+        std::vector<Voxelization> runs;
+        for (int i = 0; i < std::max(a.repeat, 1); ++i) runs.push_back(gl::voxelizeRaster(context, mesh, grid, ro));
+        vox = medianOf(std::move(runs));
     } else {
         backendLine = "cpu (double-precision reference)";
         Progress p("voxelizing on the CPU");
-        vox = voxelizeCpu(mesh, grid);
+        std::vector<Voxelization> runs;
+        for (int i = 0; i < std::max(a.repeat, 1); ++i) runs.push_back(voxelizeCpu(mesh, grid));
+        vox = medianOf(std::move(runs));
     }
 
     vdb::WriteOptions wo;
@@ -117,7 +141,8 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
                vox.overflowRetries);
     fmt::print("  {:<11} {} ({:.2f} MB, {} leaves{})\n", "output", output, double(ws.bytes) / 1e6, thousands(ws.leaves),
                a.fog ? ", with fog grid" : "");
-    fmt::print("\n  {:<20} {:>10} {:>10}\n", "stage", "GPU ms", "wall ms");
+    fmt::print("\n  {:<20} {:>10} {:>10}{}\n", "stage", "GPU ms", "wall ms",
+               a.repeat > 1 ? fmt::format("   (voxelize stages: median of {} runs after a warm-up)", a.repeat) : "");
     for (const auto& s : vox.stages)
         fmt::print("  {:<20} {:>10} {:>10.2f}\n", s.name, s.gpuMs < 0 ? std::string("-") : fmt::format("{:.3f}", s.gpuMs),
                    s.wallMs);
@@ -145,6 +170,9 @@ void addVoxelizeCommand(CLI::App& app)
         ->capture_default_str();
     cmd->add_option("--device", args->device, "EGL device: auto, hardware, software or an index (env SVO_EGL_DEVICE)");
     cmd->add_flag("--fog", args->fog, "Also write a fog-volume FloatGrid 'density'");
+    cmd->add_option("--repeat", args->repeat,
+                    "Voxelize N times (after one warm-up on the GPU) and report per-stage medians")
+        ->check(CLI::Range(1, 1000));
     cmd->add_flag("--gl-debug", args->glDebug, "Print GL debug messages");
     cmd->callback([args, cmd] { runVoxelize(*args, *cmd); });
 }
