@@ -21,9 +21,7 @@ svo="$work/svo/bin/svo"
 # The GPU test suite against the CPU reference, with the meshes where the build expects them.
 tests="$work/svo/bin/test_gpu_voxelize"
 if [ -x "$tests" ]; then
-  dir=$(strings "$tests" | grep -m1 'cgal_data/data/meshes' || true)
-  [ -n "$dir" ] && mkdir -p "$dir" && cp bundle/meshes/*.off "$dir/"
-  "$tests" 2>&1 | tee "$out/test_gpu_voxelize.txt" | grep -E "^\[  |FAILED|PASSED|band" 
+  SVO_CGAL_MESHES="$PWD/bundle/meshes" "$tests" 2>&1 | tee "$out/test_gpu_voxelize.txt" | grep -E "^\[  |FAILED|PASSED|band" 
 fi
 
 # Timings: bunny and ogre, both dilation modes, median of 5 after a warm-up.

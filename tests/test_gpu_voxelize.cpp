@@ -1,4 +1,5 @@
 // The raster backend against the CPU reference on generated and real meshes.
+#include <cstdlib>
 #include <gtest/gtest.h>
 #include <memory>
 
@@ -99,7 +100,9 @@ TEST_F(GpuVoxelize, OverflowTriggersExactlyOneRetry)
 #ifdef SVO_CGAL_MESHES
 TEST_F(GpuVoxelize, RealMeshesFromCgalData)
 {
-    const std::string dir = SVO_CGAL_MESHES;
+    // SVO_CGAL_MESHES in the environment overrides the build's path (for a bundle run elsewhere).
+    const char* env = std::getenv("SVO_CGAL_MESHES");
+    const std::string dir = env && *env ? env : SVO_CGAL_MESHES;
     for (const char* name : {"elephant.off", "fandisk.off", "knot1.off", "cow.off"})
         for (int r : {32, 100, 256}) check(loadMesh(dir + "/" + name), res(r));
 }
