@@ -98,5 +98,8 @@ TEST_F(Cli, BadArgumentsFailWithoutOutput)
     const auto folder = svo("voxelize -r 16 -o /nonexistent-folder/a.vdb");
     EXPECT_NE(folder.code, 0);
     EXPECT_NE(folder.out.find("does not exist"), std::string::npos) << folder.out;
+    const auto device = svo("voxelize -r 16 --device 97 -o " + path("a.vdb"));
+    EXPECT_EQ(device.code, 1);
+    EXPECT_NE(device.out.find("no EGL device matches '97'"), std::string::npos) << device.out;
     expectOnly({});
 }
