@@ -107,3 +107,16 @@ TEST_F(GpuVoxelize, RealMeshesFromCgalData)
         for (int r : {32, 100, 256}) check(loadMesh(dir + "/" + name), res(r));
 }
 #endif
+
+TEST(GlContext, HeadlessCoreContextReportsItself)
+{
+    gl::Context context;
+    const auto& info = context.info();
+    EXPECT_FALSE(info.renderer.empty());
+    EXPECT_FALSE(info.vendor.empty());
+    EXPECT_EQ(info.version.rfind("4.", 0), 0u) << info.version; // the constructor refuses anything below 4.5
+    EXPECT_GE(info.maxViewport, 16384);                          // GL 4.5's minimum framebuffer size
+    EXPECT_FALSE(info.eglDevice.empty());
+    std::printf("  %s | %s | %s | %s\n", info.eglDevice.c_str(), info.vendor.c_str(), info.renderer.c_str(),
+                info.version.c_str());
+}
