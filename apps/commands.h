@@ -10,5 +10,7 @@ namespace svo::app {
 
 void addVoxelizeCommand(CLI::App& app);
 void addGlInfoCommand(CLI::App& app);
+void addConvertCommand(CLI::App& app);
+void addInfoCommand(CLI::App& app);
 
 } // namespace svo::app

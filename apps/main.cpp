@@ -10,6 +10,8 @@ int main(int argc, char** argv)
     app.require_subcommand(1);
     app.set_version_flag("--version", "svo " SVO_VERSION);
     svo::app::addVoxelizeCommand(app);
+    svo::app::addConvertCommand(app);
+    svo::app::addInfoCommand(app);
     svo::app::addGlInfoCommand(app);
     try {
         app.parse(argc, argv);

@@ -6,6 +6,7 @@
 
 #include "scenes.h"
 #include "svo/core/cpu_voxelizer.h"
+#include "svo/core/octree.h"
 #include "svo/core/error.h"
 #include "svo/core/voxel_key.h"
 #include "svo/vdb_io/vdb_file.h"
@@ -40,7 +41,7 @@ void expectRoundTrip(const TriangleMesh& mesh, const GridRequest& req, bool fog)
     vdb::WriteOptions o;
     o.fog = fog;
     o.metadata["svo:source"] = mesh.source;
-    vdb::writeVdb(path, v, o);
+    vdb::writeVdb(path, buildOctree(v.grid, v.keys), o);
     auto grids = readAll(path);
     ASSERT_EQ(grids->size(), fog ? 2u : 1u);
     const auto expected = globalVoxels(v);
@@ -115,5 +116,5 @@ TEST(VdbIo, UnwritableFolderIsAnErrorAndLeavesNothing)
 {
     const auto mesh = test::box({0, 0, 0}, {1, 1, 1});
     const auto v = voxelizeCpu(mesh, makeGrid(mesh, {8, 0}));
-    EXPECT_THROW(vdb::writeVdb("/nonexistent-folder/out.vdb", v, {}), svo::Error);
+    EXPECT_THROW(vdb::writeVdb("/nonexistent-folder/out.vdb", buildOctree(v.grid, v.keys), {}), svo::Error);
 }

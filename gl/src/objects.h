@@ -122,6 +122,19 @@ public:
     void set(const char* name, float x, float y) const { glProgramUniform2f(h_.get(), location(name), x, y); }
     void set(const char* name, int x, int y, int z) const { glProgramUniform3i(h_.get(), location(name), x, y, z); }
     void set(const char* name, uint32_t v) const { glProgramUniform1ui(h_.get(), location(name), v); }
+    /// Compute programs: `groups` work groups along x.
+    void dispatch(uint32_t groups) const
+    {
+        use();
+        glDispatchCompute(groups, 1, 1);
+    }
+    /// Compute programs: group counts read on the GPU from `args` at byte `offset`.
+    void dispatchIndirect(const Buffer& args, uint64_t offset) const
+    {
+        use();
+        args.bind(GL_DISPATCH_INDIRECT_BUFFER);
+        glDispatchComputeIndirect(GLintptr(offset));
+    }
 
 private:
     GLint location(const char* name) const;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "objects.h"
+#include "octree_builder.h"
 #include "svo/core/error.h"
 
 namespace svo::gl {
@@ -38,6 +39,89 @@ uint64_t estimateEntries(const std::vector<Vec3f>& p, const TriangleMesh& mesh)
     return uint64_t(std::min(total, 4.0e9)) + 1024;
 }
 
+/// The mesh on the GPU and the program that rasterizes it into a voxel list.
+class Rasterizer {
+public:
+    Rasterizer(const Context& context, const TriangleMesh& mesh, const GridSpec& grid, const RasterOptions& options)
+        : hardware_(useHardware(context, options)), triangles_(mesh.triangles.size())
+    {
+        const int maxTile = context.info().maxViewport;
+        if (maxTile < 1) throw Error("the GL context reports no usable viewport size");
+        auto t0 = Clock::now();
+        uploadTimer_.begin();
+        const std::vector<Vec3f> local = localPositionsFloat(mesh, grid);
+        vertices_ = Buffer("vertex buffer", local.size() * sizeof(Vec3f), local.data(), 0);
+        indices_ = Buffer("index buffer", mesh.triangles.size() * 3 * sizeof(uint32_t), mesh.triangles.data(), 0);
+        vao_.setPositions(vertices_, 0);
+        vao_.setIndices(indices_);
+        uploadTimer_.end();
+        checkGl("mesh upload");
+        uploadWallMs_ = msSince(t0);
+        estimate_ = options.initialCapacity ? options.initialCapacity : estimateEntries(local, mesh);
+
+        const uint32_t side = grid.maxDim();
+        tile_ = int(std::min<uint32_t>(side, uint32_t(maxTile)));
+        tiles_ = int((side + uint32_t(tile_) - 1) / uint32_t(tile_));
+        fbo_ = EmptyFramebuffer(tile_, tile_);
+        const float half = float(0.5 + 0.5 * grid.epsilon());
+        const float dilate = hardware_ ? float(0.5 * grid.epsilon() + 1.0 / 128.0) : half + float(1.0 / 128.0);
+        program_.set("uHalf", half);
+        program_.set("uDilate", dilate);
+        program_.set("uTileSize", float(tile_), float(tile_));
+        program_.set("uDims", int(grid.dims[0]), int(grid.dims[1]), int(grid.dims[2]));
+    }
+
+    /// Issues the draws that fill `list` (room for `capacity` entries) and
+    /// count into `counter`, which keeps counting past the end. No wait.
+    void draw(const Buffer& list, const Buffer& counter, uint64_t capacity) const
+    {
+        counter.clearUint(0);
+        program_.set("uCapacity", uint32_t(capacity));
+        fbo_.bind();
+        glViewport(0, 0, tile_, tile_);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        if (hardware_) glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
+        program_.use();
+        vao_.bind();
+        counter.bindBase(GL_ATOMIC_COUNTER_BUFFER, 0);
+        list.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+        for (int ty = 0; ty < tiles_; ++ty)
+            for (int tx = 0; tx < tiles_; ++tx) {
+                program_.set("uTileOrigin", float(tx * tile_), float(ty * tile_));
+                glDrawElements(GL_TRIANGLES, GLsizei(triangles_ * 3), GL_UNSIGNED_INT, nullptr);
+            }
+        if (hardware_) glDisable(GL_CONSERVATIVE_RASTERIZATION_NV);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        checkGl("rasterization");
+    }
+
+    uint64_t estimatedEntries() const { return estimate_; }
+    StageTime uploadStage() const { return {"upload", uploadTimer_.milliseconds(), uploadWallMs_}; }
+    uint64_t meshBytes() const { return vertices_.bytes() + indices_.bytes(); }
+
+private:
+    bool hardware_;
+    uint64_t triangles_;
+    TimerQuery uploadTimer_;
+    double uploadWallMs_ = 0;
+    uint64_t estimate_ = 0;
+    Buffer vertices_, indices_;
+    VertexArray vao_;
+    Program program_{"raster.vert", "raster.geom", "raster.frag"};
+    EmptyFramebuffer fbo_{1, 1};
+    int tile_ = 1, tiles_ = 1;
+};
+
+Buffer makeList(uint64_t capacity)
+{
+    if (capacity > (uint64_t(1) << 32) - 1)
+        throw Error(fmt::format("the voxel list would need {} entries, beyond the 2^32 an atomic counter "
+                                "can address; use a coarser grid",
+                                capacity));
+    return Buffer("voxel list", capacity * 8);
+}
+
 } // namespace
 
 const char* conservativeModeName(const Context& context, const RasterOptions& options)
@@ -48,91 +132,39 @@ const char* conservativeModeName(const Context& context, const RasterOptions& op
 Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                             const RasterOptions& options)
 {
-    const bool hardware = useHardware(context, options);
-    const int maxTile = context.info().maxViewport;
-    if (maxTile < 1) throw Error("the GL context reports no usable viewport size");
     Voxelization result;
     result.grid = grid;
+    const Rasterizer raster(context, mesh, grid, options);
 
-    // Upload.
+    // Voxelize; if the list overflowed, the counter holds the exact size needed.
     auto t0 = Clock::now();
-    TimerQuery uploadTimer;
-    uploadTimer.begin();
-    const std::vector<Vec3f> local = localPositionsFloat(mesh, grid);
-    Buffer vertices("vertex buffer", local.size() * sizeof(Vec3f), local.data(), 0);
-    Buffer indices("index buffer", mesh.triangles.size() * 3 * sizeof(uint32_t), mesh.triangles.data(), 0);
-    VertexArray vao;
-    vao.setPositions(vertices, 0);
-    vao.setIndices(indices);
-    uploadTimer.end();
-    checkGl("mesh upload");
-    const double uploadWall = msSince(t0);
-
-    // Voxelize: one draw per tile (one tile unless the grid exceeds the viewport).
-    t0 = Clock::now();
-    const Program program({"raster.vert", "raster.geom", "raster.frag"});
-    const uint32_t side = grid.maxDim();
-    const int tile = int(std::min<uint32_t>(side, uint32_t(maxTile)));
-    const int tiles = int((side + uint32_t(tile) - 1) / uint32_t(tile));
-    const EmptyFramebuffer fbo(tile, tile);
-    const float half = float(0.5 + 0.5 * grid.epsilon());
-    const float dilate = hardware ? float(0.5 * grid.epsilon() + 1.0 / 128.0) : half + float(1.0 / 128.0);
-    program.set("uHalf", half);
-    program.set("uDilate", dilate);
-    program.set("uTileSize", float(tile), float(tile));
-    program.set("uDims", int(grid.dims[0]), int(grid.dims[1]), int(grid.dims[2]));
-    Buffer counter("voxel counter", sizeof(uint32_t));
-    uint64_t capacity = options.initialCapacity ? options.initialCapacity : estimateEntries(local, mesh);
+    const Buffer counter("voxel counter", sizeof(uint32_t));
+    uint64_t capacity = raster.estimatedEntries();
     Buffer list;
     double voxelizeGpu = 0;
-    uint64_t entries = 0;
+    uint32_t count = 0;
     for (int attempt = 0;; ++attempt) {
-        if (capacity > (uint64_t(1) << 32) - 1)
-            throw Error(fmt::format("the voxel list would need {} entries, beyond the 2^32 an atomic counter "
-                                    "can address; use a coarser grid",
-                                    capacity));
-        list = Buffer("voxel list", capacity * 8);
-        counter.clearUint(0);
-        program.set("uCapacity", uint32_t(capacity));
+        list = makeList(capacity);
         TimerQuery timer;
         timer.begin();
-        fbo.bind();
-        glViewport(0, 0, tile, tile);
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_CULL_FACE);
-        if (hardware) glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
-        program.use();
-        vao.bind();
-        counter.bindBase(GL_ATOMIC_COUNTER_BUFFER, 0);
-        list.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-        for (int ty = 0; ty < tiles; ++ty)
-            for (int tx = 0; tx < tiles; ++tx) {
-                program.set("uTileOrigin", float(tx * tile), float(ty * tile));
-                glDrawElements(GL_TRIANGLES, GLsizei(mesh.triangles.size() * 3), GL_UNSIGNED_INT, nullptr);
-            }
-        if (hardware) glDisable(GL_CONSERVATIVE_RASTERIZATION_NV);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+        raster.draw(list, counter, capacity);
         timer.end();
-        checkGl("rasterization");
-        uint32_t count = 0;
         counter.read(0, sizeof count, &count);
         voxelizeGpu += timer.milliseconds();
-        entries = count;
         if (count <= capacity) break;
-        // The counter kept counting past the end, so it is the exact size needed.
         result.overflowRetries = attempt + 1;
         capacity = count;
     }
+    result.stages.push_back(raster.uploadStage());
     result.stages.push_back({"voxelize", voxelizeGpu, msSince(t0)});
-    result.stages.insert(result.stages.begin(), {"upload", uploadTimer.milliseconds(), uploadWall});
-    result.listEntries = entries;
+    result.listEntries = count;
+    result.gpuBytes = raster.meshBytes() + list.bytes() + counter.bytes();
 
-    // Read back.
     t0 = Clock::now();
     TimerQuery readTimer;
     readTimer.begin();
-    result.keys.resize(entries);
-    if (entries) list.read(0, entries * 8, result.keys.data());
+    result.keys.resize(count);
+    if (count) list.read(0, uint64_t(count) * 8, result.keys.data());
     readTimer.end();
     checkGl("voxel list readback");
     result.stages.push_back({"readback", readTimer.milliseconds(), msSince(t0)});
@@ -140,6 +172,78 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
     t0 = Clock::now();
     sortUniqueKeys(result.keys);
     result.stages.push_back({"sort+unique (cpu)", -1.0, msSince(t0)});
+    return result;
+}
+
+OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                                    const RasterOptions& options)
+{
+    OctreeVoxelization result;
+    const Rasterizer raster(context, mesh, grid, options);
+    const OctreeBuilder builder;
+    const uint32_t L = brickLevelFor(grid);
+    const Buffer counter("voxel counter", sizeof(uint32_t));
+
+    // Rasterize and build without waiting; read the counters once. A full
+    // voxel list means rasterizing again at the counted size; full node or
+    // brick buffers mean building again with room for what was counted.
+    uint64_t listCapacity = raster.estimatedEntries();
+    uint64_t brickCapacity = listCapacity / 32 + 64;
+    uint64_t nodeCapacity = OctreeBuilder::nodeBound(L, brickCapacity);
+    Buffer list;
+    OctreeBuilder::Build build;
+    double voxelizeGpu = 0, buildGpu = 0, voxelizeWall = 0, buildWall = 0;
+    uint32_t count = 0;
+    bool drawn = false;
+    for (int attempt = 0;; ++attempt) {
+        auto t0 = Clock::now();
+        TimerQuery drawTimer, buildTimer;
+        if (!drawn) {
+            list = makeList(listCapacity);
+            drawTimer.begin();
+            raster.draw(list, counter, listCapacity);
+            drawTimer.end();
+        }
+        voxelizeWall += msSince(t0);
+        t0 = Clock::now();
+        OctreeInput in;
+        in.entries = &list;
+        in.listCounter = &counter;
+        in.entryCapacity = listCapacity;
+        buildTimer.begin();
+        build = builder.record(grid, in, nodeCapacity, brickCapacity);
+        buildTimer.end();
+        OctreeBuilder::readCounts(build);
+        counter.read(0, sizeof count, &count);
+        buildWall += msSince(t0);
+        if (!drawn) voxelizeGpu += drawTimer.milliseconds();
+        buildGpu += buildTimer.milliseconds();
+        result.gpuBytes = std::max(result.gpuBytes, raster.meshBytes() + list.bytes() + counter.bytes() + build.bytes());
+        if (count > listCapacity) {
+            listCapacity = count; // the counter kept counting: the exact size
+            brickCapacity = std::max<uint64_t>(brickCapacity, listCapacity / 32 + 64);
+            nodeCapacity = std::max(nodeCapacity, OctreeBuilder::nodeBound(L, brickCapacity));
+        } else if (build.overflowed()) {
+            drawn = true; // the list is complete; only the octree needs room
+            brickCapacity = std::max<uint64_t>(build.counts.brickCount, brickCapacity) * 2;
+            nodeCapacity = std::min(std::max<uint64_t>(build.counts.nodeCount, nodeCapacity) * 2,
+                                    OctreeBuilder::nodeBound(L, brickCapacity));
+        } else {
+            break;
+        }
+        result.overflowRetries = attempt + 1;
+    }
+    result.stages.push_back(raster.uploadStage());
+    result.stages.push_back({"voxelize", voxelizeGpu, voxelizeWall});
+    result.stages.push_back({"octree build", buildGpu, buildWall});
+    result.listEntries = count;
+
+    auto t0 = Clock::now();
+    TimerQuery readTimer;
+    readTimer.begin();
+    result.octree = OctreeBuilder::readOctree(build, grid);
+    readTimer.end();
+    result.stages.push_back({"readback", readTimer.milliseconds(), msSince(t0)});
     return result;
 }
 

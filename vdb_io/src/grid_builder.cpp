@@ -1,46 +1,44 @@
 #include "svo/vdb_io/grid_builder.h"
 
+#include <cmath>
+#include <cstring>
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include "svo/core/error.h"
 #include "svo/core/voxel_key.h"
 
 namespace svo::vdb {
 namespace {
 
-/// [begin, end) ranges of keys that share a brick.
-std::vector<std::pair<size_t, size_t>> brickRuns(const std::vector<uint64_t>& keys)
-{
-    std::vector<std::pair<size_t, size_t>> runs;
-    size_t start = 0;
-    for (size_t i = 1; i <= keys.size(); ++i)
-        if (i == keys.size() || brickOfKey(keys[i]) != brickOfKey(keys[start])) {
-            runs.emplace_back(start, i);
-            start = i;
-        }
-    return runs;
-}
+static_assert(sizeof(Brick) == openvdb::util::NodeMask<3>::WORD_COUNT * sizeof(openvdb::util::NodeMask<3>::Word));
 
 template <typename GridT, typename FillLeaf>
-typename GridT::Ptr buildGrid(const Voxelization& v, typename GridT::ValueType background, FillLeaf&& fill)
+typename GridT::Ptr buildGrid(const Octree& o, typename GridT::ValueType background, FillLeaf&& fill)
 {
     using LeafT = typename GridT::TreeType::LeafNodeType;
-    const auto runs = brickRuns(v.keys);
-    std::vector<LeafT*> leaves(runs.size(), nullptr);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, runs.size(), 64), [&](const auto& r) {
+    const std::vector<BrickRef> refs = occupiedBricks(o);
+    std::vector<LeafT*> leaves(refs.size(), nullptr);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, refs.size(), 64), [&](const auto& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
-            const auto [b, e] = runs[i];
-            const auto local = unpackVoxelKey(v.keys[b]);
-            const auto g = v.grid.toGlobal({local[0] & ~7u, local[1] & ~7u, local[2] & ~7u});
+            const auto g = o.grid.toGlobal(refs[i].origin);
             auto* leaf = new LeafT(openvdb::Coord(int32_t(g[0]), int32_t(g[1]), int32_t(g[2])), background, false);
-            for (size_t k = b; k < e; ++k) fill(*leaf, openvdb::Index(v.keys[k] & 511));
+            fill(*leaf, o.bricks[refs[i].index]);
             leaves[i] = leaf;
         }
     });
     auto grid = GridT::create(background);
     auto& tree = grid->tree();
     for (LeafT* leaf : leaves) tree.addLeaf(leaf); // the tree takes ownership
-    grid->setTransform(makeTransform(v.grid));
+    grid->setTransform(makeTransform(o.grid));
     return grid;
+}
+
+template <typename LeafT>
+void copyMask(LeafT& leaf, const Brick& b)
+{
+    auto& mask = leaf.getValueMask();
+    for (openvdb::Index w = 0; w < 8; ++w) mask.template getWord<uint64_t>(w) = b.words[w];
 }
 
 } // namespace
@@ -53,16 +51,109 @@ openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid)
     return xform;
 }
 
-openvdb::MaskGrid::Ptr buildMaskGrid(const Voxelization& voxels)
+openvdb::MaskGrid::Ptr buildMaskGrid(const Octree& o)
 {
-    return buildGrid<openvdb::MaskGrid>(voxels, false, [](auto& leaf, openvdb::Index n) { leaf.setValueOn(n); });
+    return buildGrid<openvdb::MaskGrid>(o, false, [](auto& leaf, const Brick& b) { copyMask(leaf, b); });
 }
 
-openvdb::FloatGrid::Ptr buildFogGrid(const Voxelization& voxels)
+openvdb::BoolGrid::Ptr buildBoolGrid(const Octree& o)
 {
-    auto grid = buildGrid<openvdb::FloatGrid>(voxels, 0.0f, [](auto& leaf, openvdb::Index n) { leaf.setValueOn(n, 1.0f); });
+    // Bool leaves keep values apart from the mask: active voxels are true.
+    return buildGrid<openvdb::BoolGrid>(o, false, [](auto& leaf, const Brick& b) {
+        copyMask(leaf, b);
+        for (auto it = leaf.cbeginValueOn(); it; ++it) leaf.setValueOnly(it.pos(), true);
+    });
+}
+
+openvdb::FloatGrid::Ptr buildFogGrid(const Octree& o)
+{
+    auto grid = buildGrid<openvdb::FloatGrid>(o, 0.0f, [](auto& leaf, const Brick& b) {
+        copyMask(leaf, b);
+        for (auto it = leaf.cbeginValueOn(); it; ++it) leaf.setValueOnly(it.pos(), 1.0f);
+    });
     grid->setGridClass(openvdb::GRID_FOG_VOLUME);
     return grid;
+}
+
+GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name)
+{
+    // Transform: uniform linear scale plus a whole-voxel translation.
+    const auto& xform = base.constTransform();
+    const auto map = xform.baseMap();
+    const openvdb::Vec3d vs = xform.voxelSize();
+    bool diagonal = xform.isLinear();
+    if (diagonal) {
+        const openvdb::Mat4d m = map->getAffineMap()->getMat4();
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c)
+                if (r != c ? m(r, c) != 0.0 : !(m(r, c) > 0.0)) diagonal = false;
+    }
+    if (!diagonal)
+        throw Error(fmt::format("{}: grid '{}' has a {} transform; svo needs scaling plus translation", name,
+                                base.getName(), map->type()));
+    if (!(vs[0] > 0) || std::abs(vs[1] - vs[0]) > 1e-12 * vs[0] || std::abs(vs[2] - vs[0]) > 1e-12 * vs[0])
+        throw Error(fmt::format("{}: grid '{}' has non-uniform voxel size ({}, {}, {})", name, base.getName(), vs[0],
+                                vs[1], vs[2]));
+    GridBricks out;
+    out.grid.voxelSize = vs[0];
+    const openvdb::Vec3d t = xform.indexToWorld(openvdb::Vec3d(0, 0, 0));
+    for (int a = 0; a < 3; ++a) {
+        const double s = t[a] / vs[0];
+        const double r = std::round(s);
+        if (std::abs(s - r) > 1e-6)
+            throw Error(fmt::format("{}: grid '{}' is translated by {} voxels along {}, not a whole number; svo's "
+                                    "octrees sit on whole-voxel lattices",
+                                    name, base.getName(), s, "xyz"[a]));
+        out.grid.shift[a] = int64_t(r);
+    }
+
+    const bool typed = base.apply<GridTypes>([&](const auto& grid) {
+        const auto& tree = grid.tree();
+        openvdb::CoordBBox bbox;
+        if (!tree.evalActiveVoxelBoundingBox(bbox)) {
+            out.grid.dims = {1, 1, 1};
+            return;
+        }
+        for (int a = 0; a < 3; ++a) {
+            const int64_t lo = bbox.min()[a];
+            out.grid.anchor[a] = lo >= 0 ? lo / 8 * 8 : -((-lo + 7) / 8) * 8;
+            const int64_t dim = int64_t(bbox.max()[a]) - out.grid.anchor[a] + 1;
+            if (dim > int64_t(kMaxGridDim))
+                throw Error(fmt::format("{}: grid '{}' spans {} voxels along {}, beyond the supported {}", name,
+                                        base.getName(), dim, "xyz"[a], kMaxGridDim));
+            out.grid.dims[a] = uint32_t(dim);
+        }
+        auto keyAt = [&](const openvdb::Coord& c) {
+            return packVoxelKey(uint32_t(c[0] - out.grid.anchor[0]), uint32_t(c[1] - out.grid.anchor[1]),
+                                uint32_t(c[2] - out.grid.anchor[2]));
+        };
+        out.bricks.reserve(tree.leafCount());
+        for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
+            Brick b;
+            const auto& mask = leaf->getValueMask();
+            for (openvdb::Index w = 0; w < 8; ++w) b.words[w] = mask.template getWord<uint64_t>(w);
+            if (b.count()) out.bricks.emplace_back(keyAt(leaf->origin()), b);
+        }
+        // Active tiles (above the leaf level) become full bricks.
+        Brick full;
+        std::fill(full.words, full.words + 8, ~uint64_t(0));
+        auto it = tree.cbeginValueOn();
+        it.setMaxDepth(it.getLeafDepth() - 1);
+        for (; it; ++it) {
+            if (!it.isTileValue()) continue;
+            const openvdb::CoordBBox tile = it.getBoundingBox();
+            ++out.tilesExpanded;
+            for (int x = tile.min()[0]; x <= tile.max()[0]; x += 8)
+                for (int y = tile.min()[1]; y <= tile.max()[1]; y += 8)
+                    for (int z = tile.min()[2]; z <= tile.max()[2]; z += 8)
+                        out.bricks.emplace_back(keyAt(openvdb::Coord(x, y, z)), full);
+        }
+    });
+    if (!typed)
+        throw Error(fmt::format("{}: grid '{}' has type {}, which svo does not read (it reads bool, mask, float, "
+                                "double, int32, int64 and vec3 grids)",
+                                name, base.getName(), base.type()));
+    return out;
 }
 
 } // namespace svo::vdb

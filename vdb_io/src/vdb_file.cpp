@@ -1,71 +1,126 @@
 #include "svo/vdb_io/vdb_file.h"
 
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
-#include <random>
-#include <unistd.h>
 
+#include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 #include "svo/vdb_io/grid_builder.h"
 
 namespace svo::vdb {
 namespace fs = std::filesystem;
+namespace {
 
-void checkWritable(const std::string& path)
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+/// Opens a .vdb for reading, turning OpenVDB's exceptions into svo::Error.
+openvdb::io::File openVdb(const std::string& path)
 {
-    if (path.empty()) throw Error("the output path is empty");
-    const fs::path p(path);
+    openvdb::initialize();
     std::error_code ec;
-    if (fs::is_directory(p, ec)) throw Error(fmt::format("{}: is a folder; give a file name", path));
-    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-    if (!fs::is_directory(dir, ec)) throw Error(fmt::format("{}: the folder {} does not exist", path, dir.string()));
-    if (::access(dir.c_str(), W_OK) != 0)
-        throw Error(fmt::format("{}: the folder {} is not writable", path, dir.string()));
+    if (!fs::exists(path, ec)) throw Error(fmt::format("{}: no such file", path));
+    if (fs::is_directory(path, ec)) throw Error(fmt::format("{}: is a folder, not a .vdb file", path));
+    if (fs::file_size(path, ec) == 0) throw Error(fmt::format("{}: the file is empty", path));
+    openvdb::io::File file(path);
+    try {
+        file.open(false); // no delayed loading: the file is read whole
+    } catch (const std::exception& e) {
+        throw Error(fmt::format("{}: not a readable VDB file: {}", path, e.what()));
+    }
+    return file;
 }
 
-WriteStats writeVdb(const std::string& path, const Voxelization& voxels, const WriteOptions& options)
+} // namespace
+
+WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOptions& options)
 {
-    using Clock = std::chrono::steady_clock;
     checkWritable(path);
     openvdb::initialize();
     WriteStats stats;
     auto t0 = Clock::now();
     openvdb::GridPtrVec grids;
-    auto mask = buildMaskGrid(voxels);
-    mask->setName(options.gridName);
-    grids.push_back(mask);
-    stats.leaves = mask->tree().leafCount();
+    openvdb::GridBase::Ptr topology;
+    if (options.topology == Topology::Bool) {
+        auto g = buildBoolGrid(octree);
+        stats.leaves = g->tree().leafCount();
+        topology = g;
+    } else {
+        auto g = buildMaskGrid(octree);
+        stats.leaves = g->tree().leafCount();
+        topology = g;
+    }
+    topology->setName(options.gridName);
+    grids.push_back(topology);
     if (options.fog) {
-        auto fog = buildFogGrid(voxels);
+        auto fog = buildFogGrid(octree);
         fog->setName("density");
         grids.push_back(fog);
     }
     for (auto& g : grids)
         for (const auto& [k, v] : options.metadata) g->insertMeta(k, openvdb::StringMetadata(v));
-    stats.buildMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    stats.buildMs = msSince(t0);
 
     t0 = Clock::now();
-    std::random_device rd;
-    const std::string tmp = fmt::format("{}.tmp-{:08x}", path, rd());
-    try {
-        openvdb::io::File file(tmp);
-        file.write(grids);
-        file.close();
-    } catch (const std::exception& e) {
-        std::remove(tmp.c_str());
-        throw Error(fmt::format("{}: cannot write the VDB file: {}", path, e.what()));
-    }
+    writeAtomically(path, [&](const std::string& tmp) {
+        try {
+            openvdb::io::File file(tmp);
+            file.write(grids);
+            file.close();
+        } catch (const std::exception& e) {
+            throw Error(fmt::format("{}: cannot write the VDB file: {}", path, e.what()));
+        }
+    });
     std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        std::remove(tmp.c_str());
-        throw Error(fmt::format("{}: cannot move the finished file into place: {}", path, ec.message()));
-    }
     stats.bytes = fs::file_size(path, ec);
-    stats.writeMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    stats.writeMs = msSince(t0);
     return stats;
+}
+
+std::vector<VdbGridInfo> listVdbGrids(const std::string& path)
+{
+    auto file = openVdb(path);
+    std::vector<VdbGridInfo> out;
+    try {
+        for (const auto& meta : *file.readAllGridMetadata()) {
+            VdbGridInfo info;
+            info.name = meta->getName();
+            info.type = meta->type();
+            info.voxelSize = meta->voxelSize()[0];
+            if (auto m = meta->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT))
+                info.activeVoxels = uint64_t(m->value());
+            out.push_back(info);
+        }
+    } catch (const std::exception& e) {
+        throw Error(fmt::format("{}: cannot read the grid list: {}", path, e.what()));
+    }
+    return out;
+}
+
+VdbBricks readVdbBricks(const std::string& path, const std::string& gridName)
+{
+    auto file = openVdb(path);
+    openvdb::GridBase::Ptr grid;
+    try {
+        auto names = file.beginName();
+        if (!(names != file.endName())) throw Error(fmt::format("{}: the file holds no grids", path));
+        const std::string name = gridName.empty() ? names.gridName() : gridName;
+        if (!file.hasGrid(name)) throw Error(fmt::format("{}: no grid named '{}'", path, name));
+        grid = file.readGrid(name);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(fmt::format("{}: cannot read the grid: {}", path, e.what()));
+    }
+    GridBricks gb = gridToBricks(*grid, path);
+    VdbBricks out;
+    out.gridName = grid->getName();
+    out.gridType = grid->type();
+    out.grid = gb.grid;
+    out.bricks = std::move(gb.bricks);
+    out.tilesExpanded = gb.tilesExpanded;
+    return out;
 }
 
 } // namespace svo::vdb

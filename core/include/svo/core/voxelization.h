@@ -16,13 +16,20 @@ struct StageTime {
     double wallMs = 0.0;
 };
 
-struct Voxelization {
+/// What a run measured, whatever it produced.
+struct RunStats {
+    std::vector<StageTime> stages;
+    uint64_t listEntries = 0; ///< voxel-list entries written, duplicates included
+    int overflowRetries = 0;  ///< extra passes because a GPU buffer (list, nodes, bricks) overflowed
+    uint64_t gpuBytes = 0;    ///< peak GPU buffer bytes allocated
+};
+
+/// A voxel set as sorted keys: the CPU reference's output, and the GPU's when
+/// asked for keys rather than an octree.
+struct Voxelization : RunStats {
     GridSpec grid;
     /// Sorted, unique voxel keys (svo/core/voxel_key.h), local coordinates.
     std::vector<uint64_t> keys;
-    std::vector<StageTime> stages;
-    uint64_t listEntries = 0; ///< voxel-list entries written, duplicates included
-    int overflowRetries = 0;  ///< extra renders because the voxel list overflowed
 };
 
 /// Sorts and de-duplicates keys in place, in parallel.

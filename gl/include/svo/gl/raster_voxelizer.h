@@ -17,6 +17,7 @@
 #include "svo/core/mesh.h"
 #include "svo/core/voxelization.h"
 #include "svo/gl/context.h"
+#include "svo/gl/octree_builder.h"
 
 namespace svo::gl {
 
@@ -29,8 +30,15 @@ struct RasterOptions {
     uint64_t initialCapacity = 0;
 };
 
+/// The voxel set as sorted keys: rasterize, read the list back, sort on the CPU.
 Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                             const RasterOptions& options = {});
+
+/// The voxel set as an octree: rasterize, build the octree on the GPU from the
+/// voxel list (octree_builder.h), read back only nodes and bricks. The CPU
+/// waits once, after all passes are issued.
+OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                                    const RasterOptions& options = {});
 
 /// "hardware" or "shader": which dilation voxelizeRaster would use.
 const char* conservativeModeName(const Context& context, const RasterOptions& options);

@@ -1,23 +1,46 @@
 #pragma once
 /// @file grid_builder.h
-/// Voxel keys -> OpenVDB trees by copying brick masks into leaves.
+/// Octree bricks <-> OpenVDB leaves, by copying 512-bit masks.
 ///
-/// Method: sorted keys are brick-major (voxel_key.h), so each run of keys with
-/// one brick is one LeafNode<T,3>; its 9 low bits are the leaf's bit index.
-/// Runs are found in one scan, leaves are filled in parallel (TBB), and then
-/// inserted with addLeaf. Cost is O(voxels) with no per-voxel tree descent.
+/// Octree -> grid: traversal gives every brick's origin; each brick becomes one
+/// LeafNode<T,3> whose value mask is the brick's 8 words (same bit order).
+/// Leaves are made in parallel (TBB) and inserted with addLeaf, so the cost is
+/// O(bricks) with no per-voxel tree descent.
+///
+/// Grid -> bricks: every leaf's value mask is a brick; every active tile is
+/// expanded into full bricks. Any grid type in GridTypes below is accepted.
 #include <openvdb/openvdb.h>
+#include <utility>
+#include <vector>
 
-#include "svo/core/voxelization.h"
+#include "svo/core/octree.h"
 
 namespace svo::vdb {
 
 /// The linear transform of a grid: voxelSize scaling, then its translation.
 openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid);
 
-openvdb::MaskGrid::Ptr buildMaskGrid(const Voxelization& voxels);
+openvdb::MaskGrid::Ptr buildMaskGrid(const Octree& octree);
+openvdb::BoolGrid::Ptr buildBoolGrid(const Octree& octree);
+/// Fog volume: 1 on every voxel, background 0, class GRID_FOG_VOLUME.
+openvdb::FloatGrid::Ptr buildFogGrid(const Octree& octree);
 
-/// Fog volume: 1 on every voxel, background 0.
-openvdb::FloatGrid::Ptr buildFogGrid(const Voxelization& voxels);
+/// Grid types whose active voxels can become an octree.
+using GridTypes = openvdb::TypeList<openvdb::MaskGrid, openvdb::BoolGrid, openvdb::FloatGrid, openvdb::DoubleGrid,
+                                    openvdb::Int32Grid, openvdb::Int64Grid, openvdb::Vec3SGrid, openvdb::Vec3DGrid,
+                                    openvdb::Vec3IGrid>;
+
+/// A grid's active voxels as bricks, on a GridSpec that holds them: the
+/// anchor is the bounding box's minimum rounded down to a multiple of 8.
+struct GridBricks {
+    GridSpec grid;
+    std::vector<std::pair<uint64_t, Brick>> bricks; ///< (brick-origin key, mask), local coordinates
+    uint64_t tilesExpanded = 0;                     ///< active tiles turned into bricks
+};
+
+/// Throws svo::Error (prefixed with `name`) for an unsupported type, a
+/// non-linear or non-uniform transform, a translation that is not a whole
+/// number of voxels, or an extent beyond kMaxGridDim.
+GridBricks gridToBricks(const openvdb::GridBase& grid, const std::string& name);
 
 } // namespace svo::vdb

@@ -1,15 +1,21 @@
 #pragma once
 /// @file vdb_file.h
-/// Voxelizations to and from .vdb files, without OpenVDB in the interface.
+/// Octrees to and from .vdb files, without OpenVDB in the interface.
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
-#include "svo/core/voxelization.h"
+#include "svo/core/octree.h"
 
 namespace svo::vdb {
 
+/// The grid type that carries the topology.
+enum class Topology { Mask, Bool };
+
 struct WriteOptions {
     std::string gridName = "surface";
+    Topology topology = Topology::Mask;
     bool fog = false; ///< also write a fog-volume FloatGrid "density" (1 inside voxels)
     /// String metadata stored on every grid (source, backend, renderer, ...).
     std::map<std::string, std::string> metadata;
@@ -20,18 +26,31 @@ struct WriteStats {
     uint64_t leaves = 0, bytes = 0;
 };
 
-/// Writes the topology as a MaskGrid (and optionally a fog FloatGrid) whose
-/// transform is voxelSize scaling plus the grid's translation, so the voxels
-/// sit exactly over the mesh in world space. Leaves are built from brick
-/// masks in parallel and inserted with addLeaf.
+/// Writes the octree's voxels as a MaskGrid or BoolGrid (and optionally a fog
+/// FloatGrid) whose transform is voxelSize scaling plus the grid's
+/// translation, so the voxels sit exactly over the mesh in world space. Leaves
+/// are copied from bricks in parallel and inserted with addLeaf.
 ///
-/// The file appears atomically: it is written to a temporary file in the same
-/// folder and renamed, so a failure leaves any earlier file untouched and no
-/// partial one. Throws svo::Error naming the path on failure.
-WriteStats writeVdb(const std::string& path, const Voxelization& voxels, const WriteOptions& options);
+/// The file appears atomically (atomic_file.h). Throws svo::Error naming the path.
+WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOptions& options);
 
-/// Fails early, before any heavy work, if `path` cannot be created: its folder
-/// is missing or not writable, or it names a folder.
-void checkWritable(const std::string& path);
+struct VdbGridInfo {
+    std::string name, type;
+    uint64_t activeVoxels = 0, leaves = 0;
+    double voxelSize = 0;
+};
+/// The grids of a file. Throws svo::Error for an unreadable or non-VDB file.
+std::vector<VdbGridInfo> listVdbGrids(const std::string& path);
+
+/// The active voxels of one grid (`gridName`, or the first grid when empty)
+/// as bricks, active tiles expanded. Throws svo::Error when the file has no
+/// grids, the grid is missing, or its type or transform is unsupported.
+struct VdbBricks {
+    std::string gridName, gridType;
+    GridSpec grid;
+    std::vector<std::pair<uint64_t, Brick>> bricks;
+    uint64_t tilesExpanded = 0;
+};
+VdbBricks readVdbBricks(const std::string& path, const std::string& gridName = {});
 
 } // namespace svo::vdb

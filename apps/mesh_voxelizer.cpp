@@ -1,0 +1,100 @@
+#include "mesh_voxelizer.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <fmt/format.h>
+
+#include "progress.h"
+#include "svo/core/cpu_voxelizer.h"
+#include "svo/core/octree.h"
+#include "svo/gl/raster_voxelizer.h"
+
+namespace svo::app {
+namespace {
+
+/// Per-stage medians over repeated runs (the result of the last run is kept).
+gl::OctreeVoxelization medianOf(std::vector<gl::OctreeVoxelization> runs)
+{
+    std::vector<StageTime> stages = runs.back().stages;
+    for (size_t s = 0; s < stages.size(); ++s) {
+        std::vector<double> gpu, wall;
+        for (const auto& r : runs) gpu.push_back(r.stages[s].gpuMs), wall.push_back(r.stages[s].wallMs);
+        std::sort(gpu.begin(), gpu.end());
+        std::sort(wall.begin(), wall.end());
+        stages[s].gpuMs = gpu[gpu.size() / 2];
+        stages[s].wallMs = wall[wall.size() / 2];
+    }
+    gl::OctreeVoxelization out = std::move(runs.back());
+    out.stages = std::move(stages);
+    return out;
+}
+
+gl::OctreeVoxelization cpuOctree(const TriangleMesh& mesh, const GridSpec& grid)
+{
+    using Clock = std::chrono::steady_clock;
+    Voxelization v = voxelizeCpu(mesh, grid);
+    gl::OctreeVoxelization out;
+    static_cast<RunStats&>(out) = v;
+    const auto t0 = Clock::now();
+    out.octree = buildOctree(grid, v.keys);
+    out.stages.push_back({"octree build (cpu)", -1, std::chrono::duration<double, std::milli>(Clock::now() - t0).count()});
+    return out;
+}
+
+} // namespace
+
+void addBackendOptions(CLI::App& cmd, BackendSettings& s)
+{
+    cmd.add_option("--backend", s.backend, "raster (GPU) or cpu (double-precision reference)")
+        ->check(CLI::IsMember({"raster", "cpu"}))
+        ->capture_default_str();
+    cmd.add_option("--conservative", s.conservative, "Raster dilation: auto, hardware (GL_NV_conservative_raster) or shader")
+        ->check(CLI::IsMember({"auto", "hardware", "shader"}))
+        ->capture_default_str();
+    cmd.add_option("--device", s.device, "EGL device: auto, hardware, software or an index (env SVO_EGL_DEVICE)");
+    cmd.add_flag("--gl-debug", s.glDebug, "Print GL debug messages");
+}
+
+MeshVoxelization voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, const BackendSettings& s)
+{
+    MeshVoxelization out;
+    std::vector<gl::OctreeVoxelization> runs;
+    const int n = std::max(s.repeat, 1);
+    if (s.backend == "cpu") {
+        out.backendLine = "cpu (double-precision reference)";
+        out.renderer = "cpu";
+        Progress p("voxelizing on the CPU");
+        for (int i = 0; i < n; ++i) runs.push_back(cpuOctree(mesh, grid));
+    } else {
+        gl::ContextOptions co;
+        co.device = s.device;
+        co.debug = s.glDebug;
+        gl::Context context(co);
+        const auto& info = context.info();
+        gl::RasterOptions ro;
+        ro.conservative = s.conservative == "hardware" ? gl::ConservativeMode::Hardware
+                          : s.conservative == "shader" ? gl::ConservativeMode::Shader
+                                                       : gl::ConservativeMode::Auto;
+        out.renderer = info.renderer;
+        const std::string mode = gl::conservativeModeName(context, ro);
+        std::string exts = info.extensionsUsed.empty() ? "" : fmt::format(", {}", fmt::join(info.extensionsUsed, ", "));
+        if (mode == "hardware") exts += ", GL_NV_conservative_raster";
+        out.backendLine = fmt::format("raster, {} dilation, on {} | {} | {} ({}{})", mode, info.vendor, info.renderer,
+                                      info.version, info.eglDevice, exts);
+        Progress p("voxelizing on the GPU");
+        if (n > 1) gl::voxelizeToOctree(context, mesh, grid, ro); // warm-up
+        for (int i = 0; i < n; ++i) runs.push_back(gl::voxelizeToOctree(context, mesh, grid, ro));
+    }
+    out.result = medianOf(std::move(runs));
+    return out;
+}
+
+std::string thousands(uint64_t n)
+{
+    std::string s = std::to_string(n);
+    for (int i = int(s.size()) - 3; i > 0; i -= 3) s.insert(size_t(i), ",");
+    return s;
+}
+
+} // namespace svo::app

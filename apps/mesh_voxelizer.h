@@ -1,0 +1,38 @@
+#pragma once
+/// @file mesh_voxelizer.h
+/// The GPU/CPU backend choice the subcommands share: a mesh and a grid in, an
+/// octree out, with the words that describe where it ran.
+#include <string>
+
+#include "svo/core/mesh.h"
+#include "svo/gl/octree_builder.h"
+
+namespace CLI {
+class App;
+}
+
+namespace svo::app {
+
+struct BackendSettings {
+    std::string backend = "raster"; ///< raster | cpu
+    std::string conservative = "auto";
+    std::string device;
+    bool glDebug = false;
+    int repeat = 1; ///< >1: one warm-up, then per-stage medians
+};
+
+/// Adds --backend, --conservative, --device, --gl-debug to a subcommand.
+void addBackendOptions(CLI::App& cmd, BackendSettings& settings);
+
+struct MeshVoxelization {
+    gl::OctreeVoxelization result;
+    std::string backendLine; ///< e.g. "raster, hardware dilation, on NVIDIA ..."
+    std::string renderer;    ///< GL renderer, or "cpu"
+};
+
+MeshVoxelization voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, const BackendSettings& settings);
+
+/// 1234567 -> "1,234,567"
+std::string thousands(uint64_t n);
+
+} // namespace svo::app

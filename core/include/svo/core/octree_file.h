@@ -1,0 +1,54 @@
+#pragma once
+/// @file octree_file.h
+/// The .svo file: one octree, versioned and checksummed.
+///
+/// Layout, little-endian (x86-64 and every target svo builds for):
+///
+///   offset  size        field
+///   0       120         OctreeFileHeader (below)
+///   120     4 (L+2)     levelStart[L+2], uint32      L = brickLevel
+///   ...     8 N         nodes[N], OctreeNode        N = nodeCount
+///   ...     64 B        bricks[B], Brick            B = brickCount
+///
+/// The checksum is 64-bit FNV-1a over the whole file with the checksum field
+/// zeroed. Octrees are written in canonicalOrder(), so one voxel set on one
+/// grid always gives the same bytes.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "svo/core/octree.h"
+
+namespace svo {
+
+struct OctreeFileHeader {
+    char magic[8];        ///< "SVOCTREE"
+    uint32_t version;     ///< kOctreeFileVersion
+    uint32_t headerBytes; ///< sizeof(OctreeFileHeader)
+    uint64_t fileBytes;   ///< size of the whole file
+    double voxelSize;
+    int64_t shift[3];
+    int64_t anchor[3];
+    uint32_t dims[3];
+    uint32_t brickLevel;
+    uint64_t nodeCount;
+    uint64_t brickCount;
+    uint64_t checksum;
+};
+static_assert(sizeof(OctreeFileHeader) == 120);
+static_assert(offsetof(OctreeFileHeader, voxelSize) == 24 && offsetof(OctreeFileHeader, dims) == 80);
+static_assert(offsetof(OctreeFileHeader, nodeCount) == 96 && offsetof(OctreeFileHeader, checksum) == 112);
+
+constexpr uint32_t kOctreeFileVersion = 1;
+
+/// Writes atomically (temporary file, then rename). Throws svo::Error.
+void writeOctreeFile(const std::string& path, const Octree& octree);
+
+/// Reads and checks magic, version, sizes, checksum and the structure
+/// (checkOctree). Throws svo::Error naming the file and the first problem.
+Octree readOctreeFile(const std::string& path);
+
+/// The same checks on bytes in memory; `name` labels errors.
+Octree parseOctree(const void* data, size_t bytes, const std::string& name);
+
+} // namespace svo

@@ -1,0 +1,48 @@
+#include "svo/core/atomic_file.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <random>
+#include <unistd.h>
+
+#include "svo/core/error.h"
+
+namespace svo {
+namespace fs = std::filesystem;
+
+void checkWritable(const std::string& path)
+{
+    if (path.empty()) throw Error("the output path is empty");
+    const fs::path p(path);
+    std::error_code ec;
+    if (fs::is_directory(p, ec)) throw Error(fmt::format("{}: is a folder; give a file name", path));
+    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    if (!fs::is_directory(dir, ec)) throw Error(fmt::format("{}: the folder {} does not exist", path, dir.string()));
+    if (::access(dir.c_str(), W_OK) != 0)
+        throw Error(fmt::format("{}: the folder {} is not writable", path, dir.string()));
+}
+
+void writeAtomically(const std::string& path, const std::function<void(const std::string& tmp)>& write)
+{
+    checkWritable(path);
+    std::random_device rd;
+    const std::string tmp = fmt::format("{}.tmp-{:08x}", path, rd());
+    try {
+        write(tmp);
+    } catch (const Error&) {
+        std::remove(tmp.c_str());
+        throw;
+    } catch (const std::exception& e) {
+        std::remove(tmp.c_str());
+        throw Error(fmt::format("{}: cannot write the file: {}", path, e.what()));
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        std::remove(tmp.c_str());
+        throw Error(fmt::format("{}: cannot move the finished file into place: {}", path, ec.message()));
+    }
+}
+
+} // namespace svo

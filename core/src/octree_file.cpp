@@ -1,0 +1,128 @@
+#include "svo/core/octree_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fmt/format.h>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include "svo/core/atomic_file.h"
+#include "svo/core/error.h"
+
+namespace svo {
+namespace {
+
+constexpr char kMagic[8] = {'S', 'V', 'O', 'C', 'T', 'R', 'E', 'E'};
+
+uint64_t fnv1a(const unsigned char* p, size_t n, uint64_t h = 0xcbf29ce484222325ull)
+{
+    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+    return h;
+}
+
+uint64_t payloadBytes(uint64_t levels, uint64_t nodes, uint64_t bricks)
+{
+    return 4 * levels + sizeof(OctreeNode) * nodes + sizeof(Brick) * bricks;
+}
+
+} // namespace
+
+void writeOctreeFile(const std::string& path, const Octree& input)
+{
+    const Octree o = canonicalOrder(input);
+    OctreeFileHeader h{};
+    std::memcpy(h.magic, kMagic, 8);
+    h.version = kOctreeFileVersion;
+    h.headerBytes = sizeof h;
+    h.voxelSize = o.grid.voxelSize;
+    for (int a = 0; a < 3; ++a) h.shift[a] = o.grid.shift[a], h.anchor[a] = o.grid.anchor[a], h.dims[a] = o.grid.dims[a];
+    h.brickLevel = o.brickLevel;
+    h.nodeCount = o.nodes.size();
+    h.brickCount = o.bricks.size();
+    h.fileBytes = sizeof h + payloadBytes(o.levelStart.size(), h.nodeCount, h.brickCount);
+
+    std::vector<unsigned char> bytes(h.fileBytes);
+    unsigned char* p = bytes.data() + sizeof h;
+    auto put = [&](const void* src, size_t n) {
+        if (n) std::memcpy(p, src, n);
+        p += n;
+    };
+    put(o.levelStart.data(), 4 * o.levelStart.size());
+    put(o.nodes.data(), sizeof(OctreeNode) * o.nodes.size());
+    put(o.bricks.data(), sizeof(Brick) * o.bricks.size());
+    std::memcpy(bytes.data(), &h, sizeof h); // checksum still zero
+    h.checksum = fnv1a(bytes.data(), bytes.size());
+    std::memcpy(bytes.data() + offsetof(OctreeFileHeader, checksum), &h.checksum, 8);
+
+    writeAtomically(path, [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        out.close();
+        if (!out) throw Error(fmt::format("{}: cannot write the octree file", path));
+    });
+}
+
+Octree parseOctree(const void* data, size_t size, const std::string& name)
+{
+    auto fail = [&](const std::string& what) { return Error(fmt::format("{}: not a valid .svo file: {}", name, what)); };
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    if (size < sizeof(kMagic) || std::memcmp(bytes, kMagic, sizeof kMagic) != 0)
+        throw fail("bad magic number (expected \"SVOCTREE\")");
+    if (size < 16) throw fail(fmt::format("truncated header ({} bytes)", size));
+    OctreeFileHeader h{};
+    std::memcpy(&h, bytes, std::min(size, sizeof h));
+    if (h.version != kOctreeFileVersion)
+        throw fail(fmt::format("version {} is not supported (this svo reads version {})", h.version, kOctreeFileVersion));
+    if (size < sizeof h) throw fail(fmt::format("truncated header ({} of {} bytes)", size, sizeof h));
+    if (h.headerBytes != sizeof h) throw fail(fmt::format("header size {} (expected {})", h.headerBytes, sizeof h));
+    if (h.brickLevel > 18) throw fail(fmt::format("brick level {} exceeds 18", h.brickLevel));
+    if (h.nodeCount > (uint64_t(1) << 32) || h.brickCount > (uint64_t(1) << 32))
+        throw fail(fmt::format("{} nodes and {} bricks exceed 32-bit indices", h.nodeCount, h.brickCount));
+    const uint64_t expected = sizeof h + payloadBytes(h.brickLevel + 2, h.nodeCount, h.brickCount);
+    if (h.fileBytes != expected)
+        throw fail(fmt::format("header says {} bytes, but its counts need {}", h.fileBytes, expected));
+    if (size != h.fileBytes)
+        throw fail(fmt::format("{} bytes, expected {} ({})", size, h.fileBytes, size < h.fileBytes ? "truncated" : "trailing data"));
+    uint64_t sum = fnv1a(bytes, offsetof(OctreeFileHeader, checksum));
+    const unsigned char zeros[8] = {};
+    sum = fnv1a(zeros, 8, sum);
+    sum = fnv1a(bytes + sizeof h, size - sizeof h, sum);
+    if (sum != h.checksum) throw fail(fmt::format("checksum mismatch (stored {:016x}, computed {:016x})", h.checksum, sum));
+
+    Octree o;
+    o.grid.voxelSize = h.voxelSize;
+    for (int a = 0; a < 3; ++a)
+        o.grid.shift[a] = h.shift[a], o.grid.anchor[a] = h.anchor[a], o.grid.dims[a] = h.dims[a];
+    if (!(o.grid.voxelSize > 0) || !std::isfinite(o.grid.voxelSize))
+        throw fail(fmt::format("voxel size {} is not positive", o.grid.voxelSize));
+    for (int a = 0; a < 3; ++a)
+        if (o.grid.dims[a] > kMaxGridDim || o.grid.anchor[a] % 8 != 0)
+            throw fail(fmt::format("grid axis {}: {} voxels from anchor {}", "xyz"[a], o.grid.dims[a], o.grid.anchor[a]));
+    o.brickLevel = h.brickLevel;
+    const unsigned char* p = bytes + sizeof h;
+    o.levelStart.resize(h.brickLevel + 2);
+    std::memcpy(o.levelStart.data(), p, 4 * o.levelStart.size());
+    p += 4 * o.levelStart.size();
+    o.nodes.resize(h.nodeCount);
+    if (h.nodeCount) std::memcpy(o.nodes.data(), p, sizeof(OctreeNode) * h.nodeCount);
+    p += sizeof(OctreeNode) * h.nodeCount;
+    o.bricks.resize(h.brickCount);
+    if (h.brickCount) std::memcpy(o.bricks.data(), p, sizeof(Brick) * h.brickCount);
+    const auto problems = checkOctree(o, 1);
+    if (!problems.empty()) throw fail(problems.front());
+    return o;
+}
+
+Octree readOctreeFile(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(fmt::format("{}: cannot open the file", path));
+    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw Error(fmt::format("{}: read error", path));
+    if (bytes.empty()) throw Error(fmt::format("{}: the file is empty", path));
+    return parseOctree(bytes.data(), bytes.size(), path);
+}
+
+} // namespace svo

@@ -1,0 +1,39 @@
+#pragma once
+/// @file octree_builder.h
+/// The sparse voxel octree built on the GPU, from a voxel list or from bricks.
+///
+/// Method (Crassin & Green, "Octree-Based Sparse Voxelization", OpenGL
+/// Insights 2012): top-down, one level at a time, three compute passes:
+///   flag     every input entry descends to its node at the level and sets the
+///            bit of the child its brick lies in (atomicOr);
+///   prepare  one thread turns the node counter into the level's range and the
+///            indirect dispatch size of the next pass;
+///   allocate every flagged node takes a block of 8 children (or, at the brick
+///            level, one brick) from an atomic counter.
+/// A last pass ORs each entry's bit (or whole mask) into its brick. The node
+/// and brick buffers are cleared once up front, so children start empty.
+/// Dispatch sizes come from GPU counters: the CPU issues every pass at once and
+/// waits once, to read the sizes back. Duplicate entries are harmless.
+///
+/// Buffers are sized from an estimate; when a counter passes its capacity the
+/// build runs again with room for what was counted (reported as a retry), so
+/// nothing is ever truncated.
+#include <utility>
+#include <vector>
+
+#include "svo/core/octree.h"
+#include "svo/core/voxelization.h"
+#include "svo/gl/context.h"
+
+namespace svo::gl {
+
+struct OctreeVoxelization : RunStats {
+    Octree octree;
+};
+
+/// Builds the octree of whole bricks (brick-origin key, mask) on the GPU:
+/// the path by which OpenVDB grids become octrees. Keys must lie in the grid.
+OctreeVoxelization buildOctreeGpu(Context& context, const GridSpec& grid,
+                                  const std::vector<std::pair<uint64_t, Brick>>& bricks);
+
+} // namespace svo::gl

@@ -1,0 +1,21 @@
+#version 450 core
+// Each entry marks, in its node at level uLevel, the child its brick lies in
+// (or, at the brick level, the node itself).
+layout(local_size_x = 256) in;
+#include "octree_common.glsl"
+
+void main()
+{
+    for (uint i = gl_GlobalInvocationID.x; i < state.entryCount; i += strideOf()) {
+        uvec3 b = brickOfEntry(entries[i]);
+        uint node = descend(b, uLevel);
+        if (node == kNoChild) continue;
+        uint bit = 1u;
+        if (uLevel < uBrickLevel) {
+            uint s = uBrickLevel - 1u - uLevel;
+            bit = 1u << (((b.x >> s) & 1u) | (((b.y >> s) & 1u) << 1u) | (((b.z >> s) & 1u) << 2u));
+        }
+        // Most entries find their bit set already; reading first spares the atomic.
+        if ((nodes[2u * node + 1u] & bit) == 0u) atomicOr(nodes[2u * node + 1u], bit);
+    }
+}

@@ -1,0 +1,155 @@
+#include "octree_builder.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <fmt/format.h>
+
+#include "svo/core/error.h"
+#include "svo/core/voxel_key.h"
+#include "svo/gl/octree_builder.h"
+
+namespace svo::gl {
+namespace {
+
+void passBarrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT); }
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+} // namespace
+
+OctreeBuilder::OctreeBuilder()
+    : prepare_({"octree_prepare.comp"}), flag_({"octree_flag.comp"}), alloc_({"octree_alloc.comp"}),
+      fill_({"octree_fill.comp"})
+{
+}
+
+uint64_t OctreeBuilder::nodeBound(uint32_t brickLevel, uint64_t bricks)
+{
+    // Occupied nodes at level l are at most min(8^l, bricks); each owns 8 children.
+    uint64_t total = 1, perLevel = 1;
+    for (uint32_t l = 0; l < brickLevel; ++l) {
+        total += 8 * std::min(perLevel, bricks);
+        perLevel = std::min<uint64_t>(perLevel * 8, uint64_t(1) << 40);
+    }
+    return total;
+}
+
+OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInput& in, uint64_t nodeCapacity,
+                                           uint64_t brickCapacity) const
+{
+    const uint32_t L = brickLevelFor(grid);
+    constexpr uint64_t kMax = (uint64_t(1) << 32) - 16;
+    if (nodeCapacity > kMax || brickCapacity > kMax)
+        throw Error(fmt::format("the octree would need {} nodes and {} bricks, beyond 32-bit indices; use a coarser grid",
+                                nodeCapacity, brickCapacity));
+    Build b;
+    b.nodeCapacity = 1 + (std::max<uint64_t>(nodeCapacity, 1) - 1 + 7) / 8 * 8; // root + whole blocks
+    b.brickCapacity = std::max<uint64_t>(brickCapacity, 1);
+    BuildState init{};
+    init.entryCount = in.listCounter ? 0 : in.entryCount;
+    init.entryDispatch[0] = std::clamp<uint32_t>((init.entryCount + 255) / 256, 1, 65535);
+    init.entryDispatch[1] = init.entryDispatch[2] = 1;
+    init.nodeCount = 1;
+    init.levelStart[1] = 1;
+    b.state = Buffer("octree build state", sizeof init, &init);
+    b.nodes = Buffer("octree nodes", b.nodeCapacity * sizeof(OctreeNode));
+    b.bricks = Buffer("octree bricks", b.brickCapacity * sizeof(Brick));
+    b.nodes.clearUint(0);
+    b.bricks.clearUint(0);
+
+    b.state.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    b.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+    b.bricks.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
+    in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, 3);
+    for (const Program* p : {&prepare_, &flag_, &alloc_, &fill_}) p->set("uBrickLevel", L);
+    prepare_.set("uNodeCapacity", uint32_t(b.nodeCapacity));
+    alloc_.set("uNodeCapacity", uint32_t(b.nodeCapacity));
+    alloc_.set("uBrickCapacity", uint32_t(b.brickCapacity));
+    if (in.listCounter) {
+        in.listCounter->bindBase(GL_SHADER_STORAGE_BUFFER, 4);
+        prepare_.set("uMode", 0u);
+        prepare_.set("uEntryCapacity", uint32_t(std::min<uint64_t>(in.entryCapacity, 0xFFFFFFFFu)));
+        glMemoryBarrier(GL_ATOMIC_COUNTER_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        prepare_.dispatch(1);
+        passBarrier();
+    }
+    prepare_.set("uMode", 1u);
+    for (uint32_t level = 0; level <= L; ++level) {
+        for (const Program* p : {&prepare_, &flag_, &alloc_}) p->set("uLevel", level);
+        flag_.dispatchIndirect(b.state, offsetof(BuildState, entryDispatch));
+        prepare_.dispatch(1);
+        passBarrier();
+        alloc_.dispatchIndirect(b.state, offsetof(BuildState, levelDispatch));
+        passBarrier();
+    }
+    fill_.set("uBrickMasks", in.masks ? 1u : 0u);
+    if (in.masks) in.masks->bindBase(GL_SHADER_STORAGE_BUFFER, 5);
+    else in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, 5); // unused, but bound
+    fill_.dispatchIndirect(b.state, offsetof(BuildState, entryDispatch));
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    checkGl("octree build");
+    return b;
+}
+
+void OctreeBuilder::readCounts(Build& b) { b.state.read(0, sizeof b.counts, &b.counts); }
+
+Octree OctreeBuilder::readOctree(const Build& b, const GridSpec& grid)
+{
+    Octree o;
+    o.grid = grid;
+    o.brickLevel = brickLevelFor(grid);
+    o.levelStart.assign(b.counts.levelStart, b.counts.levelStart + o.brickLevel + 2);
+    o.nodes.resize(b.counts.nodeCount);
+    o.bricks.resize(b.counts.brickCount);
+    if (!o.nodes.empty()) b.nodes.read(0, o.nodes.size() * sizeof(OctreeNode), o.nodes.data());
+    if (!o.bricks.empty()) b.bricks.read(0, o.bricks.size() * sizeof(Brick), o.bricks.data());
+    checkGl("octree readback");
+    return o;
+}
+
+OctreeVoxelization buildOctreeGpu(Context&, const GridSpec& grid, const std::vector<std::pair<uint64_t, Brick>>& bricks)
+{
+    if (bricks.size() > 0xFFFFFFF0u) throw Error(fmt::format("{} bricks exceed one GPU build", bricks.size()));
+    OctreeVoxelization result;
+    auto t0 = Clock::now();
+    TimerQuery uploadTimer;
+    uploadTimer.begin();
+    std::vector<uint64_t> keys;
+    std::vector<Brick> masks;
+    keys.reserve(bricks.size());
+    masks.reserve(bricks.size());
+    for (const auto& [key, mask] : bricks)
+        if (mask.count()) keys.push_back(brickOfKey(key)), masks.push_back(mask);
+    const Buffer entries("brick keys", keys.size() * 8, keys.data(), 0);
+    const Buffer maskBuffer("brick masks", masks.size() * sizeof(Brick), masks.data(), 0);
+    uploadTimer.end();
+    result.stages.push_back({"upload", -1, msSince(t0)});
+
+    t0 = Clock::now();
+    const OctreeBuilder builder;
+    OctreeInput in;
+    in.entries = &entries;
+    in.entryCapacity = in.entryCount = uint32_t(keys.size());
+    in.masks = &maskBuffer;
+    TimerQuery timer;
+    timer.begin();
+    auto build = builder.record(grid, in, OctreeBuilder::nodeBound(brickLevelFor(grid), keys.size()), keys.size());
+    timer.end();
+    OctreeBuilder::readCounts(build);
+    if (build.overflowed()) throw Error("internal error: the octree build overflowed an exact bound");
+    result.stages.front().gpuMs = uploadTimer.milliseconds();
+    result.stages.push_back({"octree build", timer.milliseconds(), msSince(t0)});
+    result.gpuBytes = entries.bytes() + maskBuffer.bytes() + build.bytes();
+
+    t0 = Clock::now();
+    TimerQuery readTimer;
+    readTimer.begin();
+    result.octree = OctreeBuilder::readOctree(build, grid);
+    readTimer.end();
+    result.stages.push_back({"readback", readTimer.milliseconds(), msSince(t0)});
+    return result;
+}
+
+} // namespace svo::gl

@@ -1,0 +1,59 @@
+#pragma once
+/// @file octree_builder.h (internal)
+/// The GPU passes of svo/gl/octree_builder.h, for use on buffers already on
+/// the GPU (the raster backend's voxel list).
+#include <cstddef>
+#include <cstdint>
+
+#include "objects.h"
+#include "svo/core/octree.h"
+
+namespace svo::gl {
+
+/// Mirrors octree_common.glsl's BuildState (std430).
+struct BuildState {
+    uint32_t entryDispatch[3];
+    uint32_t levelDispatch[3];
+    uint32_t entryCount, nodeCount, brickCount, pad;
+    uint32_t levelStart[24];
+};
+static_assert(sizeof(BuildState) == 136 && offsetof(BuildState, levelDispatch) == 12);
+static_assert(offsetof(BuildState, entryCount) == 24 && offsetof(BuildState, levelStart) == 40);
+
+/// Where the build reads its entries from.
+struct OctreeInput {
+    const Buffer* entries = nullptr;     ///< uvec2 voxel keys (or brick-origin keys)
+    const Buffer* listCounter = nullptr; ///< entry count on the GPU (voxel list), or null
+    uint64_t entryCapacity = 0;          ///< entries readable in `entries`
+    uint32_t entryCount = 0;             ///< used when listCounter is null
+    const Buffer* masks = nullptr;       ///< 16 uints per entry: whole bricks; null: one voxel per entry
+};
+
+class OctreeBuilder {
+public:
+    OctreeBuilder();
+
+    /// GPU buffers of one build and the counters read back after it.
+    struct Build {
+        Buffer state, nodes, bricks;
+        uint64_t nodeCapacity = 0, brickCapacity = 0;
+        BuildState counts{};
+        bool overflowed() const { return counts.nodeCount > nodeCapacity || counts.brickCount > brickCapacity; }
+        uint64_t bytes() const { return state.bytes() + nodes.bytes() + bricks.bytes(); }
+    };
+
+    /// Allocates the buffers and issues every pass without waiting.
+    Build record(const GridSpec& grid, const OctreeInput& input, uint64_t nodeCapacity, uint64_t brickCapacity) const;
+    /// Waits for the GPU and reads the counters into build.counts.
+    static void readCounts(Build& build);
+    /// Reads the finished octree (after readCounts, without overflow).
+    static Octree readOctree(const Build& build, const GridSpec& grid);
+
+    /// Upper bound on nodes for at most `bricks` occupied bricks.
+    static uint64_t nodeBound(uint32_t brickLevel, uint64_t bricks);
+
+private:
+    Program prepare_, flag_, alloc_, fill_;
+};
+
+} // namespace svo::gl
