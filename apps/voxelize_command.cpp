@@ -1,6 +1,7 @@
 // svo voxelize [MESH] -o out.vdb|out.svo [--resolution N | --voxel-size h]
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
@@ -20,6 +21,7 @@ namespace {
 struct VoxelizeArgs {
     std::string mesh;
     std::string output;
+    std::string json;
     int64_t resolution = 0;
     double voxelSize = 0;
     BackendSettings backend;
@@ -42,6 +44,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
     const std::string output = a.output.empty() ? scene + ".vdb" : a.output;
     checkOutputPath(output);
+    if (!a.json.empty()) checkWritable(a.json);
     const GridSpec grid = makeGrid(mesh, request);
 
     MeshVoxelization mv = voxelizeMesh(mesh, grid, a.backend);
@@ -84,6 +87,34 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         fmt::print("  {:<20} {:>10} {:>10.2f}\n", s.name, s.gpuMs < 0 ? std::string("-") : fmt::format("{:.3f}", s.gpuMs),
                    s.wallMs);
     fmt::print("  {:<20} {:>10} {:>10.2f}\n", "total", "", wall);
+
+    if (!a.json.empty()) {
+        auto esc = [](std::string t) {
+            for (size_t i = 0; i < t.size(); ++i)
+                if (t[i] == '"' || t[i] == '\\') t.insert(i++, 1, '\\');
+            return t;
+        };
+        std::string stages;
+        for (const auto& s : vox.stages)
+            stages += fmt::format("{}{{\"name\": \"{}\", \"gpu_ms\": {}, \"wall_ms\": {:.4f}}}", stages.empty() ? "" : ", ",
+                                  s.name, s.gpuMs < 0 ? std::string("null") : fmt::format("{:.4f}", s.gpuMs), s.wallMs);
+        std::string levels;
+        for (auto n : stats.nodesPerLevel) levels += fmt::format("{}{}", levels.empty() ? "" : ", ", n);
+        const std::string text = fmt::format(
+            "{{\n  \"scene\": \"{}\", \"triangles\": {}, \"dims\": [{}, {}, {}], \"voxel_size\": {},\n"
+            "  \"resolution\": {}, \"backend\": \"{}\", \"renderer\": \"{}\", \"epsilon\": {},\n"
+            "  \"voxels\": {}, \"bricks\": {}, \"nodes\": {}, \"nodes_per_level\": [{}], \"octree_bytes\": {},\n"
+            "  \"list_entries\": {}, \"overflow_retries\": {}, \"gpu_bytes\": {}, \"repeat\": {},\n"
+            "  \"stages\": [{}],\n  \"total_wall_ms\": {:.4f}\n}}\n",
+            esc(scene), mesh.triangles.size(), grid.dims[0], grid.dims[1], grid.dims[2], grid.voxelSize,
+            request.resolution, a.backend.backend, esc(mv.renderer), grid.epsilon(), stats.voxels, stats.bricks, vox.octree.nodes.size(), levels,
+            stats.bytes, vox.listEntries, vox.overflowRetries, vox.gpuBytes, a.backend.repeat, stages, wall);
+        writeAtomically(a.json, [&](const std::string& tmp) {
+            std::FILE* f = std::fopen(tmp.c_str(), "w");
+            if (!f || std::fputs(text.c_str(), f) < 0 || std::fclose(f) != 0)
+                throw Error(fmt::format("{}: cannot write the JSON report", a.json));
+        });
+    }
 }
 
 } // namespace
@@ -95,6 +126,7 @@ void addVoxelizeCommand(CLI::App& app)
         "voxelize", "Voxelize a mesh (default: the built-in Cornell box) into a .vdb grid or a .svo octree");
     cmd->add_option("mesh", args->mesh, "Mesh file (.obj, .ply, .stl, .off); none = built-in Cornell box");
     cmd->add_option("-o,--output", args->output, "Output .vdb or .svo (default: <scene>.vdb)");
+    cmd->add_option("--json", args->json, "Also write the summary (counts, bytes, stage times) as JSON");
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);

@@ -103,3 +103,45 @@ TEST_F(Cli, BadArgumentsFailWithoutOutput)
     EXPECT_NE(device.out.find("no EGL device matches '97'"), std::string::npos) << device.out;
     expectOnly({});
 }
+
+TEST_F(Cli, OctreeFilesConvertBothWaysAndReport)
+{
+    const auto v = svo("voxelize -r 48 -o " + path("box.svo"));
+    ASSERT_EQ(v.code, 0) << v.out;
+    EXPECT_NE(v.out.find("octree build"), std::string::npos) << v.out;
+
+    const auto info = svo("info " + path("box.svo"));
+    ASSERT_EQ(info.code, 0) << info.out;
+    for (const char* field : {"levels", "bricks", "bytes/voxel", "fill ratio"})
+        EXPECT_NE(info.out.find(field), std::string::npos) << field << "\n" << info.out;
+
+    ASSERT_EQ(svo("convert " + path("box.svo") + " -o " + path("box.vdb") + " --topology bool --fog").code, 0);
+    const auto back = svo("convert " + path("box.vdb") + " -o " + path("again.svo"));
+    ASSERT_EQ(back.code, 0) << back.out;
+    // The same voxel count through every file.
+    auto voxels = [](const std::string& out) {
+        const auto at = out.find("\n  voxels");
+        return out.substr(at, out.find('\n', at) - at);
+    };
+    EXPECT_EQ(voxels(svo("info " + path("again.svo")).out), voxels(info.out));
+    EXPECT_EQ(voxels(svo("info " + path("box.vdb") + " --grid density").out), voxels(info.out));
+    expectOnly({"box.svo", "box.vdb", "again.svo"});
+}
+
+TEST_F(Cli, BadOctreeInputsFailClearly)
+{
+    const std::string junk = write("junk.svo", "SVOCTREE but not really");
+    const auto r = svo("info " + junk);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.out.find("junk.svo: not a valid .svo file"), std::string::npos) << r.out;
+
+    const auto c = svo("convert " + junk + " -o " + path("out.vdb"));
+    EXPECT_EQ(c.code, 1);
+    const auto m = svo("convert " + write("tri.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n") + " -o " + path("o.svo"));
+    EXPECT_EQ(m.code, 1);
+    EXPECT_NE(m.out.find("svo voxelize"), std::string::npos) << m.out;
+    const auto e = svo("voxelize -o " + path("out.txt"));
+    EXPECT_EQ(e.code, 1);
+    EXPECT_NE(e.out.find(".vdb or .svo"), std::string::npos) << e.out;
+    expectOnly({"junk.svo", "tri.off"});
+}

@@ -188,8 +188,8 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     // voxel list means rasterizing again at the counted size; full node or
     // brick buffers mean building again with room for what was counted.
     uint64_t listCapacity = raster.estimatedEntries();
-    uint64_t brickCapacity = listCapacity / 32 + 64;
-    uint64_t nodeCapacity = OctreeBuilder::nodeBound(L, brickCapacity);
+    uint64_t brickCapacity = options.initialBrickCapacity ? options.initialBrickCapacity : listCapacity / 32 + 64;
+    uint64_t nodeCapacity = OctreeBuilder::nodeBound(L, listCapacity / 32 + 64);
     Buffer list;
     OctreeBuilder::Build build;
     double voxelizeGpu = 0, buildGpu = 0, voxelizeWall = 0, buildWall = 0;
@@ -225,9 +225,13 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
             nodeCapacity = std::max(nodeCapacity, OctreeBuilder::nodeBound(L, brickCapacity));
         } else if (build.overflowed()) {
             drawn = true; // the list is complete; only the octree needs room
-            brickCapacity = std::max<uint64_t>(build.counts.brickCount, brickCapacity) * 2;
-            nodeCapacity = std::min(std::max<uint64_t>(build.counts.nodeCount, nodeCapacity) * 2,
-                                    OctreeBuilder::nodeBound(L, brickCapacity));
+            if (build.counts.nodeCount <= build.nodeCapacity) {
+                brickCapacity = build.counts.brickCount; // every brick node was reached: exact
+            } else {
+                brickCapacity = std::max<uint64_t>(build.counts.brickCount, brickCapacity) * 2;
+                nodeCapacity = std::min(std::max<uint64_t>(build.counts.nodeCount, nodeCapacity) * 2,
+                                        OctreeBuilder::nodeBound(L, brickCapacity));
+            }
         } else {
             break;
         }

@@ -28,6 +28,8 @@ struct RasterOptions {
     ConservativeMode conservative = ConservativeMode::Auto;
     /// Voxel-list entries to allocate first; 0 estimates from triangle areas.
     uint64_t initialCapacity = 0;
+    /// Octree bricks to allocate first (voxelizeToOctree); 0 estimates from the list size.
+    uint64_t initialBrickCapacity = 0;
 };
 
 /// The voxel set as sorted keys: rasterize, read the list back, sort on the CPU.

@@ -1,0 +1,244 @@
+// The GPU octree build against the CPU reference, and octree <-> OpenVDB round
+// trips read back with OpenVDB's own reader.
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <gtest/gtest.h>
+#include <memory>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/PointIndexGrid.h>
+#include <set>
+#include <unistd.h>
+
+#include "octree_scenes.h"
+#include "scenes.h"
+#include "svo/core/default_scene.h"
+#include "svo/core/error.h"
+#include "svo/core/mesh_io.h"
+#include "svo/core/octree.h"
+#include "svo/gl/raster_voxelizer.h"
+#include "svo/vdb_io/grid_builder.h"
+#include "svo/vdb_io/vdb_file.h"
+
+using namespace svo;
+namespace fs = std::filesystem;
+
+namespace {
+
+using VoxelSet = std::set<std::array<int64_t, 3>>;
+
+VoxelSet globalVoxels(const Octree& o)
+{
+    VoxelSet s;
+    for (uint64_t k : octreeKeys(o)) s.insert(o.grid.toGlobal(unpackVoxelKey(k)));
+    return s;
+}
+
+VoxelSet vdbVoxels(const std::string& path, const std::string& name)
+{
+    openvdb::io::File f(path);
+    f.open();
+    auto base = f.readGrid(name);
+    f.close();
+    VoxelSet s;
+    base->apply<vdb::GridTypes>([&](const auto& g) {
+        for (auto it = g.cbeginValueOn(); it; ++it) {
+            EXPECT_TRUE(it.isVoxelValue());
+            s.insert({it.getCoord().x(), it.getCoord().y(), it.getCoord().z()});
+        }
+    });
+    return s;
+}
+
+std::string tempPath(const std::string& name)
+{
+    return (fs::temp_directory_path() / ("svo_test_gpu_octree_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+
+class GpuOctree : public ::testing::Test {
+protected:
+    static void SetUpTestSuite()
+    {
+        openvdb::initialize();
+        context_ = std::make_unique<gl::Context>();
+    }
+    static void TearDownTestSuite() { context_.reset(); }
+
+    /// The GPU octree of a mesh equals the CPU reference built from the same
+    /// GPU voxel set (read back as keys), and is sound as the GPU laid it out.
+    void expectMatchesReference(const TriangleMesh& mesh, const GridRequest& req, const gl::RasterOptions& opt = {})
+    {
+        const GridSpec grid = makeGrid(mesh, req);
+        const Voxelization keys = gl::voxelizeRaster(*context_, mesh, grid);
+        const gl::OctreeVoxelization gpu = gl::voxelizeToOctree(*context_, mesh, grid, opt);
+        const auto problems = checkOctree(gpu.octree);
+        EXPECT_TRUE(problems.empty()) << mesh.source << ": " << problems.front();
+        const Octree reference = buildOctree(grid, keys.keys);
+        EXPECT_TRUE(sameOctree(canonicalOrder(gpu.octree), reference)) << mesh.source;
+        EXPECT_EQ(gpu.octree.voxelCount(), keys.keys.size()) << mesh.source;
+        EXPECT_EQ(gpu.listEntries, keys.listEntries) << mesh.source;
+        std::printf("  %-28s voxels %9zu bricks %7zu nodes %8zu levels %u retries %d\n", mesh.source.c_str(),
+                    keys.keys.size(), gpu.octree.bricks.size(), gpu.octree.nodes.size(), gpu.octree.brickLevel + 1,
+                    gpu.overflowRetries);
+    }
+
+    static std::unique_ptr<gl::Context> context_;
+};
+std::unique_ptr<gl::Context> GpuOctree::context_;
+
+} // namespace
+
+TEST_F(GpuOctree, MatchesReferenceOnGeneratedMeshes)
+{
+    expectMatchesReference(test::randomTriangles(512, 1), {0, 1.0});
+    expectMatchesReference(test::sphere({0.1, 0.2, 0.3}, 1.0, 64, 32), {100, 0});
+    expectMatchesReference(test::box({-4.5, -4.5, -4.5}, {4.5, 4.5, 4.5}), {0, 1.0}); // one level
+    expectMatchesReference(cornellBox(), {256, 0});
+}
+
+TEST_F(GpuOctree, MatchesReferenceOnRealMeshes)
+{
+#ifdef SVO_CGAL_MESHES
+    const std::string dir = std::getenv("SVO_CGAL_MESHES") ? std::getenv("SVO_CGAL_MESHES") : SVO_CGAL_MESHES;
+    for (const char* name : {"elephant.off", "knot1.off", "fandisk.off"})
+        expectMatchesReference(loadMesh(dir + "/" + name), {200, 0});
+#else
+    GTEST_SKIP() << "libcgal-demo's meshes were not found at configure time";
+#endif
+}
+
+TEST_F(GpuOctree, OverflowingEveryBufferRetriesToTheSameResult)
+{
+    const auto mesh = test::sphere({0, 0, 0}, 1.0, 48, 24);
+    const GridSpec grid = makeGrid(mesh, {64, 0});
+    gl::RasterOptions tinyList, tinyOctree;
+    tinyList.initialCapacity = 16;     // the voxel list overflows: rasterize again
+    tinyOctree.initialBrickCapacity = 1; // bricks and nodes overflow: build again
+    for (const auto& opt : {tinyList, tinyOctree}) {
+        EXPECT_GE(gl::voxelizeToOctree(*context_, mesh, grid, opt).overflowRetries, 1);
+        expectMatchesReference(mesh, {64, 0}, opt);
+    }
+}
+
+TEST_F(GpuOctree, FromBricksMatchesReference)
+{
+    for (auto dims : {std::array<uint32_t, 3>{8, 8, 8}, {33, 70, 9}, {300, 300, 300}}) {
+        const GridSpec g = test::gridOf(dims[0], dims[1], dims[2]);
+        const auto keys = test::randomVoxels(g, 20000, dims[1]);
+        std::vector<std::pair<uint64_t, Brick>> bricks; // one voxel each: many duplicate bricks
+        for (uint64_t k : keys) {
+            Brick b;
+            b.words[(k & 511) >> 6] = uint64_t(1) << (k & 63);
+            bricks.emplace_back(brickOfKey(k), b);
+        }
+        const auto gpu = gl::buildOctreeGpu(*context_, g, bricks);
+        EXPECT_TRUE(checkOctree(gpu.octree).empty());
+        EXPECT_TRUE(sameOctree(canonicalOrder(gpu.octree), buildOctree(g, keys)));
+    }
+}
+
+TEST_F(GpuOctree, MeshToVdbToOctreeToVdbIsIdentical)
+{
+    const auto mesh = test::sphere({0.1, 0.2, 0.3}, 1.0, 64, 32);
+    const GridSpec grid = makeGrid(mesh, {96, 0});
+    const Octree first = gl::voxelizeToOctree(*context_, mesh, grid).octree;
+    const VoxelSet voxels = globalVoxels(first);
+    for (auto [topology, name] : {std::pair{vdb::Topology::Mask, "mask"}, std::pair{vdb::Topology::Bool, "bool"}}) {
+        vdb::WriteOptions wo;
+        wo.topology = topology;
+        wo.fog = true;
+        const std::string a = tempPath(std::string(name) + "_a.vdb"), b = tempPath(std::string(name) + "_b.vdb");
+        vdb::writeVdb(a, first, wo);
+        for (const char* gridName : {"surface", "density"}) {
+            EXPECT_EQ(vdbVoxels(a, gridName), voxels) << name << " " << gridName;
+            const auto bricks = vdb::readVdbBricks(a, gridName);
+            const Octree second = gl::buildOctreeGpu(*context_, bricks.grid, bricks.bricks).octree;
+            EXPECT_TRUE(checkOctree(second).empty());
+            EXPECT_EQ(globalVoxels(second), voxels) << name << " " << gridName;
+            EXPECT_EQ(second.grid.voxelSize, first.grid.voxelSize);
+            EXPECT_EQ(second.grid.shift, first.grid.shift);
+            vdb::writeVdb(b, second, wo);
+            EXPECT_EQ(vdbVoxels(b, "surface"), voxels);
+            EXPECT_EQ(vdbVoxels(b, "density"), voxels);
+            const auto again = vdb::readVdbBricks(b, gridName);
+            const Octree third = gl::buildOctreeGpu(*context_, again.grid, again.bricks).octree;
+            EXPECT_TRUE(sameOctree(canonicalOrder(third), canonicalOrder(second)));
+        }
+        // The transform survives: world positions of a voxel agree.
+        openvdb::io::File f(a);
+        f.open();
+        const auto g = f.readGrid("surface");
+        f.close();
+        EXPECT_DOUBLE_EQ(g->voxelSize()[0], grid.voxelSize);
+        fs::remove(a);
+        fs::remove(b);
+    }
+}
+
+TEST(VdbToBricks, ActiveTilesAreExpanded)
+{
+    openvdb::initialize();
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(0.25));
+    // A 128^3 active tile (a child of a level-2 internal node), an 8^3 one, and two voxels.
+    grid->tree().addTile(2, openvdb::Coord(128, 0, -128), 2.0f, true);
+    grid->tree().addTile(1, openvdb::Coord(-64, -64, -64), 2.0f, true);
+    grid->tree().setValueOn(openvdb::Coord(-3, 5, 7), 1.0f);
+    grid->tree().setValueOn(openvdb::Coord(300, 1, 1), 1.0f);
+    const auto gb = vdb::gridToBricks(*grid, "tiles.vdb");
+    EXPECT_EQ(gb.tilesExpanded, 2u);
+    const Octree o = buildOctreeFromBricks(gb.grid, gb.bricks);
+    EXPECT_TRUE(checkOctree(o).empty());
+    EXPECT_EQ(o.voxelCount(), grid->activeVoxelCount());
+    EXPECT_EQ(o.voxelCount(), 128u * 128 * 128 + 512 + 2);
+    EXPECT_EQ(gb.grid.voxelSize, 0.25);
+}
+
+TEST(VdbToBricks, UnsupportedInputsAreRefused)
+{
+    openvdb::initialize();
+    auto expectError = [](const std::function<void()>& f, const std::string& fragment) {
+        try {
+            f();
+            ADD_FAILURE() << "no error; expected: " << fragment;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+        }
+    };
+    auto shifted = openvdb::MaskGrid::create();
+    auto xf = openvdb::math::Transform::createLinearTransform(1.0);
+    xf->postTranslate(openvdb::Vec3d(0.5, 0, 0));
+    shifted->setTransform(xf);
+    expectError([&] { vdb::gridToBricks(*shifted, "half.vdb"); }, "not a whole number");
+    auto rotated = openvdb::MaskGrid::create();
+    auto rx = openvdb::math::Transform::createLinearTransform(1.0);
+    rx->postRotate(0.3, openvdb::math::Z_AXIS);
+    rotated->setTransform(rx);
+    expectError([&] { vdb::gridToBricks(*rotated, "rot.vdb"); }, "transform");
+    auto points = openvdb::tools::PointIndexGrid::create();
+    expectError([&] { vdb::gridToBricks(*points, "points.vdb"); }, "does not read");
+
+    const std::string empty = tempPath("nogrids.vdb");
+    {
+        openvdb::io::File f(empty);
+        f.write(openvdb::GridPtrVec{});
+        f.close();
+    }
+    expectError([&] { vdb::readVdbBricks(empty); }, "no grids");
+    fs::remove(empty);
+    const std::string one = tempPath("one.vdb");
+    {
+        auto g = openvdb::MaskGrid::create();
+        g->setName("a");
+        openvdb::io::File f(one);
+        f.write(openvdb::GridPtrVec{g});
+        f.close();
+    }
+    expectError([&] { vdb::readVdbBricks(one, "b"); }, "no grid named 'b'");
+    fs::remove(one);
+    const std::string junk = tempPath("junk.vdb");
+    std::ofstream(junk) << "not a vdb file";
+    expectError([&] { vdb::readVdbBricks(junk); }, "not a readable VDB file");
+    fs::remove(junk);
+    expectError([&] { vdb::readVdbBricks(tempPath("missing.vdb")); }, "no such file");
+}
