@@ -12,11 +12,15 @@ int main(int argc, char** argv)
     svo::app::addVoxelizeCommand(app);
     svo::app::addConvertCommand(app);
     svo::app::addInfoCommand(app);
+    svo::app::addValidateCommand(app);
     svo::app::addGlInfoCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
+    } catch (const svo::app::Failure& e) {
+        fmt::print(stderr, "svo: {}\n", e.what());
+        return e.code;
     } catch (const svo::Error& e) {
         fmt::print(stderr, "svo: error: {}\n", e.what());
         return 1;

@@ -145,3 +145,20 @@ TEST_F(Cli, BadOctreeInputsFailClearly)
     EXPECT_NE(e.out.find(".vdb or .svo"), std::string::npos) << e.out;
     expectOnly({"junk.svo", "tri.off"});
 }
+
+TEST_F(Cli, ValidatePassesAndWritesItsReports)
+{
+    const auto r = svo("validate -r 48 --json " + path("v.json") + " --errors " + path("e.vdb"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    for (const char* field : {"missed", "boundary", "extra", "holes", "consistent", "passed"})
+        EXPECT_NE(r.out.find(field), std::string::npos) << field << "\n" << r.out;
+    std::ifstream in(path("v.json"));
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(json.find("\"missed\": 0,"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"passed\": true"), std::string::npos) << json;
+    // The errors file holds the (empty) missed and extra grids.
+    const auto info = svo("info " + path("e.vdb") + " --grid extra");
+    EXPECT_EQ(info.code, 0) << info.out;
+    EXPECT_NE(info.out.find("grid 'extra'"), std::string::npos) << info.out;
+    expectOnly({"v.json", "e.vdb"});
+}

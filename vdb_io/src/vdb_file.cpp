@@ -32,6 +32,19 @@ openvdb::io::File openVdb(const std::string& path)
     return file;
 }
 
+void writeGrids(const std::string& path, const openvdb::GridPtrVec& grids)
+{
+    writeAtomically(path, [&](const std::string& tmp) {
+        try {
+            openvdb::io::File file(tmp);
+            file.write(grids);
+            file.close();
+        } catch (const std::exception& e) {
+            throw Error(fmt::format("{}: cannot write the VDB file: {}", path, e.what()));
+        }
+    });
+}
+
 } // namespace
 
 WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOptions& options)
@@ -63,19 +76,26 @@ WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOp
     stats.buildMs = msSince(t0);
 
     t0 = Clock::now();
-    writeAtomically(path, [&](const std::string& tmp) {
-        try {
-            openvdb::io::File file(tmp);
-            file.write(grids);
-            file.close();
-        } catch (const std::exception& e) {
-            throw Error(fmt::format("{}: cannot write the VDB file: {}", path, e.what()));
-        }
-    });
+    writeGrids(path, grids);
     std::error_code ec;
     stats.bytes = fs::file_size(path, ec);
     stats.writeMs = msSince(t0);
     return stats;
+}
+
+void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::string, Octree>>& named,
+                   const std::map<std::string, std::string>& metadata)
+{
+    checkWritable(path);
+    openvdb::initialize();
+    openvdb::GridPtrVec grids;
+    for (const auto& [name, octree] : named) {
+        auto g = buildMaskGrid(octree);
+        g->setName(name);
+        for (const auto& [k, v] : metadata) g->insertMeta(k, openvdb::StringMetadata(v));
+        grids.push_back(g);
+    }
+    writeGrids(path, grids);
 }
 
 std::vector<VdbGridInfo> listVdbGrids(const std::string& path)

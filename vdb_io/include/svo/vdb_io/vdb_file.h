@@ -34,6 +34,11 @@ struct WriteStats {
 /// The file appears atomically (atomic_file.h). Throws svo::Error naming the path.
 WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOptions& options);
 
+/// Several octrees of one grid as named MaskGrids in one file (e.g. the
+/// missed and extra voxels of a validation), written atomically.
+void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::string, Octree>>& grids,
+                   const std::map<std::string, std::string>& metadata);
+
 struct VdbGridInfo {
     std::string name, type;
     uint64_t activeVoxels = 0, leaves = 0;

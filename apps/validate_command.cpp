@@ -1,0 +1,228 @@
+// svo validate [MESH]: the GPU voxelization against CGAL's exact reference.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <memory>
+
+#include "commands.h"
+#include "mesh_voxelizer.h"
+#include "octree_output.h"
+#include "progress.h"
+#include "svo/core/atomic_file.h"
+#include "svo/core/cpu_voxelizer.h"
+#include "svo/core/default_scene.h"
+#include "svo/core/error.h"
+#include "svo/core/mesh_io.h"
+#include "svo/core/voxel_key.h"
+#include "svo/gl/raster_voxelizer.h"
+#include "svo/validate/classify.h"
+#include "svo/validate/hole_check.h"
+#include "svo/vdb_io/vdb_file.h"
+
+namespace svo::app {
+namespace {
+
+struct ValidateArgs {
+    std::string mesh, json, errors;
+    int64_t resolution = 0;
+    double voxelSize = 0;
+    BackendSettings backend;
+    bool noHoles = false;
+    bool strict = false;
+    size_t worst = 5;
+};
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+std::string idx(const std::array<int64_t, 3>& p) { return fmt::format("[{}, {}, {}]", p[0], p[1], p[2]); }
+
+std::string casesJson(const std::vector<validate::VoxelCase>& cases)
+{
+    std::string s;
+    for (const auto& c : cases)
+        s += fmt::format("{}{{\"voxel\": {}, \"triangle\": {}, \"distance\": {:.6g}}}", s.empty() ? "" : ", ",
+                         idx(c.index), c.triangle, c.distance);
+    return "[" + s + "]";
+}
+
+/// The GPU octree checked against the voxel list read back directly: every
+/// level of the octree must be what the list's voxels imply.
+std::string octreeConsistency(const Octree& octree, const std::vector<uint64_t>& listKeys)
+{
+    const auto problems = checkOctree(octree, 1);
+    if (!problems.empty()) return "structure: " + problems.front();
+    if (!sameOctree(canonicalOrder(octree), buildOctree(octree.grid, listKeys)))
+        return "the octree's levels differ from those the voxel list implies";
+    return "";
+}
+
+void runValidate(const ValidateArgs& a, const CLI::App& cmd)
+{
+    const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
+    TriangleMesh mesh;
+    {
+        Progress p("loading " + (a.mesh.empty() ? std::string("built-in scene") : a.mesh));
+        mesh = a.mesh.empty() ? cornellBox() : loadMesh(a.mesh);
+    }
+    for (const auto& w : mesh.warnings) fmt::print(stderr, "svo: warning: {}\n", w);
+    if (!a.json.empty()) checkWritable(a.json);
+    if (!a.errors.empty()) checkWritable(a.errors);
+    const GridSpec grid = makeGrid(mesh, request);
+    const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
+
+    // The voxelization under test, and the list it came from.
+    MeshVoxelization mv = voxelizeMesh(mesh, grid, a.backend);
+    const Octree& octree = mv.result.octree;
+    const std::vector<uint64_t> voxels = octreeKeys(octree);
+    double gpuMs = 0;
+    for (const auto& s : mv.result.stages) gpuMs += std::max(s.gpuMs, 0.0);
+    std::string consistency;
+    {
+        Progress p("checking the octree against the voxel list");
+        std::vector<uint64_t> list;
+        if (a.backend.backend == "cpu") {
+            list = voxelizeCpu(mesh, grid).keys;
+        } else {
+            gl::ContextOptions co;
+            co.device = a.backend.device;
+            gl::Context context(co);
+            gl::RasterOptions ro;
+            ro.conservative = a.backend.conservative == "hardware" ? gl::ConservativeMode::Hardware
+                              : a.backend.conservative == "shader" ? gl::ConservativeMode::Shader
+                                                                   : gl::ConservativeMode::Auto;
+            list = gl::voxelizeRaster(context, mesh, grid, ro).keys;
+        }
+        consistency = octreeConsistency(octree, list);
+    }
+
+    // The exact reference and the classification.
+    const auto t0 = Clock::now();
+    const double eps = grid.epsilon();
+    validate::ReferenceSets ref;
+    {
+        Progress p(fmt::format("exact CGAL reference for {} triangles", mesh.triangles.size()));
+        ref = validate::exactReference(mesh, grid, eps);
+    }
+    const validate::Classification c = validate::classify(mesh, grid, voxels, ref, a.worst);
+    validate::HoleCheck holes;
+    if (a.noHoles) {
+        holes.reason = "skipped (--no-holes)";
+    } else {
+        Progress p("flood-filling the empty voxels");
+        holes = validate::checkHoles(mesh, grid, voxels, 26);
+    }
+    const double validateSeconds = msSince(t0) / 1000.0;
+
+    auto rate = [](uint64_t n, uint64_t of) { return of ? double(n) / double(of) : 0.0; };
+    fmt::print("svo validate\n");
+    fmt::print("  {:<12} {} ({} triangles, {} degenerate)\n", "scene", scene, thousands(mesh.triangles.size()),
+               thousands(ref.degenerate));
+    fmt::print("  {:<12} {} x {} x {} local voxels, voxel size {:.6g}\n", "grid", grid.dims[0], grid.dims[1],
+               grid.dims[2], grid.voxelSize);
+    fmt::print("  {:<12} {}\n", "backend", mv.backendLine);
+    fmt::print("  {:<12} {:.3g} voxels: R = cubes shrunk by it, A = cubes grown by it (exact CGAL tests)\n",
+               "guard band", eps);
+    fmt::print("  {:<12} {} voxels; R {} , A {}\n", "sets", thousands(c.voxels), thousands(c.required),
+               thousands(c.allowed));
+    fmt::print("  {:<12} {:>10}  ({:.3g} of R)\n", "missed", thousands(c.missed.size()), rate(c.missed.size(), c.required));
+    fmt::print("  {:<12} {:>10}  ({:.3g} of the voxels; allowed)\n", "boundary", thousands(c.boundary.size()),
+               rate(c.boundary.size(), c.voxels));
+    fmt::print("  {:<12} {:>10}  ({:.3g} of the voxels)\n", "extra", thousands(c.extra.size()), rate(c.extra.size(), c.voxels));
+    for (const auto& w : c.worstMissed)
+        fmt::print("    missed {} : triangle {}, centre {:.4g} voxels from it\n", idx(w.index), w.triangle, w.distance);
+    for (const auto& w : c.worstExtra)
+        fmt::print("    extra  {} : nearest triangle {}, centre {:.4g} voxels from it\n", idx(w.index), w.triangle,
+                   w.distance);
+    if (holes.applies)
+        fmt::print("  {:<12} {} ({}-connected fill reached {} empty voxels; {} frontier voxels tested for inside)\n",
+                   "holes", holes.leak ? "LEAK" : "none", holes.connectivity, thousands(holes.filled),
+                   thousands(holes.frontier));
+    else
+        fmt::print("  {:<12} not checked: {}\n", "holes", holes.reason);
+    if (holes.leak) {
+        fmt::print("    leak path ({} voxels, outside -> inside):", holes.leakPath.size());
+        const size_t n = holes.leakPath.size();
+        for (size_t i = n > 8 ? n - 8 : 0; i < n; ++i) fmt::print(" {}", idx(holes.leakPath[i]));
+        fmt::print("\n");
+    }
+    fmt::print("  {:<12} {}\n", "octree", consistency.empty() ? "consistent with the voxel list at every level" : consistency);
+    fmt::print("  {:<12} validation {:.2f} s, voxelization {:.3f} GPU ms\n", "time", validateSeconds, gpuMs);
+
+    if (!a.errors.empty()) {
+        std::vector<std::pair<std::string, Octree>> grids = {{"missed", buildOctree(grid, c.missed)},
+                                                             {"extra", buildOctree(grid, c.extra)}};
+        if (holes.leak) {
+            std::vector<uint64_t> path;
+            for (const auto& p : holes.leakPath)
+                if (p[0] >= grid.anchor[0] && p[1] >= grid.anchor[1] && p[2] >= grid.anchor[2] &&
+                    p[0] < grid.anchor[0] + grid.dims[0] && p[1] < grid.anchor[1] + grid.dims[1] &&
+                    p[2] < grid.anchor[2] + grid.dims[2])
+                    path.push_back(packVoxelKey(uint32_t(p[0] - grid.anchor[0]), uint32_t(p[1] - grid.anchor[1]),
+                                                uint32_t(p[2] - grid.anchor[2])));
+            grids.emplace_back("leak_path", buildOctree(grid, path));
+        }
+        vdb::writeVdbMasks(a.errors, grids, {{"svo:source", mesh.source}});
+        fmt::print("  {:<12} {} (grids missed, extra{})\n", "errors", a.errors, holes.leak ? ", leak_path" : "");
+    }
+
+    const bool failed = !c.missed.empty() || holes.leak || !consistency.empty() || (a.strict && !c.extra.empty());
+    std::string reason;
+    if (!c.missed.empty()) reason += fmt::format("{} voxels missed; ", c.missed.size());
+    if (holes.leak) reason += fmt::format("the flood fill leaks inside through {}; ", idx(holes.leakPath.front()));
+    if (!consistency.empty()) reason += "octree inconsistent; ";
+    if (a.strict && !c.extra.empty()) reason += fmt::format("{} extra voxels (--strict); ", c.extra.size());
+    if (!reason.empty()) reason.resize(reason.size() - 2);
+
+    if (!a.json.empty()) {
+        std::string path;
+        for (const auto& p : holes.leakPath) path += (path.empty() ? "" : ", ") + idx(p);
+        auto esc = [](std::string t) {
+            for (size_t i = 0; i < t.size(); ++i)
+                if (t[i] == '"' || t[i] == '\\') t.insert(i++, 1, '\\');
+            return t;
+        };
+        const std::string text = fmt::format(
+            "{{\n  \"scene\": \"{}\", \"triangles\": {}, \"degenerate\": {}, \"dims\": [{}, {}, {}], \"voxel_size\": {},\n"
+            "  \"backend\": \"{}\", \"epsilon\": {},\n  \"voxels\": {}, \"required\": {}, \"allowed\": {},\n"
+            "  \"missed\": {}, \"boundary\": {}, \"extra\": {},\n  \"worst_missed\": {},\n  \"worst_extra\": {},\n"
+            "  \"holes\": {{\"applies\": {}, \"reason\": \"{}\", \"connectivity\": {}, \"leak\": {}, \"filled\": {}, "
+            "\"frontier\": {}, \"path\": [{}]}},\n  \"octree_consistent\": {},\n"
+            "  \"validation_seconds\": {:.4f}, \"gpu_ms\": {:.4f},\n  \"passed\": {}, \"reason\": \"{}\"\n}}\n",
+            esc(scene), mesh.triangles.size(), ref.degenerate, grid.dims[0], grid.dims[1], grid.dims[2], grid.voxelSize,
+            esc(mv.backendLine), eps, c.voxels, c.required, c.allowed, c.missed.size(), c.boundary.size(),
+            c.extra.size(), casesJson(c.worstMissed), casesJson(c.worstExtra), holes.applies, esc(holes.reason),
+            holes.connectivity, holes.leak, holes.filled, holes.frontier, path, consistency.empty(), validateSeconds,
+            gpuMs, !failed, esc(reason));
+        writeAtomically(a.json, [&](const std::string& tmp) {
+            std::FILE* f = std::fopen(tmp.c_str(), "w");
+            if (!f || std::fputs(text.c_str(), f) < 0 || std::fclose(f) != 0)
+                throw Error(fmt::format("{}: cannot write the JSON report", a.json));
+        });
+    }
+    if (failed) throw Failure("validation failed: " + reason);
+    fmt::print("  {:<12} passed: nothing missed{}\n", "verdict", holes.applies ? ", no leak" : "");
+}
+
+} // namespace
+
+void addValidateCommand(CLI::App& app)
+{
+    auto args = std::make_shared<ValidateArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "validate", "Check a voxelization against exact CGAL triangle-box tests: nothing missed, no holes "
+                    "(exit 0 pass, 3 fail, 1 error)");
+    cmd->add_option("mesh", args->mesh, "Mesh file; none = built-in Cornell box");
+    addGridOptions(*cmd, args->resolution, args->voxelSize);
+    addBackendOptions(*cmd, args->backend);
+    cmd->add_option("--json", args->json, "Write the report as JSON");
+    cmd->add_option("--errors", args->errors, "Write the missed and extra voxels (and any leak path) as MaskGrids");
+    cmd->add_flag("--no-holes", args->noHoles, "Skip the flood-fill hole check");
+    cmd->add_flag("--strict", args->strict, "Fail on extra voxels too");
+    cmd->add_option("--worst", args->worst, "Worst cases to list of each kind")->capture_default_str();
+    cmd->callback([args, cmd] { runValidate(*args, *cmd); });
+}
+
+} // namespace svo::app

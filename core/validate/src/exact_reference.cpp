@@ -1,0 +1,126 @@
+#include "svo/validate/exact_reference.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/intersections.h>
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include "svo/core/voxel_key.h"
+
+namespace svo::validate {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+bool meets(const K::Triangle_3& t, const CGAL::Bbox_3& b) { return CGAL::do_intersect(t, b); }
+bool meets(const K::Segment_3& s, const CGAL::Bbox_3& b) { return CGAL::do_intersect(s, b); }
+bool meets(const K::Point_3& p, const CGAL::Bbox_3& b)
+{
+    return b.xmin() <= p.x() && p.x() <= b.xmax() && b.ymin() <= p.y() && p.y() <= b.ymax() && b.zmin() <= p.z() &&
+           p.z() <= b.zmax();
+}
+
+struct Collector {
+    std::vector<uint64_t> keys; ///< key << 1 | (in R)
+    uint64_t tests = 0;
+};
+
+/// Voxels [lo, hi] (inclusive) whose grown cube meets `prim`, by halving.
+template <typename Prim>
+void visit(const Prim& prim, std::array<int64_t, 3> lo, std::array<int64_t, 3> hi, double eps, Collector& out)
+{
+    const double g = 0.5 + eps;
+    ++out.tests;
+    if (!meets(prim, CGAL::Bbox_3(double(lo[0]) - g, double(lo[1]) - g, double(lo[2]) - g, double(hi[0]) + g,
+                                  double(hi[1]) + g, double(hi[2]) + g)))
+        return;
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
+    if (hi[axis] == lo[axis]) {
+        const double s = 0.5 - eps;
+        ++out.tests;
+        const bool required = s >= 0 && meets(prim, CGAL::Bbox_3(double(lo[0]) - s, double(lo[1]) - s, double(lo[2]) - s,
+                                                               double(lo[0]) + s, double(lo[1]) + s, double(lo[2]) + s));
+        out.keys.push_back(packVoxelKey(uint32_t(lo[0]), uint32_t(lo[1]), uint32_t(lo[2])) << 1 | uint64_t(required));
+        return;
+    }
+    const int64_t mid = lo[axis] + (hi[axis] - lo[axis]) / 2;
+    auto upper = lo;
+    upper[axis] = mid + 1;
+    auto lower = hi;
+    lower[axis] = mid;
+    visit(prim, lo, lower, eps, out);
+    visit(prim, upper, hi, eps, out);
+}
+
+} // namespace
+
+ReferenceSets exactReference(const TriangleMesh& mesh, const GridSpec& grid, double eps,
+                             const std::function<void(uint64_t, uint64_t)>& progress)
+{
+    std::vector<K::Point_3> p;
+    p.reserve(mesh.positions.size());
+    for (const auto& v : mesh.positions) {
+        const Vec3d l = grid.toLocal(v);
+        p.emplace_back(l.x, l.y, l.z);
+    }
+    tbb::enumerable_thread_specific<Collector> collectors;
+    std::atomic<uint64_t> done{0}, degenerate{0};
+    const uint64_t total = mesh.triangles.size();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangles.size(), 256), [&](const auto& r) {
+        Collector& out = collectors.local();
+        for (size_t t = r.begin(); t != r.end(); ++t) {
+            const auto& f = mesh.triangles[t];
+            const K::Point_3 &a = p[f[0]], &b = p[f[1]], &c = p[f[2]];
+            std::array<int64_t, 3> lo, hi;
+            bool empty = false;
+            for (int k = 0; k < 3; ++k) {
+                const double mn = std::min({a[k], b[k], c[k]}), mx = std::max({a[k], b[k], c[k]});
+                lo[k] = std::max<int64_t>(int64_t(std::ceil(mn - 0.5 - eps)), 0);
+                hi[k] = std::min<int64_t>(int64_t(std::floor(mx + 0.5 + eps)), int64_t(grid.dims[k]) - 1);
+                empty |= lo[k] > hi[k];
+            }
+            if (empty) continue;
+            if (!CGAL::collinear(a, b, c)) {
+                visit(K::Triangle_3(a, b, c), lo, hi, eps, out);
+            } else if (a == b && b == c) {
+                ++degenerate;
+                visit(a, lo, hi, eps, out);
+            } else {
+                ++degenerate;
+                // The two outer points of three collinear ones span the segment.
+                const K::Segment_3 s = CGAL::collinear_are_ordered_along_line(a, b, c)   ? K::Segment_3(a, c)
+                                       : CGAL::collinear_are_ordered_along_line(b, a, c) ? K::Segment_3(b, c)
+                                                                                         : K::Segment_3(a, b);
+                visit(s, lo, hi, eps, out);
+            }
+        }
+        const uint64_t d = done.fetch_add(r.size()) + r.size();
+        if (progress) progress(d, total);
+    });
+
+    std::vector<uint64_t> all;
+    ReferenceSets sets;
+    for (auto& c : collectors) {
+        all.insert(all.end(), c.keys.begin(), c.keys.end());
+        sets.boxTests += c.tests;
+    }
+    sets.degenerate = degenerate;
+    tbb::parallel_sort(all.begin(), all.end());
+    // Coalesce: a voxel is required if any triangle requires it.
+    for (size_t i = 0; i < all.size();) {
+        const uint64_t key = all[i] >> 1;
+        bool required = false;
+        for (; i < all.size() && all[i] >> 1 == key; ++i) required |= all[i] & 1;
+        sets.allowed.push_back(key);
+        if (required) sets.required.push_back(key);
+    }
+    return sets;
+}
+
+} // namespace svo::validate

@@ -1,0 +1,175 @@
+// svo validate's parts: the exact CGAL reference, the classification, and the
+// hole check, on planted errors and on the GPU's own output.
+#include <algorithm>
+#include <gtest/gtest.h>
+#include <memory>
+
+#include "scenes.h"
+#include "svo/core/cpu_voxelizer.h"
+#include "svo/core/mesh_io.h"
+#include "svo/core/voxel_key.h"
+#include "svo/gl/raster_voxelizer.h"
+#include "svo/validate/classify.h"
+#include "svo/validate/hole_check.h"
+
+using namespace svo;
+
+namespace {
+
+bool includes(const std::vector<uint64_t>& big, const std::vector<uint64_t>& small)
+{
+    return std::includes(big.begin(), big.end(), small.begin(), small.end());
+}
+
+class Validate : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() { context_ = std::make_unique<gl::Context>(); }
+    static void TearDownTestSuite() { context_.reset(); }
+    static std::vector<uint64_t> gpuVoxels(const TriangleMesh& mesh, const GridSpec& grid)
+    {
+        return octreeKeys(gl::voxelizeToOctree(*context_, mesh, grid).octree);
+    }
+    static std::unique_ptr<gl::Context> context_;
+};
+std::unique_ptr<gl::Context> Validate::context_;
+
+} // namespace
+
+TEST(ExactReference, BracketsTheCpuReference)
+{
+    // Two independent computations: CGAL's exact tests and the shared overlap
+    // test in double. R (shrunk) <= CPU <= A (grown).
+    for (const auto& mesh : {test::randomTriangles(300, 11), test::sphere({0.3, 0.1, 0.2}, 1.0, 40, 20)}) {
+        const GridSpec grid = makeGrid(mesh, {0, mesh.source == "random triangles" ? 1.0 : 0.05});
+        const auto ref = validate::exactReference(mesh, grid, grid.epsilon());
+        const auto cpu = voxelizeCpu(mesh, grid).keys;
+        EXPECT_TRUE(includes(cpu, ref.required)) << mesh.source;
+        EXPECT_TRUE(includes(ref.allowed, cpu)) << mesh.source;
+        EXPECT_TRUE(includes(ref.allowed, ref.required));
+        EXPECT_GT(ref.required.size(), 1000u);
+    }
+}
+
+TEST(ExactReference, DegenerateTrianglesCoverWhatTheyTouch)
+{
+    TriangleMesh m;
+    m.source = "degenerate";
+    // A needle from (0.2,0.2,0.2) to (5.2,0.2,0.2) listed with its middle point
+    // last, and a point triangle at (3,3,3) on voxel corners... of 8 voxels? No:
+    // index (3,3,3) is a voxel centre, so it covers exactly that voxel.
+    m.positions = {{0.2, 0.2, 0.2}, {5.2, 0.2, 0.2}, {2.7, 0.2, 0.2}, {3.5, 3.5, 3.5}};
+    m.triangles = {{0, 2, 1}, {3, 3, 3}};
+    GridSpec grid = makeGrid(m, {0, 1.0});
+    const auto ref = validate::exactReference(m, grid, 0.0);
+    EXPECT_EQ(ref.degenerate, 2u);
+    // The needle covers voxels x = 0..5 of row (0,0); the point (3.5,3.5,3.5)
+    // sits on a corner shared by 8 voxels.
+    EXPECT_EQ(ref.allowed.size(), 6u + 8u);
+    EXPECT_EQ(ref.required, ref.allowed);
+}
+
+TEST_F(Validate, PlantedErrorsAreCaught)
+{
+    const auto mesh = test::icosphere({0, 0, 0}, 1.0, 4);
+    const GridSpec grid = makeGrid(mesh, {40, 0});
+    const auto ref = validate::exactReference(mesh, grid, grid.epsilon());
+    std::vector<uint64_t> g = gpuVoxels(mesh, grid);
+    auto c = validate::classify(mesh, grid, g, ref);
+    ASSERT_TRUE(c.missed.empty());
+    ASSERT_TRUE(c.extra.empty());
+
+    // Remove one required voxel: missed = 1, and it is the worst case.
+    auto removed = g;
+    const uint64_t victim = ref.required[ref.required.size() / 2];
+    removed.erase(std::find(removed.begin(), removed.end(), victim));
+    c = validate::classify(mesh, grid, removed, ref);
+    EXPECT_EQ(c.missed, std::vector<uint64_t>{victim});
+    ASSERT_EQ(c.worstMissed.size(), 1u);
+    EXPECT_EQ(c.worstMissed[0].index, grid.toGlobal(unpackVoxelKey(victim)));
+    EXPECT_LT(c.worstMissed[0].distance, 0.87); // within half a diagonal of the surface
+    EXPECT_GE(c.worstMissed[0].triangle, 0);
+
+    // Add the voxel at the sphere's centre: extra = 1, about a radius away.
+    const Vec3d centre = grid.toLocal({0, 0, 0});
+    const uint64_t far = packVoxelKey(uint32_t(std::lround(centre.x)), uint32_t(std::lround(centre.y)),
+                                      uint32_t(std::lround(centre.z)));
+    auto added = g;
+    added.insert(std::lower_bound(added.begin(), added.end(), far), far);
+    c = validate::classify(mesh, grid, added, ref);
+    EXPECT_EQ(c.extra, std::vector<uint64_t>{far});
+    ASSERT_EQ(c.worstExtra.size(), 1u);
+    EXPECT_NEAR(c.worstExtra[0].distance, 20.0, 1.0); // radius 1 at 40 voxels per diameter
+
+    // The intact shell is closed; cut the voxels on one ray from the centre and it leaks.
+    const auto ok = validate::checkHoles(mesh, grid, g);
+    ASSERT_TRUE(ok.applies) << ok.reason;
+    EXPECT_FALSE(ok.leak);
+    auto cut = g;
+    const auto cc = unpackVoxelKey(far);
+    cut.erase(std::remove_if(cut.begin(), cut.end(),
+                             [&](uint64_t k) {
+                                 const auto p = unpackVoxelKey(k);
+                                 return p[1] == cc[1] && p[2] == cc[2] && p[0] > cc[0];
+                             }),
+              cut.end());
+    ASSERT_LT(cut.size(), g.size());
+    const auto leak = validate::checkHoles(mesh, grid, cut);
+    EXPECT_TRUE(leak.leak);
+    ASSERT_GE(leak.leakPath.size(), 2u);
+    // The path starts outside the grid's voxels and ends at a voxel inside the sphere.
+    const auto& last = leak.leakPath.back();
+    const Vec3d lastWorld{double(last[0]) * grid.voxelSize, double(last[1]) * grid.voxelSize,
+                          double(last[2]) * grid.voxelSize};
+    EXPECT_LT(std::sqrt(lastWorld.x * lastWorld.x + lastWorld.y * lastWorld.y + lastWorld.z * lastWorld.z), 1.0);
+    for (size_t i = 1; i < leak.leakPath.size(); ++i)
+        for (int a = 0; a < 3; ++a) EXPECT_LE(std::abs(leak.leakPath[i][a] - leak.leakPath[i - 1][a]), 1);
+}
+
+TEST_F(Validate, OneVoxelHoleInAThinWallLeaks)
+{
+    // Faces through voxel centres: a shell exactly one voxel thick.
+    const auto box = test::box({-4, -4, -4}, {4, 4, 4});
+    const GridSpec grid = makeGrid(box, {0, 1.0});
+    auto g = gpuVoxels(box, grid);
+    ASSERT_EQ(g.size(), 9u * 9 * 9 - 7u * 7 * 7);
+    EXPECT_FALSE(validate::checkHoles(box, grid, g).leak);
+    const Vec3d face = grid.toLocal({4, 0, 0});
+    const uint64_t k = packVoxelKey(uint32_t(face.x), uint32_t(face.y), uint32_t(face.z));
+    g.erase(std::find(g.begin(), g.end(), k));
+    const auto h = validate::checkHoles(box, grid, g);
+    EXPECT_TRUE(h.leak);
+    // 6-connected fill leaks too: the hole is a face opening.
+    EXPECT_TRUE(validate::checkHoles(box, grid, g, 6).leak);
+}
+
+TEST_F(Validate, OpenMeshesAreNotHoleChecked)
+{
+    TriangleMesh open = test::box({0, 0, 0}, {3, 3, 3});
+    open.triangles.pop_back();
+    const GridSpec grid = makeGrid(open, {0, 0.5});
+    const auto h = validate::checkHoles(open, grid, gpuVoxels(open, grid));
+    EXPECT_FALSE(h.applies);
+    EXPECT_NE(h.reason.find("open"), std::string::npos) << h.reason;
+}
+
+TEST_F(Validate, GpuPassesOnRealMeshes)
+{
+#ifdef SVO_CGAL_MESHES
+    const std::string dir = std::getenv("SVO_CGAL_MESHES") ? std::getenv("SVO_CGAL_MESHES") : SVO_CGAL_MESHES;
+    for (const char* name : {"elephant.off", "knot1.off", "fandisk.off", "cow.off"})
+        for (int res : {64, 160}) {
+            const TriangleMesh mesh = loadMesh(dir + "/" + name);
+            const GridSpec grid = makeGrid(mesh, {res, 0});
+            const auto g = gpuVoxels(mesh, grid);
+            const auto c = validate::classify(mesh, grid, g, validate::exactReference(mesh, grid, grid.epsilon()));
+            EXPECT_TRUE(c.missed.empty()) << name << " " << res;
+            EXPECT_TRUE(c.extra.empty()) << name << " " << res;
+            const auto h = validate::checkHoles(mesh, grid, g);
+            EXPECT_FALSE(h.leak) << name << " " << res;
+            std::printf("  %-14s %4d voxels %8zu boundary %5zu holes %s\n", name, res, g.size(), c.boundary.size(),
+                        h.applies ? "checked" : h.reason.c_str());
+        }
+#else
+    GTEST_SKIP() << "libcgal-demo's meshes were not found at configure time";
+#endif
+}
