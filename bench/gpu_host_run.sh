@@ -18,11 +18,21 @@ svo="$work/svo/bin/svo"
   echo "== glinfo"; "$svo" glinfo
 } 2>&1 | tee "$out/host.txt"
 
-# The GPU test suite against the CPU reference, with the meshes where the build expects them.
-tests="$work/svo/bin/test_gpu_voxelize"
-if [ -x "$tests" ]; then
-  SVO_CGAL_MESHES="$PWD/bundle/meshes" "$tests" 2>&1 | tee "$out/test_gpu_voxelize.txt" | grep -E "^\[  |FAILED|PASSED|band" 
+# The GPU test suites against the CPU and CGAL references, with the meshes where the build expects them.
+for t in test_gpu_voxelize test_gpu_octree test_validate; do
+  if [ -x "$work/svo/bin/$t" ]; then
+    SVO_CGAL_MESHES="$PWD/bundle/meshes" "$work/svo/bin/$t" 2>&1 | tee "$out/$t.txt" | grep -E "^\[  |FAILED|PASSED"
+  fi
+done
+
+# Octree build time and bytes per voxel against the voxel count.
+if command -v python3 >/dev/null; then
+  python3 bench/octree_build.py --svo "$svo" --machine gpu-host --out "$out" --meshes bundle/meshes \
+    --mesh stanford-bunny.obj ogre.obj elephant.off --res 256 512 1024 2048 --repeat 5 2>&1 | tail -3
 fi
+
+# Exact validation of the NVIDIA path (hardware conservative raster).
+"$svo" validate bundle/meshes/stanford-bunny.obj -r 512 --json "$out/validate_bunny_512.json" 2>&1 | tee "$out/validate.txt"
 
 # Timings: bunny and ogre, both dilation modes, median of 5 after a warm-up.
 for mesh in stanford-bunny ogre; do
@@ -30,7 +40,7 @@ for mesh in stanford-bunny ogre; do
     for mode in hardware shader; do
       echo "== $mesh $res $mode"
       "$svo" voxelize "bundle/meshes/$mesh.obj" -r $res --conservative $mode --repeat 5 -o "$work/out.vdb" 2>&1 \
-        | grep -E "voxels  |backend|voxelize |upload|readback|sort|vdb |total|list|error"
+        | grep -E "voxels  |octree  |backend|voxelize |upload|readback|octree build|vdb |total|list|error"
     done
   done
 done 2>&1 | tee "$out/timings.txt"

@@ -152,3 +152,18 @@ TEST_F(MeshIo, BadInputsAreClearErrors)
     expectError(write("trunc.ply", ply.substr(0, ply.size() - 40)), "");
     expectError(write("header.ply", "ply\nformat ascii 1.0\nelement vertex 3\n"), "truncated");
 }
+
+TEST_F(MeshIo, OffWithCommentsColoursAndPolygons)
+{
+    // As CGAL's tools write them: comments before the keyword and in the body,
+    // colours after face indices, quads.
+    const auto m = loadMesh(write("c.off", "# made by a tool\n#CBP\nCOFF\n# counts\n4 2 0\n\n# vertices\n"
+                                           "0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n1 1 0 0 0 255 255\n0 1 2 1 1 1 255\n"
+                                           "# faces\n4  0 1 2 3  0.5 0.5 0.5\n1 2\n"));
+    ASSERT_EQ(m.triangles.size(), 3u); // a quad as 2 triangles, and a point face
+    EXPECT_EQ(m.triangles[1], (std::array<uint32_t, 3>{0, 2, 3}));
+    EXPECT_EQ(m.triangles[2], (std::array<uint32_t, 3>{2, 2, 2}));
+    EXPECT_EQ(m.bounds().max.z, 2.0);
+    expectError(write("t.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n"), "truncated");
+    expectError(write("n.off", "4OFF\n1 0 0\n0 0 0 0\n"), "not 3D");
+}

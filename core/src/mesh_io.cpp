@@ -13,6 +13,7 @@
 #include <OpenMesh/Core/System/omstream.hh>
 #include <fmt/format.h>
 
+#include "off_reader.h"
 #include "svo/core/error.h"
 
 namespace svo {
@@ -246,7 +247,12 @@ TriangleMesh loadMesh(const std::string& path)
     const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
     if (bytes.empty()) throw Error(fmt::format("{}: the file is empty", path));
 
-    PlyCounts declared; // counts the header promises (PLY, OFF)
+    if (ext == "off")
+        if (auto off = detail::readAsciiOff(path, bytes)) {
+            validateMesh(*off);
+            return std::move(*off);
+        }
+    PlyCounts declared; // counts the header promises (PLY, binary OFF)
     if (ext == "stl") checkBinaryStl(path, bytes);
     if (ext == "ply") declared = readPlyHeader(path, bytes);
     if (ext == "off") declared = readOffHeader(bytes);

@@ -1,5 +1,7 @@
 #include "objects.h"
 
+#include <algorithm>
+#include <cstring>
 #include <fmt/format.h>
 #include <vector>
 
@@ -29,6 +31,22 @@ Buffer::Buffer(const char* what, uint64_t bytes, const void* data, GLbitfield fl
     if (err == GL_OUT_OF_MEMORY)
         throw Error(fmt::format("the GPU cannot allocate {:.1f} MiB for the {}", double(bytes) / (1 << 20), what));
     if (err != GL_NO_ERROR) throw Error(fmt::format("OpenGL error 0x{:04x} allocating the {}", err, what));
+}
+
+void Buffer::readBulk(uint64_t offset, uint64_t bytes, void* out) const
+{
+    if (!bytes) return;
+    const uint64_t chunk = std::min<uint64_t>(bytes, uint64_t(64) << 20);
+    const Buffer staging("readback staging buffer", chunk, nullptr, GL_MAP_READ_BIT | GL_CLIENT_STORAGE_BIT);
+    auto* dst = static_cast<unsigned char*>(out);
+    for (uint64_t done = 0; done < bytes; done += chunk) {
+        const uint64_t n = std::min(chunk, bytes - done);
+        glCopyNamedBufferSubData(h_.get(), staging.h_.get(), GLintptr(offset + done), 0, GLsizeiptr(n));
+        const void* src = glMapNamedBufferRange(staging.h_.get(), 0, GLsizeiptr(n), GL_MAP_READ_BIT);
+        if (!src) throw Error(fmt::format("cannot map the readback staging buffer ({} bytes)", n));
+        std::memcpy(dst + done, src, n);
+        glUnmapNamedBuffer(staging.h_.get());
+    }
 }
 
 VertexArray::VertexArray()

@@ -59,10 +59,15 @@ public:
     {
         glNamedBufferSubData(h_.get(), GLintptr(offset), GLsizeiptr(bytes), data);
     }
+    /// Small reads (counters): glGetNamedBufferSubData.
     void read(uint64_t offset, uint64_t bytes, void* out) const
     {
         glGetNamedBufferSubData(h_.get(), GLintptr(offset), GLsizeiptr(bytes), out);
     }
+    /// Bulk reads: a GPU copy into a host-visible staging buffer, then a
+    /// mapped memcpy, in chunks of at most 64 MiB. Some drivers serve
+    /// glGetNamedBufferSubData on device memory through a slow path.
+    void readBulk(uint64_t offset, uint64_t bytes, void* out) const;
     void clearUint(uint32_t value) const
     {
         glClearNamedBufferData(h_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);

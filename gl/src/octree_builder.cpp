@@ -103,8 +103,8 @@ Octree OctreeBuilder::readOctree(const Build& b, const GridSpec& grid)
     o.levelStart.assign(b.counts.levelStart, b.counts.levelStart + o.brickLevel + 2);
     o.nodes.resize(b.counts.nodeCount);
     o.bricks.resize(b.counts.brickCount);
-    if (!o.nodes.empty()) b.nodes.read(0, o.nodes.size() * sizeof(OctreeNode), o.nodes.data());
-    if (!o.bricks.empty()) b.bricks.read(0, o.bricks.size() * sizeof(Brick), o.bricks.data());
+    if (!o.nodes.empty()) b.nodes.readBulk(0, o.nodes.size() * sizeof(OctreeNode), o.nodes.data());
+    if (!o.bricks.empty()) b.bricks.readBulk(0, o.bricks.size() * sizeof(Brick), o.bricks.data());
     checkGl("octree readback");
     return o;
 }

@@ -164,7 +164,7 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
     TimerQuery readTimer;
     readTimer.begin();
     result.keys.resize(count);
-    if (count) list.read(0, uint64_t(count) * 8, result.keys.data());
+    if (count) list.readBulk(0, uint64_t(count) * 8, result.keys.data());
     readTimer.end();
     checkGl("voxel list readback");
     result.stages.push_back({"readback", readTimer.milliseconds(), msSince(t0)});
