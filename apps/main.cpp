@@ -13,6 +13,7 @@ int main(int argc, char** argv)
     svo::app::addConvertCommand(app);
     svo::app::addInfoCommand(app);
     svo::app::addValidateCommand(app);
+    svo::app::addVtkCommand(app);
     svo::app::addGlInfoCommand(app);
     try {
         app.parse(argc, argv);

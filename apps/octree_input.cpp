@@ -74,6 +74,7 @@ LoadedOctree loadOctree(const std::string& path, const InputOptions& opt)
     out.description = fmt::format("{} ({} triangles), voxelized by {}", path, thousands(mesh.triangles.size()),
                                   mv.backendLine);
     out.stages = mv.result.stages;
+    out.mesh = std::move(mesh);
     return out;
 }
 

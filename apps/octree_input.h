@@ -3,6 +3,7 @@
 /// Any input the subcommands take, as an octree: a .svo file, a grid of a
 /// .vdb file (built into an octree on the GPU, or on the CPU with
 /// --backend cpu), or a mesh (voxelized first).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ struct LoadedOctree {
     std::string kind;               ///< "svo", "vdb" or "mesh"
     std::string description;        ///< one line about where it came from
     std::vector<StageTime> stages;  ///< how long it took
+    std::optional<TriangleMesh> mesh; ///< the source, when the input was a mesh
 };
 
 LoadedOctree loadOctree(const std::string& path, const InputOptions& options);

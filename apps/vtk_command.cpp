@@ -1,0 +1,110 @@
+// svo vtk INPUT -o OUT.htg|.vtu|.vtp [--levels A..B] [--png out.png]
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <fmt/format.h>
+#include <memory>
+
+#include "commands.h"
+#include "octree_input.h"
+#include "octree_output.h"
+#include "progress.h"
+#include "svo/core/atomic_file.h"
+#include "svo/core/error.h"
+#include "vtk_export.h"
+
+namespace svo::app {
+namespace {
+
+struct VtkArgs {
+    std::string input, output, png, levels;
+    int64_t resolution = 0;
+    double voxelSize = 0;
+    InputOptions in;
+    int width = 1600;
+};
+
+/// "A..B", "A..", "..B" or "A".
+LevelRange parseLevels(const std::string& text)
+{
+    LevelRange r;
+    if (text.empty()) return r;
+    auto number = [&](const std::string& s) -> uint32_t {
+        try {
+            size_t used = 0;
+            const long v = std::stol(s, &used);
+            if (used == s.size() && v >= 0 && v < 64) return uint32_t(v);
+        } catch (const std::exception&) {
+        }
+        throw Error(fmt::format("--levels '{}': expected A..B with levels from 0", text));
+    };
+    const auto dots = text.find("..");
+    if (dots == std::string::npos) {
+        r.first = r.last = number(text);
+    } else {
+        if (dots > 0) r.first = number(text.substr(0, dots));
+        if (dots + 2 < text.size()) r.last = number(text.substr(dots + 2));
+    }
+    if (r.first > r.last) throw Error(fmt::format("--levels '{}': the first level is past the last", text));
+    return r;
+}
+
+void runVtk(VtkArgs a, const CLI::App& cmd)
+{
+    if (a.output.empty() && a.png.empty()) throw Error("give -o OUT (.htg, .vtu or .vtp), --png PICTURE, or both");
+    const LevelRange levels = parseLevels(a.levels);
+    std::string ext;
+    if (!a.output.empty()) {
+        ext = std::filesystem::path(a.output).extension().string();
+        if (ext != ".htg" && ext != ".vtu" && ext != ".vtp")
+            throw Error(fmt::format("{}: the output must end in .htg (hyper tree grid), .vtu (voxel cells) or .vtp "
+                                    "(node outlines)",
+                                    a.output));
+        checkWritable(a.output);
+    }
+    if (!a.png.empty()) checkWritable(a.png);
+    a.in.gridRequest = gridRequest(cmd, a.resolution, a.voxelSize);
+    const LoadedOctree lo = loadOctree(a.input, a.in);
+    fmt::print("svo vtk\n");
+    fmt::print("  {:<8} {}\n", "input", lo.description);
+    fmt::print("  {:<8} {} voxels, {} levels (bricks at {}; levels {}..{} split bricks down to voxels)\n", "octree",
+               lo.octree.voxelCount(), lo.octree.brickLevel + 1, lo.octree.brickLevel, lo.octree.brickLevel + 1,
+               lo.octree.brickLevel + 3);
+    if (!a.output.empty()) {
+        Progress p("writing " + a.output);
+        if (ext == ".htg") writeHyperTreeGrid(a.output, lo.octree, levels);
+        if (ext == ".vtu") writeVoxelCells(a.output, lo.octree);
+        if (ext == ".vtp") writeNodeOutlines(a.output, lo.octree, levels);
+        fmt::print("  {:<8} {}\n", "output", a.output);
+    }
+    if (!a.png.empty()) {
+        Progress p("rendering " + a.png);
+        PictureOptions po;
+        po.width = a.width;
+        po.height = a.width * 3 / 4;
+        po.mesh = lo.mesh ? &*lo.mesh : nullptr;
+        po.outlineLevels = levels;
+        renderPicture(a.png, lo.octree, po);
+        fmt::print("  {:<8} {} ({} x {})\n", "picture", a.png, po.width, po.height);
+    }
+}
+
+} // namespace
+
+void addVtkCommand(CLI::App& app)
+{
+    auto args = std::make_shared<VtkArgs>();
+    CLI::App* cmd = app.add_subcommand("vtk", "Write an octree (of a mesh, .vdb or .svo) for VTK/ParaView, or a picture");
+    cmd->add_option("input", args->input, "A mesh (voxelized first), .vdb or .svo")->required();
+    cmd->add_option("-o,--output", args->output, ".htg hyper tree grid, .vtu voxel cells, or .vtp node outlines");
+    cmd->add_option("--levels", args->levels, "Levels A..B: deepest level of the .htg, outline levels of .vtp/--png");
+    cmd->add_option("--png", args->png, "Also render voxels, outlines and mesh to a PNG (uses Xvfb if no DISPLAY)");
+    cmd->add_option("--size", args->width, "Picture width in pixels; the height is 3/4 of it")
+        ->check(CLI::Range(64, 8192))
+        ->capture_default_str();
+    cmd->add_option("--grid", args->in.gridName, "Grid of a .vdb input (default: the first)");
+    addGridOptions(*cmd, args->resolution, args->voxelSize);
+    addBackendOptions(*cmd, args->in.backend);
+    cmd->callback([args, cmd] { runVtk(*args, *cmd); });
+}
+
+} // namespace svo::app

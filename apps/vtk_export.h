@@ -1,0 +1,47 @@
+#pragma once
+/// @file vtk_export.h
+/// Octrees as VTK data, without VTK in the interface.
+///
+/// Levels: 0 is the root, `brickLevel` the 8^3 bricks, and brickLevel + 1, + 2,
+/// + 3 split a brick into 4^3, 2^3 and single voxels, so every file can reach
+/// down to voxels with branch factor 2 throughout.
+#include <cstdint>
+#include <string>
+
+#include "svo/core/mesh.h"
+#include "svo/core/octree.h"
+
+namespace svo::app {
+
+struct LevelRange {
+    uint32_t first = 0;
+    uint32_t last = UINT32_MAX; ///< clamped to brickLevel + 3
+};
+
+/// .htg: a vtkHyperTreeGrid of one tree, branch factor 2, child c = x + 2y + 4z
+/// (the octree's order). Cell arrays: `level`, `occupancy` (0/1) and
+/// `voxel_count`; empty cells are masked. Occupied cells are refined down to
+/// level range.last. Written in binary mode: VTK 9.1's appended mode corrupts
+/// hyper tree grids with more than one cell array.
+void writeHyperTreeGrid(const std::string& path, const Octree& octree, const LevelRange& levels);
+
+/// .vtu: every occupied voxel as a VTK_VOXEL cell in world coordinates, with
+/// its OpenVDB index as the cell array `index`.
+void writeVoxelCells(const std::string& path, const Octree& octree);
+
+/// .vtp: the outline (12 edges) of every occupied node at levels
+/// [first, min(last, brickLevel)], with the cell array `level`.
+void writeNodeOutlines(const std::string& path, const Octree& octree, const LevelRange& levels);
+
+struct PictureOptions {
+    int width = 1600, height = 1200;
+    const TriangleMesh* mesh = nullptr; ///< drawn translucent when given
+    LevelRange outlineLevels{0, UINT32_MAX};
+};
+
+/// A PNG of the voxels (green), the node outlines (red) and the mesh (grey),
+/// rendered offscreen through VTK. VTK 9.1 from Debian renders through X: with
+/// no DISPLAY, svo starts Xvfb for the duration (xvfb.h).
+void renderPicture(const std::string& path, const Octree& octree, const PictureOptions& options);
+
+} // namespace svo::app

@@ -1,0 +1,26 @@
+#pragma once
+/// @file xvfb.h
+/// An X display for offscreen VTK rendering: the current one, or a private
+/// Xvfb server started for as long as this object lives.
+#include <string>
+#include <sys/types.h>
+
+namespace svo::app {
+
+class XDisplay {
+public:
+    /// Uses $DISPLAY when set; otherwise starts Xvfb on a free display and sets
+    /// $DISPLAY. Throws svo::Error saying what to install when neither works.
+    XDisplay();
+    ~XDisplay();
+    XDisplay(const XDisplay&) = delete;
+    XDisplay& operator=(const XDisplay&) = delete;
+    const std::string& name() const { return name_; }
+    bool started() const { return pid_ > 0; }
+
+private:
+    std::string name_;
+    pid_t pid_ = -1;
+};
+
+} // namespace svo::app

@@ -1,0 +1,165 @@
+// svo vtk: files read back with VTK's own readers, and the picture checked by
+// its pixels. The expected counts come from the .svo file, read independently.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkHyperTreeGrid.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+#include <vtkPolyData.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLHyperTreeGridReader.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include "svo/core/octree.h"
+#include "svo/core/octree_file.h"
+
+namespace fs = std::filesystem;
+using namespace svo;
+
+namespace {
+
+int runSvo(const std::string& args)
+{
+    const std::string cmd = std::string(SVO_EXE) + " " + args + " > /dev/null 2>&1";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class Vtk : public ::testing::Test {
+protected:
+    static void SetUpTestSuite()
+    {
+        dir_ = fs::temp_directory_path() / ("svo_vtk_" + std::to_string(::getpid()));
+        fs::create_directories(dir_);
+        ASSERT_EQ(runSvo("voxelize -r 40 -o " + path("box.svo")), 0);
+        octree_ = readOctreeFile(path("box.svo"));
+    }
+    static void TearDownTestSuite() { fs::remove_all(dir_); }
+    static std::string path(const std::string& name) { return (dir_ / name).string(); }
+    static fs::path dir_;
+    static Octree octree_;
+};
+fs::path Vtk::dir_;
+Octree Vtk::octree_;
+
+/// Occupied cells of a brick's 2^k sub-cubes: independent of the exporter.
+uint64_t occupiedSubcubes(const Brick& b, uint32_t size)
+{
+    uint64_t n = 0;
+    for (uint32_t ox = 0; ox < 8; ox += size)
+        for (uint32_t oy = 0; oy < 8; oy += size)
+            for (uint32_t oz = 0; oz < 8; oz += size) {
+                bool any = false;
+                for (uint32_t bit = 0; bit < 512; ++bit) {
+                    const uint32_t x = bit >> 6, y = bit >> 3 & 7, z = bit & 7;
+                    if (x >= ox && x < ox + size && y >= oy && y < oy + size && z >= oz && z < oz + size)
+                        any |= bool(b.words[bit >> 6] >> (bit & 63) & 1);
+                }
+                n += any;
+            }
+    return n;
+}
+
+} // namespace
+
+TEST_F(Vtk, HyperTreeGridReadsBackWithTheOctreesCounts)
+{
+    ASSERT_EQ(runSvo("vtk " + path("box.svo") + " -o " + path("box.htg")), 0);
+    vtkNew<vtkXMLHyperTreeGridReader> reader;
+    reader->SetFileName(path("box.htg").c_str());
+    reader->Update();
+    vtkHyperTreeGrid* htg = reader->GetOutput();
+    ASSERT_NE(htg, nullptr);
+    EXPECT_EQ(htg->GetBranchFactor(), 2u);
+    // Refined cells: every occupied node, and the occupied 4^3 and 2^3 sub-cubes.
+    const auto st = octreeStats(octree_);
+    uint64_t refined = 0;
+    for (size_t l = 0; l < st.occupiedPerLevel.size(); ++l) refined += st.occupiedPerLevel[l];
+    for (const auto& b : octree_.bricks) refined += occupiedSubcubes(b, 4) + occupiedSubcubes(b, 2);
+    EXPECT_EQ(uint64_t(htg->GetNumberOfVertices()), 1 + 8 * refined);
+    for (const char* name : {"level", "occupancy", "voxel_count"})
+        EXPECT_NE(htg->GetCellData()->GetArray(name), nullptr) << name;
+    vtkDataArray* level = htg->GetCellData()->GetArray("level");
+    vtkDataArray* occ = htg->GetCellData()->GetArray("occupancy");
+    vtkDataArray* count = htg->GetCellData()->GetArray("voxel_count");
+    ASSERT_TRUE(level && occ && count);
+    uint64_t voxels = 0;
+    std::vector<uint64_t> perLevel(octree_.brickLevel + 4, 0);
+    for (vtkIdType i = 0; i < level->GetNumberOfTuples(); ++i) {
+        const auto l = size_t(level->GetTuple1(i));
+        ASSERT_LT(l, perLevel.size());
+        perLevel[l] += occ->GetTuple1(i) > 0;
+        if (l == octree_.brickLevel + 3) voxels += occ->GetTuple1(i) > 0;
+    }
+    EXPECT_EQ(voxels, octree_.voxelCount());
+    for (size_t l = 0; l <= octree_.brickLevel; ++l) EXPECT_EQ(perLevel[l], st.occupiedPerLevel[l]) << "level " << l;
+    EXPECT_EQ(uint64_t(count->GetTuple1(0)), octree_.voxelCount()); // the root holds them all
+}
+
+TEST_F(Vtk, VoxelCellsAndOutlinesReadBack)
+{
+    ASSERT_EQ(runSvo("vtk " + path("box.svo") + " -o " + path("box.vtu")), 0);
+    vtkNew<vtkXMLUnstructuredGridReader> ug;
+    ug->SetFileName(path("box.vtu").c_str());
+    ug->Update();
+    EXPECT_EQ(uint64_t(ug->GetOutput()->GetNumberOfCells()), octree_.voxelCount());
+    EXPECT_EQ(ug->GetOutput()->GetCellType(0), VTK_VOXEL);
+    EXPECT_NE(ug->GetOutput()->GetCellData()->GetArray("index"), nullptr);
+    // One voxel's cell has the voxel's size.
+    double b[6];
+    ug->GetOutput()->GetCell(0)->GetBounds(b);
+    EXPECT_NEAR(b[1] - b[0], octree_.grid.voxelSize, 1e-9);
+
+    ASSERT_EQ(runSvo("vtk " + path("box.svo") + " -o " + path("box.vtp") + " --levels 1..3"), 0);
+    vtkNew<vtkXMLPolyDataReader> pd;
+    pd->SetFileName(path("box.vtp").c_str());
+    pd->Update();
+    const auto st = octreeStats(octree_);
+    EXPECT_EQ(uint64_t(pd->GetOutput()->GetNumberOfLines()),
+              12 * (st.occupiedPerLevel[1] + st.occupiedPerLevel[2] + st.occupiedPerLevel[3]));
+    vtkDataArray* level = pd->GetOutput()->GetCellData()->GetArray("level");
+    ASSERT_NE(level, nullptr);
+    EXPECT_EQ(level->GetRange()[0], 1.0);
+    EXPECT_EQ(level->GetRange()[1], 3.0);
+}
+
+TEST_F(Vtk, PictureShowsVoxelsAndOutlines)
+{
+    if (runSvo("vtk " + path("box.svo") + " --png " + path("box.png") + " --size 640") != 0) {
+        // Only acceptable when there is no way to get an X display.
+        ASSERT_TRUE(std::getenv("DISPLAY") == nullptr && std::system("command -v Xvfb > /dev/null") != 0)
+            << "svo vtk --png failed although an X server is available";
+        GTEST_SKIP() << "no DISPLAY and no Xvfb";
+    }
+    vtkNew<vtkPNGReader> png;
+    png->SetFileName(path("box.png").c_str());
+    png->Update();
+    vtkImageData* img = png->GetOutput();
+    int dims[3];
+    img->GetDimensions(dims);
+    EXPECT_EQ(dims[0], 640);
+    EXPECT_EQ(dims[1], 480);
+    uint64_t green = 0, red = 0, white = 0, total = uint64_t(dims[0]) * uint64_t(dims[1]);
+    for (int y = 0; y < dims[1]; ++y)
+        for (int x = 0; x < dims[0]; ++x) {
+            const auto* p = static_cast<unsigned char*>(img->GetScalarPointer(x, y, 0));
+            const int r = p[0], g = p[1], b = p[2];
+            if (r > 240 && g > 240 && b > 240) ++white;
+            else if (g > r + 30 && g > b + 30) ++green;
+            else if (r > g + 80 && r > b + 80) ++red;
+        }
+    // The voxels fill a good part of the frame, outlines show, the rest is background.
+    EXPECT_GT(double(green) / double(total), 0.15) << green;
+    EXPECT_GT(red, 500u);
+    EXPECT_GT(double(white) / double(total), 0.05) << white;
+}
