@@ -19,7 +19,8 @@ for exe in "$build/bin/svo" "$@"; do
   cp "$exe" "$stage/svo/bin/"
 done
 # Host-provided: glibc, and the GL/EGL dispatch libraries that must match the driver.
-system='^(linux-vdso|ld-linux|libc\.|libm\.|libpthread|libdl|librt|libresolv|libGL|libEGL|libOpenGL|libGLX|libGLdispatch|libgbm|libdrm|libX)'
+# X11 client libraries (VTK links them) travel with the bundle.
+system='^(linux-vdso|ld-linux|libc\.|libm\.|libpthread|libdl|librt|libresolv|libGL\.so|libEGL|libOpenGL|libGLX|libGLdispatch|libgbm|libdrm)'
 for exe in "$stage"/svo/bin/*; do
   ldd "$exe" | awk '/=> \// {print $1, $3}' | while read -r name path; do
     [[ "$name" =~ $system ]] && continue
