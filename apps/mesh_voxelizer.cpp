@@ -8,6 +8,7 @@
 #include "progress.h"
 #include "svo/core/cpu_voxelizer.h"
 #include "svo/core/octree.h"
+#include "svo/core/voxel_attributes.h"
 #include "svo/gl/raster_voxelizer.h"
 
 namespace svo::app {
@@ -30,7 +31,7 @@ gl::OctreeVoxelization medianOf(std::vector<gl::OctreeVoxelization> runs)
     return out;
 }
 
-gl::OctreeVoxelization cpuOctree(const TriangleMesh& mesh, const GridSpec& grid)
+gl::OctreeVoxelization cpuOctree(const TriangleMesh& mesh, const GridSpec& grid, uint32_t attributes)
 {
     using Clock = std::chrono::steady_clock;
     Voxelization v = voxelizeCpu(mesh, grid);
@@ -39,6 +40,11 @@ gl::OctreeVoxelization cpuOctree(const TriangleMesh& mesh, const GridSpec& grid)
     const auto t0 = Clock::now();
     out.octree = buildOctree(grid, v.keys);
     out.stages.push_back({"octree build (cpu)", -1, std::chrono::duration<double, std::milli>(Clock::now() - t0).count()});
+    if (attributes) {
+        const auto t1 = Clock::now();
+        attachAttributesCpu(mesh, out.octree, attributes, 0.0);
+        out.stages.push_back({"attributes (cpu)", -1, std::chrono::duration<double, std::milli>(Clock::now() - t1).count()});
+    }
     return out;
 }
 
@@ -56,16 +62,31 @@ void addBackendOptions(CLI::App& cmd, BackendSettings& s)
     cmd.add_flag("--gl-debug", s.glDebug, "Print GL debug messages");
 }
 
+void addAttributeOption(CLI::App& cmd, BackendSettings& s)
+{
+    cmd.add_option_function<std::vector<std::string>>(
+           "--attributes",
+           [&s](const std::vector<std::string>& names) {
+               for (const auto& n : names)
+                   s.attributes |= n == "normal" ? kNormals : n == "triangle" ? kTriangles : kColors;
+           },
+           "Per-voxel channels: normal, triangle (smallest triangle id), color (needs vertex colours)")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"normal", "triangle", "color"}));
+}
+
 MeshVoxelization voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, const BackendSettings& s)
 {
     MeshVoxelization out;
+    if ((s.attributes & kColors) && mesh.colors.empty())
+        fmt::print(stderr, "svo: warning: {} has no vertex colours; the color channel is left out\n", mesh.source);
     std::vector<gl::OctreeVoxelization> runs;
     const int n = std::max(s.repeat, 1);
     if (s.backend == "cpu") {
         out.backendLine = "cpu (double-precision reference)";
         out.renderer = "cpu";
         Progress p("voxelizing on the CPU");
-        for (int i = 0; i < n; ++i) runs.push_back(cpuOctree(mesh, grid));
+        for (int i = 0; i < n; ++i) runs.push_back(cpuOctree(mesh, grid, s.attributes));
     } else {
         gl::ContextOptions co;
         co.device = s.device;
@@ -76,6 +97,7 @@ MeshVoxelization voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, co
         ro.conservative = s.conservative == "hardware" ? gl::ConservativeMode::Hardware
                           : s.conservative == "shader" ? gl::ConservativeMode::Shader
                                                        : gl::ConservativeMode::Auto;
+        ro.attributes = s.attributes;
         out.renderer = info.renderer;
         const std::string mode = gl::conservativeModeName(context, ro);
         std::string exts = info.extensionsUsed.empty() ? "" : fmt::format(", {}", fmt::join(info.extensionsUsed, ", "));

@@ -19,7 +19,11 @@ struct BackendSettings {
     std::string device;
     bool glDebug = false;
     int repeat = 1; ///< >1: one warm-up, then per-stage medians
+    uint32_t attributes = 0; ///< AttributeChannel bits to compute
 };
+
+/// --attributes normal,triangle,color on a subcommand.
+void addAttributeOption(CLI::App& cmd, BackendSettings& settings);
 
 /// Adds --backend, --conservative, --device, --gl-debug to a subcommand.
 void addBackendOptions(CLI::App& cmd, BackendSettings& settings);

@@ -74,6 +74,10 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     fmt::print("  {:<11} {} levels, {} nodes, {} bricks, {:.2f} bytes/voxel, brick fill {:.2f}\n", "octree",
                vox.octree.brickLevel + 1, thousands(vox.octree.nodes.size()), thousands(stats.bricks),
                stats.bytesPerVoxel(), stats.fillRatio());
+    const uint32_t ch = vox.octree.channels();
+    if (ch)
+        fmt::print("  {:<11} {}{}{}\n", "attributes", ch & kNormals ? "normal " : "", ch & kTriangles ? "triangle_id " : "",
+                   ch & kColors ? "color" : "");
     fmt::print("  {:<11} {}\n", "backend", mv.backendLine);
     fmt::print("  {:<11} {:.3g} voxels (cubes grown by half of it on the GPU)\n", "guard band", grid.epsilon());
     fmt::print("  {:<11} {} entries, {} overflow retries, {:.1f} MB of GPU buffers\n", "voxel list",
@@ -129,6 +133,7 @@ void addVoxelizeCommand(CLI::App& app)
     cmd->add_option("--json", args->json, "Also write the summary (counts, bytes, stage times) as JSON");
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
+    addAttributeOption(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
     cmd->add_option("--repeat", args->backend.repeat,
                     "Voxelize N times (after one warm-up on the GPU) and report per-stage medians")

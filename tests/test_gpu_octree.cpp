@@ -5,6 +5,7 @@
 #include <functional>
 #include <gtest/gtest.h>
 #include <memory>
+#include <random>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/PointIndexGrid.h>
 #include <set>
@@ -16,6 +17,7 @@
 #include "svo/core/error.h"
 #include "svo/core/mesh_io.h"
 #include "svo/core/octree.h"
+#include "svo/core/voxel_attributes.h"
 #include "svo/gl/raster_voxelizer.h"
 #include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/vdb_file.h"
@@ -241,4 +243,78 @@ TEST(VdbToBricks, UnsupportedInputsAreRefused)
     expectError([&] { vdb::readVdbBricks(junk); }, "not a readable VDB file");
     fs::remove(junk);
     expectError([&] { vdb::readVdbBricks(tempPath("missing.vdb")); }, "no such file");
+}
+
+TEST_F(GpuOctree, AttributesEqualTheCpuReferenceOutsideTheBand)
+{
+    // Random triangles with random vertex colours, and a sphere.
+    auto random = test::randomTriangles(400, 5);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0, 1);
+    for (size_t i = 0; i < random.positions.size(); ++i) random.colors.push_back({u(rng), u(rng), u(rng)});
+    const uint32_t all = kNormals | kTriangles | kColors;
+    for (const auto& [mesh, req] : {std::pair{random, GridRequest{0, 0.5}},
+                                    std::pair{test::icosphere({0.1, 0.2, 0.3}, 1.0, 4), GridRequest{64, 0}}}) {
+        const GridSpec grid = makeGrid(mesh, req);
+        gl::RasterOptions opt;
+        opt.attributes = all;
+        const Octree gpu = gl::voxelizeToOctree(*context_, mesh, grid, opt).octree;
+        ASSERT_TRUE(checkOctree(gpu).empty());
+        ASSERT_EQ(gpu.channels(), mesh.colors.empty() ? uint32_t(kNormals | kTriangles) : all);
+        // The GPU's (voxel, triangle) pairs lie between the CPU's on cubes
+        // shrunk and grown by epsilon; where those agree, so must the values.
+        Octree lo = gpu, hi = gpu;
+        attachAttributesCpu(mesh, lo, all, -grid.epsilon());
+        attachAttributesCpu(mesh, hi, all, +grid.epsilon());
+        size_t compared = 0, differ = 0;
+        for (size_t v = 0; v < gpu.voxelCount(); ++v) {
+            const bool decided = lo.attributes.triangles[v] == hi.attributes.triangles[v] &&
+                                 lo.attributes.normals[v].x == hi.attributes.normals[v].x &&
+                                 lo.attributes.normals[v].y == hi.attributes.normals[v].y &&
+                                 lo.attributes.normals[v].z == hi.attributes.normals[v].z;
+            if (!decided) continue;
+            ++compared;
+            const auto& g = gpu.attributes;
+            const auto& c = hi.attributes;
+            differ += g.triangles[v] != c.triangles[v] || g.normals[v].x != c.normals[v].x ||
+                      g.normals[v].y != c.normals[v].y || g.normals[v].z != c.normals[v].z ||
+                      (!c.colors.empty() && (g.colors[v].x != c.colors[v].x || g.colors[v].z != c.colors[v].z));
+        }
+        EXPECT_EQ(differ, 0u) << mesh.source;
+        EXPECT_GT(double(compared), 0.99 * double(gpu.voxelCount())) << mesh.source;
+        std::printf("  %-18s %zu voxels, %zu compared exactly\n", mesh.source.c_str(), size_t(gpu.voxelCount()), compared);
+    }
+}
+
+TEST_F(GpuOctree, AttributeGridsReachTheVdbFile)
+{
+    auto mesh = test::icosphere({0, 0, 0}, 1.0, 3);
+    for (size_t i = 0; i < mesh.positions.size(); ++i) mesh.colors.push_back({1.0f, 0.5f, 0.0f});
+    const GridSpec grid = makeGrid(mesh, {32, 0});
+    gl::RasterOptions opt;
+    opt.attributes = kNormals | kTriangles | kColors;
+    const Octree o = gl::voxelizeToOctree(*context_, mesh, grid, opt).octree;
+    const std::string path = tempPath("attributes.vdb");
+    vdb::writeVdb(path, o, {});
+    openvdb::io::File f(path);
+    f.open();
+    auto normal = openvdb::gridPtrCast<openvdb::Vec3SGrid>(f.readGrid("normal"));
+    auto tri = openvdb::gridPtrCast<openvdb::Int32Grid>(f.readGrid("triangle_id"));
+    auto color = openvdb::gridPtrCast<openvdb::Vec3SGrid>(f.readGrid("color"));
+    f.close();
+    fs::remove(path);
+    ASSERT_TRUE(normal && tri && color);
+    EXPECT_EQ(normal->activeVoxelCount(), openvdb::Index64(o.voxelCount()));
+    // On a sphere, normals point away from the centre; colours are the one vertex colour.
+    const auto xf = normal->transform();
+    for (auto it = normal->cbeginValueOn(); it; ++it) {
+        openvdb::Vec3d p = xf.indexToWorld(it.getCoord());
+        EXPECT_GT(p.normalize() ? p.dot(openvdb::Vec3d(*it)) : 1.0, 0.5) << it.getCoord();
+        EXPECT_NEAR((*it).length(), 1.0, 1e-4);
+    }
+    for (auto it = color->cbeginValueOn(); it; ++it) EXPECT_NEAR((*it)[1], 0.5f, 1e-4);
+    for (auto it = tri->cbeginValueOn(); it; ++it) {
+        EXPECT_GE(*it, 0);
+        EXPECT_LT(*it, int32_t(mesh.triangles.size()));
+    }
 }

@@ -9,9 +9,11 @@
 #include <unistd.h>
 
 #include "octree_scenes.h"
+#include "svo/core/cpu_voxelizer.h"
 #include "svo/core/error.h"
 #include "svo/core/octree.h"
 #include "svo/core/octree_file.h"
+#include "svo/core/voxel_attributes.h"
 
 using namespace svo;
 namespace fs = std::filesystem;
@@ -202,7 +204,7 @@ TEST(OctreeFile, RoundTripIsExactAndDeterministic)
     EXPECT_EQ(octreeKeys(r), sortedUnique(keys));
     writeOctreeFile(b, r);
     EXPECT_EQ(readBytes(a), readBytes(b));
-    EXPECT_EQ(readBytes(a).size(), 120 + 4 * (o.brickLevel + 2) + 8 * o.nodes.size() + 64 * o.bricks.size());
+    EXPECT_EQ(readBytes(a).size(), sizeof(OctreeFileHeader) + 4 * (o.brickLevel + 2) + 8 * o.nodes.size() + 64 * o.bricks.size());
     fs::remove(a);
     fs::remove(b);
 }
@@ -221,8 +223,8 @@ TEST(OctreeFile, CorruptFilesAreRejected)
     bad[0] = 'X';
     expectRejected(bad, "magic");
     bad = good;
-    bad[8] = 2;
-    expectRejected(bad, "version 2");
+    bad[8] = 7;
+    expectRejected(bad, "version 7");
     bad = good;
     bad.resize(60);
     expectRejected(bad, "truncated header");
@@ -243,9 +245,69 @@ TEST(OctreeFile, CorruptFilesAreRejected)
     expectRejected(bad, "counts need");
     // A consistent checksum over an inconsistent tree: the structure check catches it.
     bad = good;
-    const size_t rootMask = 120 + 4 * (o.brickLevel + 2) + 4;
+    const size_t rootMask = sizeof(OctreeFileHeader) + 4 * (o.brickLevel + 2) + 4;
     bad[rootMask] ^= 0x01 ^ 0x80;
     resign(bad);
     expectRejected(bad, "");
     EXPECT_THROW(readOctreeFile(tempPath("missing.svo")), Error);
+}
+
+TEST(OctreeAttributes, CpuChannelsFollowTheirTriangles)
+{
+    // Two triangles in the plane z = 0.25 (index space), overlapping on x in [2, 4]:
+    // red with id 0 and normal +z, blue with id 1 and normal -z (wound the other way).
+    TriangleMesh m;
+    m.source = "two triangles";
+    m.positions = {{0.2, 0.2, 0.25}, {4.2, 0.2, 0.25}, {0.2, 4.2, 0.25}, {2.2, 0.2, 0.25}, {6.2, 4.2, 0.25}, {6.2, 0.2, 0.25}};
+    m.triangles = {{0, 1, 2}, {3, 4, 5}};
+    m.colors = {{1, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    const GridSpec g = makeGrid(m, {0, 1.0});
+    Voxelization v = voxelizeCpu(m, g);
+    Octree o = buildOctree(g, v.keys);
+    attachAttributesCpu(m, o, kNormals | kTriangles | kColors, 0.0);
+    ASSERT_TRUE(checkOctree(o).empty());
+    ASSERT_EQ(o.attributes.triangles.size(), o.voxelCount());
+    const auto offsets = brickVoxelOffsets(o);
+    size_t both = 0, onlyBlue = 0;
+    for (const auto& r : occupiedBricks(o)) {
+        uint64_t at = offsets[r.index];
+        for (uint32_t bit = 0; bit < 512; ++bit) {
+            if (!(o.bricks[r.index].words[bit >> 6] >> (bit & 63) & 1)) continue;
+            const double x = double(g.anchor[0] + r.origin[0] + (bit >> 6)) * g.voxelSize;
+            const int32_t id = o.attributes.triangles[at];
+            const Vec3f n = o.attributes.normals[at], c = o.attributes.colors[at];
+            if (x >= 3.0 && x <= 3.0) { // inside both footprints
+                ++both;
+                EXPECT_EQ(id, 0);
+                EXPECT_NEAR(c.x, 0.5f, 1e-4);
+                EXPECT_NEAR(c.z, 0.5f, 1e-4);
+            }
+            if (x >= 6.0) {
+                ++onlyBlue;
+                EXPECT_EQ(id, 1);
+                EXPECT_EQ(c.z, 1.0f);
+                EXPECT_EQ(n.z, -1.0f);
+            }
+            if (x <= 1.0) {
+                EXPECT_EQ(id, 0);
+                EXPECT_EQ(n.z, 1.0f);
+                EXPECT_EQ(c.x, 1.0f);
+            }
+            ++at;
+        }
+    }
+    EXPECT_GT(both, 0u);
+    EXPECT_GT(onlyBlue, 0u);
+
+    // Channels survive the file and the canonical relayout.
+    const std::string path = tempPath("attr.svo");
+    writeOctreeFile(path, o);
+    const Octree r = readOctreeFile(path);
+    fs::remove(path);
+    EXPECT_EQ(r.channels(), uint32_t(kNormals | kTriangles | kColors));
+    EXPECT_TRUE(sameOctree(r, canonicalOrder(o)));
+    // Without colours in the mesh, the colour channel is left out.
+    m.colors.clear();
+    attachAttributesCpu(m, o, kNormals | kColors, 0.0);
+    EXPECT_EQ(o.channels(), uint32_t(kNormals));
 }

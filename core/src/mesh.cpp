@@ -24,6 +24,8 @@ void validateMesh(const TriangleMesh& mesh)
     if (mesh.triangles.empty())
         throw Error(fmt::format("{}: the mesh has no triangles", mesh.source));
     const size_t n = mesh.positions.size();
+    if (!mesh.colors.empty() && mesh.colors.size() != n)
+        throw Error(fmt::format("{}: {} vertex colours for {} vertices", mesh.source, mesh.colors.size(), n));
     for (size_t t = 0; t < mesh.triangles.size(); ++t)
         for (uint32_t v : mesh.triangles[t]) {
             if (v >= n)

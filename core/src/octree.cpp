@@ -43,6 +43,35 @@ uint32_t Brick::count() const
     return n;
 }
 
+bool VoxelAttributes::operator==(const VoxelAttributes& o) const
+{
+    auto eq3 = [](const std::vector<Vec3f>& a, const std::vector<Vec3f>& b) {
+        return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                          [](const Vec3f& x, const Vec3f& y) { return x.x == y.x && x.y == y.y && x.z == y.z; });
+    };
+    return eq3(normals, o.normals) && triangles == o.triangles && eq3(colors, o.colors);
+}
+
+uint32_t Octree::channels() const
+{
+    return (attributes.normals.empty() ? 0u : kNormals) | (attributes.triangles.empty() ? 0u : kTriangles) |
+           (attributes.colors.empty() ? 0u : kColors);
+}
+
+uint64_t Octree::bytes() const
+{
+    return nodes.size() * sizeof(OctreeNode) + bricks.size() * sizeof(Brick) +
+           attributes.normals.size() * sizeof(Vec3f) + attributes.triangles.size() * sizeof(int32_t) +
+           attributes.colors.size() * sizeof(Vec3f);
+}
+
+std::vector<uint64_t> brickVoxelOffsets(const Octree& o)
+{
+    std::vector<uint64_t> offsets(o.bricks.size() + 1, 0);
+    for (size_t b = 0; b < o.bricks.size(); ++b) offsets[b + 1] = offsets[b] + o.bricks[b].count();
+    return offsets;
+}
+
 uint64_t Octree::voxelCount() const
 {
     uint64_t n = 0;
@@ -145,6 +174,7 @@ Octree canonicalOrder(const Octree& src)
     out.levelStart = {0, 1};
     out.nodes.push_back(src.nodes.at(0));
     std::vector<uint32_t> level = {0}; // source indices of the current level, in output order
+    std::vector<uint32_t> order;       // source brick of each output brick
     for (uint32_t l = 0; l <= src.brickLevel; ++l) {
         const uint32_t first = out.levelStart[l];
         std::vector<uint32_t> next;
@@ -156,6 +186,7 @@ Octree canonicalOrder(const Octree& src)
             if (l == src.brickLevel) {
                 o.child = uint32_t(out.bricks.size());
                 out.bricks.push_back(src.bricks.at(n.child));
+                order.push_back(n.child);
             } else {
                 o.child = uint32_t(out.nodes.size());
                 for (uint32_t c = 0; c < 8; ++c) {
@@ -166,6 +197,18 @@ Octree canonicalOrder(const Octree& src)
         }
         if (l < src.brickLevel) out.levelStart.push_back(uint32_t(out.nodes.size()));
         level = std::move(next);
+    }
+    // Attribute blocks follow their bricks.
+    if (!src.attributes.empty()) {
+        const auto offsets = brickVoxelOffsets(src);
+        auto permute = [&](const auto& in, auto& result) {
+            if (in.empty()) return;
+            result.reserve(in.size());
+            for (uint32_t b : order) result.insert(result.end(), in.begin() + long(offsets[b]), in.begin() + long(offsets[b + 1]));
+        };
+        permute(src.attributes.normals, out.attributes.normals);
+        permute(src.attributes.triangles, out.attributes.triangles);
+        permute(src.attributes.colors, out.attributes.colors);
     }
     return out;
 }
@@ -178,7 +221,7 @@ bool sameOctree(const Octree& a, const Octree& b)
     return a.grid.voxelSize == b.grid.voxelSize && a.grid.shift == b.grid.shift && a.grid.anchor == b.grid.anchor &&
            a.grid.dims == b.grid.dims && a.brickLevel == b.brickLevel && a.levelStart == b.levelStart &&
            std::equal(a.nodes.begin(), a.nodes.end(), b.nodes.begin(), b.nodes.end(), nodesEqual) &&
-           a.bricks == b.bricks;
+           a.bricks == b.bricks && a.attributes == b.attributes;
 }
 
 std::vector<BrickRef> occupiedBricks(const Octree& o)
@@ -275,6 +318,11 @@ std::vector<std::string> checkOctree(const Octree& o, size_t limit)
             if (!blockRefs[i / 8]) fail(fmt::format("child block at {} (level {}) is orphaned", i, l));
     for (size_t b = 0; b < o.bricks.size(); ++b)
         if (!brickRefs[b]) fail(fmt::format("brick {} is orphaned", b));
+    const uint64_t voxels = o.voxelCount();
+    for (auto [size, name] : {std::pair{o.attributes.normals.size(), "normal"},
+                              std::pair{o.attributes.triangles.size(), "triangle"},
+                              std::pair{o.attributes.colors.size(), "colour"}})
+        if (size && size != voxels) fail(fmt::format("{} {} values for {} voxels", size, name, voxels));
     if (!problems.empty()) return problems;
 
     // Only voxels inside the grid's local range.

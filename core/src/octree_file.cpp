@@ -22,9 +22,26 @@ uint64_t fnv1a(const unsigned char* p, size_t n, uint64_t h = 0xcbf29ce484222325
     return h;
 }
 
+uint64_t bytesPerVoxel(uint32_t channels)
+{
+    return (channels & kNormals ? 12 : 0) + (channels & kTriangles ? 4 : 0) + (channels & kColors ? 12 : 0);
+}
+
 uint64_t payloadBytes(uint64_t levels, uint64_t nodes, uint64_t bricks)
 {
     return 4 * levels + sizeof(OctreeNode) * nodes + sizeof(Brick) * bricks;
+}
+
+/// Voxels of the bricks in a payload, before the tree is checked.
+uint64_t voxelsIn(const unsigned char* bricks, uint64_t count)
+{
+    uint64_t n = 0;
+    for (uint64_t b = 0; b < count; ++b) {
+        Brick brick;
+        std::memcpy(&brick, bricks + b * sizeof(Brick), sizeof(Brick));
+        n += brick.count();
+    }
+    return n;
 }
 
 } // namespace
@@ -41,7 +58,9 @@ void writeOctreeFile(const std::string& path, const Octree& input)
     h.brickLevel = o.brickLevel;
     h.nodeCount = o.nodes.size();
     h.brickCount = o.bricks.size();
-    h.fileBytes = sizeof h + payloadBytes(o.levelStart.size(), h.nodeCount, h.brickCount);
+    h.channels = o.channels();
+    h.fileBytes = sizeof h + payloadBytes(o.levelStart.size(), h.nodeCount, h.brickCount) +
+                  bytesPerVoxel(h.channels) * o.voxelCount();
 
     std::vector<unsigned char> bytes(h.fileBytes);
     unsigned char* p = bytes.data() + sizeof h;
@@ -52,6 +71,9 @@ void writeOctreeFile(const std::string& path, const Octree& input)
     put(o.levelStart.data(), 4 * o.levelStart.size());
     put(o.nodes.data(), sizeof(OctreeNode) * o.nodes.size());
     put(o.bricks.data(), sizeof(Brick) * o.bricks.size());
+    put(o.attributes.normals.data(), sizeof(Vec3f) * o.attributes.normals.size());
+    put(o.attributes.triangles.data(), sizeof(int32_t) * o.attributes.triangles.size());
+    put(o.attributes.colors.data(), sizeof(Vec3f) * o.attributes.colors.size());
     std::memcpy(bytes.data(), &h, sizeof h); // checksum still zero
     h.checksum = fnv1a(bytes.data(), bytes.size());
     std::memcpy(bytes.data() + offsetof(OctreeFileHeader, checksum), &h.checksum, 8);
@@ -80,7 +102,13 @@ Octree parseOctree(const void* data, size_t size, const std::string& name)
     if (h.brickLevel > 18) throw fail(fmt::format("brick level {} exceeds 18", h.brickLevel));
     if (h.nodeCount > (uint64_t(1) << 32) || h.brickCount > (uint64_t(1) << 32))
         throw fail(fmt::format("{} nodes and {} bricks exceed 32-bit indices", h.nodeCount, h.brickCount));
-    const uint64_t expected = sizeof h + payloadBytes(h.brickLevel + 2, h.nodeCount, h.brickCount);
+    if (h.channels & ~uint32_t(kNormals | kTriangles | kColors) || h.reserved)
+        throw fail(fmt::format("unknown attribute channels {:#x}", h.channels));
+    const uint64_t tree = sizeof h + payloadBytes(h.brickLevel + 2, h.nodeCount, h.brickCount);
+    if (size < tree)
+        throw fail(fmt::format("{} bytes, but the header's counts need at least {} (truncated)", size, tree));
+    const uint64_t voxels = voxelsIn(bytes + tree - sizeof(Brick) * h.brickCount, h.brickCount);
+    const uint64_t expected = tree + bytesPerVoxel(h.channels) * voxels;
     if (h.fileBytes != expected)
         throw fail(fmt::format("header says {} bytes, but its counts need {}", h.fileBytes, expected));
     if (size != h.fileBytes)
@@ -110,6 +138,16 @@ Octree parseOctree(const void* data, size_t size, const std::string& name)
     p += sizeof(OctreeNode) * h.nodeCount;
     o.bricks.resize(h.brickCount);
     if (h.brickCount) std::memcpy(o.bricks.data(), p, sizeof(Brick) * h.brickCount);
+    p += sizeof(Brick) * h.brickCount;
+    auto take = [&](auto& channel, uint32_t bit) {
+        if (!(h.channels & bit)) return;
+        channel.resize(voxels);
+        std::memcpy(channel.data(), p, sizeof(channel[0]) * voxels);
+        p += sizeof(channel[0]) * voxels;
+    };
+    take(o.attributes.normals, kNormals);
+    take(o.attributes.triangles, kTriangles);
+    take(o.attributes.colors, kColors);
     const auto problems = checkOctree(o, 1);
     if (!problems.empty()) throw fail(problems.front());
     return o;

@@ -66,6 +66,10 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
     const long nf = w.size() >= 2 ? std::strtol(w[1].c_str(), &end, 10) : -1;
     if (nv < 0 || nf < 0) throw fail("expected the vertex and face counts");
 
+    // Per vertex: x y z [nx ny nz if N] [r g b [a] if C] [s t if ST].
+    const size_t prefix = keyword.size() - 3;
+    const bool hasNormals = keyword.find('N') < prefix, hasColors = keyword.find('C') < prefix;
+    const size_t colorAt = hasNormals ? 6 : 3;
     TriangleMesh mesh;
     mesh.source = path;
     mesh.positions.reserve(size_t(nv));
@@ -83,6 +87,20 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
                 throw fail(fmt::format("vertex {} has a non-finite or malformed coordinate '{}'", v, w[size_t(k)]));
         }
         mesh.positions.push_back({c[0], c[1], c[2]});
+        if (hasColors) {
+            if (w.size() < colorAt + 3) throw fail(fmt::format("vertex {} has no colour", v));
+            // Integers are 0..255; numbers with a point are 0..1.
+            float rgb[3];
+            bool integers = true;
+            for (int k = 0; k < 3; ++k) {
+                const std::string& t = w[colorAt + size_t(k)];
+                rgb[k] = std::strtof(t.c_str(), &end);
+                if (*end || !std::isfinite(rgb[k])) throw fail(fmt::format("vertex {} has a malformed colour '{}'", v, t));
+                integers &= t.find_first_of(".eE") == std::string::npos;
+            }
+            const float scale = integers ? 1.0f / 255.0f : 1.0f;
+            mesh.colors.push_back({rgb[0] * scale, rgb[1] * scale, rgb[2] * scale});
+        }
     }
     for (long f = 0; f < nf; ++f) {
         if (!lines.next(line))

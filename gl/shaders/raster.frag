@@ -13,6 +13,9 @@ flat in vec4 gBox;
 
 layout(binding = 0, offset = 0) uniform atomic_uint uCount;
 layout(std430, binding = 0) writeonly restrict buffer VoxelList { uvec2 voxels[]; };
+// Written only when attribute channels are asked for: the triangle of each entry.
+layout(std430, binding = 1) writeonly restrict buffer TriangleList { uint triangleOf[]; };
+uniform uint uWriteTriangles;
 
 uniform vec2 uTileOrigin;
 uniform float uHalf;
@@ -47,7 +50,10 @@ void main()
         centre[w] = float(k);
         if (svo_triangle_box_overlap(gA, gB, gC, centre, uHalf)) {
             uint slot = atomicCounterIncrement(uCount);
-            if (slot < uCapacity) voxels[slot] = packKey(uvec3(centre));
+            if (slot < uCapacity) {
+                voxels[slot] = packKey(uvec3(centre));
+                if (uWriteTriangles != 0u) triangleOf[slot] = uint(gl_PrimitiveID);
+            }
         }
     }
 }

@@ -35,6 +35,7 @@ void emitAt(vec2 p)
     gA = vPosition[0];
     gB = vPosition[1];
     gC = vPosition[2];
+    gl_PrimitiveID = gl_PrimitiveIDIn; // the triangle index, for the triangle-id list
     // Column i has its centre at window coordinate i - origin + 0.5.
     vec2 win = p - uTileOrigin + 0.5;
     gl_Position = vec4(2.0 * win / uTileSize - 1.0, 0.0, 1.0);

@@ -8,6 +8,7 @@
 #include "objects.h"
 #include "octree_builder.h"
 #include "svo/core/error.h"
+#include "svo/core/voxel_attributes.h"
 
 namespace svo::gl {
 namespace {
@@ -73,10 +74,12 @@ public:
 
     /// Issues the draws that fill `list` (room for `capacity` entries) and
     /// count into `counter`, which keeps counting past the end. No wait.
-    void draw(const Buffer& list, const Buffer& counter, uint64_t capacity) const
+    void draw(const Buffer& list, const Buffer& counter, uint64_t capacity, const Buffer* triangles = nullptr) const
     {
         counter.clearUint(0);
         program_.set("uCapacity", uint32_t(capacity));
+        program_.set("uWriteTriangles", triangles ? 1u : 0u);
+        (triangles ? *triangles : list).bindBase(GL_SHADER_STORAGE_BUFFER, 1);
         fbo_.bind();
         glViewport(0, 0, tile_, tile_);
         glDisable(GL_DEPTH_TEST);
@@ -120,6 +123,46 @@ Buffer makeList(uint64_t capacity)
                                 "can address; use a coarser grid",
                                 capacity));
     return Buffer("voxel list", capacity * 8);
+}
+
+/// Sums every list entry's triangle values into its voxel (octree_attributes.comp)
+/// and turns the sums into the asked-for channels on the octree.
+void attachAttributes(const TriangleMesh& mesh, uint32_t channels, const OctreeBuilder::Build& build,
+                      const Buffer& list, const Buffer& triangleList, uint32_t entries, Octree& octree)
+{
+    const uint64_t voxels = octree.voxelCount();
+    if (voxels > (uint64_t(1) << 28))
+        throw Error(fmt::format("{} voxels are too many for attribute channels in one pass", voxels));
+    const auto offsets64 = brickVoxelOffsets(octree);
+    const std::vector<uint32_t> offsets(offsets64.begin(), offsets64.end());
+    const TriangleValues tv = triangleValues(mesh, true);
+    std::vector<float> values(6 * mesh.triangles.size(), 0.0f);
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        values[6 * t] = tv.normals[t].x, values[6 * t + 1] = tv.normals[t].y, values[6 * t + 2] = tv.normals[t].z;
+        if (!tv.colors.empty())
+            values[6 * t + 3] = tv.colors[t].x, values[6 * t + 4] = tv.colors[t].y, values[6 * t + 5] = tv.colors[t].z;
+    }
+    const Buffer offsetBuffer("brick voxel offsets", offsets.size() * 4, offsets.data(), 0);
+    const Buffer valueBuffer("triangle values", values.size() * 4, values.data(), 0);
+    const Buffer sums("attribute sums", voxels * sizeof(AttributeSums));
+    sums.clearUint(0);
+    const Program program({"octree_attributes.comp"});
+    build.state.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    build.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+    build.bricks.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
+    list.bindBase(GL_SHADER_STORAGE_BUFFER, 3);
+    triangleList.bindBase(GL_SHADER_STORAGE_BUFFER, 4);
+    offsetBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
+    valueBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 6);
+    sums.bindBase(GL_SHADER_STORAGE_BUFFER, 7);
+    program.set("uBrickLevel", octree.brickLevel);
+    program.set("uEntries", entries);
+    program.dispatch(std::clamp<uint32_t>((entries + 255) / 256, 1, 65535));
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    checkGl("attribute pass");
+    std::vector<AttributeSums> host(voxels);
+    if (voxels) sums.readBulk(0, voxels * sizeof(AttributeSums), host.data());
+    octree.attributes = finishAttributes(host, mesh.colors.empty() ? channels & ~uint32_t(kColors) : channels);
 }
 
 } // namespace
@@ -190,7 +233,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     uint64_t listCapacity = raster.estimatedEntries();
     uint64_t brickCapacity = options.initialBrickCapacity ? options.initialBrickCapacity : listCapacity / 32 + 64;
     uint64_t nodeCapacity = OctreeBuilder::nodeBound(L, listCapacity / 32 + 64);
-    Buffer list;
+    Buffer list, triangleList;
     OctreeBuilder::Build build;
     double voxelizeGpu = 0, buildGpu = 0, voxelizeWall = 0, buildWall = 0;
     uint32_t count = 0;
@@ -200,8 +243,9 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
         TimerQuery drawTimer, buildTimer;
         if (!drawn) {
             list = makeList(listCapacity);
+            if (options.attributes) triangleList = Buffer("triangle list", listCapacity * 4);
             drawTimer.begin();
-            raster.draw(list, counter, listCapacity);
+            raster.draw(list, counter, listCapacity, options.attributes ? &triangleList : nullptr);
             drawTimer.end();
         }
         voxelizeWall += msSince(t0);
@@ -218,7 +262,8 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
         buildWall += msSince(t0);
         if (!drawn) voxelizeGpu += drawTimer.milliseconds();
         buildGpu += buildTimer.milliseconds();
-        result.gpuBytes = std::max(result.gpuBytes, raster.meshBytes() + list.bytes() + counter.bytes() + build.bytes());
+        result.gpuBytes = std::max(result.gpuBytes, raster.meshBytes() + list.bytes() + triangleList.bytes() +
+                                                        counter.bytes() + build.bytes());
         if (count > listCapacity) {
             listCapacity = count; // the counter kept counting: the exact size
             brickCapacity = std::max<uint64_t>(brickCapacity, listCapacity / 32 + 64);
@@ -248,6 +293,15 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     result.octree = OctreeBuilder::readOctree(build, grid);
     readTimer.end();
     result.stages.push_back({"readback", readTimer.milliseconds(), msSince(t0)});
+
+    if (options.attributes) {
+        t0 = Clock::now();
+        TimerQuery attrTimer;
+        attrTimer.begin();
+        attachAttributes(mesh, options.attributes, build, list, triangleList, count, result.octree);
+        attrTimer.end();
+        result.stages.push_back({"attributes", attrTimer.milliseconds(), msSince(t0)});
+    }
     return result;
 }
 

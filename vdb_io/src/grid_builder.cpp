@@ -23,7 +23,7 @@ typename GridT::Ptr buildGrid(const Octree& o, typename GridT::ValueType backgro
         for (size_t i = r.begin(); i != r.end(); ++i) {
             const auto g = o.grid.toGlobal(refs[i].origin);
             auto* leaf = new LeafT(openvdb::Coord(int32_t(g[0]), int32_t(g[1]), int32_t(g[2])), background, false);
-            fill(*leaf, o.bricks[refs[i].index]);
+            fill(*leaf, refs[i]);
             leaves[i] = leaf;
         }
     });
@@ -53,26 +53,54 @@ openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid)
 
 openvdb::MaskGrid::Ptr buildMaskGrid(const Octree& o)
 {
-    return buildGrid<openvdb::MaskGrid>(o, false, [](auto& leaf, const Brick& b) { copyMask(leaf, b); });
+    return buildGrid<openvdb::MaskGrid>(o, false, [&](auto& leaf, const BrickRef& r) { copyMask(leaf, o.bricks[r.index]); });
 }
 
 openvdb::BoolGrid::Ptr buildBoolGrid(const Octree& o)
 {
     // Bool leaves keep values apart from the mask: active voxels are true.
-    return buildGrid<openvdb::BoolGrid>(o, false, [](auto& leaf, const Brick& b) {
-        copyMask(leaf, b);
+    return buildGrid<openvdb::BoolGrid>(o, false, [&](auto& leaf, const BrickRef& r) {
+        copyMask(leaf, o.bricks[r.index]);
         for (auto it = leaf.cbeginValueOn(); it; ++it) leaf.setValueOnly(it.pos(), true);
     });
 }
 
 openvdb::FloatGrid::Ptr buildFogGrid(const Octree& o)
 {
-    auto grid = buildGrid<openvdb::FloatGrid>(o, 0.0f, [](auto& leaf, const Brick& b) {
-        copyMask(leaf, b);
+    auto grid = buildGrid<openvdb::FloatGrid>(o, 0.0f, [&](auto& leaf, const BrickRef& r) {
+        copyMask(leaf, o.bricks[r.index]);
         for (auto it = leaf.cbeginValueOn(); it; ++it) leaf.setValueOnly(it.pos(), 1.0f);
     });
     grid->setGridClass(openvdb::GRID_FOG_VOLUME);
     return grid;
+}
+
+openvdb::GridPtrVec buildAttributeGrids(const Octree& o)
+{
+    openvdb::GridPtrVec grids;
+    const auto offsets = brickVoxelOffsets(o);
+    // Values in voxel order: the n-th set bit of a brick is its n-th value.
+    auto build = [&](auto background, const auto& values, auto convert, const char* name) {
+        using Value = decltype(background);
+        using GridT = openvdb::Grid<typename openvdb::tree::Tree4<Value, 5, 4, 3>::Type>;
+        auto grid = buildGrid<GridT>(o, background, [&](auto& leaf, const BrickRef& r) {
+            copyMask(leaf, o.bricks[r.index]);
+            uint64_t at = offsets[r.index];
+            for (auto it = leaf.cbeginValueOn(); it; ++it) leaf.setValueOnly(it.pos(), convert(values[at++]));
+        });
+        grid->setName(name);
+        grids.push_back(grid);
+        return grid;
+    };
+    auto vec = [](const Vec3f& v) { return openvdb::Vec3s(v.x, v.y, v.z); };
+    if (!o.attributes.normals.empty()) {
+        auto g = build(openvdb::Vec3s(0, 0, 0), o.attributes.normals, vec, "normal");
+        g->setVectorType(openvdb::VEC_COVARIANT_NORMALIZE);
+    }
+    if (!o.attributes.triangles.empty())
+        build(int32_t(-1), o.attributes.triangles, [](int32_t t) { return t; }, "triangle_id");
+    if (!o.attributes.colors.empty()) build(openvdb::Vec3s(0, 0, 0), o.attributes.colors, vec, "color");
+    return grids;
 }
 
 GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name)

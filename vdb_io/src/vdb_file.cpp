@@ -71,6 +71,7 @@ WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOp
         fog->setName("density");
         grids.push_back(fog);
     }
+    for (auto& g : buildAttributeGrids(octree)) grids.push_back(g);
     for (auto& g : grids)
         for (const auto& [k, v] : options.metadata) g->insertMeta(k, openvdb::StringMetadata(v));
     stats.buildMs = msSince(t0);

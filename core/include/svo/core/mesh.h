@@ -20,6 +20,8 @@ struct Bounds {
 struct TriangleMesh {
     std::vector<Vec3d> positions;
     std::vector<std::array<uint32_t, 3>> triangles;
+    /// Per-vertex RGB in [0, 1], one per position; empty when the file has none.
+    std::vector<Vec3f> colors;
     /// Where the mesh came from (a path, or the built-in scene's name).
     std::string source;
     /// Things the reader could not keep, for the user to see (never silent).
@@ -35,8 +37,8 @@ struct TriangleMesh {
 };
 
 /// Throws svo::Error, naming mesh.source, when the mesh cannot be voxelized:
-/// no triangles, an index out of range, or a NaN/Inf coordinate in a vertex
-/// that a triangle uses.
+/// no triangles, an index out of range, a NaN/Inf coordinate in a vertex
+/// that a triangle uses, or a colour list that does not match the vertices.
 void validateMesh(const TriangleMesh& mesh);
 
 } // namespace svo

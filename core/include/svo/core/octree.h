@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "svo/core/grid.h"
+#include "svo/core/vec3.h"
 
 namespace svo {
 
@@ -42,6 +43,21 @@ static_assert(sizeof(Brick) == 64);
 /// present in a finished octree.
 constexpr uint32_t kNoChild = 0xFFFFFFFFu;
 
+/// Optional per-voxel channels. Each is empty (not asked for, or the input
+/// lacks it) or holds one value per voxel, in voxel order: bricks in index
+/// order, and within a brick by bit index (brickVoxelOffsets gives where each
+/// brick starts).
+struct VoxelAttributes {
+    std::vector<Vec3f> normals;     ///< unit average of the covering triangles' normals (0 if all degenerate)
+    std::vector<int32_t> triangles; ///< smallest index of a covering triangle
+    std::vector<Vec3f> colors;      ///< average of the covering triangles' mean vertex colours
+    bool empty() const { return normals.empty() && triangles.empty() && colors.empty(); }
+    bool operator==(const VoxelAttributes& o) const;
+};
+
+/// Bit flags naming channels (CLI --attributes, .svo header).
+enum AttributeChannel : uint32_t { kNormals = 1, kTriangles = 2, kColors = 4 };
+
 struct Octree {
     GridSpec grid;
     uint32_t brickLevel = 0; ///< levels 0 (root) .. brickLevel (bricks)
@@ -49,10 +65,15 @@ struct Octree {
     /// levelStart[l] is the first node of level l; levelStart[brickLevel + 1] == nodes.size().
     std::vector<uint32_t> levelStart;
     std::vector<Brick> bricks;
+    VoxelAttributes attributes;
 
     uint64_t voxelCount() const;
-    uint64_t bytes() const { return nodes.size() * sizeof(OctreeNode) + bricks.size() * sizeof(Brick); }
+    uint32_t channels() const;
+    uint64_t bytes() const;
 };
+
+/// Where each brick's voxels start in voxel order; one more entry than bricks.
+std::vector<uint64_t> brickVoxelOffsets(const Octree& octree);
 
 /// Levels above the bricks that a grid needs: ceil(log2(max(ceil(dims/8)))).
 uint32_t brickLevelFor(const GridSpec& grid);
@@ -71,7 +92,7 @@ Octree buildOctreeFromBricks(const GridSpec& grid, std::vector<std::pair<uint64_
 /// equal after this, whatever order their builder allocated in.
 Octree canonicalOrder(const Octree& octree);
 
-bool sameOctree(const Octree& a, const Octree& b); ///< grid, levels, nodes and bricks equal
+bool sameOctree(const Octree& a, const Octree& b); ///< grid, levels, nodes, bricks and attributes equal
 
 /// One occupied brick: local origin (multiples of 8) and index into bricks.
 struct BrickRef {
@@ -87,7 +108,8 @@ std::vector<uint64_t> octreeKeys(const Octree& octree);
 /// Structural problems, empty when the octree is sound: level ranges, child
 /// pointers in range and 8-aligned inside the next level, every node and brick
 /// referenced exactly once (no orphans), each mask equal to the OR of its
-/// children's occupancy, no empty brick, no brick outside the grid's range.
+/// children's occupancy, no empty brick, no brick outside the grid's range,
+/// attribute channels empty or one value per voxel.
 /// At most `limit` messages.
 std::vector<std::string> checkOctree(const Octree& octree, size_t limit = 20);
 

@@ -5,10 +5,13 @@
 /// Layout, little-endian (x86-64 and every target svo builds for):
 ///
 ///   offset  size        field
-///   0       120         OctreeFileHeader (below)
-///   120     4 (L+2)     levelStart[L+2], uint32      L = brickLevel
+///   0       128         OctreeFileHeader (below)
+///   128     4 (L+2)     levelStart[L+2], uint32      L = brickLevel
 ///   ...     8 N         nodes[N], OctreeNode        N = nodeCount
 ///   ...     64 B        bricks[B], Brick            B = brickCount
+///   ...     12 V        normals[V], 3 x float       if channels has kNormals (V = voxels)
+///   ...     4 V         triangle ids[V], int32      if channels has kTriangles
+///   ...     12 V        colours[V], 3 x float       if channels has kColors
 ///
 /// The checksum is 64-bit FNV-1a over the whole file with the checksum field
 /// zeroed. Octrees are written in canonicalOrder(), so one voxel set on one
@@ -33,13 +36,17 @@ struct OctreeFileHeader {
     uint32_t brickLevel;
     uint64_t nodeCount;
     uint64_t brickCount;
+    uint32_t channels;    ///< AttributeChannel bits of the per-voxel arrays that follow the bricks
+    uint32_t reserved;    ///< 0
     uint64_t checksum;
 };
-static_assert(sizeof(OctreeFileHeader) == 120);
+static_assert(sizeof(OctreeFileHeader) == 128);
 static_assert(offsetof(OctreeFileHeader, voxelSize) == 24 && offsetof(OctreeFileHeader, dims) == 80);
-static_assert(offsetof(OctreeFileHeader, nodeCount) == 96 && offsetof(OctreeFileHeader, checksum) == 112);
+static_assert(offsetof(OctreeFileHeader, nodeCount) == 96 && offsetof(OctreeFileHeader, channels) == 112);
+static_assert(offsetof(OctreeFileHeader, checksum) == 120);
 
-constexpr uint32_t kOctreeFileVersion = 1;
+/// 2 added the attribute channels.
+constexpr uint32_t kOctreeFileVersion = 2;
 
 /// Writes atomically (temporary file, then rename). Throws svo::Error.
 void writeOctreeFile(const std::string& path, const Octree& octree);

@@ -30,6 +30,9 @@ struct RasterOptions {
     uint64_t initialCapacity = 0;
     /// Octree bricks to allocate first (voxelizeToOctree); 0 estimates from the list size.
     uint64_t initialBrickCapacity = 0;
+    /// Per-voxel channels to compute (AttributeChannel bits; voxelizeToOctree
+    /// only). Colours are skipped when the mesh has none.
+    uint32_t attributes = 0;
 };
 
 /// The voxel set as sorted keys: rasterize, read the list back, sort on the CPU.

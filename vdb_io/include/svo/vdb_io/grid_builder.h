@@ -25,6 +25,10 @@ openvdb::BoolGrid::Ptr buildBoolGrid(const Octree& octree);
 /// Fog volume: 1 on every voxel, background 0, class GRID_FOG_VOLUME.
 openvdb::FloatGrid::Ptr buildFogGrid(const Octree& octree);
 
+/// The octree's attribute channels on its voxels: Vec3SGrid "normal",
+/// Int32Grid "triangle_id" and Vec3SGrid "color", each only when present.
+openvdb::GridPtrVec buildAttributeGrids(const Octree& octree);
+
 /// Grid types whose active voxels can become an octree.
 using GridTypes = openvdb::TypeList<openvdb::MaskGrid, openvdb::BoolGrid, openvdb::FloatGrid, openvdb::DoubleGrid,
                                     openvdb::Int32Grid, openvdb::Int64Grid, openvdb::Vec3SGrid, openvdb::Vec3DGrid,

@@ -27,7 +27,8 @@ struct WriteStats {
 };
 
 /// Writes the octree's voxels as a MaskGrid or BoolGrid (and optionally a fog
-/// FloatGrid) whose transform is voxelSize scaling plus the grid's
+/// FloatGrid, and its attribute channels as "normal", "triangle_id" and
+/// "color" grids) whose transform is voxelSize scaling plus the grid's
 /// translation, so the voxels sit exactly over the mesh in world space. Leaves
 /// are copied from bricks in parallel and inserted with addLeaf.
 ///

@@ -1,0 +1,40 @@
+#pragma once
+/// @file voxel_attributes.h
+/// Per-voxel channels (normal, triangle id, colour) and how they are summed.
+///
+/// Every (voxel, triangle) pair the voxelizer finds contributes the triangle's
+/// values. Sums are kept in 16.16 fixed point in 32-bit integers, so they do
+/// not depend on the order of the additions: the GPU pass (atomics) and the
+/// CPU reference give identical sums from identical pairs.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "svo/core/mesh.h"
+#include "svo/core/octree.h"
+
+namespace svo {
+
+/// One voxel's sums: [0] ~(smallest triangle id) (0: none), [1..3] normal,
+/// [4..6] colour, [7] pair count. Matches octree_attributes.comp.
+using AttributeSums = std::array<uint32_t, 8>;
+
+/// What each triangle contributes: its unit normal (from double precision, 0
+/// when degenerate) and its mean vertex colour, as floats.
+struct TriangleValues {
+    std::vector<Vec3f> normals, colors;
+};
+TriangleValues triangleValues(const TriangleMesh& mesh, bool colors);
+
+/// 16.16 fixed point, rounding half to even (GLSL roundEven).
+int32_t toFixed(float v);
+
+/// Turns sums into the asked-for channels (a bit set of AttributeChannel).
+VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_t channels);
+
+/// The CPU reference: pairs from the shared overlap test on cubes grown by
+/// `guard`, summed for the octree's voxels (others are ignored), stored on
+/// the octree. Colours are skipped when the mesh has none.
+void attachAttributesCpu(const TriangleMesh& mesh, Octree& octree, uint32_t channels, double guard);
+
+} // namespace svo

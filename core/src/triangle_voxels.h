@@ -1,0 +1,50 @@
+#pragma once
+/// @file triangle_voxels.h (internal)
+/// The CPU reference's per-triangle loop, shared by the voxelizer and the
+/// attribute reference.
+#include <algorithm>
+#include <cmath>
+
+#include "svo/core/grid.h"
+#include "svo/core/overlap.h"
+#include "svo/core/voxel_key.h"
+
+namespace svo::detail {
+
+/// Calls emit(key) for every voxel whose cube, grown by `guard`, meets the
+/// triangle (a, b, c) in local coordinates: along the dominant axis, the
+/// guarded column range of each column of the 2D bounds, then the overlap test.
+template <typename Emit>
+inline void voxelizeTriangle(const Vec3d& a, const Vec3d& b, const Vec3d& c, const GridSpec& grid, double guard, Emit&& emit)
+{
+    using namespace overlap_double;
+    const double half = 0.5 + guard;
+    const double ulp = std::ldexp(1.0, -53);
+    const int w = svo_dominant_axis(cross(b - a, c - a));
+    const int u = (w + 1) % 3, v = (w + 2) % 3;
+    auto range = [&](int axis, int64_t& lo, int64_t& hi) {
+        const double mn = std::min({a[axis], b[axis], c[axis]}), mx = std::max({a[axis], b[axis], c[axis]});
+        lo = std::max<int64_t>(0, int64_t(std::ceil(mn - half)));
+        hi = std::min<int64_t>(int64_t(grid.dims[axis]) - 1, int64_t(std::floor(mx + half)));
+    };
+    int64_t u0, u1, v0, v1, w0, w1;
+    range(u, u0, u1);
+    range(v, v0, v1);
+    range(w, w0, w1);
+    for (int64_t i = u0; i <= u1; ++i)
+        for (int64_t j = v0; j <= v1; ++j) {
+            const Vec3d r = svo_column_range(a, b, c, w, double(i), double(j), half, ulp);
+            const int64_t k0 = std::max(w0, int64_t(std::ceil(r.x))), k1 = std::min(w1, int64_t(std::floor(r.y)));
+            for (int64_t k = k0; k <= k1; ++k) {
+                Vec3d centre;
+                centre[u] = double(i);
+                centre[v] = double(j);
+                centre[w] = double(k);
+                if (svo_triangle_box_overlap(a, b, c, centre, half))
+                    emit(packVoxelKey(uint32_t(centre.x), uint32_t(centre.y), uint32_t(centre.z)));
+            }
+        }
+}
+
+
+} // namespace svo::detail

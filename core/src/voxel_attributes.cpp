@@ -1,0 +1,94 @@
+#include "svo/core/voxel_attributes.h"
+
+#include <cfenv>
+#include <cmath>
+#include <unordered_map>
+
+#include "triangle_voxels.h"
+
+namespace svo {
+
+TriangleValues triangleValues(const TriangleMesh& mesh, bool colors)
+{
+    TriangleValues v;
+    v.normals.reserve(mesh.triangles.size());
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto p = mesh.corners(t);
+        const Vec3d n = cross(p[1] - p[0], p[2] - p[0]);
+        const double len = std::sqrt(dot(n, n));
+        v.normals.push_back(len > 0 && std::isfinite(len) ? Vec3f{float(n.x / len), float(n.y / len), float(n.z / len)}
+                                                          : Vec3f{0, 0, 0});
+        if (colors && !mesh.colors.empty()) {
+            const auto& f = mesh.triangles[t];
+            const Vec3f& a = mesh.colors[f[0]];
+            const Vec3f& b = mesh.colors[f[1]];
+            const Vec3f& c = mesh.colors[f[2]];
+            v.colors.push_back({(a.x + b.x + c.x) / 3.0f, (a.y + b.y + c.y) / 3.0f, (a.z + b.z + c.z) / 3.0f});
+        }
+    }
+    return v;
+}
+
+int32_t toFixed(float v) { return int32_t(std::nearbyint(v * 65536.0f)); } // default mode: half to even
+
+VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_t channels)
+{
+    VoxelAttributes a;
+    auto fixedVec = [](const AttributeSums& s, int at) {
+        return Vec3f{float(int32_t(s[size_t(at)])) / 65536.0f, float(int32_t(s[size_t(at) + 1])) / 65536.0f,
+                     float(int32_t(s[size_t(at) + 2])) / 65536.0f};
+    };
+    for (const auto& s : sums) {
+        if (channels & kTriangles) a.triangles.push_back(s[0] ? int32_t(~s[0]) : -1);
+        if (channels & kNormals) {
+            const Vec3f n = fixedVec(s, 1);
+            const float len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+            a.normals.push_back(len > 0 ? Vec3f{n.x / len, n.y / len, n.z / len} : Vec3f{0, 0, 0});
+        }
+        if (channels & kColors) {
+            const Vec3f c = fixedVec(s, 4);
+            const float k = s[7] ? 1.0f / float(s[7]) : 0.0f;
+            a.colors.push_back({c.x * k, c.y * k, c.z * k});
+        }
+    }
+    return a;
+}
+
+void attachAttributesCpu(const TriangleMesh& mesh, Octree& octree, uint32_t channels, double guard)
+{
+    if (mesh.colors.empty()) channels &= ~uint32_t(kColors);
+    octree.attributes = {};
+    if (!channels) return;
+    // Voxel order: bricks in index order, bits ascending.
+    std::unordered_map<uint64_t, uint64_t> slot;
+    const auto offsets = brickVoxelOffsets(octree);
+    for (const auto& r : occupiedBricks(octree)) {
+        const Brick& b = octree.bricks[r.index];
+        const uint64_t base = packVoxelKey(r.origin[0], r.origin[1], r.origin[2]);
+        uint64_t at = offsets[r.index];
+        for (uint32_t bit = 0; bit < 512; ++bit)
+            if (b.words[bit >> 6] >> (bit & 63) & 1) slot[base | bit] = at++;
+    }
+    const TriangleValues tv = triangleValues(mesh, channels & kColors);
+    std::vector<AttributeSums> sums(octree.voxelCount(), AttributeSums{});
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto p = mesh.corners(t);
+        const Vec3d a = octree.grid.toLocal(p[0]), b = octree.grid.toLocal(p[1]), c = octree.grid.toLocal(p[2]);
+        detail::voxelizeTriangle(a, b, c, octree.grid, guard, [&](uint64_t key) {
+            const auto it = slot.find(key);
+            if (it == slot.end()) return;
+            AttributeSums& s = sums[it->second];
+            s[0] = std::max(s[0], ~uint32_t(t));
+            const Vec3f& n = tv.normals[t];
+            s[1] += uint32_t(toFixed(n.x)), s[2] += uint32_t(toFixed(n.y)), s[3] += uint32_t(toFixed(n.z));
+            if (!tv.colors.empty()) {
+                const Vec3f& col = tv.colors[t];
+                s[4] += uint32_t(toFixed(col.x)), s[5] += uint32_t(toFixed(col.y)), s[6] += uint32_t(toFixed(col.z));
+            }
+            ++s[7];
+        });
+    }
+    octree.attributes = finishAttributes(sums, channels);
+}
+
+} // namespace svo
