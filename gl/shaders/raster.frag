@@ -12,6 +12,7 @@ flat in int gAxis;
 flat in vec4 gBox;
 
 layout(binding = 0, offset = 0) uniform atomic_uint uCount;
+layout(binding = 0, offset = 4) uniform atomic_uint uWraps; // counts wraps of uCount past 2^32 - 1
 layout(std430, binding = 0) writeonly restrict buffer VoxelList { uvec2 voxels[]; };
 // Written only when attribute channels are asked for: the triangle of each entry.
 layout(std430, binding = 1) writeonly restrict buffer TriangleList { uint triangleOf[]; };
@@ -50,6 +51,7 @@ void main()
         centre[w] = float(k);
         if (svo_triangle_box_overlap(gA, gB, gC, centre, uHalf)) {
             uint slot = atomicCounterIncrement(uCount);
+            if (slot == 0xFFFFFFFFu) atomicCounterIncrement(uWraps);
             if (slot < uCapacity) {
                 voxels[slot] = packKey(uvec3(centre));
                 if (uWriteTriangles != 0u) triangleOf[slot] = uint(gl_PrimitiveID);

@@ -37,7 +37,7 @@ uint64_t estimateEntries(const std::vector<Vec3f>& p, const TriangleMesh& mesh)
         auto len = [](Vec3d e) { return std::max({std::abs(e.x), std::abs(e.y), std::abs(e.z)}); };
         total += 1.5 * (area + len(b - a) + len(c - b) + len(a - c) + 1.0);
     }
-    return uint64_t(std::min(total, 4.0e9)) + 1024;
+    return uint64_t(std::min(total, 1.0e18)) + 1024; // beyond 2^32 - 1 is refused by makeList
 }
 
 /// The mesh on the GPU and the program that rasterizes it into a voxel list.
@@ -64,8 +64,9 @@ public:
         tile_ = int(std::min<uint32_t>(side, uint32_t(maxTile)));
         tiles_ = int((side + uint32_t(tile_) - 1) / uint32_t(tile_));
         fbo_ = EmptyFramebuffer(tile_, tile_);
-        const float half = float(0.5 + 0.5 * grid.epsilon());
-        const float dilate = hardware_ ? float(0.5 * grid.epsilon() + 1.0 / 128.0) : half + float(1.0 / 128.0);
+        const double eps = options.guardBand >= 0 ? options.guardBand : grid.epsilon();
+        const float half = float(0.5 + 0.5 * eps);
+        const float dilate = hardware_ ? float(0.5 * eps + 1.0 / 128.0) : half + float(1.0 / 128.0);
         program_.set("uHalf", half);
         program_.set("uDilate", dilate);
         program_.set("uTileSize", float(tile_), float(tile_));
@@ -115,6 +116,16 @@ private:
     EmptyFramebuffer fbo_{1, 1};
     int tile_ = 1, tiles_ = 1;
 };
+
+/// The entries a draw produced; an error if the 32-bit counter wrapped.
+uint32_t readCount(const Buffer& counter)
+{
+    uint32_t c[2] = {0, 0};
+    counter.read(0, sizeof c, c);
+    if (c[1])
+        throw Error("the voxel list passed 2^32 entries, more than an atomic counter can address; use a coarser grid");
+    return c[0];
+}
 
 Buffer makeList(uint64_t capacity)
 {
@@ -181,7 +192,7 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
 
     // Voxelize; if the list overflowed, the counter holds the exact size needed.
     auto t0 = Clock::now();
-    const Buffer counter("voxel counter", sizeof(uint32_t));
+    const Buffer counter("voxel counter", 2 * sizeof(uint32_t)); // entries, and wraps past 2^32
     uint64_t capacity = raster.estimatedEntries();
     Buffer list;
     double voxelizeGpu = 0;
@@ -192,7 +203,7 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
         timer.begin();
         raster.draw(list, counter, capacity);
         timer.end();
-        counter.read(0, sizeof count, &count);
+        count = readCount(counter);
         voxelizeGpu += timer.milliseconds();
         if (count <= capacity) break;
         result.overflowRetries = attempt + 1;
@@ -225,7 +236,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     const Rasterizer raster(context, mesh, grid, options);
     const OctreeBuilder builder;
     const uint32_t L = brickLevelFor(grid);
-    const Buffer counter("voxel counter", sizeof(uint32_t));
+    const Buffer counter("voxel counter", 2 * sizeof(uint32_t)); // entries, and wraps past 2^32
 
     // Rasterize and build without waiting; read the counters once. A full
     // voxel list means rasterizing again at the counted size; full node or
@@ -258,7 +269,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
         build = builder.record(grid, in, nodeCapacity, brickCapacity);
         buildTimer.end();
         OctreeBuilder::readCounts(build);
-        counter.read(0, sizeof count, &count);
+        count = readCount(counter);
         buildWall += msSince(t0);
         if (!drawn) voxelizeGpu += drawTimer.milliseconds();
         buildGpu += buildTimer.milliseconds();

@@ -33,6 +33,9 @@ struct RasterOptions {
     /// Per-voxel channels to compute (AttributeChannel bits; voxelizeToOctree
     /// only). Colours are skipped when the mesh has none.
     uint32_t attributes = 0;
+    /// Guard band in voxels; negative means grid.epsilon(). Other values are
+    /// for experiments only (docs/stability.md shows what 0 and too much do).
+    double guardBand = -1.0;
 };
 
 /// The voxel set as sorted keys: rasterize, read the list back, sort on the CPU.
