@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # svo setup on Debian 12: install dependencies, build, then run a job.
 #   bash scripts/setup.sh run    # build, then `svo voxelize` on the built-in scene
-#   bash scripts/setup.sh test   # build, then the whole test suite through ctest
+#   bash scripts/setup.sh test   # build, then the whole test suite through ctest, then the fuzzers
+#                                #   for 30 s each (SVO_FUZZ_SECONDS; 0 skips them)
 # Idempotent: packages already present are skipped by apt, and the build is incremental.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,6 +17,8 @@ packages=(
   libcli11-dev libfmt-dev libgtest-dev
   pybind11-dev python3-dev python3-pytest python3-numpy
 )
+# The fuzz targets need clang and its libFuzzer runtime.
+[ "$mode" = test ] && packages+=(clang-14 libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -36,7 +39,9 @@ case "$mode" in
   run)
     "$build/bin/svo" voxelize -o "${SVO_OUTPUT:-cornell_box.vdb}" ;;
   test)
-    ctest --test-dir "$build" --output-on-failure --timeout 1500 ;;
+    ctest --test-dir "$build" --output-on-failure --timeout 1500
+    seconds=${SVO_FUZZ_SECONDS:-30}
+    [ "$seconds" = 0 ] || bash scripts/fuzz.sh "$seconds" ;;
   build) ;;
   *) echo "usage: $0 run|test|build" >&2; exit 2 ;;
 esac

@@ -1,7 +1,9 @@
 #include "off_reader.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fmt/format.h>
 #include <sstream>
@@ -21,7 +23,7 @@ public:
         while (std::getline(in_, line)) {
             ++number_;
             if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-            if (line.find_first_not_of(" \t\r") != std::string::npos) return true;
+            if (line.find_first_not_of(" \t\r\v\f") != std::string::npos) return true; // as istream skips
         }
         return false;
     }
@@ -50,6 +52,7 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
     auto fail = [&](const std::string& what) { return Error(fmt::format("{}: line {}: {}", path, lines.number(), what)); };
     if (!lines.next(line)) throw Error(fmt::format("{}: no OFF header", path));
     std::vector<std::string> w = words(line);
+    if (w.empty()) throw fail("expected an OFF keyword");
     const std::string keyword = w[0];
     if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0)
         throw fail(fmt::format("expected an OFF keyword, found '{}'", keyword));
@@ -65,6 +68,7 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
     const long nv = w.size() >= 2 ? std::strtol(w[0].c_str(), &end, 10) : -1;
     const long nf = w.size() >= 2 ? std::strtol(w[1].c_str(), &end, 10) : -1;
     if (nv < 0 || nf < 0) throw fail("expected the vertex and face counts");
+    if (nv > long(UINT32_MAX)) throw fail(fmt::format("{} vertices are more than 32-bit indices address", nv));
 
     // Per vertex: x y z [nx ny nz if N] [r g b [a] if C] [s t if ST].
     const size_t prefix = keyword.size() - 3;
@@ -72,7 +76,7 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
     const size_t colorAt = hasNormals ? 6 : 3;
     TriangleMesh mesh;
     mesh.source = path;
-    mesh.positions.reserve(size_t(nv));
+    mesh.positions.reserve(std::min<size_t>(size_t(nv), bytes.size() / 6)); // a vertex takes 6 bytes or more
     for (long v = 0; v < nv; ++v) {
         if (!lines.next(line))
             throw Error(fmt::format("{}: the header declares {} vertices but the file ends after {} (truncated file?)",
@@ -108,7 +112,7 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
                                     path, nf, f));
         w = words(line);
         const long n = w.empty() ? -1 : std::strtol(w[0].c_str(), &end, 10);
-        if (n < 1 || long(w.size()) < n + 1) throw fail(fmt::format("face {} is malformed", f));
+        if (n < 1 || size_t(n) >= w.size()) throw fail(fmt::format("face {} is malformed", f));
         std::vector<uint32_t> idx;
         for (long i = 1; i <= n; ++i) {
             const long k = std::strtol(w[size_t(i)].c_str(), &end, 10);
