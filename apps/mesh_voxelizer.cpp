@@ -55,8 +55,10 @@ void addBackendOptions(CLI::App& cmd, BackendSettings& s)
     cmd.add_option("--backend", s.backend, "raster (GPU) or cpu (double-precision reference)")
         ->check(CLI::IsMember({"raster", "cpu"}))
         ->capture_default_str();
-    cmd.add_option("--conservative", s.conservative, "Raster dilation: auto, hardware (GL_NV_conservative_raster) or shader")
-        ->check(CLI::IsMember({"auto", "hardware", "shader"}))
+    cmd.add_option("--conservative", s.conservative,
+                   "Raster dilation: auto, hardware (GL_NV_conservative_raster), shader, or centroid (the seed "
+                   "report's vertex push; a benchmark baseline that misses voxels)")
+        ->check(CLI::IsMember({"auto", "hardware", "shader", "centroid"}))
         ->capture_default_str();
     cmd.add_option("--device", s.device, "EGL device: auto, hardware, software or an index (env SVO_EGL_DEVICE)");
     cmd.add_flag("--gl-debug", s.glDebug, "Print GL debug messages");
@@ -96,6 +98,7 @@ MeshVoxelization voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, co
         gl::RasterOptions ro;
         ro.conservative = s.conservative == "hardware" ? gl::ConservativeMode::Hardware
                           : s.conservative == "shader" ? gl::ConservativeMode::Shader
+                          : s.conservative == "centroid" ? gl::ConservativeMode::CentroidPush
                                                        : gl::ConservativeMode::Auto;
         ro.attributes = s.attributes;
         out.renderer = info.renderer;

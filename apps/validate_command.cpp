@@ -92,6 +92,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
             gl::RasterOptions ro;
             ro.conservative = a.backend.conservative == "hardware" ? gl::ConservativeMode::Hardware
                               : a.backend.conservative == "shader" ? gl::ConservativeMode::Shader
+                              : a.backend.conservative == "centroid" ? gl::ConservativeMode::CentroidPush
                                                                    : gl::ConservativeMode::Auto;
             list = gl::voxelizeRaster(context, mesh, grid, ro).keys;
         }

@@ -28,6 +28,7 @@ uniform vec2 uTileOrigin; // local (u, v) of the tile's first pixel column
 uniform vec2 uTileSize;   // pixels
 uniform float uHalf;      // voxel half side incl. guard band
 uniform float uDilate;    // how far the rasterized shape must reach, pixels
+uniform uint uCentroidPush; // 1: the seed report's dilation, as a baseline only (it misses voxels)
 const float kUlp = 5.96046448e-08;
 
 void emitAt(vec2 p)
@@ -60,6 +61,18 @@ void main()
     vec2 hi = max(p0, max(p1, p2));
     gBox = vec4(lo, hi);
 
+    if (uCentroidPush != 0u) {
+        // Each corner moves half a pixel diagonal away from the centroid. Edges
+        // move out by less than that wherever a corner is acute, so columns
+        // the triangle touches can get no fragment.
+        vec2 g = (p0 + p1 + p2) / 3.0;
+        float push = 0.70710678 + 0.5 * (uDilate - 0.5 - 1.0 / 128.0);
+        emitAt(p0 + push * normalize(p0 - g));
+        emitAt(p1 + push * normalize(p1 - g));
+        emitAt(p2 + push * normalize(p2 - g));
+        EndPrimitive();
+        return;
+    }
     // Work relative to p0 so that errors scale with the triangle, not the grid.
     vec2 q[3] = vec2[3](vec2(0.0), p1 - p0, p2 - p0);
     float area2 = cross2(q[1], q[2]);

@@ -21,7 +21,8 @@ bool useHardware(const Context& context, const RasterOptions& o)
     if (o.conservative == ConservativeMode::Hardware && !context.info().conservativeRasterNV)
         throw Error("--conservative hardware needs GL_NV_conservative_raster, which " + context.info().renderer +
                     " does not offer");
-    return o.conservative != ConservativeMode::Shader && context.info().conservativeRasterNV;
+    return o.conservative != ConservativeMode::Shader && o.conservative != ConservativeMode::CentroidPush &&
+           context.info().conservativeRasterNV;
 }
 
 /// Voxel-list entries a mesh is likely to need: each triangle covers about
@@ -67,6 +68,7 @@ public:
         const double eps = options.guardBand >= 0 ? options.guardBand : grid.epsilon();
         const float half = float(0.5 + 0.5 * eps);
         const float dilate = hardware_ ? float(0.5 * eps + 1.0 / 128.0) : half + float(1.0 / 128.0);
+        program_.set("uCentroidPush", options.conservative == ConservativeMode::CentroidPush ? 1u : 0u);
         program_.set("uHalf", half);
         program_.set("uDilate", dilate);
         program_.set("uTileSize", float(tile_), float(tile_));
@@ -180,6 +182,7 @@ void attachAttributes(const TriangleMesh& mesh, uint32_t channels, const OctreeB
 
 const char* conservativeModeName(const Context& context, const RasterOptions& options)
 {
+    if (options.conservative == ConservativeMode::CentroidPush) return "centroid-push (baseline)";
     return useHardware(context, options) ? "hardware" : "shader";
 }
 

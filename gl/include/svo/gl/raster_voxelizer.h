@@ -21,7 +21,9 @@
 
 namespace svo::gl {
 
-enum class ConservativeMode { Auto, Hardware, Shader };
+/// Auto: hardware where available, else Shader. CentroidPush is the seed
+/// report's vertex push, kept only as a baseline for benchmarks: it misses voxels.
+enum class ConservativeMode { Auto, Hardware, Shader, CentroidPush };
 
 struct RasterOptions {
     /// Auto: GL_NV_conservative_raster when present, else shader dilation.
