@@ -14,6 +14,7 @@ int main(int argc, char** argv)
     svo::app::addInfoCommand(app);
     svo::app::addValidateCommand(app);
     svo::app::addVtkCommand(app);
+    svo::app::addSceneCommand(app);
     svo::app::addGlInfoCommand(app);
     try {
         app.parse(argc, argv);

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
+#include <sys/resource.h>
 
 #include "commands.h"
 #include "mesh_voxelizer.h"
@@ -27,6 +28,13 @@ struct VoxelizeArgs {
     BackendSettings backend;
     OutputSettings out;
 };
+
+double peakRssMb()
+{
+    rusage ru{};
+    getrusage(RUSAGE_SELF, &ru);
+    return double(ru.ru_maxrss) / 1024.0; // kilobytes on Linux
+}
 
 void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
 {
@@ -106,13 +114,13 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         for (auto n : stats.nodesPerLevel) levels += fmt::format("{}{}", levels.empty() ? "" : ", ", n);
         const std::string text = fmt::format(
             "{{\n  \"scene\": \"{}\", \"triangles\": {}, \"dims\": [{}, {}, {}], \"voxel_size\": {},\n"
-            "  \"resolution\": {}, \"backend\": \"{}\", \"renderer\": \"{}\", \"epsilon\": {},\n"
+            "  \"resolution\": {}, \"backend\": \"{}\", \"conservative\": \"{}\", \"renderer\": \"{}\", \"epsilon\": {},\n"
             "  \"voxels\": {}, \"bricks\": {}, \"nodes\": {}, \"nodes_per_level\": [{}], \"octree_bytes\": {},\n"
-            "  \"list_entries\": {}, \"overflow_retries\": {}, \"gpu_bytes\": {}, \"repeat\": {},\n"
+            "  \"list_entries\": {}, \"overflow_retries\": {}, \"gpu_bytes\": {}, \"repeat\": {}, \"peak_rss_mb\": {:.1f},\n"
             "  \"stages\": [{}],\n  \"total_wall_ms\": {:.4f}\n}}\n",
             esc(scene), mesh.triangles.size(), grid.dims[0], grid.dims[1], grid.dims[2], grid.voxelSize,
-            request.resolution, a.backend.backend, esc(mv.renderer), grid.epsilon(), stats.voxels, stats.bricks, vox.octree.nodes.size(), levels,
-            stats.bytes, vox.listEntries, vox.overflowRetries, vox.gpuBytes, a.backend.repeat, stages, wall);
+            request.resolution, a.backend.backend, a.backend.conservative, esc(mv.renderer), grid.epsilon(), stats.voxels, stats.bricks, vox.octree.nodes.size(), levels,
+            stats.bytes, vox.listEntries, vox.overflowRetries, vox.gpuBytes, a.backend.repeat, peakRssMb(), stages, wall);
         writeAtomically(a.json, [&](const std::string& tmp) {
             std::FILE* f = std::fopen(tmp.c_str(), "w");
             if (!f || std::fputs(text.c_str(), f) < 0 || std::fclose(f) != 0)

@@ -7,6 +7,7 @@
 #include <vector>
 #include <random>
 
+#include "svo/core/default_scene.h"
 #include "svo/core/mesh.h"
 
 namespace svo::test {
@@ -69,44 +70,7 @@ inline TriangleMesh sphere(Vec3d c, double r, int slices, int stacks)
     return m;
 }
 
-/// A closed icosphere: an icosahedron split `levels` times, vertices on the
-/// sphere, shared between faces (20 * 4^levels triangles; level 8 gives 1,310,720).
-inline TriangleMesh icosphere(Vec3d c, double r, int levels)
-{
-    TriangleMesh m;
-    m.source = "icosphere";
-    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<Vec3d> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                            {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    std::vector<std::array<uint32_t, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                                              {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                              {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                                              {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-    auto unit = [](Vec3d v) { return (1.0 / std::sqrt(dot(v, v))) * v; };
-    for (auto& v : p) v = unit(v);
-    for (int l = 0; l < levels; ++l) {
-        std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
-        auto midpoint = [&](uint32_t a, uint32_t b) {
-            const auto key = std::minmax(a, b);
-            auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            p.push_back(unit(0.5 * (p[a] + p[b])));
-            return mid[key] = uint32_t(p.size() - 1);
-        };
-        std::vector<std::array<uint32_t, 3>> next;
-        next.reserve(f.size() * 4);
-        for (const auto& t3 : f) {
-            const uint32_t ab = midpoint(t3[0], t3[1]), bc = midpoint(t3[1], t3[2]), ca = midpoint(t3[2], t3[0]);
-            next.push_back({t3[0], ab, ca});
-            next.push_back({t3[1], bc, ab});
-            next.push_back({t3[2], ca, bc});
-            next.push_back({ab, bc, ca});
-        }
-        f = std::move(next);
-    }
-    for (const auto& v : p) m.positions.push_back(c + r * v);
-    m.triangles = std::move(f);
-    return m;
-}
+/// icosphere() lives in svo/core/default_scene.h: the CLI generates it too.
+using svo::icosphere;
 
 } // namespace svo::test

@@ -1,6 +1,9 @@
 #include "svo/core/default_scene.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <vector>
 
 namespace svo {
 namespace {
@@ -52,5 +55,69 @@ TriangleMesh cornellBox()
     addBlock(m, {-0.35, 0, -0.3}, {0.6, 1.2, 0.6}, 0.30, block); // tall block
     return m;
 }
+
+TriangleMesh sphereGrid()
+{
+    TriangleMesh m;
+    m.source = "sphere_grid";
+    const double pi = 3.14159265358979323846;
+    const int slices = 40, stacks = 19;
+    for (int gx = 0; gx < 6; ++gx)
+        for (int gz = 0; gz < 6; ++gz) {
+            const Vec3d c{2.5 * gx, 1.0, 2.5 * gz};
+            const uint32_t base = uint32_t(m.positions.size());
+            for (int j = 0; j <= stacks; ++j)
+                for (int i = 0; i <= slices; ++i) {
+                    const double th = pi * j / stacks, ph = 2 * pi * i / slices;
+                    m.positions.push_back(c + Vec3d{std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph)});
+                }
+            auto at = [&](int i, int j) { return base + uint32_t(j * (slices + 1) + i); };
+            for (int j = 0; j < stacks; ++j)
+                for (int i = 0; i < slices; ++i) {
+                    m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+                    m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+                }
+        }
+    return m;
+}
+
+TriangleMesh icosphere(Vec3d c, double r, int levels)
+{
+    TriangleMesh m;
+    m.source = "icosphere";
+    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+    std::vector<Vec3d> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                            {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<std::array<uint32_t, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                              {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                              {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                              {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+    auto unit = [](Vec3d v) { return (1.0 / std::sqrt(dot(v, v))) * v; };
+    for (auto& v : p) v = unit(v);
+    for (int l = 0; l < levels; ++l) {
+        std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+        auto midpoint = [&](uint32_t a, uint32_t b) {
+            const auto key = std::minmax(a, b);
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            p.push_back(unit(0.5 * (p[a] + p[b])));
+            return mid[key] = uint32_t(p.size() - 1);
+        };
+        std::vector<std::array<uint32_t, 3>> next;
+        next.reserve(f.size() * 4);
+        for (const auto& t3 : f) {
+            const uint32_t ab = midpoint(t3[0], t3[1]), bc = midpoint(t3[1], t3[2]), ca = midpoint(t3[2], t3[0]);
+            next.push_back({t3[0], ab, ca});
+            next.push_back({t3[1], bc, ab});
+            next.push_back({t3[2], ca, bc});
+            next.push_back({ab, bc, ca});
+        }
+        f = std::move(next);
+    }
+    for (const auto& v : p) m.positions.push_back(c + r * v);
+    m.triangles = std::move(f);
+    return m;
+}
+
 
 } // namespace svo

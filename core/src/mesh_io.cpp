@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "off_reader.h"
+#include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 
 namespace svo {
@@ -230,6 +231,31 @@ PlyCounts readOffHeader(const std::string& bytes)
 }
 
 } // namespace
+
+void writeMesh(const std::string& path, const TriangleMesh& mesh)
+{
+    const std::string ext = lowerExtension(path);
+    if (ext != "off" && ext != "obj") throw Error(fmt::format("{}: meshes are written as .off or .obj", path));
+    const bool obj = ext == "obj", colors = !obj && !mesh.colors.empty();
+    std::string text = obj ? std::string("# ") + mesh.source + "\n"
+                           : fmt::format("{}\n{} {} 0\n", colors ? "COFF" : "OFF", mesh.positions.size(),
+                                         mesh.triangles.size());
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        const Vec3d& p = mesh.positions[i];
+        text += fmt::format("{}{} {} {}", obj ? "v " : "", p.x, p.y, p.z); // shortest round-trip form
+        if (colors) text += fmt::format(" {} {} {} 1.0", mesh.colors[i].x, mesh.colors[i].y, mesh.colors[i].z);
+        text += '\n';
+    }
+    for (const auto& t : mesh.triangles)
+        text += obj ? fmt::format("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1)
+                    : fmt::format("3 {} {} {}\n", t[0], t[1], t[2]);
+    writeAtomically(path, [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        out.close();
+        if (!out) throw Error(fmt::format("{}: cannot write the mesh", path));
+    });
+}
 
 const char* supportedMeshExtensions() { return ".obj, .ply, .stl, .off"; }
 

@@ -1,7 +1,7 @@
 #pragma once
 /// @file default_scene.h
-/// The built-in scene: a Cornell box like the seed report's, so the main job
-/// runs with no input file.
+/// Generated scenes: the built-in Cornell box (so the main job runs with no
+/// input file), the seed's PBR-demo-like grid of spheres, and icospheres.
 #include "svo/core/mesh.h"
 
 namespace svo {
@@ -10,5 +10,13 @@ namespace svo {
 /// walls, each tessellated 14 x 14) with a short and a tall block (every face
 /// tessellated 7 x 7): 5*392 + 12*98 = 3,136 triangles, the seed's count.
 TriangleMesh cornellBox();
+
+/// A 6 x 6 grid of UV spheres (40 slices, 19 stacks) on a floor-less stage,
+/// like the seed's PBR demo: 36 * 1,520 = 54,720 triangles.
+TriangleMesh sphereGrid();
+
+/// A closed icosphere: an icosahedron split `levels` times, vertices on the
+/// sphere, shared between faces (20 * 4^levels triangles; level 8 gives 1,310,720).
+TriangleMesh icosphere(Vec3d centre, double radius, int levels);
 
 } // namespace svo

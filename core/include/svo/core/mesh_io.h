@@ -15,6 +15,11 @@ namespace svo {
 /// file, zero triangles, NaN/Inf coordinates or out-of-range indices.
 TriangleMesh loadMesh(const std::string& path);
 
+/// Writes an ASCII .off (COFF when the mesh has colours) or .obj, chosen by the
+/// extension, with coordinates in shortest round-trip form, atomically.
+/// Throws svo::Error naming the path.
+void writeMesh(const std::string& path, const TriangleMesh& mesh);
+
 /// The file extensions loadMesh accepts, for help texts.
 const char* supportedMeshExtensions();
 

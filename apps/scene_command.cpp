@@ -1,0 +1,47 @@
+// svo scene NAME -o out.off|out.obj: the generated scenes as mesh files, for peers and benchmarks.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <memory>
+
+#include "commands.h"
+#include "mesh_voxelizer.h"
+#include "svo/core/default_scene.h"
+#include "svo/core/mesh_io.h"
+
+namespace svo::app {
+namespace {
+
+struct SceneArgs {
+    std::string name, output;
+    int level = 8;
+};
+
+void runScene(const SceneArgs& a)
+{
+    const TriangleMesh mesh = a.name == "cornell"   ? cornellBox()
+                              : a.name == "spheres" ? sphereGrid()
+                                                    : icosphere({0, 0, 0}, 1.0, a.level);
+    writeMesh(a.output, mesh);
+    fmt::print("svo scene: {} ({} triangles, {} vertices) -> {}\n", mesh.source, thousands(mesh.triangles.size()),
+               thousands(mesh.positions.size()), a.output);
+}
+
+} // namespace
+
+void addSceneCommand(CLI::App& app)
+{
+    auto args = std::make_shared<SceneArgs>();
+    CLI::App* cmd = app.add_subcommand("scene", "Write a generated scene as a .off or .obj mesh (for other tools and benchmarks)");
+    cmd->add_option("name", args->name,
+                    "cornell (the built-in Cornell box, 3,136 triangles), spheres (a PBR-demo-like grid, 54,720) "
+                    "or icosphere (20 * 4^level)")
+        ->required()
+        ->check(CLI::IsMember({"cornell", "spheres", "icosphere"}));
+    cmd->add_option("-o,--output", args->output, "Output .off or .obj")->required();
+    cmd->add_option("--level", args->level, "Icosphere subdivisions (8: 1,310,720 triangles)")
+        ->check(CLI::Range(0, 10))
+        ->capture_default_str();
+    cmd->callback([args] { runScene(*args); });
+}
+
+} // namespace svo::app
