@@ -86,7 +86,7 @@ def plot(results, out_dir):
             ax.annotate(str(r), (x, max(y, 1e-7)), fontsize=7)
     ax.set_xscale("log"); ax.set_yscale("log")
     ax.set_xlabel("voxelize wall ms (all scenes)"); ax.set_ylabel("(missed + extra) / voxels  (0 drawn at 1e-7)")
-    ax.set_title(f"Error against run time, {results['machine']}"); ax.legend(); fig.tight_layout()
+    ax.set_title(f"Error against run time, {results['machine']}", fontsize=9); ax.legend(); fig.tight_layout()
     fig.savefig(os.path.join(out_dir, "error_vs_time.png"), dpi=110); plt.close(fig)
     # Time against resolution per scene: svo (best exact method, GPU total) and peers.
     fig, ax = plt.subplots(figsize=(7, 5))
@@ -103,7 +103,7 @@ def plot(results, out_dir):
             ax.plot([p["resolution"] for p in peers], [p["vdb_tool_ms"] for p in peers], "x--", label=f"vdb_tool {scene}")
     ax.set_xscale("log", base=2); ax.set_yscale("log")
     ax.set_xlabel("resolution"); ax.set_ylabel("end-to-end ms (mesh file to .vdb)")
-    ax.set_title(f"Time against resolution, {results['machine']}"); ax.legend(fontsize=7); fig.tight_layout()
+    ax.set_title(f"Time against resolution, {results['machine']}", fontsize=9); ax.legend(fontsize=7); fig.tight_layout()
     fig.savefig(os.path.join(out_dir, "time_vs_resolution.png"), dpi=110); plt.close(fig)
     # Bytes per voxel of the octree.
     fig, ax = plt.subplots(figsize=(7, 5))
@@ -112,7 +112,7 @@ def plot(results, out_dir):
                      key=lambda c: c["resolution"])
         ax.plot([c["resolution"] for c in sel], [c["octree_bytes"] / max(c["voxels"], 1) for c in sel], "o-", label=scene)
     ax.set_xscale("log", base=2); ax.set_xlabel("resolution"); ax.set_ylabel("octree bytes per voxel")
-    ax.set_title(f"Octree size, {results['machine']}"); ax.legend(); fig.tight_layout()
+    ax.set_title(f"Octree size, {results['machine']}", fontsize=9); ax.legend(); fig.tight_layout()
     fig.savefig(os.path.join(out_dir, "bytes_per_voxel.png"), dpi=110); plt.close(fig)
 
 
