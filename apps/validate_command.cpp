@@ -1,7 +1,6 @@
 // svo validate [MESH]: the GPU voxelization against CGAL's exact reference.
 #include <CLI/CLI.hpp>
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
@@ -197,11 +196,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
             c.extra.size(), casesJson(c.worstMissed), casesJson(c.worstExtra), holes.applies, esc(holes.reason),
             holes.connectivity, holes.leak, holes.filled, holes.frontier, path, consistency.empty(), validateSeconds,
             gpuMs, !failed, esc(reason));
-        writeAtomically(a.json, [&](const std::string& tmp) {
-            std::FILE* f = std::fopen(tmp.c_str(), "w");
-            if (!f || std::fputs(text.c_str(), f) < 0 || std::fclose(f) != 0)
-                throw Error(fmt::format("{}: cannot write the JSON report", a.json));
-        });
+        writeFileAtomically(a.json, text);
     }
     if (failed) throw Failure("validation failed: " + reason);
     fmt::print("  {:<12} passed: nothing missed{}\n", "verdict", holes.applies ? ", no leak" : "");

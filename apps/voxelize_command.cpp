@@ -1,7 +1,6 @@
 // svo voxelize [MESH] -o out.vdb|out.svo [--resolution N | --voxel-size h]
 #include <CLI/CLI.hpp>
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
@@ -121,11 +120,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
             esc(scene), mesh.triangles.size(), grid.dims[0], grid.dims[1], grid.dims[2], grid.voxelSize,
             request.resolution, a.backend.backend, a.backend.conservative, esc(mv.renderer), grid.epsilon(), stats.voxels, stats.bricks, vox.octree.nodes.size(), levels,
             stats.bytes, vox.listEntries, vox.overflowRetries, vox.gpuBytes, a.backend.repeat, peakRssMb(), stages, wall);
-        writeAtomically(a.json, [&](const std::string& tmp) {
-            std::FILE* f = std::fopen(tmp.c_str(), "w");
-            if (!f || std::fputs(text.c_str(), f) < 0 || std::fclose(f) != 0)
-                throw Error(fmt::format("{}: cannot write the JSON report", a.json));
-        });
+        writeFileAtomically(a.json, text);
     }
 }
 

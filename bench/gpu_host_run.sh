@@ -5,10 +5,7 @@
 set -uo pipefail
 out=${OUT:-gpu_host_out}
 mkdir -p "$out"
-if ! ldconfig -p | grep -q libEGL.so.1 && ls .gl/*.deb >/dev/null 2>&1; then
-  for f in .gl/*.deb; do dpkg -x "$f" /; done
-  ldconfig
-fi
+source "$(dirname "$0")/gpu_host_env.sh"
 ldconfig -p | grep -q libEGL_nvidia || export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
 work=$(mktemp -d)
 tar -C "$work" -xzf bundle/svo-bundle.tar.gz

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 #include <random>
 #include <unistd.h>
@@ -43,6 +44,16 @@ void writeAtomically(const std::string& path, const std::function<void(const std
         std::remove(tmp.c_str());
         throw Error(fmt::format("{}: cannot move the finished file into place: {}", path, ec.message()));
     }
+}
+
+void writeFileAtomically(const std::string& path, const std::string& bytes)
+{
+    writeAtomically(path, [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out.write(bytes.data(), std::streamsize(bytes.size()));
+        out.close();
+        if (!out) throw Error(fmt::format("{}: cannot write the file", path));
+    });
 }
 
 } // namespace svo

@@ -249,12 +249,7 @@ void writeMesh(const std::string& path, const TriangleMesh& mesh)
     for (const auto& t : mesh.triangles)
         text += obj ? fmt::format("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1)
                     : fmt::format("3 {} {} {}\n", t[0], t[1], t[2]);
-    writeAtomically(path, [&](const std::string& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        out.close();
-        if (!out) throw Error(fmt::format("{}: cannot write the mesh", path));
-    });
+    writeFileAtomically(path, text);
 }
 
 const char* supportedMeshExtensions() { return ".obj, .ply, .stl, .off"; }

@@ -78,12 +78,7 @@ void writeOctreeFile(const std::string& path, const Octree& input)
     h.checksum = fnv1a(bytes.data(), bytes.size());
     std::memcpy(bytes.data() + offsetof(OctreeFileHeader, checksum), &h.checksum, 8);
 
-    writeAtomically(path, [&](const std::string& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-        out.close();
-        if (!out) throw Error(fmt::format("{}: cannot write the octree file", path));
-    });
+    writeFileAtomically(path, std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 Octree parseOctree(const void* data, size_t size, const std::string& name)

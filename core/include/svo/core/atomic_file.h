@@ -16,4 +16,7 @@ void checkWritable(const std::string& path);
 /// the error is rethrown as svo::Error naming `path`.
 void writeAtomically(const std::string& path, const std::function<void(const std::string& tmp)>& write);
 
+/// writeAtomically for bytes already in memory (text or binary).
+void writeFileAtomically(const std::string& path, const std::string& bytes);
+
 } // namespace svo
