@@ -11,6 +11,7 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
 #include <vtkHyperTreeGrid.h>
 #include <vtkHyperTreeGridNonOrientedCursor.h>
 #include <vtkIntArray.h>
@@ -58,6 +59,58 @@ uint32_t countIn(const Brick& b, uint32_t ox, uint32_t oy, uint32_t oz, uint32_t
                 n += uint32_t(b.words[bit >> 6] >> (bit & 63) & 1);
             }
     return n;
+}
+
+/// The octree's attribute channels as VTK cell arrays: `normal`, `triangle_id`
+/// and `color`, each only when the octree has it. Cells that are not single
+/// voxels get 0 (normal, colour) or -1 (triangle id).
+class AttributeArrays {
+public:
+    explicit AttributeArrays(const Octree& o) : a_(o.attributes)
+    {
+        normal_->SetName("normal");
+        normal_->SetNumberOfComponents(3);
+        color_->SetName("color");
+        color_->SetNumberOfComponents(3);
+        triangle_->SetName("triangle_id");
+    }
+    void set(vtkIdType cell, uint64_t voxel)
+    {
+        if (!a_.normals.empty()) {
+            const Vec3f& n = a_.normals[voxel];
+            normal_->InsertTuple3(cell, n.x, n.y, n.z);
+        }
+        if (!a_.colors.empty()) {
+            const Vec3f& c = a_.colors[voxel];
+            color_->InsertTuple3(cell, c.x, c.y, c.z);
+        }
+        if (!a_.triangles.empty()) triangle_->InsertValue(cell, a_.triangles[voxel]);
+    }
+    void setEmpty(vtkIdType cell)
+    {
+        if (!a_.normals.empty()) normal_->InsertTuple3(cell, 0, 0, 0);
+        if (!a_.colors.empty()) color_->InsertTuple3(cell, 0, 0, 0);
+        if (!a_.triangles.empty()) triangle_->InsertValue(cell, -1);
+    }
+    void addTo(vtkCellData* data) const
+    {
+        if (!a_.normals.empty()) data->AddArray(normal_);
+        if (!a_.triangles.empty()) data->AddArray(triangle_);
+        if (!a_.colors.empty()) data->AddArray(color_);
+    }
+
+private:
+    const VoxelAttributes& a_;
+    vtkNew<vtkFloatArray> normal_, color_;
+    vtkNew<vtkIntArray> triangle_;
+};
+
+/// Rank of `bit` among the set bits of a brick: the voxel's place in voxel order.
+uint64_t rankInBrick(const Brick& b, uint32_t bit)
+{
+    uint64_t n = 0;
+    for (uint32_t w = 0; w < bit / 64; ++w) n += uint64_t(__builtin_popcountll(b.words[w]));
+    return n + uint64_t(__builtin_popcountll(b.words[bit / 64] & ((uint64_t(1) << (bit % 64)) - 1)));
 }
 
 template <typename Writer>
@@ -175,6 +228,8 @@ void writeHyperTreeGrid(const std::string& path, const Octree& o, const LevelRan
     level->SetName("level");
     occupancy->SetName("occupancy");
     count->SetName("voxel_count");
+    AttributeArrays attributes(o);
+    const auto offsets = brickVoxelOffsets(o);
     vtkNew<vtkHyperTreeGridNonOrientedCursor> cursor;
     htg->InitializeNonOrientedCursor(cursor, 0, true);
     cursor->SetGlobalIndexStart(0);
@@ -183,18 +238,22 @@ void writeHyperTreeGrid(const std::string& path, const Octree& o, const LevelRan
         level->InsertValue(id, static_cast<unsigned char>(l));
         occupancy->InsertValue(id, n ? 1 : 0);
         count->InsertValue(id, n);
+        attributes.setEmpty(id);
     };
-    // Inside a brick: sub-cubes of `size` voxels at brick offset (x, y, z).
-    std::function<uint32_t(const Brick&, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t)> visitBrick =
-        [&](const Brick& b, uint32_t l, uint32_t x, uint32_t y, uint32_t z, uint32_t size) {
+    // Inside brick `bi`: sub-cubes of `size` voxels at brick offset (x, y, z).
+    std::function<uint32_t(uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t)> visitBrick =
+        [&](uint32_t bi, uint32_t l, uint32_t x, uint32_t y, uint32_t z, uint32_t size) {
+            const Brick& b = o.bricks[bi];
             const uint32_t n = countIn(b, x, y, z, size);
             record(l, n);
+            if (n && size == 1)
+                attributes.set(cursor->GetGlobalNodeIndex(), offsets[bi] + rankInBrick(b, x << 6 | y << 3 | z));
             if (n && size > 1 && l < deepest) {
                 cursor->SubdivideLeaf();
                 const uint32_t h = size / 2;
                 for (unsigned char c = 0; c < 8; ++c) {
                     cursor->ToChild(c);
-                    visitBrick(b, l + 1, x + (c & 1) * h, y + (c >> 1 & 1) * h, z + (c >> 2) * h, h);
+                    visitBrick(bi, l + 1, x + (c & 1) * h, y + (c >> 1 & 1) * h, z + (c >> 2) * h, h);
                     cursor->ToParent();
                 }
             }
@@ -202,7 +261,7 @@ void writeHyperTreeGrid(const std::string& path, const Octree& o, const LevelRan
         };
     std::function<uint32_t(uint32_t, uint32_t)> visit = [&](uint32_t node, uint32_t l) -> uint32_t {
         const OctreeNode& n = o.nodes[node];
-        if (l == o.brickLevel) return n.childMask ? visitBrick(o.bricks[n.child], l, 0, 0, 0, 8) : (record(l, 0), 0u);
+        if (l == o.brickLevel) return n.childMask ? visitBrick(n.child, l, 0, 0, 0, 8) : (record(l, 0), 0u);
         uint32_t total = 0;
         if (n.childMask && l < deepest) {
             record(l, 0);
@@ -234,6 +293,7 @@ void writeHyperTreeGrid(const std::string& path, const Octree& o, const LevelRan
     htg->GetCellData()->AddArray(level);
     htg->GetCellData()->AddArray(occupancy);
     htg->GetCellData()->AddArray(count);
+    attributes.addTo(htg->GetCellData());
 
     vtkNew<vtkXMLHyperTreeGridWriter> writer;
     writer->SetInputData(htg);
@@ -243,7 +303,15 @@ void writeHyperTreeGrid(const std::string& path, const Octree& o, const LevelRan
 
 void writeVoxelCells(const std::string& path, const Octree& o)
 {
-    const std::vector<uint64_t> keys = octreeKeys(o);
+    // Cells in voxel order (bricks by index, bits ascending), the attributes' order.
+    std::vector<uint64_t> keys;
+    keys.reserve(o.voxelCount());
+    auto refs = occupiedBricks(o);
+    std::sort(refs.begin(), refs.end(), [](const BrickRef& a, const BrickRef& b) { return a.index < b.index; });
+    for (const auto& r : refs)
+        for (uint32_t bit = 0; bit < 512; ++bit)
+            if (o.bricks[r.index].words[bit >> 6] >> (bit & 63) & 1)
+                keys.push_back(packVoxelKey(r.origin[0], r.origin[1], r.origin[2]) | bit);
     vtkNew<vtkPoints> points;
     points->SetDataTypeToDouble();
     points->Allocate(vtkIdType(keys.size() * 8));
@@ -252,7 +320,9 @@ void writeVoxelCells(const std::string& path, const Octree& o)
     vtkNew<vtkIntArray> index;
     index->SetName("index");
     index->SetNumberOfComponents(3);
+    AttributeArrays attributes(o);
     for (uint64_t k : keys) {
+        attributes.set(grid->GetNumberOfCells(), uint64_t(grid->GetNumberOfCells()));
         const auto p = unpackVoxelKey(k);
         const vtkIdType base = points->GetNumberOfPoints();
         // VTK_VOXEL corner order: x fastest, then y, then z.
@@ -269,6 +339,7 @@ void writeVoxelCells(const std::string& path, const Octree& o)
     }
     grid->SetPoints(points);
     grid->GetCellData()->AddArray(index);
+    attributes.addTo(grid->GetCellData());
     vtkNew<vtkXMLUnstructuredGridWriter> writer;
     writer->SetInputData(grid);
     writer->SetDataModeToBinary();

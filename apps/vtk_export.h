@@ -19,14 +19,15 @@ struct LevelRange {
 };
 
 /// .htg: a vtkHyperTreeGrid of one tree, branch factor 2, child c = x + 2y + 4z
-/// (the octree's order). Cell arrays: `level`, `occupancy` (0/1) and
-/// `voxel_count`; empty cells are masked. Occupied cells are refined down to
+/// (the octree's order). Cell arrays: `level`, `occupancy` (0/1),
+/// `voxel_count`, and the octree's attribute channels (`normal`,
+/// `triangle_id`, `color`) on voxel cells. Occupied cells are refined down to
 /// level range.last. Written in binary mode: VTK 9.1's appended mode corrupts
 /// hyper tree grids with more than one cell array.
 void writeHyperTreeGrid(const std::string& path, const Octree& octree, const LevelRange& levels);
 
 /// .vtu: every occupied voxel as a VTK_VOXEL cell in world coordinates, with
-/// its OpenVDB index as the cell array `index`.
+/// its OpenVDB index as the cell array `index`, and the attribute channels.
 void writeVoxelCells(const std::string& path, const Octree& octree);
 
 /// .vtp: the outline (12 edges) of every occupied node at levels

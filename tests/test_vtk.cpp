@@ -1,6 +1,8 @@
 // svo vtk: files read back with VTK's own readers, and the picture checked by
 // its pixels. The expected counts come from the .svo file, read independently.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <gtest/gtest.h>
@@ -162,4 +164,50 @@ TEST_F(Vtk, PictureShowsVoxelsAndOutlines)
     EXPECT_GT(double(green) / double(total), 0.15) << green;
     EXPECT_GT(red, 500u);
     EXPECT_GT(double(white) / double(total), 0.05) << white;
+}
+
+TEST_F(Vtk, AttributeChannelsBecomeCellArrays)
+{
+    ASSERT_EQ(runSvo("voxelize -r 24 --attributes normal,triangle -o " + path("attr.svo")), 0);
+    const Octree o = readOctreeFile(path("attr.svo"));
+    ASSERT_EQ(o.channels(), uint32_t(kNormals | kTriangles));
+    ASSERT_EQ(runSvo("vtk " + path("attr.svo") + " -o " + path("attr.vtu")), 0);
+    vtkNew<vtkXMLUnstructuredGridReader> ug;
+    ug->SetFileName(path("attr.vtu").c_str());
+    ug->Update();
+    vtkDataArray* normal = ug->GetOutput()->GetCellData()->GetArray("normal");
+    vtkDataArray* tri = ug->GetOutput()->GetCellData()->GetArray("triangle_id");
+    ASSERT_TRUE(normal && tri);
+    EXPECT_EQ(ug->GetOutput()->GetCellData()->GetArray("color"), nullptr); // not asked for
+    ASSERT_EQ(uint64_t(normal->GetNumberOfTuples()), o.voxelCount());
+    // Unit normals, or 0 where opposite faces cancel (a block standing on the floor).
+    size_t zeroVtk = 0, zeroSvo = 0;
+    for (vtkIdType i = 0; i < normal->GetNumberOfTuples(); ++i) {
+        const double* n = normal->GetTuple3(i);
+        const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        zeroVtk += len == 0.0;
+        if (len != 0.0) {
+            EXPECT_NEAR(len, 1.0, 1e-4) << i;
+        }
+        EXPECT_GE(tri->GetTuple1(i), 0.0);
+    }
+    for (const auto& n : o.attributes.normals) zeroSvo += n.x == 0 && n.y == 0 && n.z == 0;
+    EXPECT_EQ(zeroVtk, zeroSvo);
+    EXPECT_LT(zeroVtk, o.voxelCount() / 20);
+    // The multiset of triangle ids equals the octree's.
+    std::vector<int> fromVtk, fromSvo(o.attributes.triangles.begin(), o.attributes.triangles.end());
+    for (vtkIdType i = 0; i < tri->GetNumberOfTuples(); ++i) fromVtk.push_back(int(tri->GetTuple1(i)));
+    std::sort(fromVtk.begin(), fromVtk.end());
+    std::sort(fromSvo.begin(), fromSvo.end());
+    EXPECT_EQ(fromVtk, fromSvo);
+
+    ASSERT_EQ(runSvo("vtk " + path("attr.svo") + " -o " + path("attr.htg")), 0);
+    vtkNew<vtkXMLHyperTreeGridReader> reader;
+    reader->SetFileName(path("attr.htg").c_str());
+    reader->Update();
+    vtkDataArray* htgTri = reader->GetOutput()->GetCellData()->GetArray("triangle_id");
+    ASSERT_NE(htgTri, nullptr);
+    uint64_t voxelCells = 0;
+    for (vtkIdType i = 0; i < htgTri->GetNumberOfTuples(); ++i) voxelCells += htgTri->GetTuple1(i) >= 0;
+    EXPECT_EQ(voxelCells, o.voxelCount());
 }

@@ -300,7 +300,7 @@ std::vector<std::string> checkOctree(const Octree& o, size_t limit)
             }
             if (n.childMask > 0xFF) fail(fmt::format("node {} has mask {:#x}", i, n.childMask));
             if (!n.childMask) continue;
-            if (n.child < s[l + 1] || n.child + 8 > s[l + 2] || (n.child - s[l + 1]) % 8 != 0) {
+            if (n.child < s[l + 1] || uint64_t(n.child) + 8 > s[l + 2] || (n.child - s[l + 1]) % 8 != 0) {
                 fail(fmt::format("node {} (level {}) points to {}, outside level {}'s blocks [{}, {})", i, l, n.child,
                                  l + 1, s[l + 1], s[l + 2]));
                 continue;

@@ -48,7 +48,7 @@ constexpr uint32_t kNoChild = 0xFFFFFFFFu;
 /// order, and within a brick by bit index (brickVoxelOffsets gives where each
 /// brick starts).
 struct VoxelAttributes {
-    std::vector<Vec3f> normals;     ///< unit average of the covering triangles' normals (0 if all degenerate)
+    std::vector<Vec3f> normals;     ///< unit average of the covering triangles' normals (0 where they cancel or all are degenerate)
     std::vector<int32_t> triangles; ///< smallest index of a covering triangle
     std::vector<Vec3f> colors;      ///< average of the covering triangles' mean vertex colours
     bool empty() const { return normals.empty() && triangles.empty() && colors.empty(); }
