@@ -2,7 +2,7 @@
 # svo setup on Debian 12: install dependencies, build, then run a job.
 #   bash scripts/setup.sh run    # build, then `svo voxelize` on the built-in scene
 #   bash scripts/setup.sh test   # build, then the whole test suite through ctest, then the fuzzers
-#                                #   for 30 s each (SVO_FUZZ_SECONDS; 0 skips them)
+#                                #   (SVO_FUZZ_RUNS per target, default 600000; 0 skips them)
 # Idempotent: packages already present are skipped by apt, and the build is incremental.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -40,8 +40,8 @@ case "$mode" in
     "$build/bin/svo" voxelize -o "${SVO_OUTPUT:-cornell_box.vdb}" ;;
   test)
     ctest --test-dir "$build" --output-on-failure --timeout 1500
-    seconds=${SVO_FUZZ_SECONDS:-30}
-    [ "$seconds" = 0 ] || bash scripts/fuzz.sh "$seconds" ;;
+    runs=${SVO_FUZZ_RUNS:-600000}
+    [ "$runs" = 0 ] || bash scripts/fuzz.sh "$runs" ;;
   build) ;;
   *) echo "usage: $0 run|test|build" >&2; exit 2 ;;
 esac
