@@ -113,9 +113,13 @@ uint64_t rankInBrick(const Brick& b, uint32_t bit)
     return n + uint64_t(__builtin_popcountll(b.words[bit / 64] & ((uint64_t(1) << (bit % 64)) - 1)));
 }
 
+/// Writes `data` with a VTK XML writer in binary mode (see writeHyperTreeGrid for why not appended).
 template <typename Writer>
-void writeXml(const std::string& path, Writer& writer, const char* what)
+void writeXml(const std::string& path, vtkDataObject* data, const char* what)
 {
+    vtkNew<Writer> writer;
+    writer->SetInputData(data);
+    writer->SetDataModeToBinary();
     writeAtomically(path, [&](const std::string& tmp) {
         writer->SetFileName(tmp.c_str());
         if (writer->Write() != 1) throw Error(fmt::format("{}: VTK could not write the {}", path, what));
@@ -295,10 +299,7 @@ void writeHyperTreeGrid(const std::string& path, const Octree& o, const LevelRan
     htg->GetCellData()->AddArray(count);
     attributes.addTo(htg->GetCellData());
 
-    vtkNew<vtkXMLHyperTreeGridWriter> writer;
-    writer->SetInputData(htg);
-    writer->SetDataModeToBinary();
-    writeXml(path, writer, "hyper tree grid");
+    writeXml<vtkXMLHyperTreeGridWriter>(path, htg, "hyper tree grid");
 }
 
 void writeVoxelCells(const std::string& path, const Octree& o)
@@ -340,18 +341,12 @@ void writeVoxelCells(const std::string& path, const Octree& o)
     grid->SetPoints(points);
     grid->GetCellData()->AddArray(index);
     attributes.addTo(grid->GetCellData());
-    vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    writer->SetInputData(grid);
-    writer->SetDataModeToBinary();
-    writeXml(path, writer, "voxel cells");
+    writeXml<vtkXMLUnstructuredGridWriter>(path, grid, "voxel cells");
 }
 
 void writeNodeOutlines(const std::string& path, const Octree& o, const LevelRange& levels)
 {
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetInputData(outlines(o, levels));
-    writer->SetDataModeToBinary();
-    writeXml(path, writer, "node outlines");
+    writeXml<vtkXMLPolyDataWriter>(path, outlines(o, levels), "node outlines");
 }
 
 void renderPicture(const std::string& path, const Octree& o, const PictureOptions& opt)

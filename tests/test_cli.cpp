@@ -7,6 +7,8 @@
 #include <sstream>
 #include <sys/wait.h>
 
+#include "temp_dir.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -16,7 +18,7 @@ struct Run {
     std::string out;
 };
 
-Run svo(const std::string& args)
+Run runSvo(const std::string& args)
 {
     const std::string cmd = std::string(SVO_EXE) + " " + args + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
@@ -30,37 +32,27 @@ Run svo(const std::string& args)
 
 class Cli : public ::testing::Test {
 protected:
-    void SetUp() override
-    {
-        dir_ = fs::temp_directory_path() / ("svo_cli_" + std::to_string(::getpid()));
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    std::string write(const std::string& name, const std::string& text) const
-    {
-        std::ofstream(path(name)) << text;
-        return path(name);
-    }
+    std::string path(const std::string& name) const { return tmp_.path(name); }
+    std::string write(const std::string& name, const std::string& text) const { return tmp_.write(name, text); }
     /// Nothing but the listed files in the folder: no temporaries left behind.
     void expectOnly(std::initializer_list<std::string> names) const
     {
         size_t n = 0;
-        for (const auto& e : fs::directory_iterator(dir_)) {
+        for (const auto& e : fs::directory_iterator(tmp_.dir())) {
             ++n;
             EXPECT_NE(std::find(names.begin(), names.end(), e.path().filename().string()), names.end())
                 << "unexpected file " << e.path();
         }
         EXPECT_EQ(n, names.size());
     }
-    fs::path dir_;
+    svo::test::TempDir tmp_{"cli"};
 };
 
 } // namespace
 
 TEST_F(Cli, DefaultSceneWritesAVdbAndPrintsTheTable)
 {
-    const auto r = svo("voxelize -r 48 -o " + path("cb.vdb"));
+    const auto r = runSvo("voxelize -r 48 -o " + path("cb.vdb"));
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find("triangles   3,136"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("voxelize"), std::string::npos);
@@ -72,7 +64,7 @@ TEST_F(Cli, BadMeshFailsAndKeepsAnEarlierOutput)
 {
     const std::string out = write("out.vdb", "earlier result");
     const auto bad = write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
-    const auto r = svo("voxelize " + bad + " -o " + out);
+    const auto r = runSvo("voxelize " + bad + " -o " + out);
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.out.find(bad), std::string::npos) << r.out;
     std::ifstream in(out);
@@ -83,22 +75,22 @@ TEST_F(Cli, BadMeshFailsAndKeepsAnEarlierOutput)
 
 TEST_F(Cli, BadArgumentsFailWithoutOutput)
 {
-    const auto missing = svo("voxelize " + path("missing.stl") + " -o " + path("a.vdb"));
+    const auto missing = runSvo("voxelize " + path("missing.stl") + " -o " + path("a.vdb"));
     EXPECT_NE(missing.code, 0);
     EXPECT_NE(missing.out.find("no such file"), std::string::npos) << missing.out;
     for (const char* r : {"0", "-5"}) {
-        const auto res = svo(std::string("voxelize -r ") + r + " -o " + path("a.vdb"));
+        const auto res = runSvo(std::string("voxelize -r ") + r + " -o " + path("a.vdb"));
         EXPECT_NE(res.code, 0) << res.out;
         EXPECT_NE(res.out.find("--resolution"), std::string::npos) << res.out;
     }
-    const auto huge = svo("voxelize -r 100000000 -o " + path("a.vdb"));
+    const auto huge = runSvo("voxelize -r 100000000 -o " + path("a.vdb"));
     EXPECT_NE(huge.code, 0);
-    const auto size = svo("voxelize --voxel-size -1 -o " + path("a.vdb"));
+    const auto size = runSvo("voxelize --voxel-size -1 -o " + path("a.vdb"));
     EXPECT_NE(size.code, 0);
-    const auto folder = svo("voxelize -r 16 -o /nonexistent-folder/a.vdb");
+    const auto folder = runSvo("voxelize -r 16 -o /nonexistent-folder/a.vdb");
     EXPECT_NE(folder.code, 0);
     EXPECT_NE(folder.out.find("does not exist"), std::string::npos) << folder.out;
-    const auto device = svo("voxelize -r 16 --device 97 -o " + path("a.vdb"));
+    const auto device = runSvo("voxelize -r 16 --device 97 -o " + path("a.vdb"));
     EXPECT_EQ(device.code, 1);
     EXPECT_NE(device.out.find("no EGL device matches '97'"), std::string::npos) << device.out;
     expectOnly({});
@@ -106,41 +98,41 @@ TEST_F(Cli, BadArgumentsFailWithoutOutput)
 
 TEST_F(Cli, OctreeFilesConvertBothWaysAndReport)
 {
-    const auto v = svo("voxelize -r 48 -o " + path("box.svo"));
+    const auto v = runSvo("voxelize -r 48 -o " + path("box.svo"));
     ASSERT_EQ(v.code, 0) << v.out;
     EXPECT_NE(v.out.find("octree build"), std::string::npos) << v.out;
 
-    const auto info = svo("info " + path("box.svo"));
+    const auto info = runSvo("info " + path("box.svo"));
     ASSERT_EQ(info.code, 0) << info.out;
     for (const char* field : {"levels", "bricks", "bytes/voxel", "fill ratio"})
         EXPECT_NE(info.out.find(field), std::string::npos) << field << "\n" << info.out;
 
-    ASSERT_EQ(svo("convert " + path("box.svo") + " -o " + path("box.vdb") + " --topology bool --fog").code, 0);
-    const auto back = svo("convert " + path("box.vdb") + " -o " + path("again.svo"));
+    ASSERT_EQ(runSvo("convert " + path("box.svo") + " -o " + path("box.vdb") + " --topology bool --fog").code, 0);
+    const auto back = runSvo("convert " + path("box.vdb") + " -o " + path("again.svo"));
     ASSERT_EQ(back.code, 0) << back.out;
     // The same voxel count through every file.
     auto voxels = [](const std::string& out) {
         const auto at = out.find("\n  voxels");
         return out.substr(at, out.find('\n', at) - at);
     };
-    EXPECT_EQ(voxels(svo("info " + path("again.svo")).out), voxels(info.out));
-    EXPECT_EQ(voxels(svo("info " + path("box.vdb") + " --grid density").out), voxels(info.out));
+    EXPECT_EQ(voxels(runSvo("info " + path("again.svo")).out), voxels(info.out));
+    EXPECT_EQ(voxels(runSvo("info " + path("box.vdb") + " --grid density").out), voxels(info.out));
     expectOnly({"box.svo", "box.vdb", "again.svo"});
 }
 
 TEST_F(Cli, BadOctreeInputsFailClearly)
 {
     const std::string junk = write("junk.svo", "SVOCTREE but not really");
-    const auto r = svo("info " + junk);
+    const auto r = runSvo("info " + junk);
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.out.find("junk.svo: not a valid .svo file"), std::string::npos) << r.out;
 
-    const auto c = svo("convert " + junk + " -o " + path("out.vdb"));
+    const auto c = runSvo("convert " + junk + " -o " + path("out.vdb"));
     EXPECT_EQ(c.code, 1);
-    const auto m = svo("convert " + write("tri.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n") + " -o " + path("o.svo"));
+    const auto m = runSvo("convert " + write("tri.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n") + " -o " + path("o.svo"));
     EXPECT_EQ(m.code, 1);
     EXPECT_NE(m.out.find("svo voxelize"), std::string::npos) << m.out;
-    const auto e = svo("voxelize -o " + path("out.txt"));
+    const auto e = runSvo("voxelize -o " + path("out.txt"));
     EXPECT_EQ(e.code, 1);
     EXPECT_NE(e.out.find(".vdb or .svo"), std::string::npos) << e.out;
     expectOnly({"junk.svo", "tri.off"});
@@ -148,7 +140,7 @@ TEST_F(Cli, BadOctreeInputsFailClearly)
 
 TEST_F(Cli, ValidatePassesAndWritesItsReports)
 {
-    const auto r = svo("validate -r 48 --json " + path("v.json") + " --errors " + path("e.vdb"));
+    const auto r = runSvo("validate -r 48 --json " + path("v.json") + " --errors " + path("e.vdb"));
     ASSERT_EQ(r.code, 0) << r.out;
     for (const char* field : {"missed", "boundary", "extra", "holes", "consistent", "passed"})
         EXPECT_NE(r.out.find(field), std::string::npos) << field << "\n" << r.out;
@@ -157,7 +149,7 @@ TEST_F(Cli, ValidatePassesAndWritesItsReports)
     EXPECT_NE(json.find("\"missed\": 0,"), std::string::npos) << json;
     EXPECT_NE(json.find("\"passed\": true"), std::string::npos) << json;
     // The errors file holds the (empty) missed and extra grids.
-    const auto info = svo("info " + path("e.vdb") + " --grid extra");
+    const auto info = runSvo("info " + path("e.vdb") + " --grid extra");
     EXPECT_EQ(info.code, 0) << info.out;
     EXPECT_NE(info.out.find("grid 'extra'"), std::string::npos) << info.out;
     expectOnly({"v.json", "e.vdb"});

@@ -21,6 +21,7 @@
 #include "svo/gl/raster_voxelizer.h"
 #include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/vdb_file.h"
+#include "temp_dir.h"
 
 using namespace svo;
 namespace fs = std::filesystem;
@@ -52,10 +53,8 @@ VoxelSet vdbVoxels(const std::string& path, const std::string& name)
     return s;
 }
 
-std::string tempPath(const std::string& name)
-{
-    return (fs::temp_directory_path() / ("svo_test_gpu_octree_" + std::to_string(::getpid()) + "_" + name)).string();
-}
+const test::TempDir tmp("test_gpu_octree");
+std::string tempPath(const std::string& name) { return tmp.path(name); }
 
 class GpuOctree : public ::testing::Test {
 protected:

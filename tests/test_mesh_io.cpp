@@ -7,6 +7,7 @@
 
 #include "svo/core/error.h"
 #include "svo/core/mesh_io.h"
+#include "temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace svo;
@@ -15,18 +16,7 @@ namespace {
 
 class MeshIo : public ::testing::Test {
 protected:
-    void SetUp() override
-    {
-        dir_ = fs::temp_directory_path() / ("svo_mesh_io_" + std::to_string(::getpid()));
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string write(const std::string& name, const std::string& bytes)
-    {
-        const std::string p = (dir_ / name).string();
-        std::ofstream(p, std::ios::binary) << bytes;
-        return p;
-    }
+    std::string write(const std::string& name, const std::string& bytes) { return tmp_.write(name, bytes); }
     /// Loading must fail with svo::Error whose message names the file and contains `what`.
     void expectError(const std::string& path, const std::string& what)
     {
@@ -39,7 +29,7 @@ protected:
             EXPECT_NE(msg.find(what), std::string::npos) << msg;
         }
     }
-    fs::path dir_;
+    test::TempDir tmp_{"mesh_io"};
 };
 
 template <typename T> void put(std::string& s, T v) { s.append(reinterpret_cast<const char*>(&v), sizeof v); }
@@ -131,7 +121,7 @@ TEST_F(MeshIo, DegenerateAndDuplicateFacesAreKept)
 
 TEST_F(MeshIo, BadInputsAreClearErrors)
 {
-    expectError((dir_ / "missing.obj").string(), "no such file");
+    expectError(tmp_.path("missing.obj"), "no such file");
     expectError(write("a.xyz", "v 0 0 0\n"), "unknown mesh extension");
     expectError(write("empty.obj", ""), "empty");
     expectError(write("noface.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"), "no triangles");

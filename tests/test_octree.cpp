@@ -14,6 +14,7 @@
 #include "svo/core/octree.h"
 #include "svo/core/octree_file.h"
 #include "svo/core/voxel_attributes.h"
+#include "temp_dir.h"
 
 using namespace svo;
 namespace fs = std::filesystem;
@@ -52,10 +53,8 @@ void expectSound(const Octree& o, const std::vector<uint64_t>& keys)
     EXPECT_TRUE(std::all_of(visits.begin(), visits.end(), [](int v) { return v == 1; })) << "orphan or shared node";
 }
 
-std::string tempPath(const char* name)
-{
-    return (fs::temp_directory_path() / (std::string("svo_test_octree_") + std::to_string(::getpid()) + name)).string();
-}
+const test::TempDir tmp("test_octree");
+std::string tempPath(const char* name) { return tmp.path(name); }
 
 std::vector<char> readBytes(const std::string& path)
 {

@@ -6,10 +6,11 @@
 
 #include "scenes.h"
 #include "svo/core/cpu_voxelizer.h"
-#include "svo/core/octree.h"
 #include "svo/core/error.h"
+#include "svo/core/octree.h"
 #include "svo/core/voxel_key.h"
 #include "svo/vdb_io/vdb_file.h"
+#include "temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace svo;
@@ -37,7 +38,8 @@ void expectRoundTrip(const TriangleMesh& mesh, const GridRequest& req, bool fog)
 {
     const GridSpec grid = makeGrid(mesh, req);
     const Voxelization v = voxelizeCpu(mesh, grid);
-    const std::string path = (fs::temp_directory_path() / ("svo_vdb_io_" + std::to_string(::getpid()) + ".vdb")).string();
+    const test::TempDir tmp("vdb_io");
+    const std::string path = tmp.path("out.vdb");
     vdb::WriteOptions o;
     o.fog = fog;
     o.metadata["svo:source"] = mesh.source;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <memory>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -24,6 +25,7 @@
 
 #include "svo/core/octree.h"
 #include "svo/core/octree_file.h"
+#include "temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace svo;
@@ -41,17 +43,16 @@ class Vtk : public ::testing::Test {
 protected:
     static void SetUpTestSuite()
     {
-        dir_ = fs::temp_directory_path() / ("svo_vtk_" + std::to_string(::getpid()));
-        fs::create_directories(dir_);
+        tmp_ = std::make_unique<test::TempDir>("vtk");
         ASSERT_EQ(runSvo("voxelize -r 40 -o " + path("box.svo")), 0);
         octree_ = readOctreeFile(path("box.svo"));
     }
-    static void TearDownTestSuite() { fs::remove_all(dir_); }
-    static std::string path(const std::string& name) { return (dir_ / name).string(); }
-    static fs::path dir_;
+    static void TearDownTestSuite() { tmp_.reset(); }
+    static std::string path(const std::string& name) { return tmp_->path(name); }
+    static std::unique_ptr<test::TempDir> tmp_;
     static Octree octree_;
 };
-fs::path Vtk::dir_;
+std::unique_ptr<test::TempDir> Vtk::tmp_;
 Octree Vtk::octree_;
 
 /// Occupied cells of a brick's 2^k sub-cubes: independent of the exporter.
