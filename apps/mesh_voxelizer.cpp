@@ -80,7 +80,7 @@ void addAttributeOption(CLI::App& cmd, BackendSettings& s)
 MeshVoxelization voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, const BackendSettings& s)
 {
     MeshVoxelization out;
-    if ((s.attributes & kColors) && mesh.colors.empty())
+    if (availableChannels(mesh, s.attributes) != s.attributes)
         fmt::print(stderr, "svo: warning: {} has no vertex colours; the color channel is left out\n", mesh.source);
     std::vector<gl::OctreeVoxelization> runs;
     const int n = std::max(s.repeat, 1);

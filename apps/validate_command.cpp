@@ -210,7 +210,8 @@ void addValidateCommand(CLI::App& app)
     CLI::App* cmd = app.add_subcommand(
         "validate", "Check a voxelization against exact CGAL triangle-box tests: nothing missed, no holes "
                     "(exit 0 pass, 3 fail, 1 error)");
-    cmd->add_option("mesh", args->mesh, "Mesh file; none = built-in Cornell box");
+    cmd->add_option("mesh", args->mesh,
+                    fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()));
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
     cmd->add_option("--json", args->json, "Write the report as JSON");

@@ -131,7 +131,8 @@ void addVoxelizeCommand(CLI::App& app)
     auto args = std::make_shared<VoxelizeArgs>();
     CLI::App* cmd = app.add_subcommand(
         "voxelize", "Voxelize a mesh (default: the built-in Cornell box) into a .vdb grid or a .svo octree");
-    cmd->add_option("mesh", args->mesh, "Mesh file (.obj, .ply, .stl, .off); none = built-in Cornell box");
+    cmd->add_option("mesh", args->mesh,
+                    fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()));
     cmd->add_option("-o,--output", args->output, "Output .vdb or .svo (default: <scene>.vdb)");
     cmd->add_option("--json", args->json, "Also write the summary (counts, bytes, stage times) as JSON");
     addGridOptions(*cmd, args->resolution, args->voxelSize);

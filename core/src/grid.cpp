@@ -70,8 +70,11 @@ GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& req)
     // local coordinate >= 0, and bricks align with OpenVDB leaves.
     const Vec3d lo = g.toIndex(b.min), hi = g.toIndex(b.max);
     for (int a = 0; a < 3; ++a) {
-        const int64_t first = static_cast<int64_t>(std::floor(lo[a])) - 1;
-        g.anchor[a] = first >= 0 ? first / 8 * 8 : -((-first + 7) / 8) * 8;
+        if (!(std::abs(lo[a]) < 9.0e18) || !(std::abs(hi[a]) < 9.0e18) || hi[a] - lo[a] > double(kMaxGridDim))
+            throw Error(fmt::format("{}: the grid would be {:.3g} voxels along axis {}, beyond the supported {}; "
+                                    "use a larger voxel size",
+                                    mesh.source, hi[a] - lo[a], "xyz"[a], kMaxGridDim));
+        g.anchor[a] = floorTo8(static_cast<int64_t>(std::floor(lo[a])) - 1);
         const double top = hi[a] - double(g.anchor[a]);
         const double dim = std::floor(top) + 3; // the last touched voxel is <= top + 1
         if (dim > double(kMaxGridDim))
@@ -85,6 +88,21 @@ GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& req)
                                     mesh.source, "xyz"[a]));
     }
     return g;
+}
+
+void checkGrid(const GridSpec& g, const std::string& what)
+{
+    if (!(g.voxelSize > 0) || !std::isfinite(g.voxelSize))
+        throw Error(fmt::format("{}: voxel size {} is not positive and finite", what, g.voxelSize));
+    for (int a = 0; a < 3; ++a) {
+        if (g.dims[a] > kMaxGridDim || g.anchor[a] % 8 != 0)
+            throw Error(fmt::format("{}: grid axis {} has {} voxels from anchor {} (at most {}, anchor a multiple of 8)",
+                                    what, "xyz"[a], g.dims[a], g.anchor[a], kMaxGridDim));
+        if (g.anchor[a] < INT32_MIN + 8 || g.anchor[a] + int64_t(g.dims[a]) > INT32_MAX - 8)
+            throw Error(fmt::format("{}: voxel indices along {} exceed OpenVDB's 32-bit coordinates", what, "xyz"[a]));
+        if (std::abs(double(g.shift[a])) > 9.0e18)
+            throw Error(fmt::format("{}: the lattice shift along {} is out of range", what, "xyz"[a]));
+    }
 }
 
 std::vector<Vec3f> localPositionsFloat(const TriangleMesh& mesh, const GridSpec& grid)

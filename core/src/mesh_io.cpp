@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -167,11 +168,19 @@ PlyCounts readPlyHeader(const std::string& path, const std::string& bytes)
         } else if (word == "end_header") { ended = true; break; }
     }
     if (!ended) throw Error(fmt::format("{}: truncated PLY header (no end_header)", path));
+    // Each vertex takes at least 3 bytes and each face at least 1: a count the
+    // file cannot hold is refused before the reader allocates for it.
+    if (c.vertices > long(UINT32_MAX) || c.faces > long(UINT32_MAX) ||
+        double(std::max(c.vertices, 0L)) * 3 + double(std::max(c.faces, 0L)) > double(bytes.size()))
+        throw Error(fmt::format("{}: the header declares {} vertices and {} faces, more than its {} bytes can hold "
+                                "(truncated or corrupt file)",
+                                path, c.vertices, c.faces, bytes.size()));
     return c;
 }
 
 /// OpenMesh's text readers turn "nan"/"inf" into undefined values (or lose
-/// their place in the file), so ASCII coordinates are screened first.
+/// their place in the file), so ASCII OBJ, PLY and STL coordinates are
+/// screened first (ASCII OFF is read by off_reader.h).
 /// Returns the number of face records for formats that list one per line (OBJ).
 size_t screenAsciiNumbers(const std::string& path, const std::string& ext, const std::string& bytes)
 {
@@ -179,7 +188,6 @@ size_t screenAsciiNumbers(const std::string& path, const std::string& ext, const
     std::string line;
     size_t lineNo = 0, faces = 0;
     bool body = ext == "obj" || ext == "stl";
-    int offHeaderLines = 0;
     while (std::getline(in, line)) {
         ++lineNo;
         const auto first = line.find_first_not_of(" \t\r");
@@ -187,12 +195,6 @@ size_t screenAsciiNumbers(const std::string& path, const std::string& ext, const
         if (ext == "ply" && !body) {
             if (line.rfind("format", first) == first && line.find("ascii") == std::string::npos) return 0;
             body = line.rfind("end_header", first) == first;
-            continue;
-        }
-        if (ext == "off" && offHeaderLines < 2) {
-            // "OFF" and the counts line (the keyword may share the counts' line).
-            ++offHeaderLines;
-            if (offHeaderLines == 1 && line.find_first_of("0123456789", first) != std::string::npos) ++offHeaderLines;
             continue;
         }
         bool coordinates = true;
@@ -212,22 +214,6 @@ size_t screenAsciiNumbers(const std::string& path, const std::string& ext, const
         }
     }
     return faces;
-}
-
-/// "OFF\nNV NF NE": the counts the reader must deliver.
-PlyCounts readOffHeader(const std::string& bytes)
-{
-    PlyCounts c;
-    std::istringstream in(bytes);
-    std::string word;
-    in >> word;
-    if (word.find("OFF") == std::string::npos) return c;
-    // Skip comment lines between the keyword and the counts.
-    std::string rest;
-    while (in >> std::ws && in.peek() == '#') std::getline(in, rest);
-    in >> c.vertices >> c.faces;
-    if (!in) c.vertices = c.faces = -1;
-    return c;
 }
 
 } // namespace
@@ -265,7 +251,11 @@ TriangleMesh loadMesh(const std::string& path)
     if (std::filesystem::is_directory(path, ec)) throw Error(fmt::format("{}: is a directory, not a mesh file", path));
     std::ifstream file(path, std::ios::binary);
     if (!file) throw Error(fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
-    const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) throw Error(fmt::format("{}: cannot read the file size: {}", path, ec.message()));
+    std::string bytes(size, '\0');
+    file.read(bytes.data(), std::streamsize(bytes.size()));
+    if (!file) throw Error(fmt::format("{}: read error", path));
     if (bytes.empty()) throw Error(fmt::format("{}: the file is empty", path));
 
     if (ext == "off")
@@ -273,11 +263,11 @@ TriangleMesh loadMesh(const std::string& path)
             validateMesh(*off);
             return std::move(*off);
         }
-    PlyCounts declared; // counts the header promises (PLY, binary OFF)
+    // Binary OFF is left to OpenMesh; validateMesh checks what it delivers.
+    PlyCounts declared; // counts the header promises (PLY)
     if (ext == "stl") checkBinaryStl(path, bytes);
     if (ext == "ply") declared = readPlyHeader(path, bytes);
-    if (ext == "off") declared = readOffHeader(bytes);
-    const size_t objFaces = screenAsciiNumbers(path, ext, bytes);
+    const size_t objFaces = ext == "off" ? 0 : screenAsciiNumbers(path, ext, bytes);
 
     TriangleMesh mesh;
     mesh.source = path;

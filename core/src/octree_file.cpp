@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
-#include <iterator>
 #include <vector>
 
 #include "svo/core/atomic_file.h"
@@ -118,11 +118,7 @@ Octree parseOctree(const void* data, size_t size, const std::string& name)
     o.grid.voxelSize = h.voxelSize;
     for (int a = 0; a < 3; ++a)
         o.grid.shift[a] = h.shift[a], o.grid.anchor[a] = h.anchor[a], o.grid.dims[a] = h.dims[a];
-    if (!(o.grid.voxelSize > 0) || !std::isfinite(o.grid.voxelSize))
-        throw fail(fmt::format("voxel size {} is not positive", o.grid.voxelSize));
-    for (int a = 0; a < 3; ++a)
-        if (o.grid.dims[a] > kMaxGridDim || o.grid.anchor[a] % 8 != 0)
-            throw fail(fmt::format("grid axis {}: {} voxels from anchor {}", "xyz"[a], o.grid.dims[a], o.grid.anchor[a]));
+    checkGrid(o.grid, name + ": not a valid .svo file");
     o.brickLevel = h.brickLevel;
     const unsigned char* p = bytes + sizeof h;
     o.levelStart.resize(h.brickLevel + 2);
@@ -150,11 +146,13 @@ Octree parseOctree(const void* data, size_t size, const std::string& name)
 
 Octree readOctreeFile(const std::string& path)
 {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) throw Error(fmt::format("{}: cannot open the file: {}", path, ec.message()));
+    if (size == 0) throw Error(fmt::format("{}: the file is empty", path));
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(fmt::format("{}: cannot open the file", path));
-    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw Error(fmt::format("{}: read error", path));
-    if (bytes.empty()) throw Error(fmt::format("{}: the file is empty", path));
+    std::vector<char> bytes(size);
+    if (!in || !in.read(bytes.data(), std::streamsize(size))) throw Error(fmt::format("{}: read error", path));
     return parseOctree(bytes.data(), bytes.size(), path);
 }
 

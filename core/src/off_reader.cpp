@@ -1,7 +1,6 @@
 #include "off_reader.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -85,7 +84,6 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
         if (w.size() < 3) throw fail(fmt::format("vertex {} has {} coordinates", v, w.size()));
         double c[3];
         for (int k = 0; k < 3; ++k) {
-            errno = 0;
             c[k] = std::strtod(w[size_t(k)].c_str(), &end);
             if (*end || !std::isfinite(c[k]))
                 throw fail(fmt::format("vertex {} has a non-finite or malformed coordinate '{}'", v, w[size_t(k)]));

@@ -1,9 +1,10 @@
 #include "svo/core/voxel_attributes.h"
 
-#include <cfenv>
 #include <cmath>
+#include <fmt/format.h>
 #include <unordered_map>
 
+#include "svo/core/error.h"
 #include "triangle_voxels.h"
 
 namespace svo {
@@ -31,8 +32,18 @@ TriangleValues triangleValues(const TriangleMesh& mesh, bool colors)
 
 int32_t toFixed(float v) { return int32_t(std::nearbyint(v * 65536.0f)); } // default mode: half to even
 
+uint32_t availableChannels(const TriangleMesh& mesh, uint32_t channels)
+{
+    return mesh.colors.empty() ? channels & ~uint32_t(kColors) : channels;
+}
+
 VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_t channels)
 {
+    for (const auto& s : sums)
+        if (s[7] > 32767)
+            throw Error(fmt::format("{} triangles cover one voxel, more than the 32,767 the attribute sums hold; "
+                                    "use a finer grid or leave out --attributes",
+                                    s[7]));
     VoxelAttributes a;
     auto fixedVec = [](const AttributeSums& s, int at) {
         return Vec3f{float(int32_t(s[size_t(at)])) / 65536.0f, float(int32_t(s[size_t(at) + 1])) / 65536.0f,
@@ -56,7 +67,7 @@ VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_
 
 void attachAttributesCpu(const TriangleMesh& mesh, Octree& octree, uint32_t channels, double guard)
 {
-    if (mesh.colors.empty()) channels &= ~uint32_t(kColors);
+    channels = availableChannels(mesh, channels);
     octree.attributes = {};
     if (!channels) return;
     // Voxel order: bricks in index order, bits ascending.

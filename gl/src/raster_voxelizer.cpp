@@ -186,7 +186,7 @@ void attachAttributes(const TriangleMesh& mesh, uint32_t channels, const OctreeB
     checkGl("attribute pass");
     std::vector<AttributeSums> host(voxels);
     if (voxels) sums.readBulk(0, voxels * sizeof(AttributeSums), host.data());
-    octree.attributes = finishAttributes(host, mesh.colors.empty() ? channels & ~uint32_t(kColors) : channels);
+    octree.attributes = finishAttributes(host, availableChannels(mesh, channels));
 }
 
 } // namespace

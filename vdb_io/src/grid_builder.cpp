@@ -144,7 +144,7 @@ GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name)
         }
         for (int a = 0; a < 3; ++a) {
             const int64_t lo = bbox.min()[a];
-            out.grid.anchor[a] = lo >= 0 ? lo / 8 * 8 : -((-lo + 7) / 8) * 8;
+            out.grid.anchor[a] = floorTo8(lo);
             const int64_t dim = int64_t(bbox.max()[a]) - out.grid.anchor[a] + 1;
             if (dim > int64_t(kMaxGridDim))
                 throw Error(fmt::format("{}: grid '{}' spans {} voxels along {}, beyond the supported {}", name,
@@ -181,6 +181,7 @@ GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name)
         throw Error(fmt::format("{}: grid '{}' has type {}, which svo does not read (it reads bool, mask, float, "
                                 "double, int32, int64 and vec3 grids)",
                                 name, base.getName(), base.type()));
+    checkGrid(out.grid, name);
     return out;
 }
 

@@ -8,12 +8,13 @@
 #include <cmath>
 #include <iterator>
 
+#include "local_points.h"
 #include "svo/core/voxel_key.h"
 
 namespace svo::validate {
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using K = detail::K;
 using Triangles = std::vector<K::Triangle_3>;
 using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
@@ -24,11 +25,7 @@ class Distances {
 public:
     Distances(const TriangleMesh& mesh, const GridSpec& grid)
     {
-        std::vector<K::Point_3> p;
-        for (const auto& v : mesh.positions) {
-            const Vec3d l = grid.toLocal(v);
-            p.emplace_back(l.x, l.y, l.z);
-        }
+        const std::vector<K::Point_3> p = detail::localPoints(mesh, grid);
         for (size_t t = 0; t < mesh.triangles.size(); ++t) {
             const auto& f = mesh.triangles[t];
             if (CGAL::collinear(p[f[0]], p[f[1]], p[f[2]])) {

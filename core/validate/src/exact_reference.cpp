@@ -9,12 +9,13 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
+#include "local_points.h"
 #include "svo/core/voxel_key.h"
 
 namespace svo::validate {
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using K = detail::K;
 
 bool meets(const K::Triangle_3& t, const CGAL::Bbox_3& b) { return CGAL::do_intersect(t, b); }
 bool meets(const K::Segment_3& s, const CGAL::Bbox_3& b) { return CGAL::do_intersect(s, b); }
@@ -63,12 +64,7 @@ void visit(const Prim& prim, std::array<int64_t, 3> lo, std::array<int64_t, 3> h
 ReferenceSets exactReference(const TriangleMesh& mesh, const GridSpec& grid, double eps,
                              const std::function<void(uint64_t, uint64_t)>& progress)
 {
-    std::vector<K::Point_3> p;
-    p.reserve(mesh.positions.size());
-    for (const auto& v : mesh.positions) {
-        const Vec3d l = grid.toLocal(v);
-        p.emplace_back(l.x, l.y, l.z);
-    }
+    const std::vector<K::Point_3> p = detail::localPoints(mesh, grid);
     tbb::enumerable_thread_specific<Collector> collectors;
     std::atomic<uint64_t> done{0}, degenerate{0};
     const uint64_t total = mesh.triangles.size();

@@ -12,13 +12,14 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include "local_points.h"
 #include "svo/core/error.h"
 #include "svo/core/voxel_key.h"
 
 namespace svo::validate {
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using K = detail::K;
 using SurfaceMesh = CGAL::Surface_mesh<K::Point_3>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
@@ -43,11 +44,7 @@ HoleCheck checkHoles(const TriangleMesh& mesh, const GridSpec& grid, const std::
     HoleCheck h;
     h.connectivity = connectivity;
     // A closed, orientable surface, or the check does not apply.
-    std::vector<K::Point_3> points;
-    for (const auto& v : mesh.positions) {
-        const Vec3d l = grid.toLocal(v);
-        points.emplace_back(l.x, l.y, l.z);
-    }
+    const std::vector<K::Point_3> points = detail::localPoints(mesh, grid);
     std::vector<std::vector<std::size_t>> faces;
     for (const auto& f : mesh.triangles) faces.push_back({f[0], f[1], f[2]});
     // As given; failing that, with coincident vertices welded and degenerate
@@ -89,14 +86,17 @@ HoleCheck checkHoles(const TriangleMesh& mesh, const GridSpec& grid, const std::
     const uint64_t nx = grid.dims[0] + 2ull, ny = grid.dims[1] + 2ull, nz = grid.dims[2] + 2ull;
     const uint64_t cells = nx * ny * nz;
     if (cells > (uint64_t(1) << 33))
-        throw Error(fmt::format("the hole check needs {:.1f} GB for a {} x {} x {} grid; validate at a coarser "
+        throw Error(fmt::format("{}: the hole check needs {:.1f} GB for a {} x {} x {} grid; validate at a coarser "
                                 "resolution or skip it with --no-holes",
-                                double(cells) / 1e9, nx, ny, nz));
+                                mesh.source, double(cells) / 1e9, nx, ny, nz));
     auto at = [&](uint64_t x, uint64_t y, uint64_t z) { return (x * ny + y) * nz + z; };
     // state: 0 empty and unreached, 255 occupied, 1..26 reached via offset code-1, 254 the seed.
     std::vector<uint8_t> state(cells, 0);
     for (uint64_t k : voxels) {
         const auto p = unpackVoxelKey(k);
+        if (p[0] >= grid.dims[0] || p[1] >= grid.dims[1] || p[2] >= grid.dims[2])
+            throw Error(fmt::format("{}: voxel ({}, {}, {}) lies outside the {} x {} x {} grid", mesh.source, p[0], p[1],
+                                    p[2], grid.dims[0], grid.dims[1], grid.dims[2]));
         state[at(p[0] + 1ull, p[1] + 1ull, p[2] + 1ull)] = 255;
     }
     const auto off = offsets(connectivity);

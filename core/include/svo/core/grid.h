@@ -15,6 +15,7 @@
 /// in float. The guard band epsilon() bounds float rounding at that magnitude.
 #include <array>
 #include <cstdint>
+#include <string>
 
 #include "svo/core/mesh.h"
 
@@ -40,7 +41,8 @@ struct GridSpec {
         return {voxelSize * double(shift[0]), voxelSize * double(shift[1]), voxelSize * double(shift[2])};
     }
     uint32_t maxDim() const;
-    /// Guard band, in voxels: 32 float ulps of the largest local coordinate.
+    /// Guard band, in voxels: 32 float ulps (2^-24 each) of the largest local
+    /// dimension, so 16 to 32 ulps of the largest local coordinate.
     /// The GPU grows each cube by epsilon()/2; see docs/precision.md.
     double epsilon() const;
 };
@@ -53,6 +55,15 @@ struct GridRequest {
 
 /// Largest local extent per axis: voxel keys pack 21 bits per axis.
 constexpr uint32_t kMaxGridDim = 1u << 21;
+
+/// The largest multiple of 8 at or below i: brick and OpenVDB leaf origins.
+constexpr int64_t floorTo8(int64_t i) { return i >= 0 ? i / 8 * 8 : -((-i + 7) / 8) * 8; }
+
+/// Throws svo::Error (prefixed with `what`) unless the grid is usable: a
+/// positive finite voxel size, dims within kMaxGridDim, an anchor that is a
+/// multiple of 8, and every global index (anchor + [0, dims)) inside OpenVDB's
+/// int32 coordinates, also after the whole-voxel shift.
+void checkGrid(const GridSpec& grid, const std::string& what);
 
 /// Chooses voxel size, shift, anchor and dims for a mesh. Throws svo::Error for
 /// a bad request (non-positive, non-finite), a mesh with zero extent under

@@ -15,6 +15,9 @@
 
 namespace svo {
 
+/// Sums hold at most 32,767 contributions per voxel (a unit normal in 16.16
+/// fixed point times that count fits 32 bits); finishAttributes refuses more.
+
 /// One voxel's sums: [0] ~(smallest triangle id) (0: none), [1..3] normal,
 /// [4..6] colour, [7] pair count. Matches octree_attributes.comp.
 using AttributeSums = std::array<uint32_t, 8>;
@@ -29,7 +32,11 @@ TriangleValues triangleValues(const TriangleMesh& mesh, bool colors);
 /// 16.16 fixed point, rounding half to even (GLSL roundEven).
 int32_t toFixed(float v);
 
+/// The asked-for channels the mesh can give: colour only with vertex colours.
+uint32_t availableChannels(const TriangleMesh& mesh, uint32_t channels);
+
 /// Turns sums into the asked-for channels (a bit set of AttributeChannel).
+/// Throws svo::Error when a voxel has more contributions than the sums hold.
 VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_t channels);
 
 /// The CPU reference: pairs from the shared overlap test on cubes grown by

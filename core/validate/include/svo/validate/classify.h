@@ -25,6 +25,8 @@ struct VoxelCase {
 struct Classification {
     uint64_t voxels = 0, required = 0, allowed = 0;
     std::vector<uint64_t> missed, boundary, extra; ///< sorted keys
+    /// The worst cases, ranked over all missed (extra) voxels, or over an even
+    /// sample of 20,000 of them when there are more.
     std::vector<VoxelCase> worstMissed;            ///< nearest the surface first: the clearest misses
     std::vector<VoxelCase> worstExtra;             ///< farthest from the surface first
 };
