@@ -55,10 +55,6 @@ public:
     uint64_t bytes() const { return bytes_; }
     void bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, h_.get()); }
     void bind(GLenum target) const { glBindBuffer(target, h_.get()); }
-    void write(uint64_t offset, uint64_t bytes, const void* data) const
-    {
-        glNamedBufferSubData(h_.get(), GLintptr(offset), GLsizeiptr(bytes), data);
-    }
     /// Small reads (counters): glGetNamedBufferSubData.
     void read(uint64_t offset, uint64_t bytes, void* out) const
     {

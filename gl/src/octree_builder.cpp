@@ -40,8 +40,8 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
                                            uint64_t brickCapacity) const
 {
     const uint32_t L = brickLevelFor(grid);
-    constexpr uint64_t kMax = (uint64_t(1) << 32) - 16;
-    if (nodeCapacity > kMax || brickCapacity > kMax)
+    // The shaders index uint words: 2 per node and 16 per brick, in 32 bits.
+    if (nodeCapacity > (uint64_t(1) << 31) - 16 || brickCapacity > (uint64_t(1) << 28))
         throw Error(fmt::format("the octree would need {} nodes and {} bricks, beyond 32-bit indices; use a coarser grid",
                                 nodeCapacity, brickCapacity));
     Build b;
@@ -88,7 +88,7 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
     if (in.masks) in.masks->bindBase(GL_SHADER_STORAGE_BUFFER, 5);
     else in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, 5); // unused, but bound
     fill_.dispatchIndirect(b.state, offsetof(BuildState, entryDispatch));
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT); // readback, attribute pass
     checkGl("octree build");
     return b;
 }
@@ -120,8 +120,15 @@ OctreeVoxelization buildOctreeGpu(Context&, const GridSpec& grid, const std::vec
     std::vector<Brick> masks;
     keys.reserve(bricks.size());
     masks.reserve(bricks.size());
-    for (const auto& [key, mask] : bricks)
-        if (mask.count()) keys.push_back(brickOfKey(key)), masks.push_back(mask);
+    const uint32_t L = brickLevelFor(grid);
+    for (const auto& [key, mask] : bricks) {
+        if (!mask.count()) continue;
+        const auto p = unpackVoxelKey(key);
+        if (std::max({p[0], p[1], p[2]}) >> 3 >> L)
+            throw Error(fmt::format("brick at local ({}, {}, {}) lies outside the grid {} x {} x {}", p[0] & ~7u,
+                                    p[1] & ~7u, p[2] & ~7u, grid.dims[0], grid.dims[1], grid.dims[2]));
+        keys.push_back(brickOfKey(key)), masks.push_back(mask);
+    }
     const Buffer entries("brick keys", keys.size() * 8, keys.data(), 0);
     const Buffer maskBuffer("brick masks", masks.size() * sizeof(Brick), masks.data(), 0);
     uploadTimer.end();
@@ -135,10 +142,10 @@ OctreeVoxelization buildOctreeGpu(Context&, const GridSpec& grid, const std::vec
     in.masks = &maskBuffer;
     TimerQuery timer;
     timer.begin();
-    auto build = builder.record(grid, in, OctreeBuilder::nodeBound(brickLevelFor(grid), keys.size()), keys.size());
+    auto build = builder.record(grid, in, OctreeBuilder::nodeBound(L, keys.size()), keys.size());
     timer.end();
     OctreeBuilder::readCounts(build);
-    if (build.overflowed()) throw Error("internal error: the octree build overflowed an exact bound");
+    if (build.overflowed()) throw Error("internal error: the octree build overflowed its upper bound");
     result.stages.front().gpuMs = uploadTimer.milliseconds();
     result.stages.push_back({"octree build", timer.milliseconds(), msSince(t0)});
     result.gpuBytes = entries.bytes() + maskBuffer.bytes() + build.bytes();

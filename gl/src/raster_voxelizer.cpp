@@ -212,6 +212,7 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
     double voxelizeGpu = 0;
     uint32_t count = 0;
     for (int attempt = 0;; ++attempt) {
+        list = {}; // free the old list before the larger one is allocated
         list = makeList(capacity);
         TimerQuery timer;
         timer.begin();
@@ -267,6 +268,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
         auto t0 = Clock::now();
         TimerQuery drawTimer, buildTimer;
         if (!drawn) {
+            list = {};
             list = makeList(listCapacity);
             if (options.attributes) triangleList = Buffer("triangle list", listCapacity * 4);
             drawTimer.begin();
@@ -280,6 +282,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
         in.listCounter = &counter;
         in.entryCapacity = listCapacity;
         buildTimer.begin();
+        build = {}; // free the old buffers first: a retry must not hold both
         build = builder.record(grid, in, nodeCapacity, brickCapacity);
         buildTimer.end();
         OctreeBuilder::readCounts(build);
@@ -299,8 +302,8 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
                 brickCapacity = build.counts.brickCount; // every brick node was reached: exact
             } else {
                 brickCapacity = std::max<uint64_t>(build.counts.brickCount, brickCapacity) * 2;
-                nodeCapacity = std::min(std::max<uint64_t>(build.counts.nodeCount, nodeCapacity) * 2,
-                                        OctreeBuilder::nodeBound(L, brickCapacity));
+                // Counts past an overflowed level are lower bounds: double, never shrink.
+                nodeCapacity = std::max<uint64_t>(build.counts.nodeCount, nodeCapacity) * 2;
             }
         } else {
             break;

@@ -132,6 +132,9 @@ GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name)
             throw Error(fmt::format("{}: grid '{}' is translated by {} voxels along {}, not a whole number; svo's "
                                     "octrees sit on whole-voxel lattices",
                                     name, base.getName(), s, "xyz"[a]));
+        if (!(std::abs(r) < 9.0e18))
+            throw Error(fmt::format("{}: grid '{}' is translated by {:.3g} voxels along {}, beyond 64-bit indices",
+                                    name, base.getName(), r, "xyz"[a]));
         out.grid.shift[a] = int64_t(r);
     }
 
@@ -165,16 +168,25 @@ GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name)
         // Active tiles (above the leaf level) become full bricks.
         Brick full;
         std::fill(full.words, full.words + 8, ~uint64_t(0));
+        // Count first: a few large tiles can stand for more bricks than memory holds.
         auto it = tree.cbeginValueOn();
         it.setMaxDepth(it.getLeafDepth() - 1);
+        uint64_t tileBricks = 0;
+        for (auto counter = it; counter; ++counter)
+            if (counter.isTileValue()) tileBricks += counter.getBoundingBox().volume() / 512;
+        if (tileBricks > (uint64_t(1) << 28))
+            throw Error(fmt::format("{}: grid '{}' has active tiles covering {} bricks ({:.1f} G voxels), more than "
+                                    "svo expands",
+                                    name, base.getName(), tileBricks, double(tileBricks) * 512 / 1e9));
+        out.bricks.reserve(out.bricks.size() + tileBricks);
         for (; it; ++it) {
             if (!it.isTileValue()) continue;
             const openvdb::CoordBBox tile = it.getBoundingBox();
             ++out.tilesExpanded;
-            for (int x = tile.min()[0]; x <= tile.max()[0]; x += 8)
-                for (int y = tile.min()[1]; y <= tile.max()[1]; y += 8)
-                    for (int z = tile.min()[2]; z <= tile.max()[2]; z += 8)
-                        out.bricks.emplace_back(keyAt(openvdb::Coord(x, y, z)), full);
+            for (int64_t x = tile.min()[0]; x <= tile.max()[0]; x += 8)
+                for (int64_t y = tile.min()[1]; y <= tile.max()[1]; y += 8)
+                    for (int64_t z = tile.min()[2]; z <= tile.max()[2]; z += 8)
+                        out.bricks.emplace_back(keyAt(openvdb::Coord(int32_t(x), int32_t(y), int32_t(z))), full);
         }
     });
     if (!typed)

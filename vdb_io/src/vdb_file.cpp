@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <fmt/format.h>
 
 #include "svo/core/atomic_file.h"
@@ -16,16 +17,16 @@ using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 /// Opens a .vdb for reading, turning OpenVDB's exceptions into svo::Error.
-openvdb::io::File openVdb(const std::string& path)
+std::unique_ptr<openvdb::io::File> openVdb(const std::string& path)
 {
     openvdb::initialize();
     std::error_code ec;
     if (!fs::exists(path, ec)) throw Error(fmt::format("{}: no such file", path));
     if (fs::is_directory(path, ec)) throw Error(fmt::format("{}: is a folder, not a .vdb file", path));
     if (fs::file_size(path, ec) == 0) throw Error(fmt::format("{}: the file is empty", path));
-    openvdb::io::File file(path);
+    auto file = std::make_unique<openvdb::io::File>(path); // File cannot be moved
     try {
-        file.open(false); // no delayed loading: the file is read whole
+        file->open(false); // no delayed loading: the file is read whole
     } catch (const std::exception& e) {
         throw Error(fmt::format("{}: not a readable VDB file: {}", path, e.what()));
     }
@@ -99,36 +100,16 @@ void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::str
     writeGrids(path, grids);
 }
 
-std::vector<VdbGridInfo> listVdbGrids(const std::string& path)
-{
-    auto file = openVdb(path);
-    std::vector<VdbGridInfo> out;
-    try {
-        for (const auto& meta : *file.readAllGridMetadata()) {
-            VdbGridInfo info;
-            info.name = meta->getName();
-            info.type = meta->type();
-            info.voxelSize = meta->voxelSize()[0];
-            if (auto m = meta->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT))
-                info.activeVoxels = uint64_t(m->value());
-            out.push_back(info);
-        }
-    } catch (const std::exception& e) {
-        throw Error(fmt::format("{}: cannot read the grid list: {}", path, e.what()));
-    }
-    return out;
-}
-
 VdbBricks readVdbBricks(const std::string& path, const std::string& gridName)
 {
     auto file = openVdb(path);
     openvdb::GridBase::Ptr grid;
     try {
-        auto names = file.beginName();
-        if (!(names != file.endName())) throw Error(fmt::format("{}: the file holds no grids", path));
+        auto names = file->beginName();
+        if (!(names != file->endName())) throw Error(fmt::format("{}: the file holds no grids", path));
         const std::string name = gridName.empty() ? names.gridName() : gridName;
-        if (!file.hasGrid(name)) throw Error(fmt::format("{}: no grid named '{}'", path, name));
-        grid = file.readGrid(name);
+        if (!file->hasGrid(name)) throw Error(fmt::format("{}: no grid named '{}'", path, name));
+        grid = file->readGrid(name);
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {

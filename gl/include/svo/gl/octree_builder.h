@@ -16,8 +16,9 @@
 /// waits once, to read the sizes back. Duplicate entries are harmless.
 ///
 /// Buffers are sized from an estimate; when a counter passes its capacity the
-/// build runs again with room for what was counted (reported as a retry), so
-/// nothing is ever truncated.
+/// build runs again with more room (reported as a retry), so nothing is ever
+/// truncated. buildOctreeGpu knows its brick count and sizes to an upper bound.
+/// Limits: 2^31 nodes and 2^28 bricks (32-bit word indices in the shaders).
 #include <utility>
 #include <vector>
 

@@ -46,11 +46,11 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
 
 /// The voxel set as an octree: rasterize, build the octree on the GPU from the
 /// voxel list (octree_builder.h), read back only nodes and bricks. The CPU
-/// waits once, after all passes are issued.
+/// waits once, after all passes are issued (and once more for attribute channels).
 OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                                     const RasterOptions& options = {});
 
-/// "hardware" or "shader": which dilation voxelizeRaster would use.
+/// "hardware", "shader" or "centroid-push (baseline)": which dilation voxelizeRaster would use.
 const char* conservativeModeName(const Context& context, const RasterOptions& options);
 
 } // namespace svo::gl

@@ -40,14 +40,6 @@ WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOp
 void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::string, Octree>>& grids,
                    const std::map<std::string, std::string>& metadata);
 
-struct VdbGridInfo {
-    std::string name, type;
-    uint64_t activeVoxels = 0, leaves = 0;
-    double voxelSize = 0;
-};
-/// The grids of a file. Throws svo::Error for an unreadable or non-VDB file.
-std::vector<VdbGridInfo> listVdbGrids(const std::string& path);
-
 /// The active voxels of one grid (`gridName`, or the first grid when empty)
 /// as bricks, active tiles expanded. Throws svo::Error when the file has no
 /// grids, the grid is missing, or its type or transform is unsupported.
