@@ -19,7 +19,7 @@ int main(int argc, char** argv)
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        return app.exit(e) == 0 ? 0 : 1; // --help and --version exit 0; bad arguments are errors (1)
     } catch (const svo::app::Failure& e) {
         fmt::print(stderr, "svo: {}\n", e.what());
         return e.code;

@@ -3,9 +3,11 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <fmt/format.h>
 
 #include "progress.h"
+#include "svo/core/error.h"
 #include "svo/core/cpu_voxelizer.h"
 #include "svo/core/octree.h"
 #include "svo/core/voxel_attributes.h"
@@ -113,6 +115,25 @@ MeshVoxelization voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, co
     }
     out.result = medianOf(std::move(runs));
     return out;
+}
+
+std::string jsonEscape(const std::string& text)
+{
+    std::string out;
+    for (const unsigned char c : text) {
+        if (c == '"' || c == '\\') out += '\\', out += char(c);
+        else if (c < 0x20) out += fmt::format("\\u{:04x}", c);
+        else out += char(c);
+    }
+    return out;
+}
+
+void checkDistinctOutputs(const std::vector<std::string>& paths)
+{
+    for (size_t i = 0; i < paths.size(); ++i)
+        for (size_t j = i + 1; j < paths.size(); ++j)
+            if (!paths[i].empty() && std::filesystem::weakly_canonical(paths[i]) == std::filesystem::weakly_canonical(paths[j]))
+                throw Error(fmt::format("{}: given for two outputs; each output needs its own file", paths[i]));
 }
 
 std::string thousands(uint64_t n)

@@ -3,6 +3,7 @@
 /// The GPU/CPU backend choice the subcommands share: a mesh and a grid in, an
 /// octree out, with the words that describe where it ran.
 #include <string>
+#include <vector>
 
 #include "svo/core/mesh.h"
 #include "svo/gl/octree_builder.h"
@@ -38,5 +39,12 @@ MeshVoxelization voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, co
 
 /// 1234567 -> "1,234,567"
 std::string thousands(uint64_t n);
+
+/// `text` as the inside of a JSON string: quotes, backslashes and control
+/// characters escaped.
+std::string jsonEscape(const std::string& text);
+
+/// Throws svo::Error when two output paths name the same file.
+void checkDistinctOutputs(const std::vector<std::string>& paths);
 
 } // namespace svo::app

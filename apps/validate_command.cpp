@@ -69,6 +69,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     for (const auto& w : mesh.warnings) fmt::print(stderr, "svo: warning: {}\n", w);
     if (!a.json.empty()) checkWritable(a.json);
     if (!a.errors.empty()) checkWritable(a.errors);
+    checkDistinctOutputs({a.json, a.errors});
     const GridSpec grid = makeGrid(mesh, request);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
 
@@ -179,11 +180,6 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     if (!a.json.empty()) {
         std::string path;
         for (const auto& p : holes.leakPath) path += (path.empty() ? "" : ", ") + idx(p);
-        auto esc = [](std::string t) {
-            for (size_t i = 0; i < t.size(); ++i)
-                if (t[i] == '"' || t[i] == '\\') t.insert(i++, 1, '\\');
-            return t;
-        };
         const std::string text = fmt::format(
             "{{\n  \"scene\": \"{}\", \"triangles\": {}, \"degenerate\": {}, \"dims\": [{}, {}, {}], \"voxel_size\": {},\n"
             "  \"backend\": \"{}\", \"epsilon\": {},\n  \"voxels\": {}, \"required\": {}, \"allowed\": {},\n"
@@ -191,11 +187,11 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
             "  \"holes\": {{\"applies\": {}, \"reason\": \"{}\", \"connectivity\": {}, \"leak\": {}, \"filled\": {}, "
             "\"frontier\": {}, \"path\": [{}]}},\n  \"octree_consistent\": {},\n"
             "  \"validation_seconds\": {:.4f}, \"gpu_ms\": {:.4f},\n  \"passed\": {}, \"reason\": \"{}\"\n}}\n",
-            esc(scene), mesh.triangles.size(), ref.degenerate, grid.dims[0], grid.dims[1], grid.dims[2], grid.voxelSize,
-            esc(mv.backendLine), eps, c.voxels, c.required, c.allowed, c.missed.size(), c.boundary.size(),
-            c.extra.size(), casesJson(c.worstMissed), casesJson(c.worstExtra), holes.applies, esc(holes.reason),
+            jsonEscape(scene), mesh.triangles.size(), ref.degenerate, grid.dims[0], grid.dims[1], grid.dims[2], grid.voxelSize,
+            jsonEscape(mv.backendLine), eps, c.voxels, c.required, c.allowed, c.missed.size(), c.boundary.size(),
+            c.extra.size(), casesJson(c.worstMissed), casesJson(c.worstExtra), holes.applies, jsonEscape(holes.reason),
             holes.connectivity, holes.leak, holes.filled, holes.frontier, path, consistency.empty(), validateSeconds,
-            gpuMs, !failed, esc(reason));
+            gpuMs, !failed, jsonEscape(reason));
         writeFileAtomically(a.json, text);
     }
     if (failed) throw Failure("validation failed: " + reason);

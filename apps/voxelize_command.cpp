@@ -52,6 +52,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     const std::string output = a.output.empty() ? scene + ".vdb" : a.output;
     checkOutputPath(output);
     if (!a.json.empty()) checkWritable(a.json);
+    checkDistinctOutputs({output, a.json});
     const GridSpec grid = makeGrid(mesh, request);
 
     MeshVoxelization mv = voxelizeMesh(mesh, grid, a.backend);
@@ -100,11 +101,6 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     fmt::print("  {:<20} {:>10} {:>10.2f}\n", "total", "", wall);
 
     if (!a.json.empty()) {
-        auto esc = [](std::string t) {
-            for (size_t i = 0; i < t.size(); ++i)
-                if (t[i] == '"' || t[i] == '\\') t.insert(i++, 1, '\\');
-            return t;
-        };
         std::string stages;
         for (const auto& s : vox.stages)
             stages += fmt::format("{}{{\"name\": \"{}\", \"gpu_ms\": {}, \"wall_ms\": {:.4f}}}", stages.empty() ? "" : ", ",
@@ -117,8 +113,8 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
             "  \"voxels\": {}, \"bricks\": {}, \"nodes\": {}, \"nodes_per_level\": [{}], \"octree_bytes\": {},\n"
             "  \"list_entries\": {}, \"overflow_retries\": {}, \"gpu_bytes\": {}, \"repeat\": {}, \"peak_rss_mb\": {:.1f},\n"
             "  \"stages\": [{}],\n  \"total_wall_ms\": {:.4f}\n}}\n",
-            esc(scene), mesh.triangles.size(), grid.dims[0], grid.dims[1], grid.dims[2], grid.voxelSize,
-            request.resolution, a.backend.backend, a.backend.conservative, esc(mv.renderer), grid.epsilon(), stats.voxels, stats.bricks, vox.octree.nodes.size(), levels,
+            jsonEscape(scene), mesh.triangles.size(), grid.dims[0], grid.dims[1], grid.dims[2], grid.voxelSize,
+            request.resolution, a.backend.backend, a.backend.conservative, jsonEscape(mv.renderer), grid.epsilon(), stats.voxels, stats.bricks, vox.octree.nodes.size(), levels,
             stats.bytes, vox.listEntries, vox.overflowRetries, vox.gpuBytes, a.backend.repeat, peakRssMb(), stages, wall);
         writeFileAtomically(a.json, text);
     }

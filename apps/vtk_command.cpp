@@ -11,6 +11,7 @@
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 #include "vtk_export.h"
+#include "xvfb.h"
 
 namespace svo::app {
 namespace {
@@ -61,7 +62,11 @@ void runVtk(VtkArgs a, const CLI::App& cmd)
                                     a.output));
         checkWritable(a.output);
     }
-    if (!a.png.empty()) checkWritable(a.png);
+    if (!a.png.empty()) {
+        checkWritable(a.png);
+        requireDisplay(); // before loading and voxelizing
+    }
+    checkDistinctOutputs({a.output, a.png});
     a.in.gridRequest = gridRequest(cmd, a.resolution, a.voxelSize);
     const LoadedOctree lo = loadOctree(a.input, a.in);
     fmt::print("svo vtk\n");
@@ -69,13 +74,6 @@ void runVtk(VtkArgs a, const CLI::App& cmd)
     fmt::print("  {:<8} {} voxels, {} levels (bricks at {}; levels {}..{} split bricks down to voxels)\n", "octree",
                lo.octree.voxelCount(), lo.octree.brickLevel + 1, lo.octree.brickLevel, lo.octree.brickLevel + 1,
                lo.octree.brickLevel + 3);
-    if (!a.output.empty()) {
-        Progress p("writing " + a.output);
-        if (ext == ".htg") writeHyperTreeGrid(a.output, lo.octree, levels);
-        if (ext == ".vtu") writeVoxelCells(a.output, lo.octree);
-        if (ext == ".vtp") writeNodeOutlines(a.output, lo.octree, levels);
-        fmt::print("  {:<8} {}\n", "output", a.output);
-    }
     if (!a.png.empty()) {
         Progress p("rendering " + a.png);
         PictureOptions po;
@@ -85,6 +83,13 @@ void runVtk(VtkArgs a, const CLI::App& cmd)
         po.outlineLevels = levels;
         renderPicture(a.png, lo.octree, po);
         fmt::print("  {:<8} {} ({} x {})\n", "picture", a.png, po.width, po.height);
+    }
+    if (!a.output.empty()) {
+        Progress p("writing " + a.output);
+        if (ext == ".htg") writeHyperTreeGrid(a.output, lo.octree, levels);
+        if (ext == ".vtu") writeVoxelCells(a.output, lo.octree);
+        if (ext == ".vtp") writeNodeOutlines(a.output, lo.octree, levels);
+        fmt::print("  {:<8} {}\n", "output", a.output);
     }
 }
 

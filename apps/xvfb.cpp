@@ -30,15 +30,21 @@ bool onPath(const char* exe)
 
 } // namespace
 
+void requireDisplay()
+{
+    if (const char* d = std::getenv("DISPLAY"); d && *d) return;
+    if (!onPath("Xvfb"))
+        throw Error("rendering a picture needs an X display: Debian's VTK 9.1 has no EGL or OSMesa backend. Set "
+                    "DISPLAY, or install Xvfb (apt-get install xvfb) and svo starts one itself");
+}
+
 XDisplay::XDisplay()
 {
+    requireDisplay();
     if (const char* d = std::getenv("DISPLAY"); d && *d) {
         name_ = d;
         return;
     }
-    if (!onPath("Xvfb"))
-        throw Error("rendering a picture needs an X display: Debian's VTK 9.1 has no EGL or OSMesa backend. Set "
-                    "DISPLAY, or install Xvfb (apt-get install xvfb) and svo starts one itself");
     int fds[2];
     if (::pipe(fds) != 0) throw Error("cannot create a pipe to start Xvfb");
     pid_ = ::fork();

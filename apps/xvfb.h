@@ -7,6 +7,10 @@
 
 namespace svo::app {
 
+/// Throws the error XDisplay would, without starting anything: for checking
+/// before long work.
+void requireDisplay();
+
 class XDisplay {
 public:
     /// Uses $DISPLAY when set; otherwise starts Xvfb on a free display and sets

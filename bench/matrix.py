@@ -205,10 +205,13 @@ def main():
                                  "wall_ms": sum(s["wall_ms"] for s in cell["stages"])})
                     if res <= a.validate_max:
                         vj = os.path.join(tmp, "v.json")
-                        run([a.svo, "validate", path, "-r", str(res), "--no-holes", "--json", vj] + backend)
-                        with open(vj) as f:
-                            v = json.load(f)
-                        cell.update({"missed": v["missed"], "extra": v["extra"], "boundary": v["boundary"]})
+                        if os.path.exists(vj):
+                            os.remove(vj)
+                        q = run([a.svo, "validate", path, "-r", str(res), "--no-holes", "--json", vj] + backend)
+                        if q.returncode in (0, 3):  # 3: validation failed, which is data here
+                            with open(vj) as f:
+                                v = json.load(f)
+                            cell.update({"missed": v["missed"], "extra": v["extra"], "boundary": v["boundary"]})
                     results["cells"].append(cell)
                     results["renderer"] = cell["renderer"] if method != "cpu" else results.get("renderer", "-")
                     if method in ("hardware", "shader") and (best is None or e2e < best["svo_ms"]):

@@ -76,19 +76,19 @@ TEST_F(Cli, BadMeshFailsAndKeepsAnEarlierOutput)
 TEST_F(Cli, BadArgumentsFailWithoutOutput)
 {
     const auto missing = runSvo("voxelize " + path("missing.stl") + " -o " + path("a.vdb"));
-    EXPECT_NE(missing.code, 0);
+    EXPECT_EQ(missing.code, 1);
     EXPECT_NE(missing.out.find("no such file"), std::string::npos) << missing.out;
     for (const char* r : {"0", "-5"}) {
         const auto res = runSvo(std::string("voxelize -r ") + r + " -o " + path("a.vdb"));
-        EXPECT_NE(res.code, 0) << res.out;
+        EXPECT_EQ(res.code, 1) << res.out;
         EXPECT_NE(res.out.find("--resolution"), std::string::npos) << res.out;
     }
     const auto huge = runSvo("voxelize -r 100000000 -o " + path("a.vdb"));
-    EXPECT_NE(huge.code, 0);
+    EXPECT_EQ(huge.code, 1);
     const auto size = runSvo("voxelize --voxel-size -1 -o " + path("a.vdb"));
-    EXPECT_NE(size.code, 0);
+    EXPECT_EQ(size.code, 1);
     const auto folder = runSvo("voxelize -r 16 -o /nonexistent-folder/a.vdb");
-    EXPECT_NE(folder.code, 0);
+    EXPECT_EQ(folder.code, 1);
     EXPECT_NE(folder.out.find("does not exist"), std::string::npos) << folder.out;
     const auto device = runSvo("voxelize -r 16 --device 97 -o " + path("a.vdb"));
     EXPECT_EQ(device.code, 1);
@@ -136,6 +136,18 @@ TEST_F(Cli, BadOctreeInputsFailClearly)
     EXPECT_EQ(e.code, 1);
     EXPECT_NE(e.out.find(".vdb or .svo"), std::string::npos) << e.out;
     expectOnly({"junk.svo", "tri.off"});
+}
+
+TEST_F(Cli, ValidateFailsWithExitCode3OnMissedVoxels)
+{
+    // The seed report's centroid-push dilation, kept as a baseline, misses voxels.
+    const auto r = runSvo("validate -r 64 --conservative centroid --no-holes --json " + path("v.json"));
+    EXPECT_EQ(r.code, 3) << r.out;
+    EXPECT_NE(r.out.find("svo: validation failed:"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("voxels missed"), std::string::npos) << r.out;
+    std::ifstream in(path("v.json"));
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(json.find("\"passed\": false"), std::string::npos) << json;
 }
 
 TEST_F(Cli, ValidatePassesAndWritesItsReports)
