@@ -17,6 +17,7 @@ packages=(
   libvtk9-dev xvfb
   libcli11-dev libfmt-dev libgtest-dev
   pybind11-dev python3-dev python3-pytest python3-numpy
+  nlohmann-json3-dev libnanovdb-dev python3-openvdb
 )
 # The fuzz targets need clang and its libFuzzer runtime.
 [ "$mode" = test ] && packages+=(clang-14 libclang-rt-14-dev)
