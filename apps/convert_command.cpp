@@ -4,18 +4,19 @@
 #include <fmt/format.h>
 #include <memory>
 
+#include "cli_options.h"
 #include "commands.h"
-#include "octree_input.h"
-#include "octree_output.h"
+#include "progress.h"
 #include "svo/core/error.h"
+#include "svo/voxelizer.h"
 
 namespace svo::app {
 namespace {
 
 struct ConvertArgs {
-    std::string input, output;
-    InputOptions in;
-    OutputSettings out;
+    std::string input, output, gridName;
+    BackendArgs backend;
+    OutputArgs out;
 };
 
 void runConvert(const ConvertArgs& a)
@@ -24,17 +25,31 @@ void runConvert(const ConvertArgs& a)
     if (ext != ".vdb" && ext != ".svo")
         throw Error(fmt::format("{}: svo convert reads .vdb and .svo files; voxelize meshes with svo voxelize", a.input));
     checkOutputPath(a.output);
-    LoadedOctree lo = loadOctree(a.input, a.in);
-    std::map<std::string, std::string> meta = {{"svo:source", a.input}, {"svo:version", SVO_VERSION}};
-    const OutputReport written = writeOctreeOutput(a.output, lo.octree, a.out, meta);
+    checkDistinctOutputs({a.input, a.output});
+    const GridOptions grids = a.out.gridOptions();
+    if (outputFormat(a.output) == OutputFormat::Svo && (grids.fog || grids.topology != GridOptions::Topology::Mask))
+        throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", a.output));
+    Voxelizer voxelizer(a.backend.deviceOptions());
+    VoxelizeOptions options = a.backend.voxelizeOptions();
+    VoxelizeStats stats;
+    ProgressInterrupter progress("building the octree");
+    options.interrupter = &progress;
+    options.stats = &stats;
+    const LoadedOctree lo = loadOctree(voxelizer, a.input, a.gridName, {}, options);
+    const std::map<std::string, std::string> meta = {{"svo:source", a.input}, {"svo:version", SVO_VERSION}};
+    WriteReport written;
+    {
+        Progress p("writing " + a.output);
+        written = writeOctree(a.output, lo.octree, grids, meta);
+    }
     fmt::print("svo convert\n");
-    fmt::print("  {:<12} {}\n", "input", lo.description);
-    fmt::print("  {:<12} {}\n", "output", written.description);
+    fmt::print("  {:<12} {}\n", "input", describeInput(a.input, lo, stats));
+    fmt::print("  {:<12} {}\n", "output", describeOutput(a.output, written, grids));
     fmt::print("  {:<12} {} voxels in {} bricks\n", "octree", thousands(lo.octree.voxelCount()),
                thousands(lo.octree.bricks.size()));
     fmt::print("\n  {:<20} {:>10} {:>10}\n", "stage", "GPU ms", "wall ms");
-    for (const auto& s : lo.stages) fmt::print("  {:<20} {:>10} {:>10.2f}\n", s.name, s.gpuMs < 0 ? std::string("-") : fmt::format("{:.3f}", s.gpuMs), s.wallMs);
-    for (const auto& s : written.stages) fmt::print("  {:<20} {:>10} {:>10.2f}\n", s.name, "-", s.wallMs);
+    printStages(lo.stages);
+    printStages(written.stages);
 }
 
 } // namespace
@@ -44,9 +59,9 @@ void addConvertCommand(CLI::App& app)
     auto args = std::make_shared<ConvertArgs>();
     CLI::App* cmd = app.add_subcommand("convert", "Convert between .vdb grids and .svo octrees");
     cmd->add_option("input", args->input, "Input .vdb or .svo")->required();
-    cmd->add_option("-o,--output", args->output, "Output .svo or .vdb")->required();
-    cmd->add_option("--grid", args->in.gridName, "Grid of the input .vdb (default: the first)");
-    addBackendOptions(*cmd, args->in.backend);
+    cmd->add_option("-o,--output", args->output, "Output .svo, .vdb or .nvdb")->required();
+    cmd->add_option("--grid", args->gridName, "Grid of the input .vdb (default: the first)");
+    addBackendOptions(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
     cmd->callback([args] { runConvert(*args); });
 }

@@ -3,26 +3,35 @@
 #include <fmt/format.h>
 #include <memory>
 
+#include "cli_options.h"
 #include "commands.h"
-#include "octree_input.h"
-#include "octree_output.h"
+#include "progress.h"
+#include "svo/voxelizer.h"
 
 namespace svo::app {
 namespace {
 
 struct InfoArgs {
-    std::string input;
+    std::string input, gridName;
     int64_t resolution = 0;
     double voxelSize = 0;
-    InputOptions in;
+    BackendArgs backend;
 };
 
-void runInfo(InfoArgs a, const CLI::App& cmd)
+void runInfo(const InfoArgs& a, const CLI::App& cmd)
 {
-    a.in.gridRequest = gridRequest(cmd, a.resolution, a.voxelSize);
-    const LoadedOctree lo = loadOctree(a.input, a.in);
+    Voxelizer voxelizer(a.backend.deviceOptions());
+    VoxelizeOptions options = a.backend.voxelizeOptions();
+    VoxelizeStats stats;
+    ProgressInterrupter progress("building the octree");
+    options.interrupter = &progress;
+    options.stats = &stats;
+    const LoadedOctree lo =
+        loadOctree(voxelizer, a.input, a.gridName, gridRequest(cmd, a.resolution, a.voxelSize), options);
+    if (lo.mesh) printWarnings(lo.mesh->warnings);
+    printWarnings(stats.warnings);
     fmt::print("svo info\n");
-    fmt::print("  {:<12} {}\n", "input", lo.description);
+    fmt::print("  {:<12} {}\n", "input", describeInput(a.input, lo, stats));
     printOctreeSummary(lo.octree);
 }
 
@@ -33,9 +42,9 @@ void addInfoCommand(CLI::App& app)
     auto args = std::make_shared<InfoArgs>();
     CLI::App* cmd = app.add_subcommand("info", "Print the octree of a .svo, .vdb or mesh file: levels, nodes, bricks, bytes");
     cmd->add_option("input", args->input, "A .svo, .vdb or mesh file")->required();
-    cmd->add_option("--grid", args->in.gridName, "Grid of a .vdb input (default: the first)");
+    cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
     addGridOptions(*cmd, args->resolution, args->voxelSize);
-    addBackendOptions(*cmd, args->in.backend);
+    addBackendOptions(*cmd, args->backend);
     cmd->callback([args, cmd] { runInfo(*args, *cmd); });
 }
 

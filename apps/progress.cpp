@@ -27,10 +27,20 @@ void Progress::run()
     std::unique_lock<std::mutex> lock(mutex_);
     if (cv_.wait_for(lock, seconds(1), [this] { return done_; })) return;
     if (!tty) fmt::print(stderr, "{} ...\n", label_);
-    while (!cv_.wait_for(lock, milliseconds(250), [this] { return done_; }))
-        if (tty) fmt::print(stderr, "\r{} ... {:.1f} s", label_, duration<double>(steady_clock::now() - start).count());
+    while (!cv_.wait_for(lock, milliseconds(250), [this] { return done_; })) {
+        if (!tty) continue;
+        const double s = duration<double>(steady_clock::now() - start).count(), f = fraction_.load();
+        // The estimate assumes the rest goes at the pace so far; shown once 5 % is done.
+        if (f >= 0.05 && f < 1.0)
+            fmt::print(stderr, "\r{} ... {:.0f} %, {:.1f} s, about {:.0f} s left   ", label_, 100 * f, s,
+                       s * (1 - f) / f);
+        else if (f >= 0)
+            fmt::print(stderr, "\r{} ... {:.0f} %, {:.1f} s   ", label_, 100 * f, s);
+        else
+            fmt::print(stderr, "\r{} ... {:.1f} s", label_, s);
+    }
     const double s = duration<double>(steady_clock::now() - start).count();
-    fmt::print(stderr, "{}{} done in {:.1f} s\n", tty ? "\r" : "", label_, s);
+    fmt::print(stderr, "{}{} done in {:.1f} s{}\n", tty ? "\r" : "", label_, s, tty ? "                    " : "");
 }
 
 } // namespace svo::app

@@ -3,15 +3,19 @@
 /// A progress line on stderr for any step that runs longer than a second.
 #include <atomic>
 #include <condition_variable>
+#include <memory>
 #include <mutex>
+#include <openvdb/util/NullInterrupter.h>
 #include <string>
 #include <thread>
 
 namespace svo::app {
 
-/// Shows "<label> ... 3.2 s" on stderr, refreshed 4 times a second, once the
-/// step has run for one second; on a non-terminal it prints one line when the
-/// step starts being slow and one when it ends. Quiet steps print nothing.
+/// Shows "<label> ... 42 %, 3.2 s, about 4 s left" on stderr, refreshed 4
+/// times a second, once the step has run for one second (the share and the
+/// estimate appear once set() has been called); on a non-terminal it prints
+/// one line when the step starts being slow and one when it ends. Quiet
+/// steps print nothing.
 class Progress {
 public:
     explicit Progress(std::string label);
@@ -19,13 +23,34 @@ public:
     Progress(const Progress&) = delete;
     Progress& operator=(const Progress&) = delete;
 
+    /// The share of the step done, 0..1 (thread-safe).
+    void set(double fraction) { fraction_.store(fraction); }
+
 private:
     void run();
     std::string label_;
+    std::atomic<double> fraction_{-1.0};
     std::mutex mutex_;
     std::condition_variable cv_;
     bool done_ = false;
     std::thread thread_;
+};
+
+/// The library's interrupter, shown as a Progress line for each call.
+class ProgressInterrupter : public openvdb::util::NullInterrupter {
+public:
+    explicit ProgressInterrupter(std::string label) : label_(std::move(label)) {}
+    void start(const char*) override { progress_ = std::make_unique<Progress>(label_); }
+    void end() override { progress_.reset(); }
+    bool wasInterrupted(int percent) override
+    {
+        if (progress_ && percent >= 0) progress_->set(percent / 100.0);
+        return false;
+    }
+
+private:
+    std::string label_;
+    std::unique_ptr<Progress> progress_;
 };
 
 } // namespace svo::app

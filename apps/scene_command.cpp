@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "commands.h"
-#include "mesh_voxelizer.h"
+#include "cli_options.h"
 #include "svo/core/default_scene.h"
 #include "svo/core/mesh_io.h"
 

@@ -5,20 +5,20 @@
 #include <fmt/format.h>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
+#include "cli_options.h"
 #include "commands.h"
-#include "mesh_voxelizer.h"
-#include "octree_output.h"
 #include "progress.h"
 #include "svo/core/atomic_file.h"
-#include "svo/core/cpu_voxelizer.h"
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"
 #include "svo/core/mesh_io.h"
 #include "svo/core/voxel_key.h"
-#include "svo/gl/raster_voxelizer.h"
 #include "svo/validate/classify.h"
 #include "svo/validate/hole_check.h"
 #include "svo/vdb_io/vdb_file.h"
+#include "svo/voxelizer.h"
 
 namespace svo::app {
 namespace {
@@ -27,7 +27,7 @@ struct ValidateArgs {
     std::string mesh, json, errors;
     int64_t resolution = 0;
     double voxelSize = 0;
-    BackendSettings backend;
+    BackendArgs backend;
     bool noHoles = false;
     bool strict = false;
     size_t worst = 5;
@@ -38,13 +38,11 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 
 std::string idx(const std::array<int64_t, 3>& p) { return fmt::format("[{}, {}, {}]", p[0], p[1], p[2]); }
 
-std::string casesJson(const std::vector<validate::VoxelCase>& cases)
+nlohmann::json casesJson(const std::vector<validate::VoxelCase>& cases)
 {
-    std::string s;
-    for (const auto& c : cases)
-        s += fmt::format("{}{{\"voxel\": {}, \"triangle\": {}, \"distance\": {:.6g}}}", s.empty() ? "" : ", ",
-                         idx(c.index), c.triangle, c.distance);
-    return "[" + s + "]";
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& c : cases) out.push_back({{"voxel", c.index}, {"triangle", c.triangle}, {"distance", c.distance}});
+    return out;
 }
 
 /// The GPU octree checked against the voxel list read back directly: every
@@ -66,36 +64,29 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
         Progress p("loading " + (a.mesh.empty() ? std::string("built-in scene") : a.mesh));
         mesh = a.mesh.empty() ? cornellBox() : loadMesh(a.mesh);
     }
-    for (const auto& w : mesh.warnings) fmt::print(stderr, "svo: warning: {}\n", w);
+    printWarnings(mesh.warnings);
     if (!a.json.empty()) checkWritable(a.json);
     if (!a.errors.empty()) checkWritable(a.errors);
     checkDistinctOutputs({a.json, a.errors});
     const GridSpec grid = makeGrid(mesh, request);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
 
-    // The voxelization under test, and the list it came from.
-    MeshVoxelization mv = voxelizeMesh(mesh, grid, a.backend);
-    const Octree& octree = mv.result.octree;
+    // The voxelization under test, and the voxel list it was built from (the
+    // same run, read back apart), to check every level of the octree against.
+    Voxelizer voxelizer(a.backend.deviceOptions());
+    VoxelizeOptions options = a.backend.voxelizeOptions();
+    VoxelizeStats stats;
+    ProgressInterrupter progress("voxelizing");
+    options.interrupter = &progress;
+    options.stats = &stats;
+    std::vector<uint64_t> list;
+    const Octree octree = voxelizer.voxelize(mesh, grid, options, &list);
+    printWarnings(stats.warnings);
     const std::vector<uint64_t> voxels = octreeKeys(octree);
-    double gpuMs = 0;
-    for (const auto& s : mv.result.stages) gpuMs += std::max(s.gpuMs, 0.0);
+    const double gpuMs = stats.gpuMs();
     std::string consistency;
     {
         Progress p("checking the octree against the voxel list");
-        std::vector<uint64_t> list;
-        if (a.backend.backend == "cpu") {
-            list = voxelizeCpu(mesh, grid).keys;
-        } else {
-            gl::ContextOptions co;
-            co.device = a.backend.device;
-            gl::Context context(co);
-            gl::RasterOptions ro;
-            ro.conservative = a.backend.conservative == "hardware" ? gl::ConservativeMode::Hardware
-                              : a.backend.conservative == "shader" ? gl::ConservativeMode::Shader
-                              : a.backend.conservative == "centroid" ? gl::ConservativeMode::CentroidPush
-                                                                   : gl::ConservativeMode::Auto;
-            list = gl::voxelizeRaster(context, mesh, grid, ro).keys;
-        }
         consistency = octreeConsistency(octree, list);
     }
 
@@ -123,7 +114,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
                thousands(ref.degenerate));
     fmt::print("  {:<12} {} x {} x {} local voxels, voxel size {:.6g}\n", "grid", grid.dims[0], grid.dims[1],
                grid.dims[2], grid.voxelSize);
-    fmt::print("  {:<12} {}\n", "backend", mv.backendLine);
+    fmt::print("  {:<12} {}\n", "backend", backendLine(stats));
     fmt::print("  {:<12} {:.3g} voxels: R = cubes shrunk by it, A = cubes grown by it (exact CGAL tests)\n",
                "guard band", eps);
     fmt::print("  {:<12} {} voxels; R {} , A {}\n", "sets", thousands(c.voxels), thousands(c.required),
@@ -178,21 +169,36 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     if (!reason.empty()) reason.resize(reason.size() - 2);
 
     if (!a.json.empty()) {
-        std::string path;
-        for (const auto& p : holes.leakPath) path += (path.empty() ? "" : ", ") + idx(p);
-        const std::string text = fmt::format(
-            "{{\n  \"scene\": \"{}\", \"triangles\": {}, \"degenerate\": {}, \"dims\": [{}, {}, {}], \"voxel_size\": {},\n"
-            "  \"backend\": \"{}\", \"epsilon\": {},\n  \"voxels\": {}, \"required\": {}, \"allowed\": {},\n"
-            "  \"missed\": {}, \"boundary\": {}, \"extra\": {},\n  \"worst_missed\": {},\n  \"worst_extra\": {},\n"
-            "  \"holes\": {{\"applies\": {}, \"reason\": \"{}\", \"connectivity\": {}, \"leak\": {}, \"filled\": {}, "
-            "\"frontier\": {}, \"path\": [{}]}},\n  \"octree_consistent\": {},\n"
-            "  \"validation_seconds\": {:.4f}, \"gpu_ms\": {:.4f},\n  \"passed\": {}, \"reason\": \"{}\"\n}}\n",
-            jsonEscape(scene), mesh.triangles.size(), ref.degenerate, grid.dims[0], grid.dims[1], grid.dims[2], grid.voxelSize,
-            jsonEscape(mv.backendLine), eps, c.voxels, c.required, c.allowed, c.missed.size(), c.boundary.size(),
-            c.extra.size(), casesJson(c.worstMissed), casesJson(c.worstExtra), holes.applies, jsonEscape(holes.reason),
-            holes.connectivity, holes.leak, holes.filled, holes.frontier, path, consistency.empty(), validateSeconds,
-            gpuMs, !failed, jsonEscape(reason));
-        writeFileAtomically(a.json, text);
+        const nlohmann::json report = {
+            {"scene", scene},
+            {"triangles", mesh.triangles.size()},
+            {"degenerate", ref.degenerate},
+            {"dims", grid.dims},
+            {"voxel_size", grid.voxelSize},
+            {"backend", backendLine(stats)},
+            {"epsilon", eps},
+            {"voxels", c.voxels},
+            {"required", c.required},
+            {"allowed", c.allowed},
+            {"missed", c.missed.size()},
+            {"boundary", c.boundary.size()},
+            {"extra", c.extra.size()},
+            {"worst_missed", casesJson(c.worstMissed)},
+            {"worst_extra", casesJson(c.worstExtra)},
+            {"holes",
+             {{"applies", holes.applies},
+              {"reason", holes.reason},
+              {"connectivity", holes.connectivity},
+              {"leak", holes.leak},
+              {"filled", holes.filled},
+              {"frontier", holes.frontier},
+              {"path", holes.leakPath}}},
+            {"octree_consistent", consistency.empty()},
+            {"validation_seconds", validateSeconds},
+            {"gpu_ms", gpuMs},
+            {"passed", !failed},
+            {"reason", reason}};
+        writeFileAtomically(a.json, report.dump(2) + "\n");
     }
     if (failed) throw Failure("validation failed: " + reason);
     fmt::print("  {:<12} passed: nothing missed{}\n", "verdict", holes.applies ? ", no leak" : "");

@@ -1,19 +1,20 @@
-// svo voxelize [MESH] -o out.vdb|out.svo [--resolution N | --voxel-size h]
+// svo voxelize [MESH] -o out.vdb|out.nvdb|out.svo [--resolution N | --voxel-size h]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sys/resource.h>
 
+#include "cli_options.h"
 #include "commands.h"
-#include "mesh_voxelizer.h"
-#include "octree_output.h"
 #include "progress.h"
 #include "svo/core/atomic_file.h"
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"
 #include "svo/core/mesh_io.h"
+#include "svo/voxelizer.h"
 
 namespace svo::app {
 namespace {
@@ -24,8 +25,9 @@ struct VoxelizeArgs {
     std::string json;
     int64_t resolution = 0;
     double voxelSize = 0;
-    BackendSettings backend;
-    OutputSettings out;
+    int repeat = 1;
+    BackendArgs backend;
+    OutputArgs out;
 };
 
 double peakRssMb()
@@ -47,76 +49,105 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         Progress p("loading " + (a.mesh.empty() ? std::string("built-in scene") : a.mesh));
         mesh = a.mesh.empty() ? cornellBox() : loadMesh(a.mesh);
     }
-    for (const auto& w : mesh.warnings) fmt::print(stderr, "svo: warning: {}\n", w);
+    printWarnings(mesh.warnings);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
     const std::string output = a.output.empty() ? scene + ".vdb" : a.output;
     checkOutputPath(output);
     if (!a.json.empty()) checkWritable(a.json);
     checkDistinctOutputs({output, a.json});
     const GridSpec grid = makeGrid(mesh, request);
+    const GridOptions grids = a.out.gridOptions();
+    if (outputFormat(output) == OutputFormat::Svo && (grids.fog || grids.topology != GridOptions::Topology::Mask))
+        throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
 
-    MeshVoxelization mv = voxelizeMesh(mesh, grid, a.backend);
-    auto& vox = mv.result;
-    std::map<std::string, std::string> meta = {
+    // Voxelize: with --repeat, one warm-up on the GPU, then per-stage medians.
+    Voxelizer voxelizer(a.backend.deviceOptions());
+    VoxelizeOptions options = a.backend.voxelizeOptions();
+    ProgressInterrupter progress("voxelizing");
+    options.interrupter = &progress;
+    std::vector<VoxelizeStats> runs(size_t(a.repeat));
+    Octree octree;
+    if (a.repeat > 1 && options.backend != Backend::Cpu) voxelizer.voxelize(mesh, grid, options);
+    for (auto& run : runs) {
+        options.stats = &run;
+        octree = voxelizer.voxelize(mesh, grid, options);
+    }
+    VoxelizeStats stats = medianStats(runs);
+    printWarnings(stats.warnings);
+
+    const std::map<std::string, std::string> meta = {
         {"svo:source", mesh.source},
         {"svo:triangles", std::to_string(mesh.triangles.size())},
         {"svo:grid", request.voxelSize > 0 ? fmt::format("voxel size {}", grid.voxelSize)
                                            : fmt::format("resolution {}", request.resolution)},
         {"svo:voxel_size", fmt::format("{}", grid.voxelSize)},
-        {"svo:backend", a.backend.backend},
-        {"svo:renderer", mv.renderer},
+        {"svo:backend", stats.backend},
+        {"svo:renderer", stats.renderer},
         {"svo:epsilon", fmt::format("{:.3g}", grid.epsilon())},
         {"svo:version", SVO_VERSION}};
-    const OutputReport written = writeOctreeOutput(output, vox.octree, a.out, meta);
-    for (const auto& s : written.stages) vox.stages.push_back(s);
+    WriteReport written;
+    {
+        Progress p("writing " + output);
+        written = writeOctree(output, octree, grids, meta);
+    }
+    for (const auto& s : written.stages) stats.stages.push_back(s);
     const double wall = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 
-    const auto stats = octreeStats(vox.octree);
+    const auto st = octreeStats(octree);
     fmt::print("svo voxelize\n");
     fmt::print("  {:<11} {}\n", "scene", scene);
     fmt::print("  {:<11} {}\n", "triangles", thousands(mesh.triangles.size()));
     fmt::print("  {:<11} {} x {} x {} local voxels, voxel size {:.6g}, {}\n", "grid", grid.dims[0], grid.dims[1],
                grid.dims[2], grid.voxelSize,
                request.voxelSize > 0 ? std::string("from --voxel-size") : fmt::format("resolution {}", request.resolution));
-    fmt::print("  {:<11} {}\n", "voxels", thousands(stats.voxels));
+    fmt::print("  {:<11} {}\n", "voxels", thousands(st.voxels));
     fmt::print("  {:<11} {} levels, {} nodes, {} bricks, {:.2f} bytes/voxel, brick fill {:.2f}\n", "octree",
-               vox.octree.brickLevel + 1, thousands(vox.octree.nodes.size()), thousands(stats.bricks),
-               stats.bytesPerVoxel(), stats.fillRatio());
-    const uint32_t ch = vox.octree.channels();
+               octree.brickLevel + 1, thousands(octree.nodes.size()), thousands(st.bricks), st.bytesPerVoxel(),
+               st.fillRatio());
+    const uint32_t ch = octree.channels();
     if (ch)
         fmt::print("  {:<11} {}{}{}\n", "attributes", ch & kNormals ? "normal " : "", ch & kTriangles ? "triangle_id " : "",
                    ch & kColors ? "color" : "");
-    fmt::print("  {:<11} {}\n", "backend", mv.backendLine);
+    fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
     fmt::print("  {:<11} {:.3g} voxels (cubes grown by half of it on the GPU)\n", "guard band", grid.epsilon());
     fmt::print("  {:<11} {} entries, {} overflow retries, {:.1f} MB of GPU buffers\n", "voxel list",
-               thousands(vox.listEntries), vox.overflowRetries, double(vox.gpuBytes) / 1e6);
-    fmt::print("  {:<11} {}\n", "output", written.description);
+               thousands(stats.listEntries), stats.overflowRetries, double(stats.gpuBytes) / 1e6);
+    fmt::print("  {:<11} {}\n", "output", describeOutput(output, written, grids));
     fmt::print("\n  {:<20} {:>10} {:>10}{}\n", "stage", "GPU ms", "wall ms",
-               a.backend.repeat > 1
-                   ? fmt::format("   (voxelize stages: median of {} runs after a warm-up)", a.backend.repeat)
-                   : "");
-    for (const auto& s : vox.stages)
-        fmt::print("  {:<20} {:>10} {:>10.2f}\n", s.name, s.gpuMs < 0 ? std::string("-") : fmt::format("{:.3f}", s.gpuMs),
-                   s.wallMs);
+               a.repeat > 1 ? fmt::format("   (voxelize stages: median of {} runs after a warm-up)", a.repeat) : "");
+    printStages(stats.stages);
     fmt::print("  {:<20} {:>10} {:>10.2f}\n", "total", "", wall);
 
     if (!a.json.empty()) {
-        std::string stages;
-        for (const auto& s : vox.stages)
-            stages += fmt::format("{}{{\"name\": \"{}\", \"gpu_ms\": {}, \"wall_ms\": {:.4f}}}", stages.empty() ? "" : ", ",
-                                  s.name, s.gpuMs < 0 ? std::string("null") : fmt::format("{:.4f}", s.gpuMs), s.wallMs);
-        std::string levels;
-        for (auto n : stats.nodesPerLevel) levels += fmt::format("{}{}", levels.empty() ? "" : ", ", n);
-        const std::string text = fmt::format(
-            "{{\n  \"scene\": \"{}\", \"triangles\": {}, \"dims\": [{}, {}, {}], \"voxel_size\": {},\n"
-            "  \"resolution\": {}, \"backend\": \"{}\", \"conservative\": \"{}\", \"renderer\": \"{}\", \"epsilon\": {},\n"
-            "  \"voxels\": {}, \"bricks\": {}, \"nodes\": {}, \"nodes_per_level\": [{}], \"octree_bytes\": {},\n"
-            "  \"list_entries\": {}, \"overflow_retries\": {}, \"gpu_bytes\": {}, \"repeat\": {}, \"peak_rss_mb\": {:.1f},\n"
-            "  \"stages\": [{}],\n  \"total_wall_ms\": {:.4f}\n}}\n",
-            jsonEscape(scene), mesh.triangles.size(), grid.dims[0], grid.dims[1], grid.dims[2], grid.voxelSize,
-            request.resolution, a.backend.backend, a.backend.conservative, jsonEscape(mv.renderer), grid.epsilon(), stats.voxels, stats.bricks, vox.octree.nodes.size(), levels,
-            stats.bytes, vox.listEntries, vox.overflowRetries, vox.gpuBytes, a.backend.repeat, peakRssMb(), stages, wall);
-        writeFileAtomically(a.json, text);
+        nlohmann::json stages = nlohmann::json::array();
+        for (const auto& s : stats.stages)
+            stages.push_back({{"name", s.name},
+                              {"gpu_ms", s.gpuMs < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.gpuMs)},
+                              {"wall_ms", s.wallMs}});
+        const nlohmann::json report = {
+            {"scene", scene},
+            {"triangles", mesh.triangles.size()},
+            {"dims", grid.dims},
+            {"voxel_size", grid.voxelSize},
+            {"resolution", request.resolution},
+            {"backend", stats.backend},
+            {"conservative", a.backend.conservative},
+            {"dilation", stats.dilation},
+            {"renderer", stats.renderer},
+            {"epsilon", grid.epsilon()},
+            {"voxels", st.voxels},
+            {"bricks", st.bricks},
+            {"nodes", octree.nodes.size()},
+            {"nodes_per_level", st.nodesPerLevel},
+            {"octree_bytes", st.bytes},
+            {"list_entries", stats.listEntries},
+            {"overflow_retries", stats.overflowRetries},
+            {"gpu_bytes", stats.gpuBytes},
+            {"repeat", a.repeat},
+            {"peak_rss_mb", peakRssMb()},
+            {"stages", stages},
+            {"total_wall_ms", wall}};
+        writeFileAtomically(a.json, report.dump(2) + "\n");
     }
 }
 
@@ -126,16 +157,16 @@ void addVoxelizeCommand(CLI::App& app)
 {
     auto args = std::make_shared<VoxelizeArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "voxelize", "Voxelize a mesh (default: the built-in Cornell box) into a .vdb grid or a .svo octree");
+        "voxelize", "Voxelize a mesh (default: the built-in Cornell box) into a .vdb or .nvdb grid or a .svo octree");
     cmd->add_option("mesh", args->mesh,
                     fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()));
-    cmd->add_option("-o,--output", args->output, "Output .vdb or .svo (default: <scene>.vdb)");
+    cmd->add_option("-o,--output", args->output, "Output .vdb, .nvdb (NanoVDB) or .svo (default: <scene>.vdb)");
     cmd->add_option("--json", args->json, "Also write the summary (counts, bytes, stage times) as JSON");
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
     addAttributeOption(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
-    cmd->add_option("--repeat", args->backend.repeat,
+    cmd->add_option("--repeat", args->repeat,
                     "Voxelize N times (after one warm-up on the GPU) and report per-stage medians")
         ->check(CLI::Range(1, 1000));
     cmd->callback([args, cmd] { runVoxelize(*args, *cmd); });

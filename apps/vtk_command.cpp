@@ -4,10 +4,10 @@
 #include <fmt/format.h>
 #include <memory>
 
+#include "cli_options.h"
 #include "commands.h"
-#include "octree_input.h"
-#include "octree_output.h"
 #include "progress.h"
+#include "svo/voxelizer.h"
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 #include "vtk_export.h"
@@ -17,10 +17,10 @@ namespace svo::app {
 namespace {
 
 struct VtkArgs {
-    std::string input, output, png, levels;
+    std::string input, output, png, levels, gridName;
     int64_t resolution = 0;
     double voxelSize = 0;
-    InputOptions in;
+    BackendArgs backend;
     int width = 1600;
 };
 
@@ -49,7 +49,7 @@ LevelRange parseLevels(const std::string& text)
     return r;
 }
 
-void runVtk(VtkArgs a, const CLI::App& cmd)
+void runVtk(const VtkArgs& a, const CLI::App& cmd)
 {
     if (a.output.empty() && a.png.empty()) throw Error("give -o OUT (.htg, .vtu or .vtp), --png PICTURE, or both");
     const LevelRange levels = parseLevels(a.levels);
@@ -67,10 +67,18 @@ void runVtk(VtkArgs a, const CLI::App& cmd)
         requireDisplay(); // before loading and voxelizing
     }
     checkDistinctOutputs({a.output, a.png});
-    a.in.gridRequest = gridRequest(cmd, a.resolution, a.voxelSize);
-    const LoadedOctree lo = loadOctree(a.input, a.in);
+    Voxelizer voxelizer(a.backend.deviceOptions());
+    VoxelizeOptions options = a.backend.voxelizeOptions();
+    VoxelizeStats stats;
+    ProgressInterrupter progress("building the octree");
+    options.interrupter = &progress;
+    options.stats = &stats;
+    const LoadedOctree lo =
+        loadOctree(voxelizer, a.input, a.gridName, gridRequest(cmd, a.resolution, a.voxelSize), options);
+    if (lo.mesh) printWarnings(lo.mesh->warnings);
+    printWarnings(stats.warnings);
     fmt::print("svo vtk\n");
-    fmt::print("  {:<8} {}\n", "input", lo.description);
+    fmt::print("  {:<8} {}\n", "input", describeInput(a.input, lo, stats));
     fmt::print("  {:<8} {} voxels, {} levels (bricks at {}; levels {}..{} split bricks down to voxels)\n", "octree",
                lo.octree.voxelCount(), lo.octree.brickLevel + 1, lo.octree.brickLevel, lo.octree.brickLevel + 1,
                lo.octree.brickLevel + 3);
@@ -106,9 +114,9 @@ void addVtkCommand(CLI::App& app)
     cmd->add_option("--size", args->width, "Picture width in pixels; the height is 3/4 of it")
         ->check(CLI::Range(64, 8192))
         ->capture_default_str();
-    cmd->add_option("--grid", args->in.gridName, "Grid of a .vdb input (default: the first)");
+    cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
     addGridOptions(*cmd, args->resolution, args->voxelSize);
-    addBackendOptions(*cmd, args->in.backend);
+    addBackendOptions(*cmd, args->backend);
     cmd->callback([args, cmd] { runVtk(*args, *cmd); });
 }
 

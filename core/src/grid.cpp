@@ -10,7 +10,10 @@ namespace svo {
 
 Vec3d GridSpec::toIndex(const Vec3d& w) const
 {
-    return {w.x / voxelSize - double(shift[0]), w.y / voxelSize - double(shift[1]), w.z / voxelSize - double(shift[2])};
+    // Subtract first: near the translation the difference is exact, so a mesh
+    // moved by whole voxels maps to the very same index coordinates.
+    const auto t = translation();
+    return {(w.x - t[0]) / voxelSize, (w.y - t[1]) / voxelSize, (w.z - t[2]) / voxelSize};
 }
 
 Vec3d GridSpec::toLocal(const Vec3d& w) const
@@ -28,22 +31,22 @@ GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& req)
     const Bounds b = mesh.bounds();
     if (b.empty()) throw Error(fmt::format("{}: the mesh has no triangles", mesh.source));
     GridSpec g;
-    if (req.resolution > 0 && req.voxelSize > 0) throw Error("give either --resolution or --voxel-size, not both");
+    if (req.resolution > 0 && req.voxelSize > 0) throw Error("the grid request gives both a resolution and a voxel size; give one");
     if (req.resolution > 0) {
         if (req.resolution > int64_t(kMaxGridDim) - 16)
-            throw Error(fmt::format("--resolution {} is beyond the largest supported grid ({} voxels a side)",
+            throw Error(fmt::format("resolution {} is beyond the largest supported grid ({} voxels a side)",
                                     req.resolution, kMaxGridDim - 16));
         const Vec3d e = b.extent();
         const double longest = std::max({e.x, e.y, e.z});
         if (!(longest > 0))
-            throw Error(fmt::format("{}: the mesh has zero extent, so --resolution cannot define a voxel size; "
-                                    "give --voxel-size",
+            throw Error(fmt::format("{}: the mesh has zero extent, so a resolution cannot define a voxel size; "
+                                    "give a voxel size instead",
                                     mesh.source));
         g.voxelSize = longest / double(req.resolution);
     } else if (req.voxelSize > 0 && std::isfinite(req.voxelSize)) {
         g.voxelSize = req.voxelSize;
     } else {
-        throw Error(fmt::format("the grid needs --resolution N (N >= 1) or --voxel-size h (h > 0); got "
+        throw Error(fmt::format("the grid needs a resolution N >= 1 or a finite voxel size h > 0; got "
                                 "resolution {} and voxel size {}",
                                 req.resolution, req.voxelSize));
     }
@@ -65,6 +68,18 @@ GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& req)
             g.shift[a] = static_cast<int64_t>(mid);
         }
     }
+    return makeGridOnLattice(mesh, g.voxelSize, g.shift);
+}
+
+GridSpec makeGridOnLattice(const TriangleMesh& mesh, double voxelSize, const std::array<int64_t, 3>& shift)
+{
+    const Bounds b = mesh.bounds();
+    if (b.empty()) throw Error(fmt::format("{}: the mesh has no triangles", mesh.source));
+    if (!std::isfinite(voxelSize) || !(voxelSize > 0))
+        throw Error(fmt::format("{}: the voxel size {} is not usable", mesh.source, voxelSize));
+    GridSpec g;
+    g.voxelSize = voxelSize;
+    g.shift = shift;
     // Anchor: a multiple of 8 at least one voxel below the lowest vertex, so that
     // every touched voxel (including those reached by the guard band) has a
     // local coordinate >= 0, and bricks align with OpenVDB leaves.

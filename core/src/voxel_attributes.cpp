@@ -42,7 +42,7 @@ VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_
     for (const auto& s : sums)
         if (s[7] > 32767)
             throw Error(fmt::format("{} triangles cover one voxel, more than the 32,767 the attribute sums hold; "
-                                    "use a finer grid or leave out --attributes",
+                                    "use a finer grid or leave out the attribute channels",
                                     s[7]));
     VoxelAttributes a;
     auto fixedVec = [](const AttributeSums& s, int at) {

@@ -3,13 +3,17 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <dlfcn.h>
 #include <fmt/format.h>
+#include <map>
+#include <mutex>
 
 #define EGL_EGLEXT_PROTOTYPES 0
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
 #include "gl_api.h"
+#include "objects.h"
 #include "svo/core/error.h"
 
 namespace svo::gl {
@@ -31,19 +35,123 @@ struct Candidate {
 
 std::string eglErrorName(EGLint e) { return fmt::format("EGL error 0x{:04x}", unsigned(e)); }
 
+/// EGL displays are per device and per process: every Context on a device
+/// shares one, and eglTerminate would pull it from under the others. Count
+/// the users and terminate with the last.
+std::mutex displayMutex;
+std::map<EGLDisplay, int> displayUsers;
+
+void retainDisplay(EGLDisplay d)
+{
+    std::lock_guard<std::mutex> lock(displayMutex);
+    ++displayUsers[d];
+}
+
+void releaseDisplay(EGLDisplay d)
+{
+    std::lock_guard<std::mutex> lock(displayMutex);
+    if (--displayUsers[d] > 0) return;
+    displayUsers.erase(d);
+    eglTerminate(d);
+}
+
+/// Terminates a display that a failed attempt initialized, unless a Context uses it.
+void dropUnusedDisplay(EGLDisplay d)
+{
+    std::lock_guard<std::mutex> lock(displayMutex);
+    if (!displayUsers.count(d)) eglTerminate(d);
+}
+
+/// GLX entry points, found only when the host process already loaded libGLX
+/// (a GLFW or Qt window on X11); svo itself never links GLX.
+struct Glx {
+    using GetContext = void* (*)();
+    using GetDisplay = void* (*)();
+    using GetDrawable = unsigned long (*)();
+    using MakeContextCurrent = int (*)(void*, unsigned long, unsigned long, void*);
+    GetContext getContext = nullptr;
+    GetDisplay getDisplay = nullptr;
+    GetDrawable getDrawable = nullptr, getReadDrawable = nullptr;
+    MakeContextCurrent makeContextCurrent = nullptr;
+
+    static const Glx& get()
+    {
+        static const Glx glx = [] {
+            Glx g;
+            g.getContext = reinterpret_cast<GetContext>(dlsym(RTLD_DEFAULT, "glXGetCurrentContext"));
+            g.getDisplay = reinterpret_cast<GetDisplay>(dlsym(RTLD_DEFAULT, "glXGetCurrentDisplay"));
+            g.getDrawable = reinterpret_cast<GetDrawable>(dlsym(RTLD_DEFAULT, "glXGetCurrentDrawable"));
+            g.getReadDrawable = reinterpret_cast<GetDrawable>(dlsym(RTLD_DEFAULT, "glXGetCurrentReadDrawable"));
+            g.makeContextCurrent =
+                reinterpret_cast<MakeContextCurrent>(dlsym(RTLD_DEFAULT, "glXMakeContextCurrent"));
+            if (!g.getDisplay || !g.getDrawable || !g.getReadDrawable || !g.makeContextCurrent) g.getContext = nullptr;
+            return g;
+        }();
+        return glx;
+    }
+};
+
 } // namespace
+
+/// What the thread had current before a Scope: EGL (for the OpenGL API, and
+/// the bound API) and GLX.
+struct Context::Scope::Saved {
+    EGLDisplay owner = EGL_NO_DISPLAY; ///< the Scope's own display, to release on the way out
+    EGLenum api = EGL_OPENGL_ES_API;
+    EGLDisplay display = EGL_NO_DISPLAY;
+    EGLSurface draw = EGL_NO_SURFACE, read = EGL_NO_SURFACE;
+    EGLContext context = EGL_NO_CONTEXT;
+    void* glxDisplay = nullptr;
+    unsigned long glxDraw = 0, glxRead = 0;
+    void* glxContext = nullptr;
+
+    /// Records what is current now and releases a GLX context, which cannot
+    /// stay current beside an EGL one.
+    void capture()
+    {
+        api = eglQueryAPI();
+        display = eglGetCurrentDisplay();
+        draw = eglGetCurrentSurface(EGL_DRAW);
+        read = eglGetCurrentSurface(EGL_READ);
+        context = eglGetCurrentContext();
+        const Glx& glx = Glx::get();
+        if (glx.getContext && (glxContext = glx.getContext())) {
+            glxDisplay = glx.getDisplay();
+            glxDraw = glx.getDrawable();
+            glxRead = glx.getReadDrawable();
+            glx.makeContextCurrent(glxDisplay, 0, 0, nullptr);
+        }
+    }
+
+    /// Puts back what capture() found. Never throws: it runs while unwinding.
+    void restore() const
+    {
+        if (context != EGL_NO_CONTEXT) {
+            eglBindAPI(api);
+            eglMakeCurrent(display, draw, read, context);
+        } else {
+            eglBindAPI(EGL_OPENGL_API);
+            const EGLDisplay current = eglGetCurrentDisplay();
+            if (current != EGL_NO_DISPLAY) eglMakeCurrent(current, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            eglBindAPI(api);
+        }
+        if (glxContext) Glx::get().makeContextCurrent(glxDisplay, glxDraw, glxRead, glxContext);
+    }
+};
 
 struct Context::Impl {
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext context = EGL_NO_CONTEXT;
     ContextInfo info;
+    // GL objects live in the context; they are deleted (inside a Scope) before it.
+    mutable std::map<std::string, std::unique_ptr<Program>> programs;
+    mutable std::map<std::string, Buffer> scratch;
 
     ~Impl()
     {
-        if (display != EGL_NO_DISPLAY) {
-            eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
-            eglTerminate(display);
+        if (context != EGL_NO_CONTEXT) {
+            eglDestroyContext(display, context); // deferred by EGL while current elsewhere: never, by Scope
+            releaseDisplay(display);
         }
     }
 
@@ -59,7 +167,7 @@ struct Context::Impl {
         EGLint major = 0, minor = 0;
         if (!eglInitialize(d, &major, &minor)) return "eglInitialize failed: " + eglErrorName(eglGetError());
         if (!eglBindAPI(EGL_OPENGL_API)) {
-            eglTerminate(d);
+            dropUnusedDisplay(d);
             return "no desktop OpenGL API";
         }
         const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
@@ -79,15 +187,16 @@ struct Context::Impl {
         EGLContext ctx = eglCreateContext(d, config, EGL_NO_CONTEXT, ctxAttribs);
         if (ctx == EGL_NO_CONTEXT) {
             const EGLint err = eglGetError();
-            eglTerminate(d);
+            dropUnusedDisplay(d);
             return "no OpenGL 4.5 core context (" + eglErrorName(err) + ")";
         }
         if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
             const EGLint err = eglGetError();
             eglDestroyContext(d, ctx);
-            eglTerminate(d);
+            dropUnusedDisplay(d);
             return "cannot make the context current without a surface (" + eglErrorName(err) + ")";
         }
+        retainDisplay(d);
         display = d;
         context = ctx;
         info.eglDevice = c.name;
@@ -97,6 +206,14 @@ struct Context::Impl {
 
 Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>())
 {
+    // Creation makes the new context current to query it; the caller's comes back on every path out.
+    Scope::Saved previous;
+    previous.capture();
+    struct Restore {
+        const Scope::Saved& saved;
+        ~Restore() { saved.restore(); }
+    } restore{previous};
+
     std::string want = options.device;
     if (want.empty()) {
         const char* env = std::getenv("SVO_EGL_DEVICE");
@@ -183,8 +300,81 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     checkGl("context creation");
 }
 
-Context::~Context() = default;
+Context::~Context()
+{
+    if (!impl_ || impl_->context == EGL_NO_CONTEXT) return;
+    try {
+        const Scope scope(*this);
+        impl_->programs.clear();
+        impl_->scratch.clear();
+    } catch (const std::exception&) {
+        // The context cannot be made current: its objects go with it.
+    }
+}
 
 const ContextInfo& Context::info() const { return impl_->info; }
+
+Context::Scope::Scope(const Context& c)
+{
+    const EGLenum api = eglQueryAPI();
+    eglBindAPI(EGL_OPENGL_API);
+    if (eglGetCurrentContext() == c.impl_->context) {
+        eglBindAPI(api);
+        return; // nested: already ours
+    }
+    eglBindAPI(api);
+    auto saved = std::make_unique<Saved>();
+    saved->capture();
+    eglBindAPI(EGL_OPENGL_API);
+    if (!eglMakeCurrent(c.impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, c.impl_->context)) {
+        const EGLint err = eglGetError();
+        saved->restore();
+        throw Error(fmt::format("cannot make svo's OpenGL context current on this thread ({}); is it current on "
+                                "another thread?",
+                                eglErrorName(err)));
+    }
+    saved_ = std::move(saved);
+}
+
+Context::Scope::~Scope()
+{
+    if (saved_) saved_->restore();
+}
+
+const Program& Context::program(std::initializer_list<const char*> files) const
+{
+    std::string key;
+    for (const char* f : files) key += std::string(f) + ";";
+    auto& slot = impl_->programs[key];
+    if (!slot) {
+        const Scope scope(*this);
+        slot = std::make_unique<Program>(files);
+    }
+    return *slot;
+}
+
+const Buffer& Context::scratch(const char* what, uint64_t bytes) const
+{
+    Buffer& b = impl_->scratch[what];
+    if (b.bytes() >= bytes && b.bytes() > 0) return b;
+    const Scope scope(*this);
+    b = Buffer(); // free the old buffer before the larger one is allocated
+    const uint64_t grain = uint64_t(1) << 16;
+    b = Buffer(what, std::max<uint64_t>((bytes + grain - 1) / grain * grain, grain));
+    return b;
+}
+
+void Context::releaseScratch() const
+{
+    const Scope scope(*this);
+    impl_->scratch.clear();
+}
+
+uint64_t Context::scratchBytes() const
+{
+    uint64_t n = 0;
+    for (const auto& [name, b] : impl_->scratch) n += b.bytes();
+    return n;
+}
 
 } // namespace svo::gl

@@ -68,6 +68,17 @@ public:
     {
         glClearNamedBufferData(h_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
     }
+    /// Clears only the first `bytes` (a multiple of 4): scratch buffers are
+    /// often larger than one call needs.
+    void clearUint(uint32_t value, uint64_t bytes) const
+    {
+        glClearNamedBufferSubData(h_.get(), GL_R32UI, 0, GLsizeiptr(bytes), GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+    }
+    /// Uploads into a buffer made with GL_DYNAMIC_STORAGE_BIT (the default).
+    void write(uint64_t offset, uint64_t bytes, const void* data) const
+    {
+        if (bytes) glNamedBufferSubData(h_.get(), GLintptr(offset), GLsizeiptr(bytes), data);
+    }
 
 private:
     friend class VertexArray;

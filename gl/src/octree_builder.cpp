@@ -19,9 +19,10 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 
 } // namespace
 
-OctreeBuilder::OctreeBuilder()
-    : prepare_({"octree_prepare.comp"}), flag_({"octree_flag.comp"}), alloc_({"octree_alloc.comp"}),
-      fill_({"octree_fill.comp"})
+OctreeBuilder::OctreeBuilder(const Context& context)
+    : context_(context), prepare_(context.program({"octree_prepare.comp"})),
+      flag_(context.program({"octree_flag.comp"})), alloc_(context.program({"octree_alloc.comp"})),
+      fill_(context.program({"octree_fill.comp"}))
 {
 }
 
@@ -53,15 +54,16 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
     init.entryDispatch[1] = init.entryDispatch[2] = 1;
     init.nodeCount = 1;
     init.levelStart[1] = 1;
-    b.state = Buffer("octree build state", sizeof init, &init);
-    b.nodes = Buffer("octree nodes", b.nodeCapacity * sizeof(OctreeNode));
-    b.bricks = Buffer("octree bricks", b.brickCapacity * sizeof(Brick));
-    b.nodes.clearUint(0);
-    b.bricks.clearUint(0);
+    b.state = &context_.scratch("octree build state", sizeof init);
+    b.nodes = &context_.scratch("octree nodes", b.nodeCapacity * sizeof(OctreeNode));
+    b.bricks = &context_.scratch("octree bricks", b.brickCapacity * sizeof(Brick));
+    b.state->write(0, sizeof init, &init);
+    b.nodes->clearUint(0, b.nodeCapacity * sizeof(OctreeNode));
+    b.bricks->clearUint(0, b.brickCapacity * sizeof(Brick));
 
-    b.state.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-    b.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
-    b.bricks.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
+    b.state->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    b.nodes->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+    b.bricks->bindBase(GL_SHADER_STORAGE_BUFFER, 2);
     in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, 3);
     for (const Program* p : {&prepare_, &flag_, &alloc_, &fill_}) p->set("uBrickLevel", L);
     prepare_.set("uNodeCapacity", uint32_t(b.nodeCapacity));
@@ -78,22 +80,22 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
     prepare_.set("uMode", 1u);
     for (uint32_t level = 0; level <= L; ++level) {
         for (const Program* p : {&prepare_, &flag_, &alloc_}) p->set("uLevel", level);
-        flag_.dispatchIndirect(b.state, offsetof(BuildState, entryDispatch));
+        flag_.dispatchIndirect(*b.state, offsetof(BuildState, entryDispatch));
         prepare_.dispatch(1);
         passBarrier();
-        alloc_.dispatchIndirect(b.state, offsetof(BuildState, levelDispatch));
+        alloc_.dispatchIndirect(*b.state, offsetof(BuildState, levelDispatch));
         passBarrier();
     }
     fill_.set("uBrickMasks", in.masks ? 1u : 0u);
     if (in.masks) in.masks->bindBase(GL_SHADER_STORAGE_BUFFER, 5);
     else in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, 5); // unused, but bound
-    fill_.dispatchIndirect(b.state, offsetof(BuildState, entryDispatch));
+    fill_.dispatchIndirect(*b.state, offsetof(BuildState, entryDispatch));
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT); // readback, attribute pass
     checkGl("octree build");
     return b;
 }
 
-void OctreeBuilder::readCounts(Build& b) { b.state.read(0, sizeof b.counts, &b.counts); }
+void OctreeBuilder::readCounts(Build& b) { b.state->read(0, sizeof b.counts, &b.counts); }
 
 Octree OctreeBuilder::readOctree(const Build& b, const GridSpec& grid)
 {
@@ -103,15 +105,18 @@ Octree OctreeBuilder::readOctree(const Build& b, const GridSpec& grid)
     o.levelStart.assign(b.counts.levelStart, b.counts.levelStart + o.brickLevel + 2);
     o.nodes.resize(b.counts.nodeCount);
     o.bricks.resize(b.counts.brickCount);
-    if (!o.nodes.empty()) b.nodes.readBulk(0, o.nodes.size() * sizeof(OctreeNode), o.nodes.data());
-    if (!o.bricks.empty()) b.bricks.readBulk(0, o.bricks.size() * sizeof(Brick), o.bricks.data());
+    if (!o.nodes.empty()) b.nodes->readBulk(0, o.nodes.size() * sizeof(OctreeNode), o.nodes.data());
+    if (!o.bricks.empty()) b.bricks->readBulk(0, o.bricks.size() * sizeof(Brick), o.bricks.data());
     checkGl("octree readback");
     return o;
 }
 
-OctreeVoxelization buildOctreeGpu(Context&, const GridSpec& grid, const std::vector<std::pair<uint64_t, Brick>>& bricks)
+OctreeVoxelization buildOctreeGpu(Context& context, const GridSpec& grid,
+                                  const std::vector<std::pair<uint64_t, Brick>>& bricks, const Checkpoint& checkpoint)
 {
     if (bricks.size() > 0xFFFFFFF0u) throw Error(fmt::format("{} bricks exceed one GPU build", bricks.size()));
+    const Context::Scope scope(context);
+    checkpoint(0.0, "brick upload");
     OctreeVoxelization result;
     auto t0 = Clock::now();
     TimerQuery uploadTimer;
@@ -129,13 +134,16 @@ OctreeVoxelization buildOctreeGpu(Context&, const GridSpec& grid, const std::vec
                                     p[1] & ~7u, p[2] & ~7u, grid.dims[0], grid.dims[1], grid.dims[2]));
         keys.push_back(brickOfKey(key)), masks.push_back(mask);
     }
-    const Buffer entries("brick keys", keys.size() * 8, keys.data(), 0);
-    const Buffer maskBuffer("brick masks", masks.size() * sizeof(Brick), masks.data(), 0);
+    const Buffer& entries = context.scratch("brick keys", keys.size() * 8);
+    const Buffer& maskBuffer = context.scratch("brick masks", masks.size() * sizeof(Brick));
+    entries.write(0, keys.size() * 8, keys.data());
+    maskBuffer.write(0, masks.size() * sizeof(Brick), masks.data());
     uploadTimer.end();
     result.stages.push_back({"upload", -1, msSince(t0)});
+    checkpoint(0.3, "octree build");
 
     t0 = Clock::now();
-    const OctreeBuilder builder;
+    const OctreeBuilder builder(context);
     OctreeInput in;
     in.entries = &entries;
     in.entryCapacity = in.entryCount = uint32_t(keys.size());
@@ -149,6 +157,7 @@ OctreeVoxelization buildOctreeGpu(Context&, const GridSpec& grid, const std::vec
     result.stages.front().gpuMs = uploadTimer.milliseconds();
     result.stages.push_back({"octree build", timer.milliseconds(), msSince(t0)});
     result.gpuBytes = entries.bytes() + maskBuffer.bytes() + build.bytes();
+    checkpoint(0.7, "octree readback");
 
     t0 = Clock::now();
     TimerQuery readTimer;

@@ -7,6 +7,7 @@
 
 #include "objects.h"
 #include "svo/core/octree.h"
+#include "svo/gl/context.h"
 
 namespace svo::gl {
 
@@ -29,17 +30,19 @@ struct OctreeInput {
     const Buffer* masks = nullptr;       ///< 16 uints per entry: whole bricks; null: one voxel per entry
 };
 
+/// The build passes, with their programs from the context's cache. Use inside a Context::Scope.
 class OctreeBuilder {
 public:
-    OctreeBuilder();
+    explicit OctreeBuilder(const Context& context);
 
-    /// GPU buffers of one build and the counters read back after it.
+    /// GPU buffers of one build (the context's scratch buffers) and the
+    /// counters read back after it.
     struct Build {
-        Buffer state, nodes, bricks;
+        const Buffer *state = nullptr, *nodes = nullptr, *bricks = nullptr;
         uint64_t nodeCapacity = 0, brickCapacity = 0;
         BuildState counts{};
         bool overflowed() const { return counts.nodeCount > nodeCapacity || counts.brickCount > brickCapacity; }
-        uint64_t bytes() const { return state.bytes() + nodes.bytes() + bricks.bytes(); }
+        uint64_t bytes() const { return state->bytes() + nodes->bytes() + bricks->bytes(); }
     };
 
     /// Allocates the buffers and issues every pass without waiting.
@@ -53,7 +56,8 @@ public:
     static uint64_t nodeBound(uint32_t brickLevel, uint64_t bricks);
 
 private:
-    Program prepare_, flag_, alloc_, fill_;
+    const Context& context_;
+    const Program &prepare_, &flag_, &alloc_, &fill_;
 };
 
 } // namespace svo::gl

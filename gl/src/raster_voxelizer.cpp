@@ -19,7 +19,7 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 bool useHardware(const Context& context, const RasterOptions& o)
 {
     if (o.conservative == ConservativeMode::Hardware && !context.info().conservativeRasterNV)
-        throw Error("--conservative hardware needs GL_NV_conservative_raster, which " + context.info().renderer +
+        throw Error("hardware dilation needs GL_NV_conservative_raster, which " + context.info().renderer +
                     " does not offer");
     return o.conservative != ConservativeMode::Shader && o.conservative != ConservativeMode::CentroidPush &&
            context.info().conservativeRasterNV;
@@ -47,17 +47,22 @@ uint64_t estimateEntries(const std::vector<Vec3f>& p, const TriangleMesh& mesh)
 class Rasterizer {
 public:
     Rasterizer(const Context& context, const TriangleMesh& mesh, const GridSpec& grid, const RasterOptions& options)
-        : hardware_(useHardware(context, options)), triangles_(mesh.triangles.size())
+        : hardware_(useHardware(context, options)), triangles_(mesh.triangles.size()),
+          program_(context.program({"raster.vert", "raster.geom", "raster.frag"})), checkpoint_(options.checkpoint)
     {
         const int maxTile = context.info().maxViewport;
         if (maxTile < 1) throw Error("the GL context reports no usable viewport size");
         auto t0 = Clock::now();
         uploadTimer_.begin();
         const std::vector<Vec3f> local = localPositionsFloat(mesh, grid);
-        vertices_ = Buffer("vertex buffer", local.size() * sizeof(Vec3f), local.data(), 0);
-        indices_ = Buffer("index buffer", mesh.triangles.size() * 3 * sizeof(uint32_t), mesh.triangles.data(), 0);
-        vao_.setPositions(vertices_, 0);
-        vao_.setIndices(indices_);
+        const uint64_t vertexBytes = local.size() * sizeof(Vec3f), indexBytes = mesh.triangles.size() * 12;
+        vertices_ = &context.scratch("vertex buffer", vertexBytes);
+        indices_ = &context.scratch("index buffer", indexBytes);
+        vertices_->write(0, vertexBytes, local.data());
+        indices_->write(0, indexBytes, mesh.triangles.data());
+        meshBytes_ = vertices_->bytes() + indices_->bytes();
+        vao_.setPositions(*vertices_, 0);
+        vao_.setIndices(*indices_);
         uploadTimer_.end();
         checkGl("mesh upload");
         uploadWallMs_ = msSince(t0);
@@ -96,6 +101,7 @@ public:
         list.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
         for (int ty = 0; ty < tiles_; ++ty)
             for (int tx = 0; tx < tiles_; ++tx) {
+                checkpoint_(double(ty * tiles_ + tx) / double(tiles_ * tiles_), "rasterization");
                 program_.set("uTileOrigin", float(tx * tile_), float(ty * tile_));
                 glDrawElements(GL_TRIANGLES, GLsizei(triangles_ * 3), GL_UNSIGNED_INT, nullptr);
             }
@@ -106,17 +112,18 @@ public:
 
     uint64_t estimatedEntries() const { return estimate_; }
     StageTime uploadStage() const { return {"upload", uploadTimer_.milliseconds(), uploadWallMs_}; }
-    uint64_t meshBytes() const { return vertices_.bytes() + indices_.bytes(); }
+    uint64_t meshBytes() const { return meshBytes_; }
 
 private:
     bool hardware_;
     uint64_t triangles_;
+    const Program& program_;
+    Checkpoint checkpoint_; ///< the rasterization's part of the call
     TimerQuery uploadTimer_;
     double uploadWallMs_ = 0;
-    uint64_t estimate_ = 0;
-    Buffer vertices_, indices_;
+    uint64_t estimate_ = 0, meshBytes_ = 0;
+    const Buffer *vertices_ = nullptr, *indices_ = nullptr;
     VertexArray vao_;
-    Program program_{"raster.vert", "raster.geom", "raster.frag"};
     EmptyFramebuffer fbo_{1, 1};
     int tile_ = 1, tiles_ = 1;
 };
@@ -140,19 +147,29 @@ uint32_t readCount(const Buffer& counter)
     return c[0];
 }
 
-Buffer makeList(uint64_t capacity)
+const Buffer& makeList(const Context& context, uint64_t capacity)
 {
     if (capacity > (uint64_t(1) << 32) - 1)
         throw Error(fmt::format("the voxel list would need {} entries, beyond the 2^32 an atomic counter "
                                 "can address; use a coarser grid",
                                 capacity));
-    return Buffer("voxel list", capacity * 8);
+    return context.scratch("voxel list", capacity * 8);
+}
+
+/// The list's entries read back, sorted and unique.
+std::vector<uint64_t> readList(const Buffer& list, uint32_t count)
+{
+    std::vector<uint64_t> keys(count);
+    if (count) list.readBulk(0, uint64_t(count) * 8, keys.data());
+    sortUniqueKeys(keys);
+    return keys;
 }
 
 /// Sums every list entry's triangle values into its voxel (octree_attributes.comp)
 /// and turns the sums into the asked-for channels on the octree.
-void attachAttributes(const TriangleMesh& mesh, uint32_t channels, const OctreeBuilder::Build& build,
-                      const Buffer& list, const Buffer& triangleList, uint32_t entries, Octree& octree)
+void attachAttributes(const Context& context, const TriangleMesh& mesh, uint32_t channels,
+                      const OctreeBuilder::Build& build, const Buffer& list, const Buffer& triangleList,
+                      uint32_t entries, Octree& octree)
 {
     const uint64_t voxels = octree.voxelCount();
     if (voxels > (uint64_t(1) << 28))
@@ -170,10 +187,10 @@ void attachAttributes(const TriangleMesh& mesh, uint32_t channels, const OctreeB
     const Buffer valueBuffer("triangle values", values.size() * 4, values.data(), 0);
     const Buffer sums("attribute sums", voxels * sizeof(AttributeSums));
     sums.clearUint(0);
-    const Program program({"octree_attributes.comp"});
-    build.state.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-    build.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
-    build.bricks.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
+    const Program& program = context.program({"octree_attributes.comp"});
+    build.state->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    build.nodes->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+    build.bricks->bindBase(GL_SHADER_STORAGE_BUFFER, 2);
     list.bindBase(GL_SHADER_STORAGE_BUFFER, 3);
     triangleList.bindBase(GL_SHADER_STORAGE_BUFFER, 4);
     offsetBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
@@ -200,20 +217,21 @@ const char* conservativeModeName(const Context& context, const RasterOptions& op
 Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                             const RasterOptions& options)
 {
+    const Context::Scope scope(context);
     Voxelization result;
     result.grid = grid;
     const Rasterizer raster(context, mesh, grid, options);
 
     // Voxelize; if the list overflowed, the counter holds the exact size needed.
     auto t0 = Clock::now();
-    const Buffer counter("voxel counter", 2 * sizeof(uint32_t)); // entries, and wraps past 2^32
+    const Buffer& counter = context.scratch("voxel counter", 2 * sizeof(uint32_t)); // entries, and wraps past 2^32
     uint64_t capacity = raster.estimatedEntries();
-    Buffer list;
+    const Buffer* listBuffer = nullptr;
     double voxelizeGpu = 0;
     uint32_t count = 0;
     for (int attempt = 0;; ++attempt) {
-        list = {}; // free the old list before the larger one is allocated
-        list = makeList(capacity);
+        listBuffer = &makeList(context, capacity);
+        const Buffer& list = *listBuffer;
         TimerQuery timer;
         timer.begin();
         raster.draw(list, counter, capacity);
@@ -227,13 +245,13 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
     result.stages.push_back(raster.uploadStage());
     result.stages.push_back({"voxelize", voxelizeGpu, msSince(t0)});
     result.listEntries = count;
-    result.gpuBytes = raster.meshBytes() + list.bytes() + counter.bytes();
+    result.gpuBytes = raster.meshBytes() + listBuffer->bytes() + counter.bytes();
 
     t0 = Clock::now();
     TimerQuery readTimer;
     readTimer.begin();
     result.keys.resize(count);
-    if (count) list.readBulk(0, uint64_t(count) * 8, result.keys.data());
+    if (count) listBuffer->readBulk(0, uint64_t(count) * 8, result.keys.data());
     readTimer.end();
     checkGl("voxel list readback");
     result.stages.push_back({"readback", readTimer.milliseconds(), msSince(t0)});
@@ -247,11 +265,16 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
 OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                                     const RasterOptions& options)
 {
+    const Context::Scope scope(context);
+    const Checkpoint& checkpoint = options.checkpoint;
+    checkpoint(0.0, "mesh upload");
     OctreeVoxelization result;
-    const Rasterizer raster(context, mesh, grid, options);
-    const OctreeBuilder builder;
+    RasterOptions rasterOptions = options;
+    rasterOptions.checkpoint = checkpoint.part(0.05, 0.6);
+    const Rasterizer raster(context, mesh, grid, rasterOptions);
+    const OctreeBuilder builder(context);
     const uint32_t L = brickLevelFor(grid);
-    const Buffer counter("voxel counter", 2 * sizeof(uint32_t)); // entries, and wraps past 2^32
+    const Buffer& counter = context.scratch("voxel counter", 2 * sizeof(uint32_t)); // entries, and wraps past 2^32
 
     // Rasterize and build without waiting; read the counters once. A full
     // voxel list means rasterizing again at the counted size; full node or
@@ -259,7 +282,8 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     uint64_t listCapacity = raster.estimatedEntries();
     uint64_t brickCapacity = options.initialBrickCapacity ? options.initialBrickCapacity : bricksFor(listCapacity);
     uint64_t nodeCapacity = nodesFor(L, bricksFor(listCapacity));
-    Buffer list, triangleList;
+    const Buffer* listBuffer = nullptr;
+    const Buffer* triangleBuffer = nullptr;
     OctreeBuilder::Build build;
     double voxelizeGpu = 0, buildGpu = 0, voxelizeWall = 0, buildWall = 0;
     uint32_t count = 0;
@@ -268,21 +292,20 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
         auto t0 = Clock::now();
         TimerQuery drawTimer, buildTimer;
         if (!drawn) {
-            list = {};
-            list = makeList(listCapacity);
-            if (options.attributes) triangleList = Buffer("triangle list", listCapacity * 4);
+            listBuffer = &makeList(context, listCapacity);
+            if (options.attributes) triangleBuffer = &context.scratch("triangle list", listCapacity * 4);
             drawTimer.begin();
-            raster.draw(list, counter, listCapacity, options.attributes ? &triangleList : nullptr);
+            raster.draw(*listBuffer, counter, listCapacity, triangleBuffer);
             drawTimer.end();
         }
         voxelizeWall += msSince(t0);
         t0 = Clock::now();
+        checkpoint(0.6, "octree build");
         OctreeInput in;
-        in.entries = &list;
+        in.entries = listBuffer;
         in.listCounter = &counter;
         in.entryCapacity = listCapacity;
         buildTimer.begin();
-        build = {}; // free the old buffers first: a retry must not hold both
         build = builder.record(grid, in, nodeCapacity, brickCapacity);
         buildTimer.end();
         OctreeBuilder::readCounts(build);
@@ -290,8 +313,9 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
         buildWall += msSince(t0);
         if (!drawn) voxelizeGpu += drawTimer.milliseconds();
         buildGpu += buildTimer.milliseconds();
-        result.gpuBytes = std::max(result.gpuBytes, raster.meshBytes() + list.bytes() + triangleList.bytes() +
-                                                        counter.bytes() + build.bytes());
+        result.gpuBytes =
+            std::max(result.gpuBytes, raster.meshBytes() + listBuffer->bytes() +
+                                          (triangleBuffer ? triangleBuffer->bytes() : 0) + counter.bytes() + build.bytes());
         if (count > listCapacity) {
             listCapacity = count; // the counter kept counting: the exact size
             brickCapacity = std::max<uint64_t>(brickCapacity, bricksFor(listCapacity));
@@ -315,18 +339,22 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     result.stages.push_back({"octree build", buildGpu, buildWall});
     result.listEntries = count;
 
+    checkpoint(0.85, "octree readback");
     auto t0 = Clock::now();
     TimerQuery readTimer;
     readTimer.begin();
     result.octree = OctreeBuilder::readOctree(build, grid);
     readTimer.end();
     result.stages.push_back({"readback", readTimer.milliseconds(), msSince(t0)});
+    if (options.voxelList) *options.voxelList = readList(*listBuffer, count);
 
     if (options.attributes) {
+        checkpoint(0.95, "attribute channels");
         t0 = Clock::now();
         TimerQuery attrTimer;
         attrTimer.begin();
-        attachAttributes(mesh, options.attributes, build, list, triangleList, count, result.octree);
+        attachAttributes(context, mesh, options.attributes, build, *listBuffer, *triangleBuffer, count,
+                         result.octree);
         attrTimer.end();
         result.stages.push_back({"attributes", attrTimer.milliseconds(), msSince(t0)});
     }

@@ -103,6 +103,24 @@ openvdb::GridPtrVec buildAttributeGrids(const Octree& o)
     return grids;
 }
 
+openvdb::GridPtrVec octreeToGrids(const Octree& octree, const GridOptions& options,
+                                  openvdb::math::Transform::ConstPtr xform)
+{
+    openvdb::GridPtrVec grids;
+    if (options.topology == GridOptions::Topology::Bool) grids.push_back(buildBoolGrid(octree));
+    else grids.push_back(buildMaskGrid(octree));
+    grids.back()->setName(options.name);
+    if (options.fog) {
+        grids.push_back(buildFogGrid(octree));
+        grids.back()->setName("density");
+    }
+    if (options.attributes)
+        for (auto& g : buildAttributeGrids(octree)) grids.push_back(g);
+    if (xform)
+        for (auto& g : grids) g->setTransform(xform->copy());
+    return grids;
+}
+
 GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name)
 {
     // Transform: uniform linear scale plus a whole-voxel translation.

@@ -54,25 +54,8 @@ WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOp
     openvdb::initialize();
     WriteStats stats;
     auto t0 = Clock::now();
-    openvdb::GridPtrVec grids;
-    openvdb::GridBase::Ptr topology;
-    if (options.topology == Topology::Bool) {
-        auto g = buildBoolGrid(octree);
-        stats.leaves = g->tree().leafCount();
-        topology = g;
-    } else {
-        auto g = buildMaskGrid(octree);
-        stats.leaves = g->tree().leafCount();
-        topology = g;
-    }
-    topology->setName(options.gridName);
-    grids.push_back(topology);
-    if (options.fog) {
-        auto fog = buildFogGrid(octree);
-        fog->setName("density");
-        grids.push_back(fog);
-    }
-    for (auto& g : buildAttributeGrids(octree)) grids.push_back(g);
+    openvdb::GridPtrVec grids = octreeToGrids(octree, options);
+    stats.leaves = octree.bricks.size(); // one leaf per occupied brick
     for (auto& g : grids)
         for (const auto& [k, v] : options.metadata) g->insertMeta(k, openvdb::StringMetadata(v));
     stats.buildMs = msSince(t0);

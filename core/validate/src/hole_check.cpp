@@ -87,7 +87,7 @@ HoleCheck checkHoles(const TriangleMesh& mesh, const GridSpec& grid, const std::
     const uint64_t cells = nx * ny * nz;
     if (cells > (uint64_t(1) << 33))
         throw Error(fmt::format("{}: the hole check needs {:.1f} GB for a {} x {} x {} grid; validate at a coarser "
-                                "resolution or skip it with --no-holes",
+                                "resolution or skip the hole check",
                                 mesh.source, double(cells) / 1e9, nx, ny, nz));
     auto at = [&](uint64_t x, uint64_t y, uint64_t z) { return (x * ny + y) * nz + z; };
     // state: 0 empty and unreached, 255 occupied, 1..26 reached via offset code-1, 254 the seed.

@@ -27,7 +27,7 @@ struct GridSpec {
     std::array<int64_t, 3> anchor{}; ///< index of local (0,0,0); multiple of 8
     std::array<uint32_t, 3> dims{};  ///< local voxel range [0, dims) per axis
 
-    /// World position -> OpenVDB index space (double).
+    /// World position -> OpenVDB index space (double): (world - translation) / voxelSize.
     Vec3d toIndex(const Vec3d& world) const;
     /// World position -> local index coordinates (double).
     Vec3d toLocal(const Vec3d& world) const;
@@ -64,6 +64,12 @@ constexpr int64_t floorTo8(int64_t i) { return i >= 0 ? i / 8 * 8 : -((-i + 7) /
 /// multiple of 8, and every global index (anchor + [0, dims)) inside OpenVDB's
 /// int32 coordinates, also after the whole-voxel shift.
 void checkGrid(const GridSpec& grid, const std::string& what);
+
+/// Anchor and dims for a mesh on a lattice whose voxel size and whole-voxel
+/// shift are given (a caller's transform). Throws svo::Error (naming
+/// mesh.source) for an empty mesh, a non-finite mapping, or indices beyond
+/// kMaxGridDim or OpenVDB's int32 coordinates.
+GridSpec makeGridOnLattice(const TriangleMesh& mesh, double voxelSize, const std::array<int64_t, 3>& shift);
 
 /// Chooses voxel size, shift, anchor and dims for a mesh. Throws svo::Error for
 /// a bad request (non-positive, non-finite), a mesh with zero extent under

@@ -8,11 +8,26 @@
 /// variable SVO_EGL_DEVICE when the option is empty) narrows the choice:
 /// "auto", "hardware", "software", or a device index as listed by
 /// `svo glinfo`.
+///
+/// Currency: the context is current only inside a Scope. A Scope saves what
+/// the thread had current (an EGL context of any display, or a GLX context,
+/// such as a host application's window), makes this context current, and puts
+/// the saved one back when it ends, on every path out. So svo can be called
+/// from inside a host that renders with its own context.
+///
+/// The context also owns what repeated work reuses: linked programs (cached
+/// by their files) and scratch buffers (kept at their largest size until
+/// releaseScratch()).
+#include <cstdint>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace svo::gl {
+
+class Program;
+class Buffer;
 
 struct ContextOptions {
     std::string device;  ///< "" = $SVO_EGL_DEVICE or "auto"
@@ -26,17 +41,46 @@ struct ContextInfo {
     std::vector<std::string> extensionsUsed;
 };
 
-/// Owns an EGL display and context, current on the creating thread for its
-/// whole lifetime. Not copyable; one per thread.
+/// Owns an EGL context on a display shared with other Contexts of the same
+/// device (the display is terminated with its last Context). Not copyable.
+/// One thread at a time may use a Context; different Contexts may be used
+/// from different threads at once.
 class Context {
 public:
     /// Throws svo::Error with a one-line reason when no GL 4.5 core context can be had.
+    /// Leaves the calling thread's current context as it was.
     explicit Context(const ContextOptions& options = {});
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
 
     const ContextInfo& info() const;
+
+    /// Makes the context current for the scope's lifetime, then restores the
+    /// thread's previous context. Nested scopes of the same context are free.
+    class Scope {
+    public:
+        explicit Scope(const Context& context);
+        ~Scope();
+        Scope(const Scope&) = delete;
+        Scope& operator=(const Scope&) = delete;
+
+        struct Saved; ///< the thread's previous current context
+
+    private:
+        std::unique_ptr<Saved> saved_; ///< null when the context was already current
+    };
+
+    /// The linked program of these shader files, compiled on first use
+    /// (svo's backends; call inside a Scope).
+    const Program& program(std::initializer_list<const char*> files) const;
+    /// A buffer named `what` of at least `bytes`, reused across calls; a
+    /// larger request frees the old one first. Contents are undefined.
+    const Buffer& scratch(const char* what, uint64_t bytes) const;
+    /// Frees every scratch buffer (call inside a Scope, or it makes one).
+    void releaseScratch() const;
+    /// Bytes of scratch buffers held.
+    uint64_t scratchBytes() const;
 
 private:
     struct Impl;

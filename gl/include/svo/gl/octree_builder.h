@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "svo/core/interrupt.h"
 #include "svo/core/octree.h"
 #include "svo/core/voxelization.h"
 #include "svo/gl/context.h"
@@ -34,7 +35,9 @@ struct OctreeVoxelization : RunStats {
 
 /// Builds the octree of whole bricks (brick-origin key, mask) on the GPU:
 /// the path by which OpenVDB grids become octrees. Keys must lie in the grid.
+/// `checkpoint` is polled between stages (it throws svo::Interrupted to stop).
 OctreeVoxelization buildOctreeGpu(Context& context, const GridSpec& grid,
-                                  const std::vector<std::pair<uint64_t, Brick>>& bricks);
+                                  const std::vector<std::pair<uint64_t, Brick>>& bricks,
+                                  const Checkpoint& checkpoint = {});
 
 } // namespace svo::gl

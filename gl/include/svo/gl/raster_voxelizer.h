@@ -14,6 +14,9 @@
 /// Guarantee: the result holds every voxel whose cube, shrunk by
 /// grid.epsilon(), meets a triangle (nothing is missed) and only voxels whose
 /// cube, grown by grid.epsilon(), meets one.
+#include <vector>
+
+#include "svo/core/interrupt.h"
 #include "svo/core/mesh.h"
 #include "svo/core/voxelization.h"
 #include "svo/gl/context.h"
@@ -38,6 +41,12 @@ struct RasterOptions {
     /// Guard band in voxels; negative means grid.epsilon(). Other values are
     /// for experiments only (docs/stability.md shows what 0 and too much do).
     double guardBand = -1.0;
+    /// Polled between stages and between viewport tiles; throws svo::Interrupted to stop.
+    Checkpoint checkpoint;
+    /// voxelizeToOctree only: when set, also receives the voxel list itself
+    /// (sorted, unique keys), read back apart from the octree, so a check can
+    /// compare the two without rasterizing again.
+    std::vector<uint64_t>* voxelList = nullptr;
 };
 
 /// The voxel set as sorted keys: rasterize, read the list back, sort on the CPU.
@@ -47,6 +56,8 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
 /// The voxel set as an octree: rasterize, build the octree on the GPU from the
 /// voxel list (octree_builder.h), read back only nodes and bricks. The CPU
 /// waits once, after all passes are issued (and once more for attribute channels).
+/// Programs and buffers come from the context's caches, so a repeated call
+/// compiles nothing and allocates only when it needs more room.
 OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                                     const RasterOptions& options = {});
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "svo/core/octree.h"
+#include "svo/vdb_io/grid_options.h"
 
 namespace svo::vdb {
 
@@ -28,6 +29,13 @@ openvdb::FloatGrid::Ptr buildFogGrid(const Octree& octree);
 /// The octree's attribute channels on its voxels: Vec3SGrid "normal",
 /// Int32Grid "triangle_id" and Vec3SGrid "color", each only when present.
 openvdb::GridPtrVec buildAttributeGrids(const Octree& octree);
+
+/// An octree's voxels as grids, in this order: the topology grid (Mask or
+/// Bool, named grids.name), the fog grid "density" when asked, then the
+/// attribute grids when asked and present. Their transform is @a xform, or
+/// the octree's own lattice (makeTransform) when it is null.
+openvdb::GridPtrVec octreeToGrids(const Octree& octree, const GridOptions& grids = {},
+                                  openvdb::math::Transform::ConstPtr xform = nullptr);
 
 /// Grid types whose active voxels can become an octree.
 using GridTypes = openvdb::TypeList<openvdb::MaskGrid, openvdb::BoolGrid, openvdb::FloatGrid, openvdb::DoubleGrid,
@@ -48,3 +56,7 @@ struct GridBricks {
 GridBricks gridToBricks(const openvdb::GridBase& grid, const std::string& name);
 
 } // namespace svo::vdb
+
+namespace svo {
+using vdb::octreeToGrids; // part of the public API (svo/svo.h)
+} // namespace svo

@@ -7,17 +7,16 @@
 #include <vector>
 
 #include "svo/core/octree.h"
+#include "svo/vdb_io/grid_options.h"
 
 namespace svo::vdb {
 
 /// The grid type that carries the topology.
-enum class Topology { Mask, Bool };
+using Topology = GridOptions::Topology;
 
-struct WriteOptions {
-    std::string gridName = "surface";
-    Topology topology = Topology::Mask;
-    bool fog = false; ///< also write a fog-volume FloatGrid "density" (1 inside voxels)
-    /// String metadata stored on every grid (source, backend, renderer, ...).
+/// Which grids (GridOptions), and string metadata stored on every grid
+/// (source, backend, renderer, ...).
+struct WriteOptions : GridOptions {
     std::map<std::string, std::string> metadata;
 };
 

@@ -1,0 +1,168 @@
+#include "cli_options.h"
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "svo/core/error.h"
+#include "svo/voxelizer.h"
+
+namespace svo::app {
+
+DeviceOptions BackendArgs::deviceOptions() const { return DeviceOptions{device, glDebug}; }
+
+VoxelizeOptions BackendArgs::voxelizeOptions() const
+{
+    VoxelizeOptions o;
+    o.backend = backend == "cpu" ? Backend::Cpu : backend == "raster" ? Backend::Raster : Backend::Auto;
+    o.dilation = conservative == "hardware" ? Dilation::Hardware
+                 : conservative == "shader" ? Dilation::Shader
+                 : conservative == "centroid" ? Dilation::CentroidPush
+                                              : Dilation::Auto;
+    o.attributes = attributes;
+    return o;
+}
+
+void addBackendOptions(CLI::App& cmd, BackendArgs& a)
+{
+    cmd.add_option("--backend", a.backend, "auto (the GPU raster backend), raster, or cpu (double-precision reference)")
+        ->check(CLI::IsMember({"auto", "raster", "cpu"}))
+        ->capture_default_str();
+    cmd.add_option("--conservative", a.conservative,
+                   "Raster dilation: auto, hardware (GL_NV_conservative_raster), shader, or centroid (the seed "
+                   "report's vertex push; a benchmark baseline that misses voxels)")
+        ->check(CLI::IsMember({"auto", "hardware", "shader", "centroid"}))
+        ->capture_default_str();
+    cmd.add_option("--device", a.device, "EGL device: auto, hardware, software or an index (env SVO_EGL_DEVICE)");
+    cmd.add_flag("--gl-debug", a.glDebug, "Print GL debug messages");
+}
+
+void addAttributeOption(CLI::App& cmd, BackendArgs& a)
+{
+    cmd.add_option_function<std::vector<std::string>>(
+           "--attributes",
+           [&a](const std::vector<std::string>& names) {
+               for (const auto& n : names)
+                   a.attributes |= n == "normal" ? kNormals : n == "triangle" ? kTriangles : kColors;
+           },
+           "Per-voxel channels: normal, triangle (smallest triangle id), color (needs vertex colours)")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"normal", "triangle", "color"}));
+}
+
+void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize)
+{
+    auto* res = cmd.add_option("-r,--resolution", resolution,
+                               "Voxel size = longest bounding-box side / N (default 256); the result spans N+1 voxels "
+                               "along that side (N+2 when the box ends exactly on voxel faces)");
+    auto* size = cmd.add_option("--voxel-size", voxelSize, "Voxel size in world units");
+    res->excludes(size);
+}
+
+GridRequest gridRequest(const CLI::App& cmd, int64_t resolution, double voxelSize)
+{
+    const bool gotRes = cmd.count("--resolution") > 0, gotSize = cmd.count("--voxel-size") > 0;
+    if (gotRes && resolution < 1) throw Error(fmt::format("--resolution must be at least 1, got {}", resolution));
+    if (gotSize && !(voxelSize > 0)) throw Error(fmt::format("--voxel-size must be positive, got {}", voxelSize));
+    GridRequest r;
+    r.resolution = gotRes ? resolution : (gotSize ? 0 : 256);
+    r.voxelSize = gotSize ? voxelSize : 0;
+    return r;
+}
+
+GridOptions OutputArgs::gridOptions() const
+{
+    GridOptions g;
+    g.topology = topology == "bool" ? GridOptions::Topology::Bool : GridOptions::Topology::Mask;
+    g.fog = fog;
+    return g;
+}
+
+void addOutputOptions(CLI::App& cmd, OutputArgs& a)
+{
+    cmd.add_option("--topology", a.topology, "Grid type of the .vdb topology: mask (MaskGrid) or bool (BoolGrid)")
+        ->check(CLI::IsMember({"mask", "bool"}))
+        ->capture_default_str();
+    cmd.add_flag("--fog", a.fog, "Also write a fog-volume FloatGrid 'density' (.vdb and .nvdb output)");
+}
+
+std::string backendLine(const VoxelizeStats& s)
+{
+    if (s.backend == "cpu") return "cpu (double-precision reference)";
+    if (s.dilation.empty()) return fmt::format("{}, on {}", s.backend, s.device);
+    return fmt::format("{}, {} dilation, on {}{}", s.backend, s.dilation, s.device,
+                       s.dilation == "hardware" ? " + GL_NV_conservative_raster" : "");
+}
+
+std::string describeInput(const std::string& path, const LoadedOctree& lo, const VoxelizeStats& stats)
+{
+    switch (lo.kind) {
+    case LoadedOctree::Kind::Svo: return fmt::format("{} (.svo)", path);
+    case LoadedOctree::Kind::Vdb:
+        return fmt::format("{}, grid '{}' ({}, {} bricks{})", path, lo.gridName, lo.gridType,
+                           thousands(lo.octree.bricks.size()),
+                           lo.tilesExpanded ? fmt::format(", {} active tiles expanded", lo.tilesExpanded) : "");
+    case LoadedOctree::Kind::Mesh: break;
+    }
+    return fmt::format("{} ({} triangles), voxelized by {}", path, thousands(lo.mesh ? lo.mesh->triangles.size() : 0),
+                       backendLine(stats));
+}
+
+std::string describeOutput(const std::string& path, const WriteReport& r, const GridOptions& g)
+{
+    if (r.format == OutputFormat::Svo) return fmt::format("{} ({:.2f} MB octree)", path, double(r.bytes) / 1e6);
+    return fmt::format("{} ({:.2f} MB, {} {} leaves{}{})", path, double(r.bytes) / 1e6, thousands(r.leaves),
+                       g.topology == GridOptions::Topology::Bool ? "bool" : "mask", g.fog ? ", with fog grid" : "",
+                       r.format == OutputFormat::NanoVdb ? ", NanoVDB" : "");
+}
+
+void printWarnings(const std::vector<std::string>& warnings)
+{
+    for (const auto& w : warnings) fmt::print(stderr, "svo: warning: {}\n", w);
+}
+
+void printStages(const std::vector<StageTime>& stages)
+{
+    for (const auto& s : stages)
+        fmt::print("  {:<20} {:>10} {:>10.2f}\n", s.name, s.gpuMs < 0 ? std::string("-") : fmt::format("{:.3f}", s.gpuMs),
+                   s.wallMs);
+}
+
+void printOctreeSummary(const Octree& o)
+{
+    const OctreeStats st = octreeStats(o);
+    const auto t = o.grid.translation();
+    fmt::print("  {:<12} {} x {} x {} voxels from index ({}, {}, {}), voxel size {:.6g}, translation ({:.6g}, {:.6g}, "
+               "{:.6g})\n",
+               "grid", o.grid.dims[0], o.grid.dims[1], o.grid.dims[2], o.grid.anchor[0], o.grid.anchor[1],
+               o.grid.anchor[2], o.grid.voxelSize, t[0], t[1], t[2]);
+    fmt::print("  {:<12} {} (root 0 .. bricks {}); root covers {}^3 voxels\n", "levels", o.brickLevel + 1, o.brickLevel,
+               8u << o.brickLevel);
+    fmt::print("  {:<12} {:>6} {:>14} {:>14}\n", "", "level", "nodes", "occupied");
+    for (size_t l = 0; l < st.nodesPerLevel.size(); ++l)
+        fmt::print("  {:<12} {:>6} {:>14} {:>14}\n", "", l, thousands(st.nodesPerLevel[l]),
+                   thousands(st.occupiedPerLevel[l]));
+    fmt::print("  {:<12} {}\n", "bricks", thousands(st.bricks));
+    fmt::print("  {:<12} {}\n", "voxels", thousands(st.voxels));
+    fmt::print("  {:<12} {} (nodes {} + bricks {})\n", "bytes", thousands(st.bytes),
+               thousands(o.nodes.size() * sizeof(OctreeNode)), thousands(o.bricks.size() * sizeof(Brick)));
+    fmt::print("  {:<12} {:.3f}\n", "bytes/voxel", st.bytesPerVoxel());
+    fmt::print("  {:<12} {:.3f} of brick voxels occupied\n", "fill ratio", st.fillRatio());
+}
+
+std::string thousands(uint64_t n)
+{
+    std::string s = std::to_string(n);
+    for (int i = int(s.size()) - 3; i > 0; i -= 3) s.insert(size_t(i), ",");
+    return s;
+}
+
+void checkDistinctOutputs(const std::vector<std::string>& paths)
+{
+    for (size_t i = 0; i < paths.size(); ++i)
+        for (size_t j = i + 1; j < paths.size(); ++j)
+            if (!paths[i].empty() && std::filesystem::weakly_canonical(paths[i]) == std::filesystem::weakly_canonical(paths[j]))
+                throw Error(fmt::format("{}: given for two outputs; each output needs its own file", paths[i]));
+}
+
+} // namespace svo::app

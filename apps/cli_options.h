@@ -1,0 +1,74 @@
+#pragma once
+/// @file cli_options.h
+/// What the subcommands share: options that become library arguments, and
+/// the words they print. The work itself is the library's (svo/svo.h).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "svo/core/grid.h"
+#include "svo/core/octree.h"
+#include "svo/vdb_io/grid_options.h"
+#include "svo/vdb_io/octree_files.h"
+
+namespace CLI {
+class App;
+}
+
+namespace svo {
+class Voxelizer;
+struct VoxelizeOptions;
+struct DeviceOptions;
+struct VoxelizeStats;
+} // namespace svo
+
+namespace svo::app {
+
+/// --backend, --conservative, --device, --gl-debug, --attributes.
+struct BackendArgs {
+    std::string backend = "auto"; ///< auto | raster | cpu
+    std::string conservative = "auto";
+    std::string device;
+    bool glDebug = false;
+    uint32_t attributes = 0; ///< AttributeChannel bits
+
+    DeviceOptions deviceOptions() const;
+    /// The options these arguments ask for (no interrupter, no statistics yet).
+    VoxelizeOptions voxelizeOptions() const;
+};
+void addBackendOptions(CLI::App& cmd, BackendArgs& args);
+void addAttributeOption(CLI::App& cmd, BackendArgs& args);
+
+/// -r/--resolution and --voxel-size (mutually exclusive).
+void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize);
+/// The request those options make; resolution 256 when neither is given.
+GridRequest gridRequest(const CLI::App& cmd, int64_t resolution, double voxelSize);
+
+/// --topology and --fog, as the library's GridOptions.
+struct OutputArgs {
+    std::string topology = "mask"; ///< mask | bool
+    bool fog = false;
+    GridOptions gridOptions() const;
+};
+void addOutputOptions(CLI::App& cmd, OutputArgs& args);
+
+/// "raster, hardware dilation, on <device>" or "cpu (double-precision reference)".
+std::string backendLine(const VoxelizeStats& stats);
+/// One line about an input read by loadOctree.
+std::string describeInput(const std::string& path, const LoadedOctree& loaded, const VoxelizeStats& stats);
+/// "out.vdb (1.23 MB, 345 mask leaves)".
+std::string describeOutput(const std::string& path, const WriteReport& report, const GridOptions& grids);
+
+/// Prints the warnings a call gathered, as "svo: warning: ...".
+void printWarnings(const std::vector<std::string>& warnings);
+/// Prints levels, nodes per level, bricks, bytes, bytes per voxel, fill ratio.
+void printOctreeSummary(const Octree& octree);
+/// Prints stage, GPU ms and wall ms rows.
+void printStages(const std::vector<StageTime>& stages);
+
+/// 1234567 -> "1,234,567"
+std::string thousands(uint64_t n);
+/// Throws svo::Error when two output paths name the same file.
+void checkDistinctOutputs(const std::vector<std::string>& paths);
+
+} // namespace svo::app

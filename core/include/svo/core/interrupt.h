@@ -1,0 +1,57 @@
+#pragma once
+/// @file interrupt.h
+/// Cancellation and progress: how a long call hears from its caller.
+///
+/// A Checkpoint wraps the caller's poll function (the public API adapts an
+/// openvdb::util::NullInterrupter to it). Work calls the checkpoint between
+/// stages and between tiles with the fraction of its part done; the poll gets
+/// the whole call's percentage, and when it answers true the checkpoint throws
+/// svo::Interrupted. Work split into parts hands each part a sub-range with
+/// part(), so percentages stay monotonic across stages.
+#include <functional>
+#include <string>
+
+#include "svo/core/error.h"
+
+namespace svo {
+
+/// Thrown when the caller's interrupter asked to stop. Nothing partial is
+/// returned and nothing is written; the object that was working stays usable.
+class Interrupted : public Error {
+public:
+    explicit Interrupted(const std::string& what) : Error(what) {}
+};
+
+class Checkpoint {
+public:
+    /// Gets the percentage done (0..100); returns true to cancel.
+    using Poll = std::function<bool(int percent)>;
+
+    Checkpoint() = default; ///< polls nothing, never cancels
+    explicit Checkpoint(Poll poll) : poll_(std::move(poll)) {}
+
+    /// `fraction` (0..1) of this part is done. Throws Interrupted when the poll
+    /// asks to stop; `where` names the step for the message.
+    void operator()(double fraction, const char* where = "") const
+    {
+        if (!poll_) return;
+        const double f = from_ + (to_ - from_) * (fraction < 0 ? 0 : fraction > 1 ? 1 : fraction);
+        if (poll_(int(f * 100.0)))
+            throw Interrupted(std::string("interrupted") + (*where ? std::string(" during ") + where : std::string()));
+    }
+
+    /// The sub-range [a, b] of this part (fractions of it) as a part of its own.
+    Checkpoint part(double a, double b) const
+    {
+        Checkpoint c = *this;
+        c.from_ = from_ + (to_ - from_) * a;
+        c.to_ = from_ + (to_ - from_) * b;
+        return c;
+    }
+
+private:
+    Poll poll_;
+    double from_ = 0.0, to_ = 1.0;
+};
+
+} // namespace svo

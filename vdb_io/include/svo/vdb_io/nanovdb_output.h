@@ -1,0 +1,25 @@
+#pragma once
+/// @file nanovdb_output.h
+/// @brief OpenVDB grids as NanoVDB grids, for GPU renderers that read NanoVDB.
+///
+/// Method: NanoVDB's own converter (nanovdb::openToNanoVDB) with its default
+/// statistics and checksum. Supported: MaskGrid, BoolGrid, FloatGrid,
+/// DoubleGrid, Int32Grid, Int64Grid, Vec3SGrid, Vec3DGrid: every grid svo writes.
+#include <nanovdb/util/GridHandle.h>
+#include <nanovdb/util/HostBuffer.h>
+#include <openvdb/openvdb.h>
+
+#include <string>
+
+namespace svo::vdb {
+
+/// One grid in NanoVDB form (name and transform kept).
+/// @throw svo::Error for a grid type NanoVDB cannot hold.
+nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const openvdb::GridBase::Ptr& grid);
+
+/// Writes the grids to one uncompressed .nvdb file, atomically (a temporary
+/// file renamed into place). Returns the file's size in bytes.
+/// @throw svo::Error naming the path.
+uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids);
+
+} // namespace svo::vdb

@@ -1,0 +1,228 @@
+#pragma once
+/// @file voxelizer.h
+/// @brief svo::Voxelizer: triangle meshes to OpenVDB grids and sparse voxel
+/// octrees on the GPU (OpenGL 4.5 core through headless EGL).
+///
+/// @details Method. Each vertex goes to the index space of the given transform
+/// in double precision on the CPU (relative to an integer anchor near the
+/// mesh, so a mesh far from the origin loses nothing). The GPU rasterizes each
+/// triangle along its dominant axis, enlarged so that every voxel column it
+/// touches gets a fragment, and keeps each voxel of the column that passes the
+/// shared triangle/box overlap test on a cube grown by a small guard band that
+/// covers float rounding. Compute shaders then build a linear octree of 8^3
+/// bricks (OpenVDB leaf masks) from the voxels, and only the octree comes back.
+/// Grids are made from the bricks by copying masks into leaves.
+///
+/// Guarantees.
+/// - Conservative coverage: the result holds every voxel whose closed cube
+///   [i-1/2, i+1/2]^3 (index space) meets a triangle, so a closed mesh gives a
+///   watertight (26-separating) shell. Voxels beyond that set are only those
+///   within the guard band of a triangle (VoxelizeStats::epsilon voxels).
+/// - Exact in the transform's index space: any affine transform works
+///   (uniform or non-uniform scale, rotation, shear, translation), because
+///   the voxels are cubes of index space; the output grid carries the
+///   transform it was given.
+/// - Degenerate triangles (needles, points) still cover what they touch.
+/// - Deterministic: the same input gives the same voxels on every call.
+///
+/// Reuse. A Voxelizer owns its GL context, the compiled programs and the
+/// scratch buffers, so only the first call pays for EGL start-up and shader
+/// compilation, and a warm call pays only for its work. Scratch buffers stay
+/// at their largest size until releaseScratch().
+///
+/// Host contexts. The Voxelizer's context is current only inside a call; the
+/// context the calling thread had current before (EGL, or GLX such as a
+/// GLFW window's) is current again on every path out, errors included.
+///
+/// Threads. One thread at a time per Voxelizer (calls are not synchronized).
+/// Several Voxelizers may run in parallel on different threads, on the same
+/// device or on different ones.
+///
+/// Errors. svo::Error (svo/core/error.h) names the problem and the offending
+/// value: bad meshes (index out of range, NaN/Inf vertices), impossible grids,
+/// a non-linear transform, no usable GPU, GPU memory exhausted. An interrupted
+/// call throws svo::Interrupted (a svo::Error). After any exception the
+/// Voxelizer is usable for the next call.
+#include <openvdb/openvdb.h>
+#include <openvdb/util/NullInterrupter.h>
+#include <openvdb/util/Util.h> // INVALID_IDX
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "svo/core/mesh.h"
+#include "svo/core/octree.h"
+#include "svo/core/voxelization.h"
+#include "svo/vdb_io/grid_builder.h"
+#include "svo/vdb_io/grid_options.h"
+
+namespace svo {
+
+/// Where voxelization runs.
+enum class Backend {
+    Auto,   ///< the GPU raster backend (the only GPU backend today)
+    Raster, ///< GPU: rasterization along each triangle's dominant axis
+    Cpu,    ///< the double-precision CPU reference (tests; no GL context needed)
+};
+
+/// How the raster backend enlarges triangles so no touched column is missed.
+enum class Dilation {
+    Auto,         ///< Hardware where GL_NV_conservative_raster exists, else Shader
+    Hardware,     ///< GL_NV_conservative_raster; an error where it is missing
+    Shader,       ///< edge offsets in the geometry shader
+    CentroidPush, ///< an early vertex-push method; misses voxels; benchmarks only
+};
+
+/// Which GPU the Voxelizer uses.
+struct DeviceOptions {
+    /// "" ($SVO_EGL_DEVICE, else "auto"), "auto" (hardware first, then
+    /// Mesa's software renderer), "hardware", "software", or an EGL device index.
+    std::string device;
+    bool glDebug = false; ///< print GL debug messages to stderr
+};
+
+/// What one call measured. Kept apart from the result; filled only when asked.
+struct VoxelizeStats {
+    std::vector<StageTime> stages; ///< GPU (timer queries) and wall milliseconds per stage
+    uint64_t voxels = 0, bricks = 0;
+    uint64_t listEntries = 0;      ///< voxel-list entries written, duplicates included
+    int overflowRetries = 0;       ///< passes repeated because a GPU buffer was too small
+    uint64_t gpuBytes = 0;         ///< peak GPU buffer bytes of the call
+    double epsilon = 0;            ///< guard band in voxels
+    std::string backend;           ///< "raster" or "cpu"
+    std::string dilation;          ///< "hardware", "shader", "centroid-push (baseline)"; empty for cpu
+    std::string device;            ///< "vendor | renderer | version (EGL device)", or "cpu"
+    std::string renderer;          ///< GL renderer string, or "cpu"
+    GridSpec grid;                 ///< the local grid the call used
+    std::vector<std::string> warnings; ///< what was asked for but could not be given (colours without vertex colours)
+    double gpuMs() const;          ///< the sum of the stages' GPU times
+};
+
+/// Options of one call. Plain values; the defaults suit most uses.
+struct VoxelizeOptions {
+    Backend backend = Backend::Auto;
+    Dilation dilation = Dilation::Auto;
+    /// Per-voxel channels to compute: AttributeChannel bits (kNormals,
+    /// kTriangles, kColors). Colours need vertex colours and are left out otherwise.
+    uint32_t attributes = 0;
+    /// Polled between stages and between tiles with the percentage done;
+    /// returning true cancels the call (svo::Interrupted). start() and end()
+    /// bracket the call. Must outlive the call.
+    openvdb::util::NullInterrupter* interrupter = nullptr;
+    /// When set, filled with the call's statistics.
+    VoxelizeStats* stats = nullptr;
+};
+
+class Voxelizer {
+public:
+    /// Creates no GL context yet: the first GPU call does (so a Cpu-backend
+    /// user never needs one). Throws nothing.
+    explicit Voxelizer(const DeviceOptions& device = {});
+    ~Voxelizer();
+    Voxelizer(Voxelizer&&) noexcept;
+    Voxelizer& operator=(Voxelizer&&) noexcept;
+
+    /// @brief The voxels of a mesh as a MaskGrid whose transform is @a xform.
+    /// @param points     vertices in world units
+    /// @param triangles  vertex indices; each must be < points.size()
+    /// @param xform      any linear (affine) transform; voxels are index-space cubes of it
+    /// @param options    backend, channels, interrupter, statistics
+    /// @throw svo::Error for an empty mesh, an index out of range, a NaN/Inf
+    ///        vertex, a non-linear transform, or a grid beyond OpenVDB's 32-bit
+    ///        coordinates or svo's 2^21 voxels a side; svo::Interrupted.
+    openvdb::MaskGrid::Ptr meshToMask(const std::vector<openvdb::Vec3s>& points,
+                                      const std::vector<openvdb::Vec3I>& triangles,
+                                      const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
+    /// Double-precision vertices: a mesh far from the origin is not rounded before svo maps it.
+    openvdb::MaskGrid::Ptr meshToMask(const std::vector<openvdb::Vec3d>& points,
+                                      const std::vector<openvdb::Vec3I>& triangles,
+                                      const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
+    /// Triangles and quads, as OpenVDB's meshToVolume takes them: a quad whose
+    /// fourth index is openvdb::util::INVALID_IDX is a triangle; others are
+    /// split along their 0-2 diagonal.
+    openvdb::MaskGrid::Ptr meshToMask(const std::vector<openvdb::Vec3s>& points,
+                                      const std::vector<openvdb::Vec3I>& triangles,
+                                      const std::vector<openvdb::Vec4I>& quads,
+                                      const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
+    openvdb::MaskGrid::Ptr meshToMask(const std::vector<openvdb::Vec3d>& points,
+                                      const std::vector<openvdb::Vec3I>& triangles,
+                                      const std::vector<openvdb::Vec4I>& quads,
+                                      const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
+
+    /// The same voxels as a BoolGrid (true on active voxels; what pyopenvdb reads).
+    template <typename PointT>
+    openvdb::BoolGrid::Ptr meshToBool(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
+                                      const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
+    /// The same voxels as a fog volume: FloatGrid, 1 on voxels, background 0, class GRID_FOG_VOLUME.
+    template <typename PointT>
+    openvdb::FloatGrid::Ptr meshToFog(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
+                                      const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
+    /// The topology grid, then the fog grid and the attribute channels
+    /// (options.attributes) as grids "normal" (Vec3SGrid), "triangle_id"
+    /// (Int32Grid) and "color" (Vec3SGrid), as @a grids asks.
+    template <typename PointT>
+    openvdb::GridPtrVec meshToGrids(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
+                                    const openvdb::math::Transform& xform, const VoxelizeOptions& options = {},
+                                    const GridOptions& grids = {});
+
+    /// @brief The voxels of a mesh as an octree.
+    /// @details The octree's GridSpec is the transform's lattice when @a xform is
+    /// a uniform scale plus a whole-voxel translation (what .svo files and
+    /// octreeToGrids(octree) describe); for any other transform it is the
+    /// transform's index space itself (voxel size 1), and the caller keeps
+    /// @a xform to turn the octree into grids (octreeToGrids(octree, xform)).
+    template <typename PointT>
+    Octree meshToOctree(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
+                        const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform,
+                        const VoxelizeOptions& options = {});
+
+    /// @brief svo's own types: a double-precision mesh on a grid chosen by
+    /// makeGrid/makeGridOnLattice (what the CLI and the Python module use).
+    /// @param voxelList when set, also receives the backend's voxel set read back
+    ///        apart from the octree (sorted, unique keys), for consistency checks.
+    Octree voxelize(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
+                    std::vector<uint64_t>* voxelList = nullptr);
+
+    /// @brief The active voxels of any grid (bool, mask, float, double, int32,
+    /// int64, vec3; active tiles expanded) as an octree, built on the GPU
+    /// (or the CPU with Backend::Cpu).
+    /// @throw svo::Error for an unsupported type, a transform other than a
+    ///        uniform scale plus a whole-voxel translation, or an extent beyond 2^21.
+    Octree gridToOctree(const openvdb::GridBase& grid, const VoxelizeOptions& options = {});
+    /// Whole bricks (brick-origin key, mask) on a grid, built into an octree.
+    Octree bricksToOctree(const GridSpec& grid, std::vector<std::pair<uint64_t, Brick>> bricks,
+                          const VoxelizeOptions& options = {});
+
+    /// The GPU's vendor, renderer and version (creates the context if needed).
+    std::string deviceDescription();
+    /// Frees the scratch buffers kept for the next call.
+    void releaseScratch();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// @brief A mesh in OpenVDB's types as svo's double-precision mesh in the index
+/// space of @a xform, with the grid it voxelizes on (see Voxelizer::meshToOctree
+/// for which lattice that is).
+/// @throw svo::Error for a non-linear transform, an index out of range, or a
+///        grid beyond svo's limits.
+struct IndexSpaceMesh {
+    TriangleMesh mesh;
+    GridSpec grid;
+};
+IndexSpaceMesh prepareMesh(const std::vector<openvdb::Vec3d>& points, const std::vector<openvdb::Vec3I>& triangles,
+                           const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform);
+IndexSpaceMesh prepareMesh(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& triangles,
+                           const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform);
+
+/// Statistics of repeated runs: each stage's median GPU and wall time; the
+/// other fields are the last run's. Throws svo::Error for an empty list.
+VoxelizeStats medianStats(const std::vector<VoxelizeStats>& runs);
+
+} // namespace svo
+
+#include "svo/detail/voxelizer_impl.h"

@@ -1,0 +1,121 @@
+#include "svo/vdb_io/octree_files.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "svo/core/atomic_file.h"
+#include "svo/core/error.h"
+#include "svo/core/mesh_io.h"
+#include "svo/core/octree_file.h"
+#include "svo/vdb_io/grid_builder.h"
+#include "svo/vdb_io/nanovdb_output.h"
+#include "svo/vdb_io/vdb_file.h"
+#include "svo/voxelizer.h"
+
+namespace svo {
+namespace fs = std::filesystem;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+std::string extensionOf(const std::string& path) { return fs::path(path).extension().string(); }
+
+} // namespace
+
+OutputFormat outputFormat(const std::string& path)
+{
+    const std::string ext = extensionOf(path);
+    if (ext == ".vdb") return OutputFormat::Vdb;
+    if (ext == ".svo") return OutputFormat::Svo;
+    if (ext == ".nvdb") return OutputFormat::NanoVdb;
+    throw Error(fmt::format("{}: the output must end in .vdb, .nvdb or .svo", path));
+}
+
+void checkOutputPath(const std::string& path)
+{
+    outputFormat(path);
+    checkWritable(path);
+}
+
+WriteReport writeOctree(const std::string& path, const Octree& octree, const GridOptions& grids,
+                        const std::map<std::string, std::string>& metadata)
+{
+    WriteReport report;
+    report.format = outputFormat(path);
+    std::error_code ec;
+    if (report.format == OutputFormat::Svo) {
+        if (grids.fog || grids.topology != GridOptions::Topology::Mask)
+            throw Error(fmt::format("{}: a .svo file holds the octree only; a fog grid or a bool topology needs "
+                                    ".vdb or .nvdb output",
+                                    path));
+        const auto t0 = Clock::now();
+        writeOctreeFile(path, octree);
+        report.stages.push_back({"svo write", -1, msSince(t0)});
+        report.bytes = fs::file_size(path, ec);
+        return report;
+    }
+    if (report.format == OutputFormat::Vdb) {
+        vdb::WriteOptions wo;
+        static_cast<GridOptions&>(wo) = grids;
+        wo.metadata = metadata;
+        const vdb::WriteStats ws = vdb::writeVdb(path, octree, wo);
+        report.stages.push_back({"vdb build (cpu)", -1, ws.buildMs});
+        report.stages.push_back({"vdb write", -1, ws.writeMs});
+        report.bytes = ws.bytes;
+        report.leaves = ws.leaves;
+        return report;
+    }
+    checkWritable(path);
+    auto t0 = Clock::now();
+    openvdb::initialize();
+    openvdb::GridPtrVec vdbGrids = octreeToGrids(octree, grids);
+    for (auto& g : vdbGrids)
+        for (const auto& [k, v] : metadata) g->insertMeta(k, openvdb::StringMetadata(v));
+    report.stages.push_back({"vdb build (cpu)", -1, msSince(t0)});
+    t0 = Clock::now();
+    report.bytes = vdb::writeNanoVdb(path, vdbGrids);
+    report.stages.push_back({"nvdb write", -1, msSince(t0)});
+    report.leaves = octree.bricks.size();
+    return report;
+}
+
+LoadedOctree loadOctree(Voxelizer& voxelizer, const std::string& path, const std::string& gridName,
+                        const GridRequest& request, const VoxelizeOptions& options)
+{
+    LoadedOctree out;
+    const std::string ext = extensionOf(path);
+    if (ext == ".svo") {
+        const auto t0 = Clock::now();
+        out.octree = readOctreeFile(path);
+        out.kind = LoadedOctree::Kind::Svo;
+        out.stages.push_back({"svo read", -1, msSince(t0)});
+        return out;
+    }
+    VoxelizeStats stats;
+    VoxelizeOptions o = options;
+    o.stats = &stats;
+    if (ext == ".vdb") {
+        const auto t0 = Clock::now();
+        vdb::VdbBricks vb = vdb::readVdbBricks(path, gridName);
+        out.stages.push_back({"vdb read", -1, msSince(t0)});
+        out.kind = LoadedOctree::Kind::Vdb;
+        out.gridName = vb.gridName;
+        out.gridType = vb.gridType;
+        out.tilesExpanded = vb.tilesExpanded;
+        out.octree = voxelizer.bricksToOctree(vb.grid, std::move(vb.bricks), o);
+    } else {
+        const auto t0 = Clock::now();
+        TriangleMesh mesh = loadMesh(path);
+        out.stages.push_back({"mesh read", -1, msSince(t0)});
+        out.kind = LoadedOctree::Kind::Mesh;
+        out.octree = voxelizer.voxelize(mesh, makeGrid(mesh, request), o);
+        out.mesh = std::move(mesh);
+    }
+    for (auto& s : stats.stages) out.stages.push_back(s);
+    if (options.stats) *options.stats = std::move(stats);
+    return out;
+}
+
+} // namespace svo

@@ -1,0 +1,337 @@
+#include "svo/voxelizer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "svo/core/cpu_voxelizer.h"
+#include "svo/core/error.h"
+#include "svo/core/interrupt.h"
+#include "svo/core/voxel_attributes.h"
+#include "svo/gl/context.h"
+#include "svo/gl/octree_builder.h"
+#include "svo/gl/raster_voxelizer.h"
+
+namespace svo {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+/// Brackets a call with the interrupter's start() and end(), on every path
+/// out, and turns it into the checkpoint svo's stages poll.
+class InterruptScope {
+public:
+    InterruptScope(openvdb::util::NullInterrupter* interrupter, const char* what) : interrupter_(interrupter)
+    {
+        if (interrupter_) interrupter_->start(what);
+    }
+    ~InterruptScope()
+    {
+        if (interrupter_) interrupter_->end();
+    }
+    InterruptScope(const InterruptScope&) = delete;
+    InterruptScope& operator=(const InterruptScope&) = delete;
+
+    Checkpoint checkpoint() const
+    {
+        if (!interrupter_) return {};
+        auto* i = interrupter_;
+        return Checkpoint([i](int percent) { return i->wasInterrupted(percent); });
+    }
+
+private:
+    openvdb::util::NullInterrupter* interrupter_;
+};
+
+gl::ConservativeMode conservativeMode(Dilation d)
+{
+    switch (d) {
+    case Dilation::Hardware: return gl::ConservativeMode::Hardware;
+    case Dilation::Shader: return gl::ConservativeMode::Shader;
+    case Dilation::CentroidPush: return gl::ConservativeMode::CentroidPush;
+    case Dilation::Auto: break;
+    }
+    return gl::ConservativeMode::Auto;
+}
+
+/// A uniform scale h with a translation of exactly h * shift (whole voxels):
+/// the lattices svo's GridSpec, .svo files and makeTransform describe.
+bool wholeVoxelLattice(const openvdb::Mat4d& m, double& voxelSize, std::array<int64_t, 3>& shift)
+{
+    const double h = m(0, 0);
+    if (!(h > 0) || !std::isfinite(h)) return false;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            if (m(r, c) != (r == c ? h : 0.0)) return false;
+    for (int a = 0; a < 3; ++a) {
+        const double t = m(3, a), s = std::round(t / h);
+        if (!(std::abs(s) < 9.0e15) || h * s != t) return false; // must reproduce t exactly
+        shift[a] = int64_t(s);
+    }
+    voxelSize = h;
+    return true;
+}
+
+template <typename PointT>
+IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
+                       const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform)
+{
+    if (!xform.isLinear())
+        throw Error(fmt::format("the transform is a {} map, which is not linear; svo voxelizes in the index space "
+                                "of linear (affine) transforms only",
+                                xform.baseMap()->type()));
+    IndexSpaceMesh out;
+    TriangleMesh& m = out.mesh;
+    m.source = "input mesh";
+    const uint64_t n = points.size();
+    auto checked = [&](uint64_t face, const char* kind, uint32_t i) {
+        if (i >= n)
+            throw Error(fmt::format("{} {} refers to vertex {}, but the mesh has {} points", kind, face, i, n));
+        return i;
+    };
+    m.triangles.reserve(triangles.size() + 2 * quads.size());
+    for (size_t t = 0; t < triangles.size(); ++t) {
+        const auto& f = triangles[t];
+        m.triangles.push_back({checked(t, "triangle", f[0]), checked(t, "triangle", f[1]), checked(t, "triangle", f[2])});
+    }
+    for (size_t q = 0; q < quads.size(); ++q) {
+        const auto& f = quads[q];
+        const uint32_t a = checked(q, "quad", f[0]), b = checked(q, "quad", f[1]), c = checked(q, "quad", f[2]);
+        m.triangles.push_back({a, b, c});
+        if (f[3] != openvdb::util::INVALID_IDX) m.triangles.push_back({a, c, checked(q, "quad", f[3])});
+    }
+
+    const openvdb::Mat4d mat = xform.baseMap()->getAffineMap()->getMat4();
+    double h = 1.0;
+    std::array<int64_t, 3> shift{};
+    m.positions.resize(n);
+    if (wholeVoxelLattice(mat, h, shift)) {
+        // World coordinates on the transform's lattice: GridSpec::toIndex maps them.
+        for (uint64_t i = 0; i < n; ++i) m.positions[i] = {double(points[i][0]), double(points[i][1]), double(points[i][2])};
+    } else {
+        // Index space directly: subtract the translation first, where it is
+        // exact for a mesh near it, then apply the inverse of the linear part.
+        const openvdb::Vec3d t = mat.getTranslation();
+        const openvdb::Mat3d inv = mat.getMat3().inverse();
+        if (!std::isfinite(inv.det()) || inv.det() == 0.0)
+            throw Error("the transform's linear part is singular; it has no index space to voxelize in");
+        for (uint64_t i = 0; i < n; ++i) {
+            const openvdb::Vec3d p = openvdb::Vec3d(double(points[i][0]), double(points[i][1]), double(points[i][2])) - t;
+            const openvdb::Vec3d idx = p * inv; // OpenVDB's row-vector convention: world = index * M + t
+            m.positions[i] = {idx[0], idx[1], idx[2]};
+        }
+    }
+    validateMesh(m);
+    out.grid = makeGridOnLattice(m, h, shift);
+    return out;
+}
+
+template <typename PointT>
+openvdb::MaskGrid::Ptr toMask(Voxelizer& v, const std::vector<PointT>& points,
+                              const std::vector<openvdb::Vec3I>& triangles, const std::vector<openvdb::Vec4I>& quads,
+                              const openvdb::math::Transform& xform, const VoxelizeOptions& options)
+{
+    GridOptions g;
+    g.attributes = false;
+    const Octree o = v.meshToOctree(points, triangles, quads, xform, options);
+    return openvdb::gridPtrCast<openvdb::MaskGrid>(octreeToGrids(o, g, xform.copy()).front());
+}
+
+} // namespace
+
+IndexSpaceMesh prepareMesh(const std::vector<openvdb::Vec3d>& points, const std::vector<openvdb::Vec3I>& triangles,
+                           const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform)
+{
+    return prepare(points, triangles, quads, xform);
+}
+
+IndexSpaceMesh prepareMesh(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& triangles,
+                           const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform)
+{
+    return prepare(points, triangles, quads, xform);
+}
+
+double VoxelizeStats::gpuMs() const
+{
+    double sum = 0;
+    for (const auto& s : stages) sum += std::max(s.gpuMs, 0.0);
+    return sum;
+}
+
+VoxelizeStats medianStats(const std::vector<VoxelizeStats>& runs)
+{
+    if (runs.empty()) throw Error("medianStats needs at least one run");
+    VoxelizeStats out = runs.back();
+    for (size_t s = 0; s < out.stages.size(); ++s) {
+        std::vector<double> gpu, wall;
+        for (const auto& r : runs)
+            if (s < r.stages.size()) gpu.push_back(r.stages[s].gpuMs), wall.push_back(r.stages[s].wallMs);
+        std::sort(gpu.begin(), gpu.end());
+        std::sort(wall.begin(), wall.end());
+        out.stages[s].gpuMs = gpu[gpu.size() / 2];
+        out.stages[s].wallMs = wall[wall.size() / 2];
+    }
+    return out;
+}
+
+struct Voxelizer::Impl {
+    DeviceOptions device;
+    std::unique_ptr<gl::Context> context;
+
+    /// The GL context, created on first use: a CPU-only user never needs one.
+    gl::Context& gl()
+    {
+        if (!context) context = std::make_unique<gl::Context>(gl::ContextOptions{device.device, device.glDebug});
+        return *context;
+    }
+
+    std::string describe()
+    {
+        const auto& i = gl().info();
+        std::string exts;
+        for (const auto& e : i.extensionsUsed) exts += ", " + e;
+        return fmt::format("{} | {} | {} ({}{})", i.vendor, i.renderer, i.version, i.eglDevice, exts);
+    }
+};
+
+Voxelizer::Voxelizer(const DeviceOptions& device) : impl_(std::make_unique<Impl>()) { impl_->device = device; }
+Voxelizer::~Voxelizer() = default;
+Voxelizer::Voxelizer(Voxelizer&&) noexcept = default;
+Voxelizer& Voxelizer::operator=(Voxelizer&&) noexcept = default;
+
+Octree Voxelizer::voxelize(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                           std::vector<uint64_t>* voxelList)
+{
+    validateMesh(mesh);
+    checkGrid(grid, mesh.source);
+    const InterruptScope interrupt(options.interrupter, "svo: voxelizing a mesh");
+    const Checkpoint checkpoint = interrupt.checkpoint();
+    checkpoint(0.0, "start");
+    VoxelizeStats stats;
+    stats.grid = grid;
+    stats.epsilon = grid.epsilon();
+    if (availableChannels(mesh, options.attributes) != options.attributes)
+        stats.warnings.push_back(mesh.source + " has no vertex colours; the color channel is left out");
+    Octree octree;
+    if (options.backend == Backend::Cpu) {
+        stats.backend = "cpu";
+        stats.device = stats.renderer = "cpu";
+        auto t0 = Clock::now();
+        Voxelization v = voxelizeCpu(mesh, grid);
+        stats.stages.push_back({"voxelize (cpu)", -1, msSince(t0)});
+        checkpoint(0.6, "octree build");
+        t0 = Clock::now();
+        octree = buildOctree(grid, v.keys);
+        stats.stages.push_back({"octree build (cpu)", -1, msSince(t0)});
+        if (options.attributes) {
+            checkpoint(0.8, "attribute channels");
+            t0 = Clock::now();
+            attachAttributesCpu(mesh, octree, options.attributes, 0.0);
+            stats.stages.push_back({"attributes (cpu)", -1, msSince(t0)});
+        }
+        stats.listEntries = v.keys.size();
+        if (voxelList) *voxelList = std::move(v.keys);
+    } else {
+        gl::Context& context = impl_->gl();
+        gl::RasterOptions ro;
+        ro.conservative = conservativeMode(options.dilation);
+        ro.attributes = options.attributes;
+        ro.checkpoint = checkpoint.part(0.0, 0.98);
+        ro.voxelList = voxelList;
+        stats.backend = "raster";
+        stats.dilation = gl::conservativeModeName(context, ro);
+        stats.device = impl_->describe();
+        stats.renderer = context.info().renderer;
+        gl::OctreeVoxelization r = gl::voxelizeToOctree(context, mesh, grid, ro);
+        octree = std::move(r.octree);
+        stats.stages = std::move(r.stages);
+        stats.listEntries = r.listEntries;
+        stats.overflowRetries = r.overflowRetries;
+        stats.gpuBytes = r.gpuBytes;
+    }
+    checkpoint(1.0, "finish");
+    stats.voxels = octree.voxelCount();
+    stats.bricks = octree.bricks.size();
+    if (options.stats) *options.stats = std::move(stats);
+    return octree;
+}
+
+Octree Voxelizer::bricksToOctree(const GridSpec& grid, std::vector<std::pair<uint64_t, Brick>> bricks,
+                                 const VoxelizeOptions& options)
+{
+    checkGrid(grid, "brick input");
+    const InterruptScope interrupt(options.interrupter, "svo: building an octree");
+    const Checkpoint checkpoint = interrupt.checkpoint();
+    VoxelizeStats stats;
+    stats.grid = grid;
+    Octree octree;
+    if (options.backend == Backend::Cpu) {
+        stats.backend = "cpu";
+        stats.device = stats.renderer = "cpu";
+        checkpoint(0.0, "octree build");
+        const auto t0 = Clock::now();
+        octree = buildOctreeFromBricks(grid, std::move(bricks));
+        stats.stages.push_back({"octree build (cpu)", -1, msSince(t0)});
+    } else {
+        gl::Context& context = impl_->gl();
+        stats.backend = "raster";
+        stats.device = impl_->describe();
+        stats.renderer = context.info().renderer;
+        gl::OctreeVoxelization r = gl::buildOctreeGpu(context, grid, bricks, checkpoint.part(0.0, 0.98));
+        octree = std::move(r.octree);
+        stats.stages = std::move(r.stages);
+        stats.gpuBytes = r.gpuBytes;
+    }
+    checkpoint(1.0, "finish");
+    stats.voxels = octree.voxelCount();
+    stats.bricks = octree.bricks.size();
+    if (options.stats) *options.stats = std::move(stats);
+    return octree;
+}
+
+Octree Voxelizer::gridToOctree(const openvdb::GridBase& grid, const VoxelizeOptions& options)
+{
+    vdb::GridBricks gb = vdb::gridToBricks(grid, grid.getName().empty() ? std::string("grid") : grid.getName());
+    return bricksToOctree(gb.grid, std::move(gb.bricks), options);
+}
+
+openvdb::MaskGrid::Ptr Voxelizer::meshToMask(const std::vector<openvdb::Vec3s>& points,
+                                             const std::vector<openvdb::Vec3I>& triangles,
+                                             const openvdb::math::Transform& xform, const VoxelizeOptions& options)
+{
+    return toMask(*this, points, triangles, {}, xform, options);
+}
+
+openvdb::MaskGrid::Ptr Voxelizer::meshToMask(const std::vector<openvdb::Vec3d>& points,
+                                             const std::vector<openvdb::Vec3I>& triangles,
+                                             const openvdb::math::Transform& xform, const VoxelizeOptions& options)
+{
+    return toMask(*this, points, triangles, {}, xform, options);
+}
+
+openvdb::MaskGrid::Ptr Voxelizer::meshToMask(const std::vector<openvdb::Vec3s>& points,
+                                             const std::vector<openvdb::Vec3I>& triangles,
+                                             const std::vector<openvdb::Vec4I>& quads,
+                                             const openvdb::math::Transform& xform, const VoxelizeOptions& options)
+{
+    return toMask(*this, points, triangles, quads, xform, options);
+}
+
+openvdb::MaskGrid::Ptr Voxelizer::meshToMask(const std::vector<openvdb::Vec3d>& points,
+                                             const std::vector<openvdb::Vec3I>& triangles,
+                                             const std::vector<openvdb::Vec4I>& quads,
+                                             const openvdb::math::Transform& xform, const VoxelizeOptions& options)
+{
+    return toMask(*this, points, triangles, quads, xform, options);
+}
+
+std::string Voxelizer::deviceDescription() { return impl_->describe(); }
+
+void Voxelizer::releaseScratch()
+{
+    if (impl_->context) impl_->context->releaseScratch();
+}
+
+} // namespace svo
