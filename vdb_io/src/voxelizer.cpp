@@ -1,0 +1,1 @@
+// Placeholder on branch cmake-package; the library API branch provides this file.
