@@ -12,8 +12,12 @@ int main(int argc, char** argv)
     svo::app::addVoxelizeCommand(app);
     svo::app::addConvertCommand(app);
     svo::app::addInfoCommand(app);
+#ifdef SVO_WITH_VALIDATE // CGAL, optional (CMake option SVO_WITH_VALIDATE)
     svo::app::addValidateCommand(app);
+#endif
+#ifdef SVO_WITH_VTK // VTK, optional (CMake option SVO_WITH_VTK)
     svo::app::addVtkCommand(app);
+#endif
     svo::app::addSceneCommand(app);
     svo::app::addGlInfoCommand(app);
     try {

@@ -1,0 +1,31 @@
+# Install layout and the svo CMake package (find_package(svo CONFIG)), with
+# GNUInstallDirs' folders (lib is lib/<multiarch> under the /usr prefix):
+#   include/svo/...              public headers of core, gl and vdb_io
+#   lib/libsvo_{core,gl,vdb_io}.a
+#   lib/cmake/svo/               svoConfig.cmake, svoConfigVersion.cmake, svoTargets*.cmake,
+#                                svoOpenVDBModulePath.cmake
+#   bin/svo                      with SVO_BUILD_CLI
+# The shaders are compiled into libsvo_gl.a, so nothing else is needed at run time.
+include(CMakePackageConfigHelpers)
+set(SVO_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/svo" CACHE STRING
+    "Where svoConfig.cmake goes, relative to the install prefix")
+mark_as_advanced(SVO_INSTALL_CMAKEDIR)
+
+install(TARGETS svo_core svo_gl svo_vdb_io svo_all EXPORT svoTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# Whole trees: overlap.h includes overlap.glsl, which is shared with the shaders.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ ${PROJECT_SOURCE_DIR}/gl/include/
+                  ${PROJECT_SOURCE_DIR}/vdb_io/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT svoTargets NAMESPACE svo:: DESTINATION ${SVO_INSTALL_CMAKEDIR})
+
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/svoConfig.cmake.in "${PROJECT_BINARY_DIR}/svoConfig.cmake"
+  INSTALL_DESTINATION ${SVO_INSTALL_CMAKEDIR})
+write_basic_package_version_file("${PROJECT_BINARY_DIR}/svoConfigVersion.cmake"
+  COMPATIBILITY SameMajorVersion)
+install(FILES "${PROJECT_BINARY_DIR}/svoConfig.cmake" "${PROJECT_BINARY_DIR}/svoConfigVersion.cmake"
+              ${PROJECT_SOURCE_DIR}/cmake/svoOpenVDBModulePath.cmake
+        DESTINATION ${SVO_INSTALL_CMAKEDIR})
+
+if(TARGET svo)
+  install(TARGETS svo RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()

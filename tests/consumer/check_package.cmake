@@ -1,0 +1,44 @@
+# Installed-package check, run as `cmake -P` by ctest (package_consumer):
+#   1. install the svo build SVO_BUILD_DIR into WORK_DIR/prefix;
+#   2. voxelize MESH with the installed svo into WORK_DIR/cli.vdb;
+#   3. configure and build CONSUMER_DIR (this folder) against that prefix;
+#   4. run `consumer MESH WORK_DIR/cli.vdb`, which voxelizes through the
+#      package and exits 0 only when its voxels equal the CLI's.
+# Also takes GENERATOR, MAKE_PROGRAM, CXX_COMPILER, LAUNCHER, BINDIR and INCLUDEDIR
+# (relative install folders) from the calling build.
+set(prefix "${WORK_DIR}/prefix")
+set(consumer_build "${WORK_DIR}/build")
+file(REMOVE_RECURSE "${WORK_DIR}")
+
+# run(<step> <command...>): runs the command, stops the test when it fails.
+function(run step)
+  message(STATUS "package_consumer: ${step}")
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${step} failed (${rc}): ${ARGN}")
+  endif()
+endfunction()
+
+run("install" ${CMAKE_COMMAND} --install ${SVO_BUILD_DIR} --prefix ${prefix})
+# overlap.h includes the shader source overlap.glsl: it has to be installed too.
+foreach(f ${INCLUDEDIR}/svo/core/overlap.glsl ${INCLUDEDIR}/svo/gl/raster_voxelizer.h
+          ${INCLUDEDIR}/svo/vdb_io/vdb_file.h ${BINDIR}/svo)
+  if(NOT EXISTS "${prefix}/${f}")
+    message(FATAL_ERROR "the install lacks ${f}")
+  endif()
+endforeach()
+
+run("svo voxelize" ${prefix}/${BINDIR}/svo voxelize ${MESH} -r 64 -o ${WORK_DIR}/cli.vdb)
+
+run("configure consumer" ${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${consumer_build} -G ${GENERATOR}
+    -DCMAKE_MAKE_PROGRAM=${MAKE_PROGRAM} -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
+    -DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER} -DCMAKE_BUILD_TYPE=Release
+    -DCMAKE_PREFIX_PATH=${prefix})
+# The package must come from the prefix, not from the build tree or the system.
+file(STRINGS "${consumer_build}/CMakeCache.txt" svo_dir REGEX "^svo_DIR:")
+if(NOT svo_dir MATCHES "=${prefix}/")
+  message(FATAL_ERROR "the consumer found svo elsewhere: ${svo_dir}")
+endif()
+run("build consumer" ${CMAKE_COMMAND} --build ${consumer_build})
+
+run("consumer" ${consumer_build}/consumer ${MESH} ${WORK_DIR}/cli.vdb)
