@@ -3,7 +3,10 @@
 #include <cmath>
 #include <cstring>
 #include <fmt/format.h>
+#include <algorithm>
+#include <memory>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "svo/core/error.h"
 #include "svo/core/voxel_key.h"
@@ -13,23 +16,34 @@ namespace {
 
 static_assert(sizeof(Brick) == openvdb::util::NodeMask<3>::WORD_COUNT * sizeof(openvdb::util::NodeMask<3>::Word));
 
+/// Builds the tree in parallel: the bricks, in the octree's Morton order, are
+/// cut into one contiguous run per thread; each run fills a tree of its own
+/// through an accessor (neighbouring leaves share their path, so the descent
+/// is cached), and the trees are merged by moving nodes. Inserting leaf by
+/// leaf from the root was the serial bottleneck (4 ms of 9 for 56,000
+/// leaves on 2 cores).
 template <typename GridT, typename FillLeaf>
 typename GridT::Ptr buildGrid(const Octree& o, typename GridT::ValueType background, FillLeaf&& fill)
 {
-    using LeafT = typename GridT::TreeType::LeafNodeType;
+    using TreeT = typename GridT::TreeType;
+    using LeafT = typename TreeT::LeafNodeType;
     const std::vector<BrickRef> refs = occupiedBricks(o);
-    std::vector<LeafT*> leaves(refs.size(), nullptr);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, refs.size(), 64), [&](const auto& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
+    const size_t runs = std::clamp<size_t>(refs.size() / 1024, 1, size_t(tbb::this_task_arena::max_concurrency()));
+    std::vector<std::unique_ptr<TreeT>> parts(runs);
+    tbb::parallel_for(size_t(0), runs, [&](size_t run) {
+        auto tree = std::make_unique<TreeT>(background);
+        openvdb::tree::ValueAccessor<TreeT> acc(*tree);
+        for (size_t i = refs.size() * run / runs, end = refs.size() * (run + 1) / runs; i < end; ++i) {
             const auto g = o.grid.toGlobal(refs[i].origin);
             auto* leaf = new LeafT(openvdb::Coord(int32_t(g[0]), int32_t(g[1]), int32_t(g[2])), background, false);
             fill(*leaf, refs[i]);
-            leaves[i] = leaf;
+            acc.addLeaf(leaf); // the tree takes ownership
         }
+        parts[run] = std::move(tree);
     });
     auto grid = GridT::create(background);
     auto& tree = grid->tree();
-    for (LeafT* leaf : leaves) tree.addLeaf(leaf); // the tree takes ownership
+    for (auto& part : parts) tree.merge(*part, openvdb::MERGE_NODES); // bricks are disjoint: nodes move
     grid->setTransform(makeTransform(o.grid));
     return grid;
 }

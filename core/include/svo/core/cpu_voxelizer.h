@@ -10,7 +10,7 @@
 ///
 /// Guarantee: the result is every voxel whose closed cube, grown by `guard`
 /// voxels (shrunk when negative), meets a triangle, up to double rounding.
-/// guard = 0 is DESIGN.md's conservative voxelization.
+/// guard = 0 is the conservative voxelization (docs/design.md).
 #include "svo/core/mesh.h"
 #include "svo/core/voxelization.h"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file classify.h
-/// A voxelization against the exact reference, in DESIGN.md's terms:
+/// A voxelization against the exact reference, in the terms of docs/design.md:
 ///   missed   = R \ G   voxels whose cube shrunk by epsilon meets a triangle, absent from G
 ///   boundary = (G n A) \ R   present, and within epsilon of touching: allowed
 ///   extra    = G \ A   present, though even the cube grown by epsilon meets no triangle

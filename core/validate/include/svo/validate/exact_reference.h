@@ -14,7 +14,7 @@
 /// ones to a point-in-box test. Triangles run in parallel (TBB).
 ///
 /// Guarantee: `required` holds exactly the voxels whose cube shrunk by
-/// epsilon meets a triangle (DESIGN.md's R) and `allowed` those whose cube
+/// epsilon meets a triangle (R in docs/design.md) and `allowed` those whose cube
 /// grown by epsilon does (A); epsilon = 0 gives the conservative set. Box
 /// corners i +- (1/2 +- epsilon) are rounded to double, which moves them by
 /// less than 2^-30 voxels.

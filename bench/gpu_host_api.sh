@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# The library API on a GPU host, from the bundle (scripts/bundle.sh with
+# svo-bench-warm-call and the test binaries as extra executables) and
+# bundle/meshes: the GPU suites, then the warm-call benchmark.
+#   OUT=dir bash bench/gpu_host_api.sh
+set -uo pipefail
+out=${OUT:-gpu_host_out}
+mkdir -p "$out"
+source "$(dirname "$0")/gpu_host_env.sh"
+ldconfig -p | grep -q libEGL_nvidia || export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+work=$(mktemp -d)
+tar -C "$work" -xzf bundle/svo-bundle.tar.gz
+bin="$work/svo/bin"
+{
+  echo "== host"; nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader; nproc
+  echo "== glinfo"; "$bin/svo" glinfo
+} 2>&1 | tee "$out/host.txt"
+for t in test_api test_gpu_voxelize test_gpu_octree; do
+  [ -x "$bin/$t" ] && SVO_CGAL_MESHES="$PWD/bundle/meshes" "$bin/$t" 2>&1 | tee "$out/$t.txt" | grep -E "^\[  |FAILED|PASSED"
+done
+"$bin/svo-bench-warm-call" bundle/meshes/stanford-bunny.obj --res 256 1024 --calls 100 \
+  --machine "an NVIDIA H100 host" --json "$out/warm_call.json" --md "$out/warm_call.md" 2>&1 | tail -8
