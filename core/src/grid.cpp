@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "svo/core/error.h"
 
@@ -123,10 +125,12 @@ void checkGrid(const GridSpec& g, const std::string& what)
 std::vector<Vec3f> localPositionsFloat(const TriangleMesh& mesh, const GridSpec& grid)
 {
     std::vector<Vec3f> out(mesh.positions.size());
-    for (size_t i = 0; i < out.size(); ++i) {
-        const Vec3d l = grid.toLocal(mesh.positions[i]);
-        out[i] = {float(l.x), float(l.y), float(l.z)};
-    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const Vec3d l = grid.toLocal(mesh.positions[i]);
+            out[i] = {float(l.x), float(l.y), float(l.z)};
+        }
+    });
     return out;
 }
 

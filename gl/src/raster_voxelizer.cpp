@@ -4,6 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
+#include <functional>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include "objects.h"
 #include "octree_builder.h"
@@ -31,15 +34,22 @@ bool useHardware(const Context& context, const RasterOptions& o)
 /// fringe adds about its perimeter plus one.
 uint64_t estimateEntries(const std::vector<Vec3f>& p, const TriangleMesh& mesh)
 {
-    double total = 0;
-    for (const auto& f : mesh.triangles) {
-        const Vec3d a{p[f[0]].x, p[f[0]].y, p[f[0]].z}, b{p[f[1]].x, p[f[1]].y, p[f[1]].z},
-            c{p[f[2]].x, p[f[2]].y, p[f[2]].z};
-        const Vec3d n = cross(b - a, c - a);
-        const double area = 0.5 * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
-        auto len = [](Vec3d e) { return std::max({std::abs(e.x), std::abs(e.y), std::abs(e.z)}); };
-        total += 1.5 * (area + len(b - a) + len(c - b) + len(a - c) + 1.0);
-    }
+    // Deterministic: the same mesh always gets the same first capacity.
+    const double total = tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<size_t>(0, mesh.triangles.size(), 4096), 0.0,
+        [&](const tbb::blocked_range<size_t>& r, double sum) {
+            for (size_t t = r.begin(); t != r.end(); ++t) {
+                const auto& f = mesh.triangles[t];
+                const Vec3d a{p[f[0]].x, p[f[0]].y, p[f[0]].z}, b{p[f[1]].x, p[f[1]].y, p[f[1]].z},
+                    c{p[f[2]].x, p[f[2]].y, p[f[2]].z};
+                const Vec3d n = cross(b - a, c - a);
+                const double area = 0.5 * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
+                auto len = [](Vec3d e) { return std::max({std::abs(e.x), std::abs(e.y), std::abs(e.z)}); };
+                sum += 1.5 * (area + len(b - a) + len(c - b) + len(a - c) + 1.0);
+            }
+            return sum;
+        },
+        std::plus<double>());
     return uint64_t(std::min(total, 1.0e18)) + 1024; // beyond 2^32 - 1 is refused by makeList
 }
 

@@ -1,9 +1,12 @@
 #include "svo/voxelizer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "svo/core/cpu_voxelizer.h"
 #include "svo/core/error.h"
@@ -91,11 +94,20 @@ IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<open
             throw Error(fmt::format("{} {} refers to vertex {}, but the mesh has {} points", kind, face, i, n));
         return i;
     };
+    // Triangles in parallel; a bad index is looked for again in order, so the message names the first.
+    m.triangles.resize(triangles.size());
+    std::atomic<bool> anyBad{false};
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t t = r.begin(); t != r.end(); ++t) {
+            const auto& f = triangles[t];
+            if (f[0] >= n || f[1] >= n || f[2] >= n) anyBad.store(true, std::memory_order_relaxed);
+            m.triangles[t] = {f[0], f[1], f[2]};
+        }
+    });
+    if (anyBad)
+        for (size_t t = 0; t < triangles.size(); ++t)
+            for (int c = 0; c < 3; ++c) checked(t, "triangle", triangles[t][c]);
     m.triangles.reserve(triangles.size() + 2 * quads.size());
-    for (size_t t = 0; t < triangles.size(); ++t) {
-        const auto& f = triangles[t];
-        m.triangles.push_back({checked(t, "triangle", f[0]), checked(t, "triangle", f[1]), checked(t, "triangle", f[2])});
-    }
     for (size_t q = 0; q < quads.size(); ++q) {
         const auto& f = quads[q];
         const uint32_t a = checked(q, "quad", f[0]), b = checked(q, "quad", f[1]), c = checked(q, "quad", f[2]);
@@ -109,7 +121,10 @@ IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<open
     m.positions.resize(n);
     if (wholeVoxelLattice(mat, h, shift)) {
         // World coordinates on the transform's lattice: GridSpec::toIndex maps them.
-        for (uint64_t i = 0; i < n; ++i) m.positions[i] = {double(points[i][0]), double(points[i][1]), double(points[i][2])};
+        tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 4096), [&](const tbb::blocked_range<uint64_t>& r) {
+            for (uint64_t i = r.begin(); i != r.end(); ++i)
+                m.positions[i] = {double(points[i][0]), double(points[i][1]), double(points[i][2])};
+        });
     } else {
         // Index space directly: subtract the translation first, where it is
         // exact for a mesh near it, then apply the inverse of the linear part.
@@ -117,11 +132,14 @@ IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<open
         const openvdb::Mat3d inv = mat.getMat3().inverse();
         if (!std::isfinite(inv.det()) || inv.det() == 0.0)
             throw Error("the transform's linear part is singular; it has no index space to voxelize in");
-        for (uint64_t i = 0; i < n; ++i) {
-            const openvdb::Vec3d p = openvdb::Vec3d(double(points[i][0]), double(points[i][1]), double(points[i][2])) - t;
-            const openvdb::Vec3d idx = p * inv; // OpenVDB's row-vector convention: world = index * M + t
-            m.positions[i] = {idx[0], idx[1], idx[2]};
-        }
+        tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 4096), [&](const tbb::blocked_range<uint64_t>& r) {
+            for (uint64_t i = r.begin(); i != r.end(); ++i) {
+                const openvdb::Vec3d p =
+                    openvdb::Vec3d(double(points[i][0]), double(points[i][1]), double(points[i][2])) - t;
+                const openvdb::Vec3d idx = p * inv; // OpenVDB's row-vector convention: world = index * M + t
+                m.positions[i] = {idx[0], idx[1], idx[2]};
+            }
+        });
     }
     validateMesh(m);
     out.grid = makeGridOnLattice(m, h, shift);
@@ -206,6 +224,17 @@ Octree Voxelizer::voxelize(const TriangleMesh& mesh, const GridSpec& grid, const
 {
     validateMesh(mesh);
     checkGrid(grid, mesh.source);
+    return voxelizeChecked(mesh, grid, options, voxelList);
+}
+
+Octree Voxelizer::voxelizePrepared(const IndexSpaceMesh& prepared, const VoxelizeOptions& options)
+{
+    return voxelizeChecked(prepared.mesh, prepared.grid, options, nullptr); // prepareMesh checked both
+}
+
+Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                                  std::vector<uint64_t>* voxelList)
+{
     const InterruptScope interrupt(options.interrupter, "svo: voxelizing a mesh");
     const Checkpoint checkpoint = interrupt.checkpoint();
     checkpoint(0.0, "start");

@@ -115,6 +115,8 @@ struct VoxelizeOptions {
     VoxelizeStats* stats = nullptr;
 };
 
+struct IndexSpaceMesh;
+
 class Voxelizer {
 public:
     /// Creates no GL context yet: the first GPU call does (so a Cpu-backend
@@ -202,6 +204,10 @@ public:
 
 private:
     struct Impl;
+    /// voxelize() after the mesh and grid were checked (prepareMesh checks them).
+    Octree voxelizePrepared(const IndexSpaceMesh& prepared, const VoxelizeOptions& options);
+    Octree voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                           std::vector<uint64_t>* voxelList);
     std::unique_ptr<Impl> impl_;
 };
 

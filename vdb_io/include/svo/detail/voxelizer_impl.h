@@ -9,8 +9,7 @@ Octree Voxelizer::meshToOctree(const std::vector<PointT>& points, const std::vec
                                const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform,
                                const VoxelizeOptions& options)
 {
-    const IndexSpaceMesh m = prepareMesh(points, triangles, quads, xform);
-    return voxelize(m.mesh, m.grid, options);
+    return voxelizePrepared(prepareMesh(points, triangles, quads, xform), options);
 }
 
 template <typename PointT>
