@@ -63,7 +63,7 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
     b.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NODES);
     b.bricks.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BRICKS);
     in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_ENTRIES);
-    for (const Program* p : {&prepare_, &flag_, &alloc_, &fill_}) p->set("uBrickLevel", L);
+    for (const Program* p : {&flag_, &alloc_, &fill_}) p->set("uBrickLevel", L); // prepare_ does not read it
     prepare_.set("uNodeCapacity", uint32_t(b.nodeCapacity));
     alloc_.set("uNodeCapacity", uint32_t(b.nodeCapacity));
     alloc_.set("uBrickCapacity", uint32_t(b.brickCapacity));
