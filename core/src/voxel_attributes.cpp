@@ -30,7 +30,7 @@ TriangleValues triangleValues(const TriangleMesh& mesh, bool colors)
     return v;
 }
 
-int32_t toFixed(float v) { return int32_t(std::nearbyint(v * 65536.0f)); } // default mode: half to even
+int32_t toFixed(float v) { return int32_t(std::nearbyint(v * gpu::kFixedScale)); } // default mode: half to even
 
 uint32_t availableChannels(const TriangleMesh& mesh, uint32_t channels)
 {
@@ -39,26 +39,27 @@ uint32_t availableChannels(const TriangleMesh& mesh, uint32_t channels)
 
 VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_t channels)
 {
+    using namespace gpu;
     for (const auto& s : sums)
-        if (s[7] > 32767)
-            throw Error(fmt::format("{} triangles cover one voxel, more than the 32,767 the attribute sums hold; "
+        if (s[kSumCount] > kFixedMaxContributions)
+            throw Error(fmt::format("{} triangles cover one voxel, more than the {} the attribute sums hold; "
                                     "use a finer grid or leave out the attribute channels",
-                                    s[7]));
+                                    s[kSumCount], kFixedMaxContributions));
     VoxelAttributes a;
-    auto fixedVec = [](const AttributeSums& s, int at) {
-        return Vec3f{float(int32_t(s[size_t(at)])) / 65536.0f, float(int32_t(s[size_t(at) + 1])) / 65536.0f,
-                     float(int32_t(s[size_t(at) + 2])) / 65536.0f};
+    auto fixedVec = [](const AttributeSums& s, uint32_t at) {
+        return Vec3f{float(int32_t(s[at])) / kFixedScale, float(int32_t(s[at + 1])) / kFixedScale,
+                     float(int32_t(s[at + 2])) / kFixedScale};
     };
     for (const auto& s : sums) {
-        if (channels & kTriangles) a.triangles.push_back(s[0] ? int32_t(~s[0]) : -1);
+        if (channels & kTriangles) a.triangles.push_back(s[kSumTriangle] ? int32_t(~s[kSumTriangle]) : -1);
         if (channels & kNormals) {
-            const Vec3f n = fixedVec(s, 1);
+            const Vec3f n = fixedVec(s, kSumNormal);
             const float len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
             a.normals.push_back(len > 0 ? Vec3f{n.x / len, n.y / len, n.z / len} : Vec3f{0, 0, 0});
         }
         if (channels & kColors) {
-            const Vec3f c = fixedVec(s, 4);
-            const float k = s[7] ? 1.0f / float(s[7]) : 0.0f;
+            const Vec3f c = fixedVec(s, kSumColor);
+            const float k = s[kSumCount] ? 1.0f / float(s[kSumCount]) : 0.0f;
             a.colors.push_back({c.x * k, c.y * k, c.z * k});
         }
     }
@@ -88,15 +89,16 @@ void attachAttributesCpu(const TriangleMesh& mesh, Octree& octree, uint32_t chan
         detail::voxelizeTriangle(a, b, c, octree.grid, guard, [&](uint64_t key) {
             const auto it = slot.find(key);
             if (it == slot.end()) return;
+            using namespace gpu;
             AttributeSums& s = sums[it->second];
-            s[0] = std::max(s[0], ~uint32_t(t));
-            const Vec3f& n = tv.normals[t];
-            s[1] += uint32_t(toFixed(n.x)), s[2] += uint32_t(toFixed(n.y)), s[3] += uint32_t(toFixed(n.z));
-            if (!tv.colors.empty()) {
-                const Vec3f& col = tv.colors[t];
-                s[4] += uint32_t(toFixed(col.x)), s[5] += uint32_t(toFixed(col.y)), s[6] += uint32_t(toFixed(col.z));
-            }
-            ++s[7];
+            s[kSumTriangle] = std::max(s[kSumTriangle], ~uint32_t(t));
+            auto add = [&s](uint32_t at, const Vec3f& v) {
+                s[at] += uint32_t(toFixed(v.x)), s[at + 1] += uint32_t(toFixed(v.y));
+                s[at + 2] += uint32_t(toFixed(v.z));
+            };
+            add(kSumNormal, tv.normals[t]);
+            if (!tv.colors.empty()) add(kSumColor, tv.colors[t]);
+            ++s[kSumCount];
         });
     }
     octree.attributes = finishAttributes(sums, channels);

@@ -13,7 +13,7 @@ void main()
     uint count = state.levelStart[uLevel + 1u] - first;
     for (uint i = gl_GlobalInvocationID.x; i < count; i += strideOf()) {
         uint node = first + i;
-        if (nodes[2u * node + 1u] == 0u) continue;
+        if (nodes[maskOf(node)] == 0u) continue;
         uint child;
         if (uLevel < uBrickLevel) {
             child = atomicAdd(state.nodeCount, 8u);
@@ -22,6 +22,6 @@ void main()
             child = atomicAdd(state.brickCount, 1u);
             if (child >= uBrickCapacity) child = kNoChild;
         }
-        nodes[2u * node] = child;
+        nodes[childOf(node)] = child;
     }
 }

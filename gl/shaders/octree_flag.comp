@@ -7,15 +7,12 @@ layout(local_size_x = 256) in;
 void main()
 {
     for (uint i = gl_GlobalInvocationID.x; i < state.entryCount; i += strideOf()) {
-        uvec3 b = brickOfEntry(entries[i]);
+        uvec3 b = brickOfVoxelKey(entries[i]);
         uint node = descend(b, uLevel);
         if (node == kNoChild) continue;
         uint bit = 1u;
-        if (uLevel < uBrickLevel) {
-            uint s = uBrickLevel - 1u - uLevel;
-            bit = 1u << (((b.x >> s) & 1u) | (((b.y >> s) & 1u) << 1u) | (((b.z >> s) & 1u) << 2u));
-        }
+        if (uLevel < uBrickLevel) bit = 1u << childIndex(b, uBrickLevel - 1u - uLevel);
         // Most entries find their bit set already; reading first spares the atomic.
-        if ((nodes[2u * node + 1u] & bit) == 0u) atomicOr(nodes[2u * node + 1u], bit);
+        if ((nodes[maskOf(node)] & bit) == 0u) atomicOr(nodes[maskOf(node)], bit);
     }
 }

@@ -6,7 +6,7 @@
 layout(local_size_x = 1) in;
 #include "octree_common.glsl"
 
-layout(std430, binding = 4) readonly restrict buffer ListCounter { uint listCounter; };
+layout(std430, binding = SVO_BIND_LIST_COUNTER) readonly restrict buffer ListCounter { uint listCounter; };
 uniform uint uMode;
 uniform uint uEntryCapacity;
 uniform uint uNodeCapacity;

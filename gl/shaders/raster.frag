@@ -4,6 +4,7 @@
 // grown by the guard band; those that pass go to the voxel list.
 #include "glsl_types.glsl"
 #include "overlap.glsl"
+#include "gpu_layout.h"
 
 flat in vec3 gA;
 flat in vec3 gB;
@@ -11,11 +12,12 @@ flat in vec3 gC;
 flat in int gAxis;
 flat in vec4 gBox;
 
-layout(binding = 0, offset = 0) uniform atomic_uint uCount;
-layout(binding = 0, offset = 4) uniform atomic_uint uWraps; // counts wraps of uCount past 2^32 - 1
-layout(std430, binding = 0) writeonly restrict buffer VoxelList { uvec2 voxels[]; };
+// The entry count, and how often it wrapped past 2^32 - 1.
+layout(binding = SVO_BIND_RASTER_COUNTER, offset = 0) uniform atomic_uint uCount;
+layout(binding = SVO_BIND_RASTER_COUNTER, offset = 4) uniform atomic_uint uWraps;
+layout(std430, binding = SVO_BIND_RASTER_LIST) writeonly restrict buffer VoxelList { uvec2 voxels[]; };
 // Written only when attribute channels are asked for: the triangle of each entry.
-layout(std430, binding = 1) writeonly restrict buffer TriangleList { uint triangleOf[]; };
+layout(std430, binding = SVO_BIND_RASTER_TRIANGLES) writeonly restrict buffer TriangleList { uint triangleOf[]; };
 uniform uint uWriteTriangles;
 
 uniform vec2 uTileOrigin;
@@ -23,14 +25,6 @@ uniform float uHalf;
 uniform uint uCapacity;
 uniform ivec3 uDims;
 const float kUlp = 5.96046448e-08;
-
-// voxel_key.h's layout, split into two 32-bit words (low, high).
-uvec2 packKey(uvec3 p)
-{
-    uvec3 b = p >> 3u;
-    uint offset = ((p.x & 7u) << 6u) | ((p.y & 7u) << 3u) | (p.z & 7u);
-    return uvec2(offset | (b.z << 9u) | (b.y << 27u), (b.y >> 5u) | (b.x << 13u));
-}
 
 void main()
 {
@@ -53,7 +47,7 @@ void main()
             uint slot = atomicCounterIncrement(uCount);
             if (slot == 0xFFFFFFFFu) atomicCounterIncrement(uWraps);
             if (slot < uCapacity) {
-                voxels[slot] = packKey(uvec3(centre));
+                voxels[slot] = packVoxelKey(uvec3(centre));
                 if (uWriteTriangles != 0u) triangleOf[slot] = uint(gl_PrimitiveID);
             }
         }

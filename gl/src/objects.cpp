@@ -105,14 +105,17 @@ GLenum stageOf(const std::string& file)
 }
 } // namespace
 
-Program::Program(std::initializer_list<const char*> files)
+Program::Program(std::initializer_list<const char*> files) : Program(ShaderFiles{}, files) {}
+
+Program::Program(const ShaderFiles& extra, std::initializer_list<const char*> files)
 {
+    for (const char* file : files) files_ += (files_.empty() ? "" : ", ") + std::string(file);
     h_ = Handle<detail::deleteProgram>(glCreateProgram());
     std::vector<Handle<detail::deleteShader>> shaders;
     for (const char* file : files) {
-        const std::string src = shaderSource(file);
+        const ShaderSource src = shaderSource(file, extra);
         Handle<detail::deleteShader> s(glCreateShader(stageOf(file)));
-        const char* text = src.c_str();
+        const char* text = src.text.c_str();
         glShaderSource(s.get(), 1, &text, nullptr);
         glCompileShader(s.get());
         GLint ok = 0;
@@ -122,7 +125,8 @@ Program::Program(std::initializer_list<const char*> files)
             glGetShaderiv(s.get(), GL_INFO_LOG_LENGTH, &len);
             std::string log(size_t(std::max(len, 1)), '\0');
             glGetShaderInfoLog(s.get(), len, nullptr, log.data());
-            throw Error(fmt::format("shader {} does not compile on this driver: {}", file, log.c_str()));
+            throw Error(fmt::format("shader {} does not compile on this driver: {}", file,
+                                    nameFilesInLog(log.c_str(), src)));
         }
         glAttachShader(h_.get(), s.get());
         shaders.push_back(std::move(s));
@@ -135,12 +139,40 @@ Program::Program(std::initializer_list<const char*> files)
         glGetProgramiv(h_.get(), GL_INFO_LOG_LENGTH, &len);
         std::string log(size_t(std::max(len, 1)), '\0');
         glGetProgramInfoLog(h_.get(), len, nullptr, log.data());
-        throw Error(fmt::format("shader program does not link: {}", log.c_str()));
+        throw Error(fmt::format("shader program {} does not link: {}", files_, log.c_str()));
     }
     for (auto& s : shaders) glDetachShader(h_.get(), s.get());
+
+    // Uniforms in blocks and atomic counters have no location and are skipped.
+    GLint count = 0, maxName = 0;
+    glGetProgramInterfaceiv(h_.get(), GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+    glGetProgramInterfaceiv(h_.get(), GL_UNIFORM, GL_MAX_NAME_LENGTH, &maxName);
+    std::string name;
+    for (GLint i = 0; i < count; ++i) {
+        name.assign(size_t(std::max(maxName, 1)), '\0');
+        GLsizei len = 0;
+        glGetProgramResourceName(h_.get(), GL_UNIFORM, GLuint(i), GLsizei(name.size()), &len, name.data());
+        name.resize(size_t(len));
+        const GLenum property = GL_LOCATION;
+        GLint loc = -1;
+        glGetProgramResourceiv(h_.get(), GL_UNIFORM, GLuint(i), 1, &property, 1, nullptr, &loc);
+        if (loc < 0) continue;
+        // An array is listed as "name[0]"; glGetUniformLocation takes either spelling.
+        if (name.size() > 3 && name.compare(name.size() - 3, 3, "[0]") == 0)
+            locations_[name.substr(0, name.size() - 3)] = loc;
+        locations_[name] = loc;
+    }
     checkGl("shader program creation");
 }
 
-GLint Program::location(const char* name) const { return glGetUniformLocation(h_.get(), name); }
+GLint Program::location(const char* name) const
+{
+    const auto it = locations_.find(std::string_view(name));
+    if (it == locations_.end())
+        throw Error(fmt::format("shader program {} has no active uniform {}: misspelt, or unused by the shaders "
+                                "and so removed by the linker",
+                                files_, name));
+    return it->second;
+}
 
 } // namespace svo::gl

@@ -4,10 +4,15 @@
 /// destruction, moves but never copies, and exposes operations rather than the
 /// name itself. All use 4.5 direct state access.
 #include <cstdint>
+#include <functional>
+#include <initializer_list>
+#include <map>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "gl_api.h"
+#include "shaders.h"
 
 namespace svo::gl {
 
@@ -127,8 +132,12 @@ private:
 class Program {
 public:
     /// Stage files by name, e.g. {"raster.vert", "raster.geom", "raster.frag"}.
-    /// Throws svo::Error with the compiler log on failure.
+    /// Throws svo::Error with the compiler log, its lines naming files, on failure.
     Program(std::initializer_list<const char*> files);
+    /// The same, looking files up in `extra` before the embedded ones.
+    Program(const ShaderFiles& extra, std::initializer_list<const char*> files);
+    /// set() throws svo::Error for a name that is not an active uniform:
+    /// misspelt, or unused by the shaders and so removed by the linker.
     void use() const { glUseProgram(h_.get()); }
     void set(const char* name, float v) const { glProgramUniform1f(h_.get(), location(name), v); }
     void set(const char* name, float x, float y) const { glProgramUniform2f(h_.get(), location(name), x, y); }
@@ -151,6 +160,9 @@ public:
 private:
     GLint location(const char* name) const;
     Handle<detail::deleteProgram> h_;
+    std::string files_; ///< "a.vert, a.frag", for messages
+    /// Every active uniform that has a location, resolved once after linking.
+    std::map<std::string, GLint, std::less<>> locations_;
 };
 
 } // namespace svo::gl

@@ -61,16 +61,16 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
     b.nodes->clearUint(0, b.nodeCapacity * sizeof(OctreeNode));
     b.bricks->clearUint(0, b.brickCapacity * sizeof(Brick));
 
-    b.state->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-    b.nodes->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
-    b.bricks->bindBase(GL_SHADER_STORAGE_BUFFER, 2);
-    in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, 3);
-    for (const Program* p : {&prepare_, &flag_, &alloc_, &fill_}) p->set("uBrickLevel", L);
+    b.state->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_STATE);
+    b.nodes->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NODES);
+    b.bricks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BRICKS);
+    in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_ENTRIES);
+    for (const Program* p : {&flag_, &alloc_, &fill_}) p->set("uBrickLevel", L); // prepare_ does not read it
     prepare_.set("uNodeCapacity", uint32_t(b.nodeCapacity));
     alloc_.set("uNodeCapacity", uint32_t(b.nodeCapacity));
     alloc_.set("uBrickCapacity", uint32_t(b.brickCapacity));
     if (in.listCounter) {
-        in.listCounter->bindBase(GL_SHADER_STORAGE_BUFFER, 4);
+        in.listCounter->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_LIST_COUNTER);
         prepare_.set("uMode", 0u);
         prepare_.set("uEntryCapacity", uint32_t(std::min<uint64_t>(in.entryCapacity, 0xFFFFFFFFu)));
         glMemoryBarrier(GL_ATOMIC_COUNTER_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -87,8 +87,8 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
         passBarrier();
     }
     fill_.set("uBrickMasks", in.masks ? 1u : 0u);
-    if (in.masks) in.masks->bindBase(GL_SHADER_STORAGE_BUFFER, 5);
-    else in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, 5); // unused, but bound
+    if (in.masks) in.masks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_ENTRY_MASKS);
+    else in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_ENTRY_MASKS); // unused, but bound
     fill_.dispatchIndirect(*b.state, offsetof(BuildState, entryDispatch));
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT); // readback, attribute pass
     checkGl("octree build");

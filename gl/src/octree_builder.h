@@ -6,20 +6,15 @@
 #include <cstdint>
 
 #include "objects.h"
+#include "svo/core/gpu_layout.h"
 #include "svo/core/octree.h"
 #include "svo/gl/context.h"
 
 namespace svo::gl {
 
-/// Mirrors octree_common.glsl's BuildState (std430).
-struct BuildState {
-    uint32_t entryDispatch[3];
-    uint32_t levelDispatch[3];
-    uint32_t entryCount, nodeCount, brickCount, pad;
-    uint32_t levelStart[24];
-};
-static_assert(sizeof(BuildState) == 136 && offsetof(BuildState, levelDispatch) == 12);
-static_assert(offsetof(BuildState, entryCount) == 24 && offsetof(BuildState, levelStart) == 40);
+/// The build's counters and indirect dispatch arguments: the same field list
+/// (gpu_layout.h) declares octree_common.glsl's std430 block.
+using BuildState = gpu::BuildState;
 
 /// Where the build reads its entries from.
 struct OctreeInput {

@@ -99,7 +99,7 @@ public:
         counter.clearUint(0);
         program_.set("uCapacity", uint32_t(capacity));
         program_.set("uWriteTriangles", triangles ? 1u : 0u);
-        (triangles ? *triangles : list).bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+        (triangles ? *triangles : list).bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_RASTER_TRIANGLES);
         fbo_.bind();
         glViewport(0, 0, tile_, tile_);
         glDisable(GL_DEPTH_TEST);
@@ -107,8 +107,8 @@ public:
         if (hardware_) glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
         program_.use();
         vao_.bind();
-        counter.bindBase(GL_ATOMIC_COUNTER_BUFFER, 0);
-        list.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+        counter.bindBase(GL_ATOMIC_COUNTER_BUFFER, SVO_BIND_RASTER_COUNTER);
+        list.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_RASTER_LIST);
         for (int ty = 0; ty < tiles_; ++ty)
             for (int tx = 0; tx < tiles_; ++tx) {
                 checkpoint_(double(ty * tiles_ + tx) / double(tiles_ * tiles_), "rasterization");
@@ -198,14 +198,14 @@ void attachAttributes(const Context& context, const TriangleMesh& mesh, uint32_t
     const Buffer sums("attribute sums", voxels * sizeof(AttributeSums));
     sums.clearUint(0);
     const Program& program = context.program({"octree_attributes.comp"});
-    build.state->bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-    build.nodes->bindBase(GL_SHADER_STORAGE_BUFFER, 1);
-    build.bricks->bindBase(GL_SHADER_STORAGE_BUFFER, 2);
-    list.bindBase(GL_SHADER_STORAGE_BUFFER, 3);
-    triangleList.bindBase(GL_SHADER_STORAGE_BUFFER, 4);
-    offsetBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
-    valueBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, 6);
-    sums.bindBase(GL_SHADER_STORAGE_BUFFER, 7);
+    build.state->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_STATE);
+    build.nodes->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NODES);
+    build.bricks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BRICKS);
+    list.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_ENTRIES);
+    triangleList.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_ENTRY_TRIANGLES);
+    offsetBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BRICK_VOXEL_OFFSETS);
+    valueBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_TRIANGLE_VALUES);
+    sums.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_ATTRIBUTE_SUMS);
     program.set("uBrickLevel", octree.brickLevel);
     program.set("uEntries", entries);
     program.dispatch(std::clamp<uint32_t>((entries + 255) / 256, 1, 65535));

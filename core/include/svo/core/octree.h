@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "svo/core/gpu_layout.h"
 #include "svo/core/grid.h"
 #include "svo/core/vec3.h"
 
@@ -31,17 +32,18 @@ struct OctreeNode {
 };
 static_assert(sizeof(OctreeNode) == 8 && alignof(OctreeNode) == 4);
 static_assert(offsetof(OctreeNode, childMask) == 4);
+static_assert(sizeof(OctreeNode) == gpu::kNodeWords * 4); // the shaders' view (gpu_layout.h)
 
 struct Brick {
     uint64_t words[8] = {}; ///< bit (x&7)<<6 | (y&7)<<3 | (z&7), as OpenVDB's NodeMask<3>
     bool operator==(const Brick& o) const;
     uint32_t count() const;
 };
-static_assert(sizeof(Brick) == 64);
+static_assert(sizeof(Brick) == 64 && sizeof(Brick) == gpu::kBrickWords * 4);
 
 /// A child pointer that could not be allocated (GPU capacity overflow). Never
-/// present in a finished octree.
-constexpr uint32_t kNoChild = 0xFFFFFFFFu;
+/// present in a finished octree. The shaders write it (gpu_layout.h).
+constexpr uint32_t kNoChild = gpu::kNoChild;
 
 /// Optional per-voxel channels. Each is empty (not asked for, or the input
 /// lacks it) or holds one value per voxel, in voxel order: bricks in index

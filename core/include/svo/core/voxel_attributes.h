@@ -10,17 +10,20 @@
 #include <cstdint>
 #include <vector>
 
+#include "svo/core/gpu_layout.h"
 #include "svo/core/mesh.h"
 #include "svo/core/octree.h"
 
 namespace svo {
 
-/// Sums hold at most 32,767 contributions per voxel (a unit normal in 16.16
-/// fixed point times that count fits 32 bits); finishAttributes refuses more.
+/// Sums hold at most gpu::kFixedMaxContributions (32,767) contributions per
+/// voxel (a unit normal in 16.16 fixed point times that count fits 32 bits);
+/// finishAttributes refuses more.
 
 /// One voxel's sums: [0] ~(smallest triangle id) (0: none), [1..3] normal,
-/// [4..6] colour, [7] pair count. Matches octree_attributes.comp.
-using AttributeSums = std::array<uint32_t, 8>;
+/// [4..6] colour, [7] pair count. The slots (gpu::kSum*) and the fixed-point
+/// format come from gpu_layout.h, which octree_attributes.comp sums with too.
+using AttributeSums = std::array<uint32_t, gpu::kSumWords>;
 
 /// What each triangle contributes: its unit normal (from double precision, 0
 /// when degenerate) and its mean vertex colour, as floats.
