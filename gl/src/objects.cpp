@@ -22,10 +22,11 @@ void checkGl(const char* what)
 
 Buffer::Buffer(const char* what, uint64_t bytes, const void* data, GLbitfield flags) : bytes_(bytes)
 {
+    // An error left by earlier work is reported as that work's, not dropped.
+    checkGl(fmt::format("the GL work before allocating the {}", what).c_str());
     GLuint n = 0;
     glCreateBuffers(1, &n);
     h_ = Handle<detail::deleteBuffer>(n);
-    glGetError(); // start clean so an out-of-memory below is ours
     glNamedBufferStorage(n, GLsizeiptr(bytes ? bytes : 4), data, flags);
     const GLenum err = glGetError();
     if (err == GL_OUT_OF_MEMORY)
