@@ -80,7 +80,7 @@ GridOptions OutputArgs::gridOptions() const
 
 void addOutputOptions(CLI::App& cmd, OutputArgs& a)
 {
-    cmd.add_option("--topology", a.topology, "Grid type of the .vdb topology: mask (MaskGrid) or bool (BoolGrid)")
+    cmd.add_option("--topology", a.topology, "Grid type of the topology: bool (BoolGrid, which python3-openvdb reads) or mask (MaskGrid)")
         ->check(CLI::IsMember({"mask", "bool"}))
         ->capture_default_str();
     cmd.add_flag("--fog", a.fog, "Also write a fog-volume FloatGrid 'density' (.vdb and .nvdb output)");

@@ -46,7 +46,7 @@ GridRequest gridRequest(const CLI::App& cmd, int64_t resolution, double voxelSiz
 
 /// --topology and --fog, as the library's GridOptions.
 struct OutputArgs {
-    std::string topology = "mask"; ///< mask | bool
+    std::string topology = "bool"; ///< bool (default: python3-openvdb reads it) | mask
     bool fog = false;
     GridOptions gridOptions() const;
 };

@@ -19,7 +19,7 @@ struct ConvertArgs {
     OutputArgs out;
 };
 
-void runConvert(const ConvertArgs& a)
+void runConvert(const ConvertArgs& a, const CLI::App& cmd)
 {
     const std::string ext = std::filesystem::path(a.input).extension().string();
     if (ext != ".vdb" && ext != ".svo")
@@ -27,7 +27,7 @@ void runConvert(const ConvertArgs& a)
     checkOutputPath(a.output);
     checkDistinctOutputs({a.input, a.output});
     const GridOptions grids = a.out.gridOptions();
-    if (outputFormat(a.output) == OutputFormat::Svo && (grids.fog || grids.topology != GridOptions::Topology::Mask))
+    if (outputFormat(a.output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", a.output));
     Voxelizer voxelizer(a.backend.deviceOptions());
     VoxelizeOptions options = a.backend.voxelizeOptions();
@@ -63,7 +63,7 @@ void addConvertCommand(CLI::App& app)
     cmd->add_option("--grid", args->gridName, "Grid of the input .vdb (default: the first)");
     addBackendOptions(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
-    cmd->callback([args] { runConvert(*args); });
+    cmd->callback([args, cmd] { runConvert(*args, *cmd); });
 }
 
 } // namespace svo::app

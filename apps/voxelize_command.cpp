@@ -57,7 +57,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     checkDistinctOutputs({output, a.json});
     const GridSpec grid = makeGrid(mesh, request);
     const GridOptions grids = a.out.gridOptions();
-    if (outputFormat(output) == OutputFormat::Svo && (grids.fog || grids.topology != GridOptions::Topology::Mask))
+    if (outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
 
     // Voxelize: with --repeat, one warm-up on the GPU, then per-stage medians.

@@ -17,7 +17,7 @@ packages=(
   libvtk9-dev xvfb
   libcli11-dev libfmt-dev libgtest-dev
   pybind11-dev python3-dev python3-pytest python3-numpy
-  nlohmann-json3-dev libnanovdb-dev python3-openvdb
+  nlohmann-json3-dev libnanovdb-dev python3-openvdb libboost-python1.74-dev
 )
 # The fuzz targets need clang and its libFuzzer runtime.
 [ "$mode" = test ] && packages+=(clang-14 libclang-rt-14-dev)
@@ -34,7 +34,8 @@ if ((${#missing[@]})); then
 fi
 
 build=${SVO_BUILD_DIR:-build}
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release
+# Debian's own Python: the one python3-openvdb (pyopenvdb) is built for.
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3
 cmake --build "$build" --parallel "$(nproc)"
 
 case "$mode" in

@@ -1,6 +1,6 @@
 # Installed-package check, run as `cmake -P` by ctest (package_consumer):
 #   1. install the svo build SVO_BUILD_DIR into WORK_DIR/prefix;
-#   2. voxelize MESH with the installed svo into WORK_DIR/cli.vdb;
+#   2. voxelize MESH with the installed svo into WORK_DIR/cli.vdb (a MaskGrid);
 #   3. configure and build CONSUMER_DIR (this folder) against that prefix;
 #   4. run `consumer MESH WORK_DIR/cli.vdb`, which voxelizes through the
 #      package and exits 0 only when its voxels equal the CLI's.
@@ -28,7 +28,7 @@ foreach(f ${INCLUDEDIR}/svo/core/overlap.glsl ${INCLUDEDIR}/svo/gl/raster_voxeli
   endif()
 endforeach()
 
-run("svo voxelize" ${prefix}/${BINDIR}/svo voxelize ${MESH} -r 64 -o ${WORK_DIR}/cli.vdb)
+run("svo voxelize" ${prefix}/${BINDIR}/svo voxelize ${MESH} -r 64 --topology mask -o ${WORK_DIR}/cli.vdb)
 
 run("configure consumer" ${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${consumer_build} -G ${GENERATOR}
     -DCMAKE_MAKE_PROGRAM=${MAKE_PROGRAM} -DCMAKE_CXX_COMPILER=${CXX_COMPILER}

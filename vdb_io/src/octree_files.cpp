@@ -46,9 +46,8 @@ WriteReport writeOctree(const std::string& path, const Octree& octree, const Gri
     report.format = outputFormat(path);
     std::error_code ec;
     if (report.format == OutputFormat::Svo) {
-        if (grids.fog || grids.topology != GridOptions::Topology::Mask)
-            throw Error(fmt::format("{}: a .svo file holds the octree only; a fog grid or a bool topology needs "
-                                    ".vdb or .nvdb output",
+        if (grids.fog)
+            throw Error(fmt::format("{}: a .svo file holds the octree only; a fog grid needs .vdb or .nvdb output",
                                     path));
         const auto t0 = Clock::now();
         writeOctreeFile(path, octree);

@@ -9,12 +9,14 @@
 ///   svo/vdb_io/octree_files.h reading and writing .svo, .vdb and .nvdb files
 ///   svo/core/mesh_io.h       mesh files (OBJ, PLY, STL, OFF) in double precision
 ///   svo/core/octree.h        the linear octree: layout, traversal, checks
+///   svo/core/voxel_key.h     voxel keys (octreeKeys) and their local coordinates
 ///   svo/core/interrupt.h     svo::Interrupted
 #include "svo/core/error.h"
 #include "svo/core/interrupt.h"
 #include "svo/core/mesh_io.h"
 #include "svo/core/octree.h"
 #include "svo/core/octree_file.h"
+#include "svo/core/voxel_key.h"
 #include "svo/mesh_to_volume.h"
 #include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/nanovdb_output.h"

@@ -39,8 +39,8 @@ struct WriteReport {
 };
 
 /// Writes the octree as the extension of @a path says. GridOptions apply to
-/// .vdb and .nvdb; for .svo a fog grid or a Bool topology cannot be kept and
-/// is refused. @a metadata is stored as strings on every .vdb grid.
+/// .vdb and .nvdb; a .svo file holds the octree itself (its topology is not
+/// a grid type), and a fog grid asked for there is refused. @a metadata is stored as strings on every .vdb grid.
 WriteReport writeOctree(const std::string& path, const Octree& octree, const GridOptions& grids = {},
                         const std::map<std::string, std::string>& metadata = {});
 

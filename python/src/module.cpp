@@ -1,0 +1,411 @@
+// svo's Python module: numpy arrays in, pyopenvdb grids and numpy arrays out.
+// Parses, calls the library (svo/svo.h) and converts; the work is the library's.
+//
+// Grids cross into Python as the very objects python3-openvdb (pyopenvdb)
+// makes: pyopenvdb registers Boost.Python converters for OpenVDB's grid
+// pointers, and this module, linked against the same libopenvdb, uses them.
+#include <boost/python.hpp>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "svo/svo.h"
+
+namespace py = pybind11;
+namespace bp = boost::python;
+
+namespace {
+
+// --- errors --------------------------------------------------------------
+
+/// Bad arguments: ValueError. Raised before any GPU work.
+[[noreturn]] void badValue(const std::string& what) { throw py::value_error(what); }
+
+// --- grids between OpenVDB and pyopenvdb -----------------------------------
+
+void importPyopenvdb()
+{
+    try {
+        py::module_::import("pyopenvdb");
+    } catch (py::error_already_set& e) {
+        throw py::import_error(std::string("svo returns pyopenvdb grids; install python3-openvdb (") + e.what() + ")");
+    }
+}
+
+py::object toPython(const openvdb::GridBase::Ptr& grid)
+{
+    importPyopenvdb(); // registers the converters
+    bp::object o;
+    if (auto g = openvdb::gridPtrCast<openvdb::BoolGrid>(grid)) o = bp::object(g);
+    else if (auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(grid)) o = bp::object(f);
+    else if (auto v = openvdb::gridPtrCast<openvdb::Vec3SGrid>(grid)) o = bp::object(v);
+    else throw std::runtime_error("svo: grid type " + grid->type() + " has no pyopenvdb counterpart");
+    return py::reinterpret_borrow<py::object>(o.ptr());
+}
+
+/// A pyopenvdb grid (BoolGrid, FloatGrid, Vec3SGrid) as OpenVDB's, or null.
+openvdb::GridBase::Ptr fromPython(const py::handle& obj)
+{
+    importPyopenvdb();
+    const bp::object o{bp::handle<>(bp::borrowed(obj.ptr()))};
+    if (bp::extract<openvdb::BoolGrid::Ptr> b(o); b.check()) return b();
+    if (bp::extract<openvdb::FloatGrid::Ptr> f(o); f.check()) return f();
+    if (bp::extract<openvdb::Vec3SGrid::Ptr> v(o); v.check()) return v();
+    return nullptr;
+}
+
+// --- arrays ----------------------------------------------------------------
+
+/// (N, 3) float64 vertices from anything numpy takes; checked for shape and finiteness.
+std::vector<openvdb::Vec3d> toPoints(const py::handle& obj)
+{
+    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+    if (!a) badValue("vertices: expected an (N, 3) array of numbers");
+    if (a.ndim() != 2 || a.shape(1) != 3)
+        badValue("vertices: expected shape (N, 3), got " + std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))));
+    if (a.shape(0) == 0) badValue("vertices: the array is empty");
+    const auto r = a.unchecked<2>();
+    std::vector<openvdb::Vec3d> out(size_t(a.shape(0)));
+    for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+        out[size_t(i)] = openvdb::Vec3d(r(i, 0), r(i, 1), r(i, 2));
+        if (!std::isfinite(r(i, 0)) || !std::isfinite(r(i, 1)) || !std::isfinite(r(i, 2)))
+            badValue("vertices: row " + std::to_string(i) + " is not finite (NaN or Inf)");
+    }
+    return out;
+}
+
+/// (M, 3) triangles or (M, 4) quads of non-negative indices below `vertices`.
+void toFaces(const py::handle& obj, size_t vertices, std::vector<openvdb::Vec3I>& triangles,
+             std::vector<openvdb::Vec4I>& quads)
+{
+    const auto a = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
+    if (!a) badValue("triangles: expected an (M, 3) or (M, 4) array of integers");
+    const py::array raw = py::array::ensure(obj);
+    if (raw && raw.dtype().kind() == 'f') badValue("triangles: expected integers, got a floating-point array");
+    if (a.ndim() != 2 || (a.shape(1) != 3 && a.shape(1) != 4))
+        badValue("triangles: expected shape (M, 3) or (M, 4), got " + std::to_string(a.ndim()) + " dimensions");
+    if (a.shape(0) == 0) badValue("triangles: the array is empty");
+    const auto r = a.unchecked<2>();
+    for (py::ssize_t i = 0; i < a.shape(0); ++i)
+        for (py::ssize_t c = 0; c < a.shape(1); ++c)
+            if (r(i, c) < 0 || uint64_t(r(i, c)) >= vertices)
+                badValue("triangles: row " + std::to_string(i) + " refers to vertex " + std::to_string(r(i, c)) +
+                         ", but there are " + std::to_string(vertices) + " vertices");
+    for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+        if (a.shape(1) == 3) triangles.emplace_back(uint32_t(r(i, 0)), uint32_t(r(i, 1)), uint32_t(r(i, 2)));
+        else quads.emplace_back(uint32_t(r(i, 0)), uint32_t(r(i, 1)), uint32_t(r(i, 2)), uint32_t(r(i, 3)));
+    }
+}
+
+/// A pyopenvdb Transform, or a 4x4 matrix in OpenVDB's row-vector
+/// convention (world = [i j k 1] @ M, translation in the last row).
+openvdb::math::Transform::Ptr toTransform(const py::handle& obj)
+{
+    importPyopenvdb();
+    const bp::object o{bp::handle<>(bp::borrowed(obj.ptr()))};
+    if (bp::extract<openvdb::math::Transform::Ptr> t(o); t.check()) return t()->copy();
+    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+    if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
+        badValue("transform: expected a pyopenvdb.Transform or a 4x4 matrix");
+    const auto r = a.unchecked<2>();
+    openvdb::Mat4d m;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            if (!std::isfinite(r(i, j))) badValue("transform: the matrix has a NaN or Inf entry");
+            m(i, j) = r(i, j);
+        }
+    if (m(0, 3) != 0 || m(1, 3) != 0 || m(2, 3) != 0 || m(3, 3) != 1)
+        badValue("transform: not affine; its last column must be (0, 0, 0, 1) (OpenVDB's row-vector convention)");
+    if (std::abs(m.getMat3().det()) < 1e-300) badValue("transform: the matrix is singular");
+    return openvdb::math::Transform::createLinearTransform(m);
+}
+
+// --- options ---------------------------------------------------------------
+
+svo::Backend toBackend(const std::string& s)
+{
+    if (s == "auto") return svo::Backend::Auto;
+    if (s == "raster") return svo::Backend::Raster;
+    if (s == "cpu") return svo::Backend::Cpu;
+    badValue("backend: expected 'auto', 'raster' or 'cpu', got '" + s + "'");
+}
+
+uint32_t toChannels(const std::vector<std::string>& names)
+{
+    uint32_t c = 0;
+    for (const auto& n : names) {
+        if (n == "normal") c |= svo::kNormals;
+        else if (n == "triangle") c |= svo::kTriangles;
+        else if (n == "color") c |= svo::kColors;
+        else badValue("attributes: expected 'normal', 'triangle' or 'color', got '" + n + "'");
+    }
+    return c;
+}
+
+/// Ctrl-C while the GIL is released: polled between the library's stages.
+struct KeyboardInterrupter : openvdb::util::NullInterrupter {
+    bool wasInterrupted(int) override
+    {
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() == 0) return false;
+        pending = true; // KeyboardInterrupt is set; raised once the call unwinds
+        return true;
+    }
+    bool pending = false;
+};
+
+// --- the calls ---------------------------------------------------------------
+
+/// Everything a voxelize() call needs, checked, before the GIL is released.
+struct Request {
+    svo::TriangleMesh mesh;
+    svo::GridSpec grid;
+    openvdb::math::Transform::Ptr xform; ///< the output grids' transform
+};
+
+Request makeRequest(const py::handle& vertices, const py::handle& triangles, std::optional<double> resolution,
+                    std::optional<double> voxelSize, const py::object& transform)
+{
+    const int given = int(resolution.has_value()) + int(voxelSize.has_value()) + int(!transform.is_none());
+    if (given > 1) badValue("give one of resolution, voxel_size and transform");
+    const std::vector<openvdb::Vec3d> points = toPoints(vertices);
+    std::vector<openvdb::Vec3I> tris;
+    std::vector<openvdb::Vec4I> quads;
+    toFaces(triangles, points.size(), tris, quads);
+    Request r;
+    try {
+        if (!transform.is_none()) {
+            r.xform = toTransform(transform);
+            svo::IndexSpaceMesh m = svo::prepareMesh(points, tris, quads, *r.xform);
+            r.mesh = std::move(m.mesh);
+            r.grid = m.grid;
+            return r;
+        }
+        // resolution or voxel size: the grid `svo voxelize` chooses, so both give the same voxels.
+        r.mesh = svo::prepareMesh(points, tris, quads, *openvdb::math::Transform::createLinearTransform(1.0)).mesh;
+        r.mesh.source = "mesh";
+        svo::GridRequest req;
+        if (voxelSize) {
+            if (!(*voxelSize > 0) || !std::isfinite(*voxelSize)) badValue("voxel_size: must be positive and finite");
+            req.voxelSize = *voxelSize;
+        } else {
+            const double n = resolution.value_or(256);
+            if (!(n >= 1) || n != std::floor(n) || n > double(svo::kMaxGridDim) - 16)
+                badValue("resolution: must be a whole number from 1 to " + std::to_string(svo::kMaxGridDim - 16));
+            req.resolution = int64_t(n);
+        }
+        r.grid = svo::makeGrid(r.mesh, req);
+        r.xform = svo::vdb::makeTransform(r.grid);
+    } catch (const svo::Error& e) {
+        throw py::value_error(e.what()); // the mesh or grid cannot be voxelized as asked
+    }
+    return r;
+}
+
+svo::Octree run(svo::Voxelizer& v, const Request& r, const std::string& backend, uint32_t channels)
+{
+    svo::VoxelizeOptions o;
+    o.backend = toBackend(backend);
+    o.attributes = channels;
+    KeyboardInterrupter interrupter;
+    o.interrupter = &interrupter;
+    try {
+        py::gil_scoped_release release;
+        return v.voxelize(r.mesh, r.grid, o);
+    } catch (const svo::Interrupted&) {
+        if (interrupter.pending) throw py::error_already_set(); // the KeyboardInterrupt
+        throw;
+    } catch (const svo::Error& e) {
+        throw std::runtime_error(e.what());
+    }
+}
+
+/// The octree's voxels as (K, 3) index coordinates in its voxel order: the
+/// order of its attribute channels (bricks by index, bits within a brick).
+py::array_t<int32_t> voxelOrder(const svo::Octree& octree)
+{
+    std::vector<std::array<uint32_t, 3>> origin(octree.bricks.size());
+    for (const auto& ref : svo::occupiedBricks(octree)) origin[ref.index] = ref.origin;
+    py::array_t<int32_t> out({py::ssize_t(octree.voxelCount()), py::ssize_t(3)});
+    auto w = out.mutable_unchecked<2>();
+    py::ssize_t k = 0;
+    for (size_t b = 0; b < octree.bricks.size(); ++b)
+        for (uint32_t bit = 0; bit < 512; ++bit)
+            if (octree.bricks[b].words[bit >> 6] >> (bit & 63) & 1) {
+                const auto g = octree.grid.toGlobal({origin[b][0] + (bit >> 6), origin[b][1] + (bit >> 3 & 7),
+                                                     origin[b][2] + (bit & 7)});
+                w(k, 0) = int32_t(g[0]), w(k, 1) = int32_t(g[1]), w(k, 2) = int32_t(g[2]);
+                ++k;
+            }
+    return out;
+}
+
+py::object voxelizeWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
+                        std::optional<double> resolution, std::optional<double> voxelSize,
+                        const py::object& transform, const std::string& grid, const std::string& backend,
+                        const std::vector<std::string>& attributes)
+{
+    if (grid != "bool" && grid != "fog") badValue("grid: expected 'bool' or 'fog', got '" + grid + "'");
+    const uint32_t channels = toChannels(attributes);
+    const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
+    const svo::Octree octree = run(v, r, backend, channels);
+    svo::GridOptions g;
+    g.topology = svo::GridOptions::Topology::Bool; // pyopenvdb has no MaskGrid
+    g.fog = grid == "fog";
+    openvdb::GridPtrVec grids = svo::octreeToGrids(octree, g, r.xform);
+    if (!channels) return toPython(grids[g.fog ? 1 : 0]);
+    // With channels: a dict of grids; triangle ids (an Int32Grid, which pyopenvdb lacks) as an array.
+    py::dict out;
+    out[py::str(g.fog ? "density" : "surface")] = toPython(grids[g.fog ? 1 : 0]);
+    for (const auto& gr : grids) {
+        if (gr->getName() == "normal" || gr->getName() == "color") out[py::str(gr->getName())] = toPython(gr);
+    }
+    out["ijk"] = voxelOrder(octree); // the voxels in the order of the arrays below
+    auto vectors = [](const std::vector<svo::Vec3f>& v) {
+        py::array_t<float> a({py::ssize_t(v.size()), py::ssize_t(3)});
+        std::copy(&v.data()->x, &v.data()->x + 3 * v.size(), a.mutable_data());
+        return a;
+    };
+    if (channels & svo::kTriangles) {
+        py::array_t<int32_t> ids(py::ssize_t(octree.attributes.triangles.size()));
+        std::copy(octree.attributes.triangles.begin(), octree.attributes.triangles.end(), ids.mutable_data());
+        out["triangle_id"] = ids;
+    }
+    if (!octree.attributes.normals.empty()) out["normal_values"] = vectors(octree.attributes.normals);
+    if (!octree.attributes.colors.empty()) out["color_values"] = vectors(octree.attributes.colors);
+    return out;
+}
+
+/// (K, 3) int32 index coordinates of a grid's active voxels, tiles expanded,
+/// in OpenVDB's tree order; any transform.
+py::array_t<int32_t> activeVoxels(const py::handle& obj)
+{
+    const openvdb::GridBase::Ptr grid = fromPython(obj);
+    if (!grid) badValue("grid: expected a pyopenvdb BoolGrid, FloatGrid or Vec3SGrid");
+    std::vector<int32_t> coords;
+    {
+        py::gil_scoped_release release;
+        grid->apply<openvdb::TypeList<openvdb::BoolGrid, openvdb::FloatGrid, openvdb::Vec3SGrid>>([&](const auto& g) {
+            coords.reserve(3 * g.activeVoxelCount());
+            for (auto it = g.tree().cbeginValueOn(); it; ++it) {
+                openvdb::CoordBBox box;
+                it.getBoundingBox(box); // one voxel, or a whole active tile
+                for (auto c = box.begin(); c; ++c) coords.insert(coords.end(), {(*c).x(), (*c).y(), (*c).z()});
+            }
+        });
+    }
+    py::array_t<int32_t> out({py::ssize_t(coords.size() / 3), py::ssize_t(3)});
+    std::copy(coords.begin(), coords.end(), out.mutable_data());
+    return out;
+}
+
+py::tuple readMesh(const std::string& path)
+{
+    svo::TriangleMesh m;
+    try {
+        py::gil_scoped_release release;
+        m = svo::loadMesh(path);
+    } catch (const svo::Error& e) {
+        PyErr_SetString(PyExc_OSError, e.what());
+        throw py::error_already_set();
+    }
+    py::array_t<double> v({py::ssize_t(m.positions.size()), py::ssize_t(3)});
+    py::array_t<uint32_t> t({py::ssize_t(m.triangles.size()), py::ssize_t(3)});
+    auto vr = v.mutable_unchecked<2>();
+    auto tr = t.mutable_unchecked<2>();
+    for (size_t i = 0; i < m.positions.size(); ++i)
+        vr(py::ssize_t(i), 0) = m.positions[i].x, vr(py::ssize_t(i), 1) = m.positions[i].y,
+                        vr(py::ssize_t(i), 2) = m.positions[i].z;
+    for (size_t i = 0; i < m.triangles.size(); ++i)
+        for (int c = 0; c < 3; ++c) tr(py::ssize_t(i), c) = m.triangles[i][size_t(c)];
+    return py::make_tuple(v, t);
+}
+
+constexpr const char* kVoxelizeDoc = R"doc(
+Voxelize a triangle mesh on the GPU into a pyopenvdb grid.
+
+The result holds every voxel whose closed cube touches a triangle (the
+conservative, 26-separating voxelization), plus at most voxels within a tiny
+stated guard band of one.
+
+Args:
+    vertices: (N, 3) array-like of float32/float64 world positions.
+    triangles: (M, 3) integer array of vertex indices, or (M, 4) quads.
+    resolution: voxels along the longest bounding-box side: voxel size =
+        longest side / resolution (default 256, as `svo voxelize`).
+    voxel_size: world units per voxel, instead of resolution.
+    transform: a pyopenvdb.Transform or a 4x4 affine matrix (OpenVDB's
+        row-vector convention); voxels are cubes of its index space.
+    grid: "bool" (BoolGrid "surface", true on voxels) or "fog" (FloatGrid
+        "density", 1 on voxels).
+    backend: "auto" (the GPU), "raster" or "cpu" (the double-precision reference).
+    attributes: channels to compute: "normal", "triangle", "color". With any,
+        a dict is returned: the grid ("surface" or "density"), "normal" and
+        "color" Vec3SGrids, "ijk" ((K, 3) int32 voxel coordinates) and, in
+        the same order, "triangle_id" ((K,) int32), "normal_values" and
+        "color_values" ((K, 3) float32).
+
+Raises:
+    ValueError: a bad array, index, transform or option.
+    RuntimeError: the GPU failed (no context, out of memory).
+    KeyboardInterrupt: Ctrl-C during the call (the Voxelizer stays usable).
+)doc";
+
+} // namespace
+
+PYBIND11_MODULE(_svo, m)
+{
+    m.doc() = "svo: GPU voxelization of triangle meshes into OpenVDB grids (see help(svo.voxelize)).";
+    // svo/__init__.py imports pyopenvdb before this module is loaded: with this
+    // module loaded first, OpenVDB's grid registration crashed (whoever called
+    // it; not root-caused). Then this initialize() finds the work done.
+    importPyopenvdb();
+    openvdb::initialize();
+
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const svo::Interrupted& e) {
+            PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+        } catch (const svo::Error& e) {
+            PyErr_SetString(PyExc_RuntimeError, e.what());
+        }
+    });
+
+    py::class_<svo::Voxelizer>(m, "Voxelizer",
+                               "A reusable GPU voxelizer: keeps its GL context, compiled programs and buffers, so "
+                               "later calls pay only for their work. Use one per thread.")
+        .def(py::init([](const std::string& device) { return svo::Voxelizer(svo::DeviceOptions{device, false}); }),
+             py::arg("device") = "auto",
+             "device: 'auto' (hardware first), 'hardware', 'software' or an EGL device index as a string.")
+        .def("voxelize", &voxelizeWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
+             py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
+             py::arg("transform") = py::none(), py::arg("grid") = "bool", py::arg("backend") = "auto",
+             py::arg("attributes") = std::vector<std::string>{}, kVoxelizeDoc)
+        .def("device", &svo::Voxelizer::deviceDescription, "The GPU's vendor, renderer and version.");
+
+    m.def(
+        "voxelize",
+        [](const py::handle& vertices, const py::handle& triangles, std::optional<double> resolution,
+           std::optional<double> voxelSize, const py::object& transform, const std::string& grid,
+           const std::string& backend, const std::vector<std::string>& attributes) {
+            svo::Voxelizer v;
+            return voxelizeWith(v, vertices, triangles, resolution, voxelSize, transform, grid, backend, attributes);
+        },
+        py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("resolution") = py::none(),
+        py::arg("voxel_size") = py::none(), py::arg("transform") = py::none(), py::arg("grid") = "bool",
+        py::arg("backend") = "auto", py::arg("attributes") = std::vector<std::string>{},
+        (std::string("One-off call with a Voxelizer made for it (keep a Voxelizer for repeated calls).\n") +
+         kVoxelizeDoc)
+            .c_str());
+    m.def("active_voxels", &activeVoxels, py::arg("grid"),
+          "The index coordinates of a grid's active voxels (tiles expanded) as a (K, 3) int32 array, in "
+          "OpenVDB's tree order; any transform.");
+    m.def("read_mesh", &readMesh, py::arg("path"),
+          "Read an OBJ, PLY, STL or OFF mesh with svo's readers: (vertices float64 (N, 3), triangles uint32 (M, 3)). "
+          "Raises OSError naming the file and the problem.");
+}

@@ -1,0 +1,187 @@
+"""The Python module against independent references: the svo CLI's .vdb read
+back by pyopenvdb, pyopenvdb's own reader, and exact identities."""
+import os
+import subprocess
+import threading
+
+import numpy as np
+import pyopenvdb
+import pytest
+
+import svo
+
+MESHES = os.environ.get("SVO_CGAL_MESHES", "")
+SVO_EXE = os.environ.get("SVO_EXE", "")
+
+
+def as_set(ijk):
+    return set(map(tuple, np.asarray(ijk).tolist()))
+
+
+def tetrahedron():
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
+    t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], dtype=np.int64)
+    return v, t
+
+
+@pytest.fixture(scope="module")
+def voxelizer():
+    return svo.Voxelizer()
+
+
+@pytest.fixture(scope="module")
+def elephant():
+    path = os.path.join(MESHES, "elephant.off")
+    if not os.path.exists(path):
+        pytest.skip("libcgal-demo meshes not extracted (SVO_CGAL_MESHES)")
+    return path
+
+
+def test_equals_the_cli_voxels_and_transform(voxelizer, elephant, tmp_path):
+    out = tmp_path / "cli.vdb"
+    # The CLI's default output: it must open in pyopenvdb.
+    subprocess.run([SVO_EXE, "voxelize", elephant, "-r", "64", "-o", str(out)], check=True, capture_output=True)
+    cli = pyopenvdb.read(str(out), "surface")
+    vertices, triangles = svo.read_mesh(elephant)
+    grid = voxelizer.voxelize(vertices, triangles, resolution=64)
+    assert isinstance(grid, pyopenvdb.BoolGrid)
+    assert grid.activeVoxelCount() == cli.activeVoxelCount() > 1000
+    assert as_set(svo.active_voxels(grid)) == as_set(svo.active_voxels(cli))
+    assert grid.transform.voxelSize() == cli.transform.voxelSize()
+    for ijk in [(0, 0, 0), (5, -3, 7)]:
+        assert grid.transform.indexToWorld(ijk) == cli.transform.indexToWorld(ijk)
+
+
+def test_trimesh_style_inputs_and_precisions_agree(voxelizer):
+    v, t = tetrahedron()
+    want = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=24)))
+    # float32 vertices exactly representable, uint32/int32 faces, lists, non-contiguous views
+    assert as_set(svo.active_voxels(voxelizer.voxelize(v.astype(np.float32), t.astype(np.uint32), resolution=24))) == want
+    assert as_set(svo.active_voxels(voxelizer.voxelize(v.tolist(), t.tolist(), resolution=24))) == want
+    wide = np.zeros((4, 6))
+    wide[:, ::2] = v
+    assert not wide[:, ::2].flags.c_contiguous
+    assert as_set(svo.active_voxels(voxelizer.voxelize(wide[:, ::2], t, resolution=24))) == want
+
+
+def test_transform_matrix_equals_pyopenvdb_transform(voxelizer):
+    v, t = tetrahedron()
+    h = 0.05
+    xform = pyopenvdb.createLinearTransform(voxelSize=h)
+    m = np.diag([h, h, h, 1.0])
+    a = voxelizer.voxelize(v, t, transform=xform)
+    b = voxelizer.voxelize(v, t, transform=m)
+    assert as_set(svo.active_voxels(a)) == as_set(svo.active_voxels(b))
+    # voxel_size h gives the same lattice
+    c = voxelizer.voxelize(v, t, voxel_size=h)
+    assert as_set(svo.active_voxels(c)) == as_set(svo.active_voxels(a))
+
+
+def test_rotated_transform_covers_every_vertex(voxelizer):
+    v, t = tetrahedron()
+    c, s = np.cos(0.4), np.sin(0.4)
+    m = np.array([[c * 0.04, s * 0.04, 0, 0], [-s * 0.05, c * 0.05, 0, 0], [0, 0, 0.03, 0], [0.1, -0.2, 0.3, 1]])
+    grid = voxelizer.voxelize(v, t, transform=m)
+    voxels = as_set(svo.active_voxels(grid))
+    # Each vertex lies in (the closed cube of) the voxel nearest to its index-space position.
+    inv = np.linalg.inv(m)
+    for p in v:
+        idx = (np.append(p, 1.0) @ inv)[:3]
+        assert tuple(int(x) for x in np.round(idx)) in voxels
+
+
+def test_round_trip_through_pyopenvdb(voxelizer, tmp_path):
+    v, t = tetrahedron()
+    grid = voxelizer.voxelize(v, t, resolution=32)
+    fog = voxelizer.voxelize(v, t, resolution=32, grid="fog")
+    assert isinstance(fog, pyopenvdb.FloatGrid)
+    assert fog.gridClass == "fog volume"
+    path = str(tmp_path / "out.vdb")
+    pyopenvdb.write(path, [grid, fog])
+    back = pyopenvdb.read(path, "surface")
+    assert as_set(svo.active_voxels(back)) == as_set(svo.active_voxels(grid))
+    assert as_set(svo.active_voxels(pyopenvdb.read(path, "density"))) == as_set(svo.active_voxels(grid))
+
+
+def test_attribute_channels_come_as_grids_and_arrays(voxelizer):
+    v, t = tetrahedron()
+    out = voxelizer.voxelize(v, t, resolution=16, attributes=("normal", "triangle"))
+    ijk = out["ijk"]
+    assert as_set(ijk) == as_set(svo.active_voxels(out["surface"]))
+    assert isinstance(out["normal"], pyopenvdb.Vec3SGrid)
+    assert out["triangle_id"].shape == (len(ijk),) and out["normal_values"].shape == (len(ijk), 3)
+    # Pairing: each voxel's values are the normal grid's value there, and its
+    # smallest triangle really touches it (the voxel lies within half a voxel
+    # diagonal of that triangle's plane).
+    normals = out["normal"].getConstAccessor()
+    xform = out["surface"].transform
+    for k in range(0, len(ijk), max(1, len(ijk) // 50)):
+        c = tuple(int(x) for x in ijk[k])
+        assert np.allclose(normals.getValue(c), out["normal_values"][k])
+        a, b, d = v[t[out["triangle_id"][k]]]
+        n = np.cross(b - a, d - a)
+        n /= np.linalg.norm(n)
+        centre = np.array(xform.indexToWorld(c))
+        assert abs(np.dot(centre - a, n)) <= 0.5 * np.sqrt(3) * xform.voxelSize()[0] + 1e-9
+
+
+@pytest.mark.parametrize("vertices, triangles, kwargs, message", [
+    (np.zeros((4, 2)), [[0, 1, 2]], {}, "vertices: expected shape (N, 3)"),
+    (np.zeros((0, 3)), [[0, 1, 2]], {}, "vertices: the array is empty"),
+    ([[0, 0, 0], [1, 0, 0], [0, np.nan, 0]], [[0, 1, 2]], {}, "not finite"),
+    ([[0, 0, 0], [1, 0, 0], [0, np.inf, 0]], [[0, 1, 2]], {}, "not finite"),
+    (np.eye(3), [[0, 1, 5]], {}, "refers to vertex 5"),
+    (np.eye(3), [[0, -1, 2]], {}, "refers to vertex -1"),
+    (np.eye(3), [[0.0, 1.0, 2.0]], {}, "expected integers"),
+    (np.eye(3), np.zeros((0, 3), int), {}, "triangles: the array is empty"),
+    (np.eye(3), [[0, 1]], {}, "triangles: expected shape"),
+    (np.eye(3), [[0, 1, 2]], {"resolution": 0}, "resolution"),
+    (np.eye(3), [[0, 1, 2]], {"resolution": 2.5}, "resolution"),
+    (np.eye(3), [[0, 1, 2]], {"voxel_size": -1.0}, "voxel_size"),
+    (np.eye(3), [[0, 1, 2]], {"transform": np.ones((4, 4))}, "not affine"),
+    (np.eye(3), [[0, 1, 2]], {"transform": np.eye(3)}, "4x4"),
+    (np.eye(3), [[0, 1, 2]], {"resolution": 8, "voxel_size": 0.1}, "give one of"),
+    (np.eye(3), [[0, 1, 2]], {"grid": "mask"}, "grid:"),
+    (np.eye(3), [[0, 1, 2]], {"backend": "vulkan"}, "backend:"),
+    (np.eye(3), [[0, 1, 2]], {"attributes": ("curvature",)}, "attributes:"),
+])
+def test_bad_input_raises_value_error_and_leaves_it_usable(voxelizer, vertices, triangles, kwargs, message):
+    with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        voxelizer.voxelize(vertices, triangles, **kwargs)
+    v, t = tetrahedron()
+    assert voxelizer.voxelize(v, t, resolution=8).activeVoxelCount() > 0
+
+
+def test_read_mesh_errors_are_os_errors(tmp_path):
+    with pytest.raises(OSError, match="no such file"):
+        svo.read_mesh(str(tmp_path / "missing.off"))
+    bad = tmp_path / "bad.off"
+    bad.write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n")
+    with pytest.raises(OSError, match="bad.off"):
+        svo.read_mesh(str(bad))
+
+
+def test_two_threads_with_two_voxelizers():
+    v, t = tetrahedron()
+    want = {r: as_set(svo.active_voxels(svo.voxelize(v, t, resolution=r))) for r in (40, 56)}
+    got = {}
+
+    def work(r):
+        local = svo.Voxelizer()
+        for _ in range(3):
+            got[r] = as_set(svo.active_voxels(local.voxelize(v, t, resolution=r)))
+
+    threads = [threading.Thread(target=work, args=(r,)) for r in want]
+    for th in threads:
+        th.start()
+    for th in threads:
+        th.join()
+    assert got == want
+
+
+def test_cpu_backend_is_the_reference_within_the_guard_band(voxelizer):
+    v, t = tetrahedron()
+    gpu = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48)))
+    cpu = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="cpu")))
+    assert cpu <= gpu  # the GPU's guard band only adds voxels within about 1e-4 voxel of a triangle
+    assert len(gpu - cpu) <= len(cpu) // 100
