@@ -17,6 +17,7 @@
 #include "svo/core/voxel_key.h"
 #include "svo/validate/classify.h"
 #include "svo/validate/hole_check.h"
+#include "svo/validate/report.h"
 #include "svo/vdb_io/vdb_file.h"
 #include "svo/voxelizer.h"
 
@@ -33,28 +34,8 @@ struct ValidateArgs {
     size_t worst = 5;
 };
 
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 std::string idx(const std::array<int64_t, 3>& p) { return fmt::format("[{}, {}, {}]", p[0], p[1], p[2]); }
-
-nlohmann::json casesJson(const std::vector<validate::VoxelCase>& cases)
-{
-    nlohmann::json out = nlohmann::json::array();
-    for (const auto& c : cases) out.push_back({{"voxel", c.index}, {"triangle", c.triangle}, {"distance", c.distance}});
-    return out;
-}
-
-/// The GPU octree checked against the voxel list read back directly: every
-/// level of the octree must be what the list's voxels imply.
-std::string octreeConsistency(const Octree& octree, const std::vector<uint64_t>& listKeys)
-{
-    const auto problems = checkOctree(octree, 1);
-    if (!problems.empty()) return "structure: " + problems.front();
-    if (!sameOctree(canonicalOrder(octree), buildOctree(octree.grid, listKeys)))
-        return "the octree's levels differ from those the voxel list implies";
-    return "";
-}
 
 void runValidate(const ValidateArgs& a, const CLI::App& cmd)
 {
@@ -82,36 +63,30 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     std::vector<uint64_t> list;
     const Octree octree = voxelizer.voxelize(mesh, grid, options, &list);
     printWarnings(stats.warnings);
-    const std::vector<uint64_t> voxels = octreeKeys(octree);
     const double gpuMs = stats.gpuMs();
-    std::string consistency;
-    {
-        Progress p("checking the octree against the voxel list");
-        consistency = octreeConsistency(octree, list);
-    }
 
-    // The exact reference and the classification.
-    const auto t0 = Clock::now();
-    const double eps = grid.epsilon();
-    validate::ReferenceSets ref;
-    {
-        Progress p(fmt::format("exact CGAL reference for {} triangles", mesh.triangles.size()));
-        ref = validate::exactReference(mesh, grid, eps);
-    }
-    const validate::Classification c = validate::classify(mesh, grid, voxels, ref, a.worst);
-    validate::HoleCheck holes;
-    if (a.noHoles) {
-        holes.reason = "skipped (--no-holes)";
-    } else {
-        Progress p("flood-filling the empty voxels");
-        holes = validate::checkHoles(mesh, grid, voxels, 26);
-    }
-    const double validateSeconds = msSince(t0) / 1000.0;
+    // The checks: the octree against the list, the exact reference, the classification, the holes.
+    validate::ReportOptions ro;
+    ro.holes = !a.noHoles;
+    ro.strict = a.strict;
+    ro.worst = a.worst;
+    std::unique_ptr<Progress> step;
+    ro.onStep = [&step](const std::string& s) {
+        step.reset(); // the previous step's line ends first
+        step = std::make_unique<Progress>(s);
+    };
+    const validate::Report report = validate::validateVoxelization(mesh, octree, list, ro);
+    step.reset();
+    const validate::Classification& c = report.classification;
+    const validate::HoleCheck& holes = report.holes;
+    const std::string& consistency = report.consistency;
+    const double eps = report.epsilon;
+    const double validateSeconds = report.seconds;
 
     auto rate = [](uint64_t n, uint64_t of) { return of ? double(n) / double(of) : 0.0; };
     fmt::print("svo validate\n");
     fmt::print("  {:<12} {} ({} triangles, {} degenerate)\n", "scene", scene, thousands(mesh.triangles.size()),
-               thousands(ref.degenerate));
+               thousands(report.degenerate));
     fmt::print("  {:<12} {} x {} x {} local voxels, voxel size {:.6g}\n", "grid", grid.dims[0], grid.dims[1],
                grid.dims[2], grid.voxelSize);
     fmt::print("  {:<12} {}\n", "backend", backendLine(stats));
@@ -133,7 +108,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
                    "holes", holes.leak ? "LEAK" : "none", holes.connectivity, thousands(holes.filled),
                    thousands(holes.frontier));
     else
-        fmt::print("  {:<12} not checked: {}\n", "holes", holes.reason);
+        fmt::print("  {:<12} not checked: {}\n", "holes", a.noHoles ? "skipped (--no-holes)" : holes.reason);
     if (holes.leak) {
         fmt::print("    leak path ({} voxels, outside -> inside):", holes.leakPath.size());
         const size_t n = holes.leakPath.size();
@@ -160,47 +135,17 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
         fmt::print("  {:<12} {} (grids missed, extra{})\n", "errors", a.errors, holes.leak ? ", leak_path" : "");
     }
 
-    const bool failed = !c.missed.empty() || holes.leak || !consistency.empty() || (a.strict && !c.extra.empty());
-    std::string reason;
-    if (!c.missed.empty()) reason += fmt::format("{} voxels missed; ", c.missed.size());
-    if (holes.leak) reason += fmt::format("the flood fill leaks inside through {}; ", idx(holes.leakPath.front()));
-    if (!consistency.empty()) reason += "octree inconsistent; ";
-    if (a.strict && !c.extra.empty()) reason += fmt::format("{} extra voxels (--strict); ", c.extra.size());
-    if (!reason.empty()) reason.resize(reason.size() - 2);
-
     if (!a.json.empty()) {
-        const nlohmann::json report = {
-            {"scene", scene},
-            {"triangles", mesh.triangles.size()},
-            {"degenerate", ref.degenerate},
-            {"dims", grid.dims},
-            {"voxel_size", grid.voxelSize},
-            {"backend", backendLine(stats)},
-            {"epsilon", eps},
-            {"voxels", c.voxels},
-            {"required", c.required},
-            {"allowed", c.allowed},
-            {"missed", c.missed.size()},
-            {"boundary", c.boundary.size()},
-            {"extra", c.extra.size()},
-            {"worst_missed", casesJson(c.worstMissed)},
-            {"worst_extra", casesJson(c.worstExtra)},
-            {"holes",
-             {{"applies", holes.applies},
-              {"reason", holes.reason},
-              {"connectivity", holes.connectivity},
-              {"leak", holes.leak},
-              {"filled", holes.filled},
-              {"frontier", holes.frontier},
-              {"path", holes.leakPath}}},
-            {"octree_consistent", consistency.empty()},
-            {"validation_seconds", validateSeconds},
-            {"gpu_ms", gpuMs},
-            {"passed", !failed},
-            {"reason", reason}};
-        writeFileAtomically(a.json, report.dump(2) + "\n");
+        nlohmann::json j = nlohmann::json::parse(validate::reportJson(report)); // the library's numbers
+        j["scene"] = scene;
+        j["triangles"] = mesh.triangles.size();
+        j["dims"] = grid.dims;
+        j["voxel_size"] = grid.voxelSize;
+        j["backend"] = backendLine(stats);
+        j["gpu_ms"] = gpuMs;
+        writeFileAtomically(a.json, j.dump(2) + "\n");
     }
-    if (failed) throw Failure("validation failed: " + reason);
+    if (!report.passed) throw Failure("validation failed: " + report.reason);
     fmt::print("  {:<12} passed: nothing missed{}\n", "verdict", holes.applies ? ", no leak" : "");
 }
 

@@ -128,6 +128,10 @@ private:
     Handle<detail::deleteQuery> begin_, end_;
 };
 
+/// Waits until the GPU has finished the commands issued so far, in slices of
+/// 20 ms, calling `poll` between slices (it may throw to stop waiting).
+void waitForGpu(const std::function<void()>& poll);
+
 /// A linked program from embedded shader files (see shaders.h).
 class Program {
 public:

@@ -38,7 +38,7 @@ uint64_t OctreeBuilder::nodeBound(uint32_t brickLevel, uint64_t bricks)
 }
 
 OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInput& in, uint64_t nodeCapacity,
-                                           uint64_t brickCapacity) const
+                                           uint64_t brickCapacity, const std::function<void()>& poll) const
 {
     const uint32_t L = brickLevelFor(grid);
     // The shaders index uint words: 2 per node and 16 per brick, in 32 bits.
@@ -79,6 +79,7 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
     }
     prepare_.set("uMode", 1u);
     for (uint32_t level = 0; level <= L; ++level) {
+        if (poll) poll();
         for (const Program* p : {&prepare_, &flag_, &alloc_}) p->set("uLevel", level);
         flag_.dispatchIndirect(*b.state, offsetof(BuildState, entryDispatch));
         prepare_.dispatch(1);

@@ -4,6 +4,7 @@
 /// the GPU (the raster backend's voxel list).
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 
 #include "objects.h"
 #include "svo/core/gpu_layout.h"
@@ -40,8 +41,11 @@ public:
         uint64_t bytes() const { return state->bytes() + nodes->bytes() + bricks->bytes(); }
     };
 
-    /// Allocates the buffers and issues every pass without waiting.
-    Build record(const GridSpec& grid, const OctreeInput& input, uint64_t nodeCapacity, uint64_t brickCapacity) const;
+    /// Allocates the buffers and issues every pass without waiting. `poll`,
+    /// when set, runs between levels (software drivers run the passes as they
+    /// are issued, so this is where an interrupter is heard there).
+    Build record(const GridSpec& grid, const OctreeInput& input, uint64_t nodeCapacity, uint64_t brickCapacity,
+                 const std::function<void()>& poll = {}) const;
     /// Waits for the GPU and reads the counters into build.counts.
     static void readCounts(Build& build);
     /// Reads the finished octree (after readCounts, without overflow).

@@ -316,8 +316,10 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
         in.listCounter = &counter;
         in.entryCapacity = listCapacity;
         buildTimer.begin();
-        build = builder.record(grid, in, nodeCapacity, brickCapacity);
+        build = builder.record(grid, in, nodeCapacity, brickCapacity, [&] { checkpoint(0.6, "octree build"); });
         buildTimer.end();
+        // The GPU works now; wait for it in slices so an interrupter is heard meanwhile.
+        waitForGpu([&] { checkpoint(0.6, "voxelization on the GPU"); });
         OctreeBuilder::readCounts(build);
         count = readCount(counter);
         buildWall += msSince(t0);

@@ -14,6 +14,9 @@
 #include <string>
 
 #include "svo/svo.h"
+#ifdef SVO_WITH_VALIDATE
+#include "svo/validate/report.h"
+#endif
 
 namespace py = pybind11;
 namespace bp = boost::python;
@@ -206,7 +209,8 @@ Request makeRequest(const py::handle& vertices, const py::handle& triangles, std
     return r;
 }
 
-svo::Octree run(svo::Voxelizer& v, const Request& r, const std::string& backend, uint32_t channels)
+svo::Octree run(svo::Voxelizer& v, const Request& r, const std::string& backend, uint32_t channels,
+               std::vector<uint64_t>* voxelList = nullptr)
 {
     svo::VoxelizeOptions o;
     o.backend = toBackend(backend);
@@ -215,7 +219,7 @@ svo::Octree run(svo::Voxelizer& v, const Request& r, const std::string& backend,
     o.interrupter = &interrupter;
     try {
         py::gil_scoped_release release;
-        return v.voxelize(r.mesh, r.grid, o);
+        return v.voxelize(r.mesh, r.grid, o, voxelList);
     } catch (const svo::Interrupted&) {
         if (interrupter.pending) throw py::error_already_set(); // the KeyboardInterrupt
         throw;
@@ -265,9 +269,11 @@ py::object voxelizeWith(svo::Voxelizer& v, const py::handle& vertices, const py:
         if (gr->getName() == "normal" || gr->getName() == "color") out[py::str(gr->getName())] = toPython(gr);
     }
     out["ijk"] = voxelOrder(octree); // the voxels in the order of the arrays below
-    auto vectors = [](const std::vector<svo::Vec3f>& v) {
-        py::array_t<float> a({py::ssize_t(v.size()), py::ssize_t(3)});
-        std::copy(&v.data()->x, &v.data()->x + 3 * v.size(), a.mutable_data());
+    auto vectors = [](const std::vector<svo::Vec3f>& values) {
+        py::array_t<float> a({py::ssize_t(values.size()), py::ssize_t(3)});
+        for (size_t i = 0; i < values.size(); ++i)
+            a.mutable_at(py::ssize_t(i), 0) = values[i].x, a.mutable_at(py::ssize_t(i), 1) = values[i].y,
+                                    a.mutable_at(py::ssize_t(i), 2) = values[i].z;
         return a;
     };
     if (channels & svo::kTriangles) {
@@ -324,6 +330,67 @@ py::tuple readMesh(const std::string& path)
         for (int c = 0; c < 3; ++c) tr(py::ssize_t(i), c) = m.triangles[i][size_t(c)];
     return py::make_tuple(v, t);
 }
+
+/// An octree and the transform its index space belongs to.
+struct PyOctree {
+    svo::Octree octree;
+    openvdb::math::Transform::Ptr xform;
+};
+
+PyOctree octreeWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
+                    std::optional<double> resolution, std::optional<double> voxelSize, const py::object& transform,
+                    const std::string& backend, const std::vector<std::string>& attributes)
+{
+    const uint32_t channels = toChannels(attributes);
+    const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
+    return PyOctree{run(v, r, backend, channels), r.xform};
+}
+
+PyOctree octreeFromGrid(const py::handle& obj, svo::Voxelizer* v, const std::string& backend)
+{
+    const openvdb::GridBase::Ptr grid = fromPython(obj);
+    if (!grid) badValue("grid: expected a pyopenvdb BoolGrid, FloatGrid or Vec3SGrid");
+    svo::VoxelizeOptions o;
+    o.backend = toBackend(backend);
+    try {
+        py::gil_scoped_release release;
+        svo::Voxelizer local;
+        return PyOctree{(v ? *v : local).gridToOctree(*grid, o), grid->transform().copy()};
+    } catch (const svo::Error& e) {
+        throw py::value_error(e.what());
+    }
+}
+
+/// A numpy view of `count` rows of `cols` values at `data`, kept alive by `owner`.
+template <typename T>
+py::array view(const void* data, size_t count, size_t cols, const py::handle& owner)
+{
+    return py::array_t<T>({py::ssize_t(count), py::ssize_t(cols)}, {py::ssize_t(cols * sizeof(T)), py::ssize_t(sizeof(T))},
+                          static_cast<const T*>(data), owner);
+}
+
+#ifdef SVO_WITH_VALIDATE
+/// The voxelization checked against CGAL's exact reference: the numbers of `svo validate --json`.
+py::object validateWith(const py::handle& vertices, const py::handle& triangles, std::optional<double> resolution,
+                        std::optional<double> voxelSize, const py::object& transform, const std::string& backend,
+                        bool holes, bool strict, size_t worst)
+{
+    const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
+    svo::Voxelizer v;
+    std::vector<uint64_t> list;
+    const svo::Octree octree = run(v, r, backend, 0, &list);
+    std::string text;
+    {
+        py::gil_scoped_release release;
+        svo::validate::ReportOptions ro;
+        ro.holes = holes;
+        ro.strict = strict;
+        ro.worst = worst;
+        text = svo::validate::reportJson(svo::validate::validateVoxelization(r.mesh, octree, list, ro));
+    }
+    return py::module_::import("json").attr("loads")(text);
+}
+#endif
 
 constexpr const char* kVoxelizeDoc = R"doc(
 Voxelize a triangle mesh on the GPU into a pyopenvdb grid.
@@ -386,7 +453,65 @@ PYBIND11_MODULE(_svo, m)
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
              py::arg("transform") = py::none(), py::arg("grid") = "bool", py::arg("backend") = "auto",
              py::arg("attributes") = std::vector<std::string>{}, kVoxelizeDoc)
+        .def("octree", &octreeWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
+             py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
+             py::arg("transform") = py::none(), py::arg("backend") = "auto",
+             py::arg("attributes") = std::vector<std::string>{},
+             "The voxels of a mesh as an svo.Octree (arguments as voxelize()).")
         .def("device", &svo::Voxelizer::deviceDescription, "The GPU's vendor, renderer and version.");
+
+    py::class_<PyOctree>(m, "Octree",
+                         "svo's sparse voxel octree: one array of nodes (child, child mask), children c = x + 2y + "
+                         "4z, and 8^3 bricks of OpenVDB leaf masks. Make one with Voxelizer.octree(), "
+                         "Octree.from_grid() or svo.load().")
+        .def_static("from_grid", [](const py::handle& grid, const std::string& backend) {
+            return octreeFromGrid(grid, nullptr, backend);
+        }, py::arg("grid"), py::arg("backend") = "auto",
+            "The active voxels of a pyopenvdb grid (uniform voxel size, whole-voxel translation) as an octree.")
+        .def_property_readonly("nodes", [](py::object self) {
+            const auto& o = self.cast<const PyOctree&>().octree;
+            return view<uint32_t>(o.nodes.data(), o.nodes.size(), 2, self);
+        }, "(N, 2) uint32 view of the nodes: (first child or brick index, child mask). No copy; valid while the octree lives.")
+        .def_property_readonly("bricks", [](py::object self) {
+            const auto& o = self.cast<const PyOctree&>().octree;
+            return view<uint64_t>(o.bricks.data(), o.bricks.size(), 8, self);
+        }, "(B, 8) uint64 view of the bricks: OpenVDB LeafNode<T,3> masks, bit (x&7)<<6 | (y&7)<<3 | (z&7). No copy.")
+        .def_property_readonly("level_start", [](const PyOctree& p) { return p.octree.levelStart; },
+                               "First node of each level; the last entry is the node count.")
+        .def_property_readonly("levels", [](const PyOctree& p) { return p.octree.brickLevel + 1; },
+                               "Levels from the root (0) to the bricks.")
+        .def_property_readonly("voxel_count", [](const PyOctree& p) { return p.octree.voxelCount(); })
+        .def("voxels", [](const PyOctree& p) { return voxelOrder(p.octree); },
+             "(K, 3) int32 index coordinates, in the order of the attribute channels.")
+        .def("to_grid", [](const PyOctree& p, const std::string& grid) {
+            if (grid != "bool" && grid != "fog") badValue("grid: expected 'bool' or 'fog', got '" + grid + "'");
+            svo::GridOptions g;
+            g.topology = svo::GridOptions::Topology::Bool;
+            g.fog = grid == "fog";
+            g.attributes = false;
+            return toPython(svo::octreeToGrids(p.octree, g, p.xform)[g.fog ? 1 : 0]);
+        }, py::arg("grid") = "bool", "A pyopenvdb grid of the voxels with the octree's transform.")
+        .def("save", [](const PyOctree& p, const std::string& path) {
+            if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
+                badValue("save: a .svo file holds a uniform voxel size and a whole-voxel translation; this octree's "
+                         "transform is neither, so write its grid with pyopenvdb instead");
+            try {
+                svo::writeOctreeFile(path, p.octree);
+            } catch (const svo::Error& e) {
+                PyErr_SetString(PyExc_OSError, e.what());
+                throw py::error_already_set();
+            }
+        }, py::arg("path"), "Write a .svo file (versioned, checksummed), atomically.");
+    m.def("load", [](const std::string& path) {
+        try {
+            svo::Octree o = svo::readOctreeFile(path);
+            auto xform = svo::vdb::makeTransform(o.grid);
+            return PyOctree{std::move(o), xform};
+        } catch (const svo::Error& e) {
+            PyErr_SetString(PyExc_OSError, e.what());
+            throw py::error_already_set();
+        }
+    }, py::arg("path"), "Read a .svo file; a damaged or inconsistent file raises OSError naming the problem.");
 
     m.def(
         "voxelize",
@@ -402,6 +527,14 @@ PYBIND11_MODULE(_svo, m)
         (std::string("One-off call with a Voxelizer made for it (keep a Voxelizer for repeated calls).\n") +
          kVoxelizeDoc)
             .c_str());
+#ifdef SVO_WITH_VALIDATE
+    m.def("validate", &validateWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
+          py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(), py::arg("transform") = py::none(),
+          py::arg("backend") = "auto", py::arg("holes") = true, py::arg("strict") = false, py::arg("worst") = 5,
+          "Voxelize the mesh and check it against CGAL's exact triangle/box tests, as `svo validate` does: a dict "
+          "with voxels, required (R), allowed (A), missed, boundary, extra, worst_missed, worst_extra, holes "
+          "(applies, leak, path, ...), octree_consistent, epsilon, passed and reason.");
+#endif
     m.def("active_voxels", &activeVoxels, py::arg("grid"),
           "The index coordinates of a grid's active voxels (tiles expanded) as a (K, 3) int32 array, in "
           "OpenVDB's tree order; any transform.");

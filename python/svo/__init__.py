@@ -15,6 +15,13 @@ try:
 except ImportError as e:  # pragma: no cover
     raise ImportError("svo returns pyopenvdb grids: install python3-openvdb") from e
 
-from ._svo import Voxelizer, active_voxels, read_mesh, voxelize
+from ._svo import Octree, Voxelizer, active_voxels, load, read_mesh, voxelize
 
-__all__ = ["Voxelizer", "voxelize", "active_voxels", "read_mesh"]
+__all__ = ["Voxelizer", "Octree", "voxelize", "active_voxels", "read_mesh", "load"]
+
+try:  # built with SVO_WITH_VALIDATE (CGAL)
+    from ._svo import validate  # noqa: F401
+
+    __all__.append("validate")
+except ImportError:  # pragma: no cover
+    pass

@@ -185,3 +185,70 @@ def test_cpu_backend_is_the_reference_within_the_guard_band(voxelizer):
     cpu = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="cpu")))
     assert cpu <= gpu  # the GPU's guard band only adds voxels within about 1e-4 voxel of a triangle
     assert len(gpu - cpu) <= len(cpu) // 100
+
+
+def test_octree_views_files_and_grids(voxelizer, tmp_path):
+    v, t = tetrahedron()
+    octree = voxelizer.octree(v, t, resolution=40)
+    grid = voxelizer.voxelize(v, t, resolution=40)
+    assert octree.voxel_count == grid.activeVoxelCount()
+    assert as_set(octree.voxels()) == as_set(svo.active_voxels(grid))
+    assert as_set(svo.active_voxels(octree.to_grid())) == as_set(svo.active_voxels(grid))
+    nodes, bricks = octree.nodes, octree.bricks
+    assert nodes.dtype == np.uint32 and nodes.shape[1] == 2 and bricks.dtype == np.uint64 and bricks.shape[1] == 8
+    assert not nodes.flags.owndata and not bricks.flags.owndata  # views, no copies
+    assert len(octree.level_start) == octree.levels + 1 and octree.level_start[-1] == len(nodes)
+    # Every voxel is one set bit: the bricks' popcount is the voxel count.
+    assert sum(bin(int(w)).count("1") for w in bricks.ravel()) == octree.voxel_count
+    # The root's mask says which of its 8 children are occupied; a leaf-level node points into bricks.
+    assert nodes[0, 1] != 0
+    path = str(tmp_path / "t.svo")
+    octree.save(path)
+    loaded = svo.load(path)
+    assert np.array_equal(loaded.nodes, nodes) and np.array_equal(loaded.bricks, bricks)
+    again = svo.Octree.from_grid(grid)
+    assert as_set(again.voxels()) == as_set(octree.voxels())
+    with pytest.raises(OSError):
+        svo.load(str(tmp_path / "missing.svo"))
+
+
+def test_views_stay_valid_while_the_octree_lives(voxelizer):
+    v, t = tetrahedron()
+    bricks = voxelizer.octree(v, t, resolution=24).bricks  # the octree object is gone; the view keeps it
+    import gc
+    gc.collect()
+    copy = np.array(bricks)
+    voxelizer.octree(v, t, resolution=48)  # allocations that would reuse freed memory
+    assert np.array_equal(bricks, copy)
+    assert sum(bin(int(w)).count("1") for w in bricks.ravel()) > 0
+
+
+def test_validate_gives_the_numbers_of_the_cli(elephant, tmp_path):
+    out = tmp_path / "v.json"
+    subprocess.run([SVO_EXE, "validate", elephant, "-r", "48", "--json", str(out)], check=True, capture_output=True)
+    import json
+    cli = json.loads(out.read_text())
+    vertices, triangles = svo.read_mesh(elephant)
+    report = svo.validate(vertices, triangles, resolution=48)
+    for key in ("voxels", "required", "allowed", "missed", "boundary", "extra", "epsilon", "passed", "octree_consistent"):
+        assert report[key] == cli[key], key
+    assert report["missed"] == 0 and report["holes"]["applies"] and not report["holes"]["leak"]
+    assert report["passed"]
+
+
+def test_ctrl_c_cancels_a_long_call_and_leaves_it_usable(voxelizer):
+    import signal
+    import time
+    v, t = tetrahedron()
+    start = time.monotonic()
+    full = voxelizer.voxelize(v, t, resolution=1536).activeVoxelCount()
+    whole = time.monotonic() - start
+    timer = threading.Timer(whole * 0.1, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        voxelizer.voxelize(v, t, resolution=1536)
+        time.sleep(whole)  # only reached if the call ignored the signal
+    timer.join()
+    assert time.monotonic() - start < 0.6 * whole, "the call ran on after Ctrl-C"
+    assert voxelizer.voxelize(v, t, resolution=1536).activeVoxelCount() == full

@@ -1,0 +1,52 @@
+#pragma once
+/// @file report.h
+/// One validation of a voxelization, start to end: what `svo validate` and
+/// `svo.validate` print and return.
+///
+/// Method: the octree is checked for structure and against the voxel list of
+/// the same run (every level must be what the list's voxels imply); the exact
+/// reference (exact_reference.h) gives R and A; the octree's voxels are
+/// classified (classify.h); closed meshes get the flood-fill hole check
+/// (hole_check.h). The verdict fails on missed voxels, a leak, an inconsistent
+/// octree, and (strict) extra voxels.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "svo/core/mesh.h"
+#include "svo/core/octree.h"
+#include "svo/validate/classify.h"
+#include "svo/validate/hole_check.h"
+
+namespace svo::validate {
+
+struct ReportOptions {
+    bool holes = true;   ///< run the hole check (closed meshes)
+    bool strict = false; ///< extra voxels fail too
+    size_t worst = 5;    ///< worst cases kept of each kind
+    /// Told the step now starting ("exact CGAL reference", ...), for progress lines.
+    std::function<void(const std::string& step)> onStep;
+};
+
+struct Report {
+    double epsilon = 0;            ///< the guard band R and A use, in voxels
+    uint64_t degenerate = 0;       ///< triangles routed to segment or point tests
+    Classification classification;
+    HoleCheck holes;
+    std::string consistency;       ///< empty when the octree agrees with the voxel list
+    double seconds = 0;            ///< reference, classification and hole check
+    bool passed = false;
+    std::string reason;            ///< why it failed, one line
+};
+
+/// @param voxelList the run's own voxel list (sorted, unique keys), from
+///        Voxelizer::voxelize(..., voxelList), to check the octree against.
+Report validateVoxelization(const TriangleMesh& mesh, const Octree& octree, const std::vector<uint64_t>& voxelList,
+                            const ReportOptions& options = {});
+
+/// The report as JSON text (the fields of `svo validate --json` that the
+/// report holds), so the CLI and Python give the same numbers.
+std::string reportJson(const Report& report);
+
+} // namespace svo::validate
