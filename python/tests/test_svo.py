@@ -252,3 +252,22 @@ def test_ctrl_c_cancels_a_long_call_and_leaves_it_usable(voxelizer):
     timer.join()
     assert time.monotonic() - start < 0.6 * whole, "the call ran on after Ctrl-C"
     assert voxelizer.voxelize(v, t, resolution=1536).activeVoxelCount() == full
+
+
+@pytest.mark.parametrize("script, args", [
+    ("voxelize_file.py", ["{mesh}", "{tmp}/out.vdb", "64"]),
+    ("numpy_points.py", []),
+    ("validate_mesh.py", ["{mesh}", "48"]),
+])
+def test_examples_run(elephant, tmp_path, script, args):
+    import sys
+    here = os.path.dirname(os.path.abspath(__file__))
+    path = os.path.join(here, "..", "examples", script)
+    argv = [a.format(mesh=elephant, tmp=tmp_path) for a in args]
+    done = subprocess.run([sys.executable, path, *argv], capture_output=True, text=True, env=os.environ)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip()
+    if script == "voxelize_file.py":
+        assert pyopenvdb.read(str(tmp_path / "out.vdb"), "surface").activeVoxelCount() > 1000
+    if script == "validate_mesh.py":
+        assert "passed" in done.stdout
