@@ -6,9 +6,8 @@
 
 #include "cli_options.h"
 #include "commands.h"
-#include "progress.h"
+#include "library_call.h"
 #include "svo/core/error.h"
-#include "svo/voxelizer.h"
 
 namespace svo::app {
 namespace {
@@ -29,13 +28,8 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
     const GridOptions grids = a.out.gridOptions();
     if (outputFormat(a.output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", a.output));
-    Voxelizer voxelizer(a.backend.deviceOptions());
-    VoxelizeOptions options = a.backend.voxelizeOptions();
-    VoxelizeStats stats;
-    ProgressInterrupter progress("building the octree");
-    options.interrupter = &progress;
-    options.stats = &stats;
-    const LoadedOctree lo = loadOctree(voxelizer, a.input, a.gridName, {}, options);
+    LibraryCall call(a.backend, "building the octree");
+    const LoadedOctree lo = loadOctree(call.voxelizer, a.input, a.gridName, {}, call.options);
     const std::map<std::string, std::string> meta = {{"svo:source", a.input}, {"svo:version", SVO_VERSION}};
     WriteReport written;
     {
@@ -43,7 +37,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
         written = writeOctree(a.output, lo.octree, grids, meta);
     }
     fmt::print("svo convert\n");
-    fmt::print("  {:<12} {}\n", "input", describeInput(a.input, lo, stats));
+    fmt::print("  {:<12} {}\n", "input", describeInput(a.input, lo, call.stats));
     fmt::print("  {:<12} {}\n", "output", describeOutput(a.output, written, grids));
     fmt::print("  {:<12} {} voxels in {} bricks\n", "octree", thousands(lo.octree.voxelCount()),
                thousands(lo.octree.bricks.size()));

@@ -5,8 +5,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
-#include "progress.h"
-#include "svo/voxelizer.h"
+#include "library_call.h"
 
 namespace svo::app {
 namespace {
@@ -20,18 +19,13 @@ struct InfoArgs {
 
 void runInfo(const InfoArgs& a, const CLI::App& cmd)
 {
-    Voxelizer voxelizer(a.backend.deviceOptions());
-    VoxelizeOptions options = a.backend.voxelizeOptions();
-    VoxelizeStats stats;
-    ProgressInterrupter progress("building the octree");
-    options.interrupter = &progress;
-    options.stats = &stats;
+    LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo =
-        loadOctree(voxelizer, a.input, a.gridName, gridRequest(cmd, a.resolution, a.voxelSize), options);
+        loadOctree(call.voxelizer, a.input, a.gridName, gridRequest(cmd, a.resolution, a.voxelSize), call.options);
     if (lo.mesh) printWarnings(lo.mesh->warnings);
-    printWarnings(stats.warnings);
+    printWarnings(call.stats.warnings);
     fmt::print("svo info\n");
-    fmt::print("  {:<12} {}\n", "input", describeInput(a.input, lo, stats));
+    fmt::print("  {:<12} {}\n", "input", describeInput(a.input, lo, call.stats));
     printOctreeSummary(lo.octree);
 }
 

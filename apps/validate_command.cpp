@@ -9,6 +9,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
+#include "library_call.h"
 #include "progress.h"
 #include "svo/core/atomic_file.h"
 #include "svo/core/default_scene.h"
@@ -54,14 +55,10 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
 
     // The voxelization under test, and the voxel list it was built from (the
     // same run, read back apart), to check every level of the octree against.
-    Voxelizer voxelizer(a.backend.deviceOptions());
-    VoxelizeOptions options = a.backend.voxelizeOptions();
-    VoxelizeStats stats;
-    ProgressInterrupter progress("voxelizing");
-    options.interrupter = &progress;
-    options.stats = &stats;
+    LibraryCall call(a.backend, "voxelizing");
+    const VoxelizeStats& stats = call.stats;
     std::vector<uint64_t> list;
-    const Octree octree = voxelizer.voxelize(mesh, grid, options, &list);
+    const Octree octree = call.voxelizer.voxelize(mesh, grid, call.options, &list);
     printWarnings(stats.warnings);
     const double gpuMs = stats.gpuMs();
 

@@ -9,6 +9,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
+#include "library_call.h"
 #include "progress.h"
 #include "svo/core/atomic_file.h"
 #include "svo/core/default_scene.h"
@@ -61,16 +62,13 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
 
     // Voxelize: with --repeat, one warm-up on the GPU, then per-stage medians.
-    Voxelizer voxelizer(a.backend.deviceOptions());
-    VoxelizeOptions options = a.backend.voxelizeOptions();
-    ProgressInterrupter progress("voxelizing");
-    options.interrupter = &progress;
+    LibraryCall call(a.backend, "voxelizing");
     std::vector<VoxelizeStats> runs(size_t(a.repeat));
     Octree octree;
-    if (a.repeat > 1 && options.backend != Backend::Cpu) voxelizer.voxelize(mesh, grid, options);
+    if (a.repeat > 1 && call.options.backend != Backend::Cpu) call.voxelizer.voxelize(mesh, grid, call.options);
     for (auto& run : runs) {
-        options.stats = &run;
-        octree = voxelizer.voxelize(mesh, grid, options);
+        octree = call.voxelizer.voxelize(mesh, grid, call.options);
+        run = call.stats;
     }
     VoxelizeStats stats = medianStats(runs);
     printWarnings(stats.warnings);

@@ -6,8 +6,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
-#include "progress.h"
-#include "svo/voxelizer.h"
+#include "library_call.h"
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 #include "vtk_export.h"
@@ -67,18 +66,13 @@ void runVtk(const VtkArgs& a, const CLI::App& cmd)
         requireDisplay(); // before loading and voxelizing
     }
     checkDistinctOutputs({a.output, a.png});
-    Voxelizer voxelizer(a.backend.deviceOptions());
-    VoxelizeOptions options = a.backend.voxelizeOptions();
-    VoxelizeStats stats;
-    ProgressInterrupter progress("building the octree");
-    options.interrupter = &progress;
-    options.stats = &stats;
+    LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo =
-        loadOctree(voxelizer, a.input, a.gridName, gridRequest(cmd, a.resolution, a.voxelSize), options);
+        loadOctree(call.voxelizer, a.input, a.gridName, gridRequest(cmd, a.resolution, a.voxelSize), call.options);
     if (lo.mesh) printWarnings(lo.mesh->warnings);
-    printWarnings(stats.warnings);
+    printWarnings(call.stats.warnings);
     fmt::print("svo vtk\n");
-    fmt::print("  {:<8} {}\n", "input", describeInput(a.input, lo, stats));
+    fmt::print("  {:<8} {}\n", "input", describeInput(a.input, lo, call.stats));
     fmt::print("  {:<8} {} voxels, {} levels (bricks at {}; levels {}..{} split bricks down to voxels)\n", "octree",
                lo.octree.voxelCount(), lo.octree.brickLevel + 1, lo.octree.brickLevel, lo.octree.brickLevel + 1,
                lo.octree.brickLevel + 3);

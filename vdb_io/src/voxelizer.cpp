@@ -205,6 +205,14 @@ struct Voxelizer::Impl {
         return *context;
     }
 
+    /// Where a call runs, in the statistics: the GPU's names, or the CPU reference.
+    void describeBackend(VoxelizeStats& stats, bool cpu)
+    {
+        stats.backend = cpu ? "cpu" : "raster";
+        stats.device = cpu ? "cpu" : describe();
+        stats.renderer = cpu ? "cpu" : gl().info().renderer;
+    }
+
     std::string describe()
     {
         const auto& i = gl().info();
@@ -244,9 +252,8 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
     if (availableChannels(mesh, options.attributes) != options.attributes)
         stats.warnings.push_back(mesh.source + " has no vertex colours; the color channel is left out");
     Octree octree;
+    impl_->describeBackend(stats, options.backend == Backend::Cpu);
     if (options.backend == Backend::Cpu) {
-        stats.backend = "cpu";
-        stats.device = stats.renderer = "cpu";
         auto t0 = Clock::now();
         Voxelization v = voxelizeCpu(mesh, grid);
         stats.stages.push_back({"voxelize (cpu)", -1, msSince(t0)});
@@ -269,10 +276,7 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
         ro.attributes = options.attributes;
         ro.checkpoint = checkpoint.part(0.0, 0.98);
         ro.voxelList = voxelList;
-        stats.backend = "raster";
         stats.dilation = gl::conservativeModeName(context, ro);
-        stats.device = impl_->describe();
-        stats.renderer = context.info().renderer;
         gl::OctreeVoxelization r = gl::voxelizeToOctree(context, mesh, grid, ro);
         octree = std::move(r.octree);
         stats.stages = std::move(r.stages);
@@ -296,19 +300,14 @@ Octree Voxelizer::bricksToOctree(const GridSpec& grid, std::vector<std::pair<uin
     VoxelizeStats stats;
     stats.grid = grid;
     Octree octree;
+    impl_->describeBackend(stats, options.backend == Backend::Cpu);
     if (options.backend == Backend::Cpu) {
-        stats.backend = "cpu";
-        stats.device = stats.renderer = "cpu";
         checkpoint(0.0, "octree build");
         const auto t0 = Clock::now();
         octree = buildOctreeFromBricks(grid, std::move(bricks));
         stats.stages.push_back({"octree build (cpu)", -1, msSince(t0)});
     } else {
-        gl::Context& context = impl_->gl();
-        stats.backend = "raster";
-        stats.device = impl_->describe();
-        stats.renderer = context.info().renderer;
-        gl::OctreeVoxelization r = gl::buildOctreeGpu(context, grid, bricks, checkpoint.part(0.0, 0.98));
+        gl::OctreeVoxelization r = gl::buildOctreeGpu(impl_->gl(), grid, bricks, checkpoint.part(0.0, 0.98));
         octree = std::move(r.octree);
         stats.stages = std::move(r.stages);
         stats.gpuBytes = r.gpuBytes;

@@ -89,7 +89,7 @@ struct VoxelizeStats {
     uint64_t voxels = 0, bricks = 0;
     uint64_t listEntries = 0;      ///< voxel-list entries written, duplicates included
     int overflowRetries = 0;       ///< passes repeated because a GPU buffer was too small
-    uint64_t gpuBytes = 0;         ///< peak GPU buffer bytes of the call
+    uint64_t gpuBytes = 0;         ///< GPU buffer bytes the call used (reused scratch counts at its full size)
     double epsilon = 0;            ///< guard band in voxels
     std::string backend;           ///< "raster" or "cpu"
     std::string dilation;          ///< "hardware", "shader", "centroid-push (baseline)"; empty for cpu

@@ -1,0 +1,30 @@
+#pragma once
+/// @file library_call.h
+/// What a subcommand needs to call the library: a Voxelizer on the chosen
+/// device, the options the arguments ask for, its progress shown on stderr,
+/// and the call's statistics kept for printing.
+#include <string>
+
+#include "cli_options.h"
+#include "progress.h"
+#include "svo/voxelizer.h"
+
+namespace svo::app {
+
+struct LibraryCall {
+    LibraryCall(const BackendArgs& args, std::string progressLabel)
+        : voxelizer(args.deviceOptions()), options(args.voxelizeOptions()), progress(std::move(progressLabel))
+    {
+        options.interrupter = &progress;
+        options.stats = &stats;
+    }
+    LibraryCall(const LibraryCall&) = delete;
+    LibraryCall& operator=(const LibraryCall&) = delete;
+
+    Voxelizer voxelizer;
+    VoxelizeOptions options; ///< points at `progress` and `stats` below
+    VoxelizeStats stats;
+    ProgressInterrupter progress;
+};
+
+} // namespace svo::app
