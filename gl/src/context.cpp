@@ -96,7 +96,6 @@ struct Glx {
 /// What the thread had current before a Scope: EGL (for the OpenGL API, and
 /// the bound API) and GLX.
 struct Context::Scope::Saved {
-    EGLDisplay owner = EGL_NO_DISPLAY; ///< the Scope's own display, to release on the way out
     EGLenum api = EGL_OPENGL_ES_API;
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLSurface draw = EGL_NO_SURFACE, read = EGL_NO_SURFACE;
