@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 
+#include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 #include "svo/voxelizer.h"
 
@@ -157,12 +158,16 @@ std::string thousands(uint64_t n)
     return s;
 }
 
-void checkDistinctOutputs(const std::vector<std::string>& paths)
+void checkOutputs(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs)
 {
-    for (size_t i = 0; i < paths.size(); ++i)
-        for (size_t j = i + 1; j < paths.size(); ++j)
-            if (!paths[i].empty() && std::filesystem::weakly_canonical(paths[i]) == std::filesystem::weakly_canonical(paths[j]))
-                throw Error(fmt::format("{}: given for two outputs; each output needs its own file", paths[i]));
+    for (size_t i = 0; i < outputs.size(); ++i) {
+        for (const auto& in : inputs)
+            if (sameFile(outputs[i], in))
+                throw Error(fmt::format("{}: is the input {}; svo never writes over an input", outputs[i], in));
+        for (size_t j = i + 1; j < outputs.size(); ++j)
+            if (sameFile(outputs[i], outputs[j]))
+                throw Error(fmt::format("{}: given for two outputs; each output needs its own file", outputs[i]));
+    }
 }
 
 } // namespace svo::app

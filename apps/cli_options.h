@@ -68,7 +68,9 @@ void printStages(const std::vector<StageTime>& stages);
 
 /// 1234567 -> "1,234,567"
 std::string thousands(uint64_t n);
-/// Throws svo::Error when two output paths name the same file.
-void checkDistinctOutputs(const std::vector<std::string>& paths);
+/// Throws svo::Error when an output is the same file as an input (however
+/// the path is spelled: links, `./`, `..`) or as another output. Empty
+/// paths (options not given) are skipped.
+void checkOutputs(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs);
 
 } // namespace svo::app

@@ -24,7 +24,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
     if (ext != ".vdb" && ext != ".svo")
         throw Error(fmt::format("{}: svo convert reads .vdb and .svo files; voxelize meshes with svo voxelize", a.input));
     checkOutputPath(a.output);
-    checkDistinctOutputs({a.input, a.output});
+    checkOutputs({a.input}, {a.output});
     const GridOptions grids = a.out.gridOptions();
     if (outputFormat(a.output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", a.output));

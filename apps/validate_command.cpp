@@ -41,6 +41,7 @@ std::string idx(const std::array<int64_t, 3>& p) { return fmt::format("[{}, {}, 
 void runValidate(const ValidateArgs& a, const CLI::App& cmd)
 {
     const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
+    checkOutputs({a.mesh}, {a.json, a.errors}); // before any work
     TriangleMesh mesh;
     {
         Progress p("loading " + (a.mesh.empty() ? std::string("built-in scene") : a.mesh));
@@ -49,7 +50,6 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     printWarnings(mesh.warnings);
     if (!a.json.empty()) checkWritable(a.json);
     if (!a.errors.empty()) checkWritable(a.errors);
-    checkDistinctOutputs({a.json, a.errors});
     const GridSpec grid = makeGrid(mesh, request);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
 

@@ -44,7 +44,9 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     const auto start = Clock::now();
     const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
 
-    // Load first: a bad mesh must fail before any output is considered.
+    // No output may be the input or another output: refused before any work.
+    checkOutputs({a.mesh}, {a.output, a.json});
+    // Then load: a bad mesh must fail before any output is considered.
     TriangleMesh mesh;
     {
         Progress p("loading " + (a.mesh.empty() ? std::string("built-in scene") : a.mesh));
@@ -53,9 +55,9 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     printWarnings(mesh.warnings);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
     const std::string output = a.output.empty() ? scene + ".vdb" : a.output;
+    if (a.output.empty()) checkOutputs({a.mesh}, {output, a.json}); // the default name is known only now
     checkOutputPath(output);
     if (!a.json.empty()) checkWritable(a.json);
-    checkDistinctOutputs({output, a.json});
     const GridSpec grid = makeGrid(mesh, request);
     const GridOptions grids = a.out.gridOptions();
     if (outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))

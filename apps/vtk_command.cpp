@@ -61,11 +61,11 @@ void runVtk(const VtkArgs& a, const CLI::App& cmd)
                                     a.output));
         checkWritable(a.output);
     }
+    checkOutputs({a.input}, {a.output, a.png});
     if (!a.png.empty()) {
         checkWritable(a.png);
         requireDisplay(); // before loading and voxelizing
     }
-    checkDistinctOutputs({a.output, a.png});
     LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo =
         loadOctree(call.voxelizer, a.input, a.gridName, gridRequest(cmd, a.resolution, a.voxelSize), call.options);

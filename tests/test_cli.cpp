@@ -166,3 +166,42 @@ TEST_F(Cli, ValidatePassesAndWritesItsReports)
     EXPECT_NE(info.out.find("grid 'extra'"), std::string::npos) << info.out;
     expectOnly({"v.json", "e.vdb"});
 }
+
+TEST_F(Cli, NoOutputIsEverAnInputHoweverItIsNamed)
+{
+    const std::string tetra = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    const std::string mesh = write("m.off", tetra);
+    fs::create_symlink(mesh, path("link.off"));
+    fs::create_hard_link(mesh, path("hard.off"));
+    fs::create_directory(path("sub"));
+    const std::string dotted = path("sub") + "/../m.off";
+    ASSERT_EQ(runSvo("voxelize " + mesh + " -r 16 -o " + path("box.svo")).code, 0);
+    const std::vector<std::string> attempts = {
+        "voxelize " + mesh + " -r 16 -o " + path("out.vdb") + " --json " + mesh,
+        "voxelize " + mesh + " -r 16 -o " + path("out.vdb") + " --json " + path("link.off"),
+        "voxelize " + mesh + " -r 16 -o " + path("out.vdb") + " --json " + path("hard.off"),
+        "voxelize " + mesh + " -r 16 -o " + path("out.vdb") + " --json " + dotted,
+        "voxelize " + path("link.off") + " -r 16 -o " + path("out.vdb") + " --json " + mesh,
+        "validate " + mesh + " -r 16 --json " + path("hard.off"),
+        "validate " + mesh + " -r 16 --errors " + path("link.off"),
+        "vtk " + mesh + " -r 16 --png " + path("link.off"),
+        "convert " + path("box.svo") + " -o " + path("sub") + "/../box.svo",
+    };
+    const auto svoBytes = fs::file_size(path("box.svo"));
+    for (const auto& args : attempts) {
+        const auto r = runSvo(args);
+        EXPECT_EQ(r.code, 1) << args << "\n" << r.out;
+        EXPECT_NE(r.out.find("svo never writes over an input"), std::string::npos) << args << "\n" << r.out;
+        std::ifstream in(mesh);
+        EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), tetra) << args;
+        EXPECT_EQ(fs::file_size(path("box.svo")), svoBytes) << args;
+    }
+    // The default output name (known once the scene is) against --json.
+    const auto cwd = fs::current_path();
+    fs::current_path(tmp_.dir());
+    const auto defaulted = runSvo("voxelize -r 16 --json cornell_box.vdb");
+    fs::current_path(cwd);
+    EXPECT_EQ(defaulted.code, 1) << defaulted.out;
+    EXPECT_NE(defaulted.out.find("given for two outputs"), std::string::npos) << defaulted.out;
+    expectOnly({"m.off", "link.off", "hard.off", "sub", "box.svo"});
+}

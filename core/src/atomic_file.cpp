@@ -46,6 +46,15 @@ void writeAtomically(const std::string& path, const std::function<void(const std
     }
 }
 
+bool sameFile(const std::string& a, const std::string& b)
+{
+    if (a.empty() || b.empty()) return false;
+    std::error_code ec;
+    if (std::filesystem::exists(a, ec) && std::filesystem::exists(b, ec))
+        return std::filesystem::equivalent(a, b, ec);
+    return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
+}
+
 void writeFileAtomically(const std::string& path, const std::string& bytes)
 {
     writeAtomically(path, [&](const std::string& tmp) {

@@ -16,6 +16,11 @@ void checkWritable(const std::string& path);
 /// the error is rethrown as svo::Error naming `path`.
 void writeAtomically(const std::string& path, const std::function<void(const std::string& tmp)>& write);
 
+/// True when the two paths name one file: the same device and inode when both
+/// exist (so symbolic and hard links count), the same resolved path otherwise
+/// (`./`, `..` and linked folders resolved). Empty paths name no file.
+bool sameFile(const std::string& a, const std::string& b);
+
 /// writeAtomically for bytes already in memory (text or binary).
 void writeFileAtomically(const std::string& path, const std::string& bytes);
 
