@@ -4,17 +4,7 @@
 # bundle/meshes: the GPU suites, validation, then the warm-call benchmark.
 #   OUT=dir bash bench/gpu_host_api.sh
 set -uo pipefail
-out=${OUT:-gpu_host_out}
-mkdir -p "$out"
 source "$(dirname "$0")/gpu_host_env.sh"
-ldconfig -p | grep -q libEGL_nvidia || export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-work=$(mktemp -d)
-tar -C "$work" -xzf bundle/svo-bundle.tar.gz
-bin="$work/svo/bin"
-{
-  echo "== host"; nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader; nproc
-  echo "== glinfo"; "$bin/svo" glinfo
-} 2>&1 | tee "$out/host.txt"
 for t in test_api test_gpu_layout test_gpu_voxelize test_gpu_octree test_validate; do
   [ -x "$bin/$t" ] && SVO_CGAL_MESHES="$PWD/bundle/meshes" "$bin/$t" 2>&1 | tee "$out/$t.txt" | grep -E "^\[  |FAILED|PASSED"
 done

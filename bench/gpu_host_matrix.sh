@@ -3,12 +3,7 @@
 # svo-mesh-to-volume and vdb_tool as extra executables) and bundle/meshes.
 #   OUT=dir bash bench/gpu_host_matrix.sh SCENE... (default: all four)
 set -uo pipefail
-out=${OUT:-gpu_host_out}
-mkdir -p "$out"
 source "$(dirname "$0")/gpu_host_env.sh"
-work=$(mktemp -d)
-tar -C "$work" -xzf bundle/svo-bundle.tar.gz
-bin="$work/svo/bin"
 scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=(cornell spheres stanford-bunny.obj icosphere)
 python3 bench/matrix.py --svo "$bin/svo" --peer "$bin/svo-mesh-to-volume" --vdb-tool "$bin/vdb_tool" \

@@ -3,17 +3,8 @@
 # bundle/ (scripts/bundle.sh) and, if the host lacks them, GLVND debs in .gl/.
 # Writes logs to $OUT (or ./gpu_host_out).
 set -uo pipefail
-out=${OUT:-gpu_host_out}
-mkdir -p "$out"
 source "$(dirname "$0")/gpu_host_env.sh"
-ldconfig -p | grep -q libEGL_nvidia || export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-work=$(mktemp -d)
-tar -C "$work" -xzf bundle/svo-bundle.tar.gz
-svo="$work/svo/bin/svo"
-{
-  echo "== host"; nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader; nproc
-  echo "== glinfo"; "$svo" glinfo
-} 2>&1 | tee "$out/host.txt"
+svo="$bin/svo"
 
 # The GPU test suites against the CPU and CGAL references, with the meshes where the build expects them.
 for t in test_gpu_voxelize test_gpu_octree test_validate; do

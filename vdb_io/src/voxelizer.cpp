@@ -146,6 +146,16 @@ IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<open
     return out;
 }
 
+/// The end every call shares: the last checkpoint, the counts, the statistics handed over.
+Octree finish(Octree octree, VoxelizeStats& stats, const VoxelizeOptions& options, const Checkpoint& checkpoint)
+{
+    checkpoint(1.0, "finish");
+    stats.voxels = octree.voxelCount();
+    stats.bricks = octree.bricks.size();
+    if (options.stats) *options.stats = std::move(stats);
+    return octree;
+}
+
 template <typename PointT>
 openvdb::MaskGrid::Ptr toMask(Voxelizer& v, const std::vector<PointT>& points,
                               const std::vector<openvdb::Vec3I>& triangles, const std::vector<openvdb::Vec4I>& quads,
@@ -284,11 +294,7 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
         stats.overflowRetries = r.overflowRetries;
         stats.gpuBytes = r.gpuBytes;
     }
-    checkpoint(1.0, "finish");
-    stats.voxels = octree.voxelCount();
-    stats.bricks = octree.bricks.size();
-    if (options.stats) *options.stats = std::move(stats);
-    return octree;
+    return finish(std::move(octree), stats, options, checkpoint);
 }
 
 Octree Voxelizer::bricksToOctree(const GridSpec& grid, std::vector<std::pair<uint64_t, Brick>> bricks,
@@ -312,11 +318,7 @@ Octree Voxelizer::bricksToOctree(const GridSpec& grid, std::vector<std::pair<uin
         stats.stages = std::move(r.stages);
         stats.gpuBytes = r.gpuBytes;
     }
-    checkpoint(1.0, "finish");
-    stats.voxels = octree.voxelCount();
-    stats.bricks = octree.bricks.size();
-    if (options.stats) *options.stats = std::move(stats);
-    return octree;
+    return finish(std::move(octree), stats, options, checkpoint);
 }
 
 Octree Voxelizer::gridToOctree(const openvdb::GridBase& grid, const VoxelizeOptions& options)
