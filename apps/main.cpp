@@ -3,6 +3,7 @@
 
 #include "commands.h"
 #include "svo/core/error.h"
+#include "svo/core/exit_cleanup.h"
 
 int main(int argc, char** argv)
 {
@@ -20,6 +21,8 @@ int main(int argc, char** argv)
 #endif
     svo::app::addSceneCommand(app);
     svo::app::addGlInfoCommand(app);
+    // Ctrl-C and SIGTERM remove temporary files and stop Xvfb, then exit 130 / 143.
+    svo::installInterruptCleanup();
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "svo/core/error.h"
+#include "svo/core/exit_cleanup.h"
 
 namespace svo::app {
 namespace {
@@ -59,6 +60,7 @@ XDisplay::XDisplay()
         ::_exit(127);
     }
     ::close(fds[1]);
+    cleanupSlot_ = registerChild(pid_);
     // Xvfb writes its display number to the pipe once it accepts connections.
     std::string number;
     pollfd p{fds[0], POLLIN, 0};
@@ -68,6 +70,7 @@ XDisplay::XDisplay()
     if (number.empty()) {
         ::kill(pid_, SIGTERM);
         ::waitpid(pid_, nullptr, 0);
+        releaseChild(cleanupSlot_);
         pid_ = -1;
         throw Error("Xvfb did not start within 10 s; set DISPLAY to an X server instead");
     }
@@ -80,6 +83,7 @@ XDisplay::~XDisplay()
     if (pid_ <= 0) return;
     ::kill(pid_, SIGTERM);
     ::waitpid(pid_, nullptr, 0);
+    releaseChild(cleanupSlot_);
     ::unsetenv("DISPLAY");
 }
 

@@ -25,6 +25,7 @@ public:
 private:
     std::string name_;
     pid_t pid_ = -1;
+    int cleanupSlot_ = -1; ///< exit_cleanup.h: an interrupt stops the server too
 };
 
 } // namespace svo::app

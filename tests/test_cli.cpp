@@ -4,8 +4,15 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <set>
 #include <sstream>
+#include <chrono>
+#include <csignal>
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
 
 #include "temp_dir.h"
 
@@ -28,6 +35,65 @@ Run runSvo(const std::string& args)
     while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
     const int status = pclose(p);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+/// svo started in the background, its output in a file, for signal tests.
+struct Background {
+    pid_t pid = -1;
+    std::string log;
+};
+
+Background startSvo(const std::vector<std::string>& args, const std::string& log, bool withoutDisplay = false)
+{
+    std::vector<std::string> all = {SVO_EXE};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    std::vector<std::string> envText;
+    for (char** e = environ; *e; ++e)
+        if (!withoutDisplay || std::string(*e).rfind("DISPLAY=", 0) != 0) envText.emplace_back(*e);
+    std::vector<char*> env;
+    for (auto& e : envText) env.push_back(e.data());
+    env.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    Background b;
+    b.log = log;
+    EXPECT_EQ(posix_spawn(&b.pid, SVO_EXE, &actions, nullptr, argv.data(), env.data()), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    return b;
+}
+
+/// Waits for the child, returning its exit status (-1 when a signal killed it).
+int waitFor(pid_t pid)
+{
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// The children of `pid` whose command is `name`, from /proc.
+std::vector<pid_t> childrenNamed(pid_t pid, const std::string& name)
+{
+    std::vector<pid_t> out;
+    for (const auto& e : fs::directory_iterator("/proc")) {
+        const std::string id = e.path().filename();
+        if (id.find_first_not_of("0123456789") != std::string::npos) continue;
+        std::ifstream stat(e.path() / "stat");
+        std::string line;
+        std::getline(stat, line);
+        const auto close = line.rfind(')');
+        if (close == std::string::npos || line.find('(' + name + ')') == std::string::npos) continue;
+        std::istringstream rest(line.substr(close + 2));
+        char state;
+        pid_t parent = 0;
+        rest >> state >> parent;
+        if (parent == pid && state != 'Z') out.push_back(pid_t(std::stol(id)));
+    }
+    return out;
 }
 
 class Cli : public ::testing::Test {
@@ -204,4 +270,71 @@ TEST_F(Cli, NoOutputIsEverAnInputHoweverItIsNamed)
     EXPECT_EQ(defaulted.code, 1) << defaulted.out;
     EXPECT_NE(defaulted.out.find("given for two outputs"), std::string::npos) << defaulted.out;
     expectOnly({"m.off", "link.off", "hard.off", "sub", "box.svo"});
+}
+
+/// Interrupted while the output is being written: the temporary is removed,
+/// an earlier output survives, and the exit status is 128 + the signal.
+TEST_F(Cli, InterruptsRemoveTheTemporaryAndExitConventionally)
+{
+    for (const int sig : {SIGINT, SIGTERM}) {
+        const std::string out = write("out.vdb", "earlier result");
+        // A large fog grid takes a few hundred ms to write: the signal lands mid-write.
+        Background svo = startSvo({"voxelize", "-r", "768", "--fog", "-o", out}, path("log.txt"));
+        bool sawTemporary = false;
+        for (int i = 0; i < 120000 && !sawTemporary; ++i) {
+            for (const auto& e : fs::directory_iterator(tmp_.dir()))
+                sawTemporary |= e.path().filename().string().rfind("out.vdb.tmp-", 0) == 0;
+            if (!sawTemporary) std::this_thread::sleep_for(std::chrono::microseconds(500));
+            if (waitpid(svo.pid, nullptr, WNOHANG) != 0) break;
+        }
+        ASSERT_TRUE(sawTemporary) << "the temporary output never appeared";
+        kill(svo.pid, sig);
+        EXPECT_EQ(waitFor(svo.pid), 128 + sig);
+        std::ifstream log(svo.log), in(out);
+        const std::string logText((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+        EXPECT_NE(logText.find(sig == SIGINT ? "svo: interrupted" : "svo: terminated"), std::string::npos) << logText;
+        EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), "earlier result");
+        expectOnly({"out.vdb", "log.txt"});
+    }
+}
+
+/// Interrupted while rendering through its own Xvfb: the server goes too.
+TEST_F(Cli, InterruptStopsTheXServerSvoStarted)
+{
+    if (system("command -v Xvfb >/dev/null 2>&1") != 0) GTEST_SKIP() << "Xvfb is not installed";
+    const std::string mesh = write("m.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    auto sockets = [] {
+        std::set<std::string> names;
+        std::error_code ec;
+        for (const auto& e : fs::directory_iterator("/tmp/.X11-unix", ec)) names.insert(e.path().string());
+        return names;
+    };
+    const auto before = sockets();
+    Background svo = startSvo({"vtk", mesh, "-r", "256", "--png", path("m.png")}, path("log.txt"), true);
+    // Wait until the server svo started is up: its socket appears.
+    std::vector<pid_t> servers;
+    std::string socket;
+    for (int i = 0; i < 20000 && socket.empty(); ++i) {
+        if (servers.empty()) servers = childrenNamed(svo.pid, "Xvfb");
+        for (const auto& s : sockets())
+            if (!before.count(s)) socket = s;
+        if (socket.empty()) std::this_thread::sleep_for(std::chrono::microseconds(500));
+        if (waitpid(svo.pid, nullptr, WNOHANG) != 0) break;
+    }
+    ASSERT_EQ(servers.size(), 1u) << "svo vtk --png did not start Xvfb";
+    ASSERT_FALSE(socket.empty()) << "Xvfb never opened its socket";
+    kill(svo.pid, SIGINT);
+    EXPECT_EQ(waitFor(svo.pid), 130);
+    // The server was ours: once svo has exited it must be gone, with its socket.
+    bool gone = false;
+    for (int i = 0; i < 200 && !gone; ++i) {
+        std::ifstream stat("/proc/" + std::to_string(servers[0]) + "/stat");
+        std::string line;
+        gone = !std::getline(stat, line) || line.find(") Z") != std::string::npos;
+        if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    EXPECT_TRUE(gone) << "Xvfb " << servers[0] << " outlived svo";
+    if (!gone) kill(servers[0], SIGTERM);
+    EXPECT_FALSE(fs::exists(socket)) << socket << " left behind";
+    expectOnly({"m.off", "log.txt"});
 }

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "svo/core/error.h"
+#include "svo/core/exit_cleanup.h"
 
 namespace svo {
 namespace fs = std::filesystem;
@@ -29,6 +30,11 @@ void writeAtomically(const std::string& path, const std::function<void(const std
     checkWritable(path);
     std::random_device rd;
     const std::string tmp = fmt::format("{}.tmp-{:08x}", path, rd());
+    // Registered before it exists, so that an interrupt at any point removes it.
+    struct Registration {
+        int slot;
+        ~Registration() { releaseTemporary(slot); }
+    } registration{registerTemporary(tmp.c_str())};
     try {
         write(tmp);
     } catch (const Error&) {

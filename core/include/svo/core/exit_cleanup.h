@@ -1,0 +1,40 @@
+#pragma once
+/// @file exit_cleanup.h
+/// What an interrupt must undo: temporary files that are not yet renamed into
+/// place, and child processes svo started (the Xvfb server).
+///
+/// writeAtomically() registers its temporary here for as long as it exists,
+/// and app code registers the children it starts. A program that wants
+/// SIGINT and SIGTERM to leave nothing behind either calls
+/// installInterruptCleanup() (the CLI does) or, from its own signal handler,
+/// cleanUpForExit(). Both are safe inside a signal handler: the registry is a
+/// fixed array of atomics and the clean-up uses only unlink, kill, waitpid and
+/// nanosleep.
+///
+/// Library callers that cancel through an interrupter need none of this: a
+/// cancelled call unwinds by exception, and writeAtomically removes its
+/// temporary on the way out.
+#include <sys/types.h>
+
+namespace svo {
+
+/// Registers a temporary file path (copied) until the returned slot is
+/// released. Returns -1 when the path is too long or the registry is full,
+/// in which case an interrupt leaves that one file behind.
+int registerTemporary(const char* path) noexcept;
+void releaseTemporary(int slot) noexcept;
+
+/// Registers a child process to be sent SIGTERM on an interrupt.
+int registerChild(pid_t pid) noexcept;
+void releaseChild(int slot) noexcept;
+
+/// Removes every registered temporary and terminates every registered child
+/// (SIGTERM, then waits up to 2 s for each). Async-signal-safe.
+void cleanUpForExit() noexcept;
+
+/// Installs SIGINT and SIGTERM handlers that print "svo: interrupted" on
+/// stderr, call cleanUpForExit() and exit with the conventional status, 128
+/// plus the signal number (130 and 143).
+void installInterruptCleanup();
+
+} // namespace svo
