@@ -87,11 +87,15 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     fmt::print("  {:<12} {} x {} x {} local voxels, voxel size {:.6g}\n", "grid", grid.dims[0], grid.dims[1],
                grid.dims[2], grid.voxelSize);
     fmt::print("  {:<12} {}\n", "backend", backendLine(stats));
-    fmt::print("  {:<12} {:.3g} voxels: R = cubes shrunk by it, A = cubes grown by it (exact CGAL tests)\n",
+    fmt::print("  {:<12} {:.3g} voxels: R = cubes shrunk by it, A = cubes grown by it, E = the cubes themselves "
+               "(exact CGAL tests)\n",
                "guard band", eps);
-    fmt::print("  {:<12} {} voxels; R {} , A {}\n", "sets", thousands(c.voxels), thousands(c.required),
-               thousands(c.allowed));
-    fmt::print("  {:<12} {:>10}  ({:.3g} of R)\n", "missed", thousands(c.missed.size()), rate(c.missed.size(), c.required));
+    fmt::print("  {:<12} {} voxels; R {} , E {} , A {}\n", "sets", thousands(c.voxels), thousands(c.required),
+               thousands(c.exact), thousands(c.allowed));
+    fmt::print("  {:<12} {:>10}  ({:.3g} of R)\n", "missed (R)", thousands(c.missed.size()),
+               rate(c.missed.size(), c.required));
+    fmt::print("  {:<12} {:>10}  ({:.3g} of E, the exact conservative set)\n", "missed (E)",
+               thousands(c.missedExact.size()), rate(c.missedExact.size(), c.exact));
     fmt::print("  {:<12} {:>10}  ({:.3g} of the voxels; allowed)\n", "boundary", thousands(c.boundary.size()),
                rate(c.boundary.size(), c.voxels));
     fmt::print("  {:<12} {:>10}  ({:.3g} of the voxels)\n", "extra", thousands(c.extra.size()), rate(c.extra.size(), c.voxels));
@@ -116,7 +120,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     fmt::print("  {:<12} validation {:.2f} s, voxelization {:.3f} GPU ms\n", "time", validateSeconds, gpuMs);
 
     if (!a.errors.empty()) {
-        std::vector<std::pair<std::string, Octree>> grids = {{"missed", buildOctree(grid, c.missed)},
+        std::vector<std::pair<std::string, Octree>> grids = {{"missed", buildOctree(grid, c.missedExact)},
                                                              {"extra", buildOctree(grid, c.extra)}};
         if (holes.leak) {
             std::vector<uint64_t> path;

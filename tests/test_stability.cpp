@@ -64,7 +64,8 @@ TEST(Stability, EveryAdversarialSceneIsExact)
         r.missed = c.missed.size();
         r.boundary = c.boundary.size();
         r.extra = c.extra.size();
-        const auto exact = validate::exactReference(scene.mesh, grid, 0.0).allowed; // the conservative set itself
+        const auto& exact = ref.exact; // the conservative set itself
+        EXPECT_EQ(exact, validate::exactReference(scene.mesh, grid, 0.0).allowed); // E is A at epsilon 0
         r.missedExact = countMissing(exact, g);
         EXPECT_EQ(r.missed, 0u);
         EXPECT_EQ(r.extra, 0u);

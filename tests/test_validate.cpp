@@ -11,6 +11,7 @@
 #include "svo/gl/raster_voxelizer.h"
 #include "svo/validate/classify.h"
 #include "svo/validate/hole_check.h"
+#include "svo/validate/report.h"
 
 using namespace svo;
 
@@ -123,6 +124,36 @@ TEST_F(Validate, PlantedErrorsAreCaught)
     EXPECT_LT(std::sqrt(lastWorld.x * lastWorld.x + lastWorld.y * lastWorld.y + lastWorld.z * lastWorld.z), 1.0);
     for (size_t i = 1; i < leak.leakPath.size(); ++i)
         for (int a = 0; a < 3; ++a) EXPECT_LE(std::abs(leak.leakPath[i][a] - leak.leakPath[i - 1][a]), 1);
+}
+
+TEST_F(Validate, AVoxelThatOnlyTouchesIsStillRequired)
+{
+    // Faces on voxel planes (x = ±4.5 between voxels 4 and 5): the voxels on
+    // both sides touch a face only on their boundary, so they are in the exact
+    // conservative set E but not in R (cubes shrunk by epsilon).
+    const auto box = test::box({-4.5, -4.5, -4.5}, {4.5, 4.5, 4.5});
+    const GridSpec grid = makeGrid(box, {0, 1.0});
+    const auto ref = validate::exactReference(box, grid, grid.epsilon());
+    EXPECT_TRUE(ref.required.empty()); // no voxel's shrunk cube meets a face on the planes
+    // Voxels -5..5 on each axis with a coordinate of ±4 or ±5.
+    EXPECT_EQ(ref.exact.size(), 11u * 11 * 11 - 7u * 7 * 7);
+    EXPECT_TRUE(includes(ref.allowed, ref.exact));
+    auto g = gpuVoxels(box, grid);
+    ASSERT_EQ(g, ref.exact); // the GPU keeps every touching voxel
+
+    // Drop one: R has nothing to miss, but E does, and the verdict fails.
+    const uint64_t victim = ref.exact[ref.exact.size() / 3];
+    g.erase(std::find(g.begin(), g.end(), victim));
+    const auto c = validate::classify(box, grid, g, ref);
+    EXPECT_TRUE(c.missed.empty());
+    EXPECT_EQ(c.missedExact, std::vector<uint64_t>{victim});
+    ASSERT_EQ(c.worstMissed.size(), 1u);
+    EXPECT_EQ(c.worstMissed[0].index, grid.toGlobal(unpackVoxelKey(victim)));
+    validate::ReportOptions options;
+    options.holes = false;
+    const auto report = validate::validateVoxelization(box, buildOctree(grid, g), g, options);
+    EXPECT_FALSE(report.passed);
+    EXPECT_NE(report.reason.find("1 voxels of the exact conservative set missed"), std::string::npos) << report.reason;
 }
 
 TEST_F(Validate, OneVoxelHoleInAThinWallLeaks)

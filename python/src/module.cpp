@@ -532,7 +532,7 @@ PYBIND11_MODULE(_svo, m)
           py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(), py::arg("transform") = py::none(),
           py::arg("backend") = "auto", py::arg("holes") = true, py::arg("strict") = false, py::arg("worst") = 5,
           "Voxelize the mesh and check it against CGAL's exact triangle/box tests, as `svo validate` does: a dict "
-          "with voxels, required (R), allowed (A), missed, boundary, extra, worst_missed, worst_extra, holes "
+          "with voxels, required (R), exact (E), allowed (A), missed (R \\ G), missed_exact (E \\ G), boundary, extra, worst_missed, worst_extra, holes "
           "(applies, leak, path, ...), octree_consistent, epsilon, passed and reason.");
 #endif
     m.def("active_voxels", &activeVoxels, py::arg("grid"),

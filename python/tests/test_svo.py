@@ -230,9 +230,9 @@ def test_validate_gives_the_numbers_of_the_cli(elephant, tmp_path):
     cli = json.loads(out.read_text())
     vertices, triangles = svo.read_mesh(elephant)
     report = svo.validate(vertices, triangles, resolution=48)
-    for key in ("voxels", "required", "allowed", "missed", "boundary", "extra", "epsilon", "passed", "octree_consistent"):
+    for key in ("voxels", "required", "exact", "allowed", "missed", "missed_exact", "boundary", "extra", "epsilon", "passed", "octree_consistent"):
         assert report[key] == cli[key], key
-    assert report["missed"] == 0 and report["holes"]["applies"] and not report["holes"]["leak"]
+    assert report["missed"] == 0 and report["missed_exact"] == 0 and report["holes"]["applies"] and not report["holes"]["leak"]
     assert report["passed"]
 
 

@@ -98,15 +98,17 @@ Classification classify(const TriangleMesh& mesh, const GridSpec& grid, const st
     Classification c;
     c.voxels = gpu.size();
     c.required = ref.required.size();
+    c.exact = ref.exact.size();
     c.allowed = ref.allowed.size();
     std::set_difference(ref.required.begin(), ref.required.end(), gpu.begin(), gpu.end(), std::back_inserter(c.missed));
+    std::set_difference(ref.exact.begin(), ref.exact.end(), gpu.begin(), gpu.end(), std::back_inserter(c.missedExact));
     std::set_difference(gpu.begin(), gpu.end(), ref.allowed.begin(), ref.allowed.end(), std::back_inserter(c.extra));
     std::vector<uint64_t> inA;
     std::set_intersection(gpu.begin(), gpu.end(), ref.allowed.begin(), ref.allowed.end(), std::back_inserter(inA));
     std::set_difference(inA.begin(), inA.end(), ref.required.begin(), ref.required.end(), std::back_inserter(c.boundary));
-    if (!c.missed.empty() || !c.extra.empty()) {
+    if (!c.missedExact.empty() || !c.extra.empty()) {
         const Distances d(mesh, grid);
-        c.worstMissed = worstOf(c.missed, d, grid, worst, true);
+        c.worstMissed = worstOf(c.missedExact, d, grid, worst, true);
         c.worstExtra = worstOf(c.extra, d, grid, worst, false);
     }
     return c;

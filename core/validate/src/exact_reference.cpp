@@ -26,7 +26,9 @@ bool meets(const K::Point_3& p, const CGAL::Bbox_3& b)
 }
 
 struct Collector {
-    std::vector<uint64_t> keys; ///< key << 1 | (in R)
+    /// Key and membership: 2 = in R (and so in E), 1 = in E only, 0 = in A only.
+    /// (Keys use 63 bits, so the flags cannot share their word.)
+    std::vector<std::pair<uint64_t, uint8_t>> keys;
     uint64_t tests = 0;
 };
 
@@ -47,7 +49,15 @@ void visit(const Prim& prim, std::array<int64_t, 3> lo, std::array<int64_t, 3> h
         ++out.tests;
         const bool required = s >= 0 && meets(prim, CGAL::Bbox_3(double(lo[0]) - s, double(lo[1]) - s, double(lo[2]) - s,
                                                                double(lo[0]) + s, double(lo[1]) + s, double(lo[2]) + s));
-        out.keys.push_back(packVoxelKey(uint32_t(lo[0]), uint32_t(lo[1]), uint32_t(lo[2])) << 1 | uint64_t(required));
+        // E, the closed cube itself: implied by R, decided by A when eps is 0.
+        bool exact = required || eps == 0;
+        if (!exact) {
+            ++out.tests;
+            exact = meets(prim, CGAL::Bbox_3(double(lo[0]) - 0.5, double(lo[1]) - 0.5, double(lo[2]) - 0.5,
+                                             double(lo[0]) + 0.5, double(lo[1]) + 0.5, double(lo[2]) + 0.5));
+        }
+        out.keys.emplace_back(packVoxelKey(uint32_t(lo[0]), uint32_t(lo[1]), uint32_t(lo[2])),
+                              uint8_t(required ? 2 : exact ? 1 : 0));
         return;
     }
     const int64_t mid = lo[axis] + (hi[axis] - lo[axis]) / 2;
@@ -100,7 +110,7 @@ ReferenceSets exactReference(const TriangleMesh& mesh, const GridSpec& grid, dou
         if (progress) progress(d, total);
     });
 
-    std::vector<uint64_t> all;
+    std::vector<std::pair<uint64_t, uint8_t>> all;
     ReferenceSets sets;
     for (auto& c : collectors) {
         all.insert(all.end(), c.keys.begin(), c.keys.end());
@@ -108,13 +118,14 @@ ReferenceSets exactReference(const TriangleMesh& mesh, const GridSpec& grid, dou
     }
     sets.degenerate = degenerate;
     tbb::parallel_sort(all.begin(), all.end());
-    // Coalesce: a voxel is required if any triangle requires it.
+    // Coalesce: a voxel is in R (E) if any triangle puts it there.
     for (size_t i = 0; i < all.size();) {
-        const uint64_t key = all[i] >> 1;
-        bool required = false;
-        for (; i < all.size() && all[i] >> 1 == key; ++i) required |= all[i] & 1;
+        const uint64_t key = all[i].first;
+        uint8_t level = 0;
+        for (; i < all.size() && all[i].first == key; ++i) level = std::max(level, all[i].second);
         sets.allowed.push_back(key);
-        if (required) sets.required.push_back(key);
+        if (level >= 1) sets.exact.push_back(key);
+        if (level == 2) sets.required.push_back(key);
     }
     return sets;
 }

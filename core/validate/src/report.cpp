@@ -58,7 +58,13 @@ Report validateVoxelization(const TriangleMesh& mesh, const Octree& octree, cons
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     const Classification& c = r.classification;
-    if (!c.missed.empty()) r.reason += fmt::format("{} voxels missed; ", c.missed.size());
+    // R ⊆ E, so a voxel missed against R is missed against E too; both are named.
+    if (!c.missedExact.empty())
+        r.reason += c.missed.empty()
+                        ? fmt::format("{} voxels of the exact conservative set missed (all within the guard band); ",
+                                      c.missedExact.size())
+                        : fmt::format("{} voxels missed ({} of the exact conservative set); ", c.missed.size(),
+                                      c.missedExact.size());
     if (r.holes.leak) r.reason += fmt::format("the flood fill leaks inside through {}; ", indexText(r.holes.leakPath.front()));
     if (!r.consistency.empty()) r.reason += "octree inconsistent; ";
     if (options.strict && !c.extra.empty()) r.reason += fmt::format("{} extra voxels (strict); ", c.extra.size());
@@ -75,8 +81,10 @@ std::string reportJson(const Report& r)
         {"epsilon", r.epsilon},
         {"voxels", c.voxels},
         {"required", c.required},
+        {"exact", c.exact},
         {"allowed", c.allowed},
         {"missed", c.missed.size()},
+        {"missed_exact", c.missedExact.size()},
         {"boundary", c.boundary.size()},
         {"extra", c.extra.size()},
         {"worst_missed", casesJson(c.worstMissed)},

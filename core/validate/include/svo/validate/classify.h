@@ -2,6 +2,8 @@
 /// @file classify.h
 /// A voxelization against the exact reference, in the terms of docs/design.md:
 ///   missed   = R \ G   voxels whose cube shrunk by epsilon meets a triangle, absent from G
+///   missedExact = E \ G  voxels whose closed cube meets a triangle (the exact
+///                        conservative set, epsilon = 0), absent from G; holds `missed`
 ///   boundary = (G n A) \ R   present, and within epsilon of touching: allowed
 ///   extra    = G \ A   present, though even the cube grown by epsilon meets no triangle
 #include <array>
@@ -23,9 +25,9 @@ struct VoxelCase {
 };
 
 struct Classification {
-    uint64_t voxels = 0, required = 0, allowed = 0;
-    std::vector<uint64_t> missed, boundary, extra; ///< sorted keys
-    /// The worst cases, ranked over all missed (extra) voxels, or over an even
+    uint64_t voxels = 0, required = 0, exact = 0, allowed = 0;
+    std::vector<uint64_t> missed, missedExact, boundary, extra; ///< sorted keys
+    /// The worst cases, ranked over all missed (exact: E \ G) or extra voxels, or over an even
     /// sample of 20,000 of them when there are more.
     std::vector<VoxelCase> worstMissed;            ///< nearest the surface first: the clearest misses
     std::vector<VoxelCase> worstExtra;             ///< farthest from the surface first

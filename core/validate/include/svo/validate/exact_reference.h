@@ -14,8 +14,9 @@
 /// ones to a point-in-box test. Triangles run in parallel (TBB).
 ///
 /// Guarantee: `required` holds exactly the voxels whose cube shrunk by
-/// epsilon meets a triangle (R in docs/design.md) and `allowed` those whose cube
-/// grown by epsilon does (A); epsilon = 0 gives the conservative set. Box
+/// epsilon meets a triangle (R in docs/design.md), `exact` those whose closed
+/// cube itself does (E, the conservative set: epsilon = 0), and `allowed`
+/// those whose cube grown by epsilon does (A); R ⊆ E ⊆ A. Box
 /// corners i +- (1/2 +- epsilon) are rounded to double, which moves them by
 /// less than 2^-30 voxels.
 #include <cstdint>
@@ -29,6 +30,7 @@ namespace svo::validate {
 
 struct ReferenceSets {
     std::vector<uint64_t> required; ///< R: sorted voxel keys
+    std::vector<uint64_t> exact;    ///< E: sorted voxel keys, between R and A
     std::vector<uint64_t> allowed;  ///< A: sorted voxel keys, a superset of R
     uint64_t boxTests = 0;          ///< exact box tests run
     uint64_t degenerate = 0;        ///< triangles routed to the segment or point test

@@ -7,8 +7,9 @@
 /// the same run (every level must be what the list's voxels imply); the exact
 /// reference (exact_reference.h) gives R and A; the octree's voxels are
 /// classified (classify.h); closed meshes get the flood-fill hole check
-/// (hole_check.h). The verdict fails on missed voxels, a leak, an inconsistent
-/// octree, and (strict) extra voxels.
+/// (hole_check.h). The verdict fails on voxels missed against the guarded set
+/// R or against the exact conservative set E, a leak, an inconsistent octree,
+/// and (strict) extra voxels.
 #include <cstdint>
 #include <functional>
 #include <string>
