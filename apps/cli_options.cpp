@@ -1,6 +1,8 @@
 #include "cli_options.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 
@@ -64,11 +66,29 @@ GridRequest gridRequest(const CLI::App& cmd, int64_t resolution, double voxelSiz
 {
     const bool gotRes = cmd.count("--resolution") > 0, gotSize = cmd.count("--voxel-size") > 0;
     if (gotRes && resolution < 1) throw Error(fmt::format("--resolution must be at least 1, got {}", resolution));
-    if (gotSize && !(voxelSize > 0)) throw Error(fmt::format("--voxel-size must be positive, got {}", voxelSize));
+    if (gotSize && !(voxelSize > 0 && std::isfinite(voxelSize)))
+        throw Error(fmt::format("--voxel-size must be a positive finite number, got {}", voxelSize));
     GridRequest r;
     r.resolution = gotRes ? resolution : (gotSize ? 0 : 256);
     r.voxelSize = gotSize ? voxelSize : 0;
     return r;
+}
+
+CLI::Option* addOutputPath(CLI::App& cmd, const std::string& name, std::string& path, const std::string& help,
+                           const std::vector<std::string>& extensions)
+{
+    return cmd.add_option(name, path, help)->check(
+        [extensions](const std::string& value) -> std::string {
+            if (value.empty()) return "the path is empty; give a file name";
+            if (extensions.empty()) return "";
+            std::string ext = std::filesystem::path(value).extension().string();
+            std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+            if (std::find(extensions.begin(), extensions.end(), ext) != extensions.end()) return "";
+            std::string list;
+            for (const auto& e : extensions) list += (list.empty() ? "" : ", ") + e;
+            return fmt::format("{}: the name must end in {}, the format svo writes there", value, list);
+        },
+        "FILE");
 }
 
 GridOptions OutputArgs::gridOptions() const
@@ -117,9 +137,21 @@ std::string describeOutput(const std::string& path, const WriteReport& r, const 
                        r.format == OutputFormat::NanoVdb ? ", NanoVDB" : "");
 }
 
+std::string printable(const std::string& text)
+{
+    std::string out;
+    out.reserve(text.size());
+    for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (c < 0x20 || c == 0x7f) out += fmt::format("\\x{:02x}", c);
+        else out += ch;
+    }
+    return out;
+}
+
 void printWarnings(const std::vector<std::string>& warnings)
 {
-    for (const auto& w : warnings) fmt::print(stderr, "svo: warning: {}\n", w);
+    for (const auto& w : warnings) fmt::print(stderr, "svo: warning: {}\n", printable(w));
 }
 
 void printStages(const std::vector<StageTime>& stages)

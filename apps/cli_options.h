@@ -13,7 +13,8 @@
 
 namespace CLI {
 class App;
-}
+class Option;
+} // namespace CLI
 
 namespace svo {
 class Voxelizer;
@@ -52,6 +53,12 @@ struct OutputArgs {
 };
 void addOutputOptions(CLI::App& cmd, OutputArgs& args);
 
+/// A path option for a file svo writes. Refuses an empty path (`-o ''`), and
+/// when `extensions` are given (lower case, with the dot), a name whose
+/// extension is none of them, so that a file's name never hides its format.
+CLI::Option* addOutputPath(CLI::App& cmd, const std::string& name, std::string& path, const std::string& help,
+                           const std::vector<std::string>& extensions = {});
+
 /// "raster, hardware dilation, on <device>" or "cpu (double-precision reference)".
 std::string backendLine(const VoxelizeStats& stats);
 /// One line about an input read by loadOctree.
@@ -65,6 +72,11 @@ void printWarnings(const std::vector<std::string>& warnings);
 void printOctreeSummary(const Octree& octree);
 /// Prints stage, GPU ms and wall ms rows.
 void printStages(const std::vector<StageTime>& stages);
+
+/// The text with control bytes (newlines included) and DEL written as \xNN, so
+/// that a message quoting a damaged file stays one line and cannot drive the
+/// terminal. UTF-8 passes unchanged.
+std::string printable(const std::string& text);
 
 /// 1234567 -> "1,234,567"
 std::string thousands(uint64_t n);

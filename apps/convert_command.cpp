@@ -53,7 +53,7 @@ void addConvertCommand(CLI::App& app)
     auto args = std::make_shared<ConvertArgs>();
     CLI::App* cmd = app.add_subcommand("convert", "Convert between .vdb grids and .svo octrees");
     cmd->add_option("input", args->input, "Input .vdb or .svo")->required();
-    cmd->add_option("-o,--output", args->output, "Output .svo, .vdb or .nvdb")->required();
+    addOutputPath(*cmd, "-o,--output", args->output, "Output .svo, .vdb or .nvdb")->required();
     cmd->add_option("--grid", args->gridName, "Grid of the input .vdb (default: the first)");
     addBackendOptions(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);

@@ -1,6 +1,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "cli_options.h"
 #include "commands.h"
 #include "svo/core/error.h"
 #include "svo/core/exit_cleanup.h"
@@ -28,13 +29,13 @@ int main(int argc, char** argv)
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? 0 : 1; // --help and --version exit 0; bad arguments are errors (1)
     } catch (const svo::app::Failure& e) {
-        fmt::print(stderr, "svo: {}\n", e.what());
+        fmt::print(stderr, "svo: {}\n", svo::app::printable(e.what()));
         return e.code;
     } catch (const svo::Error& e) {
-        fmt::print(stderr, "svo: error: {}\n", e.what());
+        fmt::print(stderr, "svo: error: {}\n", svo::app::printable(e.what()));
         return 1;
     } catch (const std::exception& e) {
-        fmt::print(stderr, "svo: internal error: {}\n", e.what());
+        fmt::print(stderr, "svo: internal error: {}\n", svo::app::printable(e.what()));
         return 2;
     }
     return 0;

@@ -37,7 +37,7 @@ void addSceneCommand(CLI::App& app)
                     "or icosphere (20 * 4^level)")
         ->required()
         ->check(CLI::IsMember({"cornell", "spheres", "icosphere"}));
-    cmd->add_option("-o,--output", args->output, "Output .off or .obj")->required();
+    addOutputPath(*cmd, "-o,--output", args->output, "Output .off or .obj", {".off", ".obj"})->required();
     cmd->add_option("--level", args->level, "Icosphere subdivisions (8: 1,310,720 triangles)")
         ->check(CLI::Range(0, 10))
         ->capture_default_str();

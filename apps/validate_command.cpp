@@ -162,8 +162,9 @@ void addValidateCommand(CLI::App& app)
                     fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()));
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
-    cmd->add_option("--json", args->json, "Write the report as JSON");
-    cmd->add_option("--errors", args->errors, "Write the missed and extra voxels (and any leak path) as MaskGrids");
+    addOutputPath(*cmd, "--json", args->json, "Write the report as JSON");
+    addOutputPath(*cmd, "--errors", args->errors, "Write the missed and extra voxels (and any leak path) as MaskGrids in a .vdb",
+                  {".vdb"});
     cmd->add_flag("--no-holes", args->noHoles, "Skip the flood-fill hole check");
     cmd->add_flag("--strict", args->strict, "Fail on extra voxels too");
     cmd->add_option("--worst", args->worst, "Worst cases to list of each kind")->capture_default_str();

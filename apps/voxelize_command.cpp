@@ -54,13 +54,23 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     }
     printWarnings(mesh.warnings);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
-    const std::string output = a.output.empty() ? scene + ".vdb" : a.output;
-    if (a.output.empty()) checkOutputs({a.mesh}, {output, a.json}); // the default name is known only now
-    checkOutputPath(output);
+    // --repeat without -o is a timing run and writes nothing; otherwise the
+    // default name is used, but never over a file the user did not name.
+    const bool timingOnly = a.repeat > 1 && a.output.empty();
+    const std::string output = timingOnly ? std::string() : a.output.empty() ? scene + ".vdb" : a.output;
+    if (a.output.empty() && !timingOnly) {
+        checkOutputs({a.mesh}, {output, a.json}); // the default name is known only now
+        std::error_code ec;
+        if (std::filesystem::exists(output, ec))
+            throw Error(fmt::format("{}: exists, and svo does not replace a file it was not told to write; give "
+                                    "-o {} to replace it",
+                                    output, output));
+    }
+    if (!timingOnly) checkOutputPath(output);
     if (!a.json.empty()) checkWritable(a.json);
     const GridSpec grid = makeGrid(mesh, request);
     const GridOptions grids = a.out.gridOptions();
-    if (outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
+    if (!timingOnly && outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
 
     // Voxelize: with --repeat, one warm-up on the GPU, then per-stage medians.
@@ -86,7 +96,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         {"svo:epsilon", fmt::format("{:.3g}", grid.epsilon())},
         {"svo:version", SVO_VERSION}};
     WriteReport written;
-    {
+    if (!timingOnly) {
         Progress p("writing " + output);
         written = writeOctree(output, octree, grids, meta);
     }
@@ -112,7 +122,9 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     fmt::print("  {:<11} {:.3g} voxels (cubes grown by half of it on the GPU)\n", "guard band", grid.epsilon());
     fmt::print("  {:<11} {} entries, {} overflow retries, {:.1f} MB of GPU buffers\n", "voxel list",
                thousands(stats.listEntries), stats.overflowRetries, double(stats.gpuBytes) / 1e6);
-    fmt::print("  {:<11} {}\n", "output", describeOutput(output, written, grids));
+    fmt::print("  {:<11} {}\n", "output",
+               timingOnly ? std::string("none (--repeat without -o times the runs only)")
+                          : describeOutput(output, written, grids));
     fmt::print("\n  {:<20} {:>10} {:>10}{}\n", "stage", "GPU ms", "wall ms",
                a.repeat > 1 ? fmt::format("   (voxelize stages: median of {} runs after a warm-up)", a.repeat) : "");
     printStages(stats.stages);
@@ -160,14 +172,15 @@ void addVoxelizeCommand(CLI::App& app)
         "voxelize", "Voxelize a mesh (default: the built-in Cornell box) into a .vdb or .nvdb grid or a .svo octree");
     cmd->add_option("mesh", args->mesh,
                     fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()));
-    cmd->add_option("-o,--output", args->output, "Output .vdb, .nvdb (NanoVDB) or .svo (default: <scene>.vdb)");
-    cmd->add_option("--json", args->json, "Also write the summary (counts, bytes, stage times) as JSON");
+    addOutputPath(*cmd, "-o,--output", args->output, "Output .vdb, .nvdb (NanoVDB) or .svo (default: <scene>.vdb)");
+    addOutputPath(*cmd, "--json", args->json, "Also write the summary (counts, bytes, stage times) as JSON");
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
     addAttributeOption(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
     cmd->add_option("--repeat", args->repeat,
-                    "Voxelize N times (after one warm-up on the GPU) and report per-stage medians")
+                    "Voxelize N times (after one warm-up on the GPU) and report per-stage medians; without -o, "
+                    "nothing is written")
         ->check(CLI::Range(1, 1000));
     cmd->callback([args, cmd] { runVoxelize(*args, *cmd); });
 }

@@ -102,9 +102,9 @@ void addVtkCommand(CLI::App& app)
     auto args = std::make_shared<VtkArgs>();
     CLI::App* cmd = app.add_subcommand("vtk", "Write an octree (of a mesh, .vdb or .svo) for VTK/ParaView, or a picture");
     cmd->add_option("input", args->input, "A mesh (voxelized first), .vdb or .svo")->required();
-    cmd->add_option("-o,--output", args->output, ".htg hyper tree grid, .vtu voxel cells, or .vtp node outlines");
+    addOutputPath(*cmd, "-o,--output", args->output, ".htg hyper tree grid, .vtu voxel cells, or .vtp node outlines");
     cmd->add_option("--levels", args->levels, "Levels A..B: deepest level of the .htg, outline levels of .vtp/--png");
-    cmd->add_option("--png", args->png, "Also render voxels, outlines and mesh to a PNG (uses Xvfb if no DISPLAY)");
+    addOutputPath(*cmd, "--png", args->png, "Also render voxels, outlines and mesh to a PNG (uses Xvfb if no DISPLAY)", {".png"});
     cmd->add_option("--size", args->width, "Picture width in pixels; the height is 3/4 of it")
         ->check(CLI::Range(64, 8192))
         ->capture_default_str();

@@ -239,6 +239,9 @@ TEST_F(Cli, NoOutputIsEverAnInputHoweverItIsNamed)
     const std::string mesh = write("m.off", tetra);
     fs::create_symlink(mesh, path("link.off"));
     fs::create_hard_link(mesh, path("hard.off"));
+    // Links whose names carry the output's extension, so the format check passes.
+    fs::create_symlink(mesh, path("alias.vdb"));
+    fs::create_symlink(mesh, path("alias.png"));
     fs::create_directory(path("sub"));
     const std::string dotted = path("sub") + "/../m.off";
     ASSERT_EQ(runSvo("voxelize " + mesh + " -r 16 -o " + path("box.svo")).code, 0);
@@ -249,8 +252,8 @@ TEST_F(Cli, NoOutputIsEverAnInputHoweverItIsNamed)
         "voxelize " + mesh + " -r 16 -o " + path("out.vdb") + " --json " + dotted,
         "voxelize " + path("link.off") + " -r 16 -o " + path("out.vdb") + " --json " + mesh,
         "validate " + mesh + " -r 16 --json " + path("hard.off"),
-        "validate " + mesh + " -r 16 --errors " + path("link.off"),
-        "vtk " + mesh + " -r 16 --png " + path("link.off"),
+        "validate " + mesh + " -r 16 --errors " + path("alias.vdb"),
+        "vtk " + mesh + " -r 16 --png " + path("alias.png"),
         "convert " + path("box.svo") + " -o " + path("sub") + "/../box.svo",
     };
     const auto svoBytes = fs::file_size(path("box.svo"));
@@ -269,7 +272,7 @@ TEST_F(Cli, NoOutputIsEverAnInputHoweverItIsNamed)
     fs::current_path(cwd);
     EXPECT_EQ(defaulted.code, 1) << defaulted.out;
     EXPECT_NE(defaulted.out.find("given for two outputs"), std::string::npos) << defaulted.out;
-    expectOnly({"m.off", "link.off", "hard.off", "sub", "box.svo"});
+    expectOnly({"m.off", "link.off", "hard.off", "alias.vdb", "alias.png", "sub", "box.svo"});
 }
 
 /// Interrupted while the output is being written: the temporary is removed,
@@ -337,4 +340,58 @@ TEST_F(Cli, InterruptStopsTheXServerSvoStarted)
     if (!gone) kill(servers[0], SIGTERM);
     EXPECT_FALSE(fs::exists(socket)) << socket << " left behind";
     expectOnly({"m.off", "log.txt"});
+}
+
+/// The small ways to lose a file or be misled: each works as expected or is refused.
+TEST_F(Cli, SmallMisusesAreRefusedOrDoWhatTheySay)
+{
+    const std::string tetra = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    const std::string mesh = write("m.off", tetra);
+    const auto cwd = fs::current_path();
+    fs::current_path(tmp_.dir());
+    // --repeat without -o times the runs and writes nothing.
+    auto r = runSvo("voxelize m.off -r 16 --repeat 2");
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("none (--repeat without -o"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(path("m.vdb")));
+    // The default name is written once, and never over an existing file.
+    EXPECT_EQ(runSvo("voxelize m.off -r 16").code, 0);
+    const auto first = fs::file_size(path("m.vdb"));
+    r = runSvo("voxelize m.off -r 32");
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find("m.vdb: exists"), std::string::npos) << r.out;
+    EXPECT_EQ(fs::file_size(path("m.vdb")), first);
+    fs::current_path(cwd);
+    // An empty path is refused, not replaced by the default name.
+    for (const std::string& args : {"voxelize " + mesh + " -r 16 -o ''", "voxelize " + mesh + " -r 16 -o x.vdb --json ''",
+                                    "validate " + mesh + " -r 16 --errors ''", "vtk " + mesh + " -r 16 --png ''"}) {
+        r = runSvo(args);
+        EXPECT_EQ(r.code, 1) << args << "\n" << r.out;
+        EXPECT_NE(r.out.find("the path is empty"), std::string::npos) << args << "\n" << r.out;
+    }
+    // A name must not hide its format.
+    r = runSvo("vtk " + mesh + " -r 16 --png " + path("x.jpg"));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.out.find("must end in .png"), std::string::npos) << r.out;
+    r = runSvo("validate " + mesh + " -r 16 --errors " + path("x.xyz"));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.out.find("must end in .vdb"), std::string::npos) << r.out;
+    // Options that do not apply to .svo are refused.
+    r = runSvo("voxelize " + mesh + " -r 16 --fog -o " + path("x.svo"));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.out.find("not .svo"), std::string::npos) << r.out;
+    // Non-finite sizes are named as such.
+    for (const std::string v : {"inf", "nan", "-1", "0"}) {
+        r = runSvo("voxelize " + mesh + " --voxel-size " + v + " -o " + path("x.vdb"));
+        EXPECT_EQ(r.code, 1) << v;
+        EXPECT_NE(r.out.find("--voxel-size must be a positive finite number"), std::string::npos) << v << ": " << r.out;
+    }
+    // A damaged file's bytes are quoted escaped: no terminal control sequence gets through.
+    const std::string garbage = write("g.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 \x1b[31mred\x07\n");
+    r = runSvo("voxelize " + garbage + " -o " + path("x.vdb"));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find('\x07'), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\\x1b[31mred\\x07"), std::string::npos) << r.out;
+    expectOnly({"m.off", "m.vdb", "g.off"});
 }
