@@ -17,7 +17,10 @@ DeviceOptions BackendArgs::deviceOptions() const { return DeviceOptions{device, 
 VoxelizeOptions BackendArgs::voxelizeOptions() const
 {
     VoxelizeOptions o;
-    o.backend = backend == "cpu" ? Backend::Cpu : backend == "raster" ? Backend::Raster : Backend::Auto;
+    o.backend = backend == "cpu"       ? Backend::Cpu
+                : backend == "raster"  ? Backend::Raster
+                : backend == "compute" ? Backend::Compute
+                                       : Backend::Auto;
     o.dilation = conservative == "hardware" ? Dilation::Hardware
                  : conservative == "shader" ? Dilation::Shader
                  : conservative == "centroid" ? Dilation::CentroidPush
@@ -28,8 +31,10 @@ VoxelizeOptions BackendArgs::voxelizeOptions() const
 
 void addBackendOptions(CLI::App& cmd, BackendArgs& a)
 {
-    cmd.add_option("--backend", a.backend, "auto (the GPU raster backend), raster, or cpu (double-precision reference)")
-        ->check(CLI::IsMember({"auto", "raster", "cpu"}))
+    cmd.add_option("--backend", a.backend,
+                   "auto (the GPU raster backend), raster, compute (GPU compute shaders, the same voxels), or cpu "
+                   "(double-precision reference)")
+        ->check(CLI::IsMember({"auto", "raster", "compute", "cpu"}))
         ->capture_default_str();
     cmd.add_option("--conservative", a.conservative,
                    "Raster dilation: auto, hardware (GL_NV_conservative_raster), shader, or centroid (the seed "

@@ -146,6 +146,39 @@ TEST_F(Api, CpuBackendGivesTheSameVoxelsUpToTheGuardBand)
     EXPECT_EQ(countMissing(a, b), 0u) << "the GPU misses voxels the CPU reference has";
 }
 
+TEST_F(Api, ComputeBackendGivesTheRasterBackendsVoxelsAndAttributes)
+{
+    const VdbMesh mesh = toVdb(sphere({0, 0, 0}, 1.0, 20, 12));
+    const auto xform = rotatedScaled();
+    VoxelizeOptions raster, compute;
+    raster.backend = Backend::Raster;
+    compute.backend = Backend::Compute;
+    raster.attributes = compute.attributes = kNormals | kTriangles;
+    VoxelizeStats stats;
+    compute.stats = &stats;
+    const auto a = voxelizer().meshToGrids(mesh.points, mesh.triangles, *xform, raster);
+    const auto b = voxelizer().meshToGrids(mesh.points, mesh.triangles, *xform, compute);
+    EXPECT_EQ(stats.backend, "compute");
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+        SCOPED_TRACE(a[i]->getName());
+        EXPECT_EQ(a[i]->activeVoxelCount(), b[i]->activeVoxelCount());
+        // Same voxels, and the same smallest triangle and summed normal at each.
+        if (auto ia = openvdb::gridPtrCast<openvdb::Int32Grid>(a[i])) {
+            auto ib = openvdb::gridPtrCast<openvdb::Int32Grid>(b[i]);
+            ASSERT_TRUE(ib);
+            for (auto it = ia->cbeginValueOn(); it; ++it) EXPECT_EQ(ib->tree().getValue(it.getCoord()), *it);
+        }
+        if (auto na = openvdb::gridPtrCast<openvdb::Vec3SGrid>(a[i])) {
+            auto nb = openvdb::gridPtrCast<openvdb::Vec3SGrid>(b[i]);
+            ASSERT_TRUE(nb);
+            for (auto it = na->cbeginValueOn(); it; ++it) EXPECT_EQ(nb->tree().getValue(it.getCoord()), *it);
+        }
+    }
+    EXPECT_EQ(activeCoords(*voxelizer().meshToMask(mesh.points, mesh.triangles, *xform, raster)),
+              activeCoords(*voxelizer().meshToMask(mesh.points, mesh.triangles, *xform, compute)));
+}
+
 TEST_F(Api, FarFromTheOriginGivesWhatItGivesAtTheOrigin)
 {
     // Coordinates on a 1/64 lattice, so p + 1e9 is exact in double.

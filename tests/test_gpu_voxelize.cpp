@@ -1,4 +1,5 @@
-// The raster backend against the CPU reference on generated and real meshes.
+// The GPU backends against the CPU reference on generated and real meshes:
+// raster, and compute, which must keep exactly the raster backend's voxels.
 #include <cstdlib>
 #include <gtest/gtest.h>
 #include <memory>
@@ -24,6 +25,14 @@ protected:
         const GridSpec grid = makeGrid(mesh, req);
         const Voxelization g = gl::voxelizeRaster(*context_, mesh, grid, opt);
         const auto c = test::compareToReference(mesh, g);
+        if (opt.pipeline == gl::Pipeline::Raster && opt.conservative != gl::ConservativeMode::CentroidPush) {
+            // The compute backend walks the same columns with the same test.
+            gl::RasterOptions compute = opt;
+            compute.pipeline = gl::Pipeline::Compute;
+            const Voxelization k = gl::voxelizeRaster(*context_, mesh, grid, compute);
+            EXPECT_EQ(k.keys, g.keys) << mesh.source << ": the compute backend differs from the raster backend";
+            EXPECT_EQ(k.listEntries, g.listEntries) << mesh.source;
+        }
         EXPECT_EQ(c.missed, 0u) << mesh.source;
         EXPECT_EQ(c.extra, 0u) << mesh.source;
         EXPECT_GT(c.got, 0u) << mesh.source;

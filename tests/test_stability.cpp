@@ -57,6 +57,12 @@ TEST(Stability, EveryAdversarialSceneIsExact)
         ASSERT_TRUE(checkOctree(gpu.octree).empty());
         const auto g = octreeKeys(gpu.octree);
         r.voxels = g.size();
+        {
+            gl::RasterOptions compute;
+            compute.pipeline = gl::Pipeline::Compute;
+            EXPECT_EQ(octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, compute).octree), g)
+                << "the compute backend differs from the raster backend";
+        }
         r.retries = gpu.overflowRetries;
 
         const auto ref = validate::exactReference(scene.mesh, grid, grid.epsilon());

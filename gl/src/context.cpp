@@ -273,6 +273,8 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     info.vendor = str(GL_VENDOR);
     info.renderer = str(GL_RENDERER);
     info.version = str(GL_VERSION);
+    info.software = info.renderer.find("llvmpipe") != std::string::npos ||
+                    info.renderer.find("softpipe") != std::string::npos;
     GLint major = 0, minor = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     glGetIntegerv(GL_MINOR_VERSION, &minor);

@@ -153,6 +153,12 @@ public:
         use();
         glDispatchCompute(groups, 1, 1);
     }
+    /// Compute programs: x by y work groups.
+    void dispatch(uint32_t x, uint32_t y) const
+    {
+        use();
+        glDispatchCompute(x, y, 1);
+    }
     /// Compute programs: group counts read on the GPU from `args` at byte `offset`.
     void dispatchIndirect(const Buffer& args, uint64_t offset) const
     {

@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include "list_writer.h"
 #include "objects.h"
 #include "octree_builder.h"
 #include "svo/core/error.h"
@@ -53,48 +54,32 @@ uint64_t estimateEntries(const std::vector<Vec3f>& p, const TriangleMesh& mesh)
     return uint64_t(std::min(total, 1.0e18)) + 1024; // beyond 2^32 - 1 is refused by makeList
 }
 
-/// The mesh on the GPU and the program that rasterizes it into a voxel list.
-class Rasterizer {
+/// The raster backend: the program that rasterizes the mesh into the voxel list.
+class Rasterizer final : public ListWriter {
 public:
     Rasterizer(const Context& context, const TriangleMesh& mesh, const GridSpec& grid, const RasterOptions& options)
-        : hardware_(useHardware(context, options)), triangles_(mesh.triangles.size()),
-          program_(context.program({"raster.vert", "raster.geom", "raster.frag"})), checkpoint_(options.checkpoint)
+        : ListWriter(context, mesh, grid, options), hardware_(useHardware(context, options)),
+          program_(context.program({"raster.vert", "raster.geom", "raster.frag"}))
     {
         const int maxTile = context.info().maxViewport;
         if (maxTile < 1) throw Error("the GL context reports no usable viewport size");
-        auto t0 = Clock::now();
-        uploadTimer_.begin();
-        const std::vector<Vec3f> local = localPositionsFloat(mesh, grid);
-        const uint64_t vertexBytes = local.size() * sizeof(Vec3f), indexBytes = mesh.triangles.size() * 12;
-        vertices_ = &context.scratch("vertex buffer", vertexBytes);
-        indices_ = &context.scratch("index buffer", indexBytes);
-        vertices_->write(0, vertexBytes, local.data());
-        indices_->write(0, indexBytes, mesh.triangles.data());
-        meshBytes_ = vertices_->bytes() + indices_->bytes();
         vao_.setPositions(*vertices_, 0);
         vao_.setIndices(*indices_);
-        uploadTimer_.end();
-        checkGl("mesh upload");
-        uploadWallMs_ = msSince(t0);
-        estimate_ = options.initialCapacity ? options.initialCapacity : estimateEntries(local, mesh);
-
+        checkGl("vertex array");
         const uint32_t side = grid.maxDim();
         tile_ = int(std::min<uint32_t>(side, uint32_t(maxTile)));
         tiles_ = int((side + uint32_t(tile_) - 1) / uint32_t(tile_));
         fbo_ = EmptyFramebuffer(tile_, tile_);
         const double eps = options.guardBand >= 0 ? options.guardBand : grid.epsilon();
-        const float half = float(0.5 + 0.5 * eps);
-        const float dilate = hardware_ ? float(0.5 * eps + 1.0 / 128.0) : half + float(1.0 / 128.0);
+        const float dilate = hardware_ ? float(0.5 * eps + 1.0 / 128.0) : half_ + float(1.0 / 128.0);
         program_.set("uCentroidPush", options.conservative == ConservativeMode::CentroidPush ? 1u : 0u);
-        program_.set("uHalf", half);
+        program_.set("uHalf", half_);
         program_.set("uDilate", dilate);
         program_.set("uTileSize", float(tile_), float(tile_));
         program_.set("uDims", int(grid.dims[0]), int(grid.dims[1]), int(grid.dims[2]));
     }
 
-    /// Issues the draws that fill `list` (room for `capacity` entries) and
-    /// count into `counter`, which keeps counting past the end. No wait.
-    void draw(const Buffer& list, const Buffer& counter, uint64_t capacity, const Buffer* triangles = nullptr) const
+    void write(const Buffer& list, const Buffer& counter, uint64_t capacity, const Buffer* triangles) const override
     {
         counter.clearUint(0);
         program_.set("uCapacity", uint32_t(capacity));
@@ -120,23 +105,21 @@ public:
         checkGl("rasterization");
     }
 
-    uint64_t estimatedEntries() const { return estimate_; }
-    StageTime uploadStage() const { return {"upload", uploadTimer_.milliseconds(), uploadWallMs_}; }
-    uint64_t meshBytes() const { return meshBytes_; }
-
 private:
     bool hardware_;
-    uint64_t triangles_;
     const Program& program_;
-    Checkpoint checkpoint_; ///< the rasterization's part of the call
-    TimerQuery uploadTimer_;
-    double uploadWallMs_ = 0;
-    uint64_t estimate_ = 0, meshBytes_ = 0;
-    const Buffer *vertices_ = nullptr, *indices_ = nullptr;
     VertexArray vao_;
     EmptyFramebuffer fbo_{1, 1};
     int tile_ = 1, tiles_ = 1;
 };
+
+/// The writer the options ask for.
+std::unique_ptr<ListWriter> makeWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                                       const RasterOptions& options)
+{
+    if (options.pipeline == Pipeline::Compute) return makeComputeWriter(context, mesh, grid, options);
+    return makeRasterWriter(context, mesh, grid, options);
+}
 
 /// Octree buffer sizes from the voxel-list size. The benchmark scenes hold
 /// 68-317 list entries and 2.6-2.7 nodes per brick; these estimates leave room
@@ -218,8 +201,36 @@ void attachAttributes(const Context& context, const TriangleMesh& mesh, uint32_t
 
 } // namespace
 
+ListWriter::ListWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                       const RasterOptions& options)
+    : triangles_(mesh.triangles.size()), dims_(grid.dims), checkpoint_(options.checkpoint)
+{
+    auto t0 = Clock::now();
+    uploadTimer_.begin();
+    local_ = localPositionsFloat(mesh, grid);
+    const uint64_t vertexBytes = local_.size() * sizeof(Vec3f), indexBytes = mesh.triangles.size() * 12;
+    vertices_ = &context.scratch("vertex buffer", vertexBytes);
+    indices_ = &context.scratch("index buffer", indexBytes);
+    vertices_->write(0, vertexBytes, local_.data());
+    indices_->write(0, indexBytes, mesh.triangles.data());
+    meshBytes_ = vertices_->bytes() + indices_->bytes();
+    uploadTimer_.end();
+    checkGl("mesh upload");
+    uploadWallMs_ = msSince(t0);
+    estimate_ = options.initialCapacity ? options.initialCapacity : estimateEntries(local_, mesh);
+    const double eps = options.guardBand >= 0 ? options.guardBand : grid.epsilon();
+    half_ = float(0.5 + 0.5 * eps);
+}
+
+std::unique_ptr<ListWriter> makeRasterWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                                             const RasterOptions& options)
+{
+    return std::make_unique<Rasterizer>(context, mesh, grid, options);
+}
+
 const char* conservativeModeName(const Context& context, const RasterOptions& options)
 {
+    if (options.pipeline == Pipeline::Compute) return "";
     if (options.conservative == ConservativeMode::CentroidPush) return "centroid-push (baseline)";
     return useHardware(context, options) ? "hardware" : "shader";
 }
@@ -230,7 +241,8 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
     const Context::Scope scope(context);
     Voxelization result;
     result.grid = grid;
-    const Rasterizer raster(context, mesh, grid, options);
+    const auto writer = makeWriter(context, mesh, grid, options);
+    const ListWriter& raster = *writer;
 
     // Voxelize; if the list overflowed, the counter holds the exact size needed.
     auto t0 = Clock::now();
@@ -244,9 +256,10 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
         const Buffer& list = *listBuffer;
         TimerQuery timer;
         timer.begin();
-        raster.draw(list, counter, capacity);
+        raster.write(list, counter, capacity);
         timer.end();
         count = readCount(counter);
+        raster.checkAfterWrite();
         voxelizeGpu += timer.milliseconds();
         if (count <= capacity) break;
         result.overflowRetries = attempt + 1;
@@ -255,7 +268,7 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
     result.stages.push_back(raster.uploadStage());
     result.stages.push_back({"voxelize", voxelizeGpu, msSince(t0)});
     result.listEntries = count;
-    result.gpuBytes = raster.meshBytes() + listBuffer->bytes() + counter.bytes();
+    result.gpuBytes = raster.bytes() + listBuffer->bytes() + counter.bytes();
 
     t0 = Clock::now();
     TimerQuery readTimer;
@@ -281,7 +294,8 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     OctreeVoxelization result;
     RasterOptions rasterOptions = options;
     rasterOptions.checkpoint = checkpoint.part(0.05, 0.6);
-    const Rasterizer raster(context, mesh, grid, rasterOptions);
+    const auto writer = makeWriter(context, mesh, grid, rasterOptions);
+    const ListWriter& raster = *writer;
     const OctreeBuilder builder(context);
     const uint32_t L = brickLevelFor(grid);
     const Buffer& counter = context.scratch("voxel counter", 2 * sizeof(uint32_t)); // entries, and wraps past 2^32
@@ -305,7 +319,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
             listBuffer = &makeList(context, listCapacity);
             if (options.attributes) triangleBuffer = &context.scratch("triangle list", listCapacity * 4);
             drawTimer.begin();
-            raster.draw(*listBuffer, counter, listCapacity, triangleBuffer);
+            raster.write(*listBuffer, counter, listCapacity, triangleBuffer);
             drawTimer.end();
         }
         voxelizeWall += msSince(t0);
@@ -322,11 +336,12 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
         waitForGpu([&] { checkpoint(0.6, "voxelization on the GPU"); });
         OctreeBuilder::readCounts(build);
         count = readCount(counter);
+        if (!drawn) raster.checkAfterWrite();
         buildWall += msSince(t0);
         if (!drawn) voxelizeGpu += drawTimer.milliseconds();
         buildGpu += buildTimer.milliseconds();
         result.gpuBytes =
-            std::max(result.gpuBytes, raster.meshBytes() + listBuffer->bytes() +
+            std::max(result.gpuBytes, raster.bytes() + listBuffer->bytes() +
                                           (triangleBuffer ? triangleBuffer->bytes() : 0) + counter.bytes() + build.bytes());
         if (count > listCapacity) {
             listCapacity = count; // the counter kept counting: the exact size

@@ -133,8 +133,9 @@ svo::Backend toBackend(const std::string& s)
 {
     if (s == "auto") return svo::Backend::Auto;
     if (s == "raster") return svo::Backend::Raster;
+    if (s == "compute") return svo::Backend::Compute;
     if (s == "cpu") return svo::Backend::Cpu;
-    badValue("backend: expected 'auto', 'raster' or 'cpu', got '" + s + "'");
+    badValue("backend: expected 'auto', 'raster', 'compute' or 'cpu', got '" + s + "'");
 }
 
 uint32_t toChannels(const std::vector<std::string>& names)
@@ -409,7 +410,8 @@ Args:
         row-vector convention); voxels are cubes of its index space.
     grid: "bool" (BoolGrid "surface", true on voxels) or "fog" (FloatGrid
         "density", 1 on voxels).
-    backend: "auto" (the GPU), "raster" or "cpu" (the double-precision reference).
+    backend: "auto" (the GPU), "raster", "compute" (GPU compute shaders, the same voxels) or "cpu" (the
+        double-precision reference).
     attributes: channels to compute: "normal", "triangle", "color". With any,
         a dict is returned: the grid ("surface" or "density"), "normal" and
         "color" Vec3SGrids, "ijk" ((K, 3) int32 voxel coordinates) and, in

@@ -187,6 +187,13 @@ def test_cpu_backend_is_the_reference_within_the_guard_band(voxelizer):
     assert len(gpu - cpu) <= len(cpu) // 100
 
 
+def test_compute_backend_gives_the_raster_voxels(voxelizer):
+    v, t = tetrahedron()
+    raster = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="raster")))
+    compute = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="compute")))
+    assert compute == raster and len(raster) > 1000
+
+
 def test_octree_views_files_and_grids(voxelizer, tmp_path):
     v, t = tetrahedron()
     octree = voxelizer.octree(v, t, resolution=40)

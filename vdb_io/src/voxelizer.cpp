@@ -216,9 +216,10 @@ struct Voxelizer::Impl {
     }
 
     /// Where a call runs, in the statistics: the GPU's names, or the CPU reference.
-    void describeBackend(VoxelizeStats& stats, bool cpu)
+    void describeBackend(VoxelizeStats& stats, Backend backend)
     {
-        stats.backend = cpu ? "cpu" : "raster";
+        const bool cpu = backend == Backend::Cpu;
+        stats.backend = cpu ? "cpu" : backend == Backend::Compute ? "compute" : "raster";
         stats.device = cpu ? "cpu" : describe();
         stats.renderer = cpu ? "cpu" : gl().info().renderer;
     }
@@ -262,7 +263,7 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
     if (availableChannels(mesh, options.attributes) != options.attributes)
         stats.warnings.push_back(mesh.source + " has no vertex colours; the color channel is left out");
     Octree octree;
-    impl_->describeBackend(stats, options.backend == Backend::Cpu);
+    impl_->describeBackend(stats, options.backend);
     if (options.backend == Backend::Cpu) {
         auto t0 = Clock::now();
         Voxelization v = voxelizeCpu(mesh, grid);
@@ -282,6 +283,7 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
     } else {
         gl::Context& context = impl_->gl();
         gl::RasterOptions ro;
+        ro.pipeline = options.backend == Backend::Compute ? gl::Pipeline::Compute : gl::Pipeline::Raster;
         ro.conservative = conservativeMode(options.dilation);
         ro.attributes = options.attributes;
         ro.checkpoint = checkpoint.part(0.0, 0.98);
@@ -306,7 +308,7 @@ Octree Voxelizer::bricksToOctree(const GridSpec& grid, std::vector<std::pair<uin
     VoxelizeStats stats;
     stats.grid = grid;
     Octree octree;
-    impl_->describeBackend(stats, options.backend == Backend::Cpu);
+    impl_->describeBackend(stats, options.backend);
     if (options.backend == Backend::Cpu) {
         checkpoint(0.0, "octree build");
         const auto t0 = Clock::now();

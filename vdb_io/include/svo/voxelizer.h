@@ -62,9 +62,10 @@ namespace svo {
 
 /// Where voxelization runs.
 enum class Backend {
-    Auto,   ///< the GPU raster backend (the only GPU backend today)
-    Raster, ///< GPU: rasterization along each triangle's dominant axis
-    Cpu,    ///< the double-precision CPU reference (tests; no GL context needed)
+    Auto,    ///< the GPU raster backend
+    Raster,  ///< GPU: rasterization along each triangle's dominant axis
+    Compute, ///< GPU: triangle-parallel compute shaders; the same voxels as Raster
+    Cpu,     ///< the double-precision CPU reference (tests; no GL context needed)
 };
 
 /// How the raster backend enlarges triangles so no touched column is missed.

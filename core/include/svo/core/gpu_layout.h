@@ -107,6 +107,10 @@ SVO_CONST(uint) kSumWords = 8u;
 #define SVO_BIND_RASTER_COUNTER 0   /* atomic counters: entries, wraps past 2^32 */
 #define SVO_BIND_RASTER_LIST 0      /* voxel keys */
 #define SVO_BIND_RASTER_TRIANGLES 1 /* triangle of each entry */
+/* Compute backend (voxelize.comp): the column walk's buffers above, and */
+#define SVO_BIND_COMPUTE_POSITIONS 2 /* local float positions, 3 per vertex */
+#define SVO_BIND_COMPUTE_INDICES 3   /* 3 vertex indices per triangle */
+#define SVO_BIND_COMPUTE_WORK 4      /* work count, wraps, then (triangle, row segment) items */
 /* Octree passes (octree_*.comp): four buffers every pass sees ... */
 #define SVO_BIND_BUILD_STATE 0
 #define SVO_BIND_NODES 1
@@ -172,6 +176,8 @@ constexpr bool distinctSlots(std::initializer_list<int> slots)
     return true;
 }
 static_assert(distinctSlots({SVO_BIND_RASTER_LIST, SVO_BIND_RASTER_TRIANGLES}));
+static_assert(distinctSlots({SVO_BIND_RASTER_LIST, SVO_BIND_RASTER_TRIANGLES, SVO_BIND_COMPUTE_POSITIONS,
+                             SVO_BIND_COMPUTE_INDICES, SVO_BIND_COMPUTE_WORK}));
 static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRICKS, SVO_BIND_ENTRIES,
                              SVO_BIND_LIST_COUNTER}));
 static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRICKS, SVO_BIND_ENTRIES,

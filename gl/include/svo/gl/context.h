@@ -37,6 +37,7 @@ struct ContextOptions {
 struct ContextInfo {
     std::string vendor, renderer, version, eglDevice;
     bool conservativeRasterNV = false; ///< GL_NV_conservative_raster present
+    bool software = false;             ///< a CPU rasterizer (llvmpipe, softpipe, lavapipe-like)
     int maxViewport = 0;               ///< largest framebuffer width/height usable
     std::vector<std::string> extensionsUsed;
 };

@@ -28,7 +28,16 @@ namespace svo::gl {
 /// report's vertex push, kept only as a baseline for benchmarks: it misses voxels.
 enum class ConservativeMode { Auto, Hardware, Shader, CentroidPush };
 
+/// How the voxel list is filled. Both walk the same columns with the same
+/// test (column_walk.glsl), so they keep the same voxels.
+enum class Pipeline {
+    Raster,  ///< one fragment per column: the triangle rasterized along its dominant axis
+    Compute, ///< triangle-parallel compute shaders; large triangles spread over workgroups
+};
+
 struct RasterOptions {
+    /// Raster draws or compute dispatches; the octree build is the same.
+    Pipeline pipeline = Pipeline::Raster;
     /// Auto: GL_NV_conservative_raster when present, else shader dilation.
     ConservativeMode conservative = ConservativeMode::Auto;
     /// Voxel-list entries to allocate first; 0 estimates from triangle areas.
@@ -61,7 +70,8 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
 OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                                     const RasterOptions& options = {});
 
-/// "hardware", "shader" or "centroid-push (baseline)": which dilation voxelizeRaster would use.
+/// "hardware", "shader" or "centroid-push (baseline)": which dilation voxelizeRaster would use
+/// ("" for the compute pipeline, which needs none).
 const char* conservativeModeName(const Context& context, const RasterOptions& options);
 
 } // namespace svo::gl

@@ -1,0 +1,94 @@
+#version 450 core
+// The compute backend: triangle-parallel voxelization with the raster
+// backend's column walk (column_walk.glsl), so both keep the same voxels.
+//
+// Pass 0, one thread per triangle: project the triangle on its dominant axis
+// and take the columns whose squares can meet its bounding box. A triangle of
+// at most kSmall columns walks them itself; a larger one is cut into chunks
+// of 64 columns (its box in row-major order), queued as work items
+// (triangle, chunk). Pass 1, one workgroup of 64 threads per work item, one
+// column per thread: a large triangle is spread over many workgroups instead
+// of serializing one thread. Pass-1 workgroups loop over the queue.
+layout(local_size_x = 64) in;
+#include "glsl_types.glsl"
+#include "overlap.glsl"
+#include "column_walk.glsl"
+
+layout(std430, binding = SVO_BIND_COMPUTE_POSITIONS) readonly restrict buffer Positions { float positions[]; };
+layout(std430, binding = SVO_BIND_COMPUTE_INDICES) readonly restrict buffer Indices { uint indices[]; };
+layout(std430, binding = SVO_BIND_COMPUTE_WORK) restrict buffer Work { uint workCount; uint workWraps; uvec2 work[]; };
+
+uniform uint uPass;
+uniform uint uTriangles;
+uniform uint uWorkCapacity;
+const uint kSmall = 64u; // columns a pass-0 thread walks itself
+const uint kChunk = 64u; // columns of one work item: one per thread of a pass-1 workgroup
+
+struct Triangle {
+    vec3 a, b, c;
+    int w;
+    vec4 box;
+    ivec2 first, last; // columns (u, v) whose squares can meet the box, clamped to the grid
+};
+
+vec3 position(uint i) { return vec3(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]); }
+
+Triangle load(uint t)
+{
+    Triangle T;
+    T.a = position(indices[3u * t]);
+    T.b = position(indices[3u * t + 1u]);
+    T.c = position(indices[3u * t + 2u]);
+    T.w = svo_dominant_axis(cross(T.b - T.a, T.c - T.a));
+    int u = (T.w + 1) % 3;
+    int v = (T.w + 2) % 3;
+    vec2 p0 = vec2(T.a[u], T.a[v]);
+    vec2 p1 = vec2(T.b[u], T.b[v]);
+    vec2 p2 = vec2(T.c[u], T.c[v]);
+    vec2 lo = min(p0, min(p1, p2));
+    vec2 hi = max(p0, max(p1, p2));
+    T.box = vec4(lo, hi);
+    // One column more on each side than the box needs, for rounding: the
+    // walk's own test, the raster backend's, decides which of them count.
+    T.first = max(ivec2(ceil(lo - uHalf)) - 1, ivec2(0));
+    T.last = min(ivec2(floor(hi + uHalf)) + 1, ivec2(uDims[u], uDims[v]) - 1);
+    return T;
+}
+
+uint workgroupIndex() { return gl_WorkGroupID.x + gl_NumWorkGroups.x * gl_WorkGroupID.y; }
+
+void main()
+{
+    if (uPass == 0u) {
+        uint t = workgroupIndex() * 64u + gl_LocalInvocationID.x;
+        if (t >= uTriangles) return;
+        Triangle T = load(t);
+        if (T.last.x < T.first.x || T.last.y < T.first.y) return;
+        uvec2 n = uvec2(T.last - T.first) + 1u;
+        uint columns = n.x * n.y; // below 2^32 - 64: the host checks every triangle's box
+        if (columns <= kSmall) {
+            for (int j = T.first.y; j <= T.last.y; ++j)
+                for (int i = T.first.x; i <= T.last.x; ++i)
+                    svo_walk_column(T.a, T.b, T.c, T.w, vec2(i, j), T.box, t);
+            return;
+        }
+        uint items = (columns + kChunk - 1u) / kChunk;
+        uint base = atomicAdd(workCount, items);
+        if (base + items < base) atomicAdd(workWraps, 1u);
+        for (uint k = 0u; k < items; ++k)
+            if (base + k < uWorkCapacity) work[base + k] = uvec2(t, k);
+    } else {
+        uint count = min(workCount, uWorkCapacity);
+        uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
+        for (uint item = workgroupIndex(); item < count; item += groups) {
+            uvec2 w = work[item];
+            Triangle T = load(w.x);
+            uint width = uint(T.last.x - T.first.x) + 1u;
+            uint columns = width * (uint(T.last.y - T.first.y) + 1u);
+            uint c = w.y * kChunk + gl_LocalInvocationID.x;
+            if (c < columns)
+                svo_walk_column(T.a, T.b, T.c, T.w, vec2(T.first.x + int(c % width), T.first.y + int(c / width)),
+                                T.box, w.x);
+        }
+    }
+}

@@ -1,0 +1,58 @@
+#pragma once
+/// @file list_writer.h (internal)
+/// What fills the voxel list on the GPU, for either backend: the mesh
+/// uploaded in local float coordinates, and work (raster draws or compute
+/// dispatches) that appends every kept voxel through the list's atomic
+/// counter. Both backends walk columns with column_walk.glsl.
+#include <memory>
+#include <vector>
+
+#include "objects.h"
+#include "svo/gl/raster_voxelizer.h"
+
+namespace svo::gl {
+
+class ListWriter {
+public:
+    /// Uploads the mesh (timed as the "upload" stage) and estimates the list size.
+    ListWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid, const RasterOptions& options);
+    virtual ~ListWriter() = default;
+    ListWriter(const ListWriter&) = delete;
+    ListWriter& operator=(const ListWriter&) = delete;
+
+    /// Issues the work that fills `list` (room for `capacity` entries) and
+    /// counts into `counter`, which keeps counting past the end; `triangles`,
+    /// when given, gets each entry's triangle. No wait.
+    virtual void write(const Buffer& list, const Buffer& counter, uint64_t capacity,
+                       const Buffer* triangles = nullptr) const = 0;
+    /// After the GPU finished a write(): throws if the backend's own
+    /// bookkeeping could not hold the work (never expected; see the compute backend).
+    virtual void checkAfterWrite() const {}
+    /// GPU bytes held besides the list: the mesh, and any work buffers.
+    virtual uint64_t bytes() const { return meshBytes_; }
+
+    uint64_t estimatedEntries() const { return estimate_; }
+    StageTime uploadStage() const { return {"upload", uploadTimer_.milliseconds(), uploadWallMs_}; }
+
+protected:
+    const Buffer *vertices_ = nullptr, *indices_ = nullptr;
+    std::vector<Vec3f> local_; ///< the uploaded positions, for host-side bounds
+    uint64_t triangles_ = 0;
+    float half_ = 0.5f; ///< voxel half side with the guard band
+    std::array<uint32_t, 3> dims_{};
+    Checkpoint checkpoint_; ///< the writer's part of the call
+
+private:
+    TimerQuery uploadTimer_;
+    double uploadWallMs_ = 0;
+    uint64_t estimate_ = 0, meshBytes_ = 0;
+};
+
+/// The raster backend's writer (raster.geom, raster.frag).
+std::unique_ptr<ListWriter> makeRasterWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                                             const RasterOptions& options);
+/// The compute backend's writer (voxelize.comp).
+std::unique_ptr<ListWriter> makeComputeWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                                              const RasterOptions& options);
+
+} // namespace svo::gl
