@@ -31,7 +31,13 @@ protected:
             compute.pipeline = gl::Pipeline::Compute;
             const Voxelization k = gl::voxelizeRaster(*context_, mesh, grid, compute);
             EXPECT_EQ(k.keys, g.keys) << mesh.source << ": the compute backend differs from the raster backend";
-            EXPECT_EQ(k.listEntries, g.listEntries) << mesh.source;
+            // Entry for entry too, where the raster path gives each column one
+            // fragment: NVIDIA's hardware conservative raster repeats some
+            // (690 extra entries for 20,423 voxels of random triangles on an H100).
+            if (std::string(gl::conservativeModeName(*context_, opt)) == "shader")
+                EXPECT_EQ(k.listEntries, g.listEntries) << mesh.source;
+            else
+                EXPECT_LE(k.listEntries, g.listEntries) << mesh.source;
         }
         EXPECT_EQ(c.missed, 0u) << mesh.source;
         EXPECT_EQ(c.extra, 0u) << mesh.source;
