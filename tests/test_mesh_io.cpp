@@ -160,6 +160,7 @@ TEST_F(MeshIo, OffWithCommentsColoursAndPolygons)
     EXPECT_EQ(m.bounds().max.z, 2.0);
     expectError(write("t.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n"), "truncated");
     expectError(write("n.off", "4OFF\n1 0 0\n0 0 0 0\n"), "not 3D");
+    expectError(write("ctl.off", "OFF\n3 1 0\n0 0 0\n1 0 \x07\\\n0 1 0\n3 0 1 2\n"), "coordinate '\\x07\\x5C'");
 }
 
 namespace {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "svo/core/error.h"
+#include "text_scan.h"
 
 namespace svo::detail {
 namespace {
@@ -54,9 +55,9 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
     if (w.empty()) throw fail("expected an OFF keyword");
     const std::string keyword = w[0];
     if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0)
-        throw fail(fmt::format("expected an OFF keyword, found '{}'", keyword));
+        throw fail(fmt::format("expected an OFF keyword, found {}", quoted(keyword)));
     if (keyword.find('4') != std::string::npos || keyword.find('n') != std::string::npos)
-        throw fail(fmt::format("'{}' files are not 3D; svo reads 3D OFF", keyword));
+        throw fail(fmt::format("{} files are not 3D; svo reads 3D OFF", quoted(keyword)));
     if (w.size() > 1 && w[1] == "BINARY") return std::nullopt;
     w.erase(w.begin());
     if (w.empty()) {
@@ -86,7 +87,7 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
         for (int k = 0; k < 3; ++k) {
             c[k] = std::strtod(w[size_t(k)].c_str(), &end);
             if (*end || !std::isfinite(c[k]))
-                throw fail(fmt::format("vertex {} has a non-finite or malformed coordinate '{}'", v, w[size_t(k)]));
+                throw fail(fmt::format("vertex {} has a non-finite or malformed coordinate {}", v, quoted(w[size_t(k)])));
         }
         mesh.positions.push_back({c[0], c[1], c[2]});
         if (hasColors) {
@@ -97,7 +98,7 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
             for (int k = 0; k < 3; ++k) {
                 const std::string& t = w[colorAt + size_t(k)];
                 rgb[k] = std::strtof(t.c_str(), &end);
-                if (*end || !std::isfinite(rgb[k])) throw fail(fmt::format("vertex {} has a malformed colour '{}'", v, t));
+                if (*end || !std::isfinite(rgb[k])) throw fail(fmt::format("vertex {} has a malformed colour {}", v, quoted(t)));
                 integers &= t.find_first_of(".eE") == std::string::npos;
             }
             const float scale = integers ? 1.0f / 255.0f : 1.0f;
@@ -115,7 +116,8 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
         for (long i = 1; i <= n; ++i) {
             const long k = std::strtol(w[size_t(i)].c_str(), &end, 10);
             if (*end || k < 0 || k >= nv)
-                throw fail(fmt::format("face {} uses vertex index {}, but the file has {} vertices", f, w[size_t(i)], nv));
+                throw fail(fmt::format("face {} uses vertex index {}, but the file has {} vertices", f,
+                                       quoted(w[size_t(i)]), nv));
             idx.push_back(uint32_t(k));
         }
         // Fan triangulation; a face with fewer than 3 corners still covers its points.
