@@ -223,7 +223,7 @@ void readBody(const std::string& path, const Header& h, Source& src, TriangleMes
         if (least > double(src.remaining()) + 1)
             throw Error(fmt::format("{}: the header declares {} '{}' elements, more than the file's {} bytes can hold "
                                     "(truncated or corrupt file)",
-                                    path, e.count, e.name, h.bodyOffset + src.remaining()));
+                                    path, e.count, escaped(e.name), h.bodyOffset + src.remaining()));
     }
 
     bool haveVertices = false;
@@ -259,24 +259,28 @@ void readBody(const std::string& path, const Header& h, Source& src, TriangleMes
 
         for (uint64_t i = 0; i < e.count; ++i) {
             auto truncated = [&]() {
-                return Error(fmt::format("{}: the file ends in {} {} of {}{} (truncated file?)", path, e.name, i,
+                return Error(fmt::format("{}: the file ends in {} {} of {}{} (truncated file?)", path, escaped(e.name), i,
                                          e.count, src.where()));
             };
             double c[3] = {0, 0, 0};
             for (size_t j = 0; j < e.properties.size(); ++j) {
                 const Property& p = e.properties[j];
                 if (!p.list) {
-                    const int axis = !vertex ? -1 : int(j) == axisOf[0] ? 0 : int(j) == axisOf[1] ? 1 : int(j) == axisOf[2] ? 2 : -1;
+                    int axis = -1;
+                    for (int a = 0; a < 3 && vertex; ++a)
+                        if (int(j) == axisOf[a]) axis = a;
                     if (!(axis >= 0 ? src.value(p.type, c[axis]) : src.skip(p.type))) throw truncated();
                     continue;
                 }
                 int64_t n = 0;
                 if (!src.integer(p.countType, n)) throw truncated();
-                if (n < 0) throw Error(fmt::format("{}: {} {} has a list of {} items{}", path, e.name, i, n, src.where()));
+                if (n < 0)
+                    throw Error(fmt::format("{}: {} {} has a list of {} items{}", path, escaped(e.name), i, n,
+                                            src.where()));
                 if (uint64_t(n) > src.remaining()) // an item takes a byte or more
                     throw Error(fmt::format("{}: {} {} has a list of {} items, more than the rest of the file holds{} "
                                             "(truncated file?)",
-                                            path, e.name, i, n, src.where()));
+                                            path, escaped(e.name), i, n, src.where()));
                 if (int(j) != indices) {
                     for (int64_t k = 0; k < n; ++k)
                         if (!src.skip(p.type)) throw truncated();

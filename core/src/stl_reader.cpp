@@ -28,7 +28,8 @@ public:
         std::memcpy(&k[2], &p.z, 8);
         const auto [it, added] = map_.try_emplace(k, uint32_t(mesh_.positions.size()));
         if (added) {
-            if (mesh_.positions.size() == UINT32_MAX) throw Error(fmt::format("{}: more vertices than 32-bit indices address", mesh_.source));
+            if (mesh_.positions.size() == UINT32_MAX)
+                throw Error(fmt::format("{}: more vertices than 32-bit indices address", mesh_.source));
             mesh_.positions.push_back(p);
         }
         return it->second;

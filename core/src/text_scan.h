@@ -16,7 +16,10 @@ inline bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == 
 /// without a string per token.
 class TextScanner {
 public:
-    explicit TextScanner(std::string_view text, size_t firstLine = 1) : p_(text.data()), end_(p_ + text.size()), line_(firstLine) {}
+    explicit TextScanner(std::string_view text, size_t firstLine = 1)
+        : p_(text.data()), end_(p_ + text.size()), line_(firstLine)
+    {
+    }
 
     /// The next token; empty at the end of the text.
     std::string_view next()
