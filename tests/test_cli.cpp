@@ -139,6 +139,26 @@ TEST_F(Cli, BadMeshFailsAndKeepsAnEarlierOutput)
     expectOnly({"out.vdb", "bad.obj"});
 }
 
+TEST_F(Cli, FarTriangleAsObjGivesTheVoxelsOfItsOff)
+{
+    // A one-unit triangle 1e9 from the origin: read in float, as OBJ used to
+    // be, it collapsed to one voxel; every text format now reads it exactly.
+    const std::string corners[3] = {"1000000000.1 1000000000.2 1000000000.3", "1000000001.1 1000000000.2 1000000000.3",
+                                    "1000000000.1 1000000001.2 1000000000.3"};
+    std::string off = "OFF\n3 1 0\n", obj;
+    for (const auto& c : corners) off += c + "\n", obj += "v " + c + "\n";
+    const auto a = runSvo("voxelize " + write("far.off", off + "3 0 1 2\n") + " --voxel-size 0.1 -o " + path("off.vdb"));
+    const auto b = runSvo("voxelize " + write("far.obj", obj + "f 1 2 3\n") + " --voxel-size 0.1 -o " + path("obj.vdb"));
+    ASSERT_EQ(a.code, 0) << a.out;
+    ASSERT_EQ(b.code, 0) << b.out;
+    auto voxels = [](const std::string& out) {
+        const auto at = out.find("\n  voxels");
+        return at == std::string::npos ? std::string("no voxel count") : out.substr(at, out.find('\n', at + 1) - at);
+    };
+    EXPECT_EQ(voxels(a.out), "\n  voxels      76");
+    EXPECT_EQ(voxels(b.out), voxels(a.out));
+}
+
 TEST_F(Cli, BadArgumentsFailWithoutOutput)
 {
     const auto missing = runSvo("voxelize " + path("missing.stl") + " -o " + path("a.vdb"));

@@ -1,9 +1,11 @@
 #pragma once
 /// @file mesh_io.h
-/// Mesh file input through OpenMesh's readers: OBJ, PLY (ASCII, binary), STL
-/// (ASCII, binary) and OFF. Polygons are fan-triangulated. Faces reach us
-/// exactly as the file lists them: degenerate, duplicate and non-manifold
-/// faces are kept, since they still cover the voxels they touch.
+/// Mesh file input: OBJ, PLY (ASCII, binary), STL (ASCII, binary) and OFF.
+/// svo reads all but binary OFF (left to OpenMesh) itself: text coordinates
+/// correctly rounded to double, binary ones at the precision they are stored
+/// in. Polygons are fan-triangulated. Faces reach us exactly as the file lists
+/// them: degenerate, duplicate and non-manifold faces are kept, since they
+/// still cover the voxels they touch.
 #include <string>
 
 #include "svo/core/mesh.h"
