@@ -126,7 +126,8 @@ TEST_F(MeshIo, DegenerateAndDuplicateFacesAreKept)
 TEST_F(MeshIo, BadInputsAreClearErrors)
 {
     expectError(tmp_.path("missing.obj"), "no such file");
-    expectError(write("a.xyz", "v 0 0 0\n"), "unknown mesh extension");
+    expectError(write("a.xyz", "v 0 0 0\n"), "unknown mesh extension '.xyz'");
+    expectError(write("noextension", "v 0 0 0\n"), "the name has no extension");
     expectError(write("empty.obj", ""), "empty");
     expectError(write("noface.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"), "no triangles");
     expectError(write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"), "non-finite");

@@ -54,6 +54,9 @@ const char* supportedMeshExtensions() { return ".obj, .ply, .stl, .off"; }
 TriangleMesh loadMesh(const std::string& path)
 {
     const std::string ext = lowerExtension(path);
+    if (ext.empty())
+        throw Error(fmt::format("{}: the name has no extension, which svo needs to know the format ({})", path,
+                                supportedMeshExtensions()));
     if (ext != "obj" && ext != "ply" && ext != "stl" && ext != "off")
         throw Error(fmt::format("{}: unknown mesh extension '.{}' (supported: {})", path, ext,
                                 supportedMeshExtensions()));
