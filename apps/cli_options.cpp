@@ -32,8 +32,8 @@ VoxelizeOptions BackendArgs::voxelizeOptions() const
 void addBackendOptions(CLI::App& cmd, BackendArgs& a)
 {
     cmd.add_option("--backend", a.backend,
-                   "auto (the GPU raster backend), raster, compute (GPU compute shaders, the same voxels), or cpu "
-                   "(double-precision reference)")
+                   "auto (compute on a GPU, raster on llvmpipe: the faster there), raster, compute (GPU compute "
+                   "shaders, the same voxels), or cpu (double-precision reference)")
         ->check(CLI::IsMember({"auto", "raster", "compute", "cpu"}))
         ->capture_default_str();
     cmd.add_option("--conservative", a.conservative,

@@ -410,7 +410,7 @@ Args:
         row-vector convention); voxels are cubes of its index space.
     grid: "bool" (BoolGrid "surface", true on voxels) or "fog" (FloatGrid
         "density", 1 on voxels).
-    backend: "auto" (the GPU), "raster", "compute" (GPU compute shaders, the same voxels) or "cpu" (the
+    backend: "auto" (compute on a GPU, raster on llvmpipe), "raster", "compute" (GPU compute shaders, the same voxels) or "cpu" (the
         double-precision reference).
     attributes: channels to compute: "normal", "triangle", "color". With any,
         a dict is returned: the grid ("surface" or "density"), "normal" and

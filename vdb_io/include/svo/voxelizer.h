@@ -62,7 +62,7 @@ namespace svo {
 
 /// Where voxelization runs.
 enum class Backend {
-    Auto,    ///< the GPU raster backend
+    Auto,    ///< Compute on a GPU, Raster on a software renderer (llvmpipe): the faster, as measured
     Raster,  ///< GPU: rasterization along each triangle's dominant axis
     Compute, ///< GPU: triangle-parallel compute shaders; the same voxels as Raster
     Cpu,     ///< the double-precision CPU reference (tests; no GL context needed)
@@ -104,6 +104,8 @@ struct VoxelizeStats {
 /// Options of one call. Plain values; the defaults suit most uses.
 struct VoxelizeOptions {
     Backend backend = Backend::Auto;
+    /// Raster backend only: any mode but Auto makes Backend::Auto pick Raster,
+    /// and is an error with Backend::Compute.
     Dilation dilation = Dilation::Auto;
     /// Per-voxel channels to compute: AttributeChannel bits (kNormals,
     /// kTriangles, kColors). Colours need vertex colours and are left out otherwise.
