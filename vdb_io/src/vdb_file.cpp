@@ -60,6 +60,7 @@ public:
         try {
             readHeader(is_);
         } catch (const std::exception& e) {
+            if (!is_) damaged("the header is cut short");
             throw Error(fmt::format("{}: not a readable VDB file: {}", name_, e.what()));
         }
         if (!is_) damaged("the header is cut short");
@@ -261,7 +262,7 @@ private:
             grid->readTransform(is_);
             if (!is_) damaged(fmt::format("grid {} is cut short in its transform", g));
             if (!gd.isInstance()) {
-                checkRoot(*grid, blockPos);
+                checkTree(*grid, g);
                 grid->readTopology(is_);
                 if (!is_) damaged(fmt::format("grid {} is cut short in its tree", g));
                 if (blockPos >= 0 && tell() != blockPos)
@@ -284,28 +285,134 @@ private:
         return grid;
     }
 
-    /// The root's tile and child counts against the bytes of its structure
-    /// (OpenVDB loops over them even after the stream has failed).
-    void checkRoot(const openvdb::GridBase& grid, int64_t blockPos) const
+    /// Walks the tree of a grid of a type svo reads (others are left to
+    /// OpenVDB unchecked) before OpenVDB reads it.
+    void checkTree(const openvdb::GridBase& grid, const std::string& g)
     {
-        const uint64_t bytes = blockPos >= 0 && blockPos >= tell() ? uint64_t(blockPos - tell()) : left();
-        grid.apply<GridTypes>([&](const auto& typed) {
-            using ValueT = typename std::decay_t<decltype(typed)>::ValueType;
-            const int64_t at = tell();
-            is_.seekg(sizeof(ValueT), std::ios_base::cur); // the background
-            uint32_t counts[2] = {0, 0};
-            is_.read(reinterpret_cast<char*>(counts), sizeof counts);
-            if (!is_) damaged(fmt::format("grid '{}' is cut short in its tree", grid.getName()));
-            is_.seekg(at);
-            // A tile: origin, value, active flag. A child: origin and the two
-            // masks of a 32^3 node at least.
-            using Child = typename std::decay_t<decltype(typed)>::TreeType::RootNodeType::ChildNodeType;
-            const uint64_t tile = 12 + sizeof(ValueT) + 1, child = 12 + 2 * Child::NodeMaskType::memUsage();
-            if (counts[0] * tile + counts[1] * child > bytes)
-                damaged(fmt::format("grid '{}' declares {} root tiles and {} root children, more than its {} bytes "
-                                    "of tree hold",
-                                    grid.getName(), counts[0], counts[1], bytes));
-        });
+        const uint32_t compression = openvdb::io::getDataCompression(is_);
+        grid.apply<GridTypes>([&](const auto& typed) { walkTree(typed, compression, g); });
+    }
+
+    // --- a walk over a tree's bytes before OpenVDB reads them ---------------
+    // OpenVDB 10 reads a chunk stored uncompressed into a buffer sized from
+    // the masks before comparing the sizes (fixed in OpenVDB 12), and hands
+    // Blosc chunks to Blosc, which trusts their headers: a damaged size there
+    // writes or reads past a buffer. The walk follows the layout OpenVDB
+    // reads (Tree4<T, 5, 4, 3>: root, two levels of internal nodes, leaves;
+    // then the leaves' data) and checks every such size first.
+
+    void skip(uint64_t n, const std::string& g)
+    {
+        if (n > left()) damaged(fmt::format("grid {} declares {} bytes, more than the {} left in the file", g, n, left()));
+        is_.seekg(std::streamoff(n), std::ios_base::cur);
+    }
+    template <typename T> T get(const std::string& g)
+    {
+        T v{};
+        is_.read(reinterpret_cast<char*>(&v), sizeof v);
+        if (!is_) damaged(fmt::format("grid {} is cut short", g));
+        return v;
+    }
+    template <typename MaskT> MaskT getMask(const std::string& g)
+    {
+        MaskT m;
+        m.load(is_);
+        if (!is_) damaged(fmt::format("grid {} is cut short", g));
+        return m;
+    }
+
+    /// One chunk of values as readData reads it: `bytes` is what the reader expects.
+    void walkChunk(uint64_t bytes, uint32_t compression, const std::string& g)
+    {
+        if (!(compression & (openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ZIP))) return skip(bytes, g);
+        const int64_t n = get<int64_t>(g);
+        if (n <= 0) { // stored as is
+            if (uint64_t(-n) != bytes)
+                damaged(fmt::format("grid {} stores a chunk of {} bytes where its masks call for {}", g, -n, bytes));
+            return skip(bytes, g);
+        }
+        if (compression & openvdb::io::COMPRESS_BLOSC) {
+            // Blosc's header: uncompressed size at byte 4, compressed size at byte 12.
+            uint32_t head[4] = {0, 0, 0, 0};
+            if (n < 16) damaged(fmt::format("grid {} has a compressed chunk of {} bytes, too short", g, n));
+            is_.read(reinterpret_cast<char*>(head), sizeof head);
+            if (!is_) damaged(fmt::format("grid {} is cut short", g));
+            is_.seekg(-std::streamoff(sizeof head), std::ios_base::cur);
+            if (head[1] != bytes || head[3] != uint64_t(n))
+                damaged(fmt::format("grid {} has a compressed chunk whose header does not match its size", g));
+        }
+        skip(uint64_t(n), g);
+    }
+
+    /// readCompressedValues: a flag, inactive values, a selection mask, the values.
+    template <typename ValueT, typename MaskT>
+    void walkValues(const MaskT& valueMask, uint32_t compression, bool half, const std::string& g)
+    {
+        using openvdb::io::RealToHalf;
+        const int8_t flag = get<int8_t>(g);
+        if (flag < 0 || flag > 6) damaged(fmt::format("grid {} has an unknown value layout {}", g, int(flag)));
+        if (flag == 2 || flag == 4 || flag == 5) skip(sizeof(ValueT), g); // one inactive value
+        if (flag == 5) skip(sizeof(ValueT), g);                           // a second one
+        if (flag == 3 || flag == 4 || flag == 5) skip(MaskT::memUsage(), g);
+        const bool maskCompressed = compression & openvdb::io::COMPRESS_ACTIVE_MASK;
+        const uint64_t count = maskCompressed && flag != 6 ? valueMask.countOn() : MaskT::SIZE;
+        const uint64_t size = half && RealToHalf<ValueT>::isReal ? sizeof(typename RealToHalf<ValueT>::HalfT)
+                                                                 : sizeof(ValueT);
+        walkChunk(count * size, compression, g);
+    }
+
+    template <typename NodeT>
+    void walkInternal(uint32_t compression, bool half, std::vector<openvdb::util::NodeMask<3>>& leaves,
+                      const std::string& g)
+    {
+        using ChildT = typename NodeT::ChildNodeType;
+        using MaskT = typename NodeT::NodeMaskType;
+        const MaskT children = getMask<MaskT>(g);
+        const MaskT values = getMask<MaskT>(g);
+        walkValues<typename NodeT::ValueType>(values, compression, half, g);
+        for (auto it = children.beginOn(); it; ++it) {
+            if constexpr (ChildT::LEVEL == 0) leaves.push_back(getMask<openvdb::util::NodeMask<3>>(g));
+            else walkInternal<ChildT>(compression, half, leaves, g);
+        }
+    }
+
+    template <typename GridT> void walkTree(const GridT& grid, uint32_t compression, const std::string& g)
+    {
+        using TreeT = typename GridT::TreeType;
+        using RootT = typename TreeT::RootNodeType;
+        using ValueT = typename GridT::ValueType;
+        using LeafT = typename TreeT::LeafNodeType;
+        const bool half = grid.saveFloatAsHalf();
+        const int64_t start = tell();
+        skip(4 + sizeof(ValueT), g); // buffer count, background
+        const uint32_t tiles = get<uint32_t>(g), children = get<uint32_t>(g);
+        skip(uint64_t(tiles) * (12 + sizeof(ValueT) + 1), g);
+        std::vector<openvdb::util::NodeMask<3>> leaves;
+        openvdb::Coord last;
+        for (uint32_t c = 0; c < children; ++c) {
+            int32_t o[3];
+            is_.read(reinterpret_cast<char*>(o), sizeof o);
+            if (!is_) damaged(fmt::format("grid {} is cut short in its tree", g));
+            const openvdb::Coord origin(o[0], o[1], o[2]);
+            // The root keeps its children sorted; the data section follows that order.
+            const int32_t dim = RootT::ChildNodeType::DIM;
+            if ((origin[0] & (dim - 1)) || (origin[1] & (dim - 1)) || (origin[2] & (dim - 1)) || (c && !(last < origin)))
+                damaged(fmt::format("grid {} has a root child at ({}, {}, {}), off the lattice or out of order", g,
+                                    o[0], o[1], o[2]));
+            last = origin;
+            walkInternal<typename RootT::ChildNodeType>(compression, half, leaves, g);
+        }
+        for (const auto& mask : leaves) {
+            if constexpr (std::is_same_v<ValueT, bool>) {
+                // Mask leaves: mask, origin; bool leaves: mask, origin, values.
+                skip(64 + 12 + (std::is_same_v<typename LeafT::BuildType, bool> ? 64 : 0), g);
+            } else {
+                skip(64, g); // the mask again, which OpenVDB skips
+                walkValues<ValueT>(mask, compression, half, g);
+            }
+        }
+        is_.clear();
+        is_.seekg(start);
     }
 
     /// Mask and bool leaves store their mask twice, in the tree and in the
