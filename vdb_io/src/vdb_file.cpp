@@ -31,10 +31,11 @@ using openvdb::io::GridDescriptor;
 /// what the writer recorded (positions, voxel count, bounding box, the two
 /// copies of a mask or bool leaf's mask), not every changed bit.
 ///
-/// Sizes that come from the file are checked against the bytes left before
-/// anything is allocated from them where svo reads them itself (strings,
-/// metadata, the root's tile and child counts); inside OpenVDB (compressed
-/// blocks) an impossible size ends as std::bad_alloc, turned into svo::Error.
+/// Sizes that come from the file are checked against the bytes left (and,
+/// for chunks of values, against what the masks call for) before OpenVDB
+/// allocates or reads from them: strings, metadata, and, for the grid types
+/// svo reads, the whole tree (walkTree). Grids of other types are read by
+/// OpenVDB unwalked; whatever it throws becomes svo::Error.
 class CheckedReader : public openvdb::io::Archive {
 public:
     CheckedReader(std::istream& is, uint64_t size, const std::string& name) : is_(is), size_(size), name_(name) {}
@@ -198,6 +199,7 @@ private:
             }
             if (!value || value.tellg() != std::streamoff(bytes.size()))
                 damaged(fmt::format("{}: '{}' has {} bytes, not what type {} holds", what, key, n, type));
+            if (key.empty()) damaged(what + " has an entry without a name"); // OpenVDB's insertMeta throws
             out.insertMeta(key, *m);
         }
     }
@@ -326,9 +328,10 @@ private:
     {
         if (!(compression & (openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ZIP))) return skip(bytes, g);
         const int64_t n = get<int64_t>(g);
-        if (n <= 0) { // stored as is
-            if (uint64_t(-n) != bytes)
-                damaged(fmt::format("grid {} stores a chunk of {} bytes where its masks call for {}", g, -n, bytes));
+        if (n <= 0) { // stored as is, its size negated
+            const uint64_t stored = uint64_t(0) - uint64_t(n); // INT64_MIN has no int64 negation
+            if (stored != bytes)
+                damaged(fmt::format("grid {} stores a chunk of {} bytes where its masks call for {}", g, stored, bytes));
             return skip(bytes, g);
         }
         if (compression & openvdb::io::COMPRESS_BLOSC) {
@@ -384,7 +387,8 @@ private:
         using LeafT = typename TreeT::LeafNodeType;
         const bool half = grid.saveFloatAsHalf();
         const int64_t start = tell();
-        skip(4 + sizeof(ValueT), g); // buffer count, background
+        if (get<int32_t>(g) != 1) damaged(fmt::format("grid {} has a buffer count other than 1", g)); // OpenVDB warns only
+        skip(sizeof(ValueT), g); // background
         const uint32_t tiles = get<uint32_t>(g), children = get<uint32_t>(g);
         skip(uint64_t(tiles) * (12 + sizeof(ValueT) + 1), g);
         std::vector<openvdb::util::NodeMask<3>> leaves;
@@ -545,6 +549,10 @@ void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::str
     writeGrids(path, grids);
 }
 
+namespace {
+VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName);
+} // namespace
+
 VdbBricks readVdbBricks(const std::string& path, const std::string& gridName)
 {
     std::error_code ec;
@@ -563,7 +571,21 @@ VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::st
     in.seekg(0);
     if (!in || size < 0) throw Error(fmt::format("{}: cannot read the file", name));
     if (size == 0) throw Error(fmt::format("{}: the file is empty", name));
-    CheckedReader reader(in, uint64_t(size), name);
+    try {
+        return readChecked(in, uint64_t(size), name, gridName);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        // Whatever OpenVDB throws where the reader did not expect it.
+        throw Error(fmt::format("{}: truncated or damaged: {}", name, e.what()));
+    }
+}
+
+namespace {
+
+VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName)
+{
+    CheckedReader reader(in, size, name);
     reader.open();
 
     // Every grid is read and checked, the one asked for kept (with its
@@ -608,5 +630,7 @@ VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::st
     out.tilesExpanded = gb.tilesExpanded;
     return out;
 }
+
+} // namespace
 
 } // namespace svo::vdb
