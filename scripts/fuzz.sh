@@ -12,7 +12,7 @@ seed=${2:-1}
 command -v clang++-14 >/dev/null || { echo "fuzz: needs clang-14 and libclang-rt-14-dev" >&2; exit 1; }
 cmake -S tests/fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build build-fuzz
-for target in fuzz_octree_file fuzz_off_reader fuzz_obj_reader fuzz_ply_reader fuzz_stl_reader; do
+for target in fuzz_octree_file fuzz_off_reader fuzz_obj_reader fuzz_ply_reader fuzz_stl_reader fuzz_vdb_reader; do
   rm -rf "build-fuzz/corpus/$target" && mkdir -p "build-fuzz/corpus/$target"
   echo "fuzz: $target, $runs runs, seed $seed"
   log="build-fuzz/$target.log"

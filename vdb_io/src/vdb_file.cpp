@@ -1,8 +1,12 @@
 #include "svo/vdb_io/vdb_file.h"
 
+#include <array>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <fmt/format.h>
 
 #include "svo/core/atomic_file.h"
@@ -16,22 +20,484 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-/// Opens a .vdb for reading, turning OpenVDB's exceptions into svo::Error.
-std::unique_ptr<openvdb::io::File> openVdb(const std::string& path)
-{
-    openvdb::initialize();
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw Error(fmt::format("{}: no such file", path));
-    if (fs::is_directory(path, ec)) throw Error(fmt::format("{}: is a folder, not a .vdb file", path));
-    if (fs::file_size(path, ec) == 0) throw Error(fmt::format("{}: the file is empty", path));
-    auto file = std::make_unique<openvdb::io::File>(path); // File cannot be moved
-    try {
-        file->open(false); // no delayed loading: the file is read whole
-    } catch (const std::exception& e) {
-        throw Error(fmt::format("{}: not a readable VDB file: {}", path, e.what()));
+using openvdb::io::GridDescriptor;
+
+/// Reads a whole .vdb from a stream and checks it, because OpenVDB's reader
+/// checks almost nothing: it goes on reading past the end of a cut-short file
+/// (the stream fails and values stay unset), ignores bytes after the last
+/// grid, and takes the origin of a mask or bool leaf from the data section,
+/// where damage moves the leaf away from where the tree holds it. OpenVDB
+/// files carry no checksum, so this finds damage to the structure and to
+/// what the writer recorded (positions, voxel count, bounding box, the two
+/// copies of a mask or bool leaf's mask), not every changed bit.
+///
+/// Sizes that come from the file are checked against the bytes left (and,
+/// for chunks of values, against what the masks call for) before OpenVDB
+/// allocates or reads from them: strings, metadata, and, for the grid types
+/// svo reads, the whole tree (walkTree). Grids of other types are read by
+/// OpenVDB unwalked; whatever it throws becomes svo::Error.
+class CheckedReader : public openvdb::io::Archive {
+public:
+    CheckedReader(std::istream& is, uint64_t size, const std::string& name) : is_(is), size_(size), name_(name) {}
+    CheckedReader(const CheckedReader&) = delete;
+    CheckedReader& operator=(const CheckedReader&) = delete;
+    ~CheckedReader() override
+    {
+        // The stream holds the address of streamMeta_: leave it none.
+        static openvdb::io::StreamMetadata::Ptr none;
+        openvdb::io::setStreamMetadataPtr(is_, none, false);
     }
-    return file;
-}
+
+    /// A grid as read, with its descriptor.
+    struct Read {
+        GridDescriptor gd;
+        openvdb::GridBase::Ptr grid;
+    };
+
+    /// Header, file metadata and grid descriptors, with the descriptors'
+    /// positions checked against each other and the file size.
+    void open()
+    {
+        try {
+            readHeader(is_);
+        } catch (const std::exception& e) {
+            if (!is_) damaged("the header is cut short");
+            throw Error(fmt::format("{}: not a readable VDB file: {}", name_, e.what()));
+        }
+        if (!is_) damaged("the header is cut short");
+        // Older formats store the root as a table whose size comes from the
+        // file (up to 2^32 entries); OpenVDB 2 (2013) already wrote 222.
+        if (fileVersion() < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)
+            throw Error(fmt::format("{}: VDB file format {} is older than {}, the oldest svo reads", name_,
+                                    fileVersion(), int(openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)));
+        streamMeta_ = std::make_shared<openvdb::io::StreamMetadata>();
+        streamMeta_->setSeekable(true);
+        openvdb::io::setStreamMetadataPtr(is_, streamMeta_, /*transfer=*/false);
+        setFormatVersion(is_);
+        setLibraryVersion(is_);
+        setDataCompression(is_);
+        openvdb::MetaMap fileMeta;
+        readMeta(fileMeta, "the file metadata");
+        int32_t count = 0;
+        is_.read(reinterpret_cast<char*>(&count), sizeof count);
+        if (!is_) damaged("the file ends before the grid count");
+        // A grid takes at least its descriptor: three strings and three positions.
+        if (count < 0 || uint64_t(count) > left() / 36)
+            damaged(fmt::format("the file declares {} grids in its last {} bytes", count, left()));
+        count_ = count;
+        if (!inputHasGridOffsets()) return; // written as a stream: grids follow one another, read by readAll
+        for (int32_t i = 0; i < count; ++i) {
+            GridDescriptor gd = readDescriptor(i);
+            const int64_t at = tell();
+            const std::string g = quoted(gd);
+            if (gd.getGridPos() != at)
+                damaged(fmt::format("grid {} should start at byte {}, after its descriptor, but the descriptor says {}",
+                                    g, at, gd.getGridPos()));
+            if (gd.getBlockPos() < gd.getGridPos() || gd.getEndPos() < gd.getBlockPos())
+                damaged(fmt::format("grid {} has its positions out of order (start {}, data {}, end {})", g,
+                                    gd.getGridPos(), gd.getBlockPos(), gd.getEndPos()));
+            if (uint64_t(gd.getEndPos()) > size_)
+                damaged(fmt::format("grid {} ends at byte {} but the file has {} bytes", g, gd.getEndPos(), size_));
+            is_.seekg(gd.getEndPos());
+            descriptors_.push_back(gd);
+        }
+        checkEnd();
+    }
+
+    bool sequential() const { return !inputHasGridOffsets(); }
+    const std::vector<GridDescriptor>& descriptors() const { return descriptors_; }
+
+    /// Reads one grid of a file with positions and checks it.
+    openvdb::GridBase::Ptr read(const GridDescriptor& gd)
+    {
+        is_.seekg(gd.getGridPos());
+        auto grid = readGrid(gd, gd.getBlockPos());
+        if (tell() != gd.getEndPos())
+            damaged(fmt::format("grid {} should end at byte {} but its data ends at byte {}", quoted(gd),
+                                gd.getEndPos(), tell()));
+        return grid;
+    }
+
+    /// Reads every grid of a file written as a stream (no positions).
+    std::vector<Read> readAll()
+    {
+        std::vector<Read> out;
+        for (int32_t i = 0; i < count_; ++i) {
+            GridDescriptor gd = readDescriptor(i);
+            auto grid = readGrid(gd, -1);
+            out.push_back({gd, grid});
+        }
+        checkEnd();
+        return out;
+    }
+
+private:
+    [[noreturn]] void damaged(const std::string& what) const
+    {
+        throw Error(fmt::format("{}: truncated or damaged: {}", name_, what));
+    }
+    static std::string quoted(const GridDescriptor& gd) { return "'" + gd.gridName() + "'"; }
+    int64_t tell() const { return is_ ? int64_t(is_.tellg()) : -1; }
+    uint64_t left() const
+    {
+        const int64_t at = tell();
+        return at < 0 || uint64_t(at) > size_ ? 0 : size_ - uint64_t(at);
+    }
+    void checkEnd() const
+    {
+        const int64_t at = tell();
+        if (at < 0) damaged("reading went past the end of the file");
+        if (uint64_t(at) != size_)
+            damaged(fmt::format("the last grid ends at byte {} but the file has {} bytes", at, size_));
+    }
+    uint32_t readU32(const std::string& what)
+    {
+        uint32_t v = 0;
+        is_.read(reinterpret_cast<char*>(&v), sizeof v);
+        if (!is_) damaged(what + " is cut short");
+        return v;
+    }
+    /// A length-prefixed string, its length checked against the bytes left.
+    std::string readString(const std::string& what)
+    {
+        const uint32_t n = readU32(what);
+        if (n > left()) damaged(fmt::format("{} declares a string of {} bytes, {} bytes before the end", what, n, left()));
+        std::string s(n, '\0');
+        if (n) is_.read(s.data(), n);
+        if (!is_) damaged(what + " is cut short");
+        return s;
+    }
+
+    /// Metadata entries, each value parsed from its own bytes so that a size
+    /// that does not match its type stops here (OpenVDB's fixed-size types
+    /// ignore the stored size and would go on out of step).
+    void readMeta(openvdb::MetaMap& out, const std::string& what)
+    {
+        const uint32_t count = readU32(what);
+        if (count > left() / 12) // name, type and size take 12 bytes at least
+            damaged(fmt::format("{} declares {} entries in its last {} bytes", what, count, left()));
+        for (uint32_t i = 0; i < count; ++i) {
+            const std::string key = readString(what);
+            const std::string type = readString(what);
+            const uint32_t n = readU32(what);
+            if (n > left()) damaged(fmt::format("{}: '{}' declares {} bytes, {} bytes before the end", what, key, n, left()));
+            std::string bytes(sizeof n + n, '\0');
+            std::memcpy(bytes.data(), &n, sizeof n);
+            if (n) is_.read(bytes.data() + sizeof n, n);
+            if (!is_) damaged(what + " is cut short");
+            // "__" types only serve reading (delayed loading, which svo never
+            // does); OpenVDB drops them from the grid too.
+            if (type.compare(0, 2, "__") == 0) continue;
+            openvdb::Metadata::Ptr m;
+            if (openvdb::Metadata::isRegisteredType(type)) m = openvdb::Metadata::createMetadata(type);
+            else m = std::make_shared<openvdb::UnknownMetadata>(type);
+            std::istringstream value(bytes);
+            try {
+                m->read(value);
+            } catch (const std::exception& e) {
+                damaged(fmt::format("{}: '{}' of type {}: {}", what, key, type, e.what()));
+            }
+            if (!value || value.tellg() != std::streamoff(bytes.size()))
+                damaged(fmt::format("{}: '{}' has {} bytes, not what type {} holds", what, key, n, type));
+            if (key.empty()) damaged(what + " has an entry without a name"); // OpenVDB's insertMeta throws
+            out.insertMeta(key, *m);
+        }
+    }
+
+    GridDescriptor readDescriptor(int32_t i)
+    {
+        const std::string what = fmt::format("the descriptor of grid {}", i + 1);
+        // GridDescriptor::read allocates its strings from the lengths it reads:
+        // check them first, then let it read.
+        const int64_t at = tell();
+        const std::string name = readString(what);
+        const std::string type = readString(what);
+        if (fileVersion() >= openvdb::OPENVDB_FILE_VERSION_GRID_INSTANCING) readString(what);
+        if (left() < 24) damaged(what + " is cut short");
+        is_.seekg(at);
+        GridDescriptor gd;
+        try {
+            gd.read(is_);
+        } catch (const std::exception& e) {
+            // A type this OpenVDB does not register: maybe damage, maybe a newer writer.
+            throw Error(fmt::format("{}: grid '{}' has type '{}', which this OpenVDB cannot read ({})", name_, name,
+                                    type, e.what()));
+        }
+        if (!is_) damaged(what + " is cut short");
+        return gd;
+    }
+
+    /// Reads the grid at the stream's position as Archive::readGrid does, with
+    /// the checks. blockPos: where its topology must end (-1: unknown).
+    openvdb::GridBase::Ptr readGrid(const GridDescriptor& gd, int64_t blockPos)
+    {
+        const std::string g = quoted(gd);
+        openvdb::GridBase::Ptr grid;
+        try {
+            grid = openvdb::GridBase::createGrid(gd.gridType());
+            grid->setSaveFloatAsHalf(gd.saveFloatAsHalf());
+            readGridCompression(is_);
+            openvdb::MetaMap meta;
+            readMeta(meta, "the metadata of grid " + g);
+            for (auto it = meta.beginMeta(); it != meta.endMeta(); ++it) grid->insertMeta(it->first, *it->second);
+
+            // Per-grid stream state, as Archive::readGrid sets it up.
+            auto gridMeta = std::make_shared<openvdb::io::StreamMetadata>(*streamMeta_);
+            gridMeta->setHalfFloat(grid->saveFloatAsHalf());
+            gridMeta->gridMetadata() = static_cast<openvdb::MetaMap&>(*grid);
+            gridMeta->setLeaf(0);
+            openvdb::io::setStreamMetadataPtr(is_, gridMeta, /*transfer=*/false);
+            openvdb::io::setGridClass(is_, grid->getGridClass());
+            openvdb::io::setGridBackgroundValuePtr(is_, nullptr);
+            struct Restore { // the stream keeps the address of the pointer
+                std::istream& is;
+                openvdb::io::StreamMetadata::Ptr& meta;
+                ~Restore() { openvdb::io::setStreamMetadataPtr(is, meta, false); }
+            } restore{is_, streamMeta_};
+
+            {
+                // The transform starts with its map's type name.
+                const int64_t at = tell();
+                readString("the transform of grid " + g);
+                is_.seekg(at);
+            }
+            grid->readTransform(is_);
+            if (!is_) damaged(fmt::format("grid {} is cut short in its transform", g));
+            if (!gd.isInstance()) {
+                checkTree(*grid, g);
+                grid->readTopology(is_);
+                if (!is_) damaged(fmt::format("grid {} is cut short in its tree", g));
+                if (blockPos >= 0 && tell() != blockPos)
+                    damaged(fmt::format("the tree of grid {} should end at byte {} but ends at byte {}", g, blockPos,
+                                        tell()));
+                const TopologyMasks masks = topologyMasks(*grid);
+                grid->readBuffers(is_);
+                if (!is_) damaged(fmt::format("grid {} is cut short in its voxel data", g));
+                checkLeaves(*grid, masks, g);
+                checkStats(*grid, g);
+            }
+        } catch (const Error&) {
+            throw;
+        } catch (const std::bad_alloc&) {
+            damaged(fmt::format("grid {} declares a size beyond memory", g));
+        } catch (const std::exception& e) {
+            if (!is_) damaged(fmt::format("grid {} is cut short ({})", g, e.what()));
+            damaged(fmt::format("grid {}: {}", g, e.what()));
+        }
+        return grid;
+    }
+
+    /// Walks the tree of a grid of a type svo reads (others are left to
+    /// OpenVDB unchecked) before OpenVDB reads it.
+    void checkTree(const openvdb::GridBase& grid, const std::string& g)
+    {
+        const uint32_t compression = openvdb::io::getDataCompression(is_);
+        grid.apply<GridTypes>([&](const auto& typed) { walkTree(typed, compression, g); });
+    }
+
+    // --- a walk over a tree's bytes before OpenVDB reads them ---------------
+    // OpenVDB 10 reads a chunk stored uncompressed into a buffer sized from
+    // the masks before comparing the sizes (fixed in OpenVDB 12), and hands
+    // Blosc chunks to Blosc, which trusts their headers: a damaged size there
+    // writes or reads past a buffer. The walk follows the layout OpenVDB
+    // reads (Tree4<T, 5, 4, 3>: root, two levels of internal nodes, leaves;
+    // then the leaves' data) and checks every such size first.
+
+    void skip(uint64_t n, const std::string& g)
+    {
+        if (n > left()) damaged(fmt::format("grid {} declares {} bytes, more than the {} left in the file", g, n, left()));
+        is_.seekg(std::streamoff(n), std::ios_base::cur);
+    }
+    template <typename T> T get(const std::string& g)
+    {
+        T v{};
+        is_.read(reinterpret_cast<char*>(&v), sizeof v);
+        if (!is_) damaged(fmt::format("grid {} is cut short", g));
+        return v;
+    }
+    template <typename MaskT> MaskT getMask(const std::string& g)
+    {
+        MaskT m;
+        m.load(is_);
+        if (!is_) damaged(fmt::format("grid {} is cut short", g));
+        return m;
+    }
+
+    /// One chunk of values as readData reads it: `bytes` is what the reader expects.
+    void walkChunk(uint64_t bytes, uint32_t compression, const std::string& g)
+    {
+        if (!(compression & (openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ZIP))) return skip(bytes, g);
+        const int64_t n = get<int64_t>(g);
+        if (n <= 0) { // stored as is, its size negated
+            const uint64_t stored = uint64_t(0) - uint64_t(n); // INT64_MIN has no int64 negation
+            if (stored != bytes)
+                damaged(fmt::format("grid {} stores a chunk of {} bytes where its masks call for {}", g, stored, bytes));
+            return skip(bytes, g);
+        }
+        if (compression & openvdb::io::COMPRESS_BLOSC) {
+            // Blosc's header: uncompressed size at byte 4, compressed size at byte 12.
+            uint32_t head[4] = {0, 0, 0, 0};
+            if (n < 16) damaged(fmt::format("grid {} has a compressed chunk of {} bytes, too short", g, n));
+            is_.read(reinterpret_cast<char*>(head), sizeof head);
+            if (!is_) damaged(fmt::format("grid {} is cut short", g));
+            is_.seekg(-std::streamoff(sizeof head), std::ios_base::cur);
+            if (head[1] != bytes || head[3] != uint64_t(n))
+                damaged(fmt::format("grid {} has a compressed chunk whose header does not match its size", g));
+        }
+        skip(uint64_t(n), g);
+    }
+
+    /// readCompressedValues: a flag, inactive values, a selection mask, the values.
+    template <typename ValueT, typename MaskT>
+    void walkValues(const MaskT& valueMask, uint32_t compression, bool half, const std::string& g)
+    {
+        using openvdb::io::RealToHalf;
+        const int8_t flag = get<int8_t>(g);
+        if (flag < 0 || flag > 6) damaged(fmt::format("grid {} has an unknown value layout {}", g, int(flag)));
+        if (flag == 2 || flag == 4 || flag == 5) skip(sizeof(ValueT), g); // one inactive value
+        if (flag == 5) skip(sizeof(ValueT), g);                           // a second one
+        if (flag == 3 || flag == 4 || flag == 5) skip(MaskT::memUsage(), g);
+        const bool maskCompressed = compression & openvdb::io::COMPRESS_ACTIVE_MASK;
+        const uint64_t count = maskCompressed && flag != 6 ? valueMask.countOn() : MaskT::SIZE;
+        const uint64_t size = half && RealToHalf<ValueT>::isReal ? sizeof(typename RealToHalf<ValueT>::HalfT)
+                                                                 : sizeof(ValueT);
+        walkChunk(count * size, compression, g);
+    }
+
+    template <typename NodeT>
+    void walkInternal(uint32_t compression, bool half, std::vector<openvdb::util::NodeMask<3>>& leaves,
+                      const std::string& g)
+    {
+        using ChildT = typename NodeT::ChildNodeType;
+        using MaskT = typename NodeT::NodeMaskType;
+        const MaskT children = getMask<MaskT>(g);
+        const MaskT values = getMask<MaskT>(g);
+        walkValues<typename NodeT::ValueType>(values, compression, half, g);
+        for (auto it = children.beginOn(); it; ++it) {
+            if constexpr (ChildT::LEVEL == 0) leaves.push_back(getMask<openvdb::util::NodeMask<3>>(g));
+            else walkInternal<ChildT>(compression, half, leaves, g);
+        }
+    }
+
+    template <typename GridT> void walkTree(const GridT& grid, uint32_t compression, const std::string& g)
+    {
+        using TreeT = typename GridT::TreeType;
+        using RootT = typename TreeT::RootNodeType;
+        using ValueT = typename GridT::ValueType;
+        using LeafT = typename TreeT::LeafNodeType;
+        const bool half = grid.saveFloatAsHalf();
+        const int64_t start = tell();
+        if (get<int32_t>(g) != 1) damaged(fmt::format("grid {} has a buffer count other than 1", g)); // OpenVDB warns only
+        skip(sizeof(ValueT), g); // background
+        const uint32_t tiles = get<uint32_t>(g), children = get<uint32_t>(g);
+        skip(uint64_t(tiles) * (12 + sizeof(ValueT) + 1), g);
+        std::vector<openvdb::util::NodeMask<3>> leaves;
+        openvdb::Coord last;
+        for (uint32_t c = 0; c < children; ++c) {
+            int32_t o[3];
+            is_.read(reinterpret_cast<char*>(o), sizeof o);
+            if (!is_) damaged(fmt::format("grid {} is cut short in its tree", g));
+            const openvdb::Coord origin(o[0], o[1], o[2]);
+            // The root keeps its children sorted; the data section follows that order.
+            const int32_t dim = RootT::ChildNodeType::DIM;
+            if ((origin[0] & (dim - 1)) || (origin[1] & (dim - 1)) || (origin[2] & (dim - 1)) || (c && !(last < origin)))
+                damaged(fmt::format("grid {} has a root child at ({}, {}, {}), off the lattice or out of order", g,
+                                    o[0], o[1], o[2]));
+            last = origin;
+            walkInternal<typename RootT::ChildNodeType>(compression, half, leaves, g);
+        }
+        for (const auto& mask : leaves) {
+            if constexpr (std::is_same_v<ValueT, bool>) {
+                // Mask leaves: mask, origin; bool leaves: mask, origin, values.
+                skip(64 + 12 + (std::is_same_v<typename LeafT::BuildType, bool> ? 64 : 0), g);
+            } else {
+                skip(64, g); // the mask again, which OpenVDB skips
+                walkValues<ValueT>(mask, compression, half, g);
+            }
+        }
+        is_.clear();
+        is_.seekg(start);
+    }
+
+    /// Mask and bool leaves store their mask twice, in the tree and in the
+    /// voxel data (with the leaf's origin); the second read wins. Kept from
+    /// the first read to compare.
+    struct TopologyMasks {
+        std::vector<const void*> leaves;
+        std::vector<openvdb::Coord> origins;
+        std::vector<std::array<uint64_t, 8>> words;
+    };
+    template <typename GridT> static void collect(const openvdb::GridBase& grid, TopologyMasks& out)
+    {
+        const auto* typed = dynamic_cast<const GridT*>(&grid);
+        if (!typed) return;
+        for (auto leaf = typed->tree().cbeginLeaf(); leaf; ++leaf) {
+            out.leaves.push_back(&*leaf);
+            out.origins.push_back(leaf->origin());
+            std::array<uint64_t, 8> w;
+            for (openvdb::Index i = 0; i < 8; ++i) w[i] = leaf->getValueMask().template getWord<uint64_t>(i);
+            out.words.push_back(w);
+        }
+    }
+    static TopologyMasks topologyMasks(const openvdb::GridBase& grid)
+    {
+        TopologyMasks m;
+        collect<openvdb::MaskGrid>(grid, m);
+        collect<openvdb::BoolGrid>(grid, m);
+        return m;
+    }
+    template <typename GridT> void compare(const openvdb::GridBase& grid, const TopologyMasks& m, const std::string& g) const
+    {
+        const auto* typed = dynamic_cast<const GridT*>(&grid);
+        if (!typed) return;
+        size_t i = 0;
+        for (auto leaf = typed->tree().cbeginLeaf(); leaf; ++leaf, ++i) {
+            if (i >= m.leaves.size() || &*leaf != m.leaves[i]) damaged(fmt::format("grid {} changed its leaves", g));
+            const openvdb::Coord o = m.origins[i];
+            if (leaf->origin() != o)
+                damaged(fmt::format("a leaf of grid {} says it is at ({}, {}, {}) but the tree holds it at ({}, {}, {})",
+                                    g, leaf->origin().x(), leaf->origin().y(), leaf->origin().z(), o.x(), o.y(), o.z()));
+            for (openvdb::Index w = 0; w < 8; ++w)
+                if (leaf->getValueMask().template getWord<uint64_t>(w) != m.words[i][w])
+                    damaged(fmt::format("grid {} stores two different masks for its leaf at ({}, {}, {})", g,
+                                        o.x(), o.y(), o.z()));
+        }
+    }
+    void checkLeaves(const openvdb::GridBase& grid, const TopologyMasks& m, const std::string& g) const
+    {
+        compare<openvdb::MaskGrid>(grid, m, g);
+        compare<openvdb::BoolGrid>(grid, m, g);
+    }
+
+    /// The active voxel count and bounding box OpenVDB's writer records
+    /// (file_voxel_count, file_bbox_min/max), when the file has them.
+    void checkStats(const openvdb::GridBase& grid, const std::string& g) const
+    {
+        if (auto count = grid.getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT)) {
+            const openvdb::Index64 actual = grid.activeVoxelCount();
+            if (openvdb::Index64(count->value()) != actual)
+                damaged(fmt::format("grid {} has {} active voxels but the file recorded {}", g, actual, count->value()));
+        }
+        const auto lo = grid.getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
+        const auto hi = grid.getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
+        if (lo && hi) {
+            const openvdb::CoordBBox b = grid.evalActiveVoxelBoundingBox();
+            if (b.min().asVec3i() != lo->value() || b.max().asVec3i() != hi->value())
+                damaged(fmt::format("grid {} has active voxels in ({}, {}, {}) .. ({}, {}, {}) but the file recorded "
+                                    "({}, {}, {}) .. ({}, {}, {})",
+                                    g, b.min().x(), b.min().y(), b.min().z(), b.max().x(), b.max().y(), b.max().z(),
+                                    lo->value()[0], lo->value()[1], lo->value()[2], hi->value()[0], hi->value()[1],
+                                    hi->value()[2]));
+        }
+    }
+
+    std::istream& is_;
+    uint64_t size_;
+    std::string name_;
+    openvdb::io::StreamMetadata::Ptr streamMeta_;
+    int32_t count_ = 0;
+    std::vector<GridDescriptor> descriptors_;
+};
 
 void writeGrids(const std::string& path, const openvdb::GridPtrVec& grids)
 {
@@ -83,22 +549,79 @@ void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::str
     writeGrids(path, grids);
 }
 
+namespace {
+VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName);
+} // namespace
+
 VdbBricks readVdbBricks(const std::string& path, const std::string& gridName)
 {
-    auto file = openVdb(path);
-    openvdb::GridBase::Ptr grid;
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw Error(fmt::format("{}: no such file", path));
+    if (fs::is_directory(path, ec)) throw Error(fmt::format("{}: is a folder, not a .vdb file", path));
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(fmt::format("{}: cannot open the file", path));
+    return readVdbBricks(in, path, gridName);
+}
+
+VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::string& gridName)
+{
+    openvdb::initialize();
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    in.seekg(0);
+    if (!in || size < 0) throw Error(fmt::format("{}: cannot read the file", name));
+    if (size == 0) throw Error(fmt::format("{}: the file is empty", name));
     try {
-        auto names = file->beginName();
-        if (!(names != file->endName())) throw Error(fmt::format("{}: the file holds no grids", path));
-        const std::string name = gridName.empty() ? names.gridName() : gridName;
-        if (!file->hasGrid(name)) throw Error(fmt::format("{}: no grid named '{}'", path, name));
-        grid = file->readGrid(name);
+        return readChecked(in, uint64_t(size), name, gridName);
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
-        throw Error(fmt::format("{}: cannot read the grid: {}", path, e.what()));
+        // Whatever OpenVDB throws where the reader did not expect it.
+        throw Error(fmt::format("{}: truncated or damaged: {}", name, e.what()));
     }
-    GridBricks gb = gridToBricks(*grid, path);
+}
+
+namespace {
+
+VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName)
+{
+    CheckedReader reader(in, size, name);
+    reader.open();
+
+    // Every grid is read and checked, the one asked for kept (with its
+    // instance parent, whose tree it shares).
+    std::vector<CheckedReader::Read> grids;
+    if (reader.sequential()) grids = reader.readAll();
+    else
+        for (const auto& gd : reader.descriptors()) grids.push_back({gd, nullptr});
+    if (grids.empty()) throw Error(fmt::format("{}: the file holds no grids", name));
+    // Without a name, the first grid in name order (as OpenVDB's File lists them).
+    const CheckedReader::Read* chosen = nullptr;
+    if (gridName.empty()) {
+        for (const auto& r : grids)
+            if (!chosen || r.gd.gridName() < chosen->gd.gridName()) chosen = &r;
+    } else {
+        for (const auto& r : grids)
+            if (!chosen && r.gd.gridName() == gridName) chosen = &r;
+        const std::string unique = GridDescriptor::stringAsUniqueName(gridName);
+        for (const auto& r : grids)
+            if (!chosen && r.gd.uniqueName() == unique) chosen = &r; // "name[1]": the second grid of that name
+    }
+    if (!chosen) throw Error(fmt::format("{}: no grid named '{}'", name, gridName));
+    const std::string parent = chosen->gd.isInstance() ? chosen->gd.instanceParentName() : std::string();
+    openvdb::GridBase::Ptr grid, parentGrid;
+    for (auto& r : grids) {
+        auto g = reader.sequential() ? r.grid : reader.read(r.gd);
+        if (&r == chosen) grid = g;
+        if (!parent.empty() && r.gd.uniqueName() == parent) parentGrid = g;
+    }
+    if (!parent.empty()) {
+        if (!parentGrid)
+            throw Error(fmt::format("{}: truncated or damaged: grid '{}' shares the tree of a grid '{}' the file lacks",
+                                    name, chosen->gd.gridName(), GridDescriptor::nameAsString(parent)));
+        grid->setTree(parentGrid->baseTreePtr());
+    }
+    GridBricks gb = gridToBricks(*grid, name);
     VdbBricks out;
     out.gridName = grid->getName();
     out.gridType = grid->type();
@@ -107,5 +630,7 @@ VdbBricks readVdbBricks(const std::string& path, const std::string& gridName)
     out.tilesExpanded = gb.tilesExpanded;
     return out;
 }
+
+} // namespace
 
 } // namespace svo::vdb

@@ -1,6 +1,7 @@
 #pragma once
 /// @file vdb_file.h
 /// Octrees to and from .vdb files, without OpenVDB in the interface.
+#include <iosfwd>
 #include <map>
 #include <string>
 #include <utility>
@@ -39,9 +40,16 @@ WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOp
 void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::string, Octree>>& grids,
                    const std::map<std::string, std::string>& metadata);
 
-/// The active voxels of one grid (`gridName`, or the first grid when empty)
-/// as bricks, active tiles expanded. Throws svo::Error when the file has no
-/// grids, the grid is missing, or its type or transform is unsupported.
+/// The active voxels of one grid (`gridName`, or the first grid in name
+/// order when empty) as bricks, active tiles expanded. Throws svo::Error when
+/// the file has no grids, the grid is missing, or its type or transform is
+/// unsupported, and when the file is cut short or damaged: every grid is read
+/// and must end where its descriptor says, the last one at the end of the
+/// file; the voxel count and bounding box OpenVDB's writer records must match;
+/// a mask or bool leaf's two copies of its mask (and its origin) must agree.
+/// OpenVDB files carry no checksum: a changed bit that still decodes to a
+/// consistent file (a voxel value, a mask bit in a file without the recorded
+/// count) cannot be found.
 struct VdbBricks {
     std::string gridName, gridType;
     GridSpec grid;
@@ -49,5 +57,8 @@ struct VdbBricks {
     uint64_t tilesExpanded = 0;
 };
 VdbBricks readVdbBricks(const std::string& path, const std::string& gridName = {});
+/// The same from a stream holding a whole .vdb file (seekable, from its
+/// start); `name` stands for it in messages.
+VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::string& gridName = {});
 
 } // namespace svo::vdb
