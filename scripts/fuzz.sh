@@ -14,9 +14,13 @@ cmake -S tests/fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 -DCMA
 cmake --build build-fuzz
 for target in fuzz_octree_file fuzz_off_reader fuzz_obj_reader fuzz_ply_reader fuzz_stl_reader fuzz_vdb_reader; do
   rm -rf "build-fuzz/corpus/$target" && mkdir -p "build-fuzz/corpus/$target"
-  echo "fuzz: $target, $runs runs, seed $seed"
+  # The .vdb target runs about 1,000 inputs a second (OpenVDB parses each), the
+  # others 20,000 to 40,000: it gets a sixth of the runs to keep CI's time.
+  n=$runs
+  [ "$target" = fuzz_vdb_reader ] && n=$(( runs / 6 > 0 ? runs / 6 : 1 ))
+  echo "fuzz: $target, $n runs, seed $seed"
   log="build-fuzz/$target.log"
-  if ! "build-fuzz/$target" -seed="$seed" -runs="$runs" -max_total_time=600 -max_len=8192 -timeout=10 -print_final_stats=1 \
+  if ! "build-fuzz/$target" -seed="$seed" -runs="$n" -max_total_time=600 -max_len=8192 -timeout=10 -print_final_stats=1 \
       -artifact_prefix=build-fuzz/ "build-fuzz/corpus/$target" "tests/fuzz/corpus/$target" >"$log" 2>&1; then
     tail -40 "$log"
     echo "fuzz: $target failed; the input is in build-fuzz/" >&2
