@@ -120,12 +120,8 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
                    ch & kColors ? "color" : "");
     fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
     fmt::print("  {:<11} {:.3g} voxels (cubes grown by half of it on the GPU)\n", "guard band", grid.epsilon());
-    if (stats.backend == "compute" && stats.listEntries == 0)
-        fmt::print("  {:<11} none: bricks written directly, {} overflow retries, {:.1f} MB of GPU buffers\n",
-                   "voxel list", stats.overflowRetries, double(stats.gpuBytes) / 1e6);
-    else
-        fmt::print("  {:<11} {} entries, {} overflow retries, {:.1f} MB of GPU buffers\n", "voxel list",
-                   thousands(stats.listEntries), stats.overflowRetries, double(stats.gpuBytes) / 1e6);
+    fmt::print("  {:<11} {} entries, {} overflow retries, {:.1f} MB of GPU buffers\n", "voxel list",
+               thousands(stats.listEntries), stats.overflowRetries, double(stats.gpuBytes) / 1e6);
     fmt::print("  {:<11} {}\n", "output",
                timingOnly ? std::string("none (--repeat without -o times the runs only)")
                           : describeOutput(output, written, grids));

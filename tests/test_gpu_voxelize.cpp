@@ -114,28 +114,6 @@ TEST_F(GpuVoxelize, OverflowTriggersExactlyOneRetry)
     EXPECT_EQ(small.keys, normal.keys);
 }
 
-TEST_F(GpuVoxelize, ComputeBricksGrowTheirTableAndOctreeUntilEverythingFits)
-{
-    // The brick path (no list): a table and octree buffers far too small at
-    // first must grow, and the octree must be the raster backend's.
-    const auto mesh = test::sphere({0.1, 0.2, 0.3}, 1.0, 48, 24);
-    const GridSpec grid = makeGrid(mesh, res(200));
-    const auto raster = gl::voxelizeToOctree(*context_, mesh, grid);
-    gl::RasterOptions tiny;
-    tiny.pipeline = gl::Pipeline::Compute;
-    tiny.initialCapacity = 1;      // a 1,024-slot brick table
-    tiny.initialBrickCapacity = 1; // and room for one brick in the octree
-    const auto k = gl::voxelizeToOctree(*context_, mesh, grid, tiny);
-    EXPECT_EQ(k.listEntries, 0u); // bricks were written directly
-    EXPECT_GE(k.overflowRetries, 2);
-    EXPECT_GT(k.octree.bricks.size(), 1024u);
-    EXPECT_EQ(octreeKeys(k.octree), octreeKeys(raster.octree));
-    EXPECT_TRUE(checkOctree(k.octree).empty());
-    gl::RasterOptions plain;
-    plain.pipeline = gl::Pipeline::Compute;
-    EXPECT_EQ(octreeKeys(gl::voxelizeToOctree(*context_, mesh, grid, plain).octree), octreeKeys(raster.octree));
-}
-
 #ifdef SVO_CGAL_MESHES
 TEST_F(GpuVoxelize, RealMeshesFromCgalData)
 {

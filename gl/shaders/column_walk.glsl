@@ -1,17 +1,21 @@
 // One voxel column of one triangle: every voxel of the column that the
 // triangle's plane can reach is put to the shared overlap test on the cube
-// grown by the guard band; those that pass are kept (svo_keep: appended to
-// the voxel list, voxel_list.glsl, or set in a brick). The raster fragment
-// shader and the compute backend both call this, so that for the columns they
-// visit they keep exactly the same voxels.
+// grown by the guard band; those that pass go to the voxel list. The raster
+// fragment shader and the compute backend both call this, so that for the
+// columns they visit they keep exactly the same voxels.
 #include "gpu_layout.h"
 
+// The entry count, and how often it wrapped past 2^32 - 1.
+layout(binding = SVO_BIND_RASTER_COUNTER, offset = 0) uniform atomic_uint uCount;
+layout(binding = SVO_BIND_RASTER_COUNTER, offset = 4) uniform atomic_uint uWraps;
+layout(std430, binding = SVO_BIND_RASTER_LIST) writeonly restrict buffer VoxelList { uvec2 voxels[]; };
+// Written only when attribute channels are asked for: the triangle of each entry.
+layout(std430, binding = SVO_BIND_RASTER_TRIANGLES) writeonly restrict buffer TriangleList { uint triangleOf[]; };
+uniform uint uWriteTriangles;
 uniform float uHalf;
+uniform uint uCapacity;
 uniform ivec3 uDims;
 const float kUlp = 5.96046448e-08;
-
-// What happens to a kept voxel: defined by the shader that includes this file.
-void svo_keep(vec3 centre, uint triangle);
 
 /// Column (col.x, col.y) on the plane across axis w; box = (umin, vmin, umax,
 /// vmax) of the projected triangle. Columns whose square misses the box, or
@@ -30,6 +34,13 @@ void svo_walk_column(vec3 a, vec3 b, vec3 c, int w, vec2 col, vec4 box, uint tri
         centre[u] = col.x;
         centre[v] = col.y;
         centre[w] = float(k);
-        if (svo_triangle_box_overlap(a, b, c, centre, uHalf)) svo_keep(centre, triangle);
+        if (svo_triangle_box_overlap(a, b, c, centre, uHalf)) {
+            uint slot = atomicCounterIncrement(uCount);
+            if (slot == 0xFFFFFFFFu) atomicCounterIncrement(uWraps);
+            if (slot < uCapacity) {
+                voxels[slot] = packVoxelKey(uvec3(centre));
+                if (uWriteTriangles != 0u) triangleOf[slot] = triangle;
+            }
+        }
     }
 }

@@ -2,7 +2,6 @@
 // One fragment is one voxel column (column_walk.glsl).
 #include "glsl_types.glsl"
 #include "overlap.glsl"
-#include "voxel_list.glsl"
 #include "column_walk.glsl"
 
 flat in vec3 gA;
@@ -12,8 +11,6 @@ flat in int gAxis;
 flat in vec4 gBox;
 
 uniform vec2 uTileOrigin;
-
-void svo_keep(vec3 centre, uint triangle) { svo_append(centre, triangle); }
 
 void main()
 {

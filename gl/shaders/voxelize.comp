@@ -12,45 +12,11 @@
 layout(local_size_x = 64) in;
 #include "glsl_types.glsl"
 #include "overlap.glsl"
-#include "voxel_list.glsl"
 #include "column_walk.glsl"
 
 layout(std430, binding = SVO_BIND_COMPUTE_POSITIONS) readonly restrict buffer Positions { float positions[]; };
 layout(std430, binding = SVO_BIND_COMPUTE_INDICES) readonly restrict buffer Indices { uint indices[]; };
 layout(std430, binding = SVO_BIND_COMPUTE_WORK) restrict buffer Work { uint workCount; uint workWraps; uvec2 work[]; };
-
-// Brick mode (uBricks = 1): no list; each kept voxel sets its bit in its
-// brick's mask, found through a hash table of brick keys (open addressing,
-// linear probing, 32-bit keys: grids up to 8192 voxels a side, which the host
-// checks). uCount counts bricks inserted, uWraps voxels that found the table full.
-layout(std430, binding = SVO_BIND_COMPUTE_TABLE) restrict buffer Table { uint slots[]; };
-layout(std430, binding = SVO_BIND_COMPUTE_TABLE_MASKS) restrict buffer TableMasks { uint tableMasks[]; };
-uniform uint uBricks;
-uniform uint uTableMask; // slots - 1, a power of two minus one
-const uint kEmpty = 0xFFFFFFFFu;
-
-void svo_keep(vec3 centre, uint triangle)
-{
-    if (uBricks == 0u) {
-        svo_append(centre, triangle);
-        return;
-    }
-    uvec3 voxel = uvec3(centre);
-    uvec3 b = voxel >> 3u;
-    uint key = (b.x << 20u) | (b.y << 10u) | b.z;
-    uint bit = leafBitOfVoxelKey(packVoxelKey(voxel));
-    uint h = (key * 2654435761u) & uTableMask;
-    for (uint probe = 0u; probe <= uTableMask; ++probe) {
-        uint previous = atomicCompSwap(slots[h], kEmpty, key);
-        if (previous == kEmpty) atomicCounterIncrement(uCount);
-        if (previous == kEmpty || previous == key) {
-            atomicOr(tableMasks[kBrickWords * h + (bit >> 5u)], 1u << (bit & 31u));
-            return;
-        }
-        h = (h + 1u) & uTableMask;
-    }
-    atomicCounterIncrement(uWraps);
-}
 
 uniform uint uPass;
 uniform uint uTriangles;

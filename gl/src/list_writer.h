@@ -51,14 +51,6 @@ private:
 /// The raster backend's writer (raster.geom, raster.frag).
 std::unique_ptr<ListWriter> makeRasterWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                                              const RasterOptions& options);
-/// True when the compute backend writes bricks directly (no voxel list): no
-/// attribute channels and no list asked for, grids up to 8192 voxels a side.
-bool computeWritesBricks(const RasterOptions& options, const GridSpec& grid);
-/// The compute backend's brick path: a GPU hash table of bricks whose masks
-/// the kept voxels set, compacted and handed to the octree build. Inside a Context::Scope.
-OctreeVoxelization voxelizeComputeBricks(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
-                                         const RasterOptions& options);
-
 /// The compute backend's writer (voxelize.comp).
 std::unique_ptr<ListWriter> makeComputeWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                                               const RasterOptions& options);

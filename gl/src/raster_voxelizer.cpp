@@ -289,7 +289,6 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
                                     const RasterOptions& options)
 {
     const Context::Scope scope(context);
-    if (computeWritesBricks(options, grid)) return voxelizeComputeBricks(context, mesh, grid, options);
     const Checkpoint& checkpoint = options.checkpoint;
     checkpoint(0.0, "mesh upload");
     OctreeVoxelization result;

@@ -110,13 +110,7 @@ SVO_CONST(uint) kSumWords = 8u;
 /* Compute backend (voxelize.comp): the column walk's buffers above, and */
 #define SVO_BIND_COMPUTE_POSITIONS 2 /* local float positions, 3 per vertex */
 #define SVO_BIND_COMPUTE_INDICES 3   /* 3 vertex indices per triangle */
-#define SVO_BIND_COMPUTE_WORK 4      /* work count, wraps, then (triangle, chunk) items */
-#define SVO_BIND_COMPUTE_TABLE 5       /* brick mode: hash table of brick keys */
-#define SVO_BIND_COMPUTE_TABLE_MASKS 6 /* brick mode: 16 uints of mask per table slot */
-/* Brick compaction (brick_compact.comp): the table above, and */
-#define SVO_BIND_COMPACT_KEYS 0  /* brick-origin voxel keys */
-#define SVO_BIND_COMPACT_MASKS 1 /* 16 uints per brick */
-#define SVO_BIND_COMPACT_COUNT 2 /* bricks written */
+#define SVO_BIND_COMPUTE_WORK 4      /* work count, wraps, then (triangle, row segment) items */
 /* Octree passes (octree_*.comp): four buffers every pass sees ... */
 #define SVO_BIND_BUILD_STATE 0
 #define SVO_BIND_NODES 1
@@ -183,10 +177,7 @@ constexpr bool distinctSlots(std::initializer_list<int> slots)
 }
 static_assert(distinctSlots({SVO_BIND_RASTER_LIST, SVO_BIND_RASTER_TRIANGLES}));
 static_assert(distinctSlots({SVO_BIND_RASTER_LIST, SVO_BIND_RASTER_TRIANGLES, SVO_BIND_COMPUTE_POSITIONS,
-                             SVO_BIND_COMPUTE_INDICES, SVO_BIND_COMPUTE_WORK, SVO_BIND_COMPUTE_TABLE,
-                             SVO_BIND_COMPUTE_TABLE_MASKS}));
-static_assert(distinctSlots({SVO_BIND_COMPUTE_TABLE, SVO_BIND_COMPUTE_TABLE_MASKS, SVO_BIND_COMPACT_KEYS,
-                             SVO_BIND_COMPACT_MASKS, SVO_BIND_COMPACT_COUNT}));
+                             SVO_BIND_COMPUTE_INDICES, SVO_BIND_COMPUTE_WORK}));
 static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRICKS, SVO_BIND_ENTRIES,
                              SVO_BIND_LIST_COUNTER}));
 static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRICKS, SVO_BIND_ENTRIES,
