@@ -141,4 +141,16 @@ TEST(Stability, BeyondTheLimitsIsAClearError)
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("use a coarser grid"), std::string::npos) << e.what();
     }
+    // The compute backend counts one triangle's columns in 32 bits: a triangle
+    // over more columns is refused before any GPU work, with what to do instead.
+    gl::RasterOptions compute;
+    compute.pipeline = gl::Pipeline::Compute;
+    const auto flat = test::soup("flat", {{Vec3d{0, 0, 0}, Vec3d{1, 0, 0}, Vec3d{0, 1, 0}}});
+    try {
+        gl::voxelizeToOctree(context, flat, makeGrid(flat, {70000, 0}), compute);
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("voxel columns, more than the compute backend counts"), std::string::npos)
+            << e.what();
+    }
 }

@@ -74,13 +74,13 @@ public:
         bound_ = bound.items;
         // The shader counts one triangle's columns in 32 bits.
         if (bound.maxColumns >= (uint64_t(1) << 32) - kChunk)
-            throw Error(fmt::format("a triangle spans {} voxel columns, more than the compute backend counts; use "
-                                    "--backend raster or a coarser grid",
+            throw Error(fmt::format("a triangle spans {} voxel columns, more than the compute backend counts; use the "
+                                    "raster backend or a coarser grid",
                                     bound.maxColumns));
         // Each item is 8 bytes; a queue past 2^31 items (16 GB) is refused, not truncated.
         if (bound_ >= (uint64_t(1) << 31))
             throw Error(fmt::format("the compute backend would queue up to {} column chunks, more than one pass "
-                                    "holds; use --backend raster or a coarser grid",
+                                    "holds; use the raster backend or a coarser grid",
                                     bound_));
         work_ = &context.scratch("compute work queue", 8 + std::max<uint64_t>(bound_, 1) * 8);
         program_.set("uHalf", half_);
