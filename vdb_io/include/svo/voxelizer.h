@@ -76,6 +76,27 @@ enum class Dilation {
     CentroidPush, ///< an early vertex-push method; misses voxels; benchmarks only
 };
 
+/// How level sets and solids tell inside from outside.
+enum class SignMethod {
+    /// Parity when the mesh is closed and consistently oriented (after welding
+    /// vertices at equal positions); for any other mesh an error that says
+    /// what is open, since parity is undefined there.
+    Auto,
+    /// Crossings counted along voxel columns, with exact tie rules: a voxel
+    /// centre on a face, edge or vertex never flips the result. Correct for
+    /// closed meshes, including nested shells; used as asked on others.
+    Parity,
+};
+
+/// What a level set (or unsigned distance field) holds.
+struct LevelSetOptions {
+    double exteriorBand = 3.0;     ///< active band outside the surface, in voxels (>= 1)
+    double interiorBand = 3.0;     ///< active band inside, in voxels (>= 1); unused when unsigned
+    bool unsignedDistance = false; ///< distances without sign: no inside/outside needed
+    bool closestTriangle = false;  ///< also an Int32Grid "closest_triangle" on the band
+    SignMethod sign = SignMethod::Auto;
+};
+
 /// Which GPU the Voxelizer uses.
 struct DeviceOptions {
     /// "" ($SVO_EGL_DEVICE, else "auto"), "auto" (hardware first, then
@@ -98,6 +119,9 @@ struct VoxelizeStats {
     std::string renderer;          ///< GL renderer string, or "cpu"
     GridSpec grid;                 ///< the local grid the call used
     std::vector<std::string> warnings; ///< what was asked for but could not be given (colours without vertex colours)
+    std::string sign;              ///< level sets and solids: the sign method used and why ("parity: closed and ...")
+    uint64_t openColumns = 0;      ///< level sets and solids: voxel columns crossed an odd number of times (open mesh)
+    uint64_t bandBricks = 0;       ///< level sets and solids: bricks whose distances or signs were computed
     double gpuMs() const;          ///< the sum of the stages' GPU times
 };
 
@@ -200,6 +224,56 @@ public:
     Octree bricksToOctree(const GridSpec& grid, std::vector<std::pair<uint64_t, Brick>> bricks,
                           const VoxelizeOptions& options = {});
 
+    /// @brief A narrow-band signed distance field of a mesh: OpenVDB's
+    /// meshToLevelSet, on the GPU.
+    /// @details Method: the surface voxels (as meshToMask) grown by the band
+    /// give the band's bricks; the GPU computes, for every voxel centre in
+    /// them, the exact distance to the closest triangle in double precision
+    /// (rounded once to float), and its side by parity along voxel columns
+    /// (svo/gl/distance_field.h). Values are world units (index distance times
+    /// the voxel size), negative inside. Voxels closer than the band on their
+    /// side are active; other voxels hold +/- the background, the exterior
+    /// band times the voxel size, signed as OpenVDB's signedFloodFill signs
+    /// them. The grid has class GRID_LEVEL_SET and is named "surface".
+    /// Guarantees: every active distance is within 1e-6 voxel of the exact
+    /// distance (the float rounding of a double result); signs are exact for
+    /// voxel centres farther than that from the surface on closed meshes.
+    /// @param xform      a linear transform with uniform scale (distances are world units)
+    /// @param exteriorBand, interiorBand  band half widths in voxels, each >= 1
+    /// @throw svo::Error as meshToMask, and for a band under 1 voxel or not
+    ///        finite, a transform without uniform scale, the CPU backend (this
+    ///        is GPU work), or an open mesh under SignMethod::Auto.
+    template <typename PointT>
+    openvdb::FloatGrid::Ptr meshToLevelSet(const std::vector<PointT>& points,
+                                           const std::vector<openvdb::Vec3I>& triangles,
+                                           const openvdb::math::Transform& xform, float exteriorBand = 3.0f,
+                                           float interiorBand = 3.0f, const VoxelizeOptions& options = {});
+    /// Unsigned distances within `band` voxels (class GRID_UNKNOWN, named
+    /// "distance", background band times the voxel size); needs no closed mesh.
+    template <typename PointT>
+    openvdb::FloatGrid::Ptr meshToUnsignedDistanceField(const std::vector<PointT>& points,
+                                                        const std::vector<openvdb::Vec3I>& triangles,
+                                                        const openvdb::math::Transform& xform, float band = 3.0f,
+                                                        const VoxelizeOptions& options = {});
+    /// @brief The solid a closed mesh bounds: every voxel whose centre is
+    /// inside, plus the surface voxels (as meshToMask). Whole regions inside
+    /// are active tiles at the largest tree level they fill, so memory follows
+    /// the surface. Named "solid".
+    /// @throw svo::Error as meshToLevelSet.
+    template <typename PointT>
+    openvdb::MaskGrid::Ptr meshToSolid(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
+                                       const openvdb::math::Transform& xform, const VoxelizeOptions& options = {},
+                                       SignMethod sign = SignMethod::Auto);
+
+    /// Level set (or unsigned field) of svo's own mesh on a grid from
+    /// makeGrid: the distance grid, then "closest_triangle" when asked. The
+    /// band may reach beyond grid.dims; the output's transform is the grid's.
+    openvdb::GridPtrVec levelSet(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& levelSet = {},
+                                 const VoxelizeOptions& options = {});
+    /// Solid of svo's own mesh on a grid from makeGrid (see meshToSolid).
+    openvdb::MaskGrid::Ptr solid(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
+                                 SignMethod sign = SignMethod::Auto);
+
     /// The GPU's vendor, renderer and version (creates the context if needed).
     std::string deviceDescription();
     /// Frees the scratch buffers kept for the next call.
@@ -211,6 +285,13 @@ private:
     Octree voxelizePrepared(const IndexSpaceMesh& prepared, const VoxelizeOptions& options);
     Octree voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                            std::vector<uint64_t>* voxelList);
+    /// levelSet()/solid() after the mesh and grid were checked; `xform` is the
+    /// output transform and `worldPerVoxel` its uniform scale.
+    openvdb::GridPtrVec levelSetChecked(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
+                                        const VoxelizeOptions& options, openvdb::math::Transform::Ptr xform,
+                                        double worldPerVoxel);
+    openvdb::MaskGrid::Ptr solidChecked(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                                        SignMethod sign, openvdb::math::Transform::Ptr xform);
     std::unique_ptr<Impl> impl_;
 };
 

@@ -124,6 +124,26 @@ SVO_CONST(uint) kSumWords = 8u;
 #define SVO_BIND_TRIANGLE_VALUES 6    /* attributes: 6 floats per triangle, normal then colour */
 #define SVO_BIND_ATTRIBUTE_SUMS 7     /* attributes: kSumWords uints per voxel */
 
+/* ---- Brick table (gl/src/brick_table.h) ---------------------------------
+   The bricks a distance or sign pass writes to, found by their brick
+   coordinates (local coordinate >> 3): open addressing with linear probing
+   over a power-of-two table of kTableWords uints per slot (x, y, z, index);
+   an empty slot has index kNoChild. The hash is uint arithmetic, which wraps
+   alike in C++ and GLSL. */
+SVO_CONST(uint) kTableWords = 4u;
+#define SVO_BRICK_HASH(x, y, z) ((((x) * 0x9E3779B1u) ^ ((y) * 0x85EBCA77u) ^ ((z) * 0xC2B2AE3Du)) * 0x27D4EB2Fu)
+
+/* Distance and sign passes (band_distance.comp, parity_flips.comp). */
+#define SVO_BIND_FIELD_POSITIONS 0 /* local double positions, 3 per vertex */
+#define SVO_BIND_FIELD_INDICES 1   /* 3 vertex indices per triangle */
+#define SVO_BIND_FIELD_ITEMS 2     /* kItemWords uints per triangle: first item, brick box origin, box size */
+#define SVO_BIND_FIELD_TABLE 3     /* the brick table */
+#define SVO_BIND_FIELD_DISTANCES 4 /* 512 per brick: float bits of the distance in voxels (+inf: beyond the band) */
+#define SVO_BIND_FIELD_CLOSEST 5   /* 512 per brick: the closest triangle (0xFFFFFFFF: none) */
+#define SVO_BIND_FIELD_FLIPS 6     /* 16 uints per brick: parity crossings, one bit per voxel */
+#define SVO_BIND_FIELD_COUNTERS 7  /* uints: crossings whose brick is not in the table */
+SVO_CONST(uint) kItemWords = 8u; /* first item, box origin x y z, box size x y z, unused */
+
 #ifndef __cplusplus
 /* ---- GLSL helpers ------------------------------------------------------ */
 
@@ -185,6 +205,9 @@ static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRIC
 static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRICKS, SVO_BIND_ENTRIES,
                              SVO_BIND_ENTRY_TRIANGLES, SVO_BIND_BRICK_VOXEL_OFFSETS, SVO_BIND_TRIANGLE_VALUES,
                              SVO_BIND_ATTRIBUTE_SUMS}));
+static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_FIELD_ITEMS,
+                             SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
+                             SVO_BIND_FIELD_FLIPS, SVO_BIND_FIELD_COUNTERS}));
 
 } // namespace svo::gpu
 #endif

@@ -1,0 +1,28 @@
+#pragma once
+/// @file mesh_topology.h
+/// Whether a mesh bounds a solid: the test that picks the sign method.
+#include <cstdint>
+#include <string>
+
+#include "svo/core/mesh.h"
+
+namespace svo {
+
+/// Edge counts of a mesh after welding vertices at equal positions (so a
+/// triangle soup such as an STL file counts as connected where it is).
+/// Triangles with a repeated corner are left out: they bound nothing.
+struct EdgeReport {
+    uint64_t edges = 0;        ///< distinct undirected edges
+    uint64_t boundary = 0;     ///< edges of one triangle only
+    uint64_t nonManifold = 0;  ///< edges of three or more triangles
+    uint64_t misoriented = 0;  ///< edges of two triangles that run the same way along it
+    /// Every edge has exactly two triangles running opposite ways: parity
+    /// along any line gives inside and outside correctly.
+    bool closedAndOriented() const { return edges > 0 && !boundary && !nonManifold && !misoriented; }
+    /// "closed and consistently oriented", or what is wrong, with counts.
+    std::string describe() const;
+};
+
+EdgeReport checkEdges(const TriangleMesh& mesh);
+
+} // namespace svo

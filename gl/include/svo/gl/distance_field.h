@@ -1,0 +1,68 @@
+#pragma once
+/// @file distance_field.h
+/// Distances and inside/outside signs on the GPU, for a given set of bricks:
+/// the GPU half of level sets and solids (svo::Voxelizer::levelSet, ::solid).
+///
+/// Method. The caller names the bricks that matter (the narrow band around the
+/// surface); a hash table on the GPU finds them by brick coordinates, so memory
+/// follows the surface, not the grid's volume. Work is triangle-parallel: each
+/// triangle's box of bricks (grown by the band) is cut into one work item per
+/// brick, taken by a workgroup of 64 threads, so a large triangle does not
+/// serialize a thread (field_common.glsl).
+///   distances  every voxel centre of an item's brick gets its exact distance
+///              to the triangle in double precision; the least per voxel is
+///              kept by atomicMin on float bits (band_distance.comp);
+///   closest    optionally, the smallest triangle index at that distance;
+///   crossings  every voxel column (i, j) inside a triangle's projection on z
+///              (with simulation-of-simplicity ties) marks the first voxel
+///              centre above the crossing; an odd count of marks below a
+///              centre means inside a closed mesh (parity_flips.comp). The
+///              sums up each column are the host's (svo/core/parity_scan.h).
+///
+/// Precision. Distances are computed in double from the local double vertex
+/// coordinates and rounded once to float (voxel units): the error is at most
+/// half a float ulp of the distance plus a few double ulps, under 1e-6 voxel
+/// in a band of a few voxels.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "svo/core/grid.h"
+#include "svo/core/interrupt.h"
+#include "svo/core/mesh.h"
+#include "svo/core/octree.h"
+#include "svo/core/voxelization.h"
+#include "svo/gl/context.h"
+
+namespace svo::gl {
+
+struct FieldRequest {
+    /// The bricks to compute (brick coordinates: local voxel coordinate / 8),
+    /// unique. Every voxel a result needs must lie in one of them: each voxel
+    /// within `band` of a triangle for distances, and the first voxel centre
+    /// above every crossing for signs.
+    std::vector<std::array<uint32_t, 3>> bricks;
+    double band = 0;             ///< distances up to this many voxels; 0: no distances
+    bool closestTriangle = false; ///< also the closest triangle of each voxel in the band
+    bool crossings = true;       ///< the parity crossings
+    Checkpoint checkpoint;
+};
+
+struct FieldResult : RunStats {
+    /// 512 per brick in LeafNode bit order: distance in voxels, +inf beyond the band.
+    std::vector<float> distances;
+    /// 512 per brick: the smallest index of the closest triangles; -1 beyond the band.
+    std::vector<int32_t> closest;
+    /// Per brick: bit set where an odd number of crossings mark that voxel.
+    std::vector<Brick> crossings;
+    uint64_t lostCrossings = 0; ///< crossings whose voxel is in no requested brick (a caller's error)
+};
+
+/// Runs the passes on `context` for a mesh on `grid` (checked by the caller).
+/// @throw svo::Error when the work exceeds 2^32 items (a band or grid too
+///        large for one pass) or a GPU buffer cannot be allocated;
+///        svo::Interrupted from the checkpoint.
+FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                         const FieldRequest& request);
+
+} // namespace svo::gl

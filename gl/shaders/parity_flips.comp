@@ -1,0 +1,64 @@
+#version 450 core
+// Inside/outside by parity along z columns: every triangle marks where it
+// crosses each voxel column (i, j); a voxel centre is inside when an odd
+// number of crossings lie below it. The host sums the marks up each column
+// (core/parity_scan.h).
+//
+// Ties (simulation of simplicity). Each voxel centre is perturbed to
+// (i + e^2, j + e^3, k + e) for an infinitesimal e, so no centre lies on a
+// face, edge or vertex: in projection the column point misses every edge and
+// vertex (edgeSide), and a centre at the crossing's exact height counts as
+// above it, since e outweighs the crossing's own shift of order e^2. A column
+// over an edge shared by two triangles crosses exactly one of them. Each edge
+// function is evaluated with its end points in a fixed order and `precise`,
+// so the two triangles of an edge compute the same value and decide alike
+// even where double rounding is inexact.
+layout(local_size_x = 64) in;
+#include "field_common.glsl"
+
+layout(std430, binding = SVO_BIND_FIELD_FLIPS) restrict buffer Flips { uint flips[]; };
+layout(std430, binding = SVO_BIND_FIELD_COUNTERS) restrict buffer Counters { uint missing; };
+
+uniform uint uDimZ; // local voxels along z
+
+// Side of the perturbed column point q + (e^2, e^3) of the directed edge p0 -> p1
+// (+1 left, -1 right; 0 only for an edge of zero length in projection).
+int edgeSide(dvec2 p0, dvec2 p1, dvec2 q)
+{
+    bool swapped = p0.x > p1.x || (p0.x == p1.x && p0.y > p1.y);
+    dvec2 a = swapped ? p1 : p0, b = swapped ? p0 : p1;
+    precise double e = (b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x);
+    int s = e > 0.0LF ? 1 : e < 0.0LF ? -1 : 0;
+    if (s == 0) s = a.y > b.y ? 1 : a.y < b.y ? -1 : b.x > a.x ? 1 : b.x < a.x ? -1 : 0; // the e^2, then e^3 term
+    return swapped ? -s : s;
+}
+
+void main()
+{
+    uint x = gl_LocalInvocationID.x >> 3u, y = gl_LocalInvocationID.x & 7u;
+    for (uint item = workgroupIndex(); item < uItems; item += workgroupCount()) {
+        uint t;
+        uvec3 b = brickOfItem(item, t); // b.z unused: a column box
+        dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
+        dvec2 q = dvec2((b.xy << kBrickLog2) + uvec2(x, y));
+        int sa = edgeSide(B.xy, C.xy, q), sb = edgeSide(C.xy, A.xy, q), sc = edgeSide(A.xy, B.xy, q);
+        if (sa == 0 || sa != sb || sb != sc) continue; // the column misses the triangle
+        // Where it crosses: barycentric weights from the same edge functions.
+        double wa = (C.x - B.x) * (q.y - B.y) - (C.y - B.y) * (q.x - B.x);
+        double wb = (A.x - C.x) * (q.y - C.y) - (A.y - C.y) * (q.x - C.x);
+        double wc = (B.x - A.x) * (q.y - A.y) - (B.y - A.y) * (q.x - A.x);
+        double sum = wa + wb + wc;
+        if (sum == 0.0LF) continue; // zero area in projection after rounding: no crossing to place
+        double zc = (wa * A.z + wb * B.z + wc * C.z) / sum;
+        double k = ceil(zc); // the first centre above the crossing (a centre on it counts as above)
+        if (k >= double(uDimZ)) continue; // nothing above it in the grid
+        uint kz = uint(max(k, 0.0LF));
+        uint brick = lookupBrick(uvec3(b.xy, kz >> kBrickLog2));
+        if (brick == kNoChild) {
+            atomicAdd(missing, 1u);
+            continue;
+        }
+        uint bit = (x << kKeyLeafXShift) | (y << kKeyLeafYShift) | (kz & kBrickMask);
+        atomicXor(flips[kBrickWords * brick + (bit >> 5u)], 1u << (bit & 31u));
+    }
+}

@@ -1,0 +1,226 @@
+// The GPU passes of distance_field.h: work items, the brick table, the
+// distance and crossing passes, and the readback.
+#include "svo/gl/distance_field.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "objects.h"
+#include "svo/core/error.h"
+#include "svo/core/gpu_layout.h"
+
+namespace svo::gl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+/// The brick table of gpu_layout.h: kTableWords uints per slot, at most half full.
+std::vector<uint32_t> brickTable(const std::vector<std::array<uint32_t, 3>>& bricks, uint32_t& mask)
+{
+    uint64_t slots = 16;
+    while (slots < 2 * uint64_t(bricks.size())) slots *= 2;
+    if (slots > (uint64_t(1) << 30)) throw Error(fmt::format("{} bricks are more than the brick table holds", bricks.size()));
+    mask = uint32_t(slots - 1);
+    std::vector<uint32_t> table(slots * gpu::kTableWords, 0);
+    for (uint64_t s = 0; s < slots; ++s) table[s * gpu::kTableWords + 3] = gpu::kNoChild;
+    for (uint32_t i = 0; i < bricks.size(); ++i) {
+        const auto& b = bricks[i];
+        uint32_t s = SVO_BRICK_HASH(b[0], b[1], b[2]) & mask;
+        while (table[s * gpu::kTableWords + 3] != gpu::kNoChild) {
+            const uint32_t* w = &table[s * gpu::kTableWords];
+            if (w[0] == b[0] && w[1] == b[1] && w[2] == b[2])
+                throw Error(fmt::format("internal error: brick ({}, {}, {}) requested twice", b[0], b[1], b[2]));
+            s = (s + 1) & mask;
+        }
+        uint32_t* w = &table[s * gpu::kTableWords];
+        w[0] = b[0], w[1] = b[1], w[2] = b[2], w[3] = i;
+    }
+    return table;
+}
+
+/// Per triangle the box of bricks its items cover (field_common.glsl): voxels
+/// within `grow` of its bounding box, or with grow < 0 its columns only (a
+/// one-brick-deep box). Fills the exclusive prefix sum; returns the total.
+uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid, double grow,
+                   std::vector<uint32_t>& items)
+{
+    const size_t n = mesh.triangles.size();
+    items.assign(n * gpu::kItemWords, 0);
+    std::vector<uint64_t> counts(n);
+    const bool columns = grow < 0;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t t = r.begin(); t != r.end(); ++t) {
+            const auto& f = mesh.triangles[t];
+            uint64_t count = 1;
+            uint32_t* w = &items[t * gpu::kItemWords];
+            for (int a = 0; a < 3; ++a) {
+                if (columns && a == 2) {
+                    w[3] = 0, w[6] = 1;
+                    continue;
+                }
+                const double lo = std::min({local[f[0]][a], local[f[1]][a], local[f[2]][a]});
+                const double hi = std::max({local[f[0]][a], local[f[1]][a], local[f[2]][a]});
+                const double g = columns ? 0.0 : grow;
+                const double first = std::max(std::ceil(lo - g), 0.0);
+                const double last = std::min(std::floor(hi + g), double(grid.dims[a]) - 1);
+                if (last < first) {
+                    count = 0;
+                    break;
+                }
+                const uint32_t b0 = uint32_t(first) >> gpu::kBrickLog2, b1 = uint32_t(last) >> gpu::kBrickLog2;
+                w[1 + a] = b0;
+                w[4 + a] = b1 - b0 + 1;
+                count *= b1 - b0 + 1;
+            }
+            counts[t] = count;
+        }
+    });
+    uint64_t total = 0;
+    for (size_t t = 0; t < n; ++t) {
+        items[t * gpu::kItemWords] = uint32_t(std::min<uint64_t>(total, 0xFFFFFFFFu));
+        total += counts[t];
+    }
+    return total;
+}
+
+void dispatchItems(const Program& program, uint64_t items, bool software)
+{
+    // Workgroups loop over the items: enough to fill a large GPU, few on
+    // llvmpipe where each group costs.
+    const uint64_t groups = std::min<uint64_t>(items, software ? 256 : 65535);
+    if (groups) program.dispatch(uint32_t(groups));
+}
+
+} // namespace
+
+FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridSpec& grid, const FieldRequest& request)
+{
+    const Context::Scope scope(context);
+    FieldResult result;
+    const uint64_t nb = request.bricks.size();
+    const double band = request.band;
+    const bool distances = band > 0;
+    request.checkpoint(0.0, "field upload");
+
+    // Upload: local double positions, indices, items, the brick table.
+    auto t0 = Clock::now();
+    std::vector<Vec3d> local(mesh.positions.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, local.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) local[i] = grid.toLocal(mesh.positions[i]);
+    });
+    std::vector<uint32_t> distanceItems, crossingItems;
+    const uint64_t nDistance = distances ? workItems(local, mesh, grid, band, distanceItems) : 0;
+    const uint64_t nCrossing = request.crossings ? workItems(local, mesh, grid, -1.0, crossingItems) : 0;
+    for (uint64_t n : {nDistance, nCrossing})
+        if (n > 0xFFFFFFFFu)
+            throw Error(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); "
+                                    "use a coarser grid or a narrower band",
+                                    n));
+    uint32_t tableMask = 0;
+    const std::vector<uint32_t> table = brickTable(request.bricks, tableMask);
+
+    TimerQuery uploadTimer;
+    uploadTimer.begin();
+    const Buffer positions("field positions", local.size() * sizeof(Vec3d), local.data());
+    const Buffer indices("field indices", mesh.triangles.size() * 12, mesh.triangles.data());
+    const Buffer tableBuffer("brick table", table.size() * 4, table.data());
+    const Buffer counters("field counters", 16);
+    counters.clearUint(0);
+    const uint32_t none = 0xFFFFFFFFu, inf = 0x7F800000u; // float +inf
+    const Buffer* distanceBuffer = nullptr;
+    const Buffer* closestBuffer = nullptr;
+    const Buffer* flipBuffer = nullptr;
+    if (distances) {
+        distanceBuffer = &context.scratch("field distances", std::max<uint64_t>(nb, 1) * 512 * 4);
+        distanceBuffer->clearUint(inf, nb * 512 * 4);
+        if (request.closestTriangle) {
+            closestBuffer = &context.scratch("field closest triangles", std::max<uint64_t>(nb, 1) * 512 * 4);
+            closestBuffer->clearUint(none, nb * 512 * 4);
+        }
+    }
+    if (request.crossings) {
+        flipBuffer = &context.scratch("field crossings", std::max<uint64_t>(nb, 1) * sizeof(Brick));
+        flipBuffer->clearUint(0, nb * sizeof(Brick));
+    }
+    uploadTimer.end();
+    result.stages.push_back({"field upload", -1, msSince(t0)});
+    positions.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_POSITIONS);
+    indices.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_INDICES);
+    tableBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_TABLE);
+    counters.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_COUNTERS);
+    if (distanceBuffer) distanceBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_DISTANCES);
+    if (closestBuffer) closestBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_CLOSEST);
+    if (flipBuffer) flipBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_FLIPS);
+    const bool software = context.info().software;
+    const auto poll = [&] { request.checkpoint(0.5, "distance field"); };
+
+    // One pass over a set of items, timed.
+    auto pass = [&](const char* name, const Program& program, const std::vector<uint32_t>& items, uint64_t n) {
+        const auto w0 = Clock::now();
+        TimerQuery timer;
+        const Buffer itemBuffer("field work items", std::max<size_t>(items.size(), 1) * 4, items.data());
+        timer.begin();
+        itemBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_ITEMS);
+        program.set("uTriangles", uint32_t(mesh.triangles.size()));
+        program.set("uItems", uint32_t(n));
+        program.set("uTableMask", tableMask);
+        dispatchItems(program, n, software);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        timer.end();
+        checkGl(name);
+        waitForGpu(poll);
+        result.stages.push_back({name, timer.milliseconds(), msSince(w0)});
+    };
+    if (distances) {
+        const Program& program = context.program({"band_distance.comp"});
+        program.set("uBand", float(band));
+        program.set("uPass", 0u);
+        pass("band distance", program, distanceItems, nDistance);
+        if (closestBuffer) {
+            program.set("uPass", 1u);
+            pass("closest triangle", program, distanceItems, nDistance);
+        }
+    }
+    if (request.crossings) {
+        const Program& program = context.program({"parity_flips.comp"});
+        program.set("uDimZ", grid.dims[2]);
+        pass("parity crossings", program, crossingItems, nCrossing);
+    }
+    result.stages.front().gpuMs = uploadTimer.milliseconds();
+    result.gpuBytes = positions.bytes() + indices.bytes() + tableBuffer.bytes() + counters.bytes() +
+                      (distanceBuffer ? nb * 2048 : 0) + (closestBuffer ? nb * 2048 : 0) +
+                      (flipBuffer ? nb * sizeof(Brick) : 0) +
+                      std::max(distanceItems.size(), crossingItems.size()) * 4;
+    request.checkpoint(0.8, "field readback");
+
+    t0 = Clock::now();
+    TimerQuery readTimer;
+    readTimer.begin();
+    if (distanceBuffer) {
+        result.distances.resize(nb * 512);
+        distanceBuffer->readBulk(0, nb * 2048, result.distances.data());
+    }
+    if (closestBuffer) {
+        result.closest.resize(nb * 512);
+        closestBuffer->readBulk(0, nb * 2048, result.closest.data());
+    }
+    if (flipBuffer) {
+        result.crossings.resize(nb);
+        flipBuffer->readBulk(0, nb * sizeof(Brick), result.crossings.data());
+    }
+    uint32_t lost = 0;
+    counters.read(0, 4, &lost);
+    readTimer.end();
+    checkGl("field readback");
+    result.lostCrossings = lost;
+    result.stages.push_back({"field readback", readTimer.milliseconds(), msSince(t0)});
+    return result;
+}
+
+} // namespace svo::gl

@@ -1,0 +1,388 @@
+// Level sets, unsigned distance fields and solids (svo::Voxelizer::levelSet,
+// ::solid, ::meshToLevelSet) against independent references: CGAL's AABB tree
+// for the distance to the closest triangle and Side_of_triangle_mesh for the
+// side, OpenVDB's own meshToLevelSet, and analytic answers for the tie rules.
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+#include <cmath>
+#include <iostream>
+#include <gtest/gtest.h>
+#include <openvdb/tools/MeshToVolume.h>
+
+#include "scenes.h"
+#include "svo/core/mesh_io.h"
+#include "svo/core/mesh_topology.h"
+#include "svo/svo.h"
+
+namespace svo::test {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+using CgalTriangle = K::Triangle_3;
+using Primitive = CGAL::AABB_triangle_primitive<K, std::vector<CgalTriangle>::const_iterator>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+using SurfaceMesh = CGAL::Surface_mesh<Point>;
+
+/// The mesh in the grid's index space, as CGAL sees it: distances from its
+/// AABB tree, sides from Side_of_triangle_mesh (closed meshes only).
+struct CgalReference {
+    std::vector<CgalTriangle> triangles;
+    Tree tree;
+    SurfaceMesh surface;
+    std::unique_ptr<CGAL::Side_of_triangle_mesh<SurfaceMesh, K>> side;
+
+    CgalReference(const TriangleMesh& mesh, const GridSpec& grid, bool closed)
+    {
+        std::vector<Point> p;
+        for (const auto& v : mesh.positions) {
+            const Vec3d i = grid.toIndex(v);
+            p.emplace_back(i.x, i.y, i.z);
+        }
+        std::vector<SurfaceMesh::Vertex_index> vi;
+        for (const auto& q : p) vi.push_back(surface.add_vertex(q));
+        for (const auto& t : mesh.triangles) {
+            triangles.emplace_back(p[t[0]], p[t[1]], p[t[2]]);
+            if (closed) surface.add_face(vi[t[0]], vi[t[1]], vi[t[2]]);
+        }
+        tree.rebuild(triangles.begin(), triangles.end());
+        tree.accelerate_distance_queries();
+        if (closed) side = std::make_unique<CGAL::Side_of_triangle_mesh<SurfaceMesh, K>>(surface);
+    }
+    double distance(const openvdb::Coord& c) const
+    {
+        return std::sqrt(tree.squared_distance(Point(c.x(), c.y(), c.z())));
+    }
+    bool inside(const openvdb::Coord& c) const
+    {
+        return (*side)(Point(c.x(), c.y(), c.z())) == CGAL::ON_BOUNDED_SIDE;
+    }
+};
+
+/// Every voxel of the mesh's index box grown by `pad`.
+template <typename F>
+void forEachVoxel(const TriangleMesh& mesh, const GridSpec& grid, int pad, F f)
+{
+    const Bounds b = mesh.bounds();
+    const Vec3d lo = grid.toIndex(b.min), hi = grid.toIndex(b.max);
+    for (int x = int(std::floor(lo.x)) - pad; x <= int(std::ceil(hi.x)) + pad; ++x)
+        for (int y = int(std::floor(lo.y)) - pad; y <= int(std::ceil(hi.y)) + pad; ++y)
+            for (int z = int(std::floor(lo.z)) - pad; z <= int(std::ceil(hi.z)) + pad; ++z) f(openvdb::Coord(x, y, z));
+}
+
+openvdb::FloatGrid::Ptr levelSetOf(Voxelizer& v, const TriangleMesh& mesh, const GridSpec& grid,
+                                   const LevelSetOptions& ls, VoxelizeStats* stats = nullptr)
+{
+    VoxelizeOptions o;
+    o.stats = stats;
+    return openvdb::gridPtrCast<openvdb::FloatGrid>(v.levelSet(mesh, grid, ls, o).front());
+}
+
+/// Distances within float rounding of CGAL's, the side CGAL's, and the
+/// active band exactly the voxels closer than the band on their side.
+void expectLevelSetMatchesCgal(Voxelizer& v, const TriangleMesh& mesh, int resolution, double exterior,
+                               double interior)
+{
+    SCOPED_TRACE(mesh.source);
+    ASSERT_TRUE(checkEdges(mesh).closedAndOriented()) << checkEdges(mesh).describe();
+    const GridSpec grid = makeGrid(mesh, GridRequest{resolution, 0});
+    LevelSetOptions ls;
+    ls.exteriorBand = exterior;
+    ls.interiorBand = interior;
+    VoxelizeStats stats;
+    const auto sdf = levelSetOf(v, mesh, grid, ls, &stats);
+    const CgalReference ref(mesh, grid, true);
+    const double h = grid.voxelSize;
+    EXPECT_EQ(sdf->getGridClass(), openvdb::GRID_LEVEL_SET);
+    EXPECT_FLOAT_EQ(sdf->background(), float(exterior * h));
+    EXPECT_EQ(stats.openColumns, 0u);
+    EXPECT_NE(stats.sign.find("parity"), std::string::npos);
+    // Rounding: one double -> float rounding of d (2^-24 relative), then d * h
+    // rounded again: 1e-6 voxel covers both in a band of at most 8 voxels.
+    const double tol = 1e-6;
+    uint64_t checked = 0, wrongSide = 0, farOff = 0, missing = 0, extra = 0;
+    const auto acc = sdf->getConstAccessor();
+    forEachVoxel(mesh, grid, int(std::max(exterior, interior)) + 2, [&](const openvdb::Coord& c) {
+        const double d = ref.distance(c);
+        const bool in = ref.inside(c);
+        const float value = acc.getValue(c);
+        const bool active = acc.isValueOn(c);
+        ++checked;
+        if (d > tol && std::signbit(value) != in) ++wrongSide;
+        const double bandHere = in ? interior : exterior;
+        if (active && std::abs(std::abs(double(value)) / h - d) > tol) ++farOff;
+        if (!active && d < bandHere - tol) ++missing;
+        if (active && d > bandHere + tol) ++extra;
+    });
+    EXPECT_GT(checked, 1000u);
+    EXPECT_EQ(wrongSide, 0u);
+    EXPECT_EQ(farOff, 0u);
+    EXPECT_EQ(missing, 0u);
+    EXPECT_EQ(extra, 0u);
+    EXPECT_GT(sdf->activeVoxelCount(), 100u);
+}
+
+TEST(LevelSet, DistancesSidesAndBandMatchCgalOnClosedMeshes)
+{
+    Voxelizer v;
+    expectLevelSetMatchesCgal(v, icosphere({0.1, -0.2, 0.3}, 1.0, 3), 40, 3, 3);
+    expectLevelSetMatchesCgal(v, box({-1.3, 0.2, 0.7}, {0.4, 1.1, 2.9}), 32, 2, 4.5);
+#ifdef SVO_CGAL_MESHES
+    TriangleMesh elephant = loadMesh(std::string(SVO_CGAL_MESHES) + "/elephant.off");
+    expectLevelSetMatchesCgal(v, elephant, 48, 3, 3);
+#endif
+}
+
+/// Inside by parity with svo's ties, derived by hand: the voxel centre is
+/// perturbed to (i + e^2, j + e^3, k + e) for an infinitesimal e (so a centre
+/// on a face counts as above it). For the octahedron |x-c| + |y-c| + |z-c| < r,
+/// each |a + e^p| is |a| + sign(a) e^p (a != 0) or e^p (a == 0), so on the
+/// boundary the e term decides: inside iff k < c there.
+bool octahedronInside(int i, int j, int k, int c, int r)
+{
+    const int s = std::abs(i - c) + std::abs(j - c) + std::abs(k - c);
+    return s < r || (s == r && k < c);
+}
+
+TEST(LevelSet, TiesOnFacesEdgesAndVerticesFollowTheRule)
+{
+    Voxelizer v;
+    // A box whose faces lie on voxel centres and whose edges run along
+    // columns: inside is exactly [lo, hi) on every axis.
+    {
+        const TriangleMesh b = box({2, 3, 4}, {10, 9, 12});
+        GridSpec grid = makeGrid(b, GridRequest{0, 1.0});
+        LevelSetOptions ls;
+        VoxelizeStats stats;
+        const auto sdf = levelSetOf(v, b, grid, ls, &stats);
+        EXPECT_EQ(stats.openColumns, 0u);
+        const auto acc = sdf->getConstAccessor();
+        uint64_t wrong = 0;
+        for (int x = -2; x <= 14; ++x)
+            for (int y = -2; y <= 14; ++y)
+                for (int z = -2; z <= 16; ++z) {
+                    const bool in = x >= 2 && x < 10 && y >= 3 && y < 9 && z >= 4 && z < 12;
+                    if (std::signbit(acc.getValue({x, y, z})) != in) ++wrong;
+                }
+        EXPECT_EQ(wrong, 0u);
+    }
+    // An octahedron whose vertices lie on voxel centres, its top and bottom
+    // on one column: vertex, edge and face ties all at once.
+    {
+        const int c = 8, r = 5;
+        TriangleMesh o;
+        o.source = "octahedron";
+        o.positions = {{c + r, c, c}, {c - r, c, c}, {c, c + r, c}, {c, c - r, c}, {c, c, c + r}, {c, c, c - r}};
+        for (uint32_t sx : {0u, 1u})
+            for (uint32_t sy : {2u, 3u})
+                for (uint32_t sz : {4u, 5u}) {
+                    // Counter-clockwise seen from outside: flip when an odd number of axes point negative.
+                    const bool flip = ((sx == 1) + (sy == 3) + (sz == 5)) % 2 == 1;
+                    o.triangles.push_back(flip ? std::array<uint32_t, 3>{sx, sz, sy} : std::array<uint32_t, 3>{sx, sy, sz});
+                }
+        ASSERT_TRUE(checkEdges(o).closedAndOriented()) << checkEdges(o).describe();
+        const GridSpec grid = makeGrid(o, GridRequest{0, 1.0});
+        VoxelizeStats stats;
+        const auto sdf = levelSetOf(v, o, grid, LevelSetOptions{}, &stats);
+        EXPECT_EQ(stats.openColumns, 0u);
+        const auto acc = sdf->getConstAccessor();
+        uint64_t wrong = 0, inside = 0;
+        for (int x = 0; x <= 16; ++x)
+            for (int y = 0; y <= 16; ++y)
+                for (int z = 0; z <= 16; ++z) {
+                    const bool in = octahedronInside(x, y, z, c, r);
+                    inside += in;
+                    if (std::signbit(acc.getValue({x, y, z})) != in) ++wrong;
+                }
+        EXPECT_EQ(wrong, 0u);
+        EXPECT_GT(inside, 100u);
+    }
+}
+
+TEST(LevelSet, AgreesWithOpenVdbMeshToLevelSetAndIsCloserToCgal)
+{
+    const TriangleMesh m = icosphere({0.05, 0.1, -0.07}, 1.0, 3);
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec3I> triangles;
+    TriangleMesh asFloats = m; // what both voxelizers are given
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+        const auto& p = m.positions[i];
+        points.emplace_back(float(p.x), float(p.y), float(p.z));
+        asFloats.positions[i] = {double(points.back()[0]), double(points.back()[1]), double(points.back()[2])};
+    }
+    for (const auto& t : m.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+    const double h = 0.05;
+    const auto xform = openvdb::math::Transform::createLinearTransform(h);
+    Voxelizer v;
+    const auto ours = v.meshToLevelSet(points, triangles, *xform, 3.0f, 3.0f);
+    const auto theirs = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, points, triangles, 3.0f);
+    EXPECT_EQ(ours->getGridClass(), openvdb::GRID_LEVEL_SET);
+    EXPECT_FLOAT_EQ(ours->background(), theirs->background());
+    GridSpec index; // the transform's index space, for the reference
+    index.voxelSize = h;
+    const CgalReference ref(asFloats, index, true);
+    uint64_t both = 0, onlyOurs = 0, onlyTheirs = 0, sign = 0, worse = 0;
+    double oursWorst = 0, theirsWorst = 0;
+    const auto acc = ours->getConstAccessor();
+    for (auto it = theirs->cbeginValueOn(); it; ++it) {
+        const openvdb::Coord c = it.getCoord();
+        if (!acc.isValueOn(c)) {
+            ++onlyTheirs;
+            continue;
+        }
+        ++both;
+        const double exact = ref.distance(c);
+        const double a = acc.getValue(c) / h, b = *it / h;
+        if (exact > 1e-4 && std::signbit(a) != std::signbit(b)) ++sign;
+        const double ea = std::abs(std::abs(a) - exact), eb = std::abs(std::abs(b) - exact);
+        oursWorst = std::max(oursWorst, ea), theirsWorst = std::max(theirsWorst, eb);
+        worse += ea > eb + 1e-6;
+    }
+    const auto theirAcc = theirs->getConstAccessor();
+    for (auto it = ours->cbeginValueOn(); it; ++it) onlyOurs += !theirAcc.isValueOn(it.getCoord());
+    std::cout << "svo vs OpenVDB meshToLevelSet: " << both << " voxels in both bands, " << onlyOurs
+              << " only in svo's, " << onlyTheirs << " only in OpenVDB's; largest distance error against CGAL: svo "
+              << oursWorst << ", OpenVDB " << theirsWorst << " voxels\n";
+    EXPECT_GT(both, 10000u);
+    EXPECT_EQ(sign, 0u) << "sign disagreements";
+    EXPECT_LT(oursWorst, 1e-6);
+    EXPECT_EQ(worse, 0u) << "voxels where svo is farther from CGAL's distance than OpenVDB";
+    EXPECT_LE(onlyOurs + onlyTheirs, both / 100) << onlyOurs << " only in svo, " << onlyTheirs << " only in OpenVDB";
+}
+
+TEST(LevelSet, OpenMeshesAreRefusedUnderAutoAndWarnedUnderParity)
+{
+    TriangleMesh open = box({0, 0, 0}, {1, 1, 1});
+    open.triangles.erase(open.triangles.begin() + 2, open.triangles.begin() + 4); // the top face (z = 1) is gone
+    open.source = "open box";
+    const GridSpec grid = makeGrid(open, GridRequest{16, 0});
+    Voxelizer v;
+    try {
+        v.levelSet(open, grid);
+        ADD_FAILURE() << "an open mesh gave a level set under SignMethod::Auto";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("open box: not closed (4 boundary edges)"), std::string::npos)
+            << e.what();
+    }
+    LevelSetOptions ls;
+    ls.sign = SignMethod::Parity;
+    VoxelizeStats stats;
+    levelSetOf(v, open, grid, ls, &stats);
+    EXPECT_GT(stats.openColumns, 0u);
+    EXPECT_FALSE(stats.warnings.empty());
+}
+
+TEST(LevelSet, UnsignedDistancesOfAnOpenMeshMatchCgalWithClosestTriangles)
+{
+    TriangleMesh open = box({0, 0, 0}, {1, 0.5, 0.8});
+    open.triangles.resize(9);
+    open.source = "open box";
+    const GridSpec grid = makeGrid(open, GridRequest{24, 0});
+    LevelSetOptions ls;
+    ls.unsignedDistance = true;
+    ls.exteriorBand = 2.5;
+    ls.closestTriangle = true;
+    Voxelizer v;
+    const auto grids = v.levelSet(open, grid, ls);
+    ASSERT_EQ(grids.size(), 2u);
+    const auto udf = openvdb::gridPtrCast<openvdb::FloatGrid>(grids[0]);
+    const auto closest = openvdb::gridPtrCast<openvdb::Int32Grid>(grids[1]);
+    EXPECT_EQ(udf->getGridClass(), openvdb::GRID_UNKNOWN);
+    const CgalReference ref(open, grid, false);
+    const double h = grid.voxelSize, tol = 1e-6;
+    uint64_t farOff = 0, missing = 0, negative = 0, wrongTriangle = 0;
+    const auto acc = udf->getConstAccessor();
+    const auto cacc = closest->getConstAccessor();
+    forEachVoxel(open, grid, 4, [&](const openvdb::Coord& c) {
+        const double d = ref.distance(c);
+        const bool active = acc.isValueOn(c);
+        if (!active) {
+            missing += d < 2.5 - tol;
+            return;
+        }
+        const double value = acc.getValue(c);
+        negative += value < 0;
+        farOff += std::abs(value / h - d) > tol;
+        const int t = cacc.getValue(c);
+        const Point p(c.x(), c.y(), c.z());
+        if (t < 0 || std::abs(std::sqrt(CGAL::squared_distance(p, ref.triangles.at(size_t(t)))) - d) > tol)
+            ++wrongTriangle;
+    });
+    EXPECT_EQ(farOff, 0u);
+    EXPECT_EQ(missing, 0u);
+    EXPECT_EQ(negative, 0u);
+    EXPECT_EQ(wrongTriangle, 0u);
+    EXPECT_EQ(closest->activeVoxelCount(), udf->activeVoxelCount());
+}
+
+TEST(LevelSet, BadBandsAndTheCpuBackendAreRefused)
+{
+    const TriangleMesh b = box({0, 0, 0}, {1, 1, 1});
+    const GridSpec grid = makeGrid(b, GridRequest{8, 0});
+    Voxelizer v;
+    for (double w : {0.5, -1.0, std::nan(""), 1e9}) {
+        LevelSetOptions ls;
+        ls.exteriorBand = w;
+        EXPECT_THROW(v.levelSet(b, grid, ls), Error) << w;
+    }
+    VoxelizeOptions cpu;
+    cpu.backend = Backend::Cpu;
+    EXPECT_THROW(v.levelSet(b, grid, {}, cpu), Error);
+    EXPECT_THROW(v.solid(b, grid, cpu), Error);
+}
+
+/// Solid = surface voxels plus the voxels whose centres CGAL puts inside.
+void expectSolidMatchesCgal(Voxelizer& v, const TriangleMesh& mesh, int resolution)
+{
+    SCOPED_TRACE(mesh.source);
+    const GridSpec grid = makeGrid(mesh, GridRequest{resolution, 0});
+    VoxelizeStats stats;
+    VoxelizeOptions o;
+    o.stats = &stats;
+    const auto solid = v.solid(mesh, grid, o);
+    EXPECT_EQ(stats.openColumns, 0u);
+    const Octree surface = v.voxelize(mesh, grid);
+    std::set<std::array<int64_t, 3>> surfaceSet;
+    for (uint64_t key : octreeKeys(surface)) {
+        const auto l = unpackVoxelKey(key);
+        surfaceSet.insert(grid.toGlobal(l));
+    }
+    const CgalReference ref(mesh, grid, true);
+    const auto acc = solid->getConstAccessor();
+    uint64_t wrong = 0, count = 0;
+    forEachVoxel(mesh, grid, 2, [&](const openvdb::Coord& c) {
+        const bool onSurface = surfaceSet.count({c.x(), c.y(), c.z()}) > 0;
+        const auto side = (*ref.side)(Point(c.x(), c.y(), c.z()));
+        if (side == CGAL::ON_BOUNDARY && !onSurface) return; // a centre on the surface: either answer
+        const bool expected = onSurface || side == CGAL::ON_BOUNDED_SIDE;
+        count += expected;
+        wrong += acc.isValueOn(c) != expected;
+    });
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_EQ(uint64_t(solid->activeVoxelCount()), count) << "voxels outside the mesh's box";
+}
+
+TEST(Solid, MatchesCgalsInsideTestAndUsesTiles)
+{
+    Voxelizer v;
+    expectSolidMatchesCgal(v, icosphere({0.3, 0.1, -0.2}, 1.0, 3), 48);
+    expectSolidMatchesCgal(v, box({-1.3, 0.2, 0.7}, {0.4, 1.1, 2.9}), 40);
+#ifdef SVO_CGAL_MESHES
+    expectSolidMatchesCgal(v, loadMesh(std::string(SVO_CGAL_MESHES) + "/elephant.off"), 64);
+#endif
+    // A large solid is mostly tiles: far fewer leaves than its volume in leaves.
+    const TriangleMesh big = box({0, 0, 0}, {1, 1, 1});
+    const GridSpec grid = makeGrid(big, GridRequest{300, 0});
+    const auto solid = v.solid(big, grid);
+    // Index range [0, 300] on each axis: the box ends on voxel centres.
+    EXPECT_EQ(solid->activeVoxelCount(), openvdb::Index64(301) * 301 * 301);
+    EXPECT_LT(solid->tree().leafCount(), 6u * 40 * 40);
+    EXPECT_GT(solid->tree().activeTileCount(), 0u);
+}
+
+} // namespace
+} // namespace svo::test
