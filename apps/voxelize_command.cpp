@@ -1,4 +1,5 @@
 // svo voxelize [MESH] -o out.vdb|out.nvdb|out.svo [--resolution N | --voxel-size h]
+//              [--sdf | --udf | --fill solid] [--band W | --exterior-band A --interior-band B]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"
 #include "svo/core/mesh_io.h"
+#include "svo/vdb_io/vdb_file.h"
 #include "svo/voxelizer.h"
 
 namespace svo::app {
@@ -29,6 +31,12 @@ struct VoxelizeArgs {
     int repeat = 1;
     BackendArgs backend;
     OutputArgs out;
+    // Level sets, unsigned distances and solids.
+    bool sdf = false, udf = false, closestTriangle = false;
+    std::string fill = "surface";
+    std::string sign = "auto";
+    double band = 0, exteriorBand = 0, interiorBand = 0;
+    bool field() const { return sdf || udf || fill == "solid"; }
 };
 
 double peakRssMb()
@@ -38,8 +46,133 @@ double peakRssMb()
     return double(ru.ru_maxrss) / 1024.0; // kilobytes on Linux
 }
 
+/// Refuses combinations that have no meaning before any work is done.
+void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
+{
+    const int modes = int(a.sdf) + int(a.udf) + int(a.fill == "solid");
+    if (modes > 1) throw Error("--sdf, --udf and --fill solid each make a different grid; give one of them");
+    const bool bands = cmd.count("--band") || cmd.count("--exterior-band") || cmd.count("--interior-band");
+    if (bands && !a.sdf && !a.udf) throw Error("--band, --exterior-band and --interior-band apply to --sdf and --udf");
+    if (cmd.count("--band") && (cmd.count("--exterior-band") || cmd.count("--interior-band")))
+        throw Error("--band sets both bands; give it or --exterior-band/--interior-band, not both");
+    if (a.udf && cmd.count("--interior-band")) throw Error("--interior-band applies to --sdf; --udf has no inside");
+    if (a.closestTriangle && !a.sdf && !a.udf) throw Error("--closest-triangle applies to --sdf and --udf");
+    if (cmd.count("--sign") && !a.sdf && a.fill != "solid") throw Error("--sign applies to --sdf and --fill solid");
+    if (!a.field()) return;
+    if (a.backend.attributes) throw Error("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
+    if (cmd.count("--fog") || cmd.count("--topology"))
+        throw Error("--fog and --topology apply to surface voxels, not to --sdf, --udf or --fill solid");
+    if (!a.output.empty() && outputFormat(a.output) != OutputFormat::Vdb)
+        throw Error(fmt::format("{}: --sdf, --udf and --fill solid write OpenVDB grids; name a .vdb file", a.output));
+}
+
+/// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb.
+void runField(const VoxelizeArgs& a, const CLI::App& cmd, const TriangleMesh& mesh, const std::string& scene,
+              const GridSpec& grid, const GridRequest& request, const std::string& output, bool timingOnly,
+              std::chrono::steady_clock::time_point start)
+{
+    (void)cmd;
+    LevelSetOptions ls;
+    ls.unsignedDistance = a.udf;
+    ls.closestTriangle = a.closestTriangle;
+    ls.sign = a.sign == "parity" ? SignMethod::Parity : SignMethod::Auto;
+    if (a.band > 0) ls.exteriorBand = ls.interiorBand = a.band;
+    if (a.exteriorBand > 0) ls.exteriorBand = a.exteriorBand;
+    if (a.interiorBand > 0) ls.interiorBand = a.interiorBand;
+    const bool solid = a.fill == "solid";
+
+    LibraryCall call(a.backend, solid ? "filling the solid" : "computing the distance field");
+    std::vector<VoxelizeStats> runs(size_t(a.repeat));
+    openvdb::GridPtrVec grids;
+    auto once = [&] {
+        if (solid) return openvdb::GridPtrVec{call.voxelizer.solid(mesh, grid, call.options, ls.sign)};
+        return call.voxelizer.levelSet(mesh, grid, ls, call.options);
+    };
+    if (a.repeat > 1) once();
+    for (auto& run : runs) {
+        grids = once();
+        run = call.stats;
+    }
+    VoxelizeStats stats = medianStats(runs);
+    printWarnings(stats.warnings);
+    vdb::WriteStats written;
+    if (!timingOnly) {
+        Progress p("writing " + output);
+        written = vdb::writeVdbGrids(output, grids,
+                                     {{"svo:source", mesh.source},
+                                      {"svo:triangles", std::to_string(mesh.triangles.size())},
+                                      {"svo:voxel_size", fmt::format("{}", grid.voxelSize)},
+                                      {"svo:backend", stats.backend},
+                                      {"svo:renderer", stats.renderer},
+                                      {"svo:sign", stats.sign},
+                                      {"svo:version", SVO_VERSION}});
+        stats.stages.push_back({"write", -1, written.writeMs});
+    }
+    const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const auto& main = *grids.front();
+    fmt::print("svo voxelize\n");
+    fmt::print("  {:<11} {}\n", "scene", scene);
+    fmt::print("  {:<11} {}\n", "triangles", thousands(mesh.triangles.size()));
+    fmt::print("  {:<11} {} x {} x {} local voxels, voxel size {:.6g}, {}\n", "grid", grid.dims[0], grid.dims[1],
+               grid.dims[2], grid.voxelSize,
+               request.voxelSize > 0 ? std::string("from --voxel-size") : fmt::format("resolution {}", request.resolution));
+    if (solid)
+        fmt::print("  {:<11} solid: inside and surface voxels\n", "grid kind");
+    else if (a.udf)
+        fmt::print("  {:<11} unsigned distance, band {} voxels\n", "grid kind", ls.exteriorBand);
+    else
+        fmt::print("  {:<11} level set, exterior band {} voxels, interior band {} voxels\n", "grid kind",
+                   ls.exteriorBand, ls.interiorBand);
+    if (!stats.sign.empty()) fmt::print("  {:<11} {}\n", "sign", stats.sign);
+    fmt::print("  {:<11} {} active ({} leaves, {} active tiles)\n", "voxels", thousands(main.activeVoxelCount()),
+               thousands(main.baseTree().leafCount()), thousands(main.baseTree().activeTileCount()));
+    fmt::print("  {:<11} {} band bricks, {:.1f} MB of GPU buffers\n", "work", thousands(stats.bandBricks),
+               double(stats.gpuBytes) / 1e6);
+    fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
+    fmt::print("  {:<11} {}\n", "output",
+               timingOnly ? std::string("none (--repeat without -o times the runs only)")
+                          : fmt::format("{} ({:.2f} MB; grids {})", output, double(written.bytes) / 1e6, [&] {
+                                std::string names;
+                                for (const auto& g : grids) names += (names.empty() ? "" : ", ") + g->getName();
+                                return names;
+                            }()));
+    fmt::print("\n  {:<20} {:>10} {:>10}{}\n", "stage", "GPU ms", "wall ms",
+               a.repeat > 1 ? fmt::format("   (median of {} runs after a warm-up)", a.repeat) : "");
+    printStages(stats.stages);
+    fmt::print("  {:<20} {:>10} {:>10.2f}\n", "total", "", wall);
+    if (!a.json.empty()) {
+        nlohmann::json stages = nlohmann::json::array();
+        for (const auto& s : stats.stages)
+            stages.push_back({{"name", s.name},
+                              {"gpu_ms", s.gpuMs < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.gpuMs)},
+                              {"wall_ms", s.wallMs}});
+        const nlohmann::json report = {{"scene", scene},
+                                       {"triangles", mesh.triangles.size()},
+                                       {"dims", grid.dims},
+                                       {"voxel_size", grid.voxelSize},
+                                       {"kind", solid ? "solid" : a.udf ? "udf" : "sdf"},
+                                       {"exterior_band", ls.exteriorBand},
+                                       {"interior_band", ls.interiorBand},
+                                       {"sign", stats.sign},
+                                       {"open_columns", stats.openColumns},
+                                       {"active_voxels", main.activeVoxelCount()},
+                                       {"leaves", main.baseTree().leafCount()},
+                                       {"active_tiles", main.baseTree().activeTileCount()},
+                                       {"band_bricks", stats.bandBricks},
+                                       {"backend", stats.backend},
+                                       {"renderer", stats.renderer},
+                                       {"gpu_bytes", stats.gpuBytes},
+                                       {"repeat", a.repeat},
+                                       {"peak_rss_mb", peakRssMb()},
+                                       {"stages", stages},
+                                       {"total_wall_ms", wall}};
+        writeFileAtomically(a.json, report.dump(2) + "\n");
+    }
+}
+
 void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
 {
+    checkFieldArgs(a, cmd);
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
@@ -69,6 +202,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     if (!timingOnly) checkOutputPath(output);
     if (!a.json.empty()) checkWritable(a.json);
     const GridSpec grid = makeGrid(mesh, request);
+    if (a.field()) return runField(a, cmd, mesh, scene, grid, request, output, timingOnly, start);
     const GridOptions grids = a.out.gridOptions();
     if (!timingOnly && outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
@@ -178,6 +312,25 @@ void addVoxelizeCommand(CLI::App& app)
     addBackendOptions(*cmd, args->backend);
     addAttributeOption(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
+    cmd->add_flag("--sdf", args->sdf,
+                  "Write a narrow-band signed distance field (OpenVDB level set, grid 'surface') instead of voxels");
+    cmd->add_flag("--udf", args->udf, "Write unsigned distances within the band (grid 'distance'); any mesh");
+    cmd->add_option("--fill", args->fill,
+                    "surface: the voxels the triangles touch; solid: also every voxel whose centre is inside "
+                    "(grid 'solid', whole regions as tiles)")
+        ->check(CLI::IsMember({"surface", "solid"}));
+    cmd->add_option("--band", args->band, "Band half width in voxels on both sides, for --sdf and --udf (default 3)")
+        ->check(CLI::Range(1.0, 1000.0));
+    cmd->add_option("--exterior-band", args->exteriorBand, "Band width outside the surface, in voxels (default 3)")
+        ->check(CLI::Range(1.0, 1000.0));
+    cmd->add_option("--interior-band", args->interiorBand, "Band width inside the surface, in voxels (default 3)")
+        ->check(CLI::Range(1.0, 1000.0));
+    cmd->add_option("--sign", args->sign,
+                    "Inside/outside for --sdf and --fill solid: auto (parity for closed, consistently oriented "
+                    "meshes; an error otherwise) or parity (as asked)")
+        ->check(CLI::IsMember({"auto", "parity"}));
+    cmd->add_flag("--closest-triangle", args->closestTriangle,
+                  "With --sdf or --udf, also an Int32 grid 'closest_triangle' on the band");
     cmd->add_option("--repeat", args->repeat,
                     "Voxelize N times (after one warm-up on the GPU) and report per-stage medians; without -o, "
                     "nothing is written")

@@ -1,4 +1,5 @@
 // The svo command: exit codes, messages, and that bad input leaves no output.
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -35,6 +36,18 @@ Run runSvo(const std::string& args)
     while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
     const int status = pclose(p);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+/// Another program's output (stdout and stderr).
+std::string runCommand(const std::string& cmd)
+{
+    FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+    std::string out;
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
+    pclose(p);
+    return out;
 }
 
 /// svo started in the background, its output in a file, for signal tests.
@@ -414,4 +427,36 @@ TEST_F(Cli, SmallMisusesAreRefusedOrDoWhatTheySay)
     EXPECT_EQ(r.out.find('\x07'), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("[31mred\\x07"), std::string::npos) << r.out; // escaped, as \xNN
     expectOnly({"m.off", "m.vdb", "g.off"});
+}
+
+// --sdf and --fill solid write grids that OpenVDB's own vdb_print reads as a
+// level set and a solid; combinations without meaning are refused first.
+TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)
+{
+    ASSERT_EQ(runSvo("scene icosphere --level 3 -o " + path("ico.off")).code, 0);
+    const auto sdf = runSvo("voxelize " + path("ico.off") + " -r 32 --sdf --exterior-band 2 --interior-band 4 -o " +
+                            path("ls.vdb"));
+    ASSERT_EQ(sdf.code, 0) << sdf.out;
+    EXPECT_NE(sdf.out.find("parity: the mesh is closed and consistently oriented"), std::string::npos) << sdf.out;
+    const auto printed = runCommand("vdb_print -l " + path("ls.vdb"));
+    EXPECT_NE(printed.find("class: level set"), std::string::npos) << printed;
+    EXPECT_NE(printed.find("Name: surface"), std::string::npos) << printed;
+    const auto solid = runSvo("voxelize " + path("ico.off") + " -r 64 --fill solid -o " + path("solid.vdb"));
+    ASSERT_EQ(solid.code, 0) << solid.out;
+    EXPECT_NE(runCommand("vdb_print -l " + path("solid.vdb")).find("Name: solid"), std::string::npos);
+
+    for (const char* bad : {"--sdf -o x.svo", "--band 2", "--sdf --udf", "--udf --interior-band 2", "--sdf --band 2 "
+                            "--exterior-band 3", "--fill solid --attributes normal", "--closest-triangle",
+                            "--sdf --band 0.5"}) {
+        const auto r = runSvo("voxelize " + path("ico.off") + " " + bad + (std::string(bad).find(" -o ") == std::string::npos ? " -o " + path("bad.vdb") : std::string()));
+        EXPECT_EQ(r.code, 1) << bad << ": " << r.out;
+        // One line (CLI11's own range errors add its "Run with --help" hint).
+        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), (std::string(bad).find("0.5") == std::string::npos ? 1 : 2))
+            << bad << ": " << r.out;
+    }
+    // The built-in Cornell box is an open room: a signed field is refused with the reason.
+    const auto open = runSvo("voxelize -r 16 --sdf -o " + path("cb.vdb"));
+    EXPECT_EQ(open.code, 1);
+    EXPECT_NE(open.out.find("not closed (116 boundary edges)"), std::string::npos) << open.out;
+    expectOnly({"ico.off", "ls.vdb", "solid.vdb"});
 }

@@ -50,10 +50,16 @@ void main()
         dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
         // The whole brick beyond the band from the triangle's box: skip it.
         dvec3 lo = dvec3(b << kBrickLog2), hi = lo + 7.0LF;
-        dvec3 gap = max(max(min(A, min(B, C)) - hi, lo - max(A, max(B, C))), dvec3(0.0LF));
-        if (dot(gap, gap) > double(uBand) * double(uBand)) continue;
+        dvec3 boxLo = min(A, min(B, C)), boxHi = max(A, max(B, C));
+        dvec3 gap = max(max(boxLo - hi, lo - boxHi), dvec3(0.0LF));
+        double band2 = double(uBand) * double(uBand);
+        if (dot(gap, gap) > band2) continue;
         for (uint z = 0u; z < 8u; ++z) {
             dvec3 p = lo + dvec3(x, y, z);
+            // Most centres of a brick are beyond the band from the box of a
+            // small triangle: that test is cheaper than the distance.
+            dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));
+            if (dot(g, g) > band2) continue;
             float d = float(sqrt(triangleDistance2(p, A, B, C)));
             if (d > uBand) continue;
             uint i = 512u * brick + ((x << kKeyLeafXShift) | (y << kKeyLeafYShift) | z);

@@ -33,6 +33,31 @@ class Voxelizer:
         backend: str = "auto",
         attributes: Sequence[str] = (),
     ) -> "Octree": ...
+    def level_set(
+        self,
+        vertices: ArrayLike,
+        triangles: ArrayLike,
+        *,
+        resolution: Optional[float] = None,
+        voxel_size: Optional[float] = None,
+        transform: Optional[Union[Transform, ArrayLike]] = None,
+        exterior_band: float = 3.0,
+        interior_band: float = 3.0,
+        unsigned: bool = False,
+        sign: str = "auto",
+        backend: str = "auto",
+    ) -> Grid: ...
+    def solid(
+        self,
+        vertices: ArrayLike,
+        triangles: ArrayLike,
+        *,
+        resolution: Optional[float] = None,
+        voxel_size: Optional[float] = None,
+        transform: Optional[Union[Transform, ArrayLike]] = None,
+        sign: str = "auto",
+        backend: str = "auto",
+    ) -> Grid: ...
     def device(self) -> str: ...
 
 class Octree:

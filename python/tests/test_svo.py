@@ -278,3 +278,49 @@ def test_examples_run(elephant, tmp_path, script, args):
         assert pyopenvdb.read(str(tmp_path / "out.vdb"), "surface").activeVoxelCount() > 1000
     if script == "validate_mesh.py":
         assert "passed" in done.stdout
+
+
+def sphere_inside(ijk, centre_index, radius_index):
+    return np.linalg.norm(ijk - centre_index, axis=1) < radius_index
+
+
+def test_level_set_of_a_tetrahedron_matches_the_analytic_distance(voxelizer):
+    # The tetrahedron is convex: inside, the distance is the nearest face
+    # plane's, and the sign follows the four planes.
+    v, t = tetrahedron()
+    h = 0.05
+    grid = voxelizer.level_set(v, t, voxel_size=h, exterior_band=2, interior_band=4)
+    assert grid.gridClass == pyopenvdb.GridClass.LEVEL_SET and grid.name == "surface"
+    assert abs(grid.background - 2 * h) < 1e-7
+    vertices = np.asarray(v, dtype=float)
+    normals, offsets = [], []
+    for f in np.asarray(t):
+        a, b, c = vertices[f]
+        n = np.cross(b - a, c - a)
+        n /= np.linalg.norm(n)
+        normals.append(n)
+        offsets.append(np.dot(n, a))
+    normals, offsets = np.array(normals), np.array(offsets)
+    ijk = svo.active_voxels(grid)
+    values = np.array([grid.getConstAccessor().getValue(tuple(int(c) for c in p)) for p in ijk])
+    world = ijk * h
+    plane = world @ normals.T - offsets  # signed distance to each face's plane (outward normals)
+    inside = (plane < 0).all(axis=1)
+    # Inside a convex solid the distance is the nearest plane's.
+    deep = inside & (-plane.max(axis=1) > 1e-6)
+    assert deep.sum() > 100
+    assert np.all(values[deep] < 0)
+    assert np.allclose(-values[deep], -plane[deep].max(axis=1), atol=1e-6)
+    assert np.all(values[~inside & (plane.max(axis=1) > 1e-6)] > 0)
+    unsigned = voxelizer.level_set(v, t, voxel_size=h, unsigned=True)
+    assert unsigned.name == "distance" and unsigned.activeVoxelCount() > 0
+
+
+def test_solid_of_a_tetrahedron_is_its_inside_and_surface(voxelizer):
+    v, t = tetrahedron()
+    solid = voxelizer.solid(v, t, resolution=40)
+    surface = voxelizer.voxelize(v, t, resolution=40)
+    filled, shell = as_set(svo.active_voxels(solid)), as_set(svo.active_voxels(surface))
+    assert shell < filled and len(filled) > 1.5 * len(shell)
+    with pytest.raises(RuntimeError, match="not closed"):
+        voxelizer.solid(v, t[:3], resolution=40)

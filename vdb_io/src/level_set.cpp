@@ -120,19 +120,21 @@ double uniformScale(const openvdb::math::Transform& xform)
 } // namespace detail
 
 openvdb::GridPtrVec Voxelizer::levelSet(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
-                                        const VoxelizeOptions& options)
+                                        const VoxelizeOptions& options, openvdb::math::Transform::Ptr xform)
 {
     validateMesh(mesh);
     checkGrid(grid, mesh.source);
-    return levelSetChecked(mesh, grid, ls, options, vdb::makeTransform(grid), grid.voxelSize);
+    if (!xform) xform = vdb::makeTransform(grid);
+    const double scale = detail::uniformScale(*xform);
+    return levelSetChecked(mesh, grid, ls, options, xform, scale);
 }
 
 openvdb::MaskGrid::Ptr Voxelizer::solid(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
-                                        SignMethod sign)
+                                        SignMethod sign, openvdb::math::Transform::Ptr xform)
 {
     validateMesh(mesh);
     checkGrid(grid, mesh.source);
-    return solidChecked(mesh, grid, options, sign, vdb::makeTransform(grid));
+    return solidChecked(mesh, grid, options, sign, xform ? xform : vdb::makeTransform(grid));
 }
 
 openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const GridSpec& grid,

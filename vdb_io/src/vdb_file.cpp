@@ -549,6 +549,23 @@ void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::str
     writeGrids(path, grids);
 }
 
+WriteStats writeVdbGrids(const std::string& path, const openvdb::GridPtrVec& grids,
+                         const std::map<std::string, std::string>& metadata)
+{
+    checkWritable(path);
+    openvdb::initialize();
+    for (auto& g : grids)
+        for (const auto& [k, v] : metadata) g->insertMeta(k, openvdb::StringMetadata(v));
+    WriteStats stats;
+    const auto t0 = Clock::now();
+    writeGrids(path, grids);
+    std::error_code ec;
+    stats.bytes = fs::file_size(path, ec);
+    stats.writeMs = msSince(t0);
+    for (const auto& g : grids) stats.leaves += g->baseTree().leafCount();
+    return stats;
+}
+
 namespace {
 VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName);
 } // namespace

@@ -267,12 +267,16 @@ public:
 
     /// Level set (or unsigned field) of svo's own mesh on a grid from
     /// makeGrid: the distance grid, then "closest_triangle" when asked. The
-    /// band may reach beyond grid.dims; the output's transform is the grid's.
+    /// band may reach beyond grid.dims.
+    /// @param xform  the output's transform: null for the grid's own lattice
+    ///        (makeTransform), or the transform whose index space prepareMesh
+    ///        mapped the mesh to (uniform scale)
     openvdb::GridPtrVec levelSet(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& levelSet = {},
-                                 const VoxelizeOptions& options = {});
-    /// Solid of svo's own mesh on a grid from makeGrid (see meshToSolid).
+                                 const VoxelizeOptions& options = {}, openvdb::math::Transform::Ptr xform = nullptr);
+    /// Solid of svo's own mesh on a grid from makeGrid (see meshToSolid);
+    /// @a xform as for levelSet().
     openvdb::MaskGrid::Ptr solid(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
-                                 SignMethod sign = SignMethod::Auto);
+                                 SignMethod sign = SignMethod::Auto, openvdb::math::Transform::Ptr xform = nullptr);
 
     /// The GPU's vendor, renderer and version (creates the context if needed).
     std::string deviceDescription();

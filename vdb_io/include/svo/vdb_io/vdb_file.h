@@ -2,6 +2,7 @@
 /// @file vdb_file.h
 /// Octrees to and from .vdb files, without OpenVDB in the interface.
 #include <iosfwd>
+#include <openvdb/openvdb.h>
 #include <map>
 #include <string>
 #include <utility>
@@ -39,6 +40,11 @@ WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOp
 /// missed and extra voxels of a validation), written atomically.
 void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::string, Octree>>& grids,
                    const std::map<std::string, std::string>& metadata);
+
+/// Any grids to one .vdb file, each given @a metadata as strings, written
+/// atomically. Throws svo::Error naming the path.
+WriteStats writeVdbGrids(const std::string& path, const openvdb::GridPtrVec& grids,
+                         const std::map<std::string, std::string>& metadata);
 
 /// The active voxels of one grid (`gridName`, or the first grid in name
 /// order when empty) as bricks, active tiles expanded. Throws svo::Error when
