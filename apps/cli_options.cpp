@@ -12,7 +12,7 @@
 
 namespace svo::app {
 
-DeviceOptions BackendArgs::deviceOptions() const { return DeviceOptions{device, glDebug}; }
+DeviceOptions BackendArgs::deviceOptions() const { return DeviceOptions{device, glDebug, ""}; }
 
 VoxelizeOptions BackendArgs::voxelizeOptions() const
 {
@@ -164,6 +164,16 @@ void printStages(const std::vector<StageTime>& stages)
     for (const auto& s : stages)
         fmt::print("  {:<20} {:>10} {:>10.2f}\n", s.name, s.gpuMs < 0 ? std::string("-") : fmt::format("{:.3f}", s.gpuMs),
                    s.wallMs);
+}
+
+void printStartup(const StartupStats& s)
+{
+    if (s.eglMs > 0) fmt::print("  {:<20} {:>10} {:>10.2f}\n", "EGL set-up", "-", s.eglMs);
+    if (s.programsCompiled + s.programsLoaded == 0) return;
+    std::string what = fmt::format("{} compiled", s.programsCompiled);
+    if (s.programsLoaded) what = fmt::format("{} cached, {}", s.programsLoaded, what);
+    fmt::print("  {:<20} {:>10} {:>10.2f}   ({}{})\n", "programs", "-", s.programMs, what,
+               s.programCache.empty() ? "; no program cache" : "");
 }
 
 void printOctreeSummary(const Octree& o)

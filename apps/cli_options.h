@@ -21,6 +21,7 @@ class Voxelizer;
 struct VoxelizeOptions;
 struct DeviceOptions;
 struct VoxelizeStats;
+struct StartupStats;
 } // namespace svo
 
 namespace svo::app {
@@ -72,6 +73,8 @@ void printWarnings(const std::vector<std::string>& warnings);
 void printOctreeSummary(const Octree& octree);
 /// Prints stage, GPU ms and wall ms rows.
 void printStages(const std::vector<StageTime>& stages);
+/// The start-up rows of a stage table: EGL set-up and programs, where the call paid for them.
+void printStartup(const StartupStats& startup);
 
 /// The text with control bytes (newlines included) and DEL written as \xNN, so
 /// that a message quoting a damaged file stays one line and cannot drive the

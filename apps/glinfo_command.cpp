@@ -14,12 +14,18 @@ void addGlInfoCommand(CLI::App& app)
     CLI::App* cmd = app.add_subcommand("glinfo", "Create the headless GL context and print what it is");
     cmd->add_option("--device", *device, "EGL device: auto, hardware, software or an index (env SVO_EGL_DEVICE)");
     cmd->callback([device] {
-        gl::Context context(gl::ContextOptions{*device, false});
+        gl::Context context(gl::ContextOptions{*device, false, ""});
         const auto& i = context.info();
         fmt::print("EGL        {}\nvendor     {}\nrenderer   {}\nversion    {}\n", i.eglDevice, i.vendor, i.renderer,
                    i.version);
         fmt::print("GL_NV_conservative_raster  {}\nmax viewport               {}\n",
                    i.conservativeRasterNV ? "yes" : "no", i.maxViewport);
+        fmt::print("program binary formats     {}\nprogram cache              {}\ncontext set-up             {:.1f} ms\n",
+                   i.programBinaryFormats,
+                   !i.programCache.empty()      ? i.programCache
+                   : i.programBinaryFormats > 0 ? std::string("off (SVO_PROGRAM_CACHE)")
+                                                : std::string("off (the driver offers no binary formats)"),
+                   i.setupMs);
     });
 }
 

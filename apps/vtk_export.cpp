@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include <vtkActor.h>
+#include <vtkBitArray.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -229,6 +230,9 @@ void writeHyperTreeGrid(const std::string& path, const Octree& o, const LevelRan
 
     vtkNew<vtkUnsignedCharArray> level, occupancy;
     vtkNew<vtkUnsignedIntArray> count;
+    // Empty cells are masked (1), so a viewer draws the voxels without a
+    // threshold filter; otherwise ParaView shows the root cube, solid.
+    vtkNew<vtkBitArray> mask;
     level->SetName("level");
     occupancy->SetName("occupancy");
     count->SetName("voxel_count");
@@ -242,6 +246,7 @@ void writeHyperTreeGrid(const std::string& path, const Octree& o, const LevelRan
         level->InsertValue(id, static_cast<unsigned char>(l));
         occupancy->InsertValue(id, n ? 1 : 0);
         count->InsertValue(id, n);
+        mask->InsertValue(id, n ? 0 : 1);
         attributes.setEmpty(id);
     };
     // Inside brick `bi`: sub-cubes of `size` voxels at brick offset (x, y, z).
@@ -294,6 +299,7 @@ void writeHyperTreeGrid(const std::string& path, const Octree& o, const LevelRan
         return total;
     };
     visit(0, 0);
+    htg->SetMask(mask);
     htg->GetCellData()->AddArray(level);
     htg->GetCellData()->AddArray(occupancy);
     htg->GetCellData()->AddArray(count);

@@ -22,7 +22,8 @@ struct LevelRange {
 /// (the octree's order). Cell arrays: `level`, `occupancy` (0/1),
 /// `voxel_count`, and the octree's attribute channels (`normal`,
 /// `triangle_id`, `color`) on voxel cells. Occupied cells are refined down to
-/// level range.last. Written in binary mode: VTK 9.1's appended mode corrupts
+/// level range.last. Empty cells are masked (the grid's mask, 1 = masked), so
+/// ParaView draws only the occupied leaves (the voxels) with no filter. Written in binary mode: VTK 9.1's appended mode corrupts
 /// hyper tree grids with more than one cell array.
 void writeHyperTreeGrid(const std::string& path, const Octree& octree, const LevelRange& levels);
 

@@ -7,7 +7,7 @@ source "$(dirname "$0")/gpu_host_env.sh"
 svo="$bin/svo"
 
 # The GPU test suites against the CPU and CGAL references, with the meshes where the build expects them.
-for t in test_gpu_voxelize test_gpu_octree test_validate; do
+for t in test_gpu_voxelize test_gpu_octree test_validate test_program_cache; do
   if [ -x "$work/svo/bin/$t" ]; then
     SVO_CGAL_MESHES="$PWD/bundle/meshes" "$work/svo/bin/$t" 2>&1 | tee "$out/$t.txt" | grep -E "^\[  |FAILED|PASSED"
   fi
@@ -17,6 +17,11 @@ done
 if command -v python3 >/dev/null; then
   python3 bench/octree_build.py --svo "$svo" --machine gpu-host --out "$out" --meshes bundle/meshes \
     --mesh stanford-bunny.obj ogre.obj elephant.off --res 256 512 1024 2048 --repeat 5 2>&1 | tail -3
+fi
+
+# Start-up: EGL set-up and programs with the program cache and the driver's shader cache empty or warm.
+if command -v python3 >/dev/null; then
+  python3 bench/startup.py --svo "$svo" --machine gpu-host --out "$out" --runs 5 2>&1 | tee "$out/startup.txt"
 fi
 
 # Exact validation of the NVIDIA path (hardware conservative raster).

@@ -26,9 +26,10 @@ struct Run {
     std::string out;
 };
 
-Run runSvo(const std::string& args)
+/// `env`: "NAME=value ..." for the command's environment.
+Run runSvo(const std::string& args, const std::string& env = "")
 {
-    const std::string cmd = std::string(SVO_EXE) + " " + args + " 2>&1";
+    const std::string cmd = env + (env.empty() ? "" : " ") + std::string(SVO_EXE) + " " + args + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     std::string out;
     std::array<char, 4096> buf;
@@ -109,6 +110,13 @@ std::vector<pid_t> childrenNamed(pid_t pid, const std::string& name)
     return out;
 }
 
+/// "text {} text" with the number in place of {}.
+std::string fmt(const std::string& pattern, size_t n)
+{
+    const auto at = pattern.find("{}");
+    return pattern.substr(0, at) + std::to_string(n) + pattern.substr(at + 2);
+}
+
 class Cli : public ::testing::Test {
 protected:
     std::string path(const std::string& name) const { return tmp_.path(name); }
@@ -137,6 +145,33 @@ TEST_F(Cli, DefaultSceneWritesAVdbAndPrintsTheTable)
     EXPECT_NE(r.out.find("voxelize"), std::string::npos);
     EXPECT_GT(fs::file_size(path("cb.vdb")), 100u);
     expectOnly({"cb.vdb"});
+}
+
+TEST_F(Cli, StartUpRowsAndTheProgramCacheAcrossRuns)
+{
+    const std::string cache = "SVO_PROGRAM_CACHE=" + path("programs");
+    const auto cold = runSvo("voxelize -r 24 -o " + path("a.vdb"), cache);
+    ASSERT_EQ(cold.code, 0) << cold.out;
+    EXPECT_NE(cold.out.find("EGL set-up"), std::string::npos) << cold.out;
+    if (!fs::exists(path("programs"))) {
+        EXPECT_NE(cold.out.find("no program cache"), std::string::npos) << cold.out;
+        GTEST_SKIP() << "the driver offers no program binary formats";
+    }
+    const size_t files = size_t(std::distance(fs::directory_iterator(path("programs")), fs::directory_iterator()));
+    EXPECT_NE(cold.out.find(fmt("({} compiled)", files)), std::string::npos) << cold.out;
+    const auto warm = runSvo("voxelize -r 24 -o " + path("a.vdb"), cache);
+    ASSERT_EQ(warm.code, 0) << warm.out;
+    EXPECT_NE(warm.out.find(fmt("({} cached, 0 compiled)", files)), std::string::npos) << warm.out;
+    // Mesa without its disk cache offers no binary formats: then svo keeps no cache either.
+    const std::string noMesaCache = "MESA_SHADER_CACHE_DISABLE=true SVO_PROGRAM_CACHE=" + path("other");
+    const auto info = runSvo("glinfo", noMesaCache);
+    ASSERT_EQ(info.code, 0) << info.out;
+    if (info.out.find("program binary formats     0") != std::string::npos) {
+        const auto r = runSvo("voxelize -r 24 -o " + path("b.vdb"), noMesaCache);
+        ASSERT_EQ(r.code, 0) << r.out;
+        EXPECT_NE(r.out.find("no program cache"), std::string::npos) << r.out;
+        EXPECT_FALSE(fs::exists(path("other")));
+    }
 }
 
 TEST_F(Cli, BadMeshFailsAndKeepsAnEarlierOutput)

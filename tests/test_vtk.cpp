@@ -1,5 +1,6 @@
 // svo vtk: files read back with VTK's own readers, and the picture checked by
-// its pixels. The expected counts come from the .svo file, read independently.
+// its pixels. The expected counts and sets come from the .svo file, read
+// independently.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -7,12 +8,16 @@
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <memory>
+#include <set>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <vtkBitArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkHyperTreeGrid.h>
+#include <vtkHyperTreeGridGeometry.h>
+#include <vtkHyperTreeGridNonOrientedCursor.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
@@ -25,6 +30,7 @@
 
 #include "svo/core/octree.h"
 #include "svo/core/octree_file.h"
+#include "svo/core/voxel_key.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -73,7 +79,130 @@ uint64_t occupiedSubcubes(const Brick& b, uint32_t size)
     return n;
 }
 
+using Cell = std::array<uint32_t, 4>; // level, x, y, z (in cells of that level)
+
+/// Cells of the .htg's levels that hold at least one voxel, from the voxel
+/// set alone: a voxel lies in cell p >> shift at the level whose cells are
+/// 2^shift voxels wide (level brickLevel + 3 - shift).
+std::set<Cell> occupiedCells(const Octree& o)
+{
+    std::set<Cell> cells;
+    const uint32_t deepest = o.brickLevel + 3;
+    for (uint64_t k : octreeKeys(o)) {
+        const auto p = unpackVoxelKey(k);
+        for (uint32_t shift = 0; shift <= deepest; ++shift)
+            cells.insert({deepest - shift, p[0] >> shift, p[1] >> shift, p[2] >> shift});
+    }
+    return cells;
+}
+
+/// Every cell of the tree as read back: its level and position, and whether it
+/// is masked and a leaf.
+struct ReadCell {
+    Cell cell;
+    bool masked, leaf;
+};
+void collectCells(vtkHyperTreeGridNonOrientedCursor* cursor, const Cell& at, std::vector<ReadCell>& out)
+{
+    out.push_back({at, cursor->IsMasked(), cursor->IsLeaf()});
+    if (cursor->IsLeaf()) return;
+    for (unsigned char c = 0; c < cursor->GetNumberOfChildren(); ++c) {
+        cursor->ToChild(c);
+        collectCells(cursor, {at[0] + 1, 2 * at[1] + (c & 1), 2 * at[2] + (c >> 1 & 1), 2 * at[3] + (c >> 2)}, out);
+        cursor->ToParent();
+    }
+}
+
 } // namespace
+
+TEST_F(Vtk, HyperTreeGridMasksExactlyTheEmptyCells)
+{
+    ASSERT_EQ(runSvo("vtk " + path("box.svo") + " -o " + path("masked.htg")), 0);
+    vtkNew<vtkXMLHyperTreeGridReader> reader;
+    reader->SetFileName(path("masked.htg").c_str());
+    reader->Update();
+    vtkHyperTreeGrid* htg = reader->GetOutput();
+    ASSERT_TRUE(htg->HasMask());
+    ASSERT_EQ(htg->GetMask()->GetNumberOfTuples(), htg->GetNumberOfVertices());
+
+    vtkNew<vtkHyperTreeGridNonOrientedCursor> cursor;
+    htg->InitializeNonOrientedCursor(cursor, 0);
+    std::vector<ReadCell> cells;
+    collectCells(cursor, {0, 0, 0, 0}, cells);
+    ASSERT_EQ(int64_t(cells.size()), int64_t(htg->GetNumberOfVertices()));
+
+    const std::set<Cell> occupied = occupiedCells(octree_);
+    const uint32_t voxelLevel = octree_.brickLevel + 3;
+    std::set<Cell> visibleLeaves;
+    uint64_t masked = 0;
+    for (const ReadCell& c : cells) {
+        EXPECT_EQ(c.masked, occupied.count(c.cell) == 0)
+            << "level " << c.cell[0] << " cell " << c.cell[1] << "," << c.cell[2] << "," << c.cell[3];
+        masked += c.masked;
+        if (c.leaf && !c.masked) visibleLeaves.insert(c.cell);
+    }
+    EXPECT_GT(masked, 0u);
+    // The visible leaves are the voxels, one cell each.
+    std::set<Cell> voxels;
+    for (const Cell& c : occupied)
+        if (c[0] == voxelLevel) voxels.insert(c);
+    EXPECT_EQ(voxels.size(), octree_.voxelCount());
+    EXPECT_EQ(visibleLeaves, voxels);
+}
+
+TEST_F(Vtk, HyperTreeGridGeometryIsTheVoxelSurface)
+{
+    // What ParaView draws of a .htg with no filter: vtkHyperTreeGridGeometry's
+    // faces. With the mask, these are the faces of voxels that border an empty
+    // voxel; without it, the 6 faces of the root cube. Faces are compared as
+    // sets of doubled local centres (one half-integer coordinate each): VTK
+    // 9.1 emits a face between two cells of one level from both sides.
+    ASSERT_EQ(runSvo("vtk " + path("box.svo") + " -o " + path("surface.htg")), 0);
+    vtkNew<vtkXMLHyperTreeGridReader> reader;
+    reader->SetFileName(path("surface.htg").c_str());
+    vtkNew<vtkHyperTreeGridGeometry> geometry;
+    geometry->SetInputConnection(reader->GetOutputPort());
+    geometry->Update();
+    vtkPolyData* poly = vtkPolyData::SafeDownCast(geometry->GetOutput());
+    ASSERT_NE(poly, nullptr);
+
+    const GridSpec& g = octree_.grid;
+    std::set<std::array<int64_t, 3>> drawn;
+    for (vtkIdType c = 0; c < poly->GetNumberOfCells(); ++c) {
+        double b[6];
+        poly->GetCellBounds(c, b);
+        std::array<int64_t, 3> centre;
+        int flat = 0, voxelWide = 0; // a voxel's face: flat along one axis, one voxel along two
+        for (int a = 0; a < 3; ++a) {
+            const double extent = (b[2 * a + 1] - b[2 * a]) / g.voxelSize;
+            flat += std::abs(extent) < 1e-3; // points are float
+            voxelWide += std::abs(extent - 1) < 1e-3;
+            const double local = 0.5 * (b[2 * a] + b[2 * a + 1]) / g.voxelSize - double(g.anchor[a] + g.shift[a]);
+            centre[size_t(a)] = std::llround(2 * local);
+        }
+        EXPECT_TRUE(flat == 1 && voxelWide == 2) << "face " << c << " is not one voxel's face: " << (b[1] - b[0]) / g.voxelSize << " " << (b[3] - b[2]) / g.voxelSize << " " << (b[5] - b[4]) / g.voxelSize;
+        drawn.insert(centre);
+    }
+
+    const std::vector<uint64_t> keys = octreeKeys(octree_);
+    const std::set<uint64_t> voxels(keys.begin(), keys.end());
+    std::set<std::array<int64_t, 3>> surface;
+    for (uint64_t k : keys) {
+        const auto p = unpackVoxelKey(k);
+        for (int axis = 0; axis < 3; ++axis)
+            for (int side : {-1, 1}) {
+                auto q = p;
+                const bool edge = side < 0 && q[axis] == 0;
+                q[axis] += uint32_t(side);
+                if (!edge && voxels.count(packVoxelKey(q[0], q[1], q[2]))) continue;
+                std::array<int64_t, 3> centre{2 * int64_t(p[0]), 2 * int64_t(p[1]), 2 * int64_t(p[2])};
+                centre[size_t(axis)] += side;
+                surface.insert(centre);
+            }
+    }
+    EXPECT_GT(surface.size(), 6u);
+    EXPECT_EQ(drawn, surface);
+}
 
 TEST_F(Vtk, HyperTreeGridReadsBackWithTheOctreesCounts)
 {

@@ -10,17 +10,12 @@
 
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
+#include "svo/core/fnv1a.h"
 
 namespace svo {
 namespace {
 
 constexpr char kMagic[8] = {'S', 'V', 'O', 'C', 'T', 'R', 'E', 'E'};
-
-uint64_t fnv1a(const unsigned char* p, size_t n, uint64_t h = 0xcbf29ce484222325ull)
-{
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
-    return h;
-}
 
 uint64_t bytesPerVoxel(uint32_t channels)
 {

@@ -1,12 +1,14 @@
 #include "svo/gl/context.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <dlfcn.h>
 #include <fmt/format.h>
 #include <map>
 #include <mutex>
+#include <optional>
 
 #define EGL_EGLEXT_PROTOTYPES 0
 #include <EGL/egl.h>
@@ -14,6 +16,7 @@
 
 #include "gl_api.h"
 #include "objects.h"
+#include "program_cache.h"
 #include "svo/core/error.h"
 
 namespace svo::gl {
@@ -144,6 +147,8 @@ struct Context::Impl {
     ContextInfo info;
     // GL objects live in the context; they are deleted (inside a Scope) before it.
     mutable std::map<std::string, std::unique_ptr<Program>> programs;
+    mutable std::optional<ProgramCache> programCache; // set once the GL strings are known
+    mutable ProgramStats programStats;
     mutable std::map<std::string, Buffer> scratch;
 
     ~Impl()
@@ -205,6 +210,7 @@ struct Context::Impl {
 
 Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>())
 {
+    const auto start = std::chrono::steady_clock::now();
     // Creation makes the new context current to query it; the caller's comes back on every path out.
     Scope::Saved previous;
     previous.capture();
@@ -298,7 +304,12 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
         glDebugMessageCallback(debugCallback, nullptr);
         info.extensionsUsed.push_back("GL_KHR_debug");
     }
+    // No binary formats (Mesa without its disk cache, some drivers): no program cache.
+    glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &info.programBinaryFormats);
+    info.programCache = info.programBinaryFormats > 0 ? programCacheFolder(options.programCache) : std::string();
+    impl_->programCache.emplace(info.programCache, info.vendor + '\0' + info.renderer + '\0' + info.version);
     checkGl("context creation");
+    info.setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 Context::~Context()
@@ -349,10 +360,28 @@ const Program& Context::program(std::initializer_list<const char*> files) const
     auto& slot = impl_->programs[key];
     if (!slot) {
         const Scope scope(*this);
-        slot = std::make_unique<Program>(files);
+        const auto start = std::chrono::steady_clock::now();
+        ProgramStats& stats = impl_->programStats;
+        ProgramCache& cache = *impl_->programCache;
+        const ProgramSource source = programSource(files);
+        ProgramCache::Lookup how = ProgramCache::Lookup::Absent;
+        std::optional<Program> p = cache.load(source, how);
+        if (p) {
+            ++stats.loaded;
+        } else {
+            stats.refused += how == ProgramCache::Lookup::Refused;
+            p.emplace(source, cache.enabled());
+            ++stats.compiled;
+            if (std::string warning = cache.store(source, *p); !warning.empty())
+                stats.warnings.push_back(std::move(warning));
+        }
+        slot = std::make_unique<Program>(std::move(*p));
+        stats.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
     return *slot;
 }
+
+const ProgramStats& Context::programStats() const { return impl_->programStats; }
 
 const Buffer& Context::scratch(const char* what, uint64_t bytes) const
 {

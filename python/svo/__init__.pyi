@@ -9,7 +9,7 @@ Grid = Any  # a pyopenvdb BoolGrid, FloatGrid or Vec3SGrid
 Transform = Any  # a pyopenvdb.Transform, or a 4x4 matrix
 
 class Voxelizer:
-    def __init__(self, device: str = "auto") -> None: ...
+    def __init__(self, device: str = "auto", program_cache: str = "") -> None: ...
     def voxelize(
         self,
         vertices: ArrayLike,

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <utility>
 
 #include "svo/core/cpu_voxelizer.h"
 #include "svo/core/error.h"
@@ -249,6 +250,7 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
         stats.overflowRetries = r.overflowRetries;
         stats.gpuBytes = r.gpuBytes;
     }
+    stats.startup = impl_->takeStartup(stats.warnings);
     return finish(std::move(octree), stats, options, checkpoint);
 }
 
@@ -273,6 +275,7 @@ Octree Voxelizer::bricksToOctree(const GridSpec& grid, std::vector<std::pair<uin
         stats.stages = std::move(r.stages);
         stats.gpuBytes = r.gpuBytes;
     }
+    stats.startup = impl_->takeStartup(stats.warnings);
     return finish(std::move(octree), stats, options, checkpoint);
 }
 

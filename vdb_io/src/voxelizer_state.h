@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "svo/core/interrupt.h"
 #include "svo/gl/context.h"
@@ -47,12 +48,37 @@ private:
 struct Voxelizer::Impl {
     DeviceOptions device;
     std::unique_ptr<gl::Context> context;
+    double unreportedEglMs = 0;  // the context's creation, until a call's statistics take it
+    gl::ProgramStats reported;   // the context's program statistics already handed to a call
 
     /// The GL context, created on first use: a CPU-only user never needs one.
     gl::Context& gl()
     {
-        if (!context) context = std::make_unique<gl::Context>(gl::ContextOptions{device.device, device.glDebug});
+        if (!context) {
+            context = std::make_unique<gl::Context>(
+                gl::ContextOptions{device.device, device.glDebug, device.programCache});
+            unreportedEglMs = context->info().setupMs;
+        }
         return *context;
+    }
+
+    /// Start-up work since the last call that reported it; new program cache
+    /// warnings go to `warnings`.
+    StartupStats takeStartup(std::vector<std::string>& warnings)
+    {
+        StartupStats s;
+        s.eglMs = std::exchange(unreportedEglMs, 0.0);
+        if (!context) return s;
+        const gl::ProgramStats& now = context->programStats();
+        s.programMs = now.ms - reported.ms;
+        s.programsCompiled = now.compiled - reported.compiled;
+        s.programsLoaded = now.loaded - reported.loaded;
+        s.programsRefused = now.refused - reported.refused;
+        s.programCache = context->info().programCache;
+        warnings.insert(warnings.end(), now.warnings.begin() + std::ptrdiff_t(reported.warnings.size()),
+                        now.warnings.end());
+        reported = now;
+        return s;
     }
 
     /// Backend::Auto's choice, measured (bench/results/nvidia-h100/compute.md):

@@ -25,9 +25,10 @@
 /// - Degenerate triangles (needles, points) still cover what they touch.
 /// - Deterministic: the same input gives the same voxels on every call.
 ///
-/// Reuse. A Voxelizer owns its GL context, the compiled programs and the
-/// scratch buffers, so only the first call pays for EGL start-up and shader
-/// compilation, and a warm call pays only for its work. Scratch buffers stay
+/// Reuse. A Voxelizer owns its GL context, the linked programs and the
+/// scratch buffers, so only the first call pays for EGL start-up and making
+/// programs (loaded from the program cache, DeviceOptions::programCache, or
+/// compiled), and a warm call pays only for its work. Scratch buffers stay
 /// at their largest size until releaseScratch().
 ///
 /// Host contexts. The Voxelizer's context is current only inside a call; the
@@ -103,6 +104,26 @@ struct DeviceOptions {
     /// Mesa's software renderer), "hardware", "software", or an EGL device index.
     std::string device;
     bool glDebug = false; ///< print GL debug messages to stderr
+    /// Folder of cached GL program binaries, so that a new Voxelizer (in this
+    /// process or a later one) loads its programs instead of compiling them:
+    /// "" ($SVO_PROGRAM_CACHE when set, where empty or "off" means none; else
+    /// $XDG_CACHE_HOME/svo/programs, else ~/.cache/svo/programs), "off", or a
+    /// folder. Entries are keyed by the GL driver and the programs' full
+    /// source; one the driver refuses is compiled again and replaced. A folder
+    /// that cannot be written never fails a call (one warning in
+    /// VoxelizeStats::warnings). Drivers with no program binary formats have no cache.
+    std::string programCache;
+};
+
+/// Start-up work a call paid for: the GL context and the programs it made.
+/// All zero on a warm Voxelizer whose programs are made.
+struct StartupStats {
+    double eglMs = 0;          ///< creating the EGL display and GL context (the first GPU use)
+    double programMs = 0;      ///< making programs: loading them from the cache or compiling them
+    int programsCompiled = 0;  ///< compiled from source (those the cache refused included)
+    int programsLoaded = 0;    ///< loaded from the program cache
+    int programsRefused = 0;   ///< cache entries damaged or refused by the driver: compiled again, replaced
+    std::string programCache;  ///< the program cache folder, "" when off
 };
 
 /// What one call measured. Kept apart from the result; filled only when asked.
@@ -122,6 +143,10 @@ struct VoxelizeStats {
     std::string sign;              ///< level sets and solids: the sign method used and why ("parity: closed and ...")
     uint64_t openColumns = 0;      ///< level sets and solids: voxel columns crossed an odd number of times (open mesh)
     uint64_t bandBricks = 0;       ///< level sets and solids: bricks whose distances or signs were computed
+    /// Start-up paid since the previous call returned: the context if this
+    /// call (or deviceDescription() before it) created it, and the programs
+    /// this call made. Kept apart from `stages`, whose wall times exclude it.
+    StartupStats startup;
     double gpuMs() const;          ///< the sum of the stages' GPU times
 };
 

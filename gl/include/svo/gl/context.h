@@ -15,9 +15,16 @@
 /// the saved one back when it ends, on every path out. So svo can be called
 /// from inside a host that renders with its own context.
 ///
-/// The context also owns what repeated work reuses: linked programs (cached
-/// by their files) and scratch buffers (kept at their largest size until
-/// releaseScratch()).
+/// The context also owns what repeated work reuses: linked programs (made on
+/// first use, by their files) and scratch buffers (kept at their largest size
+/// until releaseScratch()).
+///
+/// Program cache: a program is loaded from a binary that an earlier context
+/// of the same driver stored in the cache folder (ContextOptions::programCache),
+/// and compiled, then stored, only when there is none the driver takes. The
+/// cache never fails a call: a damaged or refused entry is compiled again and
+/// replaced, a folder that cannot be written gives one warning
+/// (ProgramStats::warnings). A driver with no program binary formats has no cache.
 #include <cstdint>
 #include <initializer_list>
 #include <memory>
@@ -32,6 +39,10 @@ class Buffer;
 struct ContextOptions {
     std::string device;  ///< "" = $SVO_EGL_DEVICE or "auto"
     bool debug = false;  ///< GL debug output to stderr (always on in debug builds)
+    /// Folder of cached program binaries: "" = $SVO_PROGRAM_CACHE when set
+    /// (empty or "off": no cache), else $XDG_CACHE_HOME/svo/programs, else
+    /// ~/.cache/svo/programs; "off" = no cache; or a folder.
+    std::string programCache;
 };
 
 struct ContextInfo {
@@ -40,6 +51,18 @@ struct ContextInfo {
     bool software = false;             ///< a CPU rasterizer (llvmpipe, softpipe, lavapipe-like)
     int maxViewport = 0;               ///< largest framebuffer width/height usable
     std::vector<std::string> extensionsUsed;
+    double setupMs = 0;                ///< wall ms the constructor took: EGL display, context, queries
+    int programBinaryFormats = 0;      ///< GL_NUM_PROGRAM_BINARY_FORMATS; 0 means no program cache
+    std::string programCache;          ///< the program cache folder in use; "" when off
+};
+
+/// What making programs has cost a Context so far (cumulative).
+struct ProgramStats {
+    int compiled = 0;  ///< programs compiled from source (refused ones included)
+    int loaded = 0;    ///< programs loaded from the program cache
+    int refused = 0;   ///< cache entries damaged or refused by the driver, compiled again and replaced
+    double ms = 0;     ///< wall ms spent making programs: expanding, compiling or loading, cache files
+    std::vector<std::string> warnings; ///< the program cache's (at most one: a folder that cannot be written)
 };
 
 /// Owns an EGL context on a display shared with other Contexts of the same
@@ -72,9 +95,12 @@ public:
         std::unique_ptr<Saved> saved_; ///< null when the context was already current
     };
 
-    /// The linked program of these shader files, compiled on first use
-    /// (svo's backends; call inside a Scope).
+    /// The linked program of these shader files, made on first use: loaded
+    /// from the program cache, else compiled (and stored there). Throws
+    /// svo::Error when a shader does not compile or link, or on a GL error.
     const Program& program(std::initializer_list<const char*> files) const;
+    /// What program() has cost so far.
+    const ProgramStats& programStats() const;
     /// A buffer named `what` of at least `bytes`, reused across calls; a
     /// larger request frees the old one first. Contents are undefined.
     const Buffer& scratch(const char* what, uint64_t bytes) const;
