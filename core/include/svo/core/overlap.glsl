@@ -62,6 +62,18 @@ SVO_FN bool svo_triangle_box_overlap(svo_vec3 a, svo_vec3 b, svo_vec3 c, svo_vec
     return true;
 }
 
+// Dominant axis of a normal; ties go to the higher axis (z over y over x), a
+// fixed rule so that every backend projects a tied triangle the same way.
+SVO_FN int svo_dominant_axis(svo_vec3 n)
+{
+    svo_real ax = abs(n.x);
+    svo_real ay = abs(n.y);
+    svo_real az = abs(n.z);
+    if (az >= ax && az >= ay) return 2;
+    if (ay >= ax) return 1;
+    return 0;
+}
+
 // The same test for a box with its own half extent on each axis (each >= 0;
 // zero extents make the box a rectangle, a segment or a point), given the
 // triangle's corners relative to the box centre, its edges and its normal.
@@ -123,21 +135,15 @@ SVO_FN bool svo_triangle_thin_overlap(svo_vec3 a, svo_vec3 b, svo_vec3 c, svo_ve
     svo_vec3 e1 = v2 - v1;
     svo_vec3 e2 = v0 - v2;
     svo_vec3 n = cross(e0, e1);
-    if (!svo_aabb_separated(v0, v1, v2, e0, e1, e2, n, svo_vec3(halfLength, thickness, thickness))) return true;
-    if (!svo_aabb_separated(v0, v1, v2, e0, e1, e2, n, svo_vec3(thickness, halfLength, thickness))) return true;
-    return !svo_aabb_separated(v0, v1, v2, e0, e1, e2, n, svo_vec3(thickness, thickness, halfLength));
-}
-
-// Dominant axis of a normal; ties go to the higher axis (z over y over x), a
-// fixed rule so that every backend projects a tied triangle the same way.
-SVO_FN int svo_dominant_axis(svo_vec3 n)
-{
-    svo_real ax = abs(n.x);
-    svo_real ay = abs(n.y);
-    svo_real az = abs(n.z);
-    if (az >= ax && az >= ay) return 2;
-    if (ay >= ax) return 1;
-    return 0;
+    // The segment along the normal's dominant axis first: it is the one that
+    // meets the triangle in most voxels kept, so most of them cost one test.
+    int w = svo_dominant_axis(n);
+    for (int i = 0; i < 3; ++i) {
+        svo_vec3 h = svo_vec3(thickness, thickness, thickness);
+        h[(w + i) % 3] = halfLength;
+        if (!svo_aabb_separated(v0, v1, v2, e0, e1, e2, n, h)) return true;
+    }
+    return false;
 }
 
 // Heights along axis w at which triangle (a, b, c) can meet a cube of halfSide side
