@@ -26,6 +26,7 @@ VoxelizeOptions BackendArgs::voxelizeOptions() const
                  : conservative == "centroid" ? Dilation::CentroidPush
                                               : Dilation::Auto;
     o.attributes = attributes;
+    o.mode = parseVoxelMode(mode);
     return o;
 }
 
@@ -43,6 +44,15 @@ void addBackendOptions(CLI::App& cmd, BackendArgs& a)
         ->capture_default_str();
     cmd.add_option("--device", a.device, "EGL device: auto, hardware, software or an index (env SVO_EGL_DEVICE)");
     cmd.add_flag("--gl-debug", a.glDebug, "Print GL debug messages");
+}
+
+void addModeOption(CLI::App& cmd, BackendArgs& a)
+{
+    cmd.add_option("--mode", a.mode,
+                   "conservative (every voxel whose cube meets a triangle; 26-separating) or thin (every voxel one "
+                   "of whose three axis-aligned centre segments meets a triangle; 6-separating)")
+        ->check(CLI::IsMember({"conservative", "thin"}))
+        ->capture_default_str();
 }
 
 void addAttributeOption(CLI::App& cmd, BackendArgs& a)

@@ -26,13 +26,14 @@ struct StartupStats;
 
 namespace svo::app {
 
-/// --backend, --conservative, --device, --gl-debug, --attributes.
+/// --backend, --conservative, --device, --gl-debug, --attributes, --mode.
 struct BackendArgs {
     std::string backend = "auto"; ///< auto | raster | cpu
     std::string conservative = "auto";
     std::string device;
     bool glDebug = false;
     uint32_t attributes = 0; ///< AttributeChannel bits
+    std::string mode = "conservative"; ///< conservative | thin
 
     DeviceOptions deviceOptions() const;
     /// The options these arguments ask for (no interrupter, no statistics yet).
@@ -40,6 +41,8 @@ struct BackendArgs {
 };
 void addBackendOptions(CLI::App& cmd, BackendArgs& args);
 void addAttributeOption(CLI::App& cmd, BackendArgs& args);
+/// --mode conservative|thin: which voxels a triangle covers (for the commands that voxelize meshes).
+void addModeOption(CLI::App& cmd, BackendArgs& args);
 
 /// -r/--resolution and --voxel-size (mutually exclusive).
 void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize);

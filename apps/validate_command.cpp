@@ -64,6 +64,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
 
     // The checks: the octree against the list, the exact reference, the classification, the holes.
     validate::ReportOptions ro;
+    ro.mode = call.options.mode;
     ro.holes = !a.noHoles;
     ro.strict = a.strict;
     ro.worst = a.worst;
@@ -87,15 +88,21 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     fmt::print("  {:<12} {} x {} x {} local voxels, voxel size {:.6g}\n", "grid", grid.dims[0], grid.dims[1],
                grid.dims[2], grid.voxelSize);
     fmt::print("  {:<12} {}\n", "backend", backendLine(stats));
-    fmt::print("  {:<12} {:.3g} voxels: R = cubes shrunk by it, A = cubes grown by it, E = the cubes themselves "
-               "(exact CGAL tests)\n",
-               "guard band", eps);
+    fmt::print("  {:<12} {}\n", "mode", voxelModeName(report.mode));
+    if (report.mode == VoxelMode::Thin)
+        fmt::print("  {:<12} {:.3g} voxels: R = centre segments shortened by it, A = segments grown by it, E = the "
+                   "segments themselves (exact CGAL tests)\n",
+                   "guard band", eps);
+    else
+        fmt::print("  {:<12} {:.3g} voxels: R = cubes shrunk by it, A = cubes grown by it, E = the cubes themselves "
+                   "(exact CGAL tests)\n",
+                   "guard band", eps);
     fmt::print("  {:<12} {} voxels; R {} , E {} , A {}\n", "sets", thousands(c.voxels), thousands(c.required),
                thousands(c.exact), thousands(c.allowed));
     fmt::print("  {:<12} {:>10}  ({:.3g} of R)\n", "missed (R)", thousands(c.missed.size()),
                rate(c.missed.size(), c.required));
-    fmt::print("  {:<12} {:>10}  ({:.3g} of E, the exact conservative set)\n", "missed (E)",
-               thousands(c.missedExact.size()), rate(c.missedExact.size(), c.exact));
+    fmt::print("  {:<12} {:>10}  ({:.3g} of E, the exact {} set)\n", "missed (E)", thousands(c.missedExact.size()),
+               rate(c.missedExact.size(), c.exact), voxelModeName(report.mode));
     fmt::print("  {:<12} {:>10}  ({:.3g} of the voxels; allowed)\n", "boundary", thousands(c.boundary.size()),
                rate(c.boundary.size(), c.voxels));
     fmt::print("  {:<12} {:>10}  ({:.3g} of the voxels)\n", "extra", thousands(c.extra.size()), rate(c.extra.size(), c.voxels));
@@ -156,12 +163,13 @@ void addValidateCommand(CLI::App& app)
 {
     auto args = std::make_shared<ValidateArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "validate", "Check a voxelization against exact CGAL triangle-box tests: nothing missed, no holes "
-                    "(exit 0 pass, 3 fail, 1 error)");
+        "validate", "Check a voxelization against exact CGAL tests (triangle-box, or triangle-segment for "
+                    "--mode thin): nothing missed, no holes (exit 0 pass, 3 fail, 1 error)");
     cmd->add_option("mesh", args->mesh,
                     fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()));
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
+    addModeOption(*cmd, args->backend);
     addOutputPath(*cmd, "--json", args->json, "Write the report as JSON");
     addOutputPath(*cmd, "--errors", args->errors, "Write the missed and extra voxels (and any leak path) as MaskGrids in a .vdb",
                   {".vdb"});

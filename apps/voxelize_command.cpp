@@ -233,6 +233,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
                                            : fmt::format("resolution {}", request.resolution)},
         {"svo:voxel_size", fmt::format("{}", grid.voxelSize)},
         {"svo:backend", stats.backend},
+        {"svo:mode", stats.mode},
         {"svo:renderer", stats.renderer},
         {"svo:epsilon", fmt::format("{:.3g}", grid.epsilon())},
         {"svo:version", SVO_VERSION}};
@@ -259,8 +260,10 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     if (ch)
         fmt::print("  {:<11} {}{}{}\n", "attributes", ch & kNormals ? "normal " : "", ch & kTriangles ? "triangle_id " : "",
                    ch & kColors ? "color" : "");
+    fmt::print("  {:<11} {}\n", "mode", stats.mode);
     fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
-    fmt::print("  {:<11} {:.3g} voxels (cubes grown by half of it on the GPU)\n", "guard band", grid.epsilon());
+    fmt::print("  {:<11} {:.3g} voxels ({} grown by half of it on the GPU)\n", "guard band", grid.epsilon(),
+               stats.mode == "thin" ? "centre segments" : "cubes");
     fmt::print("  {:<11} {} entries, {} overflow retries, {:.1f} MB of GPU buffers\n", "voxel list",
                thousands(stats.listEntries), stats.overflowRetries, double(stats.gpuBytes) / 1e6);
     fmt::print("  {:<11} {}\n", "output",
@@ -285,6 +288,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
             {"voxel_size", grid.voxelSize},
             {"resolution", request.resolution},
             {"backend", stats.backend},
+            {"mode", stats.mode},
             {"conservative", a.backend.conservative},
             {"dilation", stats.dilation},
             {"renderer", stats.renderer},
@@ -326,6 +330,7 @@ void addVoxelizeCommand(CLI::App& app)
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
     addAttributeOption(*cmd, args->backend);
+    addModeOption(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
     cmd->add_flag("--sdf", args->sdf,
                   "Write a narrow-band signed distance field (OpenVDB level set, grid 'surface') instead of voxels");

@@ -3,6 +3,8 @@
 /// GPU output against the double-precision reference: it must contain every
 /// voxel whose cube shrunk by epsilon meets a triangle (R) and nothing outside
 /// those whose cube grown by epsilon does (A). Voxels in A \ R are the band.
+/// In thin mode the same with the voxels' centre segments (shortened by
+/// epsilon for R; lengthened and thickened by it for A).
 #include <algorithm>
 #include <gtest/gtest.h>
 #include <iterator>
@@ -16,11 +18,12 @@ struct BandCounts {
     size_t required = 0, allowed = 0, got = 0, missed = 0, extra = 0, band = 0;
 };
 
-inline BandCounts compareToReference(const TriangleMesh& mesh, const Voxelization& gpu)
+inline BandCounts compareToReference(const TriangleMesh& mesh, const Voxelization& gpu,
+                                     VoxelMode mode = VoxelMode::Conservative)
 {
     const double eps = gpu.grid.epsilon();
-    const auto R = voxelizeCpu(mesh, gpu.grid, -eps).keys;
-    const auto A = voxelizeCpu(mesh, gpu.grid, +eps).keys;
+    const auto R = voxelizeCpu(mesh, gpu.grid, -eps, mode).keys;
+    const auto A = voxelizeCpu(mesh, gpu.grid, +eps, mode).keys;
     BandCounts c;
     c.required = R.size();
     c.allowed = A.size();

@@ -146,6 +146,43 @@ TEST_F(Api, CpuBackendGivesTheSameVoxelsUpToTheGuardBand)
     EXPECT_EQ(countMissing(a, b), 0u) << "the GPU misses voxels the CPU reference has";
 }
 
+TEST_F(Api, ThinModeIsInsideConservativeAndHoldsTheExactThinSet)
+{
+    // Through the public API with a rotated, non-uniform transform: the thin
+    // voxels of every backend hold CGAL's exact thin set (segment tests in
+    // the index space OpenVDB's worldToIndex gives) and lie inside the
+    // conservative voxels; the statistics name the mode.
+    const VdbMesh mesh = toVdb(sphere({0, 0, 0}, 1.0, 20, 12));
+    const auto xform = rotatedScaled();
+    TriangleMesh idx;
+    for (const auto& p : mesh.points) {
+        const openvdb::Vec3d i = xform->worldToIndex(p);
+        idx.positions.push_back({i[0], i[1], i[2]});
+    }
+    for (const auto& t : mesh.triangles) idx.triangles.push_back({t[0], t[1], t[2]});
+    const GridSpec grid = makeGridOnLattice(idx, 1.0, {0, 0, 0});
+    const auto ref = validate::exactReference(idx, grid, 0.0, VoxelMode::Thin);
+    Coords exact;
+    for (uint64_t k : ref.exact) {
+        const auto g = grid.toGlobal(unpackVoxelKey(k));
+        exact.insert({int32_t(g[0]), int32_t(g[1]), int32_t(g[2])});
+    }
+    VoxelizeOptions conservative;
+    const Coords cube = activeCoords(*voxelizer().meshToMask(mesh.points, mesh.triangles, *xform, conservative));
+    for (const Backend backend : {Backend::Raster, Backend::Compute, Backend::Cpu}) {
+        VoxelizeStats stats;
+        VoxelizeOptions o;
+        o.backend = backend;
+        o.mode = VoxelMode::Thin;
+        o.stats = &stats;
+        const Coords thin = activeCoords(*voxelizer().meshToMask(mesh.points, mesh.triangles, *xform, o));
+        EXPECT_EQ(stats.mode, "thin");
+        EXPECT_EQ(countMissing(exact, thin), 0u) << stats.backend;
+        EXPECT_EQ(countMissing(thin, cube), 0u) << stats.backend;
+        EXPECT_LT(thin.size(), cube.size());
+    }
+}
+
 TEST_F(Api, ComputeBackendGivesTheRasterBackendsVoxelsAndAttributes)
 {
     const VdbMesh mesh = toVdb(sphere({0, 0, 0}, 1.0, 20, 12));

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <chrono>
@@ -299,6 +300,47 @@ TEST_F(Cli, ValidatePassesAndWritesItsReports)
     EXPECT_EQ(info.code, 0) << info.out;
     EXPECT_NE(info.out.find("grid 'extra'"), std::string::npos) << info.out;
     expectOnly({"v.json", "e.vdb"});
+}
+
+TEST_F(Cli, ThinModeVoxelizesFewerVoxelsAndValidates)
+{
+    auto read = [&](const std::string& name) {
+        std::ifstream in(path(name));
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    auto voxels = [](const std::string& json) {
+        std::smatch m;
+        return std::regex_search(json, m, std::regex("\"voxels\": ([0-9]+)")) ? std::stoull(m[1]) : 0ull;
+    };
+    // A closed tetrahedron, so that the hole check applies.
+    const std::string mesh =
+        write("tet.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    auto r = runSvo("voxelize " + mesh + " -r 48 --mode thin -o " + path("t.vdb") + " --json " + path("t.json"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("mode        thin"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("centre segments grown by half of it"), std::string::npos) << r.out;
+    r = runSvo("voxelize " + mesh + " -r 48 -o " + path("c.vdb") + " --json " + path("c.json"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    const std::string thin = read("t.json"), conservative = read("c.json");
+    EXPECT_NE(thin.find("\"mode\": \"thin\""), std::string::npos) << thin;
+    EXPECT_NE(conservative.find("\"mode\": \"conservative\""), std::string::npos) << conservative;
+    EXPECT_GT(voxels(thin), 0u);
+    EXPECT_LT(voxels(thin), voxels(conservative));
+
+    r = runSvo("validate " + mesh + " -r 48 --mode thin --json " + path("v.json"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("the exact thin set"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("6-connected fill"), std::string::npos) << r.out;
+    const std::string report = read("v.json");
+    EXPECT_NE(report.find("\"mode\": \"thin\""), std::string::npos) << report;
+    EXPECT_NE(report.find("\"connectivity\": 6"), std::string::npos) << report;
+    EXPECT_NE(report.find("\"passed\": true"), std::string::npos) << report;
+    EXPECT_EQ(voxels(report), voxels(thin)); // the same voxels as svo voxelize --mode thin
+
+    r = runSvo("voxelize -r 16 --mode thick -o " + path("x.vdb"));
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find("--mode"), std::string::npos) << r.out;
+    expectOnly({"tet.off", "t.vdb", "t.json", "c.vdb", "c.json", "v.json"});
 }
 
 TEST_F(Cli, NoOutputIsEverAnInputHoweverItIsNamed)

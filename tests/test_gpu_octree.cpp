@@ -246,42 +246,47 @@ TEST(VdbToBricks, UnsupportedInputsAreRefused)
 
 TEST_F(GpuOctree, AttributesEqualTheCpuReferenceOutsideTheBand)
 {
-    // Random triangles with random vertex colours, and a sphere.
+    // Random triangles with random vertex colours, and a sphere; in both
+    // modes (thin: the pairs come from the centre-segment test).
     auto random = test::randomTriangles(400, 5);
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> u(0, 1);
     for (size_t i = 0; i < random.positions.size(); ++i) random.colors.push_back({u(rng), u(rng), u(rng)});
     const uint32_t all = kNormals | kTriangles | kColors;
-    for (const auto& [mesh, req] : {std::pair{random, GridRequest{0, 0.5}},
-                                    std::pair{test::icosphere({0.1, 0.2, 0.3}, 1.0, 4), GridRequest{64, 0}}}) {
-        const GridSpec grid = makeGrid(mesh, req);
-        gl::RasterOptions opt;
-        opt.attributes = all;
-        const Octree gpu = gl::voxelizeToOctree(*context_, mesh, grid, opt).octree;
-        ASSERT_TRUE(checkOctree(gpu).empty());
-        ASSERT_EQ(gpu.channels(), mesh.colors.empty() ? uint32_t(kNormals | kTriangles) : all);
-        // The GPU's (voxel, triangle) pairs lie between the CPU's on cubes
-        // shrunk and grown by epsilon; where those agree, so must the values.
-        Octree lo = gpu, hi = gpu;
-        attachAttributesCpu(mesh, lo, all, -grid.epsilon());
-        attachAttributesCpu(mesh, hi, all, +grid.epsilon());
-        size_t compared = 0, differ = 0;
-        for (size_t v = 0; v < gpu.voxelCount(); ++v) {
-            const bool decided = lo.attributes.triangles[v] == hi.attributes.triangles[v] &&
-                                 lo.attributes.normals[v].x == hi.attributes.normals[v].x &&
-                                 lo.attributes.normals[v].y == hi.attributes.normals[v].y &&
-                                 lo.attributes.normals[v].z == hi.attributes.normals[v].z;
-            if (!decided) continue;
-            ++compared;
-            const auto& g = gpu.attributes;
-            const auto& c = hi.attributes;
-            differ += g.triangles[v] != c.triangles[v] || g.normals[v].x != c.normals[v].x ||
-                      g.normals[v].y != c.normals[v].y || g.normals[v].z != c.normals[v].z ||
-                      (!c.colors.empty() && (g.colors[v].x != c.colors[v].x || g.colors[v].z != c.colors[v].z));
+    for (const VoxelMode mode : {VoxelMode::Conservative, VoxelMode::Thin}) {
+        for (const auto& [mesh, req] : {std::pair{random, GridRequest{0, 0.5}},
+                                        std::pair{test::icosphere({0.1, 0.2, 0.3}, 1.0, 4), GridRequest{64, 0}}}) {
+            const GridSpec grid = makeGrid(mesh, req);
+            gl::RasterOptions opt;
+            opt.attributes = all;
+            opt.mode = mode;
+            const Octree gpu = gl::voxelizeToOctree(*context_, mesh, grid, opt).octree;
+            ASSERT_TRUE(checkOctree(gpu).empty());
+            ASSERT_EQ(gpu.channels(), mesh.colors.empty() ? uint32_t(kNormals | kTriangles) : all);
+            // The GPU's (voxel, triangle) pairs lie between the CPU's on cubes (thin: segments)
+            // shrunk and grown by epsilon; where those agree, so must the values.
+            Octree lo = gpu, hi = gpu;
+            attachAttributesCpu(mesh, lo, all, -grid.epsilon(), mode);
+            attachAttributesCpu(mesh, hi, all, +grid.epsilon(), mode);
+            size_t compared = 0, differ = 0;
+            for (size_t v = 0; v < gpu.voxelCount(); ++v) {
+                const bool decided = lo.attributes.triangles[v] == hi.attributes.triangles[v] &&
+                                     lo.attributes.normals[v].x == hi.attributes.normals[v].x &&
+                                     lo.attributes.normals[v].y == hi.attributes.normals[v].y &&
+                                     lo.attributes.normals[v].z == hi.attributes.normals[v].z;
+                if (!decided) continue;
+                ++compared;
+                const auto& g = gpu.attributes;
+                const auto& c = hi.attributes;
+                differ += g.triangles[v] != c.triangles[v] || g.normals[v].x != c.normals[v].x ||
+                          g.normals[v].y != c.normals[v].y || g.normals[v].z != c.normals[v].z ||
+                          (!c.colors.empty() && (g.colors[v].x != c.colors[v].x || g.colors[v].z != c.colors[v].z));
+            }
+            EXPECT_EQ(differ, 0u) << mesh.source;
+            EXPECT_GT(double(compared), 0.99 * double(gpu.voxelCount())) << mesh.source;
+            std::printf("  %-18s %-12s %zu voxels, %zu compared exactly\n", mesh.source.c_str(), voxelModeName(mode),
+                        size_t(gpu.voxelCount()), compared);
         }
-        EXPECT_EQ(differ, 0u) << mesh.source;
-        EXPECT_GT(double(compared), 0.99 * double(gpu.voxelCount())) << mesh.source;
-        std::printf("  %-18s %zu voxels, %zu compared exactly\n", mesh.source.c_str(), size_t(gpu.voxelCount()), compared);
     }
 }
 

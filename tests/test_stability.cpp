@@ -120,6 +120,44 @@ TEST(Stability, EveryAdversarialSceneIsExact)
     }
 }
 
+TEST(Stability, EveryAdversarialSceneIsExactInThinMode)
+{
+    // The same scenes in thin mode: raster (shader dilation) and compute
+    // agree, nothing of R or of the exact thin set E (CGAL segment tests) is
+    // missed, nothing lies outside A, the CPU reference sits between R and A,
+    // every thin voxel is a conservative one, and closed shells hold against
+    // a 6-connected fill.
+    gl::Context context;
+    for (const auto& scene : test::stabilityScenes()) {
+        SCOPED_TRACE(scene.name);
+        const GridSpec grid = makeGrid(scene.mesh, scene.grid);
+        gl::RasterOptions thin;
+        thin.mode = VoxelMode::Thin;
+        thin.conservative = gl::ConservativeMode::Shader;
+        const auto g = octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, thin).octree);
+        gl::RasterOptions compute = thin;
+        compute.pipeline = gl::Pipeline::Compute;
+        compute.conservative = gl::ConservativeMode::Auto;
+        EXPECT_EQ(octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, compute).octree), g)
+            << "the compute backend differs from the raster backend";
+        const auto ref = validate::exactReference(scene.mesh, grid, grid.epsilon(), VoxelMode::Thin);
+        const auto c = validate::classify(scene.mesh, grid, g, ref, 3);
+        EXPECT_EQ(c.missed.size(), 0u);
+        EXPECT_EQ(c.missedExact.size(), 0u) << "the GPU lost a voxel the exact thin set has";
+        EXPECT_EQ(c.extra.size(), 0u);
+        const auto cpu = voxelizeCpu(scene.mesh, grid, 0.0, VoxelMode::Thin).keys;
+        EXPECT_EQ(countMissing(ref.required, cpu), 0u);
+        EXPECT_EQ(countMissing(cpu, ref.allowed), 0u);
+        EXPECT_EQ(countMissing(g, octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid).octree)), 0u)
+            << "a thin voxel is not a conservative one";
+        const auto h = validate::checkHoles(scene.mesh, grid, g, 6);
+        EXPECT_FALSE(h.leak);
+        std::printf("  %-16s %-42s %8zu thin voxels  missed %zu/%zu  band %zu  extra %zu  %s\n", scene.group.c_str(),
+                    scene.name.c_str(), g.size(), c.missed.size(), c.missedExact.size(), c.boundary.size(),
+                    c.extra.size(), h.applies ? (h.leak ? "LEAK" : "closed, no leak") : "not checked");
+    }
+}
+
 TEST(Stability, BeyondTheLimitsIsAClearError)
 {
     // One voxel past the largest grid the 21-bit keys address.

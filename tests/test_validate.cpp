@@ -1,8 +1,10 @@
 // svo validate's parts: the exact CGAL reference, the classification, and the
 // hole check, on planted errors and on the GPU's own output.
 #include <algorithm>
+#include <cmath>
 #include <gtest/gtest.h>
 #include <memory>
+#include <random>
 
 #include "scenes.h"
 #include "svo/core/cpu_voxelizer.h"
@@ -26,9 +28,12 @@ class Validate : public ::testing::Test {
 protected:
     static void SetUpTestSuite() { context_ = std::make_unique<gl::Context>(); }
     static void TearDownTestSuite() { context_.reset(); }
-    static std::vector<uint64_t> gpuVoxels(const TriangleMesh& mesh, const GridSpec& grid)
+    static std::vector<uint64_t> gpuVoxels(const TriangleMesh& mesh, const GridSpec& grid,
+                                           VoxelMode mode = VoxelMode::Conservative)
     {
-        return octreeKeys(gl::voxelizeToOctree(*context_, mesh, grid).octree);
+        gl::RasterOptions o;
+        o.mode = mode;
+        return octreeKeys(gl::voxelizeToOctree(*context_, mesh, grid, o).octree);
     }
     static std::unique_ptr<gl::Context> context_;
 };
@@ -67,6 +72,126 @@ TEST(ExactReference, DegenerateTrianglesCoverWhatTheyTouch)
     // sits on a corner shared by 8 voxels.
     EXPECT_EQ(ref.allowed.size(), 6u + 8u);
     EXPECT_EQ(ref.required, ref.allowed);
+}
+
+TEST(ExactReference, ThinBracketsTheCpuReferenceAndLiesInsideTheConservativeSets)
+{
+    // CGAL's exact segment tests against the shared thin test in double:
+    // R <= CPU <= A, and each thin set inside the conservative set of its name.
+    for (const auto& mesh : {test::randomTriangles(300, 11), test::sphere({0.3, 0.1, 0.2}, 1.0, 40, 20)}) {
+        const GridSpec grid = makeGrid(mesh, {0, mesh.source == "random triangles" ? 1.0 : 0.05});
+        const auto thin = validate::exactReference(mesh, grid, grid.epsilon(), VoxelMode::Thin);
+        const auto cube = validate::exactReference(mesh, grid, grid.epsilon(), VoxelMode::Conservative);
+        const auto cpu = voxelizeCpu(mesh, grid, 0.0, VoxelMode::Thin).keys;
+        EXPECT_TRUE(includes(cpu, thin.required)) << mesh.source;
+        EXPECT_TRUE(includes(thin.allowed, cpu)) << mesh.source;
+        EXPECT_TRUE(includes(thin.exact, thin.required));
+        EXPECT_TRUE(includes(thin.allowed, thin.exact));
+        EXPECT_TRUE(includes(cube.required, thin.required));
+        EXPECT_TRUE(includes(cube.exact, thin.exact));
+        EXPECT_TRUE(includes(cube.allowed, thin.allowed));
+        EXPECT_LT(thin.exact.size(), cube.exact.size()) << mesh.source;
+        EXPECT_GT(thin.required.size(), 1000u);
+    }
+}
+
+TEST(ExactReference, ThinEqualsTheCpuReferenceOnSnappedCoordinates)
+{
+    // Corners on a 1/4 grid, voxel size 1: double arithmetic is exact, so the
+    // CPU reference's thin test must give CGAL's exact thin set E, segment
+    // ends and edges along segments included; needles and points too.
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> u(0, 40), d(-6, 6);
+    TriangleMesh m;
+    m.source = "snapped triangles";
+    for (uint32_t t = 0; t < 400; ++t) {
+        const Vec3d a{u(rng) * 0.25, u(rng) * 0.25, u(rng) * 0.25};
+        Vec3d b = a + Vec3d{d(rng) * 0.25, d(rng) * 0.25, d(rng) * 0.25};
+        Vec3d c = a + Vec3d{d(rng) * 0.25, d(rng) * 0.25, d(rng) * 0.25};
+        if (t % 3 == 0) b.z = c.z = a.z; // axis-aligned planes
+        if (t % 7 == 1) c = a + 0.5 * (b - a); // needles
+        if (t % 11 == 2) b = c = a;            // points
+        m.positions.insert(m.positions.end(), {a, b, c});
+        m.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+    }
+    const GridSpec grid = makeGrid(m, {0, 1.0});
+    const auto ref = validate::exactReference(m, grid, 0.0, VoxelMode::Thin);
+    EXPECT_GT(ref.degenerate, 40u);
+    const auto cpu = voxelizeCpu(m, grid, 0.0, VoxelMode::Thin).keys;
+    EXPECT_EQ(cpu, ref.exact);
+    EXPECT_EQ(ref.exact, ref.allowed); // epsilon 0: one set
+    // The shortened segments (epsilon 0.01) miss the triangles that only touch an end.
+    const auto shrunk = validate::exactReference(m, grid, 0.01, VoxelMode::Thin);
+    EXPECT_LT(shrunk.required.size(), shrunk.exact.size());
+    EXPECT_EQ(shrunk.exact, ref.exact);
+}
+
+TEST_F(Validate, ThinPassesOnRealMeshesAndFailsWithoutAVoxel)
+{
+#ifdef SVO_CGAL_MESHES
+    const std::string dir = std::getenv("SVO_CGAL_MESHES") ? std::getenv("SVO_CGAL_MESHES") : SVO_CGAL_MESHES;
+    for (const char* name : {"elephant.off", "knot1.off"})
+        for (int res : {64, 160}) {
+            const TriangleMesh mesh = loadMesh(dir + "/" + name);
+            const GridSpec grid = makeGrid(mesh, {res, 0});
+            const auto g = gpuVoxels(mesh, grid, VoxelMode::Thin);
+            validate::ReportOptions options;
+            options.mode = VoxelMode::Thin;
+            const auto report = validate::validateVoxelization(mesh, buildOctree(grid, g), g, options);
+            EXPECT_TRUE(report.passed) << name << " " << res << ": " << report.reason;
+            EXPECT_TRUE(report.holes.applies) << report.holes.reason;
+            EXPECT_EQ(report.holes.connectivity, 6);
+            EXPECT_TRUE(report.classification.extra.empty());
+
+            // One voxel of the exact thin set removed: the verdict fails and names it.
+            const auto ref = validate::exactReference(mesh, grid, grid.epsilon(), VoxelMode::Thin);
+            const uint64_t victim = ref.exact[ref.exact.size() / 2];
+            auto removed = g;
+            removed.erase(std::find(removed.begin(), removed.end(), victim));
+            options.holes = false;
+            const auto bad = validate::validateVoxelization(mesh, buildOctree(grid, removed), removed, options);
+            EXPECT_FALSE(bad.passed);
+            EXPECT_EQ(bad.classification.missedExact, std::vector<uint64_t>{victim});
+            EXPECT_NE(bad.reason.find("exact thin set"), std::string::npos) << bad.reason;
+
+            // Held to the conservative sets, a thin voxelization misses voxels.
+            options.mode = VoxelMode::Conservative;
+            const auto asCube = validate::validateVoxelization(mesh, buildOctree(grid, g), g, options);
+            EXPECT_FALSE(asCube.passed);
+            EXPECT_GT(asCube.classification.missed.size(), g.size() / 4) << name;
+            std::printf("  %-14s %4d thin voxels %8zu boundary %5zu (conservative would miss %zu)\n", name, res,
+                        g.size(), report.classification.boundary.size(), asCube.classification.missed.size());
+        }
+#else
+    GTEST_SKIP() << "libcgal-demo's meshes were not found at configure time";
+#endif
+}
+
+TEST_F(Validate, ThinShellIsClosedOnlyFor6ConnectedFills)
+{
+    // A thin voxelization of a closed sphere walls the inside off from
+    // 6-connected paths, the connectivity svo validate uses for it, but not
+    // from 26-connected ones: diagonal steps pass between its voxels.
+    const auto mesh = test::icosphere({0.05, 0.1, 0.15}, 1.0, 4);
+    const GridSpec grid = makeGrid(mesh, {40, 0});
+    const auto thin = gpuVoxels(mesh, grid, VoxelMode::Thin);
+    const auto six = validate::checkHoles(mesh, grid, thin, 6);
+    ASSERT_TRUE(six.applies) << six.reason;
+    EXPECT_FALSE(six.leak);
+    EXPECT_TRUE(validate::checkHoles(mesh, grid, thin, 26).leak);
+    // And one voxel cut where the shell crosses an axis opens it to 6-connected fills too.
+    auto cut = thin;
+    const Vec3d top = grid.toLocal({0.05, 0.1, 1.15});
+    const int64_t i = std::lround(top.x), j = std::lround(top.y);
+    const size_t before = cut.size();
+    cut.erase(std::remove_if(cut.begin(), cut.end(),
+                             [&](uint64_t k) {
+                                 const auto p = unpackVoxelKey(k);
+                                 return int64_t(p[0]) == i && int64_t(p[1]) == j && double(p[2]) > top.z - 3;
+                             }),
+              cut.end());
+    ASSERT_LT(cut.size(), before);
+    EXPECT_TRUE(validate::checkHoles(mesh, grid, cut, 6).leak);
 }
 
 TEST_F(Validate, PlantedErrorsAreCaught)

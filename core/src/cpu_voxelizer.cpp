@@ -10,7 +10,7 @@
 #include "triangle_voxels.h"
 
 namespace svo {
-Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, double guard)
+Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, double guard, VoxelMode mode)
 {
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<Vec3d> local(mesh.positions.size());
@@ -21,8 +21,8 @@ Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, double 
         auto& out = perThread.local();
         for (size_t t = r.begin(); t != r.end(); ++t) {
             const auto& f = mesh.triangles[t];
-            detail::voxelizeTriangle(local[f[0]], local[f[1]], local[f[2]], grid, guard,
-                             [&](uint64_t key) { out.push_back(key); });
+            detail::voxelizeTriangle(local[f[0]], local[f[1]], local[f[2]], grid, guard, mode,
+                                     [&](uint64_t key) { out.push_back(key); });
         }
     });
     Voxelization result;

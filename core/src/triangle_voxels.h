@@ -8,17 +8,24 @@
 #include "svo/core/grid.h"
 #include "svo/core/overlap.h"
 #include "svo/core/voxel_key.h"
+#include "svo/core/voxel_mode.h"
 
 namespace svo::detail {
 
 /// Calls emit(key) for every voxel whose cube, grown by `guard`, meets the
 /// triangle (a, b, c) in local coordinates: along the dominant axis, the
-/// guarded column range of each column of the 2D bounds, then the overlap test.
+/// guarded column range of each column of the 2D bounds, then the overlap
+/// test. Thin mode tests the voxel's centre segments instead (half length
+/// 0.5 + guard, thickness max(guard, 0)); they lie inside the cube, so the
+/// cube's candidates hold every voxel they can keep.
 template <typename Emit>
-inline void voxelizeTriangle(const Vec3d& a, const Vec3d& b, const Vec3d& c, const GridSpec& grid, double guard, Emit&& emit)
+inline void voxelizeTriangle(const Vec3d& a, const Vec3d& b, const Vec3d& c, const GridSpec& grid, double guard,
+                             VoxelMode mode, Emit&& emit)
 {
     using namespace overlap_double;
     const double half = 0.5 + guard;
+    const bool thin = mode == VoxelMode::Thin;
+    const double thickness = std::max(guard, 0.0);
     const double ulp = std::ldexp(1.0, -53);
     const int w = svo_dominant_axis(cross(b - a, c - a));
     const int u = (w + 1) % 3, v = (w + 2) % 3;
@@ -40,7 +47,8 @@ inline void voxelizeTriangle(const Vec3d& a, const Vec3d& b, const Vec3d& c, con
                 centre[u] = double(i);
                 centre[v] = double(j);
                 centre[w] = double(k);
-                if (svo_triangle_box_overlap(a, b, c, centre, half))
+                if (thin ? svo_triangle_thin_overlap(a, b, c, centre, half, thickness)
+                         : svo_triangle_box_overlap(a, b, c, centre, half))
                     emit(packVoxelKey(uint32_t(centre.x), uint32_t(centre.y), uint32_t(centre.z)));
             }
         }

@@ -66,7 +66,7 @@ VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_
     return a;
 }
 
-void attachAttributesCpu(const TriangleMesh& mesh, Octree& octree, uint32_t channels, double guard)
+void attachAttributesCpu(const TriangleMesh& mesh, Octree& octree, uint32_t channels, double guard, VoxelMode mode)
 {
     channels = availableChannels(mesh, channels);
     octree.attributes = {};
@@ -86,7 +86,7 @@ void attachAttributesCpu(const TriangleMesh& mesh, Octree& octree, uint32_t chan
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
         const auto p = mesh.corners(t);
         const Vec3d a = octree.grid.toLocal(p[0]), b = octree.grid.toLocal(p[1]), c = octree.grid.toLocal(p[2]);
-        detail::voxelizeTriangle(a, b, c, octree.grid, guard, [&](uint64_t key) {
+        detail::voxelizeTriangle(a, b, c, octree.grid, guard, mode, [&](uint64_t key) {
             const auto it = slot.find(key);
             if (it == slot.end()) return;
             using namespace gpu;

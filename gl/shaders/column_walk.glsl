@@ -1,6 +1,8 @@
 // One voxel column of one triangle: every voxel of the column that the
 // triangle's plane can reach is put to the shared overlap test on the cube
-// grown by the guard band; those that pass go to the voxel list. The raster
+// grown by the guard band (thin mode: on the voxel's three centre segments,
+// grown by it; they lie inside the cube, so the cube's candidates hold every
+// voxel they can keep); those that pass go to the voxel list. The raster
 // fragment shader and the compute backend both call this, so that for the
 // columns they visit they keep exactly the same voxels.
 #include "gpu_layout.h"
@@ -12,7 +14,9 @@ layout(std430, binding = SVO_BIND_RASTER_LIST) writeonly restrict buffer VoxelLi
 // Written only when attribute channels are asked for: the triangle of each entry.
 layout(std430, binding = SVO_BIND_RASTER_TRIANGLES) writeonly restrict buffer TriangleList { uint triangleOf[]; };
 uniform uint uWriteTriangles;
-uniform float uHalf;
+uniform float uHalf;      // cube half side, or thin segments' half length, with the guard band
+uniform uint uThin;       // 1: thin (6-separating) test, 0: conservative cube test
+uniform float uThickness; // thin segments' half width: the guard band's half
 uniform uint uCapacity;
 uniform ivec3 uDims;
 const float kUlp = 5.96046448e-08;
@@ -34,7 +38,9 @@ void svo_walk_column(vec3 a, vec3 b, vec3 c, int w, vec2 col, vec4 box, uint tri
         centre[u] = col.x;
         centre[v] = col.y;
         centre[w] = float(k);
-        if (svo_triangle_box_overlap(a, b, c, centre, uHalf)) {
+        bool keep = uThin != 0u ? svo_triangle_thin_overlap(a, b, c, centre, uHalf, uThickness)
+                                : svo_triangle_box_overlap(a, b, c, centre, uHalf);
+        if (keep) {
             uint slot = atomicCounterIncrement(uCount);
             if (slot == 0xFFFFFFFFu) atomicCounterIncrement(uWraps);
             if (slot < uCapacity) {

@@ -84,6 +84,8 @@ public:
                                     bound_));
         work_ = &context.scratch("compute work queue", 8 + std::max<uint64_t>(bound_, 1) * 8);
         program_.set("uHalf", half_);
+        program_.set("uThin", thin_ ? 1u : 0u);
+        program_.set("uThickness", thickness_);
         program_.set("uDims", int(dims_[0]), int(dims_[1]), int(dims_[2]));
         program_.set("uTriangles", uint32_t(triangles_));
         program_.set("uWorkCapacity", uint32_t(bound_));

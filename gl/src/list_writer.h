@@ -39,6 +39,8 @@ protected:
     std::vector<Vec3f> local_; ///< the uploaded positions, for host-side bounds
     uint64_t triangles_ = 0;
     float half_ = 0.5f; ///< voxel half side with the guard band
+    float thickness_ = 0.0f; ///< thin mode's segment half width: half the guard band
+    bool thin_ = false;      ///< thin (6-separating) test instead of the cube
     std::array<uint32_t, 3> dims_{};
     Checkpoint checkpoint_; ///< the writer's part of the call
 

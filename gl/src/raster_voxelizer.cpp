@@ -74,6 +74,8 @@ public:
         const float dilate = hardware_ ? float(0.5 * eps + 1.0 / 128.0) : half_ + float(1.0 / 128.0);
         program_.set("uCentroidPush", options.conservative == ConservativeMode::CentroidPush ? 1u : 0u);
         program_.set("uHalf", half_);
+        program_.set("uThin", thin_ ? 1u : 0u);
+        program_.set("uThickness", thickness_);
         program_.set("uDilate", dilate);
         program_.set("uTileSize", float(tile_), float(tile_));
         program_.set("uDims", int(grid.dims[0]), int(grid.dims[1]), int(grid.dims[2]));
@@ -219,6 +221,8 @@ ListWriter::ListWriter(const Context& context, const TriangleMesh& mesh, const G
     estimate_ = options.initialCapacity ? options.initialCapacity : estimateEntries(local_, mesh);
     const double eps = options.guardBand >= 0 ? options.guardBand : grid.epsilon();
     half_ = float(0.5 + 0.5 * eps);
+    thickness_ = float(0.5 * eps);
+    thin_ = options.mode == VoxelMode::Thin;
 }
 
 std::unique_ptr<ListWriter> makeRasterWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid,

@@ -138,6 +138,13 @@ svo::Backend toBackend(const std::string& s)
     badValue("backend: expected 'auto', 'raster', 'compute' or 'cpu', got '" + s + "'");
 }
 
+svo::VoxelMode toMode(const std::string& s)
+{
+    if (s == "conservative") return svo::VoxelMode::Conservative;
+    if (s == "thin") return svo::VoxelMode::Thin;
+    badValue("mode: expected 'conservative' or 'thin', got '" + s + "'");
+}
+
 uint32_t toChannels(const std::vector<std::string>& names)
 {
     uint32_t c = 0;
@@ -210,11 +217,12 @@ Request makeRequest(const py::handle& vertices, const py::handle& triangles, std
     return r;
 }
 
-svo::Octree run(svo::Voxelizer& v, const Request& r, const std::string& backend, uint32_t channels,
-               std::vector<uint64_t>* voxelList = nullptr)
+svo::Octree run(svo::Voxelizer& v, const Request& r, const std::string& backend, svo::VoxelMode mode,
+                uint32_t channels, std::vector<uint64_t>* voxelList = nullptr)
 {
     svo::VoxelizeOptions o;
     o.backend = toBackend(backend);
+    o.mode = mode;
     o.attributes = channels;
     KeyboardInterrupter interrupter;
     o.interrupter = &interrupter;
@@ -252,12 +260,13 @@ py::array_t<int32_t> voxelOrder(const svo::Octree& octree)
 py::object voxelizeWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                         std::optional<double> resolution, std::optional<double> voxelSize,
                         const py::object& transform, const std::string& grid, const std::string& backend,
-                        const std::vector<std::string>& attributes)
+                        const std::vector<std::string>& attributes, const std::string& mode)
 {
     if (grid != "bool" && grid != "fog") badValue("grid: expected 'bool' or 'fog', got '" + grid + "'");
     const uint32_t channels = toChannels(attributes);
+    const svo::VoxelMode m = toMode(mode);
     const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
-    const svo::Octree octree = run(v, r, backend, channels);
+    const svo::Octree octree = run(v, r, backend, m, channels);
     svo::GridOptions g;
     g.topology = svo::GridOptions::Topology::Bool; // pyopenvdb has no MaskGrid
     g.fog = grid == "fog";
@@ -398,11 +407,12 @@ struct PyOctree {
 
 PyOctree octreeWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                     std::optional<double> resolution, std::optional<double> voxelSize, const py::object& transform,
-                    const std::string& backend, const std::vector<std::string>& attributes)
+                    const std::string& backend, const std::vector<std::string>& attributes, const std::string& mode)
 {
     const uint32_t channels = toChannels(attributes);
+    const svo::VoxelMode m = toMode(mode);
     const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
-    return PyOctree{run(v, r, backend, channels), r.xform};
+    return PyOctree{run(v, r, backend, m, channels), r.xform};
 }
 
 PyOctree octreeFromGrid(const py::handle& obj, svo::Voxelizer* v, const std::string& backend)
@@ -432,16 +442,18 @@ py::array view(const void* data, size_t count, size_t cols, const py::handle& ow
 /// The voxelization checked against CGAL's exact reference: the numbers of `svo validate --json`.
 py::object validateWith(const py::handle& vertices, const py::handle& triangles, std::optional<double> resolution,
                         std::optional<double> voxelSize, const py::object& transform, const std::string& backend,
-                        bool holes, bool strict, size_t worst)
+                        bool holes, bool strict, size_t worst, const std::string& mode)
 {
+    const svo::VoxelMode m = toMode(mode);
     const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
     svo::Voxelizer v;
     std::vector<uint64_t> list;
-    const svo::Octree octree = run(v, r, backend, 0, &list);
+    const svo::Octree octree = run(v, r, backend, m, 0, &list);
     std::string text;
     {
         py::gil_scoped_release release;
         svo::validate::ReportOptions ro;
+        ro.mode = m;
         ro.holes = holes;
         ro.strict = strict;
         ro.worst = worst;
@@ -454,9 +466,11 @@ py::object validateWith(const py::handle& vertices, const py::handle& triangles,
 constexpr const char* kVoxelizeDoc = R"doc(
 Voxelize a triangle mesh on the GPU into a pyopenvdb grid.
 
-The result holds every voxel whose closed cube touches a triangle (the
-conservative, 26-separating voxelization), plus at most voxels within a tiny
-stated guard band of one.
+With mode "conservative" (the default) the result holds every voxel whose
+closed cube touches a triangle (the 26-separating voxelization); with "thin",
+every voxel one of whose three axis-aligned centre segments (one voxel long)
+touches one (6-separating, fewer voxels). Beyond that set there are at most
+voxels within a tiny stated guard band of a triangle.
 
 Args:
     vertices: (N, 3) array-like of float32/float64 world positions.
@@ -475,6 +489,7 @@ Args:
         "color" Vec3SGrids, "ijk" ((K, 3) int32 voxel coordinates) and, in
         the same order, "triangle_id" ((K,) int32), "normal_values" and
         "color_values" ((K, 3) float32).
+    mode: "conservative" or "thin" (see above).
 
 Raises:
     ValueError: a bad array, index, transform or option.
@@ -516,11 +531,11 @@ PYBIND11_MODULE(_svo, m)
         .def("voxelize", &voxelizeWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
              py::arg("transform") = py::none(), py::arg("grid") = "bool", py::arg("backend") = "auto",
-             py::arg("attributes") = std::vector<std::string>{}, kVoxelizeDoc)
+             py::arg("attributes") = std::vector<std::string>{}, py::arg("mode") = "conservative", kVoxelizeDoc)
         .def("octree", &octreeWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
              py::arg("transform") = py::none(), py::arg("backend") = "auto",
-             py::arg("attributes") = std::vector<std::string>{},
+             py::arg("attributes") = std::vector<std::string>{}, py::arg("mode") = "conservative",
              "The voxels of a mesh as an svo.Octree (arguments as voxelize()).")
         .def("level_set", &levelSetWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
@@ -595,13 +610,15 @@ PYBIND11_MODULE(_svo, m)
         "voxelize",
         [](const py::handle& vertices, const py::handle& triangles, std::optional<double> resolution,
            std::optional<double> voxelSize, const py::object& transform, const std::string& grid,
-           const std::string& backend, const std::vector<std::string>& attributes) {
+           const std::string& backend, const std::vector<std::string>& attributes, const std::string& mode) {
             svo::Voxelizer v;
-            return voxelizeWith(v, vertices, triangles, resolution, voxelSize, transform, grid, backend, attributes);
+            return voxelizeWith(v, vertices, triangles, resolution, voxelSize, transform, grid, backend, attributes,
+                                mode);
         },
         py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("resolution") = py::none(),
         py::arg("voxel_size") = py::none(), py::arg("transform") = py::none(), py::arg("grid") = "bool",
         py::arg("backend") = "auto", py::arg("attributes") = std::vector<std::string>{},
+        py::arg("mode") = "conservative",
         (std::string("One-off call with a Voxelizer made for it (keep a Voxelizer for repeated calls).\n") +
          kVoxelizeDoc)
             .c_str());
@@ -609,8 +626,9 @@ PYBIND11_MODULE(_svo, m)
     m.def("validate", &validateWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
           py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(), py::arg("transform") = py::none(),
           py::arg("backend") = "auto", py::arg("holes") = true, py::arg("strict") = false, py::arg("worst") = 5,
-          "Voxelize the mesh and check it against CGAL's exact triangle/box tests, as `svo validate` does: a dict "
-          "with voxels, required (R), exact (E), allowed (A), missed (R \\ G), missed_exact (E \\ G), boundary, extra, worst_missed, worst_extra, holes "
+          py::arg("mode") = "conservative",
+          "Voxelize the mesh and check it against CGAL's exact tests, as `svo validate` does (triangle/box for "
+          "mode 'conservative', triangle/segment and a 6-connected hole fill for 'thin'): a dict with mode, voxels, required (R), exact (E), allowed (A), missed (R \\ G), missed_exact (E \\ G), boundary, extra, worst_missed, worst_extra, holes "
           "(applies, leak, path, ...), octree_consistent, epsilon, passed and reason.");
 #endif
     m.def("active_voxels", &activeVoxels, py::arg("grid"),

@@ -21,6 +21,7 @@ class Voxelizer:
         grid: str = "bool",
         backend: str = "auto",
         attributes: Sequence[str] = (),
+        mode: str = "conservative",
     ) -> Union[Grid, Dict[str, Any]]: ...
     def octree(
         self,
@@ -32,6 +33,7 @@ class Voxelizer:
         transform: Optional[Union[Transform, ArrayLike]] = None,
         backend: str = "auto",
         attributes: Sequence[str] = (),
+        mode: str = "conservative",
     ) -> "Octree": ...
     def level_set(
         self,
@@ -89,6 +91,7 @@ def voxelize(
     grid: str = "bool",
     backend: str = "auto",
     attributes: Sequence[str] = (),
+    mode: str = "conservative",
 ) -> Union[Grid, Dict[str, Any]]: ...
 def active_voxels(grid: Grid) -> npt.NDArray[np.int32]: ...
 def read_mesh(path: str) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.uint32]]: ...
@@ -103,4 +106,5 @@ def validate(
     holes: bool = True,
     strict: bool = False,
     worst: int = 5,
+    mode: str = "conservative",
 ) -> Dict[str, Any]: ...

@@ -144,6 +144,7 @@ def test_attribute_channels_come_as_grids_and_arrays(voxelizer):
     (np.eye(3), [[0, 1, 2]], {"grid": "mask"}, "grid:"),
     (np.eye(3), [[0, 1, 2]], {"backend": "vulkan"}, "backend:"),
     (np.eye(3), [[0, 1, 2]], {"attributes": ("curvature",)}, "attributes:"),
+    (np.eye(3), [[0, 1, 2]], {"mode": "thick"}, "mode:"),
 ])
 def test_bad_input_raises_value_error_and_leaves_it_usable(voxelizer, vertices, triangles, kwargs, message):
     with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
@@ -194,6 +195,29 @@ def test_compute_backend_gives_the_raster_voxels(voxelizer):
     assert compute == raster and len(raster) > 1000
 
 
+def test_thin_mode_is_inside_conservative_and_equal_on_every_backend(voxelizer):
+    v, t = tetrahedron()
+    conservative = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48)))
+    thin = {b: as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend=b, mode="thin")))
+            for b in ("raster", "compute", "cpu")}
+    assert thin["compute"] == thin["raster"]
+    assert thin["cpu"] <= thin["raster"]  # the GPU's guard band only adds voxels within about 1e-4 voxel
+    assert len(thin["raster"] - thin["cpu"]) <= len(thin["cpu"]) // 100
+    assert thin["raster"] <= conservative and len(thin["raster"]) < len(conservative)
+    octree = voxelizer.octree(v, t, resolution=48, mode="thin")
+    assert as_set(octree.voxels()) == thin["raster"]
+
+
+def test_thin_plane_keeps_one_voxel_per_column(voxelizer):
+    # z = x/2 + 0.3 over [0.1, 11.9] x [0.1, 7.9], voxel size 1: a voxel's z
+    # segment meets it in columns 1..11 x 1..7 at k = (i+1)//2 (0.2 or 0.3
+    # away); x segments meet it only in those voxels, y segments never.
+    v = np.array([[0.1, 0.1, 0.35], [11.9, 0.1, 6.25], [11.9, 7.9, 6.25], [0.1, 7.9, 0.35]])
+    t = np.array([[0, 1, 2], [0, 2, 3]])
+    got = as_set(svo.active_voxels(voxelizer.voxelize(v, t, voxel_size=1.0, mode="thin")))
+    assert got == {(i, j, (i + 1) // 2) for i in range(1, 12) for j in range(1, 8)}
+
+
 def test_octree_views_files_and_grids(voxelizer, tmp_path):
     v, t = tetrahedron()
     octree = voxelizer.octree(v, t, resolution=40)
@@ -241,6 +265,23 @@ def test_validate_gives_the_numbers_of_the_cli(elephant, tmp_path):
         assert report[key] == cli[key], key
     assert report["missed"] == 0 and report["missed_exact"] == 0 and report["holes"]["applies"] and not report["holes"]["leak"]
     assert report["passed"]
+
+
+def test_validate_thin_uses_segments_and_a_6_connected_fill(elephant, tmp_path):
+    out = tmp_path / "v.json"
+    subprocess.run([SVO_EXE, "validate", elephant, "-r", "48", "--mode", "thin", "--json", str(out)], check=True,
+                   capture_output=True)
+    import json
+    cli = json.loads(out.read_text())
+    vertices, triangles = svo.read_mesh(elephant)
+    report = svo.validate(vertices, triangles, resolution=48, mode="thin")
+    conservative = svo.validate(vertices, triangles, resolution=48)
+    for key in ("mode", "voxels", "required", "exact", "allowed", "missed", "missed_exact", "extra", "passed"):
+        assert report[key] == cli[key], key
+    assert report["mode"] == "thin" and conservative["mode"] == "conservative"
+    assert report["passed"] and report["holes"]["applies"] and report["holes"]["connectivity"] == 6
+    assert not report["holes"]["leak"]
+    assert report["exact"] < conservative["exact"]
 
 
 def test_ctrl_c_cancels_a_long_call_and_leaves_it_usable(voxelizer):

@@ -218,9 +218,10 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
                             : options.dilation != Dilation::Auto ? Backend::Raster
                                                                  : impl_->autoBackend();
     impl_->describeBackend(stats, backend);
+    stats.mode = voxelModeName(options.mode);
     if (backend == Backend::Cpu) {
         auto t0 = Clock::now();
-        Voxelization v = voxelizeCpu(mesh, grid);
+        Voxelization v = voxelizeCpu(mesh, grid, 0.0, options.mode);
         stats.stages.push_back({"voxelize (cpu)", -1, msSince(t0)});
         checkpoint(0.6, "octree build");
         t0 = Clock::now();
@@ -229,7 +230,7 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
         if (options.attributes) {
             checkpoint(0.8, "attribute channels");
             t0 = Clock::now();
-            attachAttributesCpu(mesh, octree, options.attributes, 0.0);
+            attachAttributesCpu(mesh, octree, options.attributes, 0.0, options.mode);
             stats.stages.push_back({"attributes (cpu)", -1, msSince(t0)});
         }
         stats.listEntries = v.keys.size();
@@ -239,6 +240,7 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
         gl::RasterOptions ro;
         ro.pipeline = backend == Backend::Compute ? gl::Pipeline::Compute : gl::Pipeline::Raster;
         ro.conservative = conservativeMode(options.dilation);
+        ro.mode = options.mode;
         ro.attributes = options.attributes;
         ro.checkpoint = checkpoint.part(0.0, 0.98);
         ro.voxelList = voxelList;

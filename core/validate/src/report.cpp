@@ -45,13 +45,14 @@ Report validateVoxelization(const TriangleMesh& mesh, const Octree& octree, cons
     const auto t0 = std::chrono::steady_clock::now();
     r.epsilon = grid.epsilon();
     step(fmt::format("exact CGAL reference for {} triangles", mesh.triangles.size()));
-    const ReferenceSets ref = exactReference(mesh, grid, r.epsilon);
+    r.mode = options.mode;
+    const ReferenceSets ref = exactReference(mesh, grid, r.epsilon, options.mode);
     r.degenerate = ref.degenerate;
     step("classifying the voxels");
     r.classification = classify(mesh, grid, voxels, ref, options.worst);
     if (options.holes) {
         step("flood-filling the empty voxels");
-        r.holes = checkHoles(mesh, grid, voxels, 26);
+        r.holes = checkHoles(mesh, grid, voxels, separatingConnectivity(options.mode));
     } else {
         r.holes.reason = "skipped";
     }
@@ -61,10 +62,10 @@ Report validateVoxelization(const TriangleMesh& mesh, const Octree& octree, cons
     // R ⊆ E, so a voxel missed against R is missed against E too; both are named.
     if (!c.missedExact.empty())
         r.reason += c.missed.empty()
-                        ? fmt::format("{} voxels of the exact conservative set missed (all within the guard band); ",
-                                      c.missedExact.size())
-                        : fmt::format("{} voxels missed ({} of the exact conservative set); ", c.missed.size(),
-                                      c.missedExact.size());
+                        ? fmt::format("{} voxels of the exact {} set missed (all within the guard band); ",
+                                      c.missedExact.size(), voxelModeName(options.mode))
+                        : fmt::format("{} voxels missed ({} of the exact {} set); ", c.missed.size(),
+                                      c.missedExact.size(), voxelModeName(options.mode));
     if (r.holes.leak) r.reason += fmt::format("the flood fill leaks inside through {}; ", indexText(r.holes.leakPath.front()));
     if (!r.consistency.empty()) r.reason += "octree inconsistent; ";
     if (options.strict && !c.extra.empty()) r.reason += fmt::format("{} extra voxels (strict); ", c.extra.size());
@@ -77,6 +78,7 @@ std::string reportJson(const Report& r)
 {
     const Classification& c = r.classification;
     const nlohmann::json j = {
+        {"mode", voxelModeName(r.mode)},
         {"degenerate", r.degenerate},
         {"epsilon", r.epsilon},
         {"voxels", c.voxels},

@@ -14,10 +14,16 @@
 /// Grids are made from the bricks by copying masks into leaves.
 ///
 /// Guarantees.
-/// - Conservative coverage: the result holds every voxel whose closed cube
-///   [i-1/2, i+1/2]^3 (index space) meets a triangle, so a closed mesh gives a
-///   watertight (26-separating) shell. Voxels beyond that set are only those
-///   within the guard band of a triangle (VoxelizeStats::epsilon voxels).
+/// - Conservative coverage (the default mode): the result holds every voxel
+///   whose closed cube [i-1/2, i+1/2]^3 (index space) meets a triangle, so a
+///   closed mesh gives a watertight (26-separating) shell. Voxels beyond that
+///   set are only those within the guard band of a triangle
+///   (VoxelizeStats::epsilon voxels).
+/// - Thin coverage (VoxelMode::Thin): every voxel one of whose three
+///   axis-aligned centre segments (closed, one voxel long) meets a triangle,
+///   a subset of the conservative voxels that is still 6-separating (no
+///   6-connected path crosses a closed mesh's shell). Voxels beyond it are
+///   only those whose segments, grown by the guard band, meet a triangle.
 /// - Exact in the transform's index space: any affine transform works
 ///   (uniform or non-uniform scale, rotation, shear, translation), because
 ///   the voxels are cubes of index space; the output grid carries the
@@ -55,6 +61,7 @@
 
 #include "svo/core/mesh.h"
 #include "svo/core/octree.h"
+#include "svo/core/voxel_mode.h"
 #include "svo/core/voxelization.h"
 #include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/grid_options.h"
@@ -134,7 +141,8 @@ struct VoxelizeStats {
     int overflowRetries = 0;       ///< passes repeated because a GPU buffer was too small
     uint64_t gpuBytes = 0;         ///< GPU buffer bytes the call used (reused scratch counts at its full size)
     double epsilon = 0;            ///< guard band in voxels
-    std::string backend;           ///< "raster" or "cpu"
+    std::string backend;           ///< "raster", "compute" or "cpu"
+    std::string mode;              ///< "conservative" or "thin"; empty for grids and bricks, which are not voxelized
     std::string dilation;          ///< "hardware", "shader", "centroid-push (baseline)"; empty for cpu
     std::string device;            ///< "vendor | renderer | version (EGL device)", or "cpu"
     std::string renderer;          ///< GL renderer string, or "cpu"
@@ -153,6 +161,12 @@ struct VoxelizeStats {
 /// Options of one call. Plain values; the defaults suit most uses.
 struct VoxelizeOptions {
     Backend backend = Backend::Auto;
+    /// Which voxels a triangle covers: Conservative (every voxel whose closed
+    /// cube it meets; 26-separating) or Thin (every voxel one of whose three
+    /// axis-aligned centre segments it meets; 6-separating, fewer voxels).
+    /// Every backend and dilation computes both; the grid and guard band are
+    /// the same.
+    VoxelMode mode = VoxelMode::Conservative;
     /// Raster backend only: any mode but Auto makes Backend::Auto pick Raster,
     /// and is an error with Backend::Compute.
     Dilation dilation = Dilation::Auto;

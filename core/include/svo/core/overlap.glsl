@@ -2,7 +2,8 @@
 // (Akenine-Moller, "Fast 3D triangle-box overlap testing", 2001): the three
 // cube normals, the triangle normal and the nine edge x cube-axis products.
 //
-// This text is the single source of truth for "does a triangle touch a voxel".
+// This text is the single source of truth for "does a triangle touch a voxel",
+// in both modes: the cube (conservative) and the three centre segments (thin).
 // The GLSL shaders include it, and so does C++ (svo/core/overlap.h), which
 // defines SVO_FN, svo_real and svo_vec3 first.
 //
@@ -71,6 +72,78 @@ SVO_FN int svo_dominant_axis(svo_vec3 n)
     if (az >= ax && az >= ay) return 2;
     if (ay >= ax) return 1;
     return 0;
+}
+
+// The same test for a box with its own half extent on each axis (each >= 0;
+// zero extents make the box a rectangle, a segment or a point), given the
+// triangle's corners relative to the box centre, its edges and its normal.
+// Still complete when extents are zero: two disjoint compact sets stay
+// disjoint when the box is thickened a little, and one of these 13 axes
+// separates the thickened box, so it separates the thinner one too. It is
+// kept apart from svo_triangle_box_overlap so that the conservative test,
+// measured and validated as it is, rounds exactly as before.
+SVO_FN bool svo_aabb_separated(svo_vec3 v0, svo_vec3 v1, svo_vec3 v2, svo_vec3 e0, svo_vec3 e1, svo_vec3 e2,
+                               svo_vec3 n, svo_vec3 h)
+{
+    if (svo_separated(v0.x, v1.x, v2.x, h.x)) return true;
+    if (svo_separated(v0.y, v1.y, v2.y, h.y)) return true;
+    if (svo_separated(v0.z, v1.z, v2.z, h.z)) return true;
+    // cross(e, X) = (0, e.z, -e.y), cross(e, Y) = (-e.z, 0, e.x), cross(e, Z) = (e.y, -e.x, 0).
+    for (int i = 0; i < 3; ++i) {
+        svo_vec3 e = i == 0 ? e0 : (i == 1 ? e1 : e2);
+        if (svo_separated(e.z * v0.y - e.y * v0.z, e.z * v1.y - e.y * v1.z, e.z * v2.y - e.y * v2.z,
+                          h.y * abs(e.z) + h.z * abs(e.y)))
+            return true;
+        if (svo_separated(e.x * v0.z - e.z * v0.x, e.x * v1.z - e.z * v1.x, e.x * v2.z - e.z * v2.x,
+                          h.x * abs(e.z) + h.z * abs(e.x)))
+            return true;
+        if (svo_separated(e.y * v0.x - e.x * v0.y, e.y * v1.x - e.x * v1.y, e.y * v2.x - e.x * v2.y,
+                          h.x * abs(e.y) + h.y * abs(e.x)))
+            return true;
+    }
+    return svo_separated(dot(n, v0), dot(n, v1), dot(n, v2), h.x * abs(n.x) + h.y * abs(n.y) + h.z * abs(n.z));
+}
+
+// True when triangle (a, b, c) meets the closed box centred at `centre` with
+// half extents `halfSize`.
+SVO_FN bool svo_triangle_aabb_overlap(svo_vec3 a, svo_vec3 b, svo_vec3 c, svo_vec3 centre, svo_vec3 halfSize)
+{
+    svo_vec3 v0 = a - centre;
+    svo_vec3 v1 = b - centre;
+    svo_vec3 v2 = c - centre;
+    svo_vec3 e0 = v1 - v0;
+    svo_vec3 e1 = v2 - v1;
+    svo_vec3 e2 = v0 - v2;
+    return !svo_aabb_separated(v0, v1, v2, e0, e1, e2, cross(e0, e1), halfSize);
+}
+
+// The thin (6-separating) test: true when triangle (a, b, c) meets one of the
+// voxel's three axis-aligned centre segments, centre +- halfLength along x,
+// y or z, each thickened to a box of half width `thickness` across its axis.
+// halfLength = 0.5, thickness = 0 is the exact definition (closed segments
+// one voxel long); a guard band g grows both (0.5 + g, g), which bounds the
+// same rounding as for the cube: every axis's radius grows by g times the
+// axis's L1 norm, whatever the extents. Shrinking (g < 0) shortens the
+// segments and leaves thickness 0.
+SVO_FN bool svo_triangle_thin_overlap(svo_vec3 a, svo_vec3 b, svo_vec3 c, svo_vec3 centre, svo_real halfLength,
+                                      svo_real thickness)
+{
+    svo_vec3 v0 = a - centre;
+    svo_vec3 v1 = b - centre;
+    svo_vec3 v2 = c - centre;
+    svo_vec3 e0 = v1 - v0;
+    svo_vec3 e1 = v2 - v1;
+    svo_vec3 e2 = v0 - v2;
+    svo_vec3 n = cross(e0, e1);
+    // The segment along the normal's dominant axis first: it is the one that
+    // meets the triangle in most voxels kept, so most of them cost one test.
+    int w = svo_dominant_axis(n);
+    for (int i = 0; i < 3; ++i) {
+        svo_vec3 h = svo_vec3(thickness, thickness, thickness);
+        h[(w + i) % 3] = halfLength;
+        if (!svo_aabb_separated(v0, v1, v2, e0, e1, e2, n, h)) return true;
+    }
+    return false;
 }
 
 // Heights along axis w at which triangle (a, b, c) can meet a cube of halfSide side

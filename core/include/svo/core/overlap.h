@@ -1,6 +1,7 @@
 #pragma once
 /// @file overlap.h
-/// Triangle / voxel overlap test, compiled from the same text as the shaders
+/// Triangle / voxel overlap tests (the cube, and the thin mode's centre
+/// segments), compiled from the same text as the shaders
 /// (overlap.glsl). See that file for the method and its guarantees.
 #include <algorithm>
 #include <cmath>
@@ -43,6 +44,19 @@ inline bool triangleBoxOverlap(Vec3d a, Vec3d b, Vec3d c, Vec3d centre, double h
 inline bool triangleBoxOverlap(Vec3f a, Vec3f b, Vec3f c, Vec3f centre, float half)
 {
     return overlap_float::svo_triangle_box_overlap(a, b, c, centre, half);
+}
+
+/// True when triangle (a, b, c) meets one of the three axis-aligned segments
+/// through `centre` of half length `halfLength`, each thickened to a box of
+/// half width `thickness` (>= 0) across its axis: the thin mode's test
+/// (halfLength 0.5, thickness 0 for the exact voxel; docs/precision.md).
+inline bool triangleThinOverlap(Vec3d a, Vec3d b, Vec3d c, Vec3d centre, double halfLength, double thickness)
+{
+    return overlap_double::svo_triangle_thin_overlap(a, b, c, centre, halfLength, thickness);
+}
+inline bool triangleThinOverlap(Vec3f a, Vec3f b, Vec3f c, Vec3f centre, float halfLength, float thickness)
+{
+    return overlap_float::svo_triangle_thin_overlap(a, b, c, centre, halfLength, thickness);
 }
 
 } // namespace svo

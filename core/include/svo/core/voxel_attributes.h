@@ -13,6 +13,7 @@
 #include "svo/core/gpu_layout.h"
 #include "svo/core/mesh.h"
 #include "svo/core/octree.h"
+#include "svo/core/voxel_mode.h"
 
 namespace svo {
 
@@ -43,8 +44,10 @@ uint32_t availableChannels(const TriangleMesh& mesh, uint32_t channels);
 VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_t channels);
 
 /// The CPU reference: pairs from the shared overlap test on cubes grown by
-/// `guard`, summed for the octree's voxels (others are ignored), stored on
+/// `guard` (thin mode: on the voxels' centre segments, as voxelizeCpu tests
+/// them), summed for the octree's voxels (others are ignored), stored on
 /// the octree. Colours are skipped when the mesh has none.
-void attachAttributesCpu(const TriangleMesh& mesh, Octree& octree, uint32_t channels, double guard);
+void attachAttributesCpu(const TriangleMesh& mesh, Octree& octree, uint32_t channels, double guard,
+                         VoxelMode mode = VoxelMode::Conservative);
 
 } // namespace svo

@@ -7,17 +7,23 @@
 /// GL_NV_conservative_raster where available), so every voxel column it
 /// touches gets a fragment. The fragment walks the voxels of its column that
 /// the triangle's plane can reach and keeps those passing the shared overlap
-/// test (overlap.glsl) on the cube grown by epsilon()/2. Survivors are
+/// test (overlap.glsl) on the cube grown by epsilon()/2 (thin mode: on the
+/// voxel's three centre segments, lengthened and thickened by epsilon()/2).
+/// Survivors are
 /// appended to a voxel list through an atomic counter; if the list overflows,
 /// it is resized to the exact count and the draw runs once more.
 ///
 /// Guarantee: the result holds every voxel whose cube, shrunk by
 /// grid.epsilon(), meets a triangle (nothing is missed) and only voxels whose
-/// cube, grown by grid.epsilon(), meets one.
+/// cube, grown by grid.epsilon(), meets one. In thin mode the same holds for
+/// the centre segments: every voxel one of whose segments meets a triangle
+/// (the exact thin set), and only voxels one of whose segments, lengthened
+/// and thickened by grid.epsilon(), meets one.
 #include <vector>
 
 #include "svo/core/interrupt.h"
 #include "svo/core/mesh.h"
+#include "svo/core/voxel_mode.h"
 #include "svo/core/voxelization.h"
 #include "svo/gl/context.h"
 #include "svo/gl/octree_builder.h"
@@ -40,6 +46,9 @@ struct RasterOptions {
     Pipeline pipeline = Pipeline::Raster;
     /// Auto: GL_NV_conservative_raster when present, else shader dilation.
     ConservativeMode conservative = ConservativeMode::Auto;
+    /// Which voxels a triangle covers: its voxels' cubes (conservative) or
+    /// their centre segments (thin). Both backends, every dilation.
+    VoxelMode mode = VoxelMode::Conservative;
     /// Voxel-list entries to allocate first; 0 estimates from triangle areas.
     uint64_t initialCapacity = 0;
     /// Octree bricks to allocate first (voxelizeToOctree); 0 estimates from the list size.

@@ -6,6 +6,9 @@
 ///                        conservative set, epsilon = 0), absent from G; holds `missed`
 ///   boundary = (G n A) \ R   present, and within epsilon of touching: allowed
 ///   extra    = G \ A   present, though even the cube grown by epsilon meets no triangle
+/// (Cubes for a conservative reference; for a thin one, the voxels' centre
+/// segments, as exact_reference.h defines R, E and A. Classification itself
+/// only compares the sets.)
 #include <array>
 #include <cstdint>
 #include <vector>

@@ -7,9 +7,10 @@
 /// the same run (every level must be what the list's voxels imply); the exact
 /// reference (exact_reference.h) gives R and A; the octree's voxels are
 /// classified (classify.h); closed meshes get the flood-fill hole check
-/// (hole_check.h). The verdict fails on voxels missed against the guarded set
-/// R or against the exact conservative set E, a leak, an inconsistent octree,
-/// and (strict) extra voxels.
+/// (hole_check.h), 26-connected for conservative and 6-connected for thin.
+/// The verdict fails on voxels missed against the guarded set R or against
+/// the exact set E of the mode, a leak, an inconsistent octree, and (strict)
+/// extra voxels.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -17,12 +18,16 @@
 
 #include "svo/core/mesh.h"
 #include "svo/core/octree.h"
+#include "svo/core/voxel_mode.h"
 #include "svo/validate/classify.h"
 #include "svo/validate/hole_check.h"
 
 namespace svo::validate {
 
 struct ReportOptions {
+    /// The voxelization under test: conservative (cubes, 26-connected hole
+    /// fill) or thin (centre segments, 6-connected fill).
+    VoxelMode mode = VoxelMode::Conservative;
     bool holes = true;   ///< run the hole check (closed meshes)
     bool strict = false; ///< extra voxels fail too
     size_t worst = 5;    ///< worst cases kept of each kind
@@ -31,6 +36,7 @@ struct ReportOptions {
 };
 
 struct Report {
+    VoxelMode mode = VoxelMode::Conservative; ///< the mode the sets and the hole check used
     double epsilon = 0;            ///< the guard band R and A use, in voxels
     uint64_t degenerate = 0;       ///< triangles routed to segment or point tests
     Classification classification;

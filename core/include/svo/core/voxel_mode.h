@@ -1,0 +1,29 @@
+#pragma once
+/// @file voxel_mode.h
+/// Which voxels a triangle covers: the two voxelizations svo computes
+/// (docs/design.md, "What a voxelization is").
+#include <string>
+
+namespace svo {
+
+enum class VoxelMode {
+    /// Every voxel whose closed cube [i-1/2, i+1/2]^3 meets a triangle: a
+    /// closed mesh gives a shell that no 26-connected path crosses.
+    Conservative,
+    /// Every voxel one of whose three axis-aligned centre segments (closed,
+    /// one voxel long: centre +- 1/2 along x, y or z) meets a triangle: a
+    /// subset of the conservative voxels that no 6-connected path crosses.
+    Thin,
+};
+
+/// "conservative" or "thin".
+const char* voxelModeName(VoxelMode mode);
+/// The mode a name gives; throws svo::Error naming the word for anything
+/// but "conservative" and "thin".
+VoxelMode parseVoxelMode(const std::string& name);
+
+/// The flood-fill connectivity that must not cross a voxelization of a closed
+/// surface in this mode: 26 for conservative, 6 for thin.
+int separatingConnectivity(VoxelMode mode);
+
+} // namespace svo
