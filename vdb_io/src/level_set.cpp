@@ -161,6 +161,7 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
     VoxelizeOptions surfaceOptions = options;
     surfaceOptions.interrupter = nullptr;
     surfaceOptions.attributes = 0;
+    surfaceOptions.mode = VoxelMode::Conservative; // the band is grown from every voxel a triangle touches
     surfaceOptions.stats = &stats;
     const std::string sign = stats.sign;
     const auto warnings = stats.warnings;
@@ -265,6 +266,7 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
     VoxelizeOptions surfaceOptions = options;
     surfaceOptions.interrupter = nullptr;
     surfaceOptions.attributes = 0;
+    surfaceOptions.mode = VoxelMode::Conservative; // every crossing lies in a touched voxel
     surfaceOptions.stats = &stats;
     checkpoint(0.0, "surface voxels");
     const Octree surface = voxelizeChecked(mesh, g, surfaceOptions, nullptr);
