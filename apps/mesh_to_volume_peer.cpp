@@ -21,6 +21,8 @@ int main(int argc, char** argv)
     int64_t resolution = 256;
     app.add_option("mesh", path, "Mesh file")->required();
     app.add_option("-r,--resolution", resolution, "Voxels along the longest bounding-box side")->capture_default_str();
+    float levelSet = 0;
+    app.add_option("--level-set", levelSet, "Time meshToLevelSet with this half width (voxels) instead");
     CLI11_PARSE(app, argc, argv);
     try {
         openvdb::initialize();
@@ -33,6 +35,15 @@ int main(int argc, char** argv)
         for (const auto& p : mesh.positions) points.emplace_back(float(p.x), float(p.y), float(p.z));
         for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
         const auto xform = svo::vdb::makeTransform(grid);
+        if (levelSet > 0) {
+            auto ls = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, points, triangles, levelSet);
+            const double lsMs =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            fmt::print("{{\"peer\": \"openvdb meshToLevelSet\", \"half_width\": {}, \"ms\": {:.3f}, "
+                       "\"active_voxels\": {}}}\n",
+                       levelSet, lsMs, ls->activeVoxelCount());
+            return 0;
+        }
         auto udf = openvdb::tools::meshToUnsignedDistanceField<openvdb::FloatGrid>(
             *xform, points, triangles, std::vector<openvdb::Vec4I>{}, 1.0f);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
