@@ -347,3 +347,39 @@ TEST(VdbDamage, RecordedVoxelCountCatchesAMaskBitThatStillDecodes)
         }
     }
 }
+
+TEST(VdbDamage, RootTileOffTheLatticeIsRefused)
+{
+    // A root tile's origin is read as is; one near INT32_MAX and off the
+    // 4096 lattice would overflow when OpenVDB takes the tile's bounding box.
+    const test::TempDir tmp("vdb_damage");
+    openvdb::initialize();
+    auto grid = openvdb::MaskGrid::create();
+    grid->setName("tiled");
+    const int32_t at = 4096 * 7; // a value found nowhere else in the file once statistics are off
+    grid->tree().addTile(3, openvdb::Coord(at), true, true);
+    const std::string path = tmp.path("tiled.vdb");
+    openvdb::io::File file(path);
+    file.setGridStatsMetadataEnabled(false);
+    file.write({grid});
+    file.close();
+    const Bytes b = readBytes(path);
+    // Whole, it is read up to the expansion it asks for: 4096^3 voxels, 2^27 bricks.
+    std::ifstream whole(path, std::ios::binary);
+    try {
+        vdb::readVdbBricks(whole, path, {}, uint64_t(1) << 26);
+        ADD_FAILURE() << "a tile of 2^27 bricks expanded under a limit of 2^26";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("more than svo expands"), std::string::npos) << e.what();
+    }
+    Bytes coord(12, '\0');
+    for (int a = 0; a < 3; ++a) std::memcpy(coord.data() + 4 * a, &at, 4);
+    const size_t pos = b.find(coord);
+    ASSERT_NE(pos, Bytes::npos);
+    ASSERT_EQ(b.find(coord, pos + 1), Bytes::npos);
+    for (const int32_t bad : {at + 1, 2147483646}) {
+        Bytes d = b;
+        for (int a = 0; a < 3; ++a) std::memcpy(d.data() + pos + 4 * a, &bad, 4);
+        expectRefused(tmp, "tiled_off.vdb", d);
+    }
+}

@@ -135,7 +135,7 @@ openvdb::GridPtrVec octreeToGrids(const Octree& octree, const GridOptions& optio
     return grids;
 }
 
-GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name)
+GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name, uint64_t maxTileBricks)
 {
     // Transform: uniform linear scale plus a whole-voxel translation.
     const auto& xform = base.constTransform();
@@ -206,7 +206,7 @@ GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name)
         uint64_t tileBricks = 0;
         for (auto counter = it; counter; ++counter)
             if (counter.isTileValue()) tileBricks += counter.getBoundingBox().volume() / 512;
-        if (tileBricks > (uint64_t(1) << 28))
+        if (tileBricks > maxTileBricks)
             throw Error(fmt::format("{}: grid '{}' has active tiles covering {} bricks ({:.1f} G voxels), more than "
                                     "svo expands",
                                     name, base.getName(), tileBricks, double(tileBricks) * 512 / 1e9));

@@ -390,20 +390,30 @@ private:
         if (get<int32_t>(g) != 1) damaged(fmt::format("grid {} has a buffer count other than 1", g)); // OpenVDB warns only
         skip(sizeof(ValueT), g); // background
         const uint32_t tiles = get<uint32_t>(g), children = get<uint32_t>(g);
-        skip(uint64_t(tiles) * (12 + sizeof(ValueT) + 1), g);
-        std::vector<openvdb::util::NodeMask<3>> leaves;
-        openvdb::Coord last;
-        for (uint32_t c = 0; c < children; ++c) {
+        // Root tiles and children sit on the lattice of the root's child size,
+        // so origin + DIM - 1 (their last voxel, which OpenVDB computes when it
+        // takes a bounding box) cannot overflow int32.
+        const int32_t dim = RootT::ChildNodeType::DIM;
+        const auto origin = [&](const char* what) {
             int32_t o[3];
             is_.read(reinterpret_cast<char*>(o), sizeof o);
             if (!is_) damaged(fmt::format("grid {} is cut short in its tree", g));
-            const openvdb::Coord origin(o[0], o[1], o[2]);
+            if ((o[0] & (dim - 1)) || (o[1] & (dim - 1)) || (o[2] & (dim - 1)))
+                damaged(fmt::format("grid {} has a root {} at ({}, {}, {}), off the lattice", g, what, o[0], o[1], o[2]));
+            return openvdb::Coord(o[0], o[1], o[2]);
+        };
+        for (uint32_t t = 0; t < tiles; ++t) {
+            origin("tile");
+            skip(sizeof(ValueT) + 1, g); // value, active
+        }
+        std::vector<openvdb::util::NodeMask<3>> leaves;
+        openvdb::Coord last;
+        for (uint32_t c = 0; c < children; ++c) {
+            const openvdb::Coord o = origin("child");
             // The root keeps its children sorted; the data section follows that order.
-            const int32_t dim = RootT::ChildNodeType::DIM;
-            if ((origin[0] & (dim - 1)) || (origin[1] & (dim - 1)) || (origin[2] & (dim - 1)) || (c && !(last < origin)))
-                damaged(fmt::format("grid {} has a root child at ({}, {}, {}), off the lattice or out of order", g,
-                                    o[0], o[1], o[2]));
-            last = origin;
+            if (c && !(last < o))
+                damaged(fmt::format("grid {} has a root child at ({}, {}, {}) out of order", g, o[0], o[1], o[2]));
+            last = o;
             walkInternal<typename RootT::ChildNodeType>(compression, half, leaves, g);
         }
         for (const auto& mask : leaves) {
@@ -567,7 +577,8 @@ WriteStats writeVdbGrids(const std::string& path, const openvdb::GridPtrVec& gri
 }
 
 namespace {
-VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName);
+VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName,
+                      uint64_t maxTileBricks);
 } // namespace
 
 VdbBricks readVdbBricks(const std::string& path, const std::string& gridName)
@@ -580,7 +591,8 @@ VdbBricks readVdbBricks(const std::string& path, const std::string& gridName)
     return readVdbBricks(in, path, gridName);
 }
 
-VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::string& gridName)
+VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::string& gridName,
+                        uint64_t maxTileBricks)
 {
     openvdb::initialize();
     in.seekg(0, std::ios::end);
@@ -589,7 +601,7 @@ VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::st
     if (!in || size < 0) throw Error(fmt::format("{}: cannot read the file", name));
     if (size == 0) throw Error(fmt::format("{}: the file is empty", name));
     try {
-        return readChecked(in, uint64_t(size), name, gridName);
+        return readChecked(in, uint64_t(size), name, gridName, maxTileBricks);
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
@@ -600,7 +612,8 @@ VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::st
 
 namespace {
 
-VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName)
+VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName,
+                      uint64_t maxTileBricks)
 {
     CheckedReader reader(in, size, name);
     reader.open();
@@ -638,7 +651,7 @@ VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, 
                                     name, chosen->gd.gridName(), GridDescriptor::nameAsString(parent)));
         grid->setTree(parentGrid->baseTreePtr());
     }
-    GridBricks gb = gridToBricks(*grid, name);
+    GridBricks gb = gridToBricks(*grid, name, maxTileBricks);
     VdbBricks out;
     out.gridName = grid->getName();
     out.gridType = grid->type();

@@ -52,8 +52,10 @@ struct GridBricks {
 
 /// Throws svo::Error (prefixed with `name`) for an unsupported type, a
 /// non-linear or non-uniform transform, a translation that is not a whole
-/// number of voxels, or an extent beyond kMaxGridDim.
-GridBricks gridToBricks(const openvdb::GridBase& grid, const std::string& name);
+/// number of voxels, an extent beyond kMaxGridDim, or active tiles standing
+/// for more than `maxTileBricks` bricks (counted before anything is allocated).
+GridBricks gridToBricks(const openvdb::GridBase& grid, const std::string& name,
+                        uint64_t maxTileBricks = kMaxTileBricks);
 
 } // namespace svo::vdb
 

@@ -64,7 +64,9 @@ struct VdbBricks {
 };
 VdbBricks readVdbBricks(const std::string& path, const std::string& gridName = {});
 /// The same from a stream holding a whole .vdb file (seekable, from its
-/// start); `name` stands for it in messages.
-VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::string& gridName = {});
+/// start); `name` stands for it in messages. Active tiles standing for more
+/// than `maxTileBricks` bricks are refused (see gridToBricks).
+VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::string& gridName = {},
+                        uint64_t maxTileBricks = kMaxTileBricks);
 
 } // namespace svo::vdb
