@@ -36,6 +36,7 @@ struct VoxelizeArgs {
     bool sdf = false, udf = false, closestTriangle = false;
     std::string fill = "surface";
     std::string sign = "auto";
+    double windingAccuracy = 2.0;
     double band = 0, exteriorBand = 0, interiorBand = 0;
     bool field() const { return sdf || udf || fill == "solid"; }
 };
@@ -59,6 +60,8 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
     if (a.udf && cmd.count("--interior-band")) throw Error("--interior-band applies to --sdf; --udf has no inside");
     if (a.closestTriangle && !a.sdf && !a.udf) throw Error("--closest-triangle applies to --sdf and --udf");
     if (cmd.count("--sign") && !a.sdf && a.fill != "solid") throw Error("--sign applies to --sdf and --fill solid");
+    if (cmd.count("--winding-accuracy") && a.sign == "parity")
+        throw Error("--winding-accuracy applies to winding-number signs, not to --sign parity");
     if (!a.field()) return;
     if (a.backend.attributes) throw Error("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
     if (cmd.count("--fog") || cmd.count("--topology"))
@@ -76,7 +79,10 @@ void runField(const VoxelizeArgs& a, const CLI::App& cmd, const TriangleMesh& me
     LevelSetOptions ls;
     ls.unsignedDistance = a.udf;
     ls.closestTriangle = a.closestTriangle;
-    ls.sign = a.sign == "parity" ? SignMethod::Parity : SignMethod::Auto;
+    ls.sign = SignOptions(a.sign == "parity" ? SignMethod::Parity
+                          : a.sign == "winding" ? SignMethod::Winding
+                                                : SignMethod::Auto,
+                          a.windingAccuracy);
     if (a.band > 0) ls.exteriorBand = ls.interiorBand = a.band;
     if (a.exteriorBand > 0) ls.exteriorBand = a.exteriorBand;
     if (a.interiorBand > 0) ls.interiorBand = a.interiorBand;
@@ -127,7 +133,9 @@ void runField(const VoxelizeArgs& a, const CLI::App& cmd, const TriangleMesh& me
     if (!stats.sign.empty()) fmt::print("  {:<11} {}\n", "sign", stats.sign);
     fmt::print("  {:<11} {} active ({} leaves, {} active tiles)\n", "voxels", thousands(main.activeVoxelCount()),
                thousands(main.baseTree().leafCount()), thousands(main.baseTree().activeTileCount()));
-    fmt::print("  {:<11} {} band bricks, {:.1f} MB of GPU buffers\n", "work", thousands(stats.bandBricks),
+    fmt::print("  {:<11} {} band bricks{}, {:.1f} MB of GPU buffers\n", "work", thousands(stats.bandBricks),
+               stats.windingBricks ? fmt::format(" and {} bricks beyond it voxel by voxel", thousands(stats.windingBricks))
+                                   : std::string(),
                double(stats.gpuBytes) / 1e6);
     fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
     fmt::print("  {:<11} {}\n", "output",
@@ -160,6 +168,7 @@ void runField(const VoxelizeArgs& a, const CLI::App& cmd, const TriangleMesh& me
                                        {"leaves", main.baseTree().leafCount()},
                                        {"active_tiles", main.baseTree().activeTileCount()},
                                        {"band_bricks", stats.bandBricks},
+                                       {"winding_bricks", stats.windingBricks},
                                        {"backend", stats.backend},
                                        {"renderer", stats.renderer},
                                        {"gpu_bytes", stats.gpuBytes},
@@ -347,8 +356,12 @@ void addVoxelizeCommand(CLI::App& app)
         ->check(CLI::Range(1.0, 1000.0));
     cmd->add_option("--sign", args->sign,
                     "Inside/outside for --sdf and --fill solid: auto (parity for closed, consistently oriented "
-                    "meshes; an error otherwise) or parity (as asked)")
-        ->check(CLI::IsMember({"auto", "parity"}));
+                    "meshes, the winding number otherwise), parity or winding (as asked)")
+        ->check(CLI::IsMember({"auto", "parity", "winding"}));
+    cmd->add_option("--winding-accuracy", args->windingAccuracy,
+                    "Winding numbers: tree nodes farther than this many radii use their dipole (larger is slower and "
+                    "more exact; inf evaluates every triangle)")
+        ->check(CLI::PositiveNumber);
     cmd->add_flag("--closest-triangle", args->closestTriangle,
                   "With --sdf or --udf, also an Int32 grid 'closest_triangle' on the band");
     cmd->add_option("--repeat", args->repeat,

@@ -531,9 +531,15 @@ TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)
         EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), (std::string(bad).find("0.5") == std::string::npos ? 1 : 2))
             << bad << ": " << r.out;
     }
-    // The built-in Cornell box is an open room: a signed field is refused with the reason.
+    const auto parityOnly = runSvo("voxelize " + path("ico.off") + " --sdf --sign parity --winding-accuracy 3 -o " +
+                                   path("bad.vdb"));
+    EXPECT_EQ(parityOnly.code, 1) << parityOnly.out;
+    EXPECT_NE(parityOnly.out.find("--winding-accuracy applies to winding-number signs"), std::string::npos)
+        << parityOnly.out;
+    // The built-in Cornell box is an open room: its sign comes from the winding number, and says why.
     const auto open = runSvo("voxelize -r 16 --sdf -o " + path("cb.vdb"));
-    EXPECT_EQ(open.code, 1);
-    EXPECT_NE(open.out.find("not closed (116 boundary edges)"), std::string::npos) << open.out;
-    expectOnly({"ico.off", "ls.vdb", "solid.vdb"});
+    EXPECT_EQ(open.code, 0) << open.out;
+    EXPECT_NE(open.out.find("winding: the mesh is not closed (116 boundary edges)"), std::string::npos) << open.out;
+    EXPECT_NE(runCommand("vdb_print -l " + path("cb.vdb")).find("class: level set"), std::string::npos);
+    expectOnly({"ico.off", "ls.vdb", "solid.vdb", "cb.vdb"});
 }

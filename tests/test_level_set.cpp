@@ -16,6 +16,7 @@
 #include "scenes.h"
 #include "svo/core/mesh_io.h"
 #include "svo/core/mesh_topology.h"
+#include "svo/core/winding_tree.h"
 #include "svo/svo.h"
 
 namespace svo::test {
@@ -85,14 +86,16 @@ openvdb::FloatGrid::Ptr levelSetOf(Voxelizer& v, const TriangleMesh& mesh, const
 /// Distances within float rounding of CGAL's, the side CGAL's, and the
 /// active band exactly the voxels closer than the band on their side.
 void expectLevelSetMatchesCgal(Voxelizer& v, const TriangleMesh& mesh, int resolution, double exterior,
-                               double interior)
+                               double interior, SignMethod method = SignMethod::Auto)
 {
     SCOPED_TRACE(mesh.source);
+    SCOPED_TRACE(method == SignMethod::Winding ? "winding" : "auto");
     ASSERT_TRUE(checkEdges(mesh).closedAndOriented()) << checkEdges(mesh).describe();
     const GridSpec grid = makeGrid(mesh, GridRequest{resolution, 0});
     LevelSetOptions ls;
     ls.exteriorBand = exterior;
     ls.interiorBand = interior;
+    ls.sign = method;
     VoxelizeStats stats;
     const auto sdf = levelSetOf(v, mesh, grid, ls, &stats);
     const CgalReference ref(mesh, grid, true);
@@ -100,7 +103,7 @@ void expectLevelSetMatchesCgal(Voxelizer& v, const TriangleMesh& mesh, int resol
     EXPECT_EQ(sdf->getGridClass(), openvdb::GRID_LEVEL_SET);
     EXPECT_FLOAT_EQ(sdf->background(), float(exterior * h));
     EXPECT_EQ(stats.openColumns, 0u);
-    EXPECT_NE(stats.sign.find("parity"), std::string::npos);
+    EXPECT_NE(stats.sign.find(method == SignMethod::Winding ? "winding" : "parity"), std::string::npos);
     // Rounding: one double -> float rounding of d (2^-24 relative), then d * h
     // rounded again: 1e-6 voxel covers both in a band of at most 8 voxels.
     const double tol = 1e-6;
@@ -135,6 +138,144 @@ TEST(LevelSet, DistancesSidesAndBandMatchCgalOnClosedMeshes)
     TriangleMesh elephant = loadMesh(std::string(SVO_CGAL_MESHES) + "/elephant.off");
     expectLevelSetMatchesCgal(v, elephant, 48, 3, 3);
 #endif
+}
+
+// On closed meshes the winding number is 1 inside and 0 outside: its signs,
+// beyond the band too, must be CGAL's exactly.
+TEST(LevelSet, WindingSignsMatchCgalOnClosedMeshes)
+{
+    Voxelizer v;
+    expectLevelSetMatchesCgal(v, icosphere({0.1, -0.2, 0.3}, 1.0, 3), 40, 3, 3, SignMethod::Winding);
+    expectLevelSetMatchesCgal(v, box({-1.3, 0.2, 0.7}, {0.4, 1.1, 2.9}), 32, 2, 4.5, SignMethod::Winding);
+#ifdef SVO_CGAL_MESHES
+    TriangleMesh elephant = loadMesh(std::string(SVO_CGAL_MESHES) + "/elephant.off");
+    expectLevelSetMatchesCgal(v, elephant, 40, 2, 2, SignMethod::Winding);
+#endif
+}
+
+TEST(Winding, SolidAnglesAndWindingNumbersAreTheAnalyticOnes)
+{
+    // The octant triangle seen from the origin subtends 1/8 of the sphere.
+    EXPECT_NEAR(triangleWinding({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}), 1.0 / 8, 1e-15);
+    EXPECT_NEAR(triangleWinding({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {0, 1, 0}), -1.0 / 8, 1e-15);
+    EXPECT_EQ(triangleWinding({0.2, 0.2, 0}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}), 0.0); // in the plane
+    // A closed outward surface: 1 inside, 0 outside, wherever the point.
+    const TriangleMesh ico = icosphere({0.1, -0.2, 0.3}, 1.0, 2);
+    for (const Vec3d& q : {Vec3d{0.1, -0.2, 0.3}, Vec3d{0.5, 0.1, 0.6}, Vec3d{0.1, -0.2, 1.25}})
+        EXPECT_NEAR(windingNumber(ico.positions, ico.triangles, q), 1.0, 1e-12);
+    for (const Vec3d& q : {Vec3d{2, 0, 0}, Vec3d{0.1, -0.2, 1.35}, Vec3d{-40, 7, 3}})
+        EXPECT_NEAR(windingNumber(ico.positions, ico.triangles, q), 0.0, 1e-12);
+    // Half a sphere (z >= 0 faces) seen from its centre: 1/2.
+    TriangleMesh half = ico;
+    half.triangles.clear();
+    for (const auto& t : ico.triangles) {
+        const Vec3d c = (1.0 / 3) * (ico.positions[t[0]] + ico.positions[t[1]] + ico.positions[t[2]]);
+        if (c.z > 0.3) half.triangles.push_back(t);
+    }
+    const double w = windingNumber(half.positions, half.triangles, {0.1, -0.2, 0.3});
+    EXPECT_GT(w, 0.3);
+    EXPECT_LT(w, 0.7);
+    // The tree: every node's ball holds its triangles, leaves hold each triangle once.
+    const WindingTree tree = buildWindingTree(ico.positions, ico.triangles);
+    std::vector<int> seen(ico.triangles.size(), 0);
+    for (size_t n = 0; n < tree.links.size() / 2; ++n)
+        if (tree.links[2 * n + 1] & 0x80000000u)
+            for (uint32_t i = 0; i < (tree.links[2 * n + 1] & 0x7FFFFFFFu); ++i) ++seen[tree.order[tree.links[2 * n] + i]];
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(ico.triangles.size()));
+}
+
+/// Voxels (over the mesh's box grown by 3) where the solid's inside differs
+/// from `expected`, counting only centres farther than `margin` voxels from
+/// the reference's surface; `total` gets the voxels compared.
+template <typename Inside>
+uint64_t solidDisagreements(const openvdb::MaskGrid& solid, const TriangleMesh& mesh, const GridSpec& grid,
+                            const std::vector<const CgalReference*>& surfaces, double margin, Inside expected,
+                            uint64_t& total)
+{
+    const auto acc = solid.getConstAccessor();
+    uint64_t wrong = 0;
+    total = 0;
+    forEachVoxel(mesh, grid, 3, [&](const openvdb::Coord& c) {
+        for (const auto* s : surfaces)
+            if (s->distance(c) <= margin) return;
+        ++total;
+        wrong += acc.isValueOn(c) != expected(c);
+    });
+    return wrong;
+}
+
+// Meshes that are not closed: the winding number's inside against the
+// closed original (CGAL), away from the surface and the holes.
+TEST(Winding, OpenAndOverlappingMeshesAgreeWithTheirClosedOriginals)
+{
+    Voxelizer v;
+    const TriangleMesh closed = icosphere({0.1, -0.2, 0.3}, 1.0, 3);
+    const GridSpec grid = makeGrid(closed, GridRequest{40, 0});
+    const CgalReference ref(closed, grid, true);
+    {
+        // A sphere with a cap of faces missing (a hole about 0.5 across).
+        TriangleMesh holed = closed;
+        holed.source = "holed sphere";
+        holed.triangles.clear();
+        for (const auto& t : closed.triangles) {
+            const Vec3d c = (1.0 / 3) * (closed.positions[t[0]] + closed.positions[t[1]] + closed.positions[t[2]]);
+            if (c.z < 0.3 + 0.95) holed.triangles.push_back(t);
+        }
+        ASSERT_LT(holed.triangles.size(), closed.triangles.size());
+        VoxelizeStats stats;
+        VoxelizeOptions o;
+        o.stats = &stats;
+        const auto solid = v.solid(holed, grid, o);
+        EXPECT_NE(stats.sign.find("winding: the mesh is not closed"), std::string::npos) << stats.sign;
+        uint64_t total = 0;
+        const uint64_t wrong = solidDisagreements(*solid, closed, grid, {&ref}, 1.0, [&](const openvdb::Coord& c) {
+            return ref.inside(c);
+        }, total);
+        std::cout << "[ winding  ] holed sphere: " << wrong << " of " << total
+                  << " voxels farther than 1 voxel from the closed sphere disagree with it\n";
+        EXPECT_EQ(wrong, 0u);
+    }
+    {
+        // Two overlapping closed spheres: the union, overlap included (parity
+        // would leave the overlap out).
+        TriangleMesh two = closed;
+        two.source = "two spheres";
+        const TriangleMesh other = icosphere({0.7, -0.2, 0.3}, 0.8, 3);
+        const uint32_t base = uint32_t(two.positions.size());
+        two.positions.insert(two.positions.end(), other.positions.begin(), other.positions.end());
+        for (auto t : other.triangles) two.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+        const GridSpec g2 = makeGrid(two, GridRequest{40, 0});
+        const CgalReference a(closed, g2, true), b(other, g2, true);
+        const auto solid = v.solid(two, g2, {}, SignMethod::Winding);
+        uint64_t total = 0;
+        // Farther than a voxel from both surfaces: no surface voxel is compared.
+        const uint64_t wrong = solidDisagreements(*solid, two, g2, {&a, &b}, 1.0, [&](const openvdb::Coord& c) {
+            return a.inside(c) || b.inside(c);
+        }, total);
+        EXPECT_EQ(wrong, 0u) << "of " << total;
+        EXPECT_GT(total, 10000u);
+    }
+    {
+        // Every fifth face flipped: no longer consistently oriented. A flipped
+        // face subtracts its solid angle, so inside voxels near it may drop
+        // under 1/2; report the agreement.
+        TriangleMesh flipped = closed;
+        flipped.source = "flipped sphere";
+        for (size_t t = 0; t < flipped.triangles.size(); t += 5) std::swap(flipped.triangles[t][1], flipped.triangles[t][2]);
+        VoxelizeStats stats;
+        VoxelizeOptions o;
+        o.stats = &stats;
+        const auto solid = v.solid(flipped, grid, o);
+        EXPECT_NE(stats.sign.find("winding"), std::string::npos) << stats.sign;
+        for (double margin : {1.0, 3.0}) {
+            uint64_t total = 0;
+            const uint64_t wrong = solidDisagreements(*solid, closed, grid, {&ref}, margin,
+                                                      [&](const openvdb::Coord& c) { return ref.inside(c); }, total);
+            std::cout << "[ winding  ] flipped faces: " << wrong << " of " << total << " voxels farther than "
+                      << margin << " voxels from the sphere disagree with it\n";
+            EXPECT_LT(wrong * 100, total); // under 1 %
+        }
+    }
 }
 
 /// Inside by parity with svo's ties, derived by hand: the voxel centre is
@@ -254,19 +395,18 @@ TEST(LevelSet, AgreesWithOpenVdbMeshToLevelSetAndIsCloserToCgal)
     EXPECT_LE(onlyOurs + onlyTheirs, both / 100) << onlyOurs << " only in svo, " << onlyTheirs << " only in OpenVDB";
 }
 
-TEST(LevelSet, OpenMeshesAreRefusedUnderAutoAndWarnedUnderParity)
+TEST(LevelSet, OpenMeshesTakeWindingUnderAutoAndAreWarnedUnderParity)
 {
     TriangleMesh open = box({0, 0, 0}, {1, 1, 1});
     open.triangles.erase(open.triangles.begin() + 2, open.triangles.begin() + 4); // the top face (z = 1) is gone
     open.source = "open box";
     const GridSpec grid = makeGrid(open, GridRequest{16, 0});
     Voxelizer v;
-    try {
-        v.levelSet(open, grid);
-        ADD_FAILURE() << "an open mesh gave a level set under SignMethod::Auto";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("open box: not closed (4 boundary edges)"), std::string::npos)
-            << e.what();
+    {
+        VoxelizeStats stats;
+        levelSetOf(v, open, grid, {}, &stats);
+        EXPECT_EQ(stats.sign, "winding: the mesh is not closed (4 boundary edges)");
+        EXPECT_TRUE(stats.warnings.empty());
     }
     LevelSetOptions ls;
     ls.sign = SignMethod::Parity;
@@ -336,14 +476,15 @@ TEST(LevelSet, BadBandsAndTheCpuBackendAreRefused)
 }
 
 /// Solid = surface voxels plus the voxels whose centres CGAL puts inside.
-void expectSolidMatchesCgal(Voxelizer& v, const TriangleMesh& mesh, int resolution)
+void expectSolidMatchesCgal(Voxelizer& v, const TriangleMesh& mesh, int resolution,
+                            SignMethod method = SignMethod::Auto)
 {
     SCOPED_TRACE(mesh.source);
     const GridSpec grid = makeGrid(mesh, GridRequest{resolution, 0});
     VoxelizeStats stats;
     VoxelizeOptions o;
     o.stats = &stats;
-    const auto solid = v.solid(mesh, grid, o);
+    const auto solid = v.solid(mesh, grid, o, method);
     EXPECT_EQ(stats.openColumns, 0u);
     const Octree surface = v.voxelize(mesh, grid);
     std::set<std::array<int64_t, 3>> surfaceSet;
@@ -374,6 +515,8 @@ TEST(Solid, MatchesCgalsInsideTestAndUsesTiles)
 #ifdef SVO_CGAL_MESHES
     expectSolidMatchesCgal(v, loadMesh(std::string(SVO_CGAL_MESHES) + "/elephant.off"), 64);
 #endif
+    expectSolidMatchesCgal(v, icosphere({0.3, 0.1, -0.2}, 1.0, 3), 48, SignMethod::Winding);
+    expectSolidMatchesCgal(v, box({-1.3, 0.2, 0.7}, {0.4, 1.1, 2.9}), 40, SignMethod::Winding);
     // A large solid is mostly tiles: far fewer leaves than its volume in leaves.
     const TriangleMesh big = box({0, 0, 0}, {1, 1, 1});
     const GridSpec grid = makeGrid(big, GridRequest{300, 0});

@@ -296,12 +296,13 @@ py::object voxelizeWith(svo::Voxelizer& v, const py::handle& vertices, const py:
     return out;
 }
 
-svo::SignMethod toSign(const std::string& sign)
+svo::SignOptions toSign(const std::string& sign, double windingAccuracy)
 {
-    if (sign == "auto") return svo::SignMethod::Auto;
-    if (sign == "parity") return svo::SignMethod::Parity;
-    badValue("sign: expected 'auto' or 'parity', got '" + sign + "'");
-    return svo::SignMethod::Auto;
+    if (sign == "auto") return {svo::SignMethod::Auto, windingAccuracy};
+    if (sign == "parity") return {svo::SignMethod::Parity, windingAccuracy};
+    if (sign == "winding") return {svo::SignMethod::Winding, windingAccuracy};
+    badValue("sign: expected 'auto', 'parity' or 'winding', got '" + sign + "'");
+    return {};
 }
 
 /// Runs a level-set or solid call with the GIL released and Ctrl-C heard.
@@ -326,13 +327,13 @@ auto runField(const std::string& backend, F call)
 py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                         std::optional<double> resolution, std::optional<double> voxelSize,
                         const py::object& transform, double exteriorBand, double interiorBand, bool unsignedDistance,
-                        const std::string& sign, const std::string& backend)
+                        const std::string& sign, double windingAccuracy, const std::string& backend)
 {
     svo::LevelSetOptions ls;
     ls.exteriorBand = exteriorBand;
     ls.interiorBand = interiorBand;
     ls.unsignedDistance = unsignedDistance;
-    ls.sign = toSign(sign);
+    ls.sign = toSign(sign, windingAccuracy);
     const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
     const openvdb::GridPtrVec grids =
         runField(backend, [&](const svo::VoxelizeOptions& o) { return v.levelSet(r.mesh, r.grid, ls, o, r.xform); });
@@ -341,11 +342,11 @@ py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py:
 
 py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                      std::optional<double> resolution, std::optional<double> voxelSize, const py::object& transform,
-                     const std::string& sign, const std::string& backend)
+                     const std::string& sign, double windingAccuracy, const std::string& backend)
 {
     const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
     const auto mask = runField(backend, [&](const svo::VoxelizeOptions& o) {
-        return v.solid(r.mesh, r.grid, o, toSign(sign), r.xform);
+        return v.solid(r.mesh, r.grid, o, toSign(sign, windingAccuracy), r.xform);
     });
     // pyopenvdb has no MaskGrid: the same topology as a BoolGrid, true on it.
     auto out = openvdb::BoolGrid::create(openvdb::BoolTree::Ptr(new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
@@ -540,16 +541,19 @@ PYBIND11_MODULE(_svo, m)
         .def("level_set", &levelSetWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
              py::arg("transform") = py::none(), py::arg("exterior_band") = 3.0, py::arg("interior_band") = 3.0,
-             py::arg("unsigned") = false, py::arg("sign") = "auto", py::arg("backend") = "auto",
+             py::arg("unsigned") = false, py::arg("sign") = "auto", py::arg("winding_accuracy") = 2.0,
+             py::arg("backend") = "auto",
              "A narrow-band signed distance field on the GPU, as OpenVDB's meshToLevelSet: a FloatGrid\n"
              "'surface' of class GRID_LEVEL_SET, world-unit distances, negative inside, exact to float\n"
              "rounding. Bands are in voxels (>= 1). unsigned=True gives unsigned distances (grid 'distance')\n"
-             "for any mesh. sign: 'auto' (parity for closed, consistently oriented meshes; else an error)\n"
-             "or 'parity'. Grid arguments as voxelize(); a transform must have uniform scale.")
+             "for any mesh. sign: 'auto' (parity for closed, consistently oriented meshes, else the winding\n"
+             "number), 'parity' or 'winding'; winding_accuracy: tree nodes farther than this many radii\n"
+             "use their dipole. Grid arguments as voxelize(); a transform must have uniform scale.")
         .def("solid", &solidWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
-             py::arg("transform") = py::none(), py::arg("sign") = "auto", py::arg("backend") = "auto",
-             "The solid a closed mesh bounds, as a BoolGrid 'solid': the surface voxels and every voxel\n"
+             py::arg("transform") = py::none(), py::arg("sign") = "auto", py::arg("winding_accuracy") = 2.0,
+             py::arg("backend") = "auto",
+             "The solid a mesh bounds, as a BoolGrid 'solid': the surface voxels and every voxel\n"
              "whose centre is inside; regions wholly inside are active tiles. Arguments as level_set().")
         .def("device", &svo::Voxelizer::deviceDescription, "The GPU's vendor, renderer and version.");
 

@@ -47,6 +47,7 @@ class Voxelizer:
         interior_band: float = 3.0,
         unsigned: bool = False,
         sign: str = "auto",
+        winding_accuracy: float = 2.0,
         backend: str = "auto",
     ) -> Grid: ...
     def solid(
@@ -58,6 +59,7 @@ class Voxelizer:
         voxel_size: Optional[float] = None,
         transform: Optional[Union[Transform, ArrayLike]] = None,
         sign: str = "auto",
+        winding_accuracy: float = 2.0,
         backend: str = "auto",
     ) -> Grid: ...
     def device(self) -> str: ...

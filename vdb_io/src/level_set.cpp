@@ -1,6 +1,7 @@
 // Level sets, unsigned distance fields and solids (svo/voxelizer.h): the
-// surface voxels give the band's bricks, the GPU gives distances and parity
-// crossings there (svo/gl/distance_field.h), and OpenVDB holds the result.
+// surface voxels give the band's bricks, the GPU gives distances there
+// (svo/gl/distance_field.h) and signs, by parity crossings or by winding
+// numbers (svo/gl/winding_number.h), and OpenVDB holds the result.
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -14,6 +15,7 @@
 #include "svo/core/mesh_topology.h"
 #include "svo/core/parity_scan.h"
 #include "svo/gl/distance_field.h"
+#include "svo/gl/winding_number.h"
 #include "svo/vdb_io/grid_builder.h"
 #include "voxelizer_state.h"
 
@@ -42,18 +44,97 @@ GridSpec padded(const GridSpec& grid, uint32_t pad, const std::string& what)
     return g;
 }
 
-/// Which sign method a call uses, and why (for the statistics).
-std::string chooseSign(const TriangleMesh& mesh, SignMethod asked, std::vector<std::string>& warnings)
+/// The sign method a call uses, and why (for the statistics).
+struct SignChoice {
+    SignMethod method;
+    std::string why;
+};
+SignChoice chooseSign(const TriangleMesh& mesh, const SignOptions& asked, std::vector<std::string>& warnings)
 {
+    if (!(asked.windingAccuracy > 0))
+        throw Error(fmt::format("a winding accuracy of {}: it must be positive", asked.windingAccuracy));
+    if (asked.method == SignMethod::Winding) return {SignMethod::Winding, "winding: as asked"};
     const EdgeReport edges = checkEdges(mesh);
-    if (edges.closedAndOriented()) return "parity: the mesh is " + edges.describe();
-    if (asked == SignMethod::Auto)
-        throw Error(fmt::format("{}: not closed ({}), so inside and outside are not defined by parity; svo has no "
-                                "sign method for open meshes yet. Use --udf (unsigned distances), or --sign parity "
-                                "to use parity anyway",
-                                mesh.source, edges.describe()));
+    if (edges.closedAndOriented()) return {SignMethod::Parity, "parity: the mesh is " + edges.describe()};
+    if (asked.method == SignMethod::Auto)
+        return {SignMethod::Winding, "winding: the mesh is not closed (" + edges.describe() + ")"};
     warnings.push_back(fmt::format("{} is not closed ({}): parity signs may be wrong", mesh.source, edges.describe()));
-    return "parity: as asked (the mesh is not closed)";
+    return {SignMethod::Parity, "parity: as asked (the mesh is not closed)"};
+}
+
+/// Inside and outside, for the band's bricks and beyond them.
+struct Signs {
+    std::vector<Brick> inside; ///< per band brick, the voxels whose centres are inside
+    /// Parity: runs of whole bricks inside between band bricks of a column.
+    std::vector<InsideRun> runs;
+    /// Winding: whole bricks beyond the band that are inside, and bricks
+    /// beyond it classified voxel by voxel (their inside voxels).
+    std::vector<BrickCoord> insideBricks;
+    std::vector<std::pair<BrickCoord, Brick>> partial;
+    uint64_t openColumns = 0;
+};
+
+/// A brick beyond the band whose centre's winding number is nearer 1/2 than
+/// this may hold both sides (the 1/2 level crosses free space only where the
+/// mesh has holes); its voxels are evaluated one by one.
+constexpr float kWindingMargin = 0.25f;
+
+/// Winding-number signs: the number at every brick centre of the grid's box,
+/// then voxel by voxel in the band's bricks and in the bricks whose centre is
+/// within kWindingMargin of 1/2.
+Signs windingSigns(gl::Context& context, const TriangleMesh& mesh, const GridSpec& g,
+                   const std::vector<BrickCoord>& band, double beta, const Checkpoint& checkpoint,
+                   VoxelizeStats& stats)
+{
+    auto t0 = Clock::now();
+    const WindingTree tree = buildWindingTree(gl::localPositions(mesh, g), mesh.triangles);
+    stats.stages.push_back({"winding tree", -1, msSince(t0)});
+    gl::WindingRequest coarse;
+    coarse.perBrick = true;
+    coarse.beta = beta;
+    coarse.checkpoint = checkpoint.part(0.0, 0.3);
+    gl::WindingResult centres = gl::computeWinding(context, mesh, g, tree, coarse);
+    for (auto& st : centres.stages) stats.stages.push_back(std::move(st));
+
+    // `band` is sorted (grownBricks): the box's bricks in x-major order walk it once.
+    Signs signs;
+    gl::WindingRequest fine;
+    fine.bricks = band;
+    fine.beta = beta;
+    fine.checkpoint = checkpoint.part(0.3, 1.0);
+    const auto& d = centres.brickDims;
+    size_t next = 0;
+    for (uint32_t x = 0; x < d[0]; ++x)
+        for (uint32_t y = 0; y < d[1]; ++y)
+            for (uint32_t z = 0; z < d[2]; ++z) {
+                const BrickCoord b{x, y, z};
+                if (next < band.size() && band[next] == b) {
+                    ++next;
+                    continue;
+                }
+                const float w = centres.perBrick[x + size_t(d[0]) * (y + size_t(d[1]) * z)];
+                if (std::abs(w - 0.5f) < kWindingMargin) fine.bricks.push_back(b);
+                else if (w >= 0.5f) signs.insideBricks.push_back(b);
+            }
+    stats.windingBricks = fine.bricks.size() - band.size();
+    gl::WindingResult voxels = gl::computeWinding(context, mesh, g, tree, fine);
+    for (auto& st : voxels.stages) stats.stages.push_back(std::move(st));
+    stats.gpuBytes = std::max({stats.gpuBytes, centres.gpuBytes, voxels.gpuBytes});
+    signs.inside.assign(voxels.inside.begin(), voxels.inside.begin() + std::ptrdiff_t(band.size()));
+    for (size_t i = band.size(); i < fine.bricks.size(); ++i)
+        if (voxels.inside[i].count()) signs.partial.push_back({fine.bricks[i], voxels.inside[i]});
+    return signs;
+}
+
+/// Parity signs from the crossings the distance pass marked.
+Signs paritySigns(const std::vector<BrickCoord>& band, const std::vector<Brick>& crossings)
+{
+    ParityScan scan = scanParity(band, crossings);
+    Signs signs;
+    signs.inside = std::move(scan.inside);
+    signs.runs = std::move(scan.runs);
+    signs.openColumns = scan.openColumns;
+    return signs;
 }
 
 /// The bricks holding every voxel within `reach` voxels (Chebyshev) of an
@@ -130,7 +211,7 @@ openvdb::GridPtrVec Voxelizer::levelSet(const TriangleMesh& mesh, const GridSpec
 }
 
 openvdb::MaskGrid::Ptr Voxelizer::solid(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
-                                        SignMethod sign, openvdb::math::Transform::Ptr xform)
+                                        const SignOptions& sign, openvdb::math::Transform::Ptr xform)
 {
     validateMesh(mesh);
     checkGrid(grid, mesh.source);
@@ -150,52 +231,51 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
     const InterruptScope interrupt(options.interrupter, "svo: computing a distance field");
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;
-    if (signedField) stats.sign = chooseSign(mesh, ls.sign, stats.warnings);
+    SignChoice sign{SignMethod::Parity, {}};
+    if (signedField) sign = chooseSign(mesh, ls.sign, stats.warnings);
+    const bool winding = signedField && sign.method == SignMethod::Winding;
     const double band = signedField ? std::max(ls.exteriorBand, ls.interiorBand) : ls.exteriorBand;
     // Every voxel within `band` of a triangle is within reach (Chebyshev) of
     // a surface voxel; the first centre above a crossing is within 1.
     const uint32_t reach = std::max<uint32_t>(1, uint32_t(std::floor(band + 0.5)));
     const GridSpec g = padded(grid, reach + 1, mesh.source);
-
-    // The surface, as meshToMask gives it.
-    VoxelizeOptions surfaceOptions = options;
-    surfaceOptions.interrupter = nullptr;
-    surfaceOptions.attributes = 0;
-    surfaceOptions.mode = VoxelMode::Conservative; // the band is grown from every voxel a triangle touches
-    surfaceOptions.stats = &stats;
-    const std::string sign = stats.sign;
-    const auto warnings = stats.warnings;
     checkpoint(0.0, "surface voxels");
-    const Octree surface = voxelizeChecked(mesh, g, surfaceOptions, nullptr);
-    stats.sign = sign;
-    stats.warnings.insert(stats.warnings.begin(), warnings.begin(), warnings.end());
-    checkpoint(0.3, "band bricks");
+    const Octree surface = surfaceVoxels(mesh, g, options, stats);
+    stats.sign = sign.why;
+    checkpoint(0.25, "band bricks");
 
     auto t0 = Clock::now();
     gl::FieldRequest request;
     request.bricks = grownBricks(surface, reach);
     request.band = band;
     request.closestTriangle = ls.closestTriangle;
-    request.crossings = signedField;
-    request.checkpoint = checkpoint.part(0.35, 0.85);
+    request.crossings = signedField && !winding;
+    request.checkpoint = checkpoint.part(0.3, winding ? 0.55 : 0.85);
     stats.bandBricks = request.bricks.size();
     stats.stages.push_back({"band bricks", -1, msSince(t0)});
     gl::FieldResult field = gl::computeField(impl_->gl(), mesh, g, request);
     if (field.lostCrossings)
         throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
                                 field.lostCrossings));
-    for (auto& s : field.stages) stats.stages.push_back(std::move(s));
+    for (auto& st : field.stages) stats.stages.push_back(std::move(st));
     stats.gpuBytes = std::max(stats.gpuBytes, field.gpuBytes);
+    Signs signs;
+    if (winding) {
+        signs = windingSigns(impl_->gl(), mesh, g, request.bricks, ls.sign.windingAccuracy,
+                             checkpoint.part(0.55, 0.85), stats);
+    } else if (signedField) {
+        t0 = Clock::now();
+        signs = paritySigns(request.bricks, field.crossings);
+        stats.stages.push_back({"parity scan", -1, msSince(t0)});
+    }
     checkpoint(0.85, "level set grid");
 
     t0 = Clock::now();
-    ParityScan parity;
-    if (signedField) parity = scanParity(request.bricks, field.crossings);
-    stats.openColumns = parity.openColumns;
-    if (parity.openColumns)
+    stats.openColumns = signs.openColumns;
+    if (signs.openColumns)
         stats.warnings.push_back(fmt::format("{} voxel columns cross the surface an odd number of times: the mesh is "
                                              "open there, and signs above its last crossing count as outside",
-                                             parity.openColumns));
+                                             signs.openColumns));
     const float exterior = float(ls.exteriorBand), interior = float(ls.interiorBand);
     const float background = float(ls.exteriorBand * worldPerVoxel);
     auto distance = openvdb::FloatGrid::create(background);
@@ -207,17 +287,21 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
         for (size_t i = r.begin(); i != r.end(); ++i) {
             const openvdb::Coord origin = leafOrigin(g, request.bricks[i]);
             auto leaf = std::make_unique<openvdb::FloatTree::LeafNodeType>(origin, background);
-            bool any = false;
+            bool any = false, anyInside = false;
             for (uint32_t v = 0; v < 512; ++v) {
                 const float d = field.distances[i * 512 + v];
-                const bool inside = signedField && bitOf(parity.inside[i], v);
+                const bool inside = signedField && bitOf(signs.inside[i], v);
                 const bool active = d < (inside ? interior : exterior);
                 const float value = active ? float(double(d) * worldPerVoxel) : background;
                 leaf->setValueOnly(v, inside ? -value : value);
+                anyInside |= inside;
                 if (active) leaf->setValueOn(v), any = true;
             }
-            if (!any) continue;
-            if (closest) {
+            // Parity's flood fill signs inactive leaves from their neighbours;
+            // winding signs are known at every voxel, so a leaf with no active
+            // voxel is still kept when it holds inside values.
+            if (!any && !(winding && anyInside)) continue;
+            if (closest && any) {
                 auto c = std::make_unique<openvdb::Int32Tree::LeafNodeType>(origin, -1);
                 for (auto it = leaf->cbeginValueOn(); it; ++it) c->setValueOn(it.pos(), field.closest[i * 512 + it.pos()]);
                 closestLeaves[i] = c.release();
@@ -228,8 +312,19 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
     addLeaves(distance->tree(), leaves);
     if (closest) addLeaves(closest->tree(), closestLeaves);
     distance->setTransform(xform);
-    if (signedField) {
+    if (winding) {
+        // Beyond the band: inactive values, negative where the winding number says inside.
+        for (const auto& [b, m] : signs.partial) {
+            auto* leaf = distance->tree().touchLeaf(leafOrigin(g, b));
+            for (uint32_t v = 0; v < 512; ++v)
+                if (bitOf(m, v)) leaf->setValueOnly(v, -background);
+        }
+        for (const auto& b : signs.insideBricks) distance->tree().addTile(1, leafOrigin(g, b), -background, false);
+        distance->tree().prune();
+    } else if (signedField) {
         openvdb::tools::signedFloodFill(distance->tree());
+    }
+    if (signedField) {
         distance->setGridClass(openvdb::GRID_LEVEL_SET);
         distance->setName("surface");
     } else {
@@ -251,7 +346,7 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
 }
 
 openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const GridSpec& grid,
-                                               const VoxelizeOptions& options, SignMethod sign,
+                                               const VoxelizeOptions& options, const SignOptions& signOptions,
                                                openvdb::math::Transform::Ptr xform)
 {
     if (options.backend == Backend::Cpu)
@@ -259,67 +354,75 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
     const InterruptScope interrupt(options.interrupter, "svo: filling a solid");
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;
-    const std::string how = chooseSign(mesh, sign, stats.warnings);
-    const auto warnings = stats.warnings;
+    const SignChoice sign = chooseSign(mesh, signOptions, stats.warnings);
+    const bool winding = sign.method == SignMethod::Winding;
     const GridSpec g = padded(grid, 2, mesh.source);
-
-    VoxelizeOptions surfaceOptions = options;
-    surfaceOptions.interrupter = nullptr;
-    surfaceOptions.attributes = 0;
-    surfaceOptions.mode = VoxelMode::Conservative; // every crossing lies in a touched voxel
-    surfaceOptions.stats = &stats;
     checkpoint(0.0, "surface voxels");
-    const Octree surface = voxelizeChecked(mesh, g, surfaceOptions, nullptr);
-    stats.sign = how;
-    stats.warnings.insert(stats.warnings.begin(), warnings.begin(), warnings.end());
-    checkpoint(0.4, "parity crossings");
+    const Octree surface = surfaceVoxels(mesh, g, options, stats);
+    stats.sign = sign.why;
+    checkpoint(0.3, "signs");
 
     auto t0 = Clock::now();
-    gl::FieldRequest request;
-    request.bricks = grownBricks(surface, 1); // the first centre above a crossing is within 1 voxel of it
-    request.checkpoint = checkpoint.part(0.45, 0.8);
-    stats.bandBricks = request.bricks.size();
+    // The first centre above a crossing is within 1 voxel of it.
+    const std::vector<BrickCoord> band = grownBricks(surface, 1);
+    stats.bandBricks = band.size();
     stats.stages.push_back({"band bricks", -1, msSince(t0)});
-    gl::FieldResult field = gl::computeField(impl_->gl(), mesh, g, request);
-    if (field.lostCrossings)
-        throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
-                                field.lostCrossings));
-    for (auto& s : field.stages) stats.stages.push_back(std::move(s));
-    stats.gpuBytes = std::max(stats.gpuBytes, field.gpuBytes);
+    Signs signs;
+    if (winding) {
+        signs = windingSigns(impl_->gl(), mesh, g, band, signOptions.windingAccuracy, checkpoint.part(0.35, 0.8),
+                             stats);
+    } else {
+        gl::FieldRequest request;
+        request.bricks = band;
+        request.checkpoint = checkpoint.part(0.35, 0.8);
+        gl::FieldResult field = gl::computeField(impl_->gl(), mesh, g, request);
+        if (field.lostCrossings)
+            throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
+                                    field.lostCrossings));
+        for (auto& st : field.stages) stats.stages.push_back(std::move(st));
+        stats.gpuBytes = std::max(stats.gpuBytes, field.gpuBytes);
+        signs = paritySigns(band, field.crossings);
+    }
     checkpoint(0.8, "solid grid");
 
     t0 = Clock::now();
-    const ParityScan parity = scanParity(request.bricks, field.crossings);
-    stats.openColumns = parity.openColumns;
-    if (parity.openColumns)
+    stats.openColumns = signs.openColumns;
+    if (signs.openColumns)
         stats.warnings.push_back(fmt::format("{} voxel columns cross the surface an odd number of times: the mesh is "
                                              "open there, and the solid stops at its last crossing",
-                                             parity.openColumns));
+                                             signs.openColumns));
     // Surface bricks by coordinates, to OR into the inside masks.
     std::vector<std::pair<BrickCoord, uint32_t>> surfaceBricks;
     for (const auto& r : occupiedBricks(surface))
         surfaceBricks.push_back({{r.origin[0] / 8, r.origin[1] / 8, r.origin[2] / 8}, r.index});
     tbb::parallel_sort(surfaceBricks.begin(), surfaceBricks.end());
     auto out = openvdb::MaskGrid::create(false);
-    const size_t nb = request.bricks.size();
+    const size_t nb = band.size();
     std::vector<openvdb::MaskTree::LeafNodeType*> leaves(nb, nullptr);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nb, 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
-            Brick m = parity.inside[i];
+            Brick m = signs.inside[i];
             const auto it = std::lower_bound(surfaceBricks.begin(), surfaceBricks.end(),
-                                             std::make_pair(request.bricks[i], uint32_t(0)));
-            if (it != surfaceBricks.end() && it->first == request.bricks[i])
+                                             std::make_pair(band[i], uint32_t(0)));
+            if (it != surfaceBricks.end() && it->first == band[i])
                 for (int w = 0; w < 8; ++w) m.words[w] |= surface.bricks[it->second].words[w];
             if (!m.count()) continue;
-            auto leaf = std::make_unique<openvdb::MaskTree::LeafNodeType>(leafOrigin(g, request.bricks[i]), false);
+            auto leaf = std::make_unique<openvdb::MaskTree::LeafNodeType>(leafOrigin(g, band[i]), false);
             for (uint32_t v = 0; v < 512; ++v)
                 if (bitOf(m, v)) leaf->setValueOn(v);
             leaves[i] = leaf.release();
         }
     });
     addLeaves(out->tree(), leaves);
-    // Runs of whole bricks inside: tiles where all 64 columns are inside.
-    for (const auto& run : parity.runs) {
+    // Winding: bricks beyond the band, voxel by voxel or whole.
+    for (const auto& [b, m] : signs.partial) {
+        auto* leaf = out->tree().touchLeaf(leafOrigin(g, b));
+        for (uint32_t v = 0; v < 512; ++v)
+            if (bitOf(m, v)) leaf->setValueOn(v);
+    }
+    for (const auto& b : signs.insideBricks) out->tree().addTile(1, leafOrigin(g, b), true, true);
+    // Parity: runs of whole bricks inside, tiles where all 64 columns are inside.
+    for (const auto& run : signs.runs) {
         const openvdb::Coord lo = leafOrigin(g, run.first);
         const int32_t top = lo.z() + 8 * int32_t(run.bricks) - 1;
         if (run.columns == ~uint64_t(0)) {
@@ -341,6 +444,25 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
     checkpoint(1.0, "finish");
     if (options.stats) *options.stats = std::move(stats);
     return out;
+}
+
+Octree Voxelizer::surfaceVoxels(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                                VoxelizeStats& stats)
+{
+    // As meshToMask gives them, always conservative: the band is grown from,
+    // and every crossing lies in, a voxel a triangle touches.
+    VoxelizeOptions surfaceOptions = options;
+    surfaceOptions.interrupter = nullptr;
+    surfaceOptions.attributes = 0;
+    surfaceOptions.mode = VoxelMode::Conservative;
+    VoxelizeStats surfaceStats;
+    surfaceOptions.stats = &surfaceStats;
+    Octree surface = voxelizeChecked(mesh, grid, surfaceOptions, nullptr);
+    // The surface call's statistics are the start of this call's: the
+    // warnings gathered so far go first.
+    surfaceStats.warnings.insert(surfaceStats.warnings.begin(), stats.warnings.begin(), stats.warnings.end());
+    stats = std::move(surfaceStats);
+    return surface;
 }
 
 } // namespace svo

@@ -87,13 +87,29 @@ enum class Dilation {
 /// How level sets and solids tell inside from outside.
 enum class SignMethod {
     /// Parity when the mesh is closed and consistently oriented (after welding
-    /// vertices at equal positions); for any other mesh an error that says
-    /// what is open, since parity is undefined there.
+    /// vertices at equal positions), the winding number otherwise; the
+    /// statistics say which and why.
     Auto,
     /// Crossings counted along voxel columns, with exact tie rules: a voxel
     /// centre on a face, edge or vertex never flips the result. Correct for
     /// closed meshes, including nested shells; used as asked on others.
     Parity,
+    /// The generalized winding number (svo/core/winding_tree.h) thresholded at
+    /// 1/2: sensible insides for holes, soups and overlapping parts. At every
+    /// voxel of the band, and of any brick beyond it whose centre's winding
+    /// number is within 1/4 of 1/2; other bricks beyond the band take the
+    /// side of their centre.
+    Winding,
+};
+
+/// The sign method and its accuracy.
+struct SignOptions {
+    SignMethod method = SignMethod::Auto;
+    /// Winding numbers: tree nodes farther than this many times their radius
+    /// add their dipole instead of their triangles (Barill et al. 2018's beta;
+    /// larger is slower and more exact, infinity evaluates every triangle).
+    double windingAccuracy = 2.0;
+    SignOptions(SignMethod m = SignMethod::Auto, double accuracy = 2.0) : method(m), windingAccuracy(accuracy) {}
 };
 
 /// What a level set (or unsigned distance field) holds.
@@ -102,7 +118,7 @@ struct LevelSetOptions {
     double interiorBand = 3.0;     ///< active band inside, in voxels (>= 1); unused when unsigned
     bool unsignedDistance = false; ///< distances without sign: no inside/outside needed
     bool closestTriangle = false;  ///< also an Int32Grid "closest_triangle" on the band
-    SignMethod sign = SignMethod::Auto;
+    SignOptions sign;
 };
 
 /// Which GPU the Voxelizer uses.
@@ -151,6 +167,7 @@ struct VoxelizeStats {
     std::string sign;              ///< level sets and solids: the sign method used and why ("parity: closed and ...")
     uint64_t openColumns = 0;      ///< level sets and solids: voxel columns crossed an odd number of times (open mesh)
     uint64_t bandBricks = 0;       ///< level sets and solids: bricks whose distances or signs were computed
+    uint64_t windingBricks = 0;    ///< winding signs: bricks beyond the band classified voxel by voxel
     /// Start-up paid since the previous call returned: the context if this
     /// call (or deviceDescription() before it) created it, and the programs
     /// this call made. Kept apart from `stages`, whose wall times exclude it.
@@ -268,20 +285,23 @@ public:
     /// @details Method: the surface voxels (as meshToMask) grown by the band
     /// give the band's bricks; the GPU computes, for every voxel centre in
     /// them, the exact distance to the closest triangle in double precision
-    /// (rounded once to float), and its side by parity along voxel columns
-    /// (svo/gl/distance_field.h). Values are world units (index distance times
-    /// the voxel size), negative inside. Voxels closer than the band on their
-    /// side are active; other voxels hold +/- the background, the exterior
-    /// band times the voxel size, signed as OpenVDB's signedFloodFill signs
-    /// them. The grid has class GRID_LEVEL_SET and is named "surface".
+    /// (rounded once to float), and its side: by parity along voxel columns
+    /// for closed meshes (svo/gl/distance_field.h), by the winding number for
+    /// others (svo/gl/winding_number.h; SignMethod). Values are world units
+    /// (index distance times the voxel size), negative inside. Voxels closer
+    /// than the band on their side are active; other voxels hold +/- the
+    /// background, the exterior band times the voxel size, signed as OpenVDB's
+    /// signedFloodFill signs them (parity) or as the winding number says.
+    /// The grid has class GRID_LEVEL_SET and is named "surface".
     /// Guarantees: every active distance is within 1e-6 voxel of the exact
-    /// distance (the float rounding of a double result); signs are exact for
-    /// voxel centres farther than that from the surface on closed meshes.
+    /// distance (the float rounding of a double result); parity signs are
+    /// exact for voxel centres farther than that from the surface on closed
+    /// meshes.
     /// @param xform      a linear transform with uniform scale (distances are world units)
     /// @param exteriorBand, interiorBand  band half widths in voxels, each >= 1
     /// @throw svo::Error as meshToMask, and for a band under 1 voxel or not
     ///        finite, a transform without uniform scale, the CPU backend (this
-    ///        is GPU work), or an open mesh under SignMethod::Auto.
+    ///        is GPU work), or a winding accuracy that is not positive.
     template <typename PointT>
     openvdb::FloatGrid::Ptr meshToLevelSet(const std::vector<PointT>& points,
                                            const std::vector<openvdb::Vec3I>& triangles,
@@ -294,15 +314,16 @@ public:
                                                         const std::vector<openvdb::Vec3I>& triangles,
                                                         const openvdb::math::Transform& xform, float band = 3.0f,
                                                         const VoxelizeOptions& options = {});
-    /// @brief The solid a closed mesh bounds: every voxel whose centre is
-    /// inside, plus the surface voxels (as meshToMask). Whole regions inside
+    /// @brief The solid a mesh bounds: every voxel whose centre is inside (by
+    /// parity or winding number, as meshToLevelSet), plus the surface voxels
+    /// (as meshToMask). Whole regions inside
     /// are active tiles at the largest tree level they fill, so memory follows
     /// the surface. Named "solid".
     /// @throw svo::Error as meshToLevelSet.
     template <typename PointT>
     openvdb::MaskGrid::Ptr meshToSolid(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                                        const openvdb::math::Transform& xform, const VoxelizeOptions& options = {},
-                                       SignMethod sign = SignMethod::Auto);
+                                       const SignOptions& sign = {});
 
     /// Level set (or unsigned field) of svo's own mesh on a grid from
     /// makeGrid: the distance grid, then "closest_triangle" when asked. The
@@ -315,7 +336,7 @@ public:
     /// Solid of svo's own mesh on a grid from makeGrid (see meshToSolid);
     /// @a xform as for levelSet().
     openvdb::MaskGrid::Ptr solid(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
-                                 SignMethod sign = SignMethod::Auto, openvdb::math::Transform::Ptr xform = nullptr);
+                                 const SignOptions& sign = {}, openvdb::math::Transform::Ptr xform = nullptr);
 
     /// The GPU's vendor, renderer and version (creates the context if needed).
     std::string deviceDescription();
@@ -334,7 +355,11 @@ private:
                                         const VoxelizeOptions& options, openvdb::math::Transform::Ptr xform,
                                         double worldPerVoxel);
     openvdb::MaskGrid::Ptr solidChecked(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
-                                        SignMethod sign, openvdb::math::Transform::Ptr xform);
+                                        const SignOptions& sign, openvdb::math::Transform::Ptr xform);
+    /// The conservative surface voxels a level set or solid starts from; the
+    /// call's statistics begin as theirs.
+    Octree surfaceVoxels(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                         VoxelizeStats& stats);
     std::unique_ptr<Impl> impl_;
 };
 

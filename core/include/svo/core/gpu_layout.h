@@ -144,6 +144,16 @@ SVO_CONST(uint) kTableWords = 4u;
 #define SVO_BIND_FIELD_COUNTERS 7  /* uints: crossings whose brick is not in the table */
 SVO_CONST(uint) kItemWords = 8u; /* first item, box origin x y z, box size x y z, unused */
 
+/* Winding numbers (winding_number.comp, svo/core/winding_tree.h); positions
+   and indices as for the distance passes. */
+#define SVO_BIND_WINDING_NODES 2  /* 8 floats per tree node: centre, radius, area vector, 0 */
+#define SVO_BIND_WINDING_LINKS 3  /* 2 uints per tree node: children, or first and count | kWindingLeaf */
+#define SVO_BIND_WINDING_ORDER 4  /* triangle indices in leaf order */
+#define SVO_BIND_WINDING_BRICKS 5 /* 3 uints per brick: brick coordinates (per-voxel pass) */
+#define SVO_BIND_WINDING_OUT 6    /* per-voxel: 16 uints per brick, inside bits; per-brick: a float per brick */
+SVO_CONST(uint) kWindingLeaf = 0x80000000u;
+SVO_CONST(uint) kWindingStack = 64u; /* tree depth + 1 at most (the host checks) */
+
 #ifndef __cplusplus
 /* ---- GLSL helpers ------------------------------------------------------ */
 
@@ -208,6 +218,9 @@ static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRIC
 static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_FIELD_ITEMS,
                              SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
                              SVO_BIND_FIELD_FLIPS, SVO_BIND_FIELD_COUNTERS}));
+static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_WINDING_NODES,
+                             SVO_BIND_WINDING_LINKS, SVO_BIND_WINDING_ORDER, SVO_BIND_WINDING_BRICKS,
+                             SVO_BIND_WINDING_OUT}));
 
 } // namespace svo::gpu
 #endif

@@ -83,7 +83,7 @@ template <typename PointT>
 openvdb::MaskGrid::Ptr Voxelizer::meshToSolid(const std::vector<PointT>& points,
                                               const std::vector<openvdb::Vec3I>& triangles,
                                               const openvdb::math::Transform& xform, const VoxelizeOptions& options,
-                                              SignMethod sign)
+                                              const SignOptions& sign)
 {
     const IndexSpaceMesh p = prepareMesh(points, triangles, {}, xform);
     return solidChecked(p.mesh, p.grid, options, sign, xform.copy());

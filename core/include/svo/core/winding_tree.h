@@ -1,0 +1,64 @@
+#pragma once
+/// @file winding_tree.h
+/// The generalized winding number of a triangle mesh (Jacobson et al. 2013)
+/// and the tree that evaluates it fast (Barill et al. 2018): the host half of
+/// svo's winding-number signs (the GPU evaluates it, svo/gl/winding_number.h).
+///
+/// The winding number of a point q is the sum of the signed solid angles the
+/// triangles subtend at q, over 4 pi: 1 inside a closed, outward-oriented
+/// surface, 0 outside, and in between where the surface has holes, so that
+/// thresholding it at 1/2 gives a sensible inside for open meshes, soups and
+/// overlapping parts. Triangles with inconsistent orientation subtract
+/// instead of adding; no method based on the triangles alone can tell.
+///
+/// The tree is a bounding-volume hierarchy split at the median along the
+/// longest axis of the triangles' centroids, with at most kWindingLeafSize
+/// triangles a leaf. Every node keeps the dipole of its triangles: the sum of
+/// their area vectors N (half the cross product, pointing out), placed at
+/// their area-weighted centroid c, and the radius r of the ball about c that
+/// holds all their corners. A node whose ball is far from q (|q - c| > beta r)
+/// adds N . (c - q) / |c - q|^3 / (4 pi) instead of its triangles: the first
+/// term of the far-field expansion, whose relative error falls as
+/// 1 / beta^2. Nearer nodes are opened, and leaf triangles add their exact
+/// solid angle. With beta = infinity every triangle is exact.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "svo/core/vec3.h"
+
+namespace svo {
+
+/// Triangles in one leaf of the winding tree, at most.
+inline constexpr uint32_t kWindingLeafSize = 8;
+
+struct WindingTree {
+    /// 8 floats per node: dipole centre c (x, y, z), radius r, area vector N
+    /// (x, y, z), 0. Node 0 is the root.
+    std::vector<float> nodes;
+    /// 2 uints per node. Inner node: the two children. Leaf: the first entry
+    /// of `order`, and the count with the top bit set.
+    std::vector<uint32_t> links;
+    /// Triangle indices in leaf order.
+    std::vector<uint32_t> order;
+    uint32_t depth = 0; ///< levels below the root
+};
+
+/// Builds the tree for triangles over `positions` (any frame; svo uses
+/// local voxel coordinates). Degenerate triangles are kept (their area vector
+/// is zero, their solid angle zero).
+/// @throw svo::Error when there are no triangles or more than 2^31.
+WindingTree buildWindingTree(const std::vector<Vec3d>& positions,
+                             const std::vector<std::array<uint32_t, 3>>& triangles);
+
+/// The signed solid angle of triangle abc seen from q, over 4 pi (van
+/// Oosterom and Strackee's formula, in double): in (-1/2, 1/2], 0 when q lies
+/// in the triangle's plane.
+double triangleWinding(const Vec3d& q, const Vec3d& a, const Vec3d& b, const Vec3d& c);
+
+/// The exact winding number at q: every triangle's solid angle summed, no
+/// tree. O(triangles); the reference that tests hold the GPU tree to.
+double windingNumber(const std::vector<Vec3d>& positions, const std::vector<std::array<uint32_t, 3>>& triangles,
+                     const Vec3d& q);
+
+} // namespace svo

@@ -1,0 +1,57 @@
+#pragma once
+/// @file winding_number.h
+/// Generalized winding numbers on the GPU (svo/core/winding_tree.h has the
+/// method): the sign of level sets and solids for meshes that are not closed.
+///
+/// Two evaluations, both in the grid's local voxel frame:
+///   per voxel  for every voxel centre of a list of bricks, whether its
+///              winding number is at least 1/2 (inside);
+///   per brick  the winding number at the centre of every brick of the
+///              grid's box (brick coordinates up to ceil(dims / 8)), for the
+///              caller to classify whole bricks far from the surface.
+///
+/// Accuracy. A tree node farther than `beta` times its radius adds its dipole
+/// in float instead of its triangles; nearer triangles add their exact solid
+/// angle. The error of a dipole falls as (1 / beta)^2 relative to the node's
+/// own contribution; beta = infinity evaluates every triangle.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "svo/core/grid.h"
+#include "svo/core/interrupt.h"
+#include "svo/core/mesh.h"
+#include "svo/core/octree.h"
+#include "svo/core/voxelization.h"
+#include "svo/core/winding_tree.h"
+#include "svo/gl/context.h"
+
+namespace svo::gl {
+
+struct WindingRequest {
+    /// Bricks (local voxel coordinate / 8) whose voxels to classify.
+    std::vector<std::array<uint32_t, 3>> bricks;
+    bool perBrick = false; ///< also the winding number at every brick centre of the grid's box
+    double beta = 2.0;     ///< far-field threshold; +infinity: every triangle exactly
+    Checkpoint checkpoint;
+};
+
+struct WindingResult : RunStats {
+    std::vector<Brick> inside;   ///< per requested brick: voxels whose winding number is >= 1/2
+    std::vector<float> perBrick; ///< x-fastest over the box of bricks, when asked
+    std::array<uint32_t, 3> brickDims{}; ///< that box, in bricks
+};
+
+/// Runs on `context` for a mesh on `grid` (checked by the caller), with the
+/// tree built from the mesh in the grid's local frame.
+/// @throw svo::Error for beta not positive, a box of more than 2^31 bricks,
+///        a tree deeper than the shader's stack, or a GPU buffer that cannot
+///        be allocated; svo::Interrupted from the checkpoint.
+WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                             const WindingTree& tree, const WindingRequest& request);
+
+/// The mesh's positions in the grid's local voxel frame (double): what the
+/// tree is built from.
+std::vector<Vec3d> localPositions(const TriangleMesh& mesh, const GridSpec& grid);
+
+} // namespace svo::gl

@@ -1,0 +1,124 @@
+// The GPU passes of winding_number.h: the tree's upload and the two
+// evaluations, cut into dispatches so that a long one can be interrupted.
+#include "svo/gl/winding_number.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "objects.h"
+#include "svo/core/error.h"
+#include "svo/core/gpu_layout.h"
+
+namespace svo::gl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+} // namespace
+
+std::vector<Vec3d> localPositions(const TriangleMesh& mesh, const GridSpec& grid)
+{
+    std::vector<Vec3d> local(mesh.positions.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, local.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) local[i] = grid.toLocal(mesh.positions[i]);
+    });
+    return local;
+}
+
+WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                             const WindingTree& tree, const WindingRequest& request)
+{
+    if (!(request.beta > 0)) throw Error(fmt::format("a winding accuracy (beta) of {}: it must be positive", request.beta));
+    if (tree.depth + 1 > gpu::kWindingStack)
+        throw Error(fmt::format("a winding tree {} levels deep is more than the shader's stack holds ({})",
+                                tree.depth + 1, gpu::kWindingStack));
+    WindingResult result;
+    for (int a = 0; a < 3; ++a) result.brickDims[a] = (grid.dims[a] + 7) / 8;
+    const uint64_t boxBricks = uint64_t(result.brickDims[0]) * result.brickDims[1] * result.brickDims[2];
+    if (request.perBrick && boxBricks > (uint64_t(1) << 31))
+        throw Error(fmt::format("the grid's box holds {} bricks, more than the winding pass evaluates (2^31); use a "
+                                "coarser grid",
+                                boxBricks));
+    const uint64_t nb = request.bricks.size();
+    const Context::Scope scope(context);
+    request.checkpoint(0.0, "winding upload");
+
+    auto t0 = Clock::now();
+    const std::vector<Vec3d> local = localPositions(mesh, grid);
+    std::vector<uint32_t> brickWords(std::max<uint64_t>(nb, 1) * 3, 0);
+    for (uint64_t i = 0; i < nb; ++i)
+        for (int a = 0; a < 3; ++a) brickWords[3 * i + a] = request.bricks[i][a];
+    TimerQuery uploadTimer;
+    uploadTimer.begin();
+    const Buffer positions("winding positions", local.size() * sizeof(Vec3d), local.data());
+    const Buffer indices("winding indices", mesh.triangles.size() * 12, mesh.triangles.data());
+    const Buffer nodes("winding nodes", tree.nodes.size() * 4, tree.nodes.data());
+    const Buffer links("winding links", tree.links.size() * 4, tree.links.data());
+    const Buffer order("winding order", tree.order.size() * 4, tree.order.data());
+    const Buffer bricks("winding bricks", brickWords.size() * 4, brickWords.data());
+    const uint64_t outBytes = std::max<uint64_t>(std::max(nb * sizeof(Brick), request.perBrick ? boxBricks * 4 : 0), 4);
+    const Buffer& out = context.scratch("winding output", outBytes);
+    uploadTimer.end();
+    checkGl("winding upload");
+    result.stages.push_back({"winding upload", -1, msSince(t0)});
+    positions.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_POSITIONS);
+    indices.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_INDICES);
+    nodes.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_WINDING_NODES);
+    links.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_WINDING_LINKS);
+    order.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_WINDING_ORDER);
+    bricks.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_WINDING_BRICKS);
+    out.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_WINDING_OUT);
+    result.gpuBytes = positions.bytes() + indices.bytes() + nodes.bytes() + links.bytes() + order.bytes() +
+                      bricks.bytes() + outBytes;
+
+    const Program& program = context.program({"winding_number.comp"});
+    // beta^2 in float; +infinity as the largest float, which no squared
+    // distance exceeds.
+    const double beta2 = request.beta * request.beta;
+    program.set("uBeta2", beta2 < 3.0e38 ? float(beta2) : 3.0e38f);
+    const bool software = context.info().software;
+    // Dispatches of a bounded size: the checkpoint runs between them.
+    auto run = [&](const char* name, uint32_t mode, uint64_t count, uint64_t perDispatch, uint64_t threadsPerUnit,
+                   double from, double to) {
+        const auto w0 = Clock::now();
+        TimerQuery timer;
+        timer.begin();
+        program.set("uMode", mode);
+        program.set("uBricks", result.brickDims[0], result.brickDims[1], result.brickDims[2]);
+        for (uint64_t first = 0; first < count; first += perDispatch) {
+            const uint64_t last = std::min(count, first + perDispatch);
+            program.set("uFirst", uint32_t(first));
+            program.set("uCount", uint32_t(last));
+            const uint64_t groups = std::min<uint64_t>((last - first) * threadsPerUnit / 64 + 1, software ? 256 : 65535);
+            program.dispatch(uint32_t(groups));
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+            checkGl(name);
+            waitForGpu([&] { request.checkpoint(from + (to - from) * double(first) / double(count), name); });
+        }
+        timer.end();
+        checkGl(name);
+        waitForGpu([] {});
+        result.stages.push_back({name, timer.milliseconds(), msSince(w0)});
+    };
+    if (request.perBrick) {
+        run("winding per brick", 1, boxBricks, uint64_t(1) << 20, 1, 0.05, 0.45);
+        result.perBrick.resize(boxBricks);
+        out.readBulk(0, boxBricks * 4, result.perBrick.data());
+    }
+    if (nb) {
+        out.clearUint(0, nb * sizeof(Brick));
+        run("winding per voxel", 0, nb, uint64_t(1) << 14, 64, 0.5, 0.95);
+        result.inside.resize(nb);
+        out.readBulk(0, nb * sizeof(Brick), result.inside.data());
+    }
+    checkGl("winding readback");
+    result.stages.front().gpuMs = uploadTimer.milliseconds();
+    return result;
+}
+
+} // namespace svo::gl
