@@ -175,6 +175,19 @@ public:
     void set(const char* name, float x, float y) const { glProgramUniform2f(h_.get(), location(name), x, y); }
     void set(const char* name, int x, int y, int z) const { glProgramUniform3i(h_.get(), location(name), x, y, z); }
     void set(const char* name, uint32_t v) const { glProgramUniform1ui(h_.get(), location(name), v); }
+    void set(const char* name, float x, float y, float z) const
+    {
+        glProgramUniform3f(h_.get(), location(name), x, y, z);
+    }
+    void set(const char* name, float x, float y, float z, float w) const
+    {
+        glProgramUniform4f(h_.get(), location(name), x, y, z, w);
+    }
+    /// A mat4 uniform from 16 floats in column-major order (GLSL's).
+    void setMatrix(const char* name, const float* columnMajor) const
+    {
+        glProgramUniformMatrix4fv(h_.get(), location(name), 1, GL_FALSE, columnMajor);
+    }
     /// Compute programs: `groups` work groups along x.
     void dispatch(uint32_t groups) const
     {
