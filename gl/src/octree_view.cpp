@@ -72,7 +72,7 @@ Mat4 inverse(const Mat4& m)
     inv[15] = m[0] * m[5] * m[10] - m[0] * m[6] * m[9] - m[4] * m[1] * m[10] + m[4] * m[2] * m[9] +
               m[8] * m[1] * m[6] - m[8] * m[2] * m[5];
     const double det = m[0] * inv[0] + m[1] * inv[4] + m[2] * inv[8] + m[3] * inv[12];
-    if (!(std::abs(det) > 0)) throw Error("svo view: the camera's matrix cannot be inverted");
+    if (!(std::abs(det) > 0)) throw Error("octree view: the camera's matrix cannot be inverted");
     for (double& v : inv) v /= det;
     return inv;
 }
@@ -101,10 +101,10 @@ CellCamera cellCamera(const GridSpec& grid, const ViewCamera& camera, int width,
 {
     const Vec3d eye = toCell(grid, camera.eye), target = toCell(grid, camera.target);
     const Vec3d toTarget = target - eye;
-    if (!(length(toTarget) > 0)) throw Error("svo view: the camera's eye and target coincide");
+    if (!(length(toTarget) > 0)) throw Error("octree view: the camera's eye and target coincide");
     const Vec3d f = (1.0 / length(toTarget)) * toTarget;
     Vec3d r = cross(f, camera.up);
-    if (!(length(r) > 1e-9 * length(camera.up))) throw Error("svo view: the camera's up is along its view direction");
+    if (!(length(r) > 1e-9 * length(camera.up))) throw Error("octree view: the camera's up is along its view direction");
     r = (1.0 / length(r)) * r;
     const Vec3d u = cross(r, f);
     Mat4 view{r.x, u.x, -f.x, 0, r.y, u.y, -f.y, 0, r.z, u.z, -f.z, 0, -dot(r, eye), -dot(u, eye), dot(f, eye), 1};
@@ -118,13 +118,13 @@ CellCamera cellCamera(const GridSpec& grid, const ViewCamera& camera, int width,
     Mat4 proj{};
     if (camera.orthographic) {
         if (!(camera.height > 0) || !std::isfinite(camera.height))
-            throw Error(fmt::format("svo view: orthographic height {} is not positive", camera.height));
+            throw Error(fmt::format("octree view: orthographic height {} is not positive", camera.height));
         const double h = camera.height / grid.voxelSize, w = h * aspect;
         const double n = along - radius, fa = along + radius;
         proj = {2 / w, 0, 0, 0, 0, 2 / h, 0, 0, 0, 0, -2 / (fa - n), 0, 0, 0, -(fa + n) / (fa - n), 1};
     } else {
         if (!(camera.fovYDegrees > 0 && camera.fovYDegrees < 180))
-            throw Error(fmt::format("svo view: field of view {} is not in (0, 180) degrees", camera.fovYDegrees));
+            throw Error(fmt::format("octree view: field of view {} is not in (0, 180) degrees", camera.fovYDegrees));
         const double n = std::max(along - radius, radius * 1e-4), fa = std::max(along + radius, 2 * n);
         const double t = 1.0 / std::tan(camera.fovYDegrees * M_PI / 360.0);
         proj = {t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (fa + n) / (n - fa), -1, 0, 0, 2 * fa * n / (n - fa), 0};
@@ -157,7 +157,7 @@ struct Target {
         checkGl(fmt::format("allocating a {} x {} picture", width, height).c_str());
         const GLenum status = glCheckNamedFramebufferStatus(f, GL_FRAMEBUFFER);
         if (status != GL_FRAMEBUFFER_COMPLETE)
-            throw Error(fmt::format("svo view: the {} x {} framebuffer is incomplete (0x{:04x})", width, height, status));
+            throw Error(fmt::format("octree view: the {} x {} framebuffer is incomplete (0x{:04x})", width, height, status));
     }
     Handle<deleteRenderbuffer> color, depth;
     Handle<detail::deleteFramebuffer> fbo;
@@ -179,7 +179,7 @@ std::array<Vec3d, 2> gridWorldBox(const GridSpec& grid)
 
 ViewCamera frameBox(const std::array<Vec3d, 2>& box, const Vec3d& direction, bool orthographic, double aspect)
 {
-    if (!(length(direction) > 0)) throw Error("svo view: a view direction must not be zero");
+    if (!(length(direction) > 0)) throw Error("octree view: a view direction must not be zero");
     const Vec3d dir = (1.0 / length(direction)) * direction;
     const Vec3d centre = 0.5 * (box[0] + box[1]);
     const double radius = std::max(0.5 * length(box[1] - box[0]), 1e-30);
@@ -217,7 +217,7 @@ std::unique_ptr<OctreeView::Impl> upload(const Context& context, const Octree& o
 {
     if (octree.levelStart.size() != size_t(octree.brickLevel) + 2 || octree.levelStart.back() != octree.nodes.size() ||
         octree.nodes.empty())
-        throw Error("svo view: the octree's level ranges do not match its nodes");
+        throw Error("octree view: the octree's level ranges do not match its nodes");
     checkGl("the GL work before uploading an octree to view");
     auto impl = std::make_unique<OctreeView::Impl>();
     impl->grid = octree.grid;
@@ -290,7 +290,7 @@ Image OctreeView::render(const ViewCamera& camera, int width, int height, const 
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
     if (width < 1 || height < 1 || width > maxSize || height > maxSize)
-        throw Error(fmt::format("svo view: a {} x {} picture is outside 1 .. {} pixels per side", width, height, maxSize));
+        throw Error(fmt::format("octree view: a {} x {} picture is outside 1 .. {} pixels per side", width, height, maxSize));
     const Impl& v = *impl_;
     const CellCamera cam = cellCamera(v.grid, camera, width, height);
     const auto viewProjection = toFloat(cam.viewProjection);
