@@ -18,6 +18,7 @@ void addInfoCommand(CLI::App& app);
 void addValidateCommand(CLI::App& app);
 void addVtkCommand(CLI::App& app);
 void addSceneCommand(CLI::App& app);
+void addViewCommand(CLI::App& app);
 
 /// A command that ran to the end but whose verdict is negative (e.g. a
 /// validation that found missed voxels): main prints the one-line reason and

@@ -21,6 +21,7 @@ int main(int argc, char** argv)
     svo::app::addVtkCommand(app);
 #endif
     svo::app::addSceneCommand(app);
+    svo::app::addViewCommand(app);
     svo::app::addGlInfoCommand(app);
     // Ctrl-C and SIGTERM remove temporary files and stop Xvfb, then exit 130 / 143.
     svo::installInterruptCleanup();

@@ -14,7 +14,7 @@ packages=(
   libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libtbb-dev
   libopenmesh-dev libcgal-dev libcgal-demo
   libglfw3-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
-  libvtk9-dev xvfb
+  libvtk9-dev xvfb libpng-dev
   libcli11-dev libfmt-dev libgtest-dev libfast-float-dev
   pybind11-dev python3-dev python3-pytest python3-numpy
   nlohmann-json3-dev libnanovdb-dev python3-openvdb libboost-python1.74-dev

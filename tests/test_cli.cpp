@@ -543,3 +543,56 @@ TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)
     EXPECT_NE(runCommand("vdb_print -l " + path("cb.vdb")).find("class: level set"), std::string::npos);
     expectOnly({"ico.off", "ls.vdb", "solid.vdb", "cb.vdb"});
 }
+
+namespace {
+
+size_t lineCount(const std::string& text) { return size_t(std::count(text.begin(), text.end(), '\n')); }
+
+TEST_F(Cli, ViewScreenshotWritesAPngOfTheAskedSize)
+{
+    const auto r = runSvo("view -r 16 --screenshot " + path("cb.png") + " --size 64x48 --view +z --layers voxels,outlines,mesh --levels 1:2");
+    ASSERT_EQ(r.code, 0) << r.out;
+    std::ifstream f(path("cb.png"), std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 33u);
+    EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+    EXPECT_EQ(bytes.substr(12, 4), "IHDR");
+    auto be32 = [&](size_t at) {
+        return uint32_t(uint8_t(bytes[at])) << 24 | uint32_t(uint8_t(bytes[at + 1])) << 16 |
+               uint32_t(uint8_t(bytes[at + 2])) << 8 | uint32_t(uint8_t(bytes[at + 3]));
+    };
+    EXPECT_EQ(be32(16), 64u);
+    EXPECT_EQ(be32(20), 48u);
+    expectOnly({"cb.png"}); // no temporary left beside it
+}
+
+TEST_F(Cli, ViewBadInputFailsAsVoxelizeDoes)
+{
+    const std::string missing = path("missing.obj");
+    const auto view = runSvo("view " + missing + " --screenshot " + path("x.png"));
+    const auto voxelize = runSvo("voxelize " + missing + " -o " + path("x.vdb"));
+    EXPECT_EQ(view.code, 1);
+    EXPECT_EQ(lineCount(view.out), 1u) << view.out;
+    EXPECT_NE(view.out.find("missing.obj"), std::string::npos) << view.out;
+    EXPECT_EQ(view.out, voxelize.out);
+    const auto bad = runSvo("view " + write("bad.obj", "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n") + " --screenshot " + path("x.png"));
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_EQ(lineCount(bad.out), 1u) << bad.out;
+    EXPECT_EQ(bad.out, runSvo("voxelize " + path("bad.obj") + " -o " + path("x.vdb")).out);
+    for (const char* args : {"--size 0x10", "--layers voxels,bogus", "--levels 3:1", "--camera 1,2,3", "--view sideways"}) {
+        const auto r = runSvo(std::string("view -r 8 --screenshot ") + path("x.png") + " " + args);
+        EXPECT_EQ(r.code, 1) << args;
+        EXPECT_EQ(lineCount(r.out), 1u) << args << ": " << r.out;
+    }
+    expectOnly({"bad.obj"});
+}
+
+TEST_F(Cli, ViewWithoutDisplayOrScreenshotSaysSoInOneLine)
+{
+    const auto r = runSvo("view -r 8", "DISPLAY= WAYLAND_DISPLAY=");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(lineCount(r.out), 1u) << r.out;
+    EXPECT_NE(r.out.find("no display"), std::string::npos) << r.out;
+}
+
+} // namespace

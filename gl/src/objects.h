@@ -179,6 +179,19 @@ public:
     {
         glProgramUniform3ui(h_.get(), location(name), x, y, z);
     }
+    void set(const char* name, float x, float y, float z) const
+    {
+        glProgramUniform3f(h_.get(), location(name), x, y, z);
+    }
+    void set(const char* name, float x, float y, float z, float w) const
+    {
+        glProgramUniform4f(h_.get(), location(name), x, y, z, w);
+    }
+    /// A mat4 uniform from 16 floats in column-major order (GLSL's).
+    void setMatrix(const char* name, const float* columnMajor) const
+    {
+        glProgramUniformMatrix4fv(h_.get(), location(name), 1, GL_FALSE, columnMajor);
+    }
     /// Compute programs: `groups` work groups along x.
     void dispatch(uint32_t groups) const
     {

@@ -124,6 +124,12 @@ SVO_CONST(uint) kSumWords = 8u;
 #define SVO_BIND_TRIANGLE_VALUES 6    /* attributes: 6 floats per triangle, normal then colour */
 #define SVO_BIND_ATTRIBUTE_SUMS 7     /* attributes: kSumWords uints per voxel */
 
+/* Viewer (gl/src/octree_view.cpp, view_*.vert/frag/comp): the octree's
+   buffers as uploaded for drawing, and each node's origin in voxels. */
+#define SVO_BIND_VIEW_NODES 0
+#define SVO_BIND_VIEW_BRICKS 1
+#define SVO_BIND_VIEW_ORIGINS 2 /* uvec4 per node: local origin (voxels), unused */
+
 /* ---- Brick table (gl/src/brick_table.h) ---------------------------------
    The bricks a distance or sign pass writes to, found by their brick
    coordinates (local coordinate >> 3): open addressing with linear probing
@@ -215,6 +221,7 @@ static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRIC
 static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRICKS, SVO_BIND_ENTRIES,
                              SVO_BIND_ENTRY_TRIANGLES, SVO_BIND_BRICK_VOXEL_OFFSETS, SVO_BIND_TRIANGLE_VALUES,
                              SVO_BIND_ATTRIBUTE_SUMS}));
+static_assert(distinctSlots({SVO_BIND_VIEW_NODES, SVO_BIND_VIEW_BRICKS, SVO_BIND_VIEW_ORIGINS}));
 static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_FIELD_ITEMS,
                              SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
                              SVO_BIND_FIELD_FLIPS, SVO_BIND_FIELD_COUNTERS}));

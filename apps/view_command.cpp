@@ -1,0 +1,211 @@
+// svo view [INPUT] --screenshot out.png [--size WxH] [--camera ...] [--view ...] [--layers ...] [--levels a:b]
+// The renderer is the library's (svo/gl/octree_view.h); this file parses, calls and prints.
+#include <CLI/CLI.hpp>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <memory>
+#include <sstream>
+
+#include "cli_options.h"
+#include "commands.h"
+#include "library_call.h"
+#include "png_file.h"
+#include "svo/core/atomic_file.h"
+#include "svo/core/default_scene.h"
+#include "svo/core/error.h"
+#include "svo/gl/context.h"
+#include "svo/gl/octree_view.h"
+#include "svo/vdb_io/octree_files.h"
+
+namespace svo::app {
+namespace {
+
+struct ViewArgs {
+    std::string input, screenshot, size = "1280x960", camera, view = "front", layers = "voxels,outlines", levels,
+                                     gridName;
+    double fov = 40.0, ortho = 0.0;
+    int64_t resolution = 0;
+    double voxelSize = 0;
+    BackendArgs backend;
+};
+
+std::vector<std::string> split(const std::string& text, char sep)
+{
+    std::vector<std::string> parts;
+    std::stringstream s(text);
+    std::string part;
+    while (std::getline(s, part, sep)) parts.push_back(part);
+    if (!text.empty() && text.back() == sep) parts.emplace_back();
+    return parts;
+}
+
+double number(const std::string& text, const std::string& option)
+{
+    try {
+        size_t used = 0;
+        const double v = std::stod(text, &used);
+        if (used == text.size() && std::isfinite(v)) return v;
+    } catch (const std::exception&) {
+    }
+    throw Error(fmt::format("{} '{}': not a finite number", option, text));
+}
+
+std::pair<int, int> parseSize(const std::string& text)
+{
+    const auto parts = split(text, 'x');
+    if (parts.size() == 2) {
+        const double w = number(parts[0], "--size"), h = number(parts[1], "--size");
+        if (w >= 1 && h >= 1 && w <= 16384 && h <= 16384 && w == int(w) && h == int(h)) return {int(w), int(h)};
+    }
+    throw Error(fmt::format("--size '{}': expected WxH, 1 to 16384 pixels each", text));
+}
+
+/// "a:b", "a:", ":b" or "a".
+void parseLevels(const std::string& text, gl::ViewLayers& layers)
+{
+    if (text.empty()) return;
+    auto level = [&](const std::string& s) {
+        const double v = number(s, "--levels");
+        if (v < 0 || v > 63 || v != int(v)) throw Error(fmt::format("--levels '{}': expected a:b with levels from 0", text));
+        return uint32_t(v);
+    };
+    const auto colon = text.find(':');
+    if (colon == std::string::npos) {
+        layers.firstLevel = layers.lastLevel = level(text);
+    } else {
+        if (colon > 0) layers.firstLevel = level(text.substr(0, colon));
+        if (colon + 1 < text.size()) layers.lastLevel = level(text.substr(colon + 1));
+    }
+    if (layers.firstLevel > layers.lastLevel)
+        throw Error(fmt::format("--levels '{}': the first level is past the last", text));
+}
+
+gl::ViewLayers parseLayers(const std::string& text)
+{
+    gl::ViewLayers l;
+    l.voxels = l.outlines = l.mesh = false;
+    for (const std::string& name : split(text, ',')) {
+        if (name == "voxels") l.voxels = true;
+        else if (name == "outlines") l.outlines = true;
+        else if (name == "mesh") l.mesh = true;
+        else throw Error(fmt::format("--layers '{}': layers are voxels, outlines and mesh", text));
+    }
+    return l;
+}
+
+/// Where the camera looks from, for --view: front (the Cornell box's open side), or an axis.
+Vec3d viewDirection(const std::string& view, bool& axis)
+{
+    axis = view != "front";
+    if (view == "front") return {-0.35, -0.3, -1.0};
+    const std::pair<const char*, Vec3d> axes[] = {{"+x", {-1, 0, 0}}, {"-x", {1, 0, 0}}, {"+y", {0, -1, 0}},
+                                                  {"-y", {0, 1, 0}},  {"+z", {0, 0, -1}}, {"-z", {0, 0, 1}}};
+    for (const auto& [name, dir] : axes)
+        if (view == name) return dir;
+    throw Error(fmt::format("--view '{}': expected front, +x, -x, +y, -y, +z or -z", view));
+}
+
+bool haveDisplay()
+{
+    for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"})
+        if (const char* d = std::getenv(name); d && *d) return true;
+    return false;
+}
+
+void runView(const ViewArgs& a, const CLI::App& cmd)
+{
+    if (a.screenshot.empty()) {
+        if (!haveDisplay())
+            throw Error("no display for svo view's window (DISPLAY and WAYLAND_DISPLAY are unset); give --screenshot PNG "
+                        "to render offscreen");
+        throw Error("svo view's interactive window is not built yet; give --screenshot PNG to render offscreen");
+    }
+    const auto [width, height] = parseSize(a.size);
+    gl::ViewLayers layers = parseLayers(a.layers);
+    parseLevels(a.levels, layers);
+    bool axisView = false;
+    const Vec3d direction = viewDirection(a.view, axisView);
+    std::vector<double> cam;
+    if (!a.camera.empty()) {
+        for (const std::string& part : split(a.camera, ',')) cam.push_back(number(part, "--camera"));
+        if (cam.size() != 6 && cam.size() != 9)
+            throw Error(fmt::format("--camera '{}': expected eye x,y,z, target x,y,z and optionally up x,y,z",
+                                    a.camera));
+    }
+    checkWritable(a.screenshot);
+    checkOutputs({a.input}, {a.screenshot});
+
+    LibraryCall call(a.backend, "building the octree");
+    LoadedOctree lo;
+    const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
+    if (a.input.empty()) {
+        lo.mesh = cornellBox();
+        lo.kind = LoadedOctree::Kind::Mesh;
+        lo.octree = call.voxelizer.voxelize(*lo.mesh, makeGrid(*lo.mesh, request), call.options);
+    } else {
+        lo = loadOctree(call.voxelizer, a.input, a.gridName, request, call.options);
+    }
+    if (lo.mesh) printWarnings(lo.mesh->warnings);
+    printWarnings(call.stats.warnings);
+    if (layers.mesh && !lo.mesh) fmt::print(stderr, "svo: warning: the input has no mesh to draw (--layers mesh)\n");
+
+    gl::ContextOptions co;
+    co.device = a.backend.device;
+    co.debug = a.backend.glDebug;
+    gl::Context context(co);
+    gl::OctreeView view(context, lo.octree, lo.mesh ? &*lo.mesh : nullptr);
+    const double aspect = double(width) / double(height);
+    gl::ViewCamera camera = gl::frameBox(gl::gridWorldBox(lo.octree.grid), direction, axisView, aspect);
+    if (!cam.empty()) {
+        camera.eye = {cam[0], cam[1], cam[2]};
+        camera.target = {cam[3], cam[4], cam[5]};
+        if (cam.size() == 9) camera.up = {cam[6], cam[7], cam[8]};
+        camera.orthographic = false;
+    }
+    camera.fovYDegrees = a.fov;
+    if (a.ortho > 0) {
+        camera.orthographic = true;
+        camera.height = a.ortho;
+    }
+    gl::Image image;
+    {
+        Progress p("rendering " + a.screenshot);
+        image = view.render(camera, width, height, layers);
+        writePng(a.screenshot, image);
+    }
+    fmt::print("svo view\n");
+    fmt::print("  {:<8} {}\n", "input", describeInput(a.input.empty() ? "cornell_box" : a.input, lo, call.stats));
+    fmt::print("  {:<8} {} voxels, {} bricks, {} levels\n", "octree", thousands(lo.octree.voxelCount()),
+               thousands(lo.octree.bricks.size()), lo.octree.brickLevel + 1);
+    fmt::print("  {:<8} eye {:.6g},{:.6g},{:.6g} target {:.6g},{:.6g},{:.6g} up {:.6g},{:.6g},{:.6g} {}\n", "camera",
+               camera.eye.x, camera.eye.y, camera.eye.z, camera.target.x, camera.target.y, camera.target.z,
+               camera.up.x, camera.up.y, camera.up.z,
+               camera.orthographic ? fmt::format("orthographic {:.6g}", camera.height)
+                                   : fmt::format("fov {:.6g}", camera.fovYDegrees));
+    fmt::print("  {:<8} {} ({} x {}) on {}\n", "picture", a.screenshot, width, height, context.info().renderer);
+}
+
+} // namespace
+
+void addViewCommand(CLI::App& app)
+{
+    auto args = std::make_shared<ViewArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "view", "Draw an octree (of a mesh, .vdb or .svo; none: the Cornell box) on the GPU: voxels, node outlines, mesh");
+    cmd->add_option("input", args->input, "A mesh (voxelized first), .vdb or .svo; none: the built-in Cornell box");
+    addOutputPath(*cmd, "--screenshot", args->screenshot, "Render one frame offscreen to this PNG and exit", {".png"});
+    cmd->add_option("--size", args->size, "Picture size WxH in pixels")->capture_default_str();
+    cmd->add_option("--camera", args->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z[,up_x,up_y,up_z] (world units)");
+    cmd->add_option("--view", args->view, "Framed view when no --camera: front, or along an axis from +x, -x, +y, -y, +z, -z (orthographic)")
+        ->capture_default_str();
+    cmd->add_option("--fov", args->fov, "Vertical field of view in degrees (perspective)")->capture_default_str();
+    cmd->add_option("--ortho", args->ortho, "Orthographic, spanning this many world units vertically");
+    cmd->add_option("--layers", args->layers, "Comma-separated: voxels, outlines, mesh")->capture_default_str();
+    cmd->add_option("--levels", args->levels, "Outline levels a:b (0 = root; a, a: or :b)");
+    cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
+    addGridOptions(*cmd, args->resolution, args->voxelSize);
+    addBackendOptions(*cmd, args->backend);
+    cmd->callback([args, cmd] { runView(*args, *cmd); });
+}
+
+} // namespace svo::app

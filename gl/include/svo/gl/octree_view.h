@@ -1,0 +1,119 @@
+#pragma once
+/// @file octree_view.h
+/// Pictures of an octree drawn by the GPU from the octree itself: the
+/// renderer behind `svo view`.
+///
+/// What is drawn, and from where:
+///   - voxels (green, lit by their face normal): a full-screen pass whose
+///     fragment shader casts one ray per pixel and marches the octree's node
+///     and brick buffers (view_voxels.frag): at each step it descends from the
+///     root to the deepest node holding the current voxel, skips empty nodes
+///     whole and tests brick bits at the bottom. No voxel is expanded into
+///     geometry and none is read back;
+///   - node outlines (red): the 12 edges of each occupied node's box, one
+///     instanced draw per level of the chosen range; a compute pass gives
+///     every node its origin first, since the octree stores none;
+///   - the mesh (grey, flat shaded), when one is given.
+/// The octree's nodes and bricks are uploaded once, as they are laid out in
+/// memory (docs/octree.md): about 1.2 bytes per voxel.
+///
+/// Space: the camera is in world units (the octree's GridSpec gives the
+/// map). Depth is shared by the three layers, so outlines and mesh are hidden
+/// by voxels in front of them and the other way round.
+///
+/// Image convention: right = normalize(forward x up), image up = the part of
+/// `up` orthogonal to forward; an orthographic view spans `height` world
+/// units vertically and height * width / pixel height horizontally, centred
+/// on the target.
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "svo/core/mesh.h"
+#include "svo/core/octree.h"
+#include "svo/gl/context.h"
+
+namespace svo::gl {
+
+/// A camera in world units.
+struct ViewCamera {
+    Vec3d eye{0, 0, 1};
+    Vec3d target{0, 0, 0};
+    Vec3d up{0, 1, 0};
+    bool orthographic = false;
+    double fovYDegrees = 40.0; ///< perspective: vertical field of view
+    double height = 1.0;       ///< orthographic: world units the image spans vertically
+};
+
+/// What to draw.
+struct ViewLayers {
+    bool voxels = true;
+    bool outlines = true;
+    bool mesh = false; ///< needs a mesh (ignored without one)
+    uint32_t firstLevel = 0;                                    ///< outline levels, 0 = root
+    uint32_t lastLevel = std::numeric_limits<uint32_t>::max(); ///< clamped to the brick level
+};
+
+/// An RGBA8 picture, rows from the top.
+struct Image {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgba; ///< 4 bytes per pixel
+    const uint8_t* pixel(int x, int y) const { return &rgba[4 * (size_t(y) * size_t(width) + size_t(x))]; }
+};
+
+/// The colours of the layers, 0..1 (tests classify pixels by them).
+struct ViewColors {
+    static constexpr float voxel[3] = {0.15f, 0.85f, 0.20f};
+    static constexpr float outline[3] = {0.95f, 0.10f, 0.10f};
+    static constexpr float mesh[3] = {0.70f, 0.70f, 0.72f};
+    static constexpr float background[3] = {0.08f, 0.08f, 0.10f};
+};
+
+/// The world box of the grid's voxels: local [-1/2, dims - 1/2] per axis.
+std::array<Vec3d, 2> gridWorldBox(const GridSpec& grid);
+
+/// A camera that sees the whole box, looking along `direction` (need not be
+/// unit; not zero). Orthographic views fit the box's bounding sphere in the
+/// image height and width (`aspect` = width / height).
+ViewCamera frameBox(const std::array<Vec3d, 2>& box, const Vec3d& direction, bool orthographic, double aspect);
+
+/// Draws one octree (and optionally its mesh) with a Context. Not copyable.
+/// Every GL call happens inside a Context::Scope, so the caller's current
+/// context is left as it was.
+class OctreeView {
+public:
+    /// Uploads the octree's nodes and bricks and computes the node origins on
+    /// the GPU; `mesh`, when given, is uploaded in the octree's frame (it must
+    /// be the mesh the octree was made from, in world units). Throws
+    /// svo::Error when the octree fails checkOctree's level ranges, on a
+    /// shader or GL error, or when the GPU runs out of memory.
+    OctreeView(const Context& context, const Octree& octree, const TriangleMesh* mesh = nullptr);
+    ~OctreeView();
+    OctreeView(const OctreeView&) = delete;
+    OctreeView& operator=(const OctreeView&) = delete;
+
+    /// Replaces the octree (and mesh), e.g. after re-voxelizing; on a throw
+    /// the previous one stays.
+    void setOctree(const Octree& octree, const TriangleMesh* mesh = nullptr);
+
+    /// Renders one frame offscreen (a colour and a depth renderbuffer) and
+    /// reads it back. The same inputs give the same bytes. Throws svo::Error
+    /// for a size outside [1, the driver's largest renderbuffer], a degenerate
+    /// camera (eye at target, up along the view, height or fov not positive),
+    /// or a GL error.
+    Image render(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
+
+    const GridSpec& grid() const;
+    uint32_t brickLevel() const;
+
+    struct Impl; ///< opaque: GPU buffers and what drawing them needs
+
+private:
+    const Context& context_;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace svo::gl

@@ -1,0 +1,131 @@
+#version 450 core
+// Voxels by ray-marching the octree (svo/gl/octree_view.h). Space is "cell
+// space": local voxel v covers [v, v + 1] (local coordinates + 1/2).
+//
+// The march walks integer cells, never a float position, so it cannot stall
+// or skip: at each step it descends from the root to the deepest node that
+// holds the current cell. An empty child (or an empty voxel of an occupied
+// brick) is an empty box; the ray leaves it through the face its exit time
+// names, the cell moves one past that face on that axis, and the other axes
+// take the rounded exit point clamped between the old cell and the box's far
+// side. Every coordinate moves only along the ray and one moves every step,
+// so the loop ends within dims.x + dims.y + dims.z steps.
+#include "gpu_layout.h"
+
+layout(std430, binding = SVO_BIND_VIEW_NODES) readonly restrict buffer Nodes { uint nodes[]; };
+layout(std430, binding = SVO_BIND_VIEW_BRICKS) readonly restrict buffer Bricks { uint bricks[]; };
+
+uniform mat4 uInverseViewProjection; // clip -> cell space
+uniform mat4 uViewProjection;        // cell space -> clip
+uniform vec2 uViewport;              // pixels
+uniform uint uBrickLevel;
+uniform ivec3 uDims;                 // occupied cells lie in [0, uDims)
+uniform vec3 uColor;
+
+out vec4 fragColor;
+
+const float kNever = 3.0e38;
+
+void main()
+{
+    vec2 ndc = gl_FragCoord.xy / uViewport * 2.0 - 1.0;
+    vec4 a = uInverseViewProjection * vec4(ndc, -1.0, 1.0);
+    vec4 b = uInverseViewProjection * vec4(ndc, 1.0, 1.0);
+    vec3 o = a.xyz / a.w;
+    vec3 d = b.xyz / b.w - o; // t in [0, 1] spans the near to the far plane
+    vec3 dims = vec3(uDims);
+
+    // Entry into the grid's box [0, dims].
+    float tNear = 0.0, tFar = 1.0;
+    int axis = -1;
+    for (int i = 0; i < 3; ++i) {
+        if (d[i] == 0.0) {
+            if (o[i] < 0.0 || o[i] > dims[i]) discard;
+            continue;
+        }
+        float t0 = (0.0 - o[i]) / d[i], t1 = (dims[i] - o[i]) / d[i];
+        float lo = min(t0, t1), hi = max(t0, t1);
+        if (lo > tNear) { tNear = lo; axis = i; }
+        tFar = min(tFar, hi);
+    }
+    if (tNear > tFar) discard;
+
+    ivec3 step = ivec3(sign(d));
+    ivec3 cell = clamp(ivec3(floor(o + d * tNear)), ivec3(0), uDims - 1);
+    if (axis >= 0) cell[axis] = step[axis] > 0 ? 0 : uDims[axis] - 1;
+    if (axis < 0) { // the near plane cuts the grid: shade by the ray's main axis
+        vec3 ad = abs(d);
+        axis = ad.x >= ad.y && ad.x >= ad.z ? 0 : (ad.y >= ad.z ? 1 : 2);
+    }
+    float t = tNear;
+
+    ivec3 cachedBrick = ivec3(-1);
+    uint brick = 0u;
+    int maxSteps = uDims.x + uDims.y + uDims.z + 4;
+    for (int s = 0; s < maxSteps; ++s) {
+        // The empty box holding `cell`, or a hit.
+        ivec3 lo;
+        int size;
+        ivec3 brickOf = cell >> 3;
+        bool inBrick = all(equal(brickOf, cachedBrick));
+        if (!inBrick) {
+            uint node = 0u;
+            int emptyLog2 = -1;
+            for (uint level = 0u; level < uBrickLevel; ++level) {
+                uint shift = 2u + uBrickLevel - level; // log2 of the child's size in cells
+                uvec3 c = (uvec3(cell) >> shift) & 1u;
+                uint child = c.x | (c.y << 1u) | (c.z << 2u);
+                if ((nodes[kNodeWords * node + 1u] & (1u << child)) == 0u) { emptyLog2 = int(shift); break; }
+                node = nodes[kNodeWords * node] + child;
+            }
+            if (emptyLog2 < 0 && nodes[kNodeWords * node + 1u] == 0u) emptyLog2 = 3; // an empty brick slot
+            if (emptyLog2 < 0) {
+                inBrick = true;
+                cachedBrick = brickOf;
+                brick = nodes[kNodeWords * node];
+            } else {
+                size = 1 << emptyLog2;
+                lo = (cell >> emptyLog2) << emptyLog2;
+            }
+        }
+        if (inBrick) {
+            uvec3 v = uvec3(cell) & kBrickMask;
+            uint bit = (v.x << kKeyLeafXShift) | (v.y << kKeyLeafYShift) | (v.z << kKeyLeafZShift);
+            if ((bricks[kBrickWords * brick + (bit >> 5u)] & (1u << (bit & 31u))) != 0u) {
+                vec3 n = vec3(0.0);
+                n[axis] = -float(step[axis]);
+                // Lit by the face normal: a head light plus a little ambient.
+                float light = 0.45 + 0.55 * abs(dot(n, normalize(d)));
+                fragColor = vec4(uColor * light, 1.0);
+                vec4 clip = uViewProjection * vec4(o + d * t, 1.0);
+                gl_FragDepth = clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0);
+                return;
+            }
+            size = 1;
+            lo = cell;
+        }
+        // Leave the box [lo, lo + size).
+        float tExit = kNever;
+        int exitAxis = -1;
+        for (int i = 0; i < 3; ++i) {
+            if (step[i] == 0) continue;
+            float face = float(step[i] > 0 ? lo[i] + size : lo[i]);
+            float ti = (face - o[i]) / d[i];
+            if (ti < tExit) { tExit = ti; exitAxis = i; }
+        }
+        if (exitAxis < 0 || tExit > tFar) discard;
+        t = max(t, tExit);
+        vec3 p = o + d * t;
+        ivec3 next;
+        for (int i = 0; i < 3; ++i) {
+            int far = step[i] > 0 ? lo[i] + size - 1 : lo[i];
+            int r = int(floor(p[i]));
+            next[i] = step[i] > 0 ? clamp(r, cell[i], far) : (step[i] < 0 ? clamp(r, far, cell[i]) : cell[i]);
+        }
+        next[exitAxis] = step[exitAxis] > 0 ? lo[exitAxis] + size : lo[exitAxis] - 1;
+        cell = next;
+        axis = exitAxis;
+        if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, uDims))) discard;
+    }
+    discard;
+}

@@ -1,0 +1,376 @@
+#include "svo/gl/octree_view.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "gl_api.h"
+#include "objects.h"
+#include "svo/core/error.h"
+#include "svo/core/gpu_layout.h"
+
+namespace svo::gl {
+
+namespace {
+
+using Mat4 = std::array<double, 16>; // column-major, as GLSL
+
+Vec3d cross(const Vec3d& a, const Vec3d& b)
+{
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double dot(const Vec3d& a, const Vec3d& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double length(const Vec3d& a) { return std::sqrt(dot(a, a)); }
+
+Mat4 multiply(const Mat4& a, const Mat4& b)
+{
+    Mat4 r{};
+    for (int c = 0; c < 4; ++c)
+        for (int row = 0; row < 4; ++row) {
+            double s = 0;
+            for (int k = 0; k < 4; ++k) s += a[k * 4 + row] * b[c * 4 + k];
+            r[c * 4 + row] = s;
+        }
+    return r;
+}
+
+/// Inverse by cofactors (the matrices here are well conditioned: a view and a projection).
+Mat4 inverse(const Mat4& m)
+{
+    Mat4 inv{};
+    inv[0] = m[5] * m[10] * m[15] - m[5] * m[11] * m[14] - m[9] * m[6] * m[15] + m[9] * m[7] * m[14] +
+             m[13] * m[6] * m[11] - m[13] * m[7] * m[10];
+    inv[4] = -m[4] * m[10] * m[15] + m[4] * m[11] * m[14] + m[8] * m[6] * m[15] - m[8] * m[7] * m[14] -
+             m[12] * m[6] * m[11] + m[12] * m[7] * m[10];
+    inv[8] = m[4] * m[9] * m[15] - m[4] * m[11] * m[13] - m[8] * m[5] * m[15] + m[8] * m[7] * m[13] +
+             m[12] * m[5] * m[11] - m[12] * m[7] * m[9];
+    inv[12] = -m[4] * m[9] * m[14] + m[4] * m[10] * m[13] + m[8] * m[5] * m[14] - m[8] * m[6] * m[13] -
+              m[12] * m[5] * m[10] + m[12] * m[6] * m[9];
+    inv[1] = -m[1] * m[10] * m[15] + m[1] * m[11] * m[14] + m[9] * m[2] * m[15] - m[9] * m[3] * m[14] -
+             m[13] * m[2] * m[11] + m[13] * m[3] * m[10];
+    inv[5] = m[0] * m[10] * m[15] - m[0] * m[11] * m[14] - m[8] * m[2] * m[15] + m[8] * m[3] * m[14] +
+             m[12] * m[2] * m[11] - m[12] * m[3] * m[10];
+    inv[9] = -m[0] * m[9] * m[15] + m[0] * m[11] * m[13] + m[8] * m[1] * m[15] - m[8] * m[3] * m[13] -
+             m[12] * m[1] * m[11] + m[12] * m[3] * m[9];
+    inv[13] = m[0] * m[9] * m[14] - m[0] * m[10] * m[13] - m[8] * m[1] * m[14] + m[8] * m[2] * m[13] +
+              m[12] * m[1] * m[10] - m[12] * m[2] * m[9];
+    inv[2] = m[1] * m[6] * m[15] - m[1] * m[7] * m[14] - m[5] * m[2] * m[15] + m[5] * m[3] * m[14] +
+             m[13] * m[2] * m[7] - m[13] * m[3] * m[6];
+    inv[6] = -m[0] * m[6] * m[15] + m[0] * m[7] * m[14] + m[4] * m[2] * m[15] - m[4] * m[3] * m[14] -
+             m[12] * m[2] * m[7] + m[12] * m[3] * m[6];
+    inv[10] = m[0] * m[5] * m[15] - m[0] * m[7] * m[13] - m[4] * m[1] * m[15] + m[4] * m[3] * m[13] +
+              m[12] * m[1] * m[7] - m[12] * m[3] * m[5];
+    inv[14] = -m[0] * m[5] * m[14] + m[0] * m[6] * m[13] + m[4] * m[1] * m[14] - m[4] * m[2] * m[13] -
+              m[12] * m[1] * m[6] + m[12] * m[2] * m[5];
+    inv[3] = -m[1] * m[6] * m[11] + m[1] * m[7] * m[10] + m[5] * m[2] * m[11] - m[5] * m[3] * m[10] -
+             m[9] * m[2] * m[7] + m[9] * m[3] * m[6];
+    inv[7] = m[0] * m[6] * m[11] - m[0] * m[7] * m[10] - m[4] * m[2] * m[11] + m[4] * m[3] * m[10] +
+             m[8] * m[2] * m[7] - m[8] * m[3] * m[6];
+    inv[11] = -m[0] * m[5] * m[11] + m[0] * m[7] * m[9] + m[4] * m[1] * m[11] - m[4] * m[3] * m[9] -
+              m[8] * m[1] * m[7] + m[8] * m[3] * m[5];
+    inv[15] = m[0] * m[5] * m[10] - m[0] * m[6] * m[9] - m[4] * m[1] * m[10] + m[4] * m[2] * m[9] +
+              m[8] * m[1] * m[6] - m[8] * m[2] * m[5];
+    const double det = m[0] * inv[0] + m[1] * inv[4] + m[2] * inv[8] + m[3] * inv[12];
+    if (!(std::abs(det) > 0)) throw Error("octree view: the camera's matrix cannot be inverted");
+    for (double& v : inv) v /= det;
+    return inv;
+}
+
+std::array<float, 16> toFloat(const Mat4& m)
+{
+    std::array<float, 16> f{};
+    for (int i = 0; i < 16; ++i) f[i] = float(m[i]);
+    return f;
+}
+
+/// World -> cell space (local + 1/2: voxel v covers [v, v + 1]).
+Vec3d toCell(const GridSpec& grid, const Vec3d& world)
+{
+    const Vec3d l = grid.toLocal(world);
+    return {l.x + 0.5, l.y + 0.5, l.z + 0.5};
+}
+
+struct CellCamera {
+    Mat4 viewProjection, inverseViewProjection;
+    Vec3d eye, forward;
+};
+
+/// The camera's matrices in cell space, with near and far planes around the grid.
+CellCamera cellCamera(const GridSpec& grid, const ViewCamera& camera, int width, int height)
+{
+    const Vec3d eye = toCell(grid, camera.eye), target = toCell(grid, camera.target);
+    const Vec3d toTarget = target - eye;
+    if (!(length(toTarget) > 0)) throw Error("octree view: the camera's eye and target coincide");
+    const Vec3d f = (1.0 / length(toTarget)) * toTarget;
+    Vec3d r = cross(f, camera.up);
+    if (!(length(r) > 1e-9 * length(camera.up))) throw Error("octree view: the camera's up is along its view direction");
+    r = (1.0 / length(r)) * r;
+    const Vec3d u = cross(r, f);
+    Mat4 view{r.x, u.x, -f.x, 0, r.y, u.y, -f.y, 0, r.z, u.z, -f.z, 0, -dot(r, eye), -dot(u, eye), dot(f, eye), 1};
+
+    // Near and far enclose the grid's bounding sphere.
+    const Vec3d dims{double(grid.dims[0]), double(grid.dims[1]), double(grid.dims[2])};
+    const Vec3d centre = 0.5 * dims;
+    const double radius = 0.5 * length(dims) * 1.01 + 1.0;
+    const double along = dot(centre - eye, f);
+    const double aspect = double(width) / double(height);
+    Mat4 proj{};
+    if (camera.orthographic) {
+        if (!(camera.height > 0) || !std::isfinite(camera.height))
+            throw Error(fmt::format("octree view: orthographic height {} is not positive", camera.height));
+        const double h = camera.height / grid.voxelSize, w = h * aspect;
+        const double n = along - radius, fa = along + radius;
+        proj = {2 / w, 0, 0, 0, 0, 2 / h, 0, 0, 0, 0, -2 / (fa - n), 0, 0, 0, -(fa + n) / (fa - n), 1};
+    } else {
+        if (!(camera.fovYDegrees > 0 && camera.fovYDegrees < 180))
+            throw Error(fmt::format("octree view: field of view {} is not in (0, 180) degrees", camera.fovYDegrees));
+        const double n = std::max(along - radius, radius * 1e-4), fa = std::max(along + radius, 2 * n);
+        const double t = 1.0 / std::tan(camera.fovYDegrees * M_PI / 360.0);
+        proj = {t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (fa + n) / (n - fa), -1, 0, 0, 2 * fa * n / (n - fa), 0};
+    }
+    CellCamera c;
+    c.viewProjection = multiply(proj, view);
+    c.inverseViewProjection = inverse(c.viewProjection);
+    c.eye = eye;
+    c.forward = f;
+    return c;
+}
+
+void deleteRenderbuffer(GLuint n) { glDeleteRenderbuffers(1, &n); }
+
+/// Colour and depth renderbuffers on a framebuffer: the offscreen target.
+struct Target {
+    Target(int width, int height)
+    {
+        GLuint n[2] = {};
+        glCreateRenderbuffers(2, n);
+        color = Handle<deleteRenderbuffer>(n[0]);
+        depth = Handle<deleteRenderbuffer>(n[1]);
+        glNamedRenderbufferStorage(n[0], GL_RGBA8, width, height);
+        glNamedRenderbufferStorage(n[1], GL_DEPTH_COMPONENT24, width, height);
+        GLuint f = 0;
+        glCreateFramebuffers(1, &f);
+        fbo = Handle<detail::deleteFramebuffer>(f);
+        glNamedFramebufferRenderbuffer(f, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, n[0]);
+        glNamedFramebufferRenderbuffer(f, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, n[1]);
+        checkGl(fmt::format("allocating a {} x {} picture", width, height).c_str());
+        const GLenum status = glCheckNamedFramebufferStatus(f, GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE)
+            throw Error(fmt::format("octree view: the {} x {} framebuffer is incomplete (0x{:04x})", width, height, status));
+    }
+    Handle<deleteRenderbuffer> color, depth;
+    Handle<detail::deleteFramebuffer> fbo;
+};
+
+} // namespace
+
+std::array<Vec3d, 2> gridWorldBox(const GridSpec& grid)
+{
+    std::array<Vec3d, 2> box;
+    const auto t = grid.translation();
+    for (int i = 0; i < 3; ++i) {
+        const double lo = double(grid.anchor[size_t(i)]) - 0.5;
+        box[0][i] = grid.voxelSize * lo + t[size_t(i)];
+        box[1][i] = grid.voxelSize * (lo + double(grid.dims[size_t(i)])) + t[size_t(i)];
+    }
+    return box;
+}
+
+ViewCamera frameBox(const std::array<Vec3d, 2>& box, const Vec3d& direction, bool orthographic, double aspect)
+{
+    if (!(length(direction) > 0)) throw Error("octree view: a view direction must not be zero");
+    const Vec3d dir = (1.0 / length(direction)) * direction;
+    const Vec3d centre = 0.5 * (box[0] + box[1]);
+    const double radius = std::max(0.5 * length(box[1] - box[0]), 1e-30);
+    ViewCamera c;
+    c.orthographic = orthographic;
+    c.target = centre;
+    // Up is +y unless the view looks along y; then -z (x to the right from above).
+    c.up = std::abs(dir.y) > 0.99 ? Vec3d{0, 0, dir.y > 0 ? 1.0 : -1.0} : Vec3d{0, 1, 0};
+    const double fit = 1.05 * radius;
+    if (orthographic) {
+        c.height = 2 * fit / std::min(aspect, 1.0);
+        c.eye = centre - 3 * radius * dir;
+    } else {
+        const double half = c.fovYDegrees * M_PI / 360.0;
+        const double halfX = std::atan(std::tan(half) * aspect);
+        c.eye = centre - (fit / std::sin(std::min(half, halfX))) * dir;
+    }
+    return c;
+}
+
+struct OctreeView::Impl {
+    GridSpec grid;
+    uint32_t brickLevel = 0;
+    std::vector<uint32_t> levelStart;
+    Buffer nodes, bricks, origins;
+    std::optional<Buffer> meshVertices, meshIndices;
+    std::optional<VertexArray> meshArray;
+    uint64_t meshIndexCount = 0;
+    VertexArray empty; ///< attribute-less draws (full-screen pass, outlines)
+};
+
+namespace {
+
+std::unique_ptr<OctreeView::Impl> upload(const Context& context, const Octree& octree, const TriangleMesh* mesh)
+{
+    if (octree.levelStart.size() != size_t(octree.brickLevel) + 2 || octree.levelStart.back() != octree.nodes.size() ||
+        octree.nodes.empty())
+        throw Error("octree view: the octree's level ranges do not match its nodes");
+    checkGl("the GL work before uploading an octree to view");
+    auto impl = std::make_unique<OctreeView::Impl>();
+    impl->grid = octree.grid;
+    impl->brickLevel = octree.brickLevel;
+    impl->levelStart = octree.levelStart;
+    impl->nodes = Buffer("octree nodes (view)", octree.nodes.size() * sizeof(OctreeNode), octree.nodes.data(), 0);
+    impl->bricks = Buffer("octree bricks (view)", std::max<size_t>(octree.bricks.size(), 1) * sizeof(Brick),
+                          octree.bricks.empty() ? nullptr : octree.bricks.data(), 0);
+    impl->origins = Buffer("node origins (view)", octree.nodes.size() * 16);
+    impl->origins.clearUint(0); // the root's origin; the pass writes every occupied node's
+
+    const Program& origins = context.program({"view_origins.comp"});
+    impl->nodes.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_NODES);
+    impl->origins.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ORIGINS);
+    constexpr uint32_t kGroup = 256, kMaxGroups = 65535;
+    for (uint32_t level = 0; level < octree.brickLevel; ++level) {
+        const uint32_t first = octree.levelStart[level], count = octree.levelStart[level + 1] - first;
+        origins.set("uChildSize", uint32_t(8u << (octree.brickLevel - level - 1)));
+        for (uint32_t done = 0; done < count; done += kGroup * kMaxGroups) {
+            const uint32_t n = std::min(count - done, kGroup * kMaxGroups);
+            origins.set("uFirst", first + done);
+            origins.set("uCount", n);
+            origins.dispatch((n + kGroup - 1) / kGroup);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
+    }
+
+    if (mesh && !mesh->triangles.empty()) {
+        std::vector<Vec3f> cells = localPositionsFloat(*mesh, octree.grid);
+        for (Vec3f& p : cells) p = {p.x + 0.5f, p.y + 0.5f, p.z + 0.5f};
+        impl->meshVertices.emplace("mesh vertices (view)", cells.size() * sizeof(Vec3f), cells.data(), 0);
+        impl->meshIndices.emplace("mesh triangles (view)", mesh->triangles.size() * 12, mesh->triangles.data(), 0);
+        impl->meshArray.emplace();
+        impl->meshArray->setPositions(*impl->meshVertices, 0);
+        impl->meshArray->setIndices(*impl->meshIndices);
+        impl->meshIndexCount = 3 * uint64_t(mesh->triangles.size());
+    }
+    checkGl("uploading an octree to view");
+    return impl;
+}
+
+} // namespace
+
+OctreeView::OctreeView(const Context& context, const Octree& octree, const TriangleMesh* mesh) : context_(context)
+{
+    Context::Scope scope(context_);
+    impl_ = upload(context_, octree, mesh);
+}
+
+OctreeView::~OctreeView()
+{
+    Context::Scope scope(context_);
+    impl_.reset();
+}
+
+void OctreeView::setOctree(const Octree& octree, const TriangleMesh* mesh)
+{
+    Context::Scope scope(context_);
+    auto next = upload(context_, octree, mesh);
+    impl_ = std::move(next);
+}
+
+const GridSpec& OctreeView::grid() const { return impl_->grid; }
+uint32_t OctreeView::brickLevel() const { return impl_->brickLevel; }
+
+Image OctreeView::render(const ViewCamera& camera, int width, int height, const ViewLayers& layers) const
+{
+    Context::Scope scope(context_);
+    checkGl("the GL work before rendering a view");
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
+    if (width < 1 || height < 1 || width > maxSize || height > maxSize)
+        throw Error(fmt::format("octree view: a {} x {} picture is outside 1 .. {} pixels per side", width, height, maxSize));
+    const Impl& v = *impl_;
+    const CellCamera cam = cellCamera(v.grid, camera, width, height);
+    const auto viewProjection = toFloat(cam.viewProjection);
+    const auto inverseViewProjection = toFloat(cam.inverseViewProjection);
+
+    Target target(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.get());
+    glViewport(0, 0, width, height);
+    const auto& bg = ViewColors::background;
+    glClearColor(bg[0], bg[1], bg[2], 1.0f);
+    glClearDepth(1.0);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    v.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_NODES);
+    v.bricks.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_BRICKS);
+    v.origins.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ORIGINS);
+
+    if (layers.voxels) {
+        const Program& p = context_.program({"view_fullscreen.vert", "view_voxels.frag"});
+        p.setMatrix("uInverseViewProjection", inverseViewProjection.data());
+        p.setMatrix("uViewProjection", viewProjection.data());
+        p.set("uViewport", float(width), float(height));
+        p.set("uBrickLevel", v.brickLevel);
+        p.set("uDims", int(v.grid.dims[0]), int(v.grid.dims[1]), int(v.grid.dims[2]));
+        const auto& c = ViewColors::voxel;
+        p.set("uColor", c[0], c[1], c[2]);
+        p.use();
+        v.empty.bind();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        checkGl("drawing the voxels");
+    }
+    if (layers.mesh && v.meshArray) {
+        const Program& p = context_.program({"view_mesh.vert", "view_mesh.frag"});
+        p.setMatrix("uViewProjection", viewProjection.data());
+        const auto& c = ViewColors::mesh;
+        p.set("uColor", c[0], c[1], c[2]);
+        p.set("uEye", float(cam.eye.x), float(cam.eye.y), float(cam.eye.z));
+        p.set("uViewDir", float(cam.forward.x), float(cam.forward.y), float(cam.forward.z));
+        p.set("uOrthographic", camera.orthographic ? 1.0f : 0.0f);
+        p.use();
+        v.meshArray->bind();
+        glDrawElements(GL_TRIANGLES, GLsizei(v.meshIndexCount), GL_UNSIGNED_INT, nullptr);
+        checkGl("drawing the mesh");
+    }
+    const uint32_t last = std::min(layers.lastLevel, v.brickLevel);
+    if (layers.outlines && layers.firstLevel <= last) {
+        const Program& p = context_.program({"view_outlines.vert", "view_color.frag"});
+        p.setMatrix("uViewProjection", viewProjection.data());
+        p.set("uDepthBias", 2e-4f);
+        const auto& c = ViewColors::outline;
+        p.set("uColor", c[0], c[1], c[2]);
+        p.use();
+        v.empty.bind();
+        for (uint32_t level = layers.firstLevel; level <= last; ++level) {
+            const uint32_t first = v.levelStart[level], count = v.levelStart[level + 1] - first;
+            p.set("uFirstNode", first);
+            p.set("uNodeSize", float(8u << (v.brickLevel - level)));
+            glDrawArraysInstanced(GL_LINES, 0, 24, GLsizei(count));
+        }
+        checkGl("drawing the node outlines");
+    }
+
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.rgba.resize(size_t(width) * size_t(height) * 4);
+    std::vector<uint8_t> rows(image.rgba.size());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDisable(GL_DEPTH_TEST);
+    checkGl("reading the picture back");
+    const size_t stride = size_t(width) * 4;
+    for (int y = 0; y < height; ++y) // GL's rows start at the bottom
+        std::copy_n(&rows[size_t(height - 1 - y) * stride], stride, &image.rgba[size_t(y) * stride]);
+    return image;
+}
+
+} // namespace svo::gl

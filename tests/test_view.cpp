@@ -1,0 +1,360 @@
+// The octree viewer's renderer (svo/gl/octree_view.h) against pictures
+// computed on the CPU from the voxel set alone: orthographic axis views of a
+// single voxel, a tilted plane and a GPU-voxelized box must cover exactly the
+// pixels of the voxels' projection (up to a one-pixel border), node outlines
+// must lie on the boxes of the chosen level's occupied nodes, and one camera
+// must give the same bytes twice.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <gtest/gtest.h>
+#include <set>
+#include <vector>
+
+#include "svo/core/default_scene.h"
+#include "svo/core/error.h"
+#include "svo/core/grid.h"
+#include "svo/core/octree.h"
+#include "svo/core/voxel_key.h"
+#include "svo/gl/context.h"
+#include "svo/gl/octree_view.h"
+#include "svo/voxelizer.h"
+
+namespace {
+
+using svo::GridSpec;
+using svo::Vec3d;
+using svo::gl::Image;
+using svo::gl::ViewCamera;
+using svo::gl::ViewLayers;
+using Voxel = std::array<uint32_t, 3>; // local coordinates
+
+svo::gl::Context& context()
+{
+    static svo::gl::Context c;
+    return c;
+}
+
+svo::Octree octreeOf(const GridSpec& grid, const std::vector<Voxel>& voxels)
+{
+    std::vector<uint64_t> keys;
+    for (const Voxel& v : voxels) keys.push_back(svo::packVoxelKey(v[0], v[1], v[2]));
+    return svo::buildOctree(grid, keys);
+}
+
+GridSpec unitGrid(uint32_t dim)
+{
+    GridSpec g;
+    g.voxelSize = 1.0;
+    g.dims = {dim, dim, dim};
+    return g;
+}
+
+Vec3d cross(const Vec3d& a, const Vec3d& b)
+{
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double dot(const Vec3d& a, const Vec3d& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+/// An orthographic view down axis `axis` (from its + side), `pixel` world
+/// units per pixel, with the image frame the header promises, written out
+/// here on its own so the test does not reuse the renderer's matrices.
+struct AxisView {
+    ViewCamera camera;
+    int width, height;
+    double pixel;
+    Vec3d right, up;
+
+    AxisView(int axis, const Vec3d& target, double pixelSize, int w, int h) : width(w), height(h), pixel(pixelSize)
+    {
+        Vec3d dir{0, 0, 0};
+        dir[axis] = 1;
+        camera.orthographic = true;
+        camera.target = target;
+        camera.eye = target + 100.0 * dir;
+        camera.up = axis == 1 ? Vec3d{0, 0, -1} : Vec3d{0, 1, 0};
+        camera.height = pixel * h;
+        const Vec3d forward = -1.0 * dir;
+        right = cross(forward, camera.up);
+        up = cross(right, forward);
+    }
+    /// Continuous image position of a world point: x from the left, y from the top, in pixels.
+    std::array<double, 2> project(const Vec3d& p) const
+    {
+        const Vec3d d = p - camera.target;
+        return {width / 2.0 + dot(d, right) / pixel, height / 2.0 - dot(d, up) / pixel};
+    }
+};
+
+/// World corners of local voxel v's cube.
+std::array<Vec3d, 2> voxelCube(const GridSpec& g, const Voxel& v)
+{
+    std::array<Vec3d, 2> c;
+    const auto t = g.translation();
+    for (int i = 0; i < 3; ++i) {
+        const double centre = double(g.anchor[size_t(i)] + int64_t(v[size_t(i)]));
+        c[0][i] = g.voxelSize * (centre - 0.5) + t[size_t(i)];
+        c[1][i] = g.voxelSize * (centre + 0.5) + t[size_t(i)];
+    }
+    return c;
+}
+
+/// The image rectangle [x0, x1) x [y0, y1) (continuous pixels) of a world box in an axis view.
+std::array<double, 4> rectangle(const AxisView& view, const std::array<Vec3d, 2>& box)
+{
+    std::array<double, 4> r{1e300, 1e300, -1e300, -1e300};
+    for (int c = 0; c < 8; ++c) {
+        const Vec3d p{box[c & 1].x, box[(c >> 1) & 1].y, box[c >> 2].z};
+        const auto q = view.project(p);
+        r[0] = std::min(r[0], q[0]);
+        r[1] = std::min(r[1], q[1]);
+        r[2] = std::max(r[2], q[0]);
+        r[3] = std::max(r[3], q[1]);
+    }
+    return r;
+}
+
+bool isGreen(const uint8_t* p) { return p[1] > p[0] + 50 && p[1] > p[2] + 50; }
+bool isRed(const uint8_t* p) { return p[0] > p[1] + 76 && p[0] > p[2] + 76; }
+
+using Mask = std::vector<uint8_t>;
+
+/// Pixels whose centres lie inside some voxel's projected square: the CPU projection.
+Mask projection(const AxisView& view, const GridSpec& g, const std::vector<Voxel>& voxels)
+{
+    Mask m(size_t(view.width) * size_t(view.height), 0);
+    for (const Voxel& v : voxels) {
+        const auto r = rectangle(view, voxelCube(g, v));
+        for (int y = std::max(0, int(std::floor(r[1]))); y < std::min(view.height, int(std::ceil(r[3]))); ++y)
+            for (int x = std::max(0, int(std::floor(r[0]))); x < std::min(view.width, int(std::ceil(r[2]))); ++x)
+                if (x + 0.5 > r[0] && x + 0.5 < r[2] && y + 0.5 > r[1] && y + 0.5 < r[3])
+                    m[size_t(y) * size_t(view.width) + size_t(x)] = 1;
+    }
+    return m;
+}
+
+/// Every pixel of `m`'s 3x3 neighbourhood equal to `value`.
+bool allAround(const Mask& m, int w, int h, int x, int y, uint8_t value)
+{
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int xx = x + dx, yy = y + dy;
+            const uint8_t got = xx < 0 || yy < 0 || xx >= w || yy >= h ? 0 : m[size_t(yy) * size_t(w) + size_t(xx)];
+            if (got != value) return false;
+        }
+    return true;
+}
+
+struct Coverage {
+    size_t expected = 0, interior = 0, green = 0, missed = 0, extra = 0;
+};
+
+/// Compares the green pixels with the projection: a pixel whose 3x3
+/// neighbourhood is all covered must be green (missed otherwise), one whose
+/// neighbourhood is all uncovered must not be (extra otherwise).
+Coverage compare(const Image& image, const Mask& expected)
+{
+    Coverage c;
+    const int w = image.width, h = image.height;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const bool green = isGreen(image.pixel(x, y));
+            c.green += green;
+            c.expected += expected[size_t(y) * size_t(w) + size_t(x)];
+            if (allAround(expected, w, h, x, y, 1)) {
+                ++c.interior;
+                if (!green) ++c.missed;
+            }
+            if (allAround(expected, w, h, x, y, 0) && green) ++c.extra;
+        }
+    return c;
+}
+
+/// The three axis views of a voxel set, each checked against its projection.
+void expectAxisViewsMatch(const GridSpec& grid, const std::vector<Voxel>& voxels, const svo::Octree& octree)
+{
+    ASSERT_FALSE(voxels.empty());
+    svo::gl::OctreeView view(context(), octree);
+    // Aim at the voxels' centre, moved off the lattice so that no voxel edge
+    // falls on a pixel centre in every row.
+    std::array<Vec3d, 2> box = voxelCube(grid, voxels[0]);
+    for (const Voxel& v : voxels) {
+        const auto c = voxelCube(grid, v);
+        for (int i = 0; i < 3; ++i) {
+            box[0][i] = std::min(box[0][i], c[0][i]);
+            box[1][i] = std::max(box[1][i], c[1][i]);
+        }
+    }
+    const Vec3d target = 0.5 * (box[0] + box[1]) + Vec3d{0.13 * grid.voxelSize, 0.07 * grid.voxelSize, 0.11 * grid.voxelSize};
+    ViewLayers layers;
+    layers.outlines = false;
+    for (int axis = 0; axis < 3; ++axis) {
+        const AxisView av(axis, target, 0.25 * grid.voxelSize, 160, 120);
+        const Image image = view.render(av.camera, av.width, av.height, layers);
+        const Mask expected = projection(av, grid, voxels);
+        const Coverage c = compare(image, expected);
+        SCOPED_TRACE("axis " + std::to_string(axis));
+        EXPECT_GT(c.interior, 0u) << "the projection has no interior pixel: the test would prove nothing";
+        EXPECT_EQ(c.missed, 0u) << c.expected << " pixels expected, " << c.green << " green";
+        EXPECT_EQ(c.extra, 0u) << c.expected << " pixels expected, " << c.green << " green";
+        // The border allows at most the projection's outline: the counts agree to that.
+        EXPECT_LE(c.green, c.expected + (c.expected - c.interior) * 2 + 8);
+    }
+}
+
+TEST(View, SingleVoxelCoversItsSquareInEachAxisView)
+{
+    const GridSpec g = unitGrid(16);
+    const std::vector<Voxel> voxels = {{5, 6, 7}};
+    expectAxisViewsMatch(g, voxels, octreeOf(g, voxels));
+}
+
+TEST(View, TiltedPlaneCoversItsProjectionInEachAxisView)
+{
+    // A staircase plane z = 4 + x / 3: its three projections are a full
+    // rectangle (down z), a band of steps (down y) and a rectangle (down x).
+    const GridSpec g = unitGrid(32);
+    std::vector<Voxel> voxels;
+    for (uint32_t x = 2; x < 28; ++x)
+        for (uint32_t y = 3; y < 25; ++y) voxels.push_back({x, y, 4 + x / 3});
+    expectAxisViewsMatch(g, voxels, octreeOf(g, voxels));
+}
+
+TEST(View, GpuVoxelizedBoxCoversItsProjectionInEachAxisView)
+{
+    // A box mesh voxelized on the GPU (anchor below 0, so local != global).
+    svo::TriangleMesh box;
+    box.source = "box";
+    const Vec3d lo{0.3, 1.2, 2.1}, hi{10.7, 7.9, 12.4};
+    for (int c = 0; c < 8; ++c) box.positions.push_back({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
+    const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) {
+        box.triangles.push_back({q[0], q[1], q[2]});
+        box.triangles.push_back({q[0], q[2], q[3]});
+    }
+    const GridSpec g = svo::makeGrid(box, svo::GridRequest{0, 1.0});
+    svo::Voxelizer voxelizer;
+    const svo::Octree octree = voxelizer.voxelize(box, g);
+    std::vector<Voxel> voxels;
+    for (uint64_t k : svo::octreeKeys(octree)) voxels.push_back(svo::unpackVoxelKey(k));
+    ASSERT_GT(voxels.size(), 100u);
+    expectAxisViewsMatch(g, voxels, octree);
+}
+
+/// Distance from a point to the outline of a rectangle {x0, y0, x1, y1}.
+double distanceToOutline(const std::array<double, 4>& r, double x, double y)
+{
+    const double dx = std::max({r[0] - x, 0.0, x - r[2]}), dy = std::max({r[1] - y, 0.0, y - r[3]});
+    if (dx > 0 || dy > 0) return std::hypot(dx, dy);
+    return std::min({x - r[0], r[2] - x, y - r[1], r[3] - y}); // inside: to the nearest side
+}
+
+TEST(View, OutlinesLieOnTheOccupiedNodeBoxesOfTheChosenLevel)
+{
+    const GridSpec g = unitGrid(32); // brick level 2: node edges 32, 16, 8 voxels
+    const std::vector<Voxel> voxels = {{1, 1, 1}, {20, 3, 5}, {9, 25, 17}, {27, 28, 29}};
+    const svo::Octree octree = octreeOf(g, voxels);
+    ASSERT_EQ(octree.brickLevel, 2u);
+    svo::gl::OctreeView view(context(), octree);
+    for (uint32_t level : {1u, 2u}) {
+        const uint32_t size = 8u << (octree.brickLevel - level);
+        // The occupied nodes' boxes, from the voxels alone.
+        std::set<Voxel> origins;
+        for (const Voxel& v : voxels) origins.insert({v[0] / size * size, v[1] / size * size, v[2] / size * size});
+        ViewLayers layers;
+        layers.voxels = false;
+        layers.firstLevel = layers.lastLevel = level;
+        const AxisView av(2, Vec3d{15.6, 15.3, 15.1}, 0.25, 160, 160);
+        const Image image = view.render(av.camera, av.width, av.height, layers);
+        std::vector<std::array<double, 4>> rects;
+        for (const Voxel& o : origins) {
+            const Vec3d a{double(o[0]) - 0.5, double(o[1]) - 0.5, double(o[2]) - 0.5};
+            rects.push_back(rectangle(av, {a, a + Vec3d{double(size), double(size), double(size)}}));
+        }
+        SCOPED_TRACE("level " + std::to_string(level));
+        // Every red pixel lies within 1.5 pixels of an expected box edge.
+        size_t red = 0, stray = 0;
+        for (int y = 0; y < av.height; ++y)
+            for (int x = 0; x < av.width; ++x) {
+                if (!isRed(image.pixel(x, y))) continue;
+                ++red;
+                double best = 1e300;
+                for (const auto& r : rects) best = std::min(best, distanceToOutline(r, x + 0.5, y + 0.5));
+                stray += best > 1.5;
+            }
+        EXPECT_EQ(stray, 0u) << red << " red pixels";
+        // Every expected edge inside the picture shows red near its quarter points.
+        size_t samples = 0, found = 0;
+        for (const auto& r : rects)
+            for (int side = 0; side < 4; ++side)
+                for (double f : {0.25, 0.5, 0.75}) {
+                    const double x = side < 2 ? r[0] + f * (r[2] - r[0]) : r[side == 2 ? 0 : 2];
+                    const double y = side < 2 ? r[side == 0 ? 1 : 3] : r[1] + f * (r[3] - r[1]);
+                    if (x < 2 || y < 2 || x > av.width - 2 || y > av.height - 2) continue;
+                    ++samples;
+                    bool hit = false;
+                    for (int dy = -2; dy <= 1 && !hit; ++dy)
+                        for (int dx = -2; dx <= 1 && !hit; ++dx) {
+                            const int xx = int(std::floor(x)) + dx, yy = int(std::floor(y)) + dy;
+                            if (xx >= 0 && yy >= 0 && xx < av.width && yy < av.height)
+                                hit = isRed(image.pixel(xx, yy));
+                        }
+                    found += hit;
+                }
+        EXPECT_GT(samples, 8u);
+        EXPECT_EQ(found, samples);
+    }
+}
+
+TEST(View, SameCameraGivesTheSameBytesAndEveryLayerDraws)
+{
+    const svo::TriangleMesh mesh = svo::cornellBox();
+    const GridSpec g = svo::makeGrid(mesh, svo::GridRequest{32, 0});
+    svo::Voxelizer voxelizer;
+    const svo::Octree octree = voxelizer.voxelize(mesh, g);
+    svo::gl::OctreeView view(context(), octree, &mesh);
+    const ViewCamera camera = svo::gl::frameBox(svo::gl::gridWorldBox(g), Vec3d{-0.4, -0.5, -1.0}, false, 4.0 / 3.0);
+    ViewLayers all;
+    all.mesh = true;
+    const Image a = view.render(camera, 200, 150, all);
+    const Image b = view.render(camera, 200, 150, all);
+    EXPECT_EQ(a.rgba, b.rgba);
+    size_t green = 0, red = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            green += isGreen(a.pixel(x, y));
+            red += isRed(a.pixel(x, y));
+        }
+    EXPECT_GT(green, size_t(a.width * a.height / 10));
+    EXPECT_GT(red, 50u);
+    // The mesh alone: grey pixels, no green or red.
+    ViewLayers meshOnly;
+    meshOnly.voxels = meshOnly.outlines = false;
+    meshOnly.mesh = true;
+    const Image m = view.render(camera, 200, 150, meshOnly);
+    size_t grey = 0, coloured = 0;
+    for (int y = 0; y < m.height; ++y)
+        for (int x = 0; x < m.width; ++x) {
+            const uint8_t* p = m.pixel(x, y);
+            grey += p[0] > 60 && std::abs(int(p[0]) - int(p[1])) < 8;
+            coloured += isGreen(p) || isRed(p);
+        }
+    EXPECT_GT(grey, size_t(m.width * m.height / 10));
+    EXPECT_EQ(coloured, 0u);
+}
+
+TEST(View, BadCamerasAndSizesThrow)
+{
+    const GridSpec g = unitGrid(16);
+    svo::gl::OctreeView view(context(), octreeOf(g, {{1, 2, 3}}));
+    ViewCamera c;
+    c.eye = c.target = {1, 1, 1};
+    EXPECT_THROW(view.render(c, 16, 16), svo::Error);
+    c.eye = {1, 5, 1};
+    EXPECT_THROW(view.render(c, 16, 16), svo::Error); // up along the view
+    c.eye = {1, 1, 5};
+    EXPECT_THROW(view.render(c, 0, 16), svo::Error);
+    EXPECT_NO_THROW(view.render(c, 16, 16));
+}
+
+} // namespace
