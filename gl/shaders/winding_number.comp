@@ -26,6 +26,8 @@ uniform uvec3 uBricks; // the grid's box in bricks (per brick)
 uniform float uBeta2;  // beta^2; nodes nearer than beta radii are opened
 
 const float kInvFourPi = 0.0795774715459476679;
+const float kPi = 3.14159265358979324;
+const float kHalfPi = 1.57079632679489662;
 
 dvec3 position(uint i) { return dvec3(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]); }
 
@@ -38,11 +40,14 @@ float solidAngle(dvec3 q, uint t)
     double det = dot(x, cross(y, z));
     if (det == 0.0LF) return 0.0; // q in the triangle's plane
     double den = lx * ly * lz + dot(x, y) * lz + dot(y, z) * lx + dot(z, x) * ly;
-    // GLSL has no double atan: scale both into [-1, 1] and keep the sign of
-    // det apart, so a det too small for a float still picks its side.
-    double s = max(abs(det), abs(den));
-    float a = atan(max(float(abs(det) / s), 1e-30), float(den / s));
-    return det > 0.0LF ? 2.0 * a : -2.0 * a;
+    // Half the solid angle is atan2(det, den). GLSL has no double atan, and
+    // llvmpipe's float atan(y, x) returned the wrong quadrant for some far
+    // triangles: the angle is built from the one-argument atan of a ratio in
+    // [0, 1], its quadrant chosen here, the sign of det kept apart.
+    double ad = abs(det), aden = abs(den);
+    float base = ad <= aden ? atan(float(ad / aden)) : kHalfPi - atan(float(aden / ad)); // in [0, pi/2]
+    float angle = den >= 0.0LF ? base : kPi - base;                                     // in [0, pi]
+    return det > 0.0LF ? 2.0 * angle : -2.0 * angle;
 }
 
 float windingNumber(dvec3 q)
