@@ -60,6 +60,8 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
     if (a.udf && cmd.count("--interior-band")) throw Error("--interior-band applies to --sdf; --udf has no inside");
     if (a.closestTriangle && !a.sdf && !a.udf) throw Error("--closest-triangle applies to --sdf and --udf");
     if (cmd.count("--sign") && !a.sdf && a.fill != "solid") throw Error("--sign applies to --sdf and --fill solid");
+    if (cmd.count("--winding-accuracy") && !a.sdf && a.fill != "solid")
+        throw Error("--winding-accuracy applies to --sdf and --fill solid");
     if (cmd.count("--winding-accuracy") && a.sign == "parity")
         throw Error("--winding-accuracy applies to winding-number signs, not to --sign parity");
     if (!a.field()) return;

@@ -524,7 +524,7 @@ TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)
 
     for (const char* bad : {"--sdf -o x.svo", "--band 2", "--sdf --udf", "--udf --interior-band 2", "--sdf --band 2 "
                             "--exterior-band 3", "--fill solid --attributes normal", "--closest-triangle",
-                            "--sdf --band 0.5"}) {
+                            "--sdf --band 0.5", "--winding-accuracy 3"}) {
         const auto r = runSvo("voxelize " + path("ico.off") + " " + bad + (std::string(bad).find(" -o ") == std::string::npos ? " -o " + path("bad.vdb") : std::string()));
         EXPECT_EQ(r.code, 1) << bad << ": " << r.out;
         // One line (CLI11's own range errors add its "Run with --help" hint).
