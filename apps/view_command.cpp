@@ -1,5 +1,6 @@
-// svo view [INPUT] --screenshot out.png [--size WxH] [--camera ...] [--view ...] [--layers ...] [--levels a:b]
-// The renderer is the library's (svo/gl/octree_view.h); this file parses, calls and prints.
+// svo view [INPUT] [--screenshot out.png] [--size WxH] [--camera ...] [--view ...] [--layers ...] [--levels a:b]
+// The renderer is the library's (svo/gl/octree_view.h); this file parses, calls
+// and prints, and view_window.cpp runs the window.
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <fmt/format.h>
@@ -10,6 +11,9 @@
 #include "commands.h"
 #include "library_call.h"
 #include "png_file.h"
+#ifdef SVO_WITH_WINDOW
+#include "view_window.h"
+#endif
 #include "svo/core/atomic_file.h"
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"
@@ -22,7 +26,8 @@ namespace {
 
 struct ViewArgs {
     std::string input, screenshot, size = "1280x960", camera, view = "front", layers = "voxels,outlines", levels,
-                                     gridName;
+                                     gridName, keys, save;
+    int frames = 0;
     double fov = 40.0, ortho = 0.0;
     int64_t resolution = 0;
     double voxelSize = 0;
@@ -114,12 +119,19 @@ bool haveDisplay()
 
 void runView(const ViewArgs& a, const CLI::App& cmd)
 {
-    if (a.screenshot.empty()) {
+    const bool window = a.screenshot.empty();
+    if (window) {
+#ifndef SVO_WITH_WINDOW
+        throw Error("this svo was built without its window (SVO_WITH_WINDOW=OFF); give --screenshot PNG to render "
+                    "offscreen");
+#endif
         if (!haveDisplay())
             throw Error("no display for svo view's window (DISPLAY and WAYLAND_DISPLAY are unset); give --screenshot PNG "
                         "to render offscreen");
-        throw Error("svo view's interactive window is not built yet; give --screenshot PNG to render offscreen");
+    } else if (!a.keys.empty() || a.frames != 0) {
+        throw Error("--keys and --frames drive the window; --screenshot renders one frame without it");
     }
+    if (a.frames < 0) throw Error(fmt::format("--frames {}: expected 0 (until closed) or more", a.frames));
     const auto [width, height] = parseSize(a.size);
     gl::ViewLayers layers = parseLayers(a.layers);
     parseLevels(a.levels, layers);
@@ -132,8 +144,9 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
             throw Error(fmt::format("--camera '{}': expected eye x,y,z, target x,y,z and optionally up x,y,z",
                                     a.camera));
     }
-    checkWritable(a.screenshot);
-    checkOutputs({a.input}, {a.screenshot});
+    if (!window) checkWritable(a.screenshot);
+    if (!a.save.empty()) checkWritable(a.save);
+    checkOutputs({a.input}, {a.screenshot, a.save});
 
     LibraryCall call(a.backend, "building the octree");
     LoadedOctree lo;
@@ -149,11 +162,6 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     printWarnings(call.stats.warnings);
     if (layers.mesh && !lo.mesh) fmt::print(stderr, "svo: warning: the input has no mesh to draw (--layers mesh)\n");
 
-    gl::ContextOptions co;
-    co.device = a.backend.device;
-    co.debug = a.backend.glDebug;
-    gl::Context context(co);
-    gl::OctreeView view(context, lo.octree, lo.mesh ? &*lo.mesh : nullptr);
     const double aspect = double(width) / double(height);
     gl::ViewCamera camera = gl::frameBox(gl::gridWorldBox(lo.octree.grid), direction, axisView, aspect);
     if (!cam.empty()) {
@@ -167,6 +175,43 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         camera.orthographic = true;
         camera.height = a.ortho;
     }
+    const std::string inputName = a.input.empty() ? "cornell_box" : a.input;
+    const std::string inputLine = describeInput(inputName, lo, call.stats);
+    if (window) {
+#ifdef SVO_WITH_WINDOW
+        ViewWindowInput in;
+        in.title = inputName;
+        in.resolution = request.resolution > 0 ? request.resolution
+                                               : int64_t(*std::max_element(lo.octree.grid.dims.begin(),
+                                                                           lo.octree.grid.dims.end()));
+        in.loaded = std::move(lo);
+        in.stats = call.stats;
+        in.backend = a.backend;
+        in.camera = camera;
+        in.layers = layers;
+        in.width = width;
+        in.height = height;
+        in.frames = a.frames;
+        in.keys = a.keys;
+        in.save = a.save;
+        const ViewWindowResult r = runViewWindow(std::move(in), call.voxelizer);
+        if (!a.save.empty()) writeOctree(a.save, r.octree);
+        fmt::print("svo view\n");
+        fmt::print("  {:<8} {}\n", "input", inputLine);
+        fmt::print("  {:<8} {} voxels, {} bricks, {} levels, resolution {}\n", "octree", thousands(r.octree.voxelCount()),
+                   thousands(r.octree.bricks.size()), r.octree.brickLevel + 1, r.resolution);
+        fmt::print("  {:<8} {} frames, {:.2f} ms a frame on {}\n", "window", r.frames, r.meanFrameMs, r.renderer);
+        for (const std::string& shot : r.screenshots) fmt::print("  {:<8} {}\n", "picture", shot);
+        if (!a.save.empty()) fmt::print("  {:<8} {}\n", "saved", a.save);
+        for (const std::string& e : r.errors) fmt::print(stderr, "svo: warning: {}\n", e);
+#endif
+        return;
+    }
+    gl::ContextOptions co;
+    co.device = a.backend.device;
+    co.debug = a.backend.glDebug;
+    gl::Context context(co);
+    gl::OctreeView view(context, lo.octree, lo.mesh ? &*lo.mesh : nullptr);
     gl::Image image;
     {
         Progress p("rendering " + a.screenshot);
@@ -174,7 +219,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         writePng(a.screenshot, image);
     }
     fmt::print("svo view\n");
-    fmt::print("  {:<8} {}\n", "input", describeInput(a.input.empty() ? "cornell_box" : a.input, lo, call.stats));
+    fmt::print("  {:<8} {}\n", "input", inputLine);
     fmt::print("  {:<8} {} voxels, {} bricks, {} levels\n", "octree", thousands(lo.octree.voxelCount()),
                thousands(lo.octree.bricks.size()), lo.octree.brickLevel + 1);
     fmt::print("  {:<8} eye {:.6g},{:.6g},{:.6g} target {:.6g},{:.6g},{:.6g} up {:.6g},{:.6g},{:.6g} {}\n", "camera",
@@ -203,6 +248,12 @@ void addViewCommand(CLI::App& app)
     cmd->add_option("--layers", args->layers, "Comma-separated: voxels, outlines, mesh")->capture_default_str();
     cmd->add_option("--levels", args->levels, "Outline levels a:b (0 = root; a, a: or :b)");
     cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
+    cmd->add_option("--frames", args->frames, "Window: close after this many frames (0: when closed)");
+    cmd->add_option("--keys", args->keys,
+                    "Window: keys to press, one a frame from the second frame (v o m: layers; + -: resolution; b c t: "
+                    "backend, dilation, mode; f x y z: views; p: screenshot; q: quit)");
+    addOutputPath(*cmd, "--save", args->save, "Window: write the octree shown last to this .svo, .vdb or .nvdb on exit",
+                  {".svo", ".vdb", ".nvdb"});
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
     cmd->callback([args, cmd] { runView(*args, *cmd); });

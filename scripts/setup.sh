@@ -14,7 +14,7 @@ packages=(
   libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libtbb-dev
   libopenmesh-dev libcgal-dev libcgal-demo
   libglfw3-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
-  libvtk9-dev xvfb libpng-dev
+  libvtk9-dev xvfb xauth libpng-dev libimgui-dev
   libcli11-dev libfmt-dev libgtest-dev libfast-float-dev
   pybind11-dev python3-dev python3-pytest python3-numpy
   nlohmann-json3-dev libnanovdb-dev python3-openvdb libboost-python1.74-dev
@@ -31,6 +31,21 @@ if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}"
   $sudo apt-get update -q
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# Dear ImGui's GLFW and OpenGL 3 backends ship as sources under /usr/share/doc,
+# which minimal images leave out (dpkg path-exclude): unpack them from the
+# package into /usr/local/share/svo/imgui-backends then.
+if [ ! -f /usr/share/doc/libimgui-dev/examples/backends/imgui_impl_glfw.cpp ] &&
+   [ ! -f /usr/local/share/svo/imgui-backends/imgui_impl_glfw.cpp ]; then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  tmp=$(mktemp -d)
+  (cd "$tmp" && apt-get download -q libimgui-dev && dpkg-deb -x libimgui-dev_*.deb root)
+  $sudo mkdir -p /usr/local/share/svo/imgui-backends
+  $sudo cp "$tmp"/root/usr/share/doc/libimgui-dev/examples/backends/imgui_impl_{glfw,opengl3}.cpp \
+    /usr/local/share/svo/imgui-backends/
+  rm -rf "$tmp"
 fi
 
 build=${SVO_BUILD_DIR:-build}

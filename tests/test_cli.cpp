@@ -16,6 +16,8 @@
 #include <thread>
 #include <unistd.h>
 
+#include "svo/core/octree.h"
+#include "svo/core/octree_file.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -585,6 +587,52 @@ TEST_F(Cli, ViewBadInputFailsAsVoxelizeDoes)
         EXPECT_EQ(lineCount(r.out), 1u) << args << ": " << r.out;
     }
     expectOnly({"bad.obj"});
+}
+
+/// The window under Xvfb (xvfb-run): it opens, follows scripted keys, and
+/// its live re-voxelization gives exactly `svo voxelize`'s voxels.
+TEST_F(Cli, ViewWindowRevoxelizesLiveToTheVoxelsOfVoxelize)
+{
+    if (system("command -v xvfb-run >/dev/null 2>&1 && command -v xauth >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xvfb-run and xauth are not installed";
+    const std::string xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
+    const std::string mesh = write("ico.off", "");
+    ASSERT_EQ(runSvo("scene icosphere -o " + mesh).code, 0);
+    // '+' doubles 16 to 32, 'v' and 'o' toggle layers, 'p' writes a screenshot, 'q' closes.
+    const auto r = runSvo("view " + mesh + " -r 16 --size 160x120 --frames 50 --keys +vop-+q --save " + path("live.svo"),
+                          "cd " + path("") + " &&  " + xvfb);
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("resolution 32"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("7 frames"), std::string::npos) << r.out; // q after 6 scripted keys
+    ASSERT_EQ(runSvo("voxelize " + mesh + " -r 32 -o " + path("ref.svo")).code, 0);
+    using svo::octreeKeys, svo::readOctreeFile;
+    const svo::Octree live = readOctreeFile(path("live.svo")), ref = readOctreeFile(path("ref.svo"));
+    EXPECT_GT(ref.voxelCount(), 1000u);
+    auto sorted = [](std::vector<uint64_t> k) {
+        std::sort(k.begin(), k.end());
+        return k;
+    };
+    EXPECT_EQ(live.grid.dims, ref.grid.dims);
+    EXPECT_TRUE(sorted(octreeKeys(live)) == sorted(octreeKeys(ref)));
+    EXPECT_TRUE(fs::exists(path("svo-view-1.png")));
+
+    // A re-voxelization that fails keeps the octree and says why; the window
+    // goes on. 'c' picks hardware dilation, 'b' the raster then the compute
+    // backend, which refuses any dilation choice on every device.
+    const auto kept = runSvo("view " + mesh + " -r 16 --size 160x120 --frames 5 --keys cbb --save " + path("kept.svo"),
+                             xvfb);
+    ASSERT_EQ(kept.code, 0) << kept.out;
+    EXPECT_NE(kept.out.find("warning: kept the previous octree"), std::string::npos) << kept.out;
+    EXPECT_NE(kept.out.find("resolution 16"), std::string::npos) << kept.out;
+    ASSERT_EQ(runSvo("voxelize " + mesh + " -r 16 -o " + path("ref16.svo")).code, 0);
+    EXPECT_TRUE(sorted(octreeKeys(readOctreeFile(path("kept.svo")))) ==
+                sorted(octreeKeys(readOctreeFile(path("ref16.svo")))));
+
+    for (const char* args : {"--frames 3 --screenshot x.png", "--keys + --screenshot x.png", "--frames -1"}) {
+        const auto bad = runSvo(std::string("view -r 8 ") + args, xvfb);
+        EXPECT_EQ(bad.code, 1) << args;
+        EXPECT_EQ(lineCount(bad.out), 1u) << args << ": " << bad.out;
+    }
 }
 
 TEST_F(Cli, ViewWithoutDisplayOrScreenshotSaysSoInOneLine)

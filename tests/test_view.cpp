@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -341,6 +342,49 @@ TEST(View, SameCameraGivesTheSameBytesAndEveryLayerDraws)
         }
     EXPECT_GT(grey, size_t(m.width * m.height / 10));
     EXPECT_EQ(coloured, 0u);
+}
+
+/// A Context that adopts the context current on the thread (as svo view's
+/// window does with its own) draws what a Context of its own draws, makes
+/// the adopted context current again wherever it is used, and leaves it alive.
+TEST(View, AdoptedContextDrawsTheSameAndIsMadeCurrentAgain)
+{
+    EXPECT_THROW(
+        [] {
+            svo::gl::ContextOptions o;
+            o.adoptCurrent = true;
+            svo::gl::Context nothingCurrent(o);
+        }(),
+        svo::Error);
+
+    const svo::TriangleMesh mesh = svo::cornellBox();
+    const GridSpec g = svo::makeGrid(mesh, svo::GridRequest{24, 0});
+    svo::Voxelizer voxelizer;
+    const svo::Octree octree = voxelizer.voxelize(mesh, g);
+    const ViewCamera camera = svo::gl::frameBox(svo::gl::gridWorldBox(g), Vec3d{-0.4, -0.5, -1.0}, false, 1.0);
+    const Image own = svo::gl::OctreeView(context(), octree).render(camera, 96, 96);
+
+    svo::gl::Context host; // stands in for a window's context
+    std::optional<svo::gl::Context> adopted;
+    {
+        const svo::gl::Context::Scope current(host);
+        svo::gl::ContextOptions o;
+        o.adoptCurrent = true;
+        adopted.emplace(o);
+    }
+    EXPECT_TRUE(adopted->info().adopted);
+    EXPECT_EQ(adopted->info().renderer, host.info().renderer);
+    // Used with nothing current, and with another context current.
+    svo::gl::OctreeView view(*adopted, octree);
+    EXPECT_EQ(view.render(camera, 96, 96).rgba, own.rgba);
+    {
+        const svo::gl::Context::Scope other(context());
+        EXPECT_EQ(view.render(camera, 96, 96).rgba, own.rgba);
+    }
+    const std::vector<double> ms = view.timeFrames(camera, 96, 96, {}, 3);
+    ASSERT_EQ(ms.size(), 3u);
+    for (double t : ms) EXPECT_GT(t, 0.0);
+    EXPECT_THROW(view.timeFrames(camera, 96, 96, {}, 0), svo::Error);
 }
 
 TEST(View, BadCamerasAndSizesThrow)

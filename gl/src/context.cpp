@@ -107,9 +107,8 @@ struct Context::Scope::Saved {
     unsigned long glxDraw = 0, glxRead = 0;
     void* glxContext = nullptr;
 
-    /// Records what is current now and releases a GLX context, which cannot
-    /// stay current beside an EGL one.
-    void capture()
+    /// Records what is current now.
+    void record()
     {
         api = eglQueryAPI();
         display = eglGetCurrentDisplay();
@@ -121,29 +120,51 @@ struct Context::Scope::Saved {
             glxDisplay = glx.getDisplay();
             glxDraw = glx.getDrawable();
             glxRead = glx.getReadDrawable();
-            glx.makeContextCurrent(glxDisplay, 0, 0, nullptr);
         }
     }
 
-    /// Puts back what capture() found. Never throws: it runs while unwinding.
-    void restore() const
+    /// Records what is current now and releases a GLX context, which cannot
+    /// stay current beside an EGL one.
+    void capture()
     {
+        record();
+        if (glxContext) Glx::get().makeContextCurrent(glxDisplay, 0, 0, nullptr);
+    }
+
+    /// Whether the recorded EGL (OpenGL API) or GLX context is current now.
+    bool isCurrent() const
+    {
+        if (glxContext) return Glx::get().getContext() == glxContext;
+        const EGLenum bound = eglQueryAPI();
+        eglBindAPI(api);
+        const bool same = context != EGL_NO_CONTEXT && eglGetCurrentContext() == context;
+        eglBindAPI(bound);
+        return same;
+    }
+
+    /// Puts back what record() found; false when the context could not be
+    /// made current. Never throws: it runs while unwinding.
+    bool restore() const
+    {
+        bool ok = true;
         if (context != EGL_NO_CONTEXT) {
             eglBindAPI(api);
-            eglMakeCurrent(display, draw, read, context);
+            ok = eglMakeCurrent(display, draw, read, context);
         } else {
             eglBindAPI(EGL_OPENGL_API);
             const EGLDisplay current = eglGetCurrentDisplay();
             if (current != EGL_NO_DISPLAY) eglMakeCurrent(current, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
             eglBindAPI(api);
         }
-        if (glxContext) Glx::get().makeContextCurrent(glxDisplay, glxDraw, glxRead, glxContext);
+        if (glxContext) ok = Glx::get().makeContextCurrent(glxDisplay, glxDraw, glxRead, glxContext) && ok;
+        return ok;
     }
 };
 
 struct Context::Impl {
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext context = EGL_NO_CONTEXT;
+    std::optional<Scope::Saved> host; ///< the adopted context (ContextOptions::adoptCurrent)
     ContextInfo info;
     // GL objects live in the context; they are deleted (inside a Scope) before it.
     mutable std::map<std::string, std::unique_ptr<Program>> programs;
@@ -206,11 +227,72 @@ struct Context::Impl {
         info.eglDevice = c.name;
         return {};
     }
+
+    /// Fills `info` from the context current now (the new or adopted one) and
+    /// sets up debug output and the program cache.
+    void query(const ContextOptions& options, bool debug)
+    {
+        auto str = [](GLenum e) {
+            const GLubyte* s = glGetString(e);
+            return std::string(s ? reinterpret_cast<const char*>(s) : "?");
+        };
+        info.vendor = str(GL_VENDOR);
+        info.renderer = str(GL_RENDERER);
+        info.version = str(GL_VERSION);
+        info.software = info.renderer.find("llvmpipe") != std::string::npos ||
+                        info.renderer.find("softpipe") != std::string::npos;
+        GLint major = 0, minor = 0;
+        glGetIntegerv(GL_MAJOR_VERSION, &major);
+        glGetIntegerv(GL_MINOR_VERSION, &minor);
+        if (major * 10 + minor < 45)
+            throw Error(fmt::format("{} ({}) offers OpenGL {}.{}; svo needs 4.5 core", info.renderer, info.eglDevice,
+                                    major, minor));
+        GLint n = 0;
+        glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+        for (GLint i = 0; i < n; ++i) {
+            const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
+            if (e && std::strcmp(e, "GL_NV_conservative_raster") == 0) info.conservativeRasterNV = true;
+        }
+        GLint vp[2] = {0, 0}, fw = 0, fh = 0;
+        glGetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
+        glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &fw);
+        glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &fh);
+        info.maxViewport = std::min({vp[0], vp[1], fw, fh});
+        if (debug || options.debug) {
+            glEnable(GL_DEBUG_OUTPUT);
+            glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+            glDebugMessageCallback(debugCallback, nullptr);
+            info.extensionsUsed.push_back("GL_KHR_debug");
+        }
+        // No binary formats (Mesa without its disk cache, some drivers): no program cache.
+        glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &info.programBinaryFormats);
+        info.programCache = info.programBinaryFormats > 0 ? programCacheFolder(options.programCache) : std::string();
+        programCache.emplace(info.programCache, info.vendor + '\0' + info.renderer + '\0' + info.version);
+        checkGl("context creation");
+    }
 };
 
 Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>())
 {
     const auto start = std::chrono::steady_clock::now();
+#ifndef NDEBUG
+    const bool debug = true;
+#else
+    const bool debug = options.debug;
+#endif
+    if (options.adoptCurrent) {
+        Scope::Saved host;
+        host.record();
+        if (!host.glxContext && (host.context == EGL_NO_CONTEXT || host.api != EGL_OPENGL_API))
+            throw Error("no desktop OpenGL context is current on this thread to adopt");
+        impl_->host = host;
+        impl_->info.adopted = true;
+        impl_->info.eglDevice = host.glxContext ? "the host's GLX context" : "the host's EGL context";
+        impl_->query(options, debug);
+        impl_->info.setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        return;
+    }
+
     // Creation makes the new context current to query it; the caller's comes back on every path out.
     Scope::Saved previous;
     previous.capture();
@@ -224,12 +306,6 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
         const char* env = std::getenv("SVO_EGL_DEVICE");
         want = env && *env ? env : "auto";
     }
-#ifndef NDEBUG
-    const bool debug = true;
-#else
-    const bool debug = options.debug;
-#endif
-
     std::vector<Candidate> candidates;
     auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
     auto queryDeviceString =
@@ -264,57 +340,20 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
 
     std::string reasons;
     for (const auto& c : candidates) {
-        const std::string why = impl_->tryCandidate(c, debug || options.debug);
+        const std::string why = impl_->tryCandidate(c, debug);
         if (why.empty()) break;
         reasons += fmt::format("{}{}: {}", reasons.empty() ? "" : "; ", c.name, why);
     }
     if (impl_->context == EGL_NO_CONTEXT)
         throw Error("cannot create a headless OpenGL 4.5 core context through EGL: " + reasons);
 
-    ContextInfo& info = impl_->info;
-    auto str = [](GLenum e) {
-        const GLubyte* s = glGetString(e);
-        return std::string(s ? reinterpret_cast<const char*>(s) : "?");
-    };
-    info.vendor = str(GL_VENDOR);
-    info.renderer = str(GL_RENDERER);
-    info.version = str(GL_VERSION);
-    info.software = info.renderer.find("llvmpipe") != std::string::npos ||
-                    info.renderer.find("softpipe") != std::string::npos;
-    GLint major = 0, minor = 0;
-    glGetIntegerv(GL_MAJOR_VERSION, &major);
-    glGetIntegerv(GL_MINOR_VERSION, &minor);
-    if (major * 10 + minor < 45)
-        throw Error(fmt::format("{} ({}) offers OpenGL {}.{}; svo needs 4.5 core", info.renderer, info.eglDevice,
-                                major, minor));
-    GLint n = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
-    for (GLint i = 0; i < n; ++i) {
-        const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
-        if (e && std::strcmp(e, "GL_NV_conservative_raster") == 0) info.conservativeRasterNV = true;
-    }
-    GLint vp[2] = {0, 0}, fw = 0, fh = 0;
-    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
-    glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &fw);
-    glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &fh);
-    info.maxViewport = std::min({vp[0], vp[1], fw, fh});
-    if (debug || options.debug) {
-        glEnable(GL_DEBUG_OUTPUT);
-        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-        glDebugMessageCallback(debugCallback, nullptr);
-        info.extensionsUsed.push_back("GL_KHR_debug");
-    }
-    // No binary formats (Mesa without its disk cache, some drivers): no program cache.
-    glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &info.programBinaryFormats);
-    info.programCache = info.programBinaryFormats > 0 ? programCacheFolder(options.programCache) : std::string();
-    impl_->programCache.emplace(info.programCache, info.vendor + '\0' + info.renderer + '\0' + info.version);
-    checkGl("context creation");
-    info.setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    impl_->query(options, debug);
+    impl_->info.setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 Context::~Context()
 {
-    if (!impl_ || impl_->context == EGL_NO_CONTEXT) return;
+    if (!impl_ || (impl_->context == EGL_NO_CONTEXT && !impl_->host)) return;
     try {
         const Scope scope(*this);
         impl_->programs.clear();
@@ -328,6 +367,17 @@ const ContextInfo& Context::info() const { return impl_->info; }
 
 Context::Scope::Scope(const Context& c)
 {
+    if (const auto& host = c.impl_->host) {
+        if (host->isCurrent()) return;
+        auto saved = std::make_unique<Saved>();
+        saved->capture();
+        if (!host->restore()) {
+            saved->restore();
+            throw Error("cannot make the host's OpenGL context current again on this thread; is it current on another?");
+        }
+        saved_ = std::move(saved);
+        return;
+    }
     const EGLenum api = eglQueryAPI();
     eglBindAPI(EGL_OPENGL_API);
     if (eglGetCurrentContext() == c.impl_->context) {

@@ -283,21 +283,24 @@ void OctreeView::setOctree(const Octree& octree, const TriangleMesh* mesh)
 const GridSpec& OctreeView::grid() const { return impl_->grid; }
 uint32_t OctreeView::brickLevel() const { return impl_->brickLevel; }
 
-Image OctreeView::render(const ViewCamera& camera, int width, int height, const ViewLayers& layers) const
+namespace {
+
+void checkSize(int width, int height)
 {
-    Context::Scope scope(context_);
-    checkGl("the GL work before rendering a view");
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
     if (width < 1 || height < 1 || width > maxSize || height > maxSize)
         throw Error(fmt::format("octree view: a {} x {} picture is outside 1 .. {} pixels per side", width, height, maxSize));
-    const Impl& v = *impl_;
+}
+
+/// Draws the layers into the framebuffer bound now, over (0, 0, width, height).
+void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCamera& camera, int width, int height,
+                const ViewLayers& layers)
+{
     const CellCamera cam = cellCamera(v.grid, camera, width, height);
     const auto viewProjection = toFloat(cam.viewProjection);
     const auto inverseViewProjection = toFloat(cam.inverseViewProjection);
 
-    Target target(width, height);
-    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.get());
     glViewport(0, 0, width, height);
     const auto& bg = ViewColors::background;
     glClearColor(bg[0], bg[1], bg[2], 1.0f);
@@ -305,13 +308,17 @@ Image OctreeView::render(const ViewCamera& camera, int width, int height, const 
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     v.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_NODES);
     v.bricks.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_BRICKS);
     v.origins.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ORIGINS);
 
     if (layers.voxels) {
-        const Program& p = context_.program({"view_fullscreen.vert", "view_voxels.frag"});
+        const Program& p = context.program({"view_fullscreen.vert", "view_voxels.frag"});
         p.setMatrix("uInverseViewProjection", inverseViewProjection.data());
         p.setMatrix("uViewProjection", viewProjection.data());
         p.set("uViewport", float(width), float(height));
@@ -325,7 +332,7 @@ Image OctreeView::render(const ViewCamera& camera, int width, int height, const 
         checkGl("drawing the voxels");
     }
     if (layers.mesh && v.meshArray) {
-        const Program& p = context_.program({"view_mesh.vert", "view_mesh.frag"});
+        const Program& p = context.program({"view_mesh.vert", "view_mesh.frag"});
         p.setMatrix("uViewProjection", viewProjection.data());
         const auto& c = ViewColors::mesh;
         p.set("uColor", c[0], c[1], c[2]);
@@ -339,7 +346,7 @@ Image OctreeView::render(const ViewCamera& camera, int width, int height, const 
     }
     const uint32_t last = std::min(layers.lastLevel, v.brickLevel);
     if (layers.outlines && layers.firstLevel <= last) {
-        const Program& p = context_.program({"view_outlines.vert", "view_color.frag"});
+        const Program& p = context.program({"view_outlines.vert", "view_color.frag"});
         p.setMatrix("uViewProjection", viewProjection.data());
         p.set("uDepthBias", 2e-4f);
         const auto& c = ViewColors::outline;
@@ -354,6 +361,53 @@ Image OctreeView::render(const ViewCamera& camera, int width, int height, const 
         }
         checkGl("drawing the node outlines");
     }
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDisable(GL_DEPTH_TEST);
+}
+
+} // namespace
+
+void OctreeView::draw(const ViewCamera& camera, int width, int height, const ViewLayers& layers) const
+{
+    Context::Scope scope(context_);
+    checkGl("the GL work before drawing a view");
+    checkSize(width, height);
+    drawLayers(context_, *impl_, camera, width, height, layers);
+}
+
+std::vector<double> OctreeView::timeFrames(const ViewCamera& camera, int width, int height, const ViewLayers& layers,
+                                           int frames) const
+{
+    Context::Scope scope(context_);
+    checkGl("the GL work before timing a view");
+    checkSize(width, height);
+    if (frames < 1) throw Error(fmt::format("octree view: {} frames to time; at least 1", frames));
+    Target target(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.get());
+    drawLayers(context_, *impl_, camera, width, height, layers); // programs made, caches warm: not timed
+    glFinish();
+    std::vector<TimerQuery> queries(static_cast<size_t>(frames));
+    for (const TimerQuery& q : queries) {
+        q.begin();
+        drawLayers(context_, *impl_, camera, width, height, layers);
+        q.end();
+    }
+    std::vector<double> ms;
+    for (const TimerQuery& q : queries) ms.push_back(q.milliseconds());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    checkGl("timing the view's frames");
+    return ms;
+}
+
+Image OctreeView::render(const ViewCamera& camera, int width, int height, const ViewLayers& layers) const
+{
+    Context::Scope scope(context_);
+    checkGl("the GL work before rendering a view");
+    checkSize(width, height);
+    Target target(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.get());
+    drawLayers(context_, *impl_, camera, width, height, layers);
 
     Image image;
     image.width = width;
@@ -363,9 +417,6 @@ Image OctreeView::render(const ViewCamera& camera, int width, int height, const 
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glDisable(GL_DEPTH_TEST);
     checkGl("reading the picture back");
     const size_t stride = size_t(width) * 4;
     for (int y = 0; y < height; ++y) // GL's rows start at the bottom

@@ -9,6 +9,12 @@
 /// "auto", "hardware", "software", or a device index as listed by
 /// `svo glinfo`.
 ///
+/// Adoption: with ContextOptions::adoptCurrent the Context wraps the OpenGL
+/// context that is current on the calling thread (a host's window made by
+/// GLFW, Qt, ...), through EGL or GLX. svo then draws and computes in the
+/// host's context (into its framebuffers, with its objects) and neither
+/// creates nor destroys it.
+///
 /// Currency: the context is current only inside a Scope. A Scope saves what
 /// the thread had current (an EGL context of any display, or a GLX context,
 /// such as a host application's window), makes this context current, and puts
@@ -43,10 +49,15 @@ struct ContextOptions {
     /// (empty or "off": no cache), else $XDG_CACHE_HOME/svo/programs, else
     /// ~/.cache/svo/programs; "off" = no cache; or a folder.
     std::string programCache;
+    /// Wrap the context current on the calling thread instead of creating one
+    /// (`device` is then ignored). It must be OpenGL 4.5 core.
+    bool adoptCurrent = false;
 };
 
 struct ContextInfo {
-    std::string vendor, renderer, version, eglDevice;
+    std::string vendor, renderer, version;
+    std::string eglDevice;             ///< the EGL device used, or "the host's GLX context" (EGL) when adopted
+    bool adopted = false;              ///< the context is the host's (ContextOptions::adoptCurrent)
     bool conservativeRasterNV = false; ///< GL_NV_conservative_raster present
     bool software = false;             ///< a CPU rasterizer (llvmpipe, softpipe, lavapipe-like)
     int maxViewport = 0;               ///< largest framebuffer width/height usable
@@ -71,7 +82,8 @@ struct ProgramStats {
 /// from different threads at once.
 class Context {
 public:
-    /// Throws svo::Error with a one-line reason when no GL 4.5 core context can be had.
+    /// Throws svo::Error with a one-line reason when no GL 4.5 core context can
+    /// be had (or, adopting, when none is current or it is older than 4.5).
     /// Leaves the calling thread's current context as it was.
     explicit Context(const ContextOptions& options = {});
     ~Context();

@@ -106,6 +106,19 @@ public:
     /// or a GL error.
     Image render(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
 
+    /// Draws one frame into the framebuffer bound now (a window's, when the
+    /// Context adopted the window's context), over the viewport (0, 0, width,
+    /// height), clearing it first. Leaves depth testing off and no program or
+    /// vertex array bound. Throws as render() does.
+    void draw(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
+
+    /// The GPU milliseconds of `frames` frames drawn one after another
+    /// offscreen, after one untimed frame (programs made, caches warm); from
+    /// GL timestamp queries, nothing read back. Throws as render() does, and
+    /// for `frames` < 1.
+    std::vector<double> timeFrames(const ViewCamera& camera, int width, int height, const ViewLayers& layers,
+                                   int frames) const;
+
     const GridSpec& grid() const;
     uint32_t brickLevel() const;
 

@@ -1,0 +1,374 @@
+// svo view's window: input, camera and panel. Drawing is the library's
+// OctreeView, in the window's own context (gl::ContextOptions::adoptCurrent).
+#include "view_window.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <optional>
+
+#include "png_file.h"
+#include "svo/core/error.h"
+#include "svo/gl/context.h"
+
+namespace svo::app {
+namespace {
+
+Vec3d cross(const Vec3d& a, const Vec3d& b)
+{
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double dot(const Vec3d& a, const Vec3d& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double length(const Vec3d& a) { return std::sqrt(dot(a, a)); }
+Vec3d unit(const Vec3d& a) { return (1.0 / length(a)) * a; }
+
+/// v rotated by `angle` radians about the unit axis k (Rodrigues).
+Vec3d rotate(const Vec3d& v, const Vec3d& k, double angle)
+{
+    const double c = std::cos(angle), s = std::sin(angle);
+    return c * v + s * cross(k, v) + ((1 - c) * dot(k, v)) * k;
+}
+
+/// The last GLFW error, for one-line messages.
+std::string glfwReason()
+{
+    const char* what = nullptr;
+    glfwGetError(&what);
+    return what ? what : "unknown GLFW error";
+}
+
+/// Orbit, pan and zoom on a ViewCamera, keeping its up vector.
+struct Orbit {
+    gl::ViewCamera camera;
+
+    void turn(double dx, double dy) // pixels dragged
+    {
+        const Vec3d up = unit(camera.up);
+        Vec3d offset = camera.eye - camera.target;
+        offset = rotate(offset, up, -dx * 0.008);
+        const Vec3d right = unit(cross(-1.0 * offset, up));
+        const Vec3d tilted = rotate(offset, right, -dy * 0.008);
+        // Stop short of the poles, where up and the view direction meet.
+        if (std::abs(dot(unit(tilted), up)) < 0.995) offset = tilted;
+        camera.eye = camera.target + offset;
+    }
+    void pan(double dx, double dy, int viewportHeight)
+    {
+        const Vec3d forward = unit(camera.target - camera.eye);
+        const Vec3d right = unit(cross(forward, camera.up)), up = cross(right, forward);
+        const double span = camera.orthographic
+                                ? camera.height
+                                : 2 * length(camera.target - camera.eye) * std::tan(camera.fovYDegrees * M_PI / 360);
+        const Vec3d move = (span / std::max(viewportHeight, 1)) * ((-dx) * right + dy * up);
+        camera.eye = camera.eye + move;
+        camera.target = camera.target + move;
+    }
+    void zoom(double steps)
+    {
+        const double f = std::pow(0.85, steps);
+        if (camera.orthographic) camera.height *= f;
+        camera.eye = camera.target + f * (camera.eye - camera.target);
+    }
+};
+
+/// Everything the window changes as it runs.
+struct ViewerState {
+    ViewWindowInput in;
+    Voxelizer& voxelizer;
+    std::optional<gl::Context> context;
+    std::optional<gl::OctreeView> view;
+    Octree octree;
+    VoxelizeStats stats;
+    int64_t resolution = 0;
+    int backend = 0, dilation = 0, mode = 0; // indices into the names below
+    Orbit orbit;
+    int width = 0, height = 0;               // framebuffer pixels
+    std::string perLevel;                    // occupied nodes per level, for the panel
+    std::string message;                     // the last error or note, shown in the panel
+    bool quit = false;
+    int screenshotCount = 0;
+    ViewWindowResult result;
+    double lastX = 0, lastY = 0;
+
+    static constexpr const char* kBackends[] = {"auto", "raster", "compute", "cpu"};
+    static constexpr const char* kDilations[] = {"auto", "hardware", "shader", "centroid"};
+    static constexpr const char* kModes[] = {"conservative", "thin"};
+
+    ViewerState(ViewWindowInput input, Voxelizer& v) : in(std::move(input)), voxelizer(v) {}
+
+    bool canRevoxelize() const { return in.loaded.mesh.has_value(); }
+
+    void setOctree(Octree next)
+    {
+        octree = std::move(next);
+        perLevel.clear();
+        for (uint64_t n : octreeStats(octree).occupiedPerLevel) perLevel += (perLevel.empty() ? "" : " ") + thousands(n);
+    }
+
+    /// Voxelizes the mesh again at `r` with the panel's backend, dilation and
+    /// mode, and swaps the octree in; on an error the previous one stays.
+    void revoxelize(int64_t r)
+    {
+        if (!canRevoxelize()) {
+            message = "re-voxelization needs a mesh input";
+            return;
+        }
+        r = std::clamp<int64_t>(r, 1, int64_t(kMaxGridDim) - 1);
+        BackendArgs args = in.backend;
+        args.backend = kBackends[backend];
+        args.conservative = kDilations[dilation];
+        args.mode = kModes[mode];
+        try {
+            VoxelizeOptions options = args.voxelizeOptions();
+            VoxelizeStats s;
+            options.stats = &s;
+            const TriangleMesh& mesh = *in.loaded.mesh;
+            Octree next = voxelizer.voxelize(mesh, makeGrid(mesh, GridRequest{r, 0.0}), options);
+            view->setOctree(next, &mesh);
+            setOctree(std::move(next));
+            stats = std::move(s);
+            resolution = r;
+            message.clear();
+        } catch (const std::exception& e) {
+            message = fmt::format("kept the previous octree: {}", e.what());
+            result.errors.push_back(message);
+        }
+    }
+
+    void frameAll(const Vec3d& direction, bool orthographic)
+    {
+        orbit.camera = gl::frameBox(gl::gridWorldBox(octree.grid), direction, orthographic,
+                                    double(std::max(width, 1)) / double(std::max(height, 1)));
+    }
+
+    void screenshot()
+    {
+        std::string path;
+        do path = fmt::format("svo-view-{}.png", ++screenshotCount);
+        while (std::filesystem::exists(path));
+        try {
+            writePng(path, view->render(orbit.camera, width, height, in.layers));
+            result.screenshots.push_back(path);
+            message = "wrote " + path;
+        } catch (const std::exception& e) {
+            message = e.what();
+            result.errors.push_back(message);
+        }
+    }
+
+    /// One key, from the keyboard or the --keys script.
+    void press(unsigned key)
+    {
+        gl::ViewLayers& l = in.layers;
+        switch (key) {
+        case 'v': l.voxels = !l.voxels; break;
+        case 'o': l.outlines = !l.outlines; break;
+        case 'm': l.mesh = !l.mesh; break;
+        case '+': case '=': revoxelize(resolution * 2); break;
+        case '-': revoxelize(std::max<int64_t>(resolution / 2, 1)); break;
+        case 'b': backend = (backend + 1) % int(std::size(kBackends)); revoxelize(resolution); break;
+        case 'c': dilation = (dilation + 1) % int(std::size(kDilations)); revoxelize(resolution); break;
+        case 't': mode = 1 - mode; revoxelize(resolution); break;
+        case 'f': frameAll(unit(orbit.camera.target - orbit.camera.eye), orbit.camera.orthographic); break;
+        case 'x': frameAll({-1, 0, 0}, true); break;
+        case 'y': frameAll({0, -1, 0}, true); break;
+        case 'z': frameAll({0, 0, -1}, true); break;
+        case 'p': screenshot(); break;
+        case 'q': quit = true; break;
+        default: break;
+        }
+    }
+
+    void panel(double frameMs)
+    {
+        ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowBgAlpha(0.85f);
+        ImGui::Begin("svo view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+        ImGui::Text("%s", in.title.c_str());
+        ImGui::Text("%s", result.renderer.c_str());
+        ImGui::Text("frame %.2f ms (%.0f fps), %d x %d", frameMs, frameMs > 0 ? 1000.0 / frameMs : 0.0, width, height);
+        ImGui::Separator();
+        gl::ViewLayers& l = in.layers;
+        ImGui::Checkbox("voxels (V)", &l.voxels);
+        ImGui::SameLine();
+        ImGui::Checkbox("outlines (O)", &l.outlines);
+        ImGui::SameLine();
+        if (in.loaded.mesh) ImGui::Checkbox("mesh (M)", &l.mesh);
+        int levels[2] = {int(std::min<uint32_t>(l.firstLevel, octree.brickLevel)),
+                         int(std::min<uint32_t>(l.lastLevel, octree.brickLevel))};
+        if (ImGui::SliderInt2("outline levels", levels, 0, int(octree.brickLevel))) {
+            l.firstLevel = uint32_t(std::min(levels[0], levels[1]));
+            l.lastLevel = uint32_t(std::max(levels[0], levels[1]));
+        }
+        if (ImGui::Button("frame all (F)")) press('f');
+        ImGui::SameLine();
+        if (ImGui::Button("X")) press('x');
+        ImGui::SameLine();
+        if (ImGui::Button("Y")) press('y');
+        ImGui::SameLine();
+        if (ImGui::Button("Z")) press('z');
+        ImGui::SameLine();
+        ImGui::Checkbox("orthographic", &orbit.camera.orthographic);
+        ImGui::SameLine();
+        if (ImGui::Button("screenshot (P)")) press('p');
+
+        ImGui::Separator();
+        if (canRevoxelize()) {
+            int r = int(resolution);
+            ImGui::SliderInt("resolution (+/-)", &r, 8, 4096, "%d", ImGuiSliderFlags_Logarithmic);
+            if (ImGui::IsItemDeactivatedAfterEdit()) revoxelize(r);
+            bool changed = ImGui::Combo("backend (B)", &backend, kBackends, IM_ARRAYSIZE(kBackends));
+            changed |= ImGui::Combo("dilation (C)", &dilation, kDilations, IM_ARRAYSIZE(kDilations));
+            changed |= ImGui::Combo("mode (T)", &mode, kModes, IM_ARRAYSIZE(kModes));
+            if (changed) revoxelize(resolution);
+        } else {
+            ImGui::TextDisabled("re-voxelization needs a mesh input");
+        }
+        ImGui::Text("%s voxels, %s bricks, %u levels", thousands(octree.voxelCount()).c_str(),
+                    thousands(octree.bricks.size()).c_str(), octree.brickLevel + 1);
+        ImGui::TextWrapped("nodes per level: %s", perLevel.c_str());
+        if (stats.gpuBytes) ImGui::Text("GPU %.1f MB (build), %s", double(stats.gpuBytes) / 1e6, stats.backend.c_str());
+        for (const StageTime& s : stats.stages)
+            ImGui::Text("  %-22s %8.2f ms GPU %8.2f ms wall", s.name.c_str(), s.gpuMs, s.wallMs);
+        if (!message.empty()) {
+            ImGui::Separator();
+            ImGui::PushTextWrapPos(480);
+            ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.3f, 1.0f), "%s", message.c_str());
+            ImGui::PopTextWrapPos();
+        }
+        ImGui::End();
+    }
+};
+
+ViewerState* stateOf(GLFWwindow* w) { return static_cast<ViewerState*>(glfwGetWindowUserPointer(w)); }
+
+/// GLFW windows and ImGui, torn down on every path out.
+struct WindowSystem {
+    GLFWwindow* window = nullptr;
+    bool imgui = false, glfwBackend = false, glBackend = false;
+    ~WindowSystem()
+    {
+        if (glBackend) ImGui_ImplOpenGL3_Shutdown();
+        if (glfwBackend) ImGui_ImplGlfw_Shutdown();
+        if (imgui) ImGui::DestroyContext();
+        if (window) glfwDestroyWindow(window);
+        glfwTerminate();
+    }
+};
+
+} // namespace
+
+ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
+{
+    WindowSystem ws;
+    if (!glfwInit()) throw Error("cannot open svo view's window: " + glfwReason());
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, input.backend.glDebug ? GLFW_TRUE : GLFW_FALSE);
+    const std::string title = "svo view: " + input.title;
+    ws.window = glfwCreateWindow(input.width, input.height, title.c_str(), nullptr, nullptr);
+    if (!ws.window) throw Error("cannot open svo view's window with OpenGL 4.5 core: " + glfwReason());
+    glfwMakeContextCurrent(ws.window);
+    glfwSwapInterval(input.frames > 0 ? 0 : 1); // scripted runs do not wait for the display
+
+    ViewerState st(std::move(input), voxelizer);
+    gl::ContextOptions co;
+    co.adoptCurrent = true;
+    co.debug = st.in.backend.glDebug;
+    st.context.emplace(co);
+    st.result.renderer = st.context->info().renderer;
+    st.setOctree(std::move(st.in.loaded.octree));
+    st.stats = st.in.stats;
+    st.resolution = st.in.resolution;
+    st.view.emplace(*st.context, st.octree, st.in.loaded.mesh ? &*st.in.loaded.mesh : nullptr);
+    st.orbit.camera = st.in.camera;
+    for (int i = 0; i < 4; ++i) {
+        if (st.in.backend.backend == ViewerState::kBackends[i]) st.backend = i;
+        if (st.in.backend.conservative == ViewerState::kDilations[i]) st.dilation = i;
+    }
+    st.mode = st.in.backend.mode == "thin";
+
+    // Our callbacks first: ImGui's GLFW backend chains to them.
+    glfwSetWindowUserPointer(ws.window, &st);
+    glfwSetCharCallback(ws.window, [](GLFWwindow* w, unsigned c) {
+        if (!ImGui::GetIO().WantCaptureKeyboard) stateOf(w)->press(c < 128 ? unsigned(std::tolower(int(c))) : c);
+    });
+    glfwSetKeyCallback(ws.window, [](GLFWwindow* w, int key, int, int action, int) {
+        if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
+        if (key == GLFW_KEY_ESCAPE) stateOf(w)->quit = true;
+        if (key == GLFW_KEY_KP_ADD) stateOf(w)->press('+');
+        if (key == GLFW_KEY_KP_SUBTRACT) stateOf(w)->press('-');
+    });
+    glfwSetScrollCallback(ws.window, [](GLFWwindow* w, double, double dy) {
+        if (!ImGui::GetIO().WantCaptureMouse) stateOf(w)->orbit.zoom(dy);
+    });
+    glfwSetCursorPosCallback(ws.window, [](GLFWwindow* w, double x, double y) {
+        ViewerState& s = *stateOf(w);
+        const double dx = x - s.lastX, dy = y - s.lastY;
+        s.lastX = x;
+        s.lastY = y;
+        if (ImGui::GetIO().WantCaptureMouse) return;
+        if (glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) s.orbit.turn(dx, dy);
+        else if (glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+                 glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS)
+            s.orbit.pan(dx, dy, s.height);
+    });
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ws.imgui = true;
+    ImGui::GetIO().IniFilename = nullptr; // no imgui.ini left in the user's folder
+    ImGui::StyleColorsDark();
+    ws.glfwBackend = ImGui_ImplGlfw_InitForOpenGL(ws.window, true);
+    ws.glBackend = ws.glfwBackend && ImGui_ImplOpenGL3_Init("#version 450");
+    if (!ws.glBackend) throw Error("cannot start the panel (Dear ImGui's GLFW and OpenGL 3 backends)");
+
+    auto last = std::chrono::steady_clock::now();
+    double frameMs = 0, totalMs = 0;
+    size_t scripted = 0;
+    while (!glfwWindowShouldClose(ws.window) && !st.quit && (st.in.frames == 0 || st.result.frames < st.in.frames)) {
+        glfwPollEvents();
+        if (st.result.frames > 0 && scripted < st.in.keys.size()) st.press(static_cast<unsigned char>(st.in.keys[scripted++]));
+        if (st.quit) break;
+        glfwGetFramebufferSize(ws.window, &st.width, &st.height);
+        if (st.width < 1 || st.height < 1) { // minimized
+            glfwWaitEventsTimeout(0.1);
+            continue;
+        }
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        st.panel(frameMs);
+        ImGui::Render();
+
+        st.view->draw(st.orbit.camera, st.width, st.height, st.in.layers);
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        glfwSwapBuffers(ws.window);
+
+        const auto now = std::chrono::steady_clock::now();
+        const double ms = std::chrono::duration<double, std::milli>(now - last).count();
+        last = now;
+        frameMs = frameMs == 0 ? ms : 0.9 * frameMs + 0.1 * ms;
+        if (st.result.frames > 0) totalMs += ms;
+        ++st.result.frames;
+    }
+    ViewWindowResult result = std::move(st.result);
+    result.meanFrameMs = result.frames > 1 ? totalMs / (result.frames - 1) : 0;
+    result.resolution = st.resolution;
+    st.view.reset();
+    st.context.reset();
+    result.octree = std::move(st.octree);
+    return result;
+}
+
+} // namespace svo::app
