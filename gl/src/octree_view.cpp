@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -376,8 +377,8 @@ void OctreeView::draw(const ViewCamera& camera, int width, int height, const Vie
     drawLayers(context_, *impl_, camera, width, height, layers);
 }
 
-std::vector<double> OctreeView::timeFrames(const ViewCamera& camera, int width, int height, const ViewLayers& layers,
-                                           int frames) const
+std::vector<OctreeView::FrameTime> OctreeView::timeFrames(const ViewCamera& camera, int width, int height,
+                                                         const ViewLayers& layers, int frames) const
 {
     Context::Scope scope(context_);
     checkGl("the GL work before timing a view");
@@ -388,16 +389,19 @@ std::vector<double> OctreeView::timeFrames(const ViewCamera& camera, int width, 
     drawLayers(context_, *impl_, camera, width, height, layers); // programs made, caches warm: not timed
     glFinish();
     std::vector<TimerQuery> queries(static_cast<size_t>(frames));
-    for (const TimerQuery& q : queries) {
-        q.begin();
+    std::vector<FrameTime> times(queries.size());
+    for (size_t i = 0; i < queries.size(); ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        queries[i].begin();
         drawLayers(context_, *impl_, camera, width, height, layers);
-        q.end();
+        queries[i].end();
+        glFinish();
+        times[i].wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
-    std::vector<double> ms;
-    for (const TimerQuery& q : queries) ms.push_back(q.milliseconds());
+    for (size_t i = 0; i < queries.size(); ++i) times[i].gpuMs = queries[i].milliseconds();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     checkGl("timing the view's frames");
-    return ms;
+    return times;
 }
 
 Image OctreeView::render(const ViewCamera& camera, int width, int height, const ViewLayers& layers) const

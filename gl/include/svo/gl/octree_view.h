@@ -112,12 +112,17 @@ public:
     /// vertex array bound. Throws as render() does.
     void draw(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
 
-    /// The GPU milliseconds of `frames` frames drawn one after another
-    /// offscreen, after one untimed frame (programs made, caches warm); from
-    /// GL timestamp queries, nothing read back. Throws as render() does, and
-    /// for `frames` < 1.
-    std::vector<double> timeFrames(const ViewCamera& camera, int width, int height, const ViewLayers& layers,
-                                   int frames) const;
+    /// Times `frames` frames drawn offscreen one after another, after one
+    /// untimed frame (programs made, caches warm), nothing read back. Each
+    /// frame gets its GPU time from GL timestamp queries and its wall time
+    /// from issue to glFinish (software rasterizers such as llvmpipe draw at
+    /// the flush, so only the wall time is meaningful there). Throws as
+    /// render() does, and for `frames` < 1.
+    struct FrameTime {
+        double gpuMs = 0, wallMs = 0;
+    };
+    std::vector<FrameTime> timeFrames(const ViewCamera& camera, int width, int height, const ViewLayers& layers,
+                                      int frames) const;
 
     const GridSpec& grid() const;
     uint32_t brickLevel() const;
