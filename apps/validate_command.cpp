@@ -135,10 +135,13 @@ void runValidateSdf(const ValidateArgs& a, const TriangleMesh& mesh, const GridS
                    "openvdb", thousands(o.openvdb), thousands(o.common), thousands(o.onlyOurs),
                    thousands(o.onlyOpenVdb), o.maxDifference);
         fmt::print("  {:<12} {} sign disagreements on common voxels{}\n", "", thousands(o.signDisagreements),
-                   o.signJudged ? fmt::format(": CGAL sides with svo at {}, with OpenVDB at {}",
-                                              thousands(o.signOursRight),
-                                              thousands(o.signDisagreements - o.signOursRight))
-                                : std::string());
+                   o.signDisagreements == 0 ? std::string()
+                   : o.signJudged
+                       ? fmt::format(" (all within {:.3g} voxels of the surface): CGAL sides with svo at {}, with "
+                                     "OpenVDB at {}",
+                                     o.signFarthest, thousands(o.signOursRight),
+                                     thousands(o.signDisagreements - o.signOursRight))
+                       : fmt::format(" (all within {:.3g} voxels of the surface)", o.signFarthest));
         fmt::print("  {:<12} on common voxels, largest error against CGAL: svo {} voxels, OpenVDB {:.3g}; svo "
                    "farther than OpenVDB at {} voxels\n",
                    "", voxelsText(o.maxErrorOurs), o.maxErrorOpenVdb, thousands(o.oursFarther));

@@ -130,6 +130,7 @@ OpenVdbComparison compareWithOpenVdb(const TriangleMesh& mesh, const GridSpec& g
     }
     c.onlyOpenVdb = onlyTheirsExact.size();
     c.signDisagreements = signDiffer.size();
+    for (size_t i : signDiffer) c.signFarthest = std::max(c.signFarthest, pairExact[i]);
     // Who is right where the signs differ: CGAL's side, when the mesh has one.
     if (!signDiffer.empty()) {
         const detail::ClosedSurface closed = detail::closedSurface(mesh, detail::localPoints(mesh, grid));

@@ -96,6 +96,7 @@ std::string levelSetReportJson(const LevelSetReport& r)
                         {"sign_disagreements", o.signDisagreements},
                         {"sign_judged", o.signJudged},
                         {"sign_svo_right", o.signOursRight},
+                        {"sign_farthest", o.signFarthest},
                         {"max_difference", o.maxDifference},
                         {"max_error_svo", number(o.maxErrorOurs)},
                         {"max_error_openvdb", o.maxErrorOpenVdb},

@@ -43,6 +43,7 @@ struct OpenVdbComparison {
     /// gives ours (the rest give OpenVDB's); `signJudged` false otherwise.
     bool signJudged = false;
     uint64_t signOursRight = 0;
+    double signFarthest = 0; ///< the largest exact distance (voxels) of a sign disagreement
     double maxDifference = 0; ///< largest | |ours| - |OpenVDB's| | on common voxels, voxels
     double maxErrorOurs = 0;  ///< largest distance error against CGAL on common voxels, voxels
     double maxErrorOpenVdb = 0; ///< the same for OpenVDB's values
