@@ -68,6 +68,47 @@ void addAttributeOption(CLI::App& cmd, BackendArgs& a)
         ->check(CLI::IsMember({"normal", "triangle", "color"}));
 }
 
+LevelSetOptions FieldArgs::levelSetOptions() const
+{
+    LevelSetOptions ls;
+    ls.sign = SignOptions(sign == "parity"    ? SignMethod::Parity
+                          : sign == "winding" ? SignMethod::Winding
+                                              : SignMethod::Auto,
+                          windingAccuracy);
+    if (band > 0) ls.exteriorBand = ls.interiorBand = band;
+    if (exteriorBand > 0) ls.exteriorBand = exteriorBand;
+    if (interiorBand > 0) ls.interiorBand = interiorBand;
+    return ls;
+}
+
+void addBandOptions(CLI::App& cmd, FieldArgs& a, const std::string& appliesTo)
+{
+    cmd.add_option("--band", a.band, "Band half width in voxels on both sides, " + appliesTo + " (default 3)")
+        ->check(CLI::Range(1.0, 1000.0));
+    cmd.add_option("--exterior-band", a.exteriorBand, "Band width outside the surface, in voxels (default 3)")
+        ->check(CLI::Range(1.0, 1000.0));
+    cmd.add_option("--interior-band", a.interiorBand, "Band width inside the surface, in voxels (default 3)")
+        ->check(CLI::Range(1.0, 1000.0));
+}
+
+void addSignOptions(CLI::App& cmd, FieldArgs& a, const std::string& appliesTo)
+{
+    cmd.add_option("--sign", a.sign,
+                   "Inside/outside " + appliesTo +
+                       ": auto (parity for closed, consistently oriented meshes, the winding number otherwise), "
+                       "parity or winding (as asked)")
+        ->check(CLI::IsMember({"auto", "parity", "winding"}));
+    cmd.add_option("--winding-accuracy", a.windingAccuracy,
+                   "Winding numbers: tree nodes farther than this many radii use their dipole (larger is slower and "
+                   "more exact; inf evaluates every triangle)")
+        ->check(CLI::PositiveNumber);
+}
+
+bool bandsGiven(const CLI::App& cmd)
+{
+    return cmd.count("--band") || cmd.count("--exterior-band") || cmd.count("--interior-band");
+}
+
 void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize)
 {
     auto* res = cmd.add_option("-r,--resolution", resolution,

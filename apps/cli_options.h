@@ -22,6 +22,7 @@ struct VoxelizeOptions;
 struct DeviceOptions;
 struct VoxelizeStats;
 struct StartupStats;
+struct LevelSetOptions;
 } // namespace svo
 
 namespace svo::app {
@@ -43,6 +44,22 @@ void addBackendOptions(CLI::App& cmd, BackendArgs& args);
 void addAttributeOption(CLI::App& cmd, BackendArgs& args);
 /// --mode conservative|thin: which voxels a triangle covers (for the commands that voxelize meshes).
 void addModeOption(CLI::App& cmd, BackendArgs& args);
+
+/// --band, --exterior-band, --interior-band, --sign, --winding-accuracy:
+/// the level-set arguments `svo voxelize` and `svo validate --sdf` share.
+struct FieldArgs {
+    std::string sign = "auto"; ///< auto | parity | winding
+    double windingAccuracy = 2.0;
+    double band = 0, exteriorBand = 0, interiorBand = 0; ///< 0: not given
+    /// The library's defaults with the bands and sign asked for.
+    LevelSetOptions levelSetOptions() const;
+};
+/// --band, --exterior-band, --interior-band; `appliesTo` ends the help text ("for --sdf").
+void addBandOptions(CLI::App& cmd, FieldArgs& args, const std::string& appliesTo);
+/// --sign and --winding-accuracy; `appliesTo` as above.
+void addSignOptions(CLI::App& cmd, FieldArgs& args, const std::string& appliesTo);
+/// Whether any of --band, --exterior-band, --interior-band was given.
+bool bandsGiven(const CLI::App& cmd);
 
 /// -r/--resolution and --voxel-size (mutually exclusive).
 void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize);

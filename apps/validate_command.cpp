@@ -1,6 +1,9 @@
-// svo validate [MESH]: the GPU voxelization against CGAL's exact reference.
+// svo validate [MESH]: the GPU voxelization against CGAL's exact reference;
+// with --sdf, the GPU level set against CGAL's exact distances and sides and
+// against OpenVDB's meshToLevelSet.
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
@@ -18,6 +21,7 @@
 #include "svo/core/voxel_key.h"
 #include "svo/validate/classify.h"
 #include "svo/validate/hole_check.h"
+#include "svo/validate/level_set_report.h"
 #include "svo/validate/report.h"
 #include "svo/vdb_io/vdb_file.h"
 #include "svo/voxelizer.h"
@@ -33,13 +37,141 @@ struct ValidateArgs {
     bool noHoles = false;
     bool strict = false;
     size_t worst = 5;
+    bool sdf = false;
+    FieldArgs levelSet; ///< bands and sign, with --sdf
 };
+
+/// Refuses options that have no meaning with (or without) --sdf, before any work.
+void checkSdfArgs(const ValidateArgs& a, const CLI::App& cmd)
+{
+    if (!a.sdf) {
+        if (bandsGiven(cmd)) throw Error("--band, --exterior-band and --interior-band apply to --sdf");
+        if (cmd.count("--sign")) throw Error("--sign applies to --sdf");
+        if (cmd.count("--winding-accuracy")) throw Error("--winding-accuracy applies to --sdf");
+        return;
+    }
+    if (cmd.count("--band") && (cmd.count("--exterior-band") || cmd.count("--interior-band")))
+        throw Error("--band sets both bands; give it or --exterior-band/--interior-band, not both");
+    if (cmd.count("--winding-accuracy") && a.levelSet.sign == "parity")
+        throw Error("--winding-accuracy applies to winding-number signs, not to --sign parity");
+    if (cmd.count("--mode")) throw Error("--mode applies to surface voxels; --sdf checks a level set");
+    if (cmd.count("--errors")) throw Error("--errors writes missed and extra surface voxels; it does not apply to --sdf");
+    if (cmd.count("--no-holes") || cmd.count("--strict"))
+        throw Error("--no-holes and --strict apply to surface voxels, not to --sdf");
+}
 
 
 std::string idx(const std::array<int64_t, 3>& p) { return fmt::format("[{}, {}, {}]", p[0], p[1], p[2]); }
 
+std::string voxelsText(double v) { return std::isfinite(v) ? fmt::format("{:.3g}", v) : std::string("none"); }
+
+void printCases(const char* what, const std::vector<validate::LevelSetCase>& cases)
+{
+    for (const auto& c : cases)
+        fmt::print("    {:<8} {} : svo {}, exact {:.6g} voxels ({}){}, triangle {}\n", what, idx(c.index),
+                   std::isnan(c.value) ? std::string("inactive") : fmt::format("{:.6g}", c.value), c.exact,
+                   c.side == 1 ? "inside" : c.side == 0 ? "outside" : "side unknown",
+                   std::isnan(c.value) ? std::string()
+                                       : fmt::format(", error {:.3g}", std::abs(std::abs(c.value) - std::abs(c.exact))),
+                   c.triangle);
+}
+
+/// svo validate --sdf: the level set against CGAL, and beside OpenVDB's.
+void runValidateSdf(const ValidateArgs& a, const TriangleMesh& mesh, const GridSpec& grid, const std::string& scene)
+{
+    const LevelSetOptions ls = a.levelSet.levelSetOptions();
+    LibraryCall call(a.backend, "computing the distance field");
+    const VoxelizeStats& stats = call.stats;
+    const auto sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(call.voxelizer.levelSet(mesh, grid, ls, call.options).front());
+    printWarnings(stats.warnings);
+    const double gpuMs = stats.gpuMs();
+    const std::vector<validate::LevelSetVoxel> voxels = validate::activeLevelSetVoxels(*sdf);
+
+    validate::LevelSetReportOptions ro;
+    ro.check.exteriorBand = ls.exteriorBand;
+    ro.check.interiorBand = ls.interiorBand;
+    ro.check.worst = a.worst;
+    ro.sign = stats.sign;
+    std::unique_ptr<Progress> step;
+    ro.onStep = [&step](const std::string& s) {
+        step.reset(); // the previous step's line ends first
+        step = std::make_unique<Progress>(s);
+    };
+    const validate::LevelSetReport report = validate::validateLevelSet(mesh, grid, voxels, ro);
+    step.reset();
+    const validate::LevelSetCheck& c = report.check;
+    const validate::OpenVdbComparison& o = report.openvdb;
+
+    fmt::print("svo validate --sdf\n");
+    fmt::print("  {:<12} {} ({} triangles)\n", "scene", scene, thousands(mesh.triangles.size()));
+    fmt::print("  {:<12} {} x {} x {} local voxels, voxel size {:.6g}\n", "grid", grid.dims[0], grid.dims[1],
+               grid.dims[2], grid.voxelSize);
+    fmt::print("  {:<12} {}\n", "backend", backendLine(stats));
+    fmt::print("  {:<12} exterior band {} voxels, interior band {} voxels; {} active voxels\n", "level set",
+               ls.exteriorBand, ls.interiorBand, thousands(c.voxels));
+    fmt::print("  {:<12} {}\n", "sign", stats.sign);
+    fmt::print("  {:<12} {:.3g} voxels: the distance error allowed, the sign margin and the band-edge slack\n",
+               "tolerance", c.tolerance);
+    fmt::print("  {:<12} max error {} voxels, RMS {}; {} above the tolerance (against CGAL's AABB-tree distance)\n",
+               "distance", voxelsText(c.maxError), voxelsText(c.rmsError), thousands(c.overTolerance));
+    if (c.signChecked)
+        fmt::print("  {:<12} {} differ from CGAL's Side_of_triangle_mesh farther than {:.3g} voxels from the surface "
+                   "({} within it, allowed)\n",
+                   "signs", thousands(c.signDisagreements), c.tolerance, thousands(c.signNearSurface));
+    else
+        fmt::print("  {:<12} not checked against CGAL: {}\n", "signs", c.signReason);
+    fmt::print("  {:<12} {} missing, {} extra ({} inactive voxels near the surface examined{})\n", "band",
+               thousands(c.missing), thousands(c.extra), thousands(c.candidates),
+               c.bandUnjudged ? fmt::format("; {} between the two bands not judged: side unknown",
+                                            thousands(c.bandUnjudged))
+                              : std::string());
+    printCases("error", c.worstError);
+    printCases("sign", c.worstSign);
+    printCases("missing", c.worstMissing);
+    printCases("extra", c.worstExtra);
+    if (report.compared) {
+        fmt::print("  {:<12} meshToLevelSet, {} active voxels: {} in both, {} only in svo's band, {} only in "
+                   "OpenVDB's; largest | |svo| - |OpenVDB| | {:.3g} voxels\n",
+                   "openvdb", thousands(o.openvdb), thousands(o.common), thousands(o.onlyOurs),
+                   thousands(o.onlyOpenVdb), o.maxDifference);
+        fmt::print("  {:<12} {} sign disagreements on common voxels{}\n", "", thousands(o.signDisagreements),
+                   o.signDisagreements == 0 ? std::string()
+                   : o.signJudged
+                       ? fmt::format(" (all within {:.3g} voxels of the surface): CGAL sides with svo at {}, with "
+                                     "OpenVDB at {}",
+                                     o.signFarthest, thousands(o.signOursRight),
+                                     thousands(o.signDisagreements - o.signOursRight))
+                       : fmt::format(" (all within {:.3g} voxels of the surface)", o.signFarthest));
+        fmt::print("  {:<12} on common voxels, largest error against CGAL: svo {} voxels, OpenVDB {:.3g}; svo "
+                   "farther than OpenVDB at {} voxels\n",
+                   "", voxelsText(o.maxErrorOurs), o.maxErrorOpenVdb, thousands(o.oursFarther));
+        if (o.onlyOurs)
+            fmt::print("  {:<12} only in svo's band: exact distances {:.4g} to {:.4g} voxels\n", "",
+                       o.onlyOursExact[0], o.onlyOursExact[1]);
+        if (o.onlyOpenVdb)
+            fmt::print("  {:<12} only in OpenVDB's band: exact distances {:.4g} to {:.4g} voxels\n", "",
+                       o.onlyOpenVdbExact[0], o.onlyOpenVdbExact[1]);
+    }
+    fmt::print("  {:<12} validation {:.2f} s, level set {:.3f} GPU ms\n", "time", report.seconds, gpuMs);
+
+    if (!a.json.empty()) {
+        nlohmann::json j = nlohmann::json::parse(validate::levelSetReportJson(report)); // the library's numbers
+        j["scene"] = scene;
+        j["triangles"] = mesh.triangles.size();
+        j["dims"] = grid.dims;
+        j["voxel_size"] = grid.voxelSize;
+        j["backend"] = backendLine(stats);
+        j["gpu_ms"] = gpuMs;
+        writeFileAtomically(a.json, j.dump(2) + "\n");
+    }
+    if (!report.passed) throw Failure("validation failed: " + report.reason);
+    fmt::print("  {:<12} passed: distances within {:.3g} voxels, {}, no band voxel missing or extra\n", "verdict",
+               c.tolerance, c.signChecked ? "CGAL's signs" : "signs not checked (open mesh)");
+}
+
 void runValidate(const ValidateArgs& a, const CLI::App& cmd)
 {
+    checkSdfArgs(a, cmd);
     const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
     checkOutputs({a.mesh}, {a.json, a.errors}); // before any work
     TriangleMesh mesh;
@@ -52,6 +184,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     if (!a.errors.empty()) checkWritable(a.errors);
     const GridSpec grid = makeGrid(mesh, request);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
+    if (a.sdf) return runValidateSdf(a, mesh, grid, scene);
 
     // The voxelization under test, and the voxel list it was built from (the
     // same run, read back apart), to check every level of the octree against.
@@ -164,7 +297,8 @@ void addValidateCommand(CLI::App& app)
     auto args = std::make_shared<ValidateArgs>();
     CLI::App* cmd = app.add_subcommand(
         "validate", "Check a voxelization against exact CGAL tests (triangle-box, or triangle-segment for "
-                    "--mode thin): nothing missed, no holes (exit 0 pass, 3 fail, 1 error)");
+                    "--mode thin): nothing missed, no holes; with --sdf, a level set against CGAL's distances and "
+                    "sides and OpenVDB's meshToLevelSet (exit 0 pass, 3 fail, 1 error)");
     cmd->add_option("mesh", args->mesh,
                     fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()));
     addGridOptions(*cmd, args->resolution, args->voxelSize);
@@ -176,6 +310,11 @@ void addValidateCommand(CLI::App& app)
     cmd->add_flag("--no-holes", args->noHoles, "Skip the flood-fill hole check");
     cmd->add_flag("--strict", args->strict, "Fail on extra voxels too");
     cmd->add_option("--worst", args->worst, "Worst cases to list of each kind")->capture_default_str();
+    cmd->add_flag("--sdf", args->sdf,
+                  "Check the level set (voxelize --sdf) instead: distances, signs and band against CGAL, beside "
+                  "OpenVDB's meshToLevelSet");
+    addBandOptions(*cmd, args->levelSet, "for --sdf");
+    addSignOptions(*cmd, args->levelSet, "for --sdf");
     cmd->callback([args, cmd] { runValidate(*args, *cmd); });
 }
 

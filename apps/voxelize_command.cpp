@@ -35,9 +35,7 @@ struct VoxelizeArgs {
     // Level sets, unsigned distances and solids.
     bool sdf = false, udf = false, closestTriangle = false;
     std::string fill = "surface";
-    std::string sign = "auto";
-    double windingAccuracy = 2.0;
-    double band = 0, exteriorBand = 0, interiorBand = 0;
+    FieldArgs levelSet; ///< bands and sign
     bool field() const { return sdf || udf || fill == "solid"; }
 };
 
@@ -53,7 +51,7 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
 {
     const int modes = int(a.sdf) + int(a.udf) + int(a.fill == "solid");
     if (modes > 1) throw Error("--sdf, --udf and --fill solid each make a different grid; give one of them");
-    const bool bands = cmd.count("--band") || cmd.count("--exterior-band") || cmd.count("--interior-band");
+    const bool bands = bandsGiven(cmd);
     if (bands && !a.sdf && !a.udf) throw Error("--band, --exterior-band and --interior-band apply to --sdf and --udf");
     if (cmd.count("--band") && (cmd.count("--exterior-band") || cmd.count("--interior-band")))
         throw Error("--band sets both bands; give it or --exterior-band/--interior-band, not both");
@@ -62,7 +60,7 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
     if (cmd.count("--sign") && !a.sdf && a.fill != "solid") throw Error("--sign applies to --sdf and --fill solid");
     if (cmd.count("--winding-accuracy") && !a.sdf && a.fill != "solid")
         throw Error("--winding-accuracy applies to --sdf and --fill solid");
-    if (cmd.count("--winding-accuracy") && a.sign == "parity")
+    if (cmd.count("--winding-accuracy") && a.levelSet.sign == "parity")
         throw Error("--winding-accuracy applies to winding-number signs, not to --sign parity");
     if (!a.field()) return;
     if (a.backend.attributes) throw Error("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
@@ -78,16 +76,9 @@ void runField(const VoxelizeArgs& a, const CLI::App& cmd, const TriangleMesh& me
               std::chrono::steady_clock::time_point start)
 {
     (void)cmd;
-    LevelSetOptions ls;
+    LevelSetOptions ls = a.levelSet.levelSetOptions();
     ls.unsignedDistance = a.udf;
     ls.closestTriangle = a.closestTriangle;
-    ls.sign = SignOptions(a.sign == "parity" ? SignMethod::Parity
-                          : a.sign == "winding" ? SignMethod::Winding
-                                                : SignMethod::Auto,
-                          a.windingAccuracy);
-    if (a.band > 0) ls.exteriorBand = ls.interiorBand = a.band;
-    if (a.exteriorBand > 0) ls.exteriorBand = a.exteriorBand;
-    if (a.interiorBand > 0) ls.interiorBand = a.interiorBand;
     const bool solid = a.fill == "solid";
 
     LibraryCall call(a.backend, solid ? "filling the solid" : "computing the distance field");
@@ -350,20 +341,8 @@ void addVoxelizeCommand(CLI::App& app)
                     "surface: the voxels the triangles touch; solid: also every voxel whose centre is inside "
                     "(grid 'solid', whole regions as tiles)")
         ->check(CLI::IsMember({"surface", "solid"}));
-    cmd->add_option("--band", args->band, "Band half width in voxels on both sides, for --sdf and --udf (default 3)")
-        ->check(CLI::Range(1.0, 1000.0));
-    cmd->add_option("--exterior-band", args->exteriorBand, "Band width outside the surface, in voxels (default 3)")
-        ->check(CLI::Range(1.0, 1000.0));
-    cmd->add_option("--interior-band", args->interiorBand, "Band width inside the surface, in voxels (default 3)")
-        ->check(CLI::Range(1.0, 1000.0));
-    cmd->add_option("--sign", args->sign,
-                    "Inside/outside for --sdf and --fill solid: auto (parity for closed, consistently oriented "
-                    "meshes, the winding number otherwise), parity or winding (as asked)")
-        ->check(CLI::IsMember({"auto", "parity", "winding"}));
-    cmd->add_option("--winding-accuracy", args->windingAccuracy,
-                    "Winding numbers: tree nodes farther than this many radii use their dipole (larger is slower and "
-                    "more exact; inf evaluates every triangle)")
-        ->check(CLI::PositiveNumber);
+    addBandOptions(*cmd, args->levelSet, "for --sdf and --udf");
+    addSignOptions(*cmd, args->levelSet, "for --sdf and --fill solid");
     cmd->add_flag("--closest-triangle", args->closestTriangle,
                   "With --sdf or --udf, also an Int32 grid 'closest_triangle' on the band");
     cmd->add_option("--repeat", args->repeat,

@@ -546,6 +546,49 @@ TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)
     expectOnly({"ico.off", "ls.vdb", "solid.vdb", "cb.vdb"});
 }
 
+// svo validate --sdf: svo's level set against CGAL (and beside OpenVDB's);
+// options that need --sdf, or mean nothing with it, are refused in one line.
+TEST_F(Cli, ValidateSdfPassesOnClosedAndOpenMeshesAndRefusesMisuse)
+{
+    ASSERT_EQ(runSvo("scene icosphere --level 3 -o " + path("ico.off")).code, 0);
+    const auto r = runSvo("validate " + path("ico.off") + " -r 32 --sdf --exterior-band 2 --interior-band 4 --json " +
+                          path("v.json"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    for (const char* line : {"parity: the mesh is closed", "max error", "0 differ from CGAL's Side_of_triangle_mesh",
+                             "0 missing, 0 extra", "meshToLevelSet", "verdict      passed"})
+        EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+    std::ifstream in(path("v.json"));
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const char* field : {"\"kind\": \"sdf\"", "\"exterior_band\": 2.0", "\"interior_band\": 4.0",
+                              "\"sign_checked\": true", "\"missing\": 0,", "\"extra\": 0,", "\"over_tolerance\": 0,",
+                              "\"passed\": true", "\"only_openvdb\""})
+        EXPECT_NE(json.find(field), std::string::npos) << field << "\n" << json;
+    // The built-in Cornell box is open: signs are not checked, and the report says why.
+    const auto open = runSvo("validate -r 16 --sdf");
+    EXPECT_EQ(open.code, 0) << open.out;
+    EXPECT_NE(open.out.find("winding: the mesh is not closed"), std::string::npos) << open.out;
+    EXPECT_NE(open.out.find("not checked against CGAL: the mesh is open"), std::string::npos) << open.out;
+
+    const std::pair<const char*, const char*> misuses[] = {
+        {"--band 2", "apply to --sdf"},
+        {"--interior-band 2", "apply to --sdf"},
+        {"--sign winding", "--sign applies to --sdf"},
+        {"--winding-accuracy 3", "--winding-accuracy applies to --sdf"},
+        {"--sdf --band 2 --exterior-band 3", "--band sets both bands"},
+        {"--sdf --sign parity --winding-accuracy 3", "not to --sign parity"},
+        {"--sdf --mode thin", "--mode applies to surface voxels"},
+        {"--sdf --errors e.vdb", "does not apply to --sdf"},
+        {"--sdf --no-holes", "not to --sdf"},
+        {"--sdf --strict", "not to --sdf"}};
+    for (const auto& [bad, message] : misuses) {
+        const auto m = runSvo("validate " + path("ico.off") + " -r 16 " + bad);
+        EXPECT_EQ(m.code, 1) << bad << ": " << m.out;
+        EXPECT_EQ(std::count(m.out.begin(), m.out.end(), '\n'), 1) << bad << ": " << m.out;
+        EXPECT_NE(m.out.find(message), std::string::npos) << bad << ": " << m.out;
+    }
+    expectOnly({"ico.off", "v.json"});
+}
+
 namespace {
 
 size_t lineCount(const std::string& text) { return size_t(std::count(text.begin(), text.end(), '\n')); }

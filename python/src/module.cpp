@@ -15,6 +15,7 @@
 
 #include "svo/svo.h"
 #ifdef SVO_WITH_VALIDATE
+#include "svo/validate/level_set_report.h"
 #include "svo/validate/report.h"
 #endif
 
@@ -464,6 +465,46 @@ py::object validateWith(const py::handle& vertices, const py::handle& triangles,
 }
 #endif
 
+#ifdef SVO_WITH_VALIDATE
+/// The GPU level set checked against CGAL and beside OpenVDB's meshToLevelSet:
+/// the numbers of `svo validate --sdf --json`.
+py::object validateLevelSetWith(const py::handle& vertices, const py::handle& triangles,
+                                std::optional<double> resolution, std::optional<double> voxelSize,
+                                const py::object& transform, double exteriorBand, double interiorBand,
+                                const std::string& sign, double windingAccuracy, const std::string& backend,
+                                size_t worst, bool openvdb)
+{
+    svo::LevelSetOptions ls;
+    ls.exteriorBand = exteriorBand;
+    ls.interiorBand = interiorBand;
+    ls.sign = toSign(sign, windingAccuracy);
+    const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
+    svo::Voxelizer v;
+    svo::VoxelizeStats stats;
+    const openvdb::GridPtrVec grids = runField(backend, [&](svo::VoxelizeOptions o) {
+        o.stats = &stats;
+        return v.levelSet(r.mesh, r.grid, ls, o, r.xform);
+    });
+    std::string text;
+    try {
+        py::gil_scoped_release release;
+        const auto sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(grids.front());
+        svo::validate::LevelSetReportOptions ro;
+        ro.check.exteriorBand = exteriorBand;
+        ro.check.interiorBand = interiorBand;
+        ro.check.voxelSize = sdf->transform().voxelSize()[0]; // world units per voxel of the values
+        ro.check.worst = worst;
+        ro.openvdb = openvdb;
+        ro.sign = stats.sign;
+        text = svo::validate::levelSetReportJson(
+            svo::validate::validateLevelSet(r.mesh, r.grid, svo::validate::activeLevelSetVoxels(*sdf), ro));
+    } catch (const svo::Error& e) {
+        throw std::runtime_error(e.what());
+    }
+    return py::module_::import("json").attr("loads")(text);
+}
+#endif
+
 constexpr const char* kVoxelizeDoc = R"doc(
 Voxelize a triangle mesh on the GPU into a pyopenvdb grid.
 
@@ -634,6 +675,17 @@ PYBIND11_MODULE(_svo, m)
           "Voxelize the mesh and check it against CGAL's exact tests, as `svo validate` does (triangle/box for "
           "mode 'conservative', triangle/segment and a 6-connected hole fill for 'thin'): a dict with mode, voxels, required (R), exact (E), allowed (A), missed (R \\ G), missed_exact (E \\ G), boundary, extra, worst_missed, worst_extra, holes "
           "(applies, leak, path, ...), octree_consistent, epsilon, passed and reason.");
+    m.def("validate_level_set", &validateLevelSetWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
+          py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(), py::arg("transform") = py::none(),
+          py::arg("exterior_band") = 3.0, py::arg("interior_band") = 3.0, py::arg("sign") = "auto",
+          py::arg("winding_accuracy") = 2.0, py::arg("backend") = "auto", py::arg("worst") = 5,
+          py::arg("openvdb") = true,
+          "Make the level set (as Voxelizer.level_set) and check it as `svo validate --sdf` does: CGAL's exact "
+          "distance at every active voxel, CGAL's side on closed meshes, and the band both ways, with a "
+          "tolerance of 1e-4 voxel; beside OpenVDB's meshToLevelSet when openvdb=True. A dict with max_error, "
+          "rms_error, over_tolerance, sign_checked, sign_reason, sign_disagreements, sign_near_surface, missing, "
+          "extra, band_unjudged, the worst cases, openvdb (active, common, only_svo, only_openvdb, "
+          "sign_disagreements, max_difference, ...), passed and reason.");
 #endif
     m.def("active_voxels", &activeVoxels, py::arg("grid"),
           "The index coordinates of a grid's active voxels (tiles expanded) as a (K, 3) int32 array, in "

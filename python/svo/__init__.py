@@ -20,8 +20,8 @@ from ._svo import Octree, Voxelizer, active_voxels, load, read_mesh, voxelize
 __all__ = ["Voxelizer", "Octree", "voxelize", "active_voxels", "read_mesh", "load"]
 
 try:  # built with SVO_WITH_VALIDATE (CGAL)
-    from ._svo import validate  # noqa: F401
+    from ._svo import validate, validate_level_set  # noqa: F401
 
-    __all__.append("validate")
+    __all__ += ["validate", "validate_level_set"]
 except ImportError:  # pragma: no cover
     pass

@@ -110,3 +110,18 @@ def validate(
     worst: int = 5,
     mode: str = "conservative",
 ) -> Dict[str, Any]: ...
+def validate_level_set(
+    vertices: ArrayLike,
+    triangles: ArrayLike,
+    *,
+    resolution: Optional[float] = None,
+    voxel_size: Optional[float] = None,
+    transform: Optional[Union[Transform, ArrayLike]] = None,
+    exterior_band: float = 3.0,
+    interior_band: float = 3.0,
+    sign: str = "auto",
+    winding_accuracy: float = 2.0,
+    backend: str = "auto",
+    worst: int = 5,
+    openvdb: bool = True,
+) -> Dict[str, Any]: ...

@@ -284,6 +284,35 @@ def test_validate_thin_uses_segments_and_a_6_connected_fill(elephant, tmp_path):
     assert report["exact"] < conservative["exact"]
 
 
+def test_validate_level_set_gives_the_numbers_of_the_cli(elephant, tmp_path):
+    out = tmp_path / "v.json"
+    subprocess.run([SVO_EXE, "validate", elephant, "-r", "48", "--sdf", "--band", "2", "--json", str(out)],
+                   check=True, capture_output=True)
+    import json
+    cli = json.loads(out.read_text())
+    vertices, triangles = svo.read_mesh(elephant)
+    report = svo.validate_level_set(vertices, triangles, resolution=48, exterior_band=2, interior_band=2)
+    for key in ("voxels", "candidates", "max_error", "rms_error", "sign_checked", "sign_disagreements", "missing",
+                "extra", "sign", "passed"):
+        assert report[key] == cli[key], key
+    for key in ("active", "common", "only_svo", "only_openvdb", "sign_disagreements"):
+        assert report["openvdb"][key] == cli["openvdb"][key], key
+    assert report["passed"] and report["sign_checked"] and report["max_error"] <= 1e-4
+    assert report["missing"] == 0 and report["extra"] == 0 and report["sign_disagreements"] == 0
+    assert report["openvdb"]["svo_farther"] == 0
+    alone = svo.validate_level_set(vertices, triangles, resolution=48, exterior_band=2, interior_band=2, openvdb=False)
+    assert alone["openvdb"] is None and alone["max_error"] == report["max_error"]
+
+
+def test_validate_level_set_of_an_open_mesh_checks_no_signs():
+    v, t = tetrahedron()
+    open_t = np.asarray(t)[:-1]  # one face gone: no inside
+    report = svo.validate_level_set(v, open_t, resolution=24)
+    assert not report["sign_checked"] and "open" in report["sign_reason"]
+    assert report["sign"].startswith("winding")
+    assert report["passed"] and report["missing"] == 0 and report["extra"] == 0
+
+
 def test_ctrl_c_cancels_a_long_call_and_leaves_it_usable(voxelizer):
     import signal
     import time

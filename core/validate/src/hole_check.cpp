@@ -1,17 +1,12 @@
 #include "svo/validate/hole_check.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Side_of_triangle_mesh.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/boost/graph/helpers.h>
 #include <atomic>
 #include <deque>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include "closed_surface.h"
 #include "local_points.h"
 #include "svo/core/error.h"
 #include "svo/core/voxel_key.h"
@@ -20,8 +15,7 @@ namespace svo::validate {
 namespace {
 
 using K = detail::K;
-using SurfaceMesh = CGAL::Surface_mesh<K::Point_3>;
-namespace PMP = CGAL::Polygon_mesh_processing;
+using SurfaceMesh = detail::SurfaceMesh;
 
 /// The 26 (or first 6) neighbour offsets; code n+1 in the parent array means
 /// "reached from the voxel at minus offset n".
@@ -44,42 +38,12 @@ HoleCheck checkHoles(const TriangleMesh& mesh, const GridSpec& grid, const std::
     HoleCheck h;
     h.connectivity = connectivity;
     // A closed, orientable surface, or the check does not apply.
-    const std::vector<K::Point_3> points = detail::localPoints(mesh, grid);
-    std::vector<std::vector<std::size_t>> faces;
-    for (const auto& f : mesh.triangles) faces.push_back({f[0], f[1], f[2]});
-    // As given; failing that, with coincident vertices welded and degenerate
-    // faces dropped (CGAL's repair_polygon_soup), which changes no point's
-    // side and closes split seams, common in real meshes.
-    SurfaceMesh sm;
-    std::string why;
-    for (bool repair : {false, true}) {
-        auto pts = points;
-        auto polys = faces;
-        if (repair) PMP::repair_polygon_soup(pts, polys);
-        if (polys.empty()) {
-            why = "the mesh has no proper triangles, so it has no inside";
-            continue;
-        }
-        if (!PMP::orient_polygon_soup(pts, polys)) {
-            why = "the mesh is not a 2-manifold (non-manifold edges or vertices), so it has no well-defined inside";
-            continue;
-        }
-        SurfaceMesh candidate;
-        PMP::polygon_soup_to_polygon_mesh(pts, polys, candidate);
-        if (!CGAL::is_closed(candidate)) {
-            size_t border = 0;
-            for (auto e : candidate.halfedges()) border += candidate.is_border(e);
-            why = fmt::format("the mesh is open ({} border edges), so it has no inside", border);
-            continue;
-        }
-        sm = std::move(candidate);
-        why.clear();
-        break;
-    }
-    if (!why.empty()) {
-        h.reason = why;
+    detail::ClosedSurface closed = detail::closedSurface(mesh, detail::localPoints(mesh, grid));
+    if (!closed.closed) {
+        h.reason = closed.reason;
         return h;
     }
+    const SurfaceMesh& sm = closed.surface;
     h.applies = true;
 
     // Padded grid: local voxel v sits at v + 1; the outer layer is empty.

@@ -1,0 +1,50 @@
+#pragma once
+/// @file level_set_report.h
+/// One validation of a level set, start to end: what `svo validate --sdf`
+/// and `svo.validate_level_set` print and return.
+///
+/// Method: checkLevelSet (level_set_check.h) holds the level set against
+/// CGAL and gives the verdict; compareWithOpenVdb (level_set_peer.h), when
+/// asked, runs OpenVDB's meshToLevelSet on the same mesh, transform and bands
+/// and reports the differences, which do not change the verdict. The verdict
+/// fails on a distance error above the tolerance, a sign disagreement with
+/// CGAL farther than the tolerance from the surface (closed meshes), and a
+/// missing or extra band voxel.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "svo/validate/level_set_check.h"
+#include "svo/validate/level_set_peer.h"
+
+namespace svo::validate {
+
+struct LevelSetReportOptions {
+    LevelSetCheckOptions check;
+    bool openvdb = true;  ///< also compare with OpenVDB's meshToLevelSet
+    std::string sign;     ///< how the level set was signed (VoxelizeStats::sign), for the report
+    /// Told the step now starting ("CGAL distances and sides", ...), for progress lines.
+    std::function<void(const std::string& step)> onStep;
+};
+
+struct LevelSetReport {
+    LevelSetCheck check;
+    bool compared = false; ///< `openvdb` holds a comparison
+    OpenVdbComparison openvdb;
+    double exteriorBand = 0, interiorBand = 0; ///< voxels
+    std::string sign;
+    double seconds = 0; ///< the check and the comparison
+    bool passed = false;
+    std::string reason; ///< why it failed, one line
+};
+
+/// @param voxels the level set's active voxels (activeLevelSetVoxels)
+/// @throw svo::Error as checkLevelSet and compareWithOpenVdb.
+LevelSetReport validateLevelSet(const TriangleMesh& mesh, const GridSpec& grid, const std::vector<LevelSetVoxel>& voxels,
+                                const LevelSetReportOptions& options = {});
+
+/// The report as JSON text (what `svo validate --sdf --json` holds of it),
+/// so the CLI and Python give the same numbers.
+std::string levelSetReportJson(const LevelSetReport& report);
+
+} // namespace svo::validate
