@@ -3,9 +3,8 @@
 // space": local voxel v covers [v, v + 1] (local coordinates + 1/2).
 //
 // The march walks integer cells, never a float position, so it cannot stall
-// or skip: at each step it descends to the deepest node that holds the
-// current cell, starting from the deepest node of the previous descent that
-// holds it too. An empty child (or an empty voxel of an occupied
+// or skip: at each step it descends from the root to the deepest node that
+// holds the current cell. An empty child (or an empty voxel of an occupied
 // brick) is an empty box; the ray leaves it through the face its exit time
 // names, the cell moves one past that face on that axis, and the other axes
 // take the rounded exit point clamped between the old cell and the box's far
@@ -62,13 +61,6 @@ void main()
 
     ivec3 cachedBrick = ivec3(-1);
     uint brick = 0u;
-    // The nodes of the last descent, by level, valid for `pathCell` down to
-    // level `pathDepth`: the next descent starts at the deepest of them that
-    // also holds the new cell (their common ancestor), not at the root.
-    uint path[kViewMaxLevels];
-    path[0] = 0u;
-    ivec3 pathCell = cell;
-    uint pathDepth = 0u;
     int maxSteps = uDims.x + uDims.y + uDims.z + 4;
     for (int s = 0; s < maxSteps; ++s) {
         // The empty box holding `cell`, or a hit.
@@ -77,25 +69,15 @@ void main()
         ivec3 brickOf = cell >> 3;
         bool inBrick = all(equal(brickOf, cachedBrick));
         if (!inBrick) {
-            // A node of level L spans 2^(3 + brickLevel - L) cells a side: it
-            // holds both cells while their highest differing bit is below that.
-            ivec3 diff = cell ^ pathCell;
-            int high = findMSB(diff.x | diff.y | diff.z); // -1 when equal
-            uint start = min(pathDepth, uint(max(2 + int(uBrickLevel) - high, 0)));
-            uint node = path[start];
-            pathCell = cell;
+            uint node = 0u;
             int emptyLog2 = -1;
-            uint level = start;
-            for (; level < uBrickLevel; ++level) {
-                path[level] = node;
+            for (uint level = 0u; level < uBrickLevel; ++level) {
                 uint shift = 2u + uBrickLevel - level; // log2 of the child's size in cells
                 uvec3 c = (uvec3(cell) >> shift) & 1u;
                 uint child = c.x | (c.y << 1u) | (c.z << 2u);
                 if ((nodes[kNodeWords * node + 1u] & (1u << child)) == 0u) { emptyLog2 = int(shift); break; }
                 node = nodes[kNodeWords * node] + child;
             }
-            path[level] = node;
-            pathDepth = level;
             if (emptyLog2 < 0 && nodes[kNodeWords * node + 1u] == 0u) emptyLog2 = 3; // an empty brick slot
             if (emptyLog2 < 0) {
                 inBrick = true;

@@ -219,9 +219,6 @@ std::unique_ptr<OctreeView::Impl> upload(const Context& context, const Octree& o
     if (octree.levelStart.size() != size_t(octree.brickLevel) + 2 || octree.levelStart.back() != octree.nodes.size() ||
         octree.nodes.empty())
         throw Error("octree view: the octree's level ranges do not match its nodes");
-    if (octree.brickLevel >= gpu::kViewMaxLevels)
-        throw Error(fmt::format("octree view: {} levels; the view descends at most {}", octree.brickLevel + 1,
-                                gpu::kViewMaxLevels));
     checkGl("the GL work before uploading an octree to view");
     auto impl = std::make_unique<OctreeView::Impl>();
     impl->grid = octree.grid;

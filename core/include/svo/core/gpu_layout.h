@@ -129,9 +129,6 @@ SVO_CONST(uint) kSumWords = 8u;
 #define SVO_BIND_VIEW_NODES 0
 #define SVO_BIND_VIEW_BRICKS 1
 #define SVO_BIND_VIEW_ORIGINS 2 /* uvec4 per node: local origin (voxels), unused */
-/* Levels a view's ray may descend through (root to bricks): brick
-   coordinates have SVO_KEY_BRICK_BITS bits, so brickLevel <= 18. */
-SVO_CONST(uint) kViewMaxLevels = uint(SVO_KEY_BRICK_BITS + 1);
 
 /* ---- Brick table (gl/src/brick_table.h) ---------------------------------
    The bricks a distance or sign pass writes to, found by their brick
