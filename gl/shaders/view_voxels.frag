@@ -4,8 +4,8 @@
 //
 // The march walks integer cells, never a float position, so it cannot stall
 // or skip: at each step it descends from the root to the deepest node that
-// holds the current cell. An empty child (or an empty voxel of an occupied
-// brick) is an empty box; the ray leaves it through the face its exit time
+// holds the current cell. An empty child (or the largest empty aligned 4³ or
+// 2³ block of an occupied brick, else one empty voxel) is an empty box; the ray leaves it through the face its exit time
 // names, the cell moves one past that face on that axis, and the other axes
 // take the rounded exit point clamped between the old cell and the box's far
 // side. Every coordinate moves only along the ray and one moves every step,
@@ -101,8 +101,30 @@ void main()
                 gl_FragDepth = clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0);
                 return;
             }
-            size = 1;
-            lo = cell;
+            // An empty voxel: skip the largest empty aligned 4³ or 2³ block
+            // holding it (bricks are mostly empty, so this saves most steps).
+            // In the brick's words, bit x·64 + y·8 + z is word 2x + y/4, bit
+            // 8(y % 4) + z: a y-aligned 4-row of one x is one word.
+            uint base = kBrickWords * brick;
+            uvec3 b4 = v & ~3u;
+            uint mask4 = 0x0F0F0F0Fu << b4.z;
+            uint any4 = 0u;
+            for (uint x = b4.x; x < b4.x + 4u; ++x) any4 |= bricks[base + 2u * x + (b4.y >> 2u)] & mask4;
+            if (any4 == 0u) {
+                size = 4;
+                lo = cell & ~3;
+            } else {
+                uvec3 b2 = v & ~1u;
+                uint mask2 = 0x303u << (((b2.y & 3u) << 3u) | b2.z);
+                uint word = 2u * b2.x + (b2.y >> 2u);
+                if (((bricks[base + word] | bricks[base + word + 2u]) & mask2) == 0u) {
+                    size = 2;
+                    lo = cell & ~1;
+                } else {
+                    size = 1;
+                    lo = cell;
+                }
+            }
         }
         // Leave the box [lo, lo + size).
         float tExit = kNever;

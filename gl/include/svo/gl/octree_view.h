@@ -8,7 +8,8 @@
 ///     fragment shader casts one ray per pixel and marches the octree's node
 ///     and brick buffers (view_voxels.frag): at each step it descends from the
 ///     root to the deepest node holding the current voxel, skips empty nodes
-///     whole and tests brick bits at the bottom. No voxel is expanded into
+///     whole, tests brick bits at the bottom and skips empty 4³ and 2³
+///     blocks of a brick whole. No voxel is expanded into
 ///     geometry and none is read back;
 ///   - node outlines (red): the 12 edges of each occupied node's box, one
 ///     instanced draw per level of the chosen range; a compute pass gives
