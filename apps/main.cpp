@@ -25,6 +25,10 @@ int main(int argc, char** argv)
     svo::app::addGlInfoCommand(app);
     // Ctrl-C and SIGTERM remove temporary files and stop Xvfb, then exit 130 / 143.
     svo::installInterruptCleanup();
+    // Usage errors in one line, like every other error.
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return "svo: error: " + svo::app::printable(e.what()) + " (see --help)\n";
+    });
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

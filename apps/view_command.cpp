@@ -26,7 +26,7 @@ namespace {
 
 struct ViewArgs {
     std::string input, screenshot, size = "1280x960", camera, view = "front", layers = "voxels,outlines", levels,
-                                     gridName, keys, save;
+                                     gridName, keys, save, color = "flat";
     int frames = 0;
     double fov = 40.0, ortho = 0.0;
     int64_t resolution = 0;
@@ -93,7 +93,8 @@ gl::ViewLayers parseLayers(const std::string& text)
         if (name == "voxels") l.voxels = true;
         else if (name == "outlines") l.outlines = true;
         else if (name == "mesh") l.mesh = true;
-        else throw Error(fmt::format("--layers '{}': layers are voxels, outlines and mesh", text));
+        else if (name == "bricks") l.bricks = true;
+        else throw Error(fmt::format("--layers '{}': layers are voxels, outlines, bricks and mesh", text));
     }
     return l;
 }
@@ -135,6 +136,10 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     const auto [width, height] = parseSize(a.size);
     gl::ViewLayers layers = parseLayers(a.layers);
     parseLevels(a.levels, layers);
+    layers.voxelColor = a.color == "normal" ? gl::VoxelColor::Normal
+                        : a.color == "color" ? gl::VoxelColor::Color
+                        : a.color == "triangle" ? gl::VoxelColor::Triangle
+                                                : gl::VoxelColor::Flat;
     bool axisView = false;
     const Vec3d direction = viewDirection(a.view, axisView);
     std::vector<double> cam;
@@ -161,6 +166,13 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     if (lo.mesh) printWarnings(lo.mesh->warnings);
     printWarnings(call.stats.warnings);
     if (layers.mesh && !lo.mesh) fmt::print(stderr, "svo: warning: the input has no mesh to draw (--layers mesh)\n");
+    const VoxelAttributes& at = lo.octree.attributes;
+    if ((a.color == "normal" && at.normals.empty()) || (a.color == "color" && at.colors.empty()) ||
+        (a.color == "triangle" && at.triangles.empty()))
+        throw Error(fmt::format("--color {}: the octree has no {} channel (voxelize a mesh with --attributes {}{})",
+                                a.color, a.color == "color" ? "colour" : a.color,
+                                a.color,
+                                a.color == "color" ? "; colours need vertex colours" : ""));
 
     const double aspect = double(width) / double(height);
     gl::ViewCamera camera = gl::frameBox(gl::gridWorldBox(lo.octree.grid), direction, axisView, aspect);
@@ -245,7 +257,10 @@ void addViewCommand(CLI::App& app)
         ->capture_default_str();
     cmd->add_option("--fov", args->fov, "Vertical field of view in degrees (perspective)")->capture_default_str();
     cmd->add_option("--ortho", args->ortho, "Orthographic, spanning this many world units vertically");
-    cmd->add_option("--layers", args->layers, "Comma-separated: voxels, outlines, mesh")->capture_default_str();
+    cmd->add_option("--layers", args->layers, "Comma-separated: voxels, outlines, bricks, mesh")->capture_default_str();
+    cmd->add_option("--color", args->color, "Voxel colours: flat, or the attribute channel normal, color or triangle")
+        ->check(CLI::IsMember({"flat", "normal", "color", "triangle"}))
+        ->capture_default_str();
     cmd->add_option("--levels", args->levels, "Outline levels a:b (0 = root; a, a: or :b)");
     cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
     cmd->add_option("--frames", args->frames, "Window: close after this many frames (0: when closed)");
@@ -256,6 +271,8 @@ void addViewCommand(CLI::App& app)
                   {".svo", ".vdb", ".nvdb"});
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
+    addModeOption(*cmd, args->backend);
+    addAttributeOption(*cmd, args->backend);
     cmd->callback([args, cmd] { runView(*args, *cmd); });
 }
 

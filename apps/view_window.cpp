@@ -109,6 +109,11 @@ struct ViewerState {
     void setOctree(Octree next)
     {
         octree = std::move(next);
+        const VoxelAttributes& a = octree.attributes;
+        const gl::VoxelColor c = in.layers.voxelColor;
+        if ((c == gl::VoxelColor::Normal && a.normals.empty()) || (c == gl::VoxelColor::Color && a.colors.empty()) ||
+            (c == gl::VoxelColor::Triangle && a.triangles.empty()))
+            in.layers.voxelColor = gl::VoxelColor::Flat;
         perLevel.clear();
         for (uint64_t n : octreeStats(octree).occupiedPerLevel) perLevel += (perLevel.empty() ? "" : " ") + thousands(n);
     }
@@ -164,6 +169,17 @@ struct ViewerState {
         }
     }
 
+    /// The next voxel colouring the octree has a channel for.
+    void nextColor()
+    {
+        const VoxelAttributes& a = octree.attributes;
+        const bool have[4] = {true, !a.normals.empty(), !a.colors.empty(), !a.triangles.empty()};
+        int c = int(in.layers.voxelColor);
+        do c = (c + 1) % 4;
+        while (!have[c]);
+        in.layers.voxelColor = gl::VoxelColor(c);
+    }
+
     /// One key, from the keyboard or the --keys script.
     void press(unsigned key)
     {
@@ -172,6 +188,8 @@ struct ViewerState {
         case 'v': l.voxels = !l.voxels; break;
         case 'o': l.outlines = !l.outlines; break;
         case 'm': l.mesh = !l.mesh; break;
+        case 'k': l.bricks = !l.bricks; break;
+        case 'a': nextColor(); break;
         case '+': case '=': revoxelize(resolution * 2); break;
         case '-': revoxelize(std::max<int64_t>(resolution / 2, 1)); break;
         case 'b': backend = (backend + 1) % int(std::size(kBackends)); revoxelize(resolution); break;
@@ -201,7 +219,17 @@ struct ViewerState {
         ImGui::SameLine();
         ImGui::Checkbox("outlines (O)", &l.outlines);
         ImGui::SameLine();
-        if (in.loaded.mesh) ImGui::Checkbox("mesh (M)", &l.mesh);
+        ImGui::Checkbox("bricks (K)", &l.bricks);
+        if (in.loaded.mesh) {
+            ImGui::SameLine();
+            ImGui::Checkbox("mesh (M)", &l.mesh);
+        }
+        static constexpr const char* kColors[] = {"flat", "normal", "colour", "triangle id"};
+        ImGui::Text("voxel colour (A): %s", kColors[int(l.voxelColor)]);
+        if (octree.attributes.empty()) {
+            ImGui::SameLine();
+            ImGui::TextDisabled("(no attribute channels; --attributes)");
+        }
         int levels[2] = {int(std::min<uint32_t>(l.firstLevel, octree.brickLevel)),
                          int(std::min<uint32_t>(l.lastLevel, octree.brickLevel))};
         if (ImGui::SliderInt2("outline levels", levels, 0, int(octree.brickLevel))) {

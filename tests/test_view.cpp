@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <map>
 #include <optional>
 #include <set>
 #include <vector>
@@ -385,6 +386,77 @@ TEST(View, AdoptedContextDrawsTheSameAndIsMadeCurrentAgain)
     ASSERT_EQ(times.size(), 3u);
     for (const auto& t : times) EXPECT_TRUE(t.gpuMs > 0 && t.wallMs > 0);
     EXPECT_THROW(view.timeFrames(camera, 96, 96, {}, 0), svo::Error);
+}
+
+/// Voxels coloured by an attribute channel show, at each voxel's projected
+/// centre in an axis view (lit 1.0 there), exactly that voxel's value:
+/// colours as they are, normals as 0.5 + 0.5 n. The values go in voxel order
+/// (bricks by index, bits in order), which the shader finds by rank.
+TEST(View, AttributeColoursAreEachVoxelsOwnValue)
+{
+    const GridSpec g = unitGrid(24);
+    // One voxel per (x, y) column, spread over several bricks and within them.
+    std::vector<Voxel> voxels;
+    for (uint32_t x = 1; x < 23; x += 3)
+        for (uint32_t y = 2; y < 23; y += 4) voxels.push_back({x, y, (x * 7 + y * 3) % 24});
+    svo::Octree octree = octreeOf(g, voxels);
+    std::vector<std::array<uint32_t, 3>> origin(octree.bricks.size());
+    for (const svo::BrickRef& b : svo::occupiedBricks(octree)) origin[b.index] = b.origin;
+    auto value = [](const Voxel& v) { return svo::Vec3f{v[0] / 24.0f, v[1] / 24.0f, 1.0f - v[2] / 24.0f}; };
+    std::map<Voxel, svo::Vec3f> expected;
+    for (size_t i = 0; i < octree.bricks.size(); ++i)
+        for (uint32_t bit = 0; bit < 512; ++bit)
+            if (octree.bricks[i].words[bit >> 6] >> (bit & 63) & 1) {
+                const Voxel v{origin[i][0] + (bit >> 6), origin[i][1] + (bit >> 3 & 7), origin[i][2] + (bit & 7)};
+                octree.attributes.colors.push_back(value(v));
+                octree.attributes.normals.push_back({2 * value(v).x - 1, 2 * value(v).y - 1, 2 * value(v).z - 1});
+                expected[v] = value(v);
+            }
+    ASSERT_EQ(expected.size(), voxels.size());
+
+    svo::gl::OctreeView view(context(), octree);
+    const AxisView axis(2, Vec3d{12, 12, 12}, 0.25, 104, 104); // 4 pixels per voxel, looking down -z
+    for (const svo::gl::VoxelColor mode : {svo::gl::VoxelColor::Color, svo::gl::VoxelColor::Normal}) {
+        ViewLayers l;
+        l.outlines = false;
+        l.voxelColor = mode;
+        const Image image = view.render(axis.camera, axis.width, axis.height, l);
+        for (const auto& [v, c] : expected) {
+            const auto q = axis.project(Vec3d{double(v[0]), double(v[1]), double(v[2])});
+            const uint8_t* p = image.pixel(int(q[0]), int(q[1]));
+            for (int i = 0; i < 3; ++i)
+                EXPECT_NEAR(p[i], 255.0 * c[i], 1.01) << "voxel " << v[0] << "," << v[1] << "," << v[2];
+        }
+    }
+    ViewLayers triangles;
+    triangles.voxelColor = svo::gl::VoxelColor::Triangle;
+    EXPECT_THROW(view.render(axis.camera, 16, 16, triangles), svo::Error); // no triangle channel
+
+    // The bricks layer: brick boxes in their own colour, with or without the outlines.
+    ViewLayers bricks;
+    bricks.voxels = bricks.outlines = false;
+    bricks.bricks = true;
+    const Image b = view.render(axis.camera, axis.width, axis.height, bricks);
+    // Here the bricks fill the grid, so their boxes project to the lines
+    // x, y = 8k - 1/2 (world) for k = 0..3: 4 + 4 lines 96 pixels long.
+    std::vector<double> lines;
+    for (int k = 0; k <= 3; ++k) lines.push_back(8.0 * k - 0.5);
+    size_t yellow = 0, offLine = 0;
+    for (int y = 0; y < b.height; ++y)
+        for (int x = 0; x < b.width; ++x) {
+            const uint8_t* p = b.pixel(x, y);
+            if (!(p[0] > 200 && p[1] > 170 && p[2] < 60)) continue;
+            ++yellow;
+            bool near = false;
+            for (double w : lines) {
+                const auto q = axis.project(Vec3d{w, w, 0});
+                near |= std::abs(x + 0.5 - q[0]) < 1.5 || std::abs(y + 0.5 - q[1]) < 1.5;
+            }
+            offLine += !near;
+        }
+    EXPECT_EQ(octree.bricks.size(), 27u);
+    EXPECT_GT(yellow, 700u);
+    EXPECT_EQ(offLine, 0u);
 }
 
 TEST(View, BadCamerasAndSizesThrow)

@@ -14,6 +14,8 @@
 
 layout(std430, binding = SVO_BIND_VIEW_NODES) readonly restrict buffer Nodes { uint nodes[]; };
 layout(std430, binding = SVO_BIND_VIEW_BRICKS) readonly restrict buffer Bricks { uint bricks[]; };
+layout(std430, binding = SVO_BIND_VIEW_VOXEL_START) readonly restrict buffer VoxelStart { uint voxelStart[]; };
+layout(std430, binding = SVO_BIND_VIEW_ATTRIBUTE) readonly restrict buffer Attribute { uint channel[]; };
 
 uniform mat4 uInverseViewProjection; // clip -> cell space
 uniform mat4 uViewProjection;        // cell space -> clip
@@ -21,6 +23,25 @@ uniform vec2 uViewport;              // pixels
 uniform uint uBrickLevel;
 uniform ivec3 uDims;                 // occupied cells lie in [0, uDims)
 uniform vec3 uColor;
+uniform int uColorMode;              // SVO_VIEW_COLOR_*: flat uColor or a voxel attribute
+
+/// The voxel's colour: flat, or its attribute (voxel order: the brick's first
+/// voxel plus the voxel's rank among the brick's set bits).
+vec3 voxelColor(uint brick, uint bit)
+{
+    if (uColorMode == SVO_VIEW_COLOR_FLAT) return uColor;
+    uint base = kBrickWords * brick, word = bit >> 5u;
+    uint rank = uint(bitCount(bricks[base + word] & ((1u << (bit & 31u)) - 1u)));
+    for (uint w = 0u; w < word; ++w) rank += uint(bitCount(bricks[base + w]));
+    uint v = voxelStart[brick] + rank;
+    if (uColorMode == SVO_VIEW_COLOR_TRIANGLE) { // distinct colours for neighbouring ids
+        uint h = channel[v] * 2654435761u;
+        return vec3(float(h >> 24u), float((h >> 16u) & 255u), float((h >> 8u) & 255u)) / 255.0 * 0.8 + 0.2;
+    }
+    vec3 c = vec3(uintBitsToFloat(channel[3u * v]), uintBitsToFloat(channel[3u * v + 1u]),
+                  uintBitsToFloat(channel[3u * v + 2u]));
+    return uColorMode == SVO_VIEW_COLOR_NORMAL ? 0.5 + 0.5 * c : c;
+}
 
 out vec4 fragColor;
 
@@ -96,7 +117,7 @@ void main()
                 n[axis] = -float(step[axis]);
                 // Lit by the face normal: a head light plus a little ambient.
                 float light = 0.45 + 0.55 * abs(dot(n, normalize(d)));
-                fragColor = vec4(uColor * light, 1.0);
+                fragColor = vec4(voxelColor(brick, bit) * light, 1.0);
                 vec4 clip = uViewProjection * vec4(o + d * t, 1.0);
                 gl_FragDepth = clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0);
                 return;

@@ -172,6 +172,7 @@ public:
     /// misspelt, or unused by the shaders and so removed by the linker.
     void use() const { glUseProgram(h_.get()); }
     void set(const char* name, float v) const { glProgramUniform1f(h_.get(), location(name), v); }
+    void set(const char* name, int v) const { glProgramUniform1i(h_.get(), location(name), v); }
     void set(const char* name, float x, float y) const { glProgramUniform2f(h_.get(), location(name), x, y); }
     void set(const char* name, int x, int y, int z) const { glProgramUniform3i(h_.get(), location(name), x, y, z); }
     void set(const char* name, uint32_t v) const { glProgramUniform1ui(h_.get(), location(name), v); }

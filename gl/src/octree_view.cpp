@@ -206,6 +206,9 @@ struct OctreeView::Impl {
     uint32_t brickLevel = 0;
     std::vector<uint32_t> levelStart;
     Buffer nodes, bricks, origins;
+    /// Attribute channels, voxel order, when the octree has them; voxelStart
+    /// gives each brick's first voxel.
+    std::optional<Buffer> voxelStart, normals, colors, triangles;
     std::optional<Buffer> meshVertices, meshIndices;
     std::optional<VertexArray> meshArray;
     uint64_t meshIndexCount = 0;
@@ -244,6 +247,19 @@ std::unique_ptr<OctreeView::Impl> upload(const Context& context, const Octree& o
             origins.dispatch((n + kGroup - 1) / kGroup);
             glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         }
+    }
+
+    if (!octree.attributes.empty()) {
+        const std::vector<uint64_t> offsets = brickVoxelOffsets(octree);
+        if (offsets.back() >= (uint64_t(1) << 32))
+            throw Error("octree view: attribute colours need fewer than 2^32 voxels");
+        const std::vector<uint32_t> start(offsets.begin(), offsets.end());
+        impl->voxelStart.emplace("brick voxel starts (view)", start.size() * 4, start.data(), 0);
+        const VoxelAttributes& a = octree.attributes;
+        if (!a.normals.empty()) impl->normals.emplace("voxel normals (view)", a.normals.size() * 12, a.normals.data(), 0);
+        if (!a.colors.empty()) impl->colors.emplace("voxel colours (view)", a.colors.size() * 12, a.colors.data(), 0);
+        if (!a.triangles.empty())
+            impl->triangles.emplace("voxel triangles (view)", a.triangles.size() * 4, a.triangles.data(), 0);
     }
 
     if (mesh && !mesh->triangles.empty()) {
@@ -319,7 +335,21 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
     v.origins.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ORIGINS);
 
     if (layers.voxels) {
+        const std::optional<Buffer>* channel = nullptr;
+        int mode = SVO_VIEW_COLOR_FLAT;
+        switch (layers.voxelColor) {
+        case VoxelColor::Flat: break;
+        case VoxelColor::Normal: channel = &v.normals, mode = SVO_VIEW_COLOR_NORMAL; break;
+        case VoxelColor::Color: channel = &v.colors, mode = SVO_VIEW_COLOR_RGB; break;
+        case VoxelColor::Triangle: channel = &v.triangles, mode = SVO_VIEW_COLOR_TRIANGLE; break;
+        }
+        if (channel) {
+            if (!*channel) throw Error("octree view: the octree has no such attribute channel to colour voxels by");
+            (*channel)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ATTRIBUTE);
+            v.voxelStart->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_VOXEL_START);
+        }
         const Program& p = context.program({"view_fullscreen.vert", "view_voxels.frag"});
+        p.set("uColorMode", mode);
         p.setMatrix("uInverseViewProjection", inverseViewProjection.data());
         p.setMatrix("uViewProjection", viewProjection.data());
         p.set("uViewport", float(width), float(height));
@@ -345,26 +375,37 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         glDrawElements(GL_TRIANGLES, GLsizei(v.meshIndexCount), GL_UNSIGNED_INT, nullptr);
         checkGl("drawing the mesh");
     }
-    const uint32_t last = std::min(layers.lastLevel, v.brickLevel);
-    if (layers.outlines && layers.firstLevel <= last) {
+    auto finish = [] {
+        glBindVertexArray(0);
+        glUseProgram(0);
+        glDisable(GL_DEPTH_TEST);
+    };
+    // Node boxes of levels [from, to] in one colour, one instanced draw per level.
+    auto outlines = [&](uint32_t from, uint32_t to, const float* c) {
         const Program& p = context.program({"view_outlines.vert", "view_color.frag"});
         p.setMatrix("uViewProjection", viewProjection.data());
         p.set("uDepthBias", 2e-4f);
-        const auto& c = ViewColors::outline;
         p.set("uColor", c[0], c[1], c[2]);
         p.use();
         v.empty.bind();
-        for (uint32_t level = layers.firstLevel; level <= last; ++level) {
+        for (uint32_t level = from; level <= to; ++level) {
             const uint32_t first = v.levelStart[level], count = v.levelStart[level + 1] - first;
             p.set("uFirstNode", first);
             p.set("uNodeSize", float(8u << (v.brickLevel - level)));
             glDrawArraysInstanced(GL_LINES, 0, 24, GLsizei(count));
         }
         checkGl("drawing the node outlines");
+    };
+    uint32_t last = std::min(layers.lastLevel, v.brickLevel);
+    if (layers.bricks) {
+        outlines(v.brickLevel, v.brickLevel, ViewColors::brick);
+        if (last == v.brickLevel) { // the brick boxes are drawn already, in their colour
+            if (last == 0) return finish();
+            --last;
+        }
     }
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glDisable(GL_DEPTH_TEST);
+    if (layers.outlines && layers.firstLevel <= last) outlines(layers.firstLevel, last, ViewColors::outline);
+    finish();
 }
 
 } // namespace

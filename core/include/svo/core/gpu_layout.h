@@ -129,6 +129,13 @@ SVO_CONST(uint) kSumWords = 8u;
 #define SVO_BIND_VIEW_NODES 0
 #define SVO_BIND_VIEW_BRICKS 1
 #define SVO_BIND_VIEW_ORIGINS 2 /* uvec4 per node: local origin (voxels), unused */
+#define SVO_BIND_VIEW_VOXEL_START 3 /* uint per brick: its first voxel in voxel order */
+#define SVO_BIND_VIEW_ATTRIBUTE 4   /* the coloured channel, voxel order: 3 floats (normal, colour) or 1 uint (triangle) */
+/* ViewLayers::voxelColor as the shader reads it. */
+#define SVO_VIEW_COLOR_FLAT 0
+#define SVO_VIEW_COLOR_NORMAL 1
+#define SVO_VIEW_COLOR_RGB 2
+#define SVO_VIEW_COLOR_TRIANGLE 3
 
 /* ---- Brick table (gl/src/brick_table.h) ---------------------------------
    The bricks a distance or sign pass writes to, found by their brick
@@ -221,7 +228,8 @@ static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRIC
 static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRICKS, SVO_BIND_ENTRIES,
                              SVO_BIND_ENTRY_TRIANGLES, SVO_BIND_BRICK_VOXEL_OFFSETS, SVO_BIND_TRIANGLE_VALUES,
                              SVO_BIND_ATTRIBUTE_SUMS}));
-static_assert(distinctSlots({SVO_BIND_VIEW_NODES, SVO_BIND_VIEW_BRICKS, SVO_BIND_VIEW_ORIGINS}));
+static_assert(distinctSlots({SVO_BIND_VIEW_NODES, SVO_BIND_VIEW_BRICKS, SVO_BIND_VIEW_ORIGINS,
+                             SVO_BIND_VIEW_VOXEL_START, SVO_BIND_VIEW_ATTRIBUTE}));
 static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_FIELD_ITEMS,
                              SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
                              SVO_BIND_FIELD_FLIPS, SVO_BIND_FIELD_COUNTERS}));

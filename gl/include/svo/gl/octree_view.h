@@ -49,11 +49,18 @@ struct ViewCamera {
     double height = 1.0;       ///< orthographic: world units the image spans vertically
 };
 
+/// How voxels are coloured: flat green, or by an attribute channel of the
+/// octree (VoxelAttributes): the normal as 0.5 + 0.5 n, the colour, or a
+/// colour hashed from the triangle id.
+enum class VoxelColor { Flat, Normal, Color, Triangle };
+
 /// What to draw.
 struct ViewLayers {
     bool voxels = true;
     bool outlines = true;
+    bool bricks = false; ///< the brick-level nodes' boxes, in their own colour, whatever the level range
     bool mesh = false; ///< needs a mesh (ignored without one)
+    VoxelColor voxelColor = VoxelColor::Flat; ///< a channel the octree lacks is an error
     uint32_t firstLevel = 0;                                    ///< outline levels, 0 = root
     uint32_t lastLevel = std::numeric_limits<uint32_t>::max(); ///< clamped to the brick level
 };
@@ -69,6 +76,7 @@ struct Image {
 struct ViewColors {
     static constexpr float voxel[3] = {0.15f, 0.85f, 0.20f};
     static constexpr float outline[3] = {0.95f, 0.10f, 0.10f};
+    static constexpr float brick[3] = {0.95f, 0.80f, 0.10f};
     static constexpr float mesh[3] = {0.70f, 0.70f, 0.72f};
     static constexpr float background[3] = {0.08f, 0.08f, 0.10f};
 };
@@ -104,7 +112,7 @@ public:
     /// reads it back. The same inputs give the same bytes. Throws svo::Error
     /// for a size outside [1, the driver's largest renderbuffer], a degenerate
     /// camera (eye at target, up along the view, height or fov not positive),
-    /// or a GL error.
+    /// a voxel colour whose channel the octree lacks, or a GL error.
     Image render(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
 
     /// Draws one frame into the framebuffer bound now (a window's, when the
