@@ -170,9 +170,15 @@ struct ViewerState {
         }
     }
 
-    /// The next voxel colouring the octree has a channel for.
+    /// The next voxel colouring the octree has a channel for. A mesh input
+    /// voxelized without channels is voxelized again with every channel it
+    /// can give (normals, triangle ids, colours when it has vertex colours).
     void nextColor()
     {
+        if (octree.attributes.empty() && canRevoxelize()) {
+            in.backend.attributes = kNormals | kTriangles | (in.loaded.mesh->colors.empty() ? 0u : uint32_t(kColors));
+            revoxelize(resolution);
+        }
         const VoxelAttributes& a = octree.attributes;
         const bool have[4] = {true, !a.normals.empty(), !a.colors.empty(), !a.triangles.empty()};
         int c = int(in.layers.voxelColor);

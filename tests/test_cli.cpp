@@ -641,7 +641,7 @@ TEST_F(Cli, ViewWindowRevoxelizesLiveToTheVoxelsOfVoxelize)
         GTEST_SKIP() << "xvfb-run and xauth are not installed";
     const std::string xvfb = "xvfb-run -a -s '-screen 0 640x480x24'";
     const std::string mesh = write("ico.off", "");
-    ASSERT_EQ(runSvo("scene icosphere -o " + mesh).code, 0);
+    ASSERT_EQ(runSvo("scene icosphere --level 5 -o " + mesh).code, 0);
     // '+' doubles 16 to 32, 'v' and 'o' toggle layers, 'p' writes a screenshot, 'q' closes.
     const auto r = runSvo("view " + mesh + " -r 16 --size 160x120 --frames 50 --keys +vop-+q --save " + path("live.svo"),
                           "cd " + path("") + " &&  " + xvfb);
@@ -671,6 +671,16 @@ TEST_F(Cli, ViewWindowRevoxelizesLiveToTheVoxelsOfVoxelize)
     ASSERT_EQ(runSvo("voxelize " + mesh + " -r 16 -o " + path("ref16.svo")).code, 0);
     EXPECT_TRUE(sorted(octreeKeys(readOctreeFile(path("kept.svo")))) ==
                 sorted(octreeKeys(readOctreeFile(path("ref16.svo")))));
+
+    // 'a' on an octree without channels voxelizes again with them, the same voxels.
+    const auto coloured = runSvo("view " + mesh + " -r 16 --size 160x120 --frames 3 --keys a --save " +
+                                     path("coloured.svo"),
+                                 xvfb);
+    ASSERT_EQ(coloured.code, 0) << coloured.out;
+    const svo::Octree withNormals = readOctreeFile(path("coloured.svo"));
+    EXPECT_EQ(withNormals.attributes.normals.size(), withNormals.voxelCount());
+    EXPECT_EQ(withNormals.attributes.triangles.size(), withNormals.voxelCount());
+    EXPECT_TRUE(sorted(octreeKeys(withNormals)) == sorted(octreeKeys(readOctreeFile(path("ref16.svo")))));
 
     for (const char* args : {"--frames 3 --screenshot x.png", "--keys + --screenshot x.png", "--frames -1"}) {
         const auto bad = runSvo(std::string("view -r 8 ") + args, xvfb);
