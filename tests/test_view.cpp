@@ -13,6 +13,9 @@
 #include <set>
 #include <vector>
 
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"
 #include "svo/core/grid.h"
@@ -241,6 +244,128 @@ TEST(View, GpuVoxelizedBoxCoversItsProjectionInEachAxisView)
     for (uint64_t k : svo::octreeKeys(octree)) voxels.push_back(svo::unpackVoxelKey(k));
     ASSERT_GT(voxels.size(), 100u);
     expectAxisViewsMatch(g, voxels, octree);
+}
+
+/// A reference drawing written here with plain GL and no svo code: every
+/// voxel's cube as an instanced, rasterized box, seen by a perspective camera
+/// with the image frame the header promises. Returns the covered pixels,
+/// rows from the top.
+Mask cubeCoverage(const GridSpec& g, const std::vector<Voxel>& voxels, const ViewCamera& cam, int w, int h)
+{
+    const svo::gl::Context::Scope scope(context());
+    auto shader = [](GLenum type, const char* src) {
+        const GLuint s = glCreateShader(type);
+        glShaderSource(s, 1, &src, nullptr);
+        glCompileShader(s);
+        GLint ok = 0;
+        glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+        EXPECT_TRUE(ok);
+        return s;
+    };
+    // 36 vertices of a unit cube from gl_VertexID; the instance's cube from the buffer.
+    const GLuint vs = shader(GL_VERTEX_SHADER, R"(#version 450 core
+layout(std430, binding = 0) readonly buffer Cubes { vec4 cubes[]; }; // lo.xyz, size
+uniform mat4 uViewProjection;
+const int kFaces[36] = int[](0,2,3, 0,3,1, 4,5,7, 4,7,6, 0,1,5, 0,5,4, 2,6,7, 2,7,3, 0,4,6, 0,6,2, 1,3,7, 1,7,5);
+void main() {
+    int c = kFaces[gl_VertexID];
+    vec4 cube = cubes[gl_InstanceID];
+    vec3 p = cube.xyz + cube.w * vec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+    gl_Position = uViewProjection * vec4(p, 1.0);
+})");
+    const GLuint fs = shader(GL_FRAGMENT_SHADER, R"(#version 450 core
+out vec4 color; void main() { color = vec4(1.0); })");
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+
+    // Positions relative to the target, so floats keep their precision.
+    std::vector<float> cubes;
+    for (const Voxel& v : voxels) {
+        const auto c = voxelCube(g, v);
+        const Vec3d lo = c[0] - cam.target;
+        cubes.insert(cubes.end(), {float(lo.x), float(lo.y), float(lo.z), float(g.voxelSize)});
+    }
+    const Vec3d f0 = cam.target - cam.eye;
+    const Vec3d f = (1.0 / std::sqrt(dot(f0, f0))) * f0;
+    Vec3d r = cross(f, cam.up);
+    r = (1.0 / std::sqrt(dot(r, r))) * r;
+    const Vec3d u = cross(r, f), e = cam.eye - cam.target;
+    const double dist = std::sqrt(dot(f0, f0)), n = 0.01 * dist, fa = 10 * dist;
+    const double t = 1.0 / std::tan(cam.fovYDegrees * M_PI / 360.0), aspect = double(w) / h;
+    const double view[16] = {r.x, u.x, -f.x, 0, r.y, u.y, -f.y, 0, r.z, u.z, -f.z, 0,
+                             -dot(r, e), -dot(u, e), dot(f, e), 1};
+    const double proj[16] = {t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (fa + n) / (n - fa), -1, 0, 0, 2 * fa * n / (n - fa), 0};
+    float vp[16];
+    for (int c = 0; c < 4; ++c)
+        for (int row = 0; row < 4; ++row) {
+            double sum = 0;
+            for (int k = 0; k < 4; ++k) sum += proj[k * 4 + row] * view[c * 4 + k];
+            vp[c * 4 + row] = float(sum);
+        }
+
+    GLuint buffer = 0, vao = 0, fbo = 0, rb = 0;
+    glCreateBuffers(1, &buffer);
+    glNamedBufferStorage(buffer, GLsizeiptr(cubes.size() * 4), cubes.data(), 0);
+    glCreateVertexArrays(1, &vao);
+    glCreateRenderbuffers(1, &rb);
+    glNamedRenderbufferStorage(rb, GL_RGBA8, w, h);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferRenderbuffer(fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, w, h);
+    glClearColor(0, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glUseProgram(program);
+    glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "uViewProjection"), 1, GL_FALSE, vp);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer);
+    glBindVertexArray(vao);
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(voxels.size()));
+    std::vector<uint8_t> rgba(size_t(w) * size_t(h) * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &rb);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteBuffers(1, &buffer);
+    glDeleteProgram(program);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    Mask m(size_t(w) * size_t(h), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) m[size_t(y) * size_t(w) + size_t(x)] = rgba[4 * (size_t(h - 1 - y) * size_t(w) + size_t(x))] > 127;
+    return m;
+}
+
+/// In perspective, from oblique directions, the ray march covers the pixels
+/// that the voxels drawn as instanced cubes cover (up to a one-pixel border).
+TEST(View, RayMarchCoversWhatInstancedCubesCoverInPerspective)
+{
+    const svo::TriangleMesh mesh = svo::cornellBox();
+    const GridSpec g = svo::makeGrid(mesh, svo::GridRequest{40, 0});
+    svo::Voxelizer voxelizer;
+    const svo::Octree octree = voxelizer.voxelize(mesh, g);
+    std::vector<Voxel> voxels;
+    for (uint64_t k : svo::octreeKeys(octree)) voxels.push_back(svo::unpackVoxelKey(k));
+    ASSERT_GT(voxels.size(), 1000u);
+    svo::gl::OctreeView view(context(), octree);
+    ViewLayers layers;
+    layers.outlines = false;
+    for (const Vec3d dir : {Vec3d{-0.4, -0.5, -1.0}, Vec3d{0.7, 0.2, -0.3}, Vec3d{0.1, 1.0, 0.35}}) {
+        ViewCamera cam = svo::gl::frameBox(svo::gl::gridWorldBox(g), dir, false, 4.0 / 3.0);
+        cam.eye = cam.eye + Vec3d{0.013, -0.007, 0.011}; // off the lattice's symmetries
+        const Image image = view.render(cam, 160, 120, layers);
+        const Coverage c = compare(image, cubeCoverage(g, voxels, cam, 160, 120));
+        SCOPED_TRACE("direction " + std::to_string(dir.x) + "," + std::to_string(dir.y) + "," + std::to_string(dir.z));
+        EXPECT_GT(c.interior, 1000u);
+        EXPECT_EQ(c.missed, 0u) << c.expected << " pixels covered by cubes, " << c.green << " green";
+        EXPECT_EQ(c.extra, 0u) << c.expected << " pixels covered by cubes, " << c.green << " green";
+    }
 }
 
 /// Distance from a point to the outline of a rectangle {x0, y0, x1, y1}.
