@@ -99,18 +99,6 @@ gl::ViewLayers parseLayers(const std::string& text)
     return l;
 }
 
-/// Where the camera looks from, for --view: front (the Cornell box's open side), or an axis.
-Vec3d viewDirection(const std::string& view, bool& axis)
-{
-    axis = view != "front";
-    if (view == "front") return {-0.35, -0.3, -1.0};
-    const std::pair<const char*, Vec3d> axes[] = {{"+x", {-1, 0, 0}}, {"-x", {1, 0, 0}}, {"+y", {0, -1, 0}},
-                                                  {"-y", {0, 1, 0}},  {"+z", {0, 0, -1}}, {"-z", {0, 0, 1}}};
-    for (const auto& [name, dir] : axes)
-        if (view == name) return dir;
-    throw Error(fmt::format("--view '{}': expected front, +x, -x, +y, -y, +z or -z", view));
-}
-
 bool haveDisplay()
 {
     for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"})
@@ -140,8 +128,11 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
                         : a.color == "color" ? gl::VoxelColor::Color
                         : a.color == "triangle" ? gl::VoxelColor::Triangle
                                                 : gl::VoxelColor::Flat;
-    bool axisView = false;
-    const Vec3d direction = viewDirection(a.view, axisView);
+    try { // the view's name, checked before any work
+        gl::namedView({Vec3d{0, 0, 0}, Vec3d{1, 1, 1}}, a.view, 1.0);
+    } catch (const Error& e) {
+        throw Error(std::string("--") + e.what());
+    }
     std::vector<double> cam;
     if (!a.camera.empty()) {
         for (const std::string& part : split(a.camera, ',')) cam.push_back(number(part, "--camera"));
@@ -175,7 +166,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
                                 a.color == "color" ? "; colours need vertex colours" : ""));
 
     const double aspect = double(width) / double(height);
-    gl::ViewCamera camera = gl::frameBox(gl::gridWorldBox(lo.octree.grid), direction, axisView, aspect);
+    gl::ViewCamera camera = gl::namedView(gl::gridWorldBox(lo.octree.grid), a.view, aspect);
     if (!cam.empty()) {
         camera.eye = {cam[0], cam[1], cam[2]};
         camera.target = {cam[3], cam[4], cam[5]};

@@ -201,6 +201,16 @@ ViewCamera frameBox(const std::array<Vec3d, 2>& box, const Vec3d& direction, boo
     return c;
 }
 
+ViewCamera namedView(const std::array<Vec3d, 2>& box, const std::string& name, double aspect)
+{
+    if (name == "front") return frameBox(box, {-0.35, -0.3, -1.0}, false, aspect);
+    const std::pair<const char*, Vec3d> axes[] = {{"+x", {-1, 0, 0}}, {"-x", {1, 0, 0}}, {"+y", {0, -1, 0}},
+                                                  {"-y", {0, 1, 0}},  {"+z", {0, 0, -1}}, {"-z", {0, 0, 1}}};
+    for (const auto& [axis, dir] : axes)
+        if (name == axis) return frameBox(box, dir, true, aspect);
+    throw Error(fmt::format("view '{}': expected front, +x, -x, +y, -y, +z or -z", name));
+}
+
 struct OctreeView::Impl {
     GridSpec grid;
     uint32_t brickLevel = 0;

@@ -13,6 +13,8 @@
 #include <optional>
 #include <string>
 
+#include "svo/gl/context.h"
+#include "svo/gl/octree_view.h"
 #include "svo/svo.h"
 #ifdef SVO_WITH_VALIDATE
 #include "svo/validate/level_set_report.h"
@@ -407,6 +409,64 @@ struct PyOctree {
     openvdb::math::Transform::Ptr xform;
 };
 
+/// The headless context pictures are drawn with, made on first use and kept
+/// for the process (EGL is not torn down while the interpreter exits).
+const svo::gl::Context& pictureContext()
+{
+    static const auto* context = new svo::gl::Context();
+    return *context;
+}
+
+/// Octree.render: one frame of the octree view, (H, W, 4) uint8, rows from the top.
+py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, const std::string& view,
+                                  const std::vector<std::string>& layers, std::optional<std::pair<int, int>> levels,
+                                  const std::string& color)
+{
+    svo::gl::ViewLayers l;
+    l.voxels = l.outlines = false;
+    for (const std::string& name : layers) {
+        if (name == "voxels") l.voxels = true;
+        else if (name == "outlines") l.outlines = true;
+        else if (name == "bricks") l.bricks = true;
+        else badValue("layers: expected 'voxels', 'outlines' or 'bricks', got '" + name + "'");
+    }
+    if (levels) {
+        if (levels->first < 0 || levels->second < levels->first) badValue("levels: expected (first, last) with 0 <= first <= last");
+        l.firstLevel = uint32_t(levels->first);
+        l.lastLevel = uint32_t(levels->second);
+    }
+    const std::pair<const char*, svo::gl::VoxelColor> colors[] = {{"flat", svo::gl::VoxelColor::Flat},
+                                                                  {"normal", svo::gl::VoxelColor::Normal},
+                                                                  {"color", svo::gl::VoxelColor::Color},
+                                                                  {"triangle", svo::gl::VoxelColor::Triangle}};
+    bool known = false;
+    for (const auto& [name, c] : colors)
+        if (color == name) l.voxelColor = c, known = true;
+    if (!known) badValue("color: expected 'flat', 'normal', 'color' or 'triangle', got '" + color + "'");
+    const auto& a = p.octree.attributes;
+    if ((color == "normal" && a.normals.empty()) || (color == "color" && a.colors.empty()) ||
+        (color == "triangle" && a.triangles.empty()))
+        badValue("color: the octree has no '" + color + "' channel (make it with attributes=['" + color + "'])");
+    const auto [width, height] = size;
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+        badValue("size: expected (width, height), 1 to 16384 pixels each");
+    svo::gl::ViewCamera camera;
+    try {
+        camera = svo::gl::namedView(svo::gl::gridWorldBox(p.octree.grid), view, double(width) / double(height));
+    } catch (const svo::Error& e) {
+        badValue(e.what());
+    }
+    svo::gl::Image image;
+    {
+        py::gil_scoped_release release;
+        const svo::gl::OctreeView v(pictureContext(), p.octree);
+        image = v.render(camera, width, height, l);
+    }
+    py::array_t<uint8_t> out({py::ssize_t(height), py::ssize_t(width), py::ssize_t(4)});
+    std::copy(image.rgba.begin(), image.rgba.end(), out.mutable_data());
+    return out;
+}
+
 PyOctree octreeWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                     std::optional<double> resolution, std::optional<double> voxelSize, const py::object& transform,
                     const std::string& backend, const std::vector<std::string>& attributes, const std::string& mode)
@@ -629,6 +689,13 @@ PYBIND11_MODULE(_svo, m)
             g.attributes = false;
             return toPython(svo::octreeToGrids(p.octree, g, p.xform)[g.fog ? 1 : 0]);
         }, py::arg("grid") = "bool", "A pyopenvdb grid of the voxels with the octree's transform.")
+        .def("render", &renderOctree, py::kw_only(), py::arg("size") = std::pair<int, int>(640, 480),
+             py::arg("view") = "front", py::arg("layers") = std::vector<std::string>{"voxels", "outlines"},
+             py::arg("levels") = py::none(), py::arg("color") = "flat",
+             "A picture of the octree drawn on the GPU, as svo view --screenshot draws it: (H, W, 4) uint8,\n"
+             "rows from the top. view: 'front' or an axis view '+x', '-x', '+y', '-y', '+z', '-z';\n"
+             "layers: 'voxels', 'outlines', 'bricks'; levels: (first, last) outline levels; color: 'flat'\n"
+             "or an attribute channel the octree has ('normal', 'color', 'triangle').")
         .def("save", [](const PyOctree& p, const std::string& path) {
             if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
                 badValue("save: a .svo file holds a uniform voxel size and a whole-voxel translation; this octree's "

@@ -400,3 +400,64 @@ def test_solid_of_a_tetrahedron_is_its_inside_and_surface(voxelizer):
         voxelizer.solid(v, t[:3], resolution=40, sign="winding", winding_accuracy=0)
     with pytest.raises(ValueError, match="sign"):
         voxelizer.solid(v, t, resolution=40, sign="nearest")
+
+
+def read_png_rgb(path):
+    """An 8-bit RGB PNG as an (H, W, 3) array: the five row filters of the PNG standard."""
+    import struct
+    import zlib
+    data = open(path, "rb").read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    pos, idat, width, height = 8, b"", 0, 0
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+            assert (depth, colour) == (8, 2)
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    raw, stride = zlib.decompress(idat), 3 * width
+    out = np.zeros((height, stride), dtype=np.int64)
+    prev = np.zeros(stride, dtype=np.int64)
+    for y in range(height):
+        f, row = raw[y * (stride + 1)], np.frombuffer(raw, np.uint8, stride, y * (stride + 1) + 1).astype(np.int64)
+        cur = np.zeros(stride, dtype=np.int64)
+        for x in range(stride):
+            a = cur[x - 3] if x >= 3 else 0
+            b, c = prev[x], (prev[x - 3] if x >= 3 else 0)
+            if f == 0: p = 0
+            elif f == 1: p = a
+            elif f == 2: p = b
+            elif f == 3: p = (a + b) // 2
+            else:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                p = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
+            cur[x] = (row[x] + p) & 255
+        out[y], prev = cur, cur
+    return out.reshape(height, width, 3).astype(np.uint8)
+
+
+@pytest.mark.skipif(not SVO_EXE, reason="SVO_EXE is not set")
+def test_octree_render_draws_what_svo_view_draws(voxelizer, tmp_path):
+    v, t = tetrahedron()
+    octree = voxelizer.octree(v, t, resolution=24, attributes=["normal"])
+    path = str(tmp_path / "t.svo")
+    octree.save(path)
+    for view, color in (("+z", "flat"), ("front", "normal")):
+        image = octree.render(size=(64, 48), view=view, layers=["voxels", "outlines"], levels=(1, 2), color=color)
+        assert image.shape == (48, 64, 4) and image.dtype == np.uint8
+        png = str(tmp_path / f"{view}.png")
+        subprocess.run([SVO_EXE, "view", path, "--screenshot", png, "--size", "64x48", "--view", view,
+                        "--layers", "voxels,outlines", "--levels", "1:2", "--color", color],
+                       check=True, capture_output=True)
+        assert np.array_equal(image[:, :, :3], read_png_rgb(png))
+        green = (image[:, :, 1].astype(int) > image[:, :, 0].astype(int) + 50).sum()
+        assert 0 < green < 64 * 48  # voxels drawn, background left
+    with pytest.raises(ValueError, match="no 'triangle' channel"):
+        octree.render(color="triangle")
+    with pytest.raises(ValueError, match="sideways"):
+        octree.render(view="sideways")
+    with pytest.raises(ValueError, match="layers"):
+        octree.render(layers=["mesh"])

@@ -89,6 +89,12 @@ std::array<Vec3d, 2> gridWorldBox(const GridSpec& grid);
 /// image height and width (`aspect` = width / height).
 ViewCamera frameBox(const std::array<Vec3d, 2>& box, const Vec3d& direction, bool orthographic, double aspect);
 
+/// The named views of `svo view --view`: "front" (perspective, looking along
+/// (-0.35, -0.3, -1), the Cornell box's open side) or an axis, "+x", "-x",
+/// "+y", "-y", "+z", "-z" (orthographic, looking from that side), framing the
+/// box with frameBox. Throws svo::Error for another name.
+ViewCamera namedView(const std::array<Vec3d, 2>& box, const std::string& name, double aspect);
+
 /// Draws one octree (and optionally its mesh) with a Context. Not copyable.
 /// Every GL call happens inside a Context::Scope, so the caller's current
 /// context is left as it was.
