@@ -46,6 +46,39 @@ double peakRssMb()
     return double(ru.ru_maxrss) / 1024.0; // kilobytes on Linux
 }
 
+/// The summary's first lines, the same for grids and octrees.
+void printHeading(const std::string& scene, const TriangleMesh& mesh, const GridSpec& grid, const GridRequest& request)
+{
+    fmt::print("svo voxelize\n");
+    fmt::print("  {:<11} {}\n", "scene", scene);
+    fmt::print("  {:<11} {}\n", "triangles", thousands(mesh.triangles.size()));
+    fmt::print("  {:<11} {} x {} x {} local voxels, voxel size {:.6g}, {}\n", "grid", grid.dims[0], grid.dims[1],
+               grid.dims[2], grid.voxelSize,
+               request.voxelSize > 0 ? std::string("from --voxel-size") : fmt::format("resolution {}", request.resolution));
+}
+
+/// The stage table; `medianOf` says which stages --repeat gives as medians.
+void printStageTable(const std::vector<StageTime>& stages, double wallMs, int repeat, const char* medianOf,
+                     const StartupStats* startup)
+{
+    fmt::print("\n  {:<20} {:>10} {:>10}{}\n", "stage", "GPU ms", "wall ms",
+               repeat > 1 ? fmt::format("   ({}median of {} runs after a warm-up)", medianOf, repeat) : "");
+    if (startup) printStartup(*startup);
+    printStages(stages);
+    fmt::print("  {:<20} {:>10} {:>10.2f}\n", "total", "", wallMs);
+}
+
+/// The JSON summary's "stages": GPU milliseconds null where not measured.
+nlohmann::json stagesJson(const std::vector<StageTime>& stages)
+{
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& s : stages)
+        out.push_back({{"name", s.name},
+                       {"gpu_ms", s.gpuMs < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.gpuMs)},
+                       {"wall_ms", s.wallMs}});
+    return out;
+}
+
 /// Refuses combinations that have no meaning before any work is done.
 void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
 {
@@ -110,12 +143,7 @@ void runField(const VoxelizeArgs& a, const CLI::App& cmd, const TriangleMesh& me
     }
     const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     const auto& main = *grids.front();
-    fmt::print("svo voxelize\n");
-    fmt::print("  {:<11} {}\n", "scene", scene);
-    fmt::print("  {:<11} {}\n", "triangles", thousands(mesh.triangles.size()));
-    fmt::print("  {:<11} {} x {} x {} local voxels, voxel size {:.6g}, {}\n", "grid", grid.dims[0], grid.dims[1],
-               grid.dims[2], grid.voxelSize,
-               request.voxelSize > 0 ? std::string("from --voxel-size") : fmt::format("resolution {}", request.resolution));
+    printHeading(scene, mesh, grid, request);
     if (solid)
         fmt::print("  {:<11} solid: inside and surface voxels\n", "grid kind");
     else if (a.udf)
@@ -138,16 +166,8 @@ void runField(const VoxelizeArgs& a, const CLI::App& cmd, const TriangleMesh& me
                                 for (const auto& g : grids) names += (names.empty() ? "" : ", ") + g->getName();
                                 return names;
                             }()));
-    fmt::print("\n  {:<20} {:>10} {:>10}{}\n", "stage", "GPU ms", "wall ms",
-               a.repeat > 1 ? fmt::format("   (median of {} runs after a warm-up)", a.repeat) : "");
-    printStages(stats.stages);
-    fmt::print("  {:<20} {:>10} {:>10.2f}\n", "total", "", wall);
+    printStageTable(stats.stages, wall, a.repeat, "", nullptr);
     if (!a.json.empty()) {
-        nlohmann::json stages = nlohmann::json::array();
-        for (const auto& s : stats.stages)
-            stages.push_back({{"name", s.name},
-                              {"gpu_ms", s.gpuMs < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.gpuMs)},
-                              {"wall_ms", s.wallMs}});
         const nlohmann::json report = {{"scene", scene},
                                        {"triangles", mesh.triangles.size()},
                                        {"dims", grid.dims},
@@ -167,7 +187,7 @@ void runField(const VoxelizeArgs& a, const CLI::App& cmd, const TriangleMesh& me
                                        {"gpu_bytes", stats.gpuBytes},
                                        {"repeat", a.repeat},
                                        {"peak_rss_mb", peakRssMb()},
-                                       {"stages", stages},
+                                       {"stages", stagesJson(stats.stages)},
                                        {"total_wall_ms", wall}};
         writeFileAtomically(a.json, report.dump(2) + "\n");
     }
@@ -248,12 +268,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     const double wall = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 
     const auto st = octreeStats(octree);
-    fmt::print("svo voxelize\n");
-    fmt::print("  {:<11} {}\n", "scene", scene);
-    fmt::print("  {:<11} {}\n", "triangles", thousands(mesh.triangles.size()));
-    fmt::print("  {:<11} {} x {} x {} local voxels, voxel size {:.6g}, {}\n", "grid", grid.dims[0], grid.dims[1],
-               grid.dims[2], grid.voxelSize,
-               request.voxelSize > 0 ? std::string("from --voxel-size") : fmt::format("resolution {}", request.resolution));
+    printHeading(scene, mesh, grid, request);
     fmt::print("  {:<11} {}\n", "voxels", thousands(st.voxels));
     fmt::print("  {:<11} {} levels, {} nodes, {} bricks, {:.2f} bytes/voxel, brick fill {:.2f}\n", "octree",
                octree.brickLevel + 1, thousands(octree.nodes.size()), thousands(st.bricks), st.bytesPerVoxel(),
@@ -271,18 +286,9 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     fmt::print("  {:<11} {}\n", "output",
                timingOnly ? std::string("none (--repeat without -o times the runs only)")
                           : describeOutput(output, written, grids));
-    fmt::print("\n  {:<20} {:>10} {:>10}{}\n", "stage", "GPU ms", "wall ms",
-               a.repeat > 1 ? fmt::format("   (voxelize stages: median of {} runs after a warm-up)", a.repeat) : "");
-    printStartup(stats.startup);
-    printStages(stats.stages);
-    fmt::print("  {:<20} {:>10} {:>10.2f}\n", "total", "", wall);
+    printStageTable(stats.stages, wall, a.repeat, "voxelize stages: ", &stats.startup);
 
     if (!a.json.empty()) {
-        nlohmann::json stages = nlohmann::json::array();
-        for (const auto& s : stats.stages)
-            stages.push_back({{"name", s.name},
-                              {"gpu_ms", s.gpuMs < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.gpuMs)},
-                              {"wall_ms", s.wallMs}});
         const nlohmann::json report = {
             {"scene", scene},
             {"triangles", mesh.triangles.size()},
@@ -312,7 +318,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
               {"programs_loaded", stats.startup.programsLoaded},
               {"programs_refused", stats.startup.programsRefused},
               {"program_cache", stats.startup.programCache}}},
-            {"stages", stages},
+            {"stages", stagesJson(stats.stages)},
             {"total_wall_ms", wall}};
         writeFileAtomically(a.json, report.dump(2) + "\n");
     }

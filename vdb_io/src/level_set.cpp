@@ -137,6 +137,29 @@ Signs paritySigns(const std::vector<BrickCoord>& band, const std::vector<Brick>&
     return signs;
 }
 
+/// computeField, with its stages and buffer bytes added to `stats`.
+gl::FieldResult fieldPass(gl::Context& context, const TriangleMesh& mesh, const GridSpec& g,
+                          const gl::FieldRequest& request, VoxelizeStats& stats)
+{
+    gl::FieldResult field = gl::computeField(context, mesh, g, request);
+    if (field.lostCrossings)
+        throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
+                                field.lostCrossings));
+    for (auto& st : field.stages) stats.stages.push_back(std::move(st));
+    stats.gpuBytes = std::max(stats.gpuBytes, field.gpuBytes);
+    return field;
+}
+
+/// Records parity's open columns, warning with what they mean for the result.
+void noteOpenColumns(VoxelizeStats& stats, uint64_t openColumns, const char* consequence)
+{
+    stats.openColumns = openColumns;
+    if (openColumns)
+        stats.warnings.push_back(fmt::format("{} voxel columns cross the surface an odd number of times: the mesh is "
+                                             "open there, and {}",
+                                             openColumns, consequence));
+}
+
 /// The bricks holding every voxel within `reach` voxels (Chebyshev) of an
 /// occupied voxel of the octree: each brick's occupied box grown by reach.
 std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
@@ -170,6 +193,27 @@ std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
     tbb::parallel_sort(all.begin(), all.end());
     all.erase(std::unique(all.begin(), all.end()), all.end());
     return all;
+}
+
+/// grownBricks, counted and timed in `stats`.
+std::vector<BrickCoord> bandBricks(const Octree& surface, uint32_t reach, VoxelizeStats& stats)
+{
+    const auto t0 = Clock::now();
+    std::vector<BrickCoord> band = grownBricks(surface, reach);
+    stats.bandBricks = band.size();
+    stats.stages.push_back({"band bricks", -1, msSince(t0)});
+    return band;
+}
+
+/// The last stage and the result's counts, then the statistics handed out.
+void finishStats(VoxelizeStats& stats, const char* stage, Clock::time_point t0, const openvdb::GridBase& result,
+                 const Checkpoint& checkpoint, const VoxelizeOptions& options)
+{
+    stats.stages.push_back({stage, -1, msSince(t0)});
+    stats.voxels = result.activeVoxelCount();
+    stats.bricks = result.baseTree().leafCount();
+    checkpoint(1.0, "finish");
+    if (options.stats) *options.stats = std::move(stats);
 }
 
 openvdb::Coord leafOrigin(const GridSpec& grid, const BrickCoord& b)
@@ -244,38 +288,26 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
     stats.sign = sign.why;
     checkpoint(0.25, "band bricks");
 
-    auto t0 = Clock::now();
     gl::FieldRequest request;
-    request.bricks = grownBricks(surface, reach);
+    request.bricks = bandBricks(surface, reach, stats);
     request.band = band;
     request.closestTriangle = ls.closestTriangle;
     request.crossings = signedField && !winding;
     request.checkpoint = checkpoint.part(0.3, winding ? 0.55 : 0.85);
-    stats.bandBricks = request.bricks.size();
-    stats.stages.push_back({"band bricks", -1, msSince(t0)});
-    gl::FieldResult field = gl::computeField(impl_->gl(), mesh, g, request);
-    if (field.lostCrossings)
-        throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
-                                field.lostCrossings));
-    for (auto& st : field.stages) stats.stages.push_back(std::move(st));
-    stats.gpuBytes = std::max(stats.gpuBytes, field.gpuBytes);
+    gl::FieldResult field = fieldPass(impl_->gl(), mesh, g, request, stats);
     Signs signs;
     if (winding) {
         signs = windingSigns(impl_->gl(), mesh, g, request.bricks, ls.sign.windingAccuracy,
                              checkpoint.part(0.55, 0.85), stats);
     } else if (signedField) {
-        t0 = Clock::now();
+        const auto t0 = Clock::now();
         signs = paritySigns(request.bricks, field.crossings);
         stats.stages.push_back({"parity scan", -1, msSince(t0)});
     }
     checkpoint(0.85, "level set grid");
 
-    t0 = Clock::now();
-    stats.openColumns = signs.openColumns;
-    if (signs.openColumns)
-        stats.warnings.push_back(fmt::format("{} voxel columns cross the surface an odd number of times: the mesh is "
-                                             "open there, and signs above its last crossing count as outside",
-                                             signs.openColumns));
+    const auto t0 = Clock::now();
+    noteOpenColumns(stats, signs.openColumns, "signs above its last crossing count as outside");
     const float exterior = float(ls.exteriorBand), interior = float(ls.interiorBand);
     const float background = float(ls.exteriorBand * worldPerVoxel);
     auto distance = openvdb::FloatGrid::create(background);
@@ -337,11 +369,7 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
         closest->setName("closest_triangle");
         out.push_back(closest);
     }
-    stats.stages.push_back({"level set grid", -1, msSince(t0)});
-    stats.voxels = distance->activeVoxelCount();
-    stats.bricks = distance->tree().leafCount();
-    checkpoint(1.0, "finish");
-    if (options.stats) *options.stats = std::move(stats);
+    finishStats(stats, "level set grid", t0, *distance, checkpoint, options);
     return out;
 }
 
@@ -362,11 +390,8 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
     stats.sign = sign.why;
     checkpoint(0.3, "signs");
 
-    auto t0 = Clock::now();
     // The first centre above a crossing is within 1 voxel of it.
-    const std::vector<BrickCoord> band = grownBricks(surface, 1);
-    stats.bandBricks = band.size();
-    stats.stages.push_back({"band bricks", -1, msSince(t0)});
+    const std::vector<BrickCoord> band = bandBricks(surface, 1, stats);
     Signs signs;
     if (winding) {
         signs = windingSigns(impl_->gl(), mesh, g, band, signOptions.windingAccuracy, checkpoint.part(0.35, 0.8),
@@ -375,22 +400,12 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
         gl::FieldRequest request;
         request.bricks = band;
         request.checkpoint = checkpoint.part(0.35, 0.8);
-        gl::FieldResult field = gl::computeField(impl_->gl(), mesh, g, request);
-        if (field.lostCrossings)
-            throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
-                                    field.lostCrossings));
-        for (auto& st : field.stages) stats.stages.push_back(std::move(st));
-        stats.gpuBytes = std::max(stats.gpuBytes, field.gpuBytes);
-        signs = paritySigns(band, field.crossings);
+        signs = paritySigns(band, fieldPass(impl_->gl(), mesh, g, request, stats).crossings);
     }
     checkpoint(0.8, "solid grid");
 
-    t0 = Clock::now();
-    stats.openColumns = signs.openColumns;
-    if (signs.openColumns)
-        stats.warnings.push_back(fmt::format("{} voxel columns cross the surface an odd number of times: the mesh is "
-                                             "open there, and the solid stops at its last crossing",
-                                             signs.openColumns));
+    const auto t0 = Clock::now();
+    noteOpenColumns(stats, signs.openColumns, "the solid stops at its last crossing");
     // Surface bricks by coordinates, to OR into the inside masks.
     std::vector<std::pair<BrickCoord, uint32_t>> surfaceBricks;
     for (const auto& r : occupiedBricks(surface))
@@ -438,11 +453,7 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
     out->tree().prune(); // full leaves and nodes become tiles at the largest level they fill
     out->setTransform(xform);
     out->setName("solid");
-    stats.stages.push_back({"solid grid", -1, msSince(t0)});
-    stats.voxels = out->activeVoxelCount();
-    stats.bricks = out->tree().leafCount();
-    checkpoint(1.0, "finish");
-    if (options.stats) *options.stats = std::move(stats);
+    finishStats(stats, "solid grid", t0, *out, checkpoint, options);
     return out;
 }
 
