@@ -117,8 +117,8 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         if (!haveDisplay())
             throw Error("no display for svo view's window (DISPLAY and WAYLAND_DISPLAY are unset); give --screenshot PNG "
                         "to render offscreen");
-    } else if (!a.keys.empty() || a.frames != 0) {
-        throw Error("--keys and --frames drive the window; --screenshot renders one frame without it");
+    } else if (!a.keys.empty() || a.frames != 0 || !a.save.empty()) {
+        throw Error("--keys, --frames and --save drive the window; --screenshot renders one frame without it");
     }
     if (a.frames < 0) throw Error(fmt::format("--frames {}: expected 0 (until closed) or more", a.frames));
     const auto [width, height] = parseSize(a.size);

@@ -682,7 +682,8 @@ TEST_F(Cli, ViewWindowRevoxelizesLiveToTheVoxelsOfVoxelize)
     EXPECT_EQ(withNormals.attributes.triangles.size(), withNormals.voxelCount());
     EXPECT_TRUE(sorted(octreeKeys(withNormals)) == sorted(octreeKeys(readOctreeFile(path("ref16.svo")))));
 
-    for (const char* args : {"--frames 3 --screenshot x.png", "--keys + --screenshot x.png", "--frames -1"}) {
+    for (const char* args : {"--frames 3 --screenshot x.png", "--keys + --screenshot x.png", "--frames -1",
+                             "--save x.svo --screenshot x.png"}) {
         const auto bad = runSvo(std::string("view -r 8 ") + args, xvfb);
         EXPECT_EQ(bad.code, 1) << args;
         EXPECT_EQ(lineCount(bad.out), 1u) << args << ": " << bad.out;
