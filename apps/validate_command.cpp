@@ -61,6 +61,20 @@ void checkSdfArgs(const ValidateArgs& a, const CLI::App& cmd)
 }
 
 
+/// The library's report (JSON text) with what the run was, written atomically.
+void writeJson(const std::string& path, const std::string& libraryJson, const std::string& scene,
+               const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeStats& stats, double gpuMs)
+{
+    nlohmann::json j = nlohmann::json::parse(libraryJson);
+    j["scene"] = scene;
+    j["triangles"] = mesh.triangles.size();
+    j["dims"] = grid.dims;
+    j["voxel_size"] = grid.voxelSize;
+    j["backend"] = backendLine(stats);
+    j["gpu_ms"] = gpuMs;
+    writeFileAtomically(path, j.dump(2) + "\n");
+}
+
 std::string idx(const std::array<int64_t, 3>& p) { return fmt::format("[{}, {}, {}]", p[0], p[1], p[2]); }
 
 std::string voxelsText(double v) { return std::isfinite(v) ? fmt::format("{:.3g}", v) : std::string("none"); }
@@ -154,16 +168,8 @@ void runValidateSdf(const ValidateArgs& a, const TriangleMesh& mesh, const GridS
     }
     fmt::print("  {:<12} validation {:.2f} s, level set {:.3f} GPU ms\n", "time", report.seconds, gpuMs);
 
-    if (!a.json.empty()) {
-        nlohmann::json j = nlohmann::json::parse(validate::levelSetReportJson(report)); // the library's numbers
-        j["scene"] = scene;
-        j["triangles"] = mesh.triangles.size();
-        j["dims"] = grid.dims;
-        j["voxel_size"] = grid.voxelSize;
-        j["backend"] = backendLine(stats);
-        j["gpu_ms"] = gpuMs;
-        writeFileAtomically(a.json, j.dump(2) + "\n");
-    }
+    if (!a.json.empty())
+        writeJson(a.json, validate::levelSetReportJson(report), scene, mesh, grid, stats, gpuMs);
     if (!report.passed) throw Failure("validation failed: " + report.reason);
     fmt::print("  {:<12} passed: distances within {:.3g} voxels, {}, no band voxel missing or extra\n", "verdict",
                c.tolerance, c.signChecked ? "CGAL's signs" : "signs not checked (open mesh)");
@@ -276,16 +282,8 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
         fmt::print("  {:<12} {} (grids missed, extra{})\n", "errors", a.errors, holes.leak ? ", leak_path" : "");
     }
 
-    if (!a.json.empty()) {
-        nlohmann::json j = nlohmann::json::parse(validate::reportJson(report)); // the library's numbers
-        j["scene"] = scene;
-        j["triangles"] = mesh.triangles.size();
-        j["dims"] = grid.dims;
-        j["voxel_size"] = grid.voxelSize;
-        j["backend"] = backendLine(stats);
-        j["gpu_ms"] = gpuMs;
-        writeFileAtomically(a.json, j.dump(2) + "\n");
-    }
+    if (!a.json.empty())
+        writeJson(a.json, validate::reportJson(report), scene, mesh, grid, stats, gpuMs);
     if (!report.passed) throw Failure("validation failed: " + report.reason);
     fmt::print("  {:<12} passed: nothing missed{}\n", "verdict", holes.applies ? ", no leak" : "");
 }
