@@ -122,6 +122,10 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
             throw Error(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); "
                                     "use a coarser grid or a narrower band",
                                     n));
+    if (distances && nb > (uint64_t(1) << 23))
+        throw Error(fmt::format("the band has {} bricks, more than one distance pass holds (2^23); use a coarser "
+                                "grid or a narrower band",
+                                nb));
     uint32_t tableMask = 0;
     const std::vector<uint32_t> table = brickTable(request.bricks, tableMask);
 
@@ -187,6 +191,40 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
             pass("closest triangle", program, distanceItems, nDistance);
         }
     }
+    const Buffer* maskBuffer = nullptr;
+    const Buffer* offsetBuffer = nullptr;
+    const Buffer* packedBuffer = nullptr;
+    const Buffer* packedClosestBuffer = nullptr;
+    if (distances) {
+        // Packs the band: a mask, an offset and the kept values per brick.
+        maskBuffer = &context.scratch("band masks", std::max<uint64_t>(nb, 1) * sizeof(Brick));
+        offsetBuffer = &context.scratch("band offsets", std::max<uint64_t>(nb, 1) * 4);
+        packedBuffer = &context.scratch("band packed distances", std::max<uint64_t>(nb, 1) * 2048);
+        if (closestBuffer) packedClosestBuffer = &context.scratch("band packed closest", std::max<uint64_t>(nb, 1) * 2048);
+        maskBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_MASKS);
+        offsetBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_OFFSETS);
+        packedBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_DISTANCES);
+        (packedClosestBuffer ? packedClosestBuffer : packedBuffer)
+            ->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_CLOSEST);
+        if (!closestBuffer) distanceBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_CLOSEST);
+        const auto w0 = Clock::now();
+        TimerQuery timer;
+        timer.begin();
+        const Program& program = context.program({"band_compact.comp"});
+        program.set("uBricks", uint32_t(nb));
+        program.set("uBand", float(band));
+        program.set("uClosest", closestBuffer ? 1u : 0u);
+        if (nb) program.dispatch(uint32_t(std::min<uint64_t>(nb, software ? 256 : 65535)));
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        timer.end();
+        checkGl("band packing");
+        waitForGpu(poll);
+        result.stages.push_back({"band packing", timer.milliseconds(), msSince(w0)});
+        // The mesh's slots are the field passes' again.
+        positions.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_POSITIONS);
+        indices.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_INDICES);
+        tableBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_TABLE);
+    }
     if (request.crossings) {
         const Program& program = context.program({"parity_flips.comp"});
         program.set("uDimZ", grid.dims[2]);
@@ -194,7 +232,8 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     }
     result.stages.front().gpuMs = uploadTimer.milliseconds();
     result.gpuBytes = positions.bytes() + indices.bytes() + tableBuffer.bytes() + counters.bytes() +
-                      (distanceBuffer ? nb * 2048 : 0) + (closestBuffer ? nb * 2048 : 0) +
+                      (distanceBuffer ? nb * (2048 + 2048 + sizeof(Brick) + 4) : 0) +
+                      (closestBuffer ? nb * 2048 * 2 : 0) +
                       (flipBuffer ? nb * sizeof(Brick) : 0) +
                       std::max(distanceItems.size(), crossingItems.size()) * 4;
     request.checkpoint(0.8, "field readback");
@@ -202,20 +241,25 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     t0 = Clock::now();
     TimerQuery readTimer;
     readTimer.begin();
+    uint32_t count[2] = {0, 0}; // lost crossings, packed band values
+    counters.read(0, 8, count);
     if (distanceBuffer) {
-        result.distances.resize(nb * 512);
-        distanceBuffer->readBulk(0, nb * 2048, result.distances.data());
+        result.bandMasks.resize(nb);
+        maskBuffer->readBulk(0, nb * sizeof(Brick), result.bandMasks.data());
+        result.bandOffsets.resize(nb);
+        offsetBuffer->readBulk(0, nb * 4, result.bandOffsets.data());
+        result.distances.resize(count[1]);
+        packedBuffer->readBulk(0, uint64_t(count[1]) * 4, result.distances.data());
     }
-    if (closestBuffer) {
-        result.closest.resize(nb * 512);
-        closestBuffer->readBulk(0, nb * 2048, result.closest.data());
+    if (packedClosestBuffer) {
+        result.closest.resize(count[1]);
+        packedClosestBuffer->readBulk(0, uint64_t(count[1]) * 4, result.closest.data());
     }
     if (flipBuffer) {
         result.crossings.resize(nb);
         flipBuffer->readBulk(0, nb * sizeof(Brick), result.crossings.data());
     }
-    uint32_t lost = 0;
-    counters.read(0, 4, &lost);
+    const uint32_t lost = count[0];
     readTimer.end();
     checkGl("field readback");
     result.lostCrossings = lost;

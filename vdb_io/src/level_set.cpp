@@ -160,6 +160,22 @@ void noteOpenColumns(VoxelizeStats& stats, uint64_t openColumns, const char* con
                                              openColumns, consequence));
 }
 
+/// The box of a non-empty brick's set bits: lowest x, y, z, then highest.
+/// Word x holds bits 8y + z, so the words give x, their OR's bytes y, and
+/// the OR of those bytes z.
+std::array<uint32_t, 6> occupiedBox(const Brick& m)
+{
+    uint32_t x0 = 8, x1 = 0;
+    uint64_t all = 0;
+    for (uint32_t x = 0; x < 8; ++x)
+        if (m.words[x]) x0 = std::min(x0, x), x1 = x, all |= m.words[x];
+    uint32_t y0 = 8, y1 = 0, zBits = 0;
+    for (uint32_t y = 0; y < 8; ++y)
+        if (const uint32_t byte = uint32_t(all >> (8 * y)) & 0xFFu) y0 = std::min(y0, y), y1 = y, zBits |= byte;
+    const uint32_t z0 = uint32_t(__builtin_ctz(zBits)), z1 = 31u - uint32_t(__builtin_clz(zBits));
+    return {x0, y0, z0, x1, y1, z1};
+}
+
 /// The bricks holding every voxel within `reach` voxels (Chebyshev) of an
 /// occupied voxel of the octree: each brick's occupied box grown by reach.
 std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
@@ -170,13 +186,8 @@ std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
     std::vector<std::vector<BrickCoord>> parts(refs.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, refs.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t n = r.begin(); n != r.end(); ++n) {
-            const Brick& m = octree.bricks[refs[n].index];
-            std::array<uint32_t, 3> lo{7, 7, 7}, hi{0, 0, 0};
-            for (uint32_t bit = 0; bit < 512; ++bit)
-                if ((m.words[bit >> 6] >> (bit & 63)) & 1u) {
-                    const uint32_t v[3] = {bit >> 6, (bit >> 3) & 7, bit & 7};
-                    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], v[a]), hi[a] = std::max(hi[a], v[a]);
-                }
+            const std::array<uint32_t, 6> box = occupiedBox(octree.bricks[refs[n].index]);
+            const std::array<uint32_t, 3> lo{box[0], box[1], box[2]}, hi{box[3], box[4], box[5]};
             std::array<uint32_t, 3> b0{}, b1{};
             for (int a = 0; a < 3; ++a) {
                 const int64_t o = refs[n].origin[a];
@@ -318,26 +329,34 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nb, 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
             const openvdb::Coord origin = leafOrigin(g, request.bricks[i]);
-            auto leaf = std::make_unique<openvdb::FloatTree::LeafNodeType>(origin, background);
-            bool any = false, anyInside = false;
-            for (uint32_t v = 0; v < 512; ++v) {
-                const float d = field.distances[i * 512 + v];
-                const bool inside = signedField && bitOf(signs.inside[i], v);
-                const bool active = d < (inside ? interior : exterior);
-                const float value = active ? float(double(d) * worldPerVoxel) : background;
-                leaf->setValueOnly(v, inside ? -value : value);
-                anyInside |= inside;
-                if (active) leaf->setValueOn(v), any = true;
-            }
+            const Brick& near = field.bandMasks[i];
+            const bool anyInside = signedField && signs.inside[i].count();
             // Parity's flood fill signs inactive leaves from their neighbours;
             // winding signs are known at every voxel, so a leaf with no active
             // voxel is still kept when it holds inside values.
-            if (!any && !(winding && anyInside)) continue;
-            if (closest && any) {
-                auto c = std::make_unique<openvdb::Int32Tree::LeafNodeType>(origin, -1);
-                for (auto it = leaf->cbeginValueOn(); it; ++it) c->setValueOn(it.pos(), field.closest[i * 512 + it.pos()]);
-                closestLeaves[i] = c.release();
+            if (!near.count() && !(winding && anyInside)) continue;
+            auto leaf = std::make_unique<openvdb::FloatTree::LeafNodeType>(origin, background);
+            std::unique_ptr<openvdb::Int32Tree::LeafNodeType> c;
+            if (closest) c = std::make_unique<openvdb::Int32Tree::LeafNodeType>(origin, -1);
+            bool any = false;
+            size_t packed = field.bandOffsets[i]; // the next near voxel's value
+            for (uint32_t v = 0; v < 512; ++v) {
+                const bool inside = signedField && bitOf(signs.inside[i], v);
+                float value = background;
+                if (bitOf(near, v)) {
+                    const float d = field.distances[packed];
+                    if (d < (inside ? interior : exterior)) {
+                        value = float(double(d) * worldPerVoxel);
+                        leaf->setValueOn(v);
+                        if (c) c->setValueOn(v, field.closest[packed]);
+                        any = true;
+                    }
+                    ++packed;
+                }
+                leaf->setValueOnly(v, inside ? -value : value);
             }
+            if (!any && !(winding && anyInside)) continue;
+            if (c && any) closestLeaves[i] = c.release();
             leaves[i] = leaf.release();
         }
     });

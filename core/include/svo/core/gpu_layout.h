@@ -154,7 +154,14 @@ SVO_CONST(uint) kTableWords = 4u;
 #define SVO_BIND_FIELD_DISTANCES 4 /* 512 per brick: float bits of the distance in voxels (+inf: beyond the band) */
 #define SVO_BIND_FIELD_CLOSEST 5   /* 512 per brick: the closest triangle (0xFFFFFFFF: none) */
 #define SVO_BIND_FIELD_FLIPS 6     /* 16 uints per brick: parity crossings, one bit per voxel */
-#define SVO_BIND_FIELD_COUNTERS 7  /* uints: crossings whose brick is not in the table */
+#define SVO_BIND_FIELD_COUNTERS 7  /* uints: crossings whose brick is not in the table, then band values kept */
+/* Band compaction (band_compact.comp): the slots of the mesh and items,
+   which that pass does not read, hold its output, so no pass needs more than
+   the 8 storage blocks GL 4.5 guarantees. */
+#define SVO_BIND_COMPACT_MASKS 0     /* 16 uints per brick: the voxels nearer than the band */
+#define SVO_BIND_COMPACT_OFFSETS 1   /* per brick: where its values start in the packed arrays */
+#define SVO_BIND_COMPACT_DISTANCES 2 /* packed: the distances of the masked voxels, brick by brick in bit order */
+#define SVO_BIND_COMPACT_CLOSEST 3   /* packed alike: their closest triangles */
 SVO_CONST(uint) kItemWords = 8u; /* first item, box origin x y z, box size x y z, unused */
 
 /* Winding numbers (winding_number.comp, svo/core/winding_tree.h); positions
@@ -233,6 +240,9 @@ static_assert(distinctSlots({SVO_BIND_VIEW_NODES, SVO_BIND_VIEW_BRICKS, SVO_BIND
 static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_FIELD_ITEMS,
                              SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
                              SVO_BIND_FIELD_FLIPS, SVO_BIND_FIELD_COUNTERS}));
+static_assert(distinctSlots({SVO_BIND_COMPACT_MASKS, SVO_BIND_COMPACT_OFFSETS, SVO_BIND_COMPACT_DISTANCES,
+                             SVO_BIND_COMPACT_CLOSEST, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
+                             SVO_BIND_FIELD_COUNTERS}));
 static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_WINDING_NODES,
                              SVO_BIND_WINDING_LINKS, SVO_BIND_WINDING_ORDER, SVO_BIND_WINDING_BRICKS,
                              SVO_BIND_WINDING_OUT}));

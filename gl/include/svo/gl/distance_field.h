@@ -13,6 +13,9 @@
 ///              to the triangle in double precision; the least per voxel is
 ///              kept by atomicMin on float bits (band_distance.comp);
 ///   closest    optionally, the smallest triangle index at that distance;
+///   packing    the voxels nearer than the band, and only those, are packed
+///              per brick behind a mask (band_compact.comp), so the readback
+///              moves what the level set keeps, not 512 floats per brick;
 ///   crossings  every voxel column (i, j) inside a triangle's projection on z
 ///              (with simulation-of-simplicity ties) marks the first voxel
 ///              centre above the crossing; an odd count of marks below a
@@ -49,9 +52,14 @@ struct FieldRequest {
 };
 
 struct FieldResult : RunStats {
-    /// 512 per brick in LeafNode bit order: distance in voxels, +inf beyond the band.
+    /// Per brick: the voxels nearer than the band (distances < band).
+    std::vector<Brick> bandMasks;
+    /// Per brick: where its voxels' values start in `distances` and `closest`.
+    std::vector<uint32_t> bandOffsets;
+    /// Packed: the distance in voxels of each voxel of bandMasks, brick by
+    /// brick in LeafNode bit order (a brick's run starts at its offset).
     std::vector<float> distances;
-    /// 512 per brick: the smallest index of the closest triangles; -1 beyond the band.
+    /// Packed like `distances`: the smallest index of the closest triangles.
     std::vector<int32_t> closest;
     /// Per brick: bit set where an odd number of crossings mark that voxel.
     std::vector<Brick> crossings;
