@@ -1,6 +1,7 @@
 // The path-traced lighting reference (svo/reference) against analytic
 // answers: exact where the estimator is exact, else within 5 standard errors
 // derived from the sample count (docs/lighting_reference.md says why each).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -118,6 +119,58 @@ TEST(PathTraceCamera, PixelCentresFollowTheGlView)
     EXPECT_NEAR(o.origin.y, 0.5, 1e-15);
     EXPECT_EQ(o.origin.z, 5.0);
     EXPECT_EQ(o.direction.z, -1.0);
+}
+
+// The GL view's own matrices (gl/src/octree_view.cpp's cellCamera: view,
+// then a perspective or orthographic projection, column-major) project every
+// point of the reference's ray for pixel (x, y) to the NDC of the fragment
+// at gl_FragCoord = (x + 1/2, height - 1 - y + 1/2): the same ray.
+TEST(PathTraceCamera, RaysProjectToTheGlFragmentCentre)
+{
+    for (bool orthographic : {false, true}) {
+        Camera c;
+        c.eye = {1.5, -2, 4};
+        c.target = {0.2, 0.1, -0.3};
+        c.up = {0.1, 1, 0.2};
+        c.orthographic = orthographic;
+        c.fovYDegrees = 55;
+        c.height = 3.5;
+        const int w = 7, h = 5;
+        const Vec3d f = unit(c.target - c.eye), r = unit(cross(f, c.up)), u = cross(r, f);
+        const double view[16] = {r.x, u.x, -f.x, 0, r.y, u.y, -f.y, 0, r.z, u.z, -f.z, 0,
+                                 -dot(r, c.eye), -dot(u, c.eye), dot(f, c.eye), 1};
+        const double aspect = double(w) / h, n = 0.5, fa = 50;
+        double proj[16] = {};
+        if (orthographic) {
+            const double hh = c.height, ww = hh * aspect;
+            const double o[16] = {2 / ww, 0, 0, 0, 0, 2 / hh, 0, 0, 0, 0, -2 / (fa - n), 0, 0, 0, -(fa + n) / (fa - n), 1};
+            std::copy(o, o + 16, proj);
+        } else {
+            const double t = 1.0 / std::tan(c.fovYDegrees * kPi / 360.0);
+            const double p[16] = {t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (fa + n) / (n - fa), -1, 0, 0, 2 * fa * n / (n - fa), 0};
+            std::copy(p, p + 16, proj);
+        }
+        auto apply = [](const double* m, const double v[4], double out[4]) {
+            for (int row = 0; row < 4; ++row) {
+                out[row] = 0;
+                for (int k = 0; k < 4; ++k) out[row] += m[k * 4 + row] * v[k];
+            }
+        };
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const Ray ray = cameraRay(c, w, h, x, y);
+                const double fragX = x + 0.5, fragY = (h - 1 - y) + 0.5;
+                for (double s : {1.0, 4.0, 20.0}) {
+                    const Vec3d q = ray.origin + s * ray.direction;
+                    const double world[4] = {q.x, q.y, q.z, 1};
+                    double eye[4], clip[4];
+                    apply(view, world, eye);
+                    apply(proj, eye, clip);
+                    EXPECT_NEAR((clip[0] / clip[3] + 1) / 2 * w, fragX, 1e-9) << x << ", " << y;
+                    EXPECT_NEAR((clip[1] / clip[3] + 1) / 2 * h, fragY, 1e-9) << x << ", " << y;
+                }
+            }
+    }
 }
 
 // --- white furnace -----------------------------------------------------------
