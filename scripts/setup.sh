@@ -18,6 +18,7 @@ packages=(
   libcli11-dev libfmt-dev libgtest-dev libfast-float-dev
   pybind11-dev python3-dev python3-pytest python3-numpy
   nlohmann-json3-dev libnanovdb-dev python3-openvdb libboost-python1.74-dev
+  libembree-dev
 )
 # The fuzz targets need clang and its libFuzzer runtime.
 [ "$mode" = test ] && packages+=(clang-14 libclang-rt-14-dev)
