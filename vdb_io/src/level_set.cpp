@@ -3,6 +3,7 @@
 // (svo/gl/distance_field.h) and signs, by parity crossings or by winding
 // numbers (svo/gl/winding_number.h), and OpenVDB holds the result.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -200,9 +201,29 @@ std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
         }
     });
     std::vector<BrickCoord> all;
-    for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
-    tbb::parallel_sort(all.begin(), all.end());
-    all.erase(std::unique(all.begin(), all.end()), all.end());
+    const uint64_t cells = uint64_t(limit[0] + 1) * (limit[1] + 1) * (limit[2] + 1);
+    if (cells > (uint64_t(1) << 33)) { // a bitmap of more than 1 GiB: sort instead
+        for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+        tbb::parallel_sort(all.begin(), all.end());
+        all.erase(std::unique(all.begin(), all.end()), all.end());
+        return all;
+    }
+    // A bit per brick of the grid, in x-major order: read in order, the set
+    // bits are the bricks sorted and unique, without a sort.
+    const uint64_t ny = limit[1] + 1, nz = limit[2] + 1;
+    std::vector<std::atomic<uint64_t>> bits((cells + 63) / 64);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, parts.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t n = r.begin(); n != r.end(); ++n)
+            for (const BrickCoord& b : parts[n]) {
+                const uint64_t i = (b[0] * ny + b[1]) * nz + b[2];
+                bits[i >> 6].fetch_or(uint64_t(1) << (i & 63), std::memory_order_relaxed);
+            }
+    });
+    for (uint64_t w = 0; w < bits.size(); ++w)
+        for (uint64_t m = bits[w].load(std::memory_order_relaxed); m; m &= m - 1) {
+            const uint64_t i = 64 * w + uint64_t(__builtin_ctzll(m));
+            all.push_back({uint32_t(i / (ny * nz)), uint32_t(i / nz % ny), uint32_t(i % nz)});
+        }
     return all;
 }
 
