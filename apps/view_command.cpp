@@ -26,8 +26,9 @@ namespace {
 
 struct ViewArgs {
     std::string input, screenshot, size = "1280x960", camera, view = "front", layers = "voxels,outlines", levels,
-                                     gridName, keys, save, color = "flat";
+                                     gridName, keys, save, color = "flat", render = "debug", aoFilter = "max";
     int frames = 0;
+    gl::AmbientOcclusion ao;
     double fov = 40.0, ortho = 0.0;
     int64_t resolution = 0;
     double voxelSize = 0;
@@ -124,6 +125,13 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     const auto [width, height] = parseSize(a.size);
     gl::ViewLayers layers = parseLayers(a.layers);
     parseLevels(a.levels, layers);
+    layers.ao = a.ao;
+    layers.ao.filter = a.aoFilter == "average" ? gl::AmbientOcclusion::Filter::Average : gl::AmbientOcclusion::Filter::Max;
+    if (a.render == "ao") {
+        layers.ao.only = true;
+        if (layers.ao.cones == 0) layers.ao.cones = 7;
+        layers.outlines = layers.bricks = false;
+    }
     layers.voxelColor = a.color == "normal" ? gl::VoxelColor::Normal
                         : a.color == "color" ? gl::VoxelColor::Color
                         : a.color == "triangle" ? gl::VoxelColor::Triangle
@@ -254,6 +262,22 @@ void addViewCommand(CLI::App& app)
         ->capture_default_str();
     cmd->add_option("--levels", args->levels, "Outline levels a:b (0 = root; a, a: or :b)");
     cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
+    cmd->add_option("--ao", args->ao.cones, "Ambient occlusion cone-traced through the octree: cones per pixel (0: off, "
+                                            "1 to 16)")
+        ->check(CLI::Range(0, 16));
+    cmd->add_option("--ao-aperture", args->ao.apertureDegrees, "AO cone aperture, degrees")->capture_default_str();
+    cmd->add_option("--ao-offset", args->ao.offset, "AO cones start this far from the surface, voxels (less: more "
+                                                    "contact shadow, more self-occlusion)")
+        ->capture_default_str();
+    cmd->add_option("--ao-distance", args->ao.distance, "AO cones stop this far away, voxels")->capture_default_str();
+    cmd->add_option("--ao-filter", args->aoFilter, "AO opacity up the octree: max (a node as opaque as its most opaque "
+                                                   "child: no leaks through walls) or average (its face share)")
+        ->check(CLI::IsMember({"max", "average"}))
+        ->capture_default_str();
+    cmd->add_option("--render", args->render, "debug: the layers; ao: the voxels as their ambient occlusion, grey "
+                                              "(7 cones unless --ao says)")
+        ->check(CLI::IsMember({"debug", "ao"}))
+        ->capture_default_str();
     cmd->add_option("--frames", args->frames, "Window: close after this many frames (0: when closed)");
     cmd->add_option("--keys", args->keys,
                     "Window: keys to press, one a frame from the second frame (v o m: layers; + -: resolution; b c t: "

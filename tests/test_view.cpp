@@ -584,6 +584,85 @@ TEST(View, AttributeColoursAreEachVoxelsOwnValue)
     EXPECT_EQ(offLine, 0u);
 }
 
+/// Green-channel AO at a pixel of an axis view, where the face light is 1.
+double aoAt(const Image& image, int x, int y) { return image.pixel(x, y)[1] / (255.0 * svo::gl::ViewColors::voxel[1]); }
+
+/// Ambient occlusion from cones through the octree. The analytic answers:
+/// an open plane is unoccluded (AO 1) and the floor of a closed box fully
+/// occluded (AO 0). Cone samples never take cells behind the surface's
+/// tangent plane, so the plane is exactly 1 with either filter; the Max
+/// filter makes the box's floor exactly 0, while the Average filter leaks
+/// through coarse cells that the walls cross only in part (the bias the
+/// benchmark measures), bounded here.
+TEST(View, AmbientOcclusionOfAnOpenPlaneAndInsideAClosedBox)
+{
+    using Filter = svo::gl::AmbientOcclusion::Filter;
+    const GridSpec g = unitGrid(64);
+    std::vector<Voxel> plane;
+    for (uint32_t x = 8; x < 56; ++x)
+        for (uint32_t y = 8; y < 56; ++y) plane.push_back({x, y, 20});
+    svo::gl::OctreeView planeView(context(), octreeOf(g, plane));
+    const AxisView above(2, Vec3d{32.1, 32.1, 20}, 0.5, 64, 64); // looking down -z at the plane's top
+
+    // A closed box of 1-voxel walls, [10, 50]^3; the camera inside, under the
+    // ceiling, looking down at the floor.
+    std::vector<Voxel> box;
+    for (uint32_t a = 10; a <= 50; ++a)
+        for (uint32_t b = 10; b <= 50; ++b)
+            for (uint32_t wall : {10u, 50u}) {
+                box.push_back({wall, a, b});
+                box.push_back({a, wall, b});
+                box.push_back({a, b, wall});
+            }
+    std::sort(box.begin(), box.end());
+    box.erase(std::unique(box.begin(), box.end()), box.end());
+    svo::gl::OctreeView boxView(context(), octreeOf(g, box));
+    ViewCamera inside; // perspective: the near plane is just in front of the eye
+    inside.target = {30.1, 30.1, 11};
+    inside.eye = {30.1, 30.1, 46};
+    inside.fovYDegrees = 50;
+
+    ViewLayers l;
+    l.outlines = false;
+    l.ao.distance = 64;
+    for (const Filter filter : {Filter::Average, Filter::Max})
+        for (const int cones : {1, 3, 7, 16}) {
+            l.ao.cones = cones;
+            l.ao.filter = filter;
+            const Image lit = planeView.render(above.camera, 64, 64, l);
+            double lowest = 1;
+            for (int y = 16; y < 48; ++y)
+                for (int x = 16; x < 48; ++x) lowest = std::min(lowest, aoAt(lit, x, y));
+            EXPECT_GT(lowest, 0.99) << "an open plane, " << cones << " cones";
+            const Image dark = boxView.render(inside, 60, 60, l);
+            double highest = 0;
+            for (int y = 5; y < 55; ++y)
+                for (int x = 5; x < 55; ++x) highest = std::max(highest, aoAt(dark, x, y));
+            EXPECT_LT(highest, filter == Filter::Max ? 0.01 : 0.2) << "the floor of a closed box, " << cones << " cones";
+        }
+    // AO alone: grey, the value that scales the lit voxel colour (at the
+    // pixel where the Average filter leaks most, so that it is not 0).
+    l.ao.cones = 7;
+    l.ao.filter = Filter::Average;
+    const Image lit = boxView.render(inside, 60, 60, l);
+    int px = 0, py = 0;
+    for (int y = 5; y < 55; ++y)
+        for (int x = 5; x < 55; ++x)
+            if (aoAt(lit, x, y) > aoAt(lit, px, py)) px = x, py = y;
+    ASSERT_GT(aoAt(lit, px, py), 0.05);
+    l.ao.only = true;
+    const Image grey = boxView.render(inside, 60, 60, l);
+    EXPECT_EQ(grey.pixel(px, py)[0], grey.pixel(px, py)[1]);
+    EXPECT_EQ(grey.pixel(px, py)[2], grey.pixel(px, py)[1]);
+    EXPECT_NEAR(grey.pixel(px, py)[1] / 255.0, aoAt(lit, px, py), 0.01);
+    l.ao.cones = 0;
+    EXPECT_THROW(boxView.render(inside, 8, 8, l), svo::Error); // AO alone needs cones
+    l.ao.only = false;
+    EXPECT_NEAR(aoAt(planeView.render(above.camera, 64, 64, l), 32, 32), 1.0, 0.01); // no cones, no AO
+    l.ao.cones = 17;
+    EXPECT_THROW(boxView.render(inside, 8, 8, l), svo::Error);
+}
+
 TEST(View, BadCamerasAndSizesThrow)
 {
     const GridSpec g = unitGrid(16);

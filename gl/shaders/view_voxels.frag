@@ -43,6 +43,10 @@ vec3 voxelColor(uint brick, uint bit)
     return uColorMode == SVO_VIEW_COLOR_NORMAL ? 0.5 + 0.5 * c : c;
 }
 
+#include "view_cones.glsl"
+
+uniform uint uAoOnly; // 1: the voxels are their AO, grey
+
 out vec4 fragColor;
 
 const float kNever = 3.0e38;
@@ -117,8 +121,10 @@ void main()
                 n[axis] = -float(step[axis]);
                 // Lit by the face normal: a head light plus a little ambient.
                 float light = 0.45 + 0.55 * abs(dot(n, normalize(d)));
-                fragColor = vec4(voxelColor(brick, bit) * light, 1.0);
-                vec4 clip = uViewProjection * vec4(o + d * t, 1.0);
+                vec3 hit = o + d * t;
+                float ao = ambientOcclusion(hit, n);
+                fragColor = uAoOnly != 0u ? vec4(vec3(ao), 1.0) : vec4(voxelColor(brick, bit) * light * ao, 1.0);
+                vec4 clip = uViewProjection * vec4(hit, 1.0);
                 gl_FragDepth = clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0);
                 return;
             }

@@ -216,6 +216,7 @@ struct OctreeView::Impl {
     uint32_t brickLevel = 0;
     std::vector<uint32_t> levelStart;
     Buffer nodes, bricks, origins;
+    Buffer opacity; ///< float per node: its share of occupied voxels (ambient occlusion's mip-map)
     /// Attribute channels, voxel order, when the octree has them; voxelStart
     /// gives each brick's first voxel.
     std::optional<Buffer> voxelStart, normals, colors, triangles;
@@ -241,6 +242,42 @@ std::unique_ptr<OctreeView::Impl> upload(const Context& context, const Octree& o
     impl->bricks = Buffer("octree bricks (view)", std::max<size_t>(octree.bricks.size(), 1) * sizeof(Brick),
                           octree.bricks.empty() ? nullptr : octree.bricks.data(), 0);
     impl->origins = Buffer("node origins (view)", octree.nodes.size() * 16);
+    // Opacity per node, from the bricks up, two filters side by side
+    // (AmbientOcclusion::Filter): the voxels a node holds over the voxels of
+    // one face of its box, at most 1 (svo's octrees hold surfaces, and a
+    // surface crossing a box of w³ voxels fills about w² of them: the volume
+    // share, 1/w, would let every wall leak at coarse levels); and that or
+    // the most opaque child's (at the brick level, 4³ block's) opacity.
+    std::vector<uint64_t> count(octree.nodes.size(), 0);
+    std::vector<float> opacity(2 * octree.nodes.size(), 0.0f);
+    for (uint32_t level = octree.brickLevel + 1; level-- > 0;) {
+        const double width = double(8u << (octree.brickLevel - level));
+        for (uint32_t i = octree.levelStart[level]; i < octree.levelStart[level + 1]; ++i) {
+            const OctreeNode& n = octree.nodes[i];
+            if (!n.childMask) continue;
+            float most = 0;
+            if (level == octree.brickLevel) {
+                const Brick& b = octree.bricks[n.child];
+                count[i] = b.count();
+                for (uint32_t block = 0; block < 8; ++block) { // 4³ blocks: x, y, z halves
+                    const uint32_t x0 = 4 * (block & 1), y0 = 2 * (block & 2), z0 = (block & 4);
+                    uint32_t k = 0;
+                    for (uint32_t x = x0; x < x0 + 4; ++x)
+                        k += uint32_t(__builtin_popcountll(b.words[x] & (0x0F0F0F0FULL << (8 * y0 + z0))));
+                    most = std::max(most, std::min(1.0f, float(k) / 16.0f));
+                }
+            } else {
+                for (uint32_t c = 0; c < 8; ++c)
+                    if (n.childMask >> c & 1) {
+                        count[i] += count[n.child + c];
+                        most = std::max(most, opacity[2 * (n.child + c) + 1]);
+                    }
+            }
+            opacity[2 * i] = float(std::min(1.0, double(count[i]) / (width * width)));
+            opacity[2 * i + 1] = std::max(opacity[2 * i], most);
+        }
+    }
+    impl->opacity = Buffer("node occupancy (view)", opacity.size() * 4, opacity.data(), 0);
     impl->origins.clearUint(0); // the root's origin; the pass writes every occupied node's
 
     const Program& origins = context.program({"view_origins.comp"});
@@ -358,8 +395,21 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
             (*channel)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ATTRIBUTE);
             v.voxelStart->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_VOXEL_START);
         }
+        const AmbientOcclusion& ao = layers.ao;
+        if (ao.cones < 0 || ao.cones > 16 || (ao.only && ao.cones == 0) || !(ao.apertureDegrees > 0 && ao.apertureDegrees < 180) ||
+            !(ao.offset >= 0 && ao.offset < 1e6) || !(ao.distance > 0 && ao.distance <= 1e7))
+            throw Error(fmt::format("octree view: ambient occlusion with {} cones (0 to 16; 1 or more to draw AO alone), aperture {} degrees "
+                                    "(0 to 180), offset {} and distance {} voxels (0 or more, positive)",
+                                    ao.cones, ao.apertureDegrees, ao.offset, ao.distance));
+        v.opacity.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_OPACITY);
         const Program& p = context.program({"view_fullscreen.vert", "view_voxels.frag"});
         p.set("uColorMode", mode);
+        p.set("uAoCones", ao.cones);
+        p.set("uAoTanHalf", float(std::tan(ao.apertureDegrees * M_PI / 360.0)));
+        p.set("uAoOffset", float(ao.offset));
+        p.set("uAoDistance", float(ao.distance));
+        p.set("uAoFilter", ao.filter == AmbientOcclusion::Filter::Max ? 1u : 0u);
+        p.set("uAoOnly", ao.only ? 1u : 0u);
         p.setMatrix("uInverseViewProjection", inverseViewProjection.data());
         p.setMatrix("uViewProjection", viewProjection.data());
         p.set("uViewport", float(width), float(height));

@@ -131,6 +131,7 @@ SVO_CONST(uint) kSumWords = 8u;
 #define SVO_BIND_VIEW_ORIGINS 2 /* uvec4 per node: local origin (voxels), unused */
 #define SVO_BIND_VIEW_VOXEL_START 3 /* uint per brick: its first voxel in voxel order */
 #define SVO_BIND_VIEW_ATTRIBUTE 4   /* the coloured channel, voxel order: 3 floats (normal, colour) or 1 uint (triangle) */
+#define SVO_BIND_VIEW_OPACITY 5     /* 2 floats per node, AO mip-map: min(1, voxels / face voxels); that or the most opaque child's */
 /* ViewLayers::voxelColor as the shader reads it. */
 #define SVO_VIEW_COLOR_FLAT 0
 #define SVO_VIEW_COLOR_NORMAL 1
@@ -236,7 +237,7 @@ static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRIC
                              SVO_BIND_ENTRY_TRIANGLES, SVO_BIND_BRICK_VOXEL_OFFSETS, SVO_BIND_TRIANGLE_VALUES,
                              SVO_BIND_ATTRIBUTE_SUMS}));
 static_assert(distinctSlots({SVO_BIND_VIEW_NODES, SVO_BIND_VIEW_BRICKS, SVO_BIND_VIEW_ORIGINS,
-                             SVO_BIND_VIEW_VOXEL_START, SVO_BIND_VIEW_ATTRIBUTE}));
+                             SVO_BIND_VIEW_VOXEL_START, SVO_BIND_VIEW_ATTRIBUTE, SVO_BIND_VIEW_OPACITY}));
 static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_FIELD_ITEMS,
                              SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
                              SVO_BIND_FIELD_FLIPS, SVO_BIND_FIELD_COUNTERS}));

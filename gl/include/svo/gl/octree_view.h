@@ -54,6 +54,31 @@ struct ViewCamera {
 /// colour hashed from the triangle id.
 enum class VoxelColor { Flat, Normal, Color, Triangle };
 
+/// Ambient occlusion on the voxels, cone-traced through the octree as a
+/// mip-map of opacity (Crassin et al. 2011): a node's opacity is its voxels
+/// over the voxels of one face of its box, at most 1 (a surface crossing the
+/// box covers it); inside bricks, 4³ and 2³ blocks and voxels give three
+/// finer levels. One cone along the face normal and a ring tilted 60 degrees
+/// around it, each weighted by its share of the cosine-weighted hemisphere,
+/// composited front to back; AO is one minus the weighted occlusion. A sample
+/// whose cell would reach behind the surface's tangent plane takes a finer
+/// cell (what lies behind cannot occlude). Distances in voxels.
+///
+/// The cone model is biased, and bench/results measures it against a path-
+/// traced reference (svo/reference/path_trace.h): coarse cells that a
+/// surface crosses only in part (room corners) let light leak through walls
+/// with the Average filter; the Max filter (a node at least as opaque as its
+/// most opaque child) closes those leaks and darkens thin features instead.
+struct AmbientOcclusion {
+    enum class Filter { Average, Max };
+    int cones = 0;                ///< 0: none; 1: the normal only; n: the normal and n - 1 around it (at most 16)
+    double apertureDegrees = 60;  ///< full cone angle, (0, 180)
+    double offset = 1.0;          ///< first sample along the normal, voxels
+    double distance = 32.0;       ///< cones stop here, voxels
+    Filter filter = Filter::Max;  ///< how node opacities are filtered up the octree
+    bool only = false;            ///< draw the voxels as grey AO alone (no colour or face light), to measure it
+};
+
 /// What to draw.
 struct ViewLayers {
     bool voxels = true;
@@ -61,6 +86,7 @@ struct ViewLayers {
     bool bricks = false; ///< the brick-level nodes' boxes, in their own colour, whatever the level range
     bool mesh = false; ///< needs a mesh (ignored without one)
     VoxelColor voxelColor = VoxelColor::Flat; ///< a channel the octree lacks is an error
+    AmbientOcclusion ao;                      ///< on the voxels; off by default
     uint32_t firstLevel = 0;                                    ///< outline levels, 0 = root
     uint32_t lastLevel = std::numeric_limits<uint32_t>::max(); ///< clamped to the brick level
 };
@@ -118,7 +144,8 @@ public:
     /// reads it back. The same inputs give the same bytes. Throws svo::Error
     /// for a size outside [1, the driver's largest renderbuffer], a degenerate
     /// camera (eye at target, up along the view, height or fov not positive),
-    /// a voxel colour whose channel the octree lacks, or a GL error.
+    /// a voxel colour whose channel the octree lacks, AO options outside
+    /// their ranges, or a GL error.
     Image render(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
 
     /// Draws one frame into the framebuffer bound now (a window's, when the
