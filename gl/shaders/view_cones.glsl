@@ -69,7 +69,7 @@ float coneOcclusion(vec3 o, vec3 dir, vec3 p, vec3 n)
     float side = n[axis];
     while (t < uAoDistance && occlusion < 0.99) {
         float width = max(1.0, 2.0 * t * uAoTanHalf);
-        uint up = uint(ceil(log2(width))); // levels above the voxels
+        uint up = uint(max(floor(log2(width)) - 1.0, 0.0)); // levels above the voxels: cells half the cone wide
         uint level = finest - min(up, finest);
         vec3 q = o + t * dir;
         float cellWidth;

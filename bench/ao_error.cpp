@@ -1,0 +1,155 @@
+// Error against time of the octree view's cone-traced ambient occlusion:
+// for each scene, resolution, cone count and opacity filter, the AO image
+// (OctreeView with AmbientOcclusion::only) is compared pixel by pixel with
+// the path-traced reference AO of the same triangles, camera and distance
+// (svo/reference/path_trace.h), and the frame is timed at the benchmark size.
+//   svo-bench-ao cornell spheres MESH... --res 64 128 256 512 --cones 1 3 7 16 --md out.md
+// Scenes: "cornell" and "spheres" are the built-in scenes; anything else is a mesh file.
+// The AO distance is a fraction of the scene's bounding-box diagonal, the
+// same in world units at every resolution; the camera frames the mesh's box
+// from the front, so every resolution is compared on the same pixels.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "svo/core/atomic_file.h"
+#include "svo/core/default_scene.h"
+#include "svo/core/mesh_io.h"
+#include "svo/gl/context.h"
+#include "svo/gl/octree_view.h"
+#include "svo/reference/path_trace.h"
+#include "svo/svo.h"
+
+namespace {
+
+double quantile(std::vector<double> v, double q)
+{
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[std::min(v.size() - 1, size_t(q * double(v.size())))];
+}
+
+svo::TriangleMesh scene(const std::string& name)
+{
+    if (name == "cornell") return svo::cornellBox();
+    if (name == "spheres") return svo::sphereGrid();
+    return svo::loadMesh(name);
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"svo AO benchmark: cone-traced ambient occlusion against a path-traced reference"};
+    std::vector<std::string> scenes;
+    std::vector<int> resolutions{64, 128, 256, 512}, coneCounts{1, 3, 7, 16};
+    int width = 320, height = 240, samples = 256, timeWidth = 1920, timeHeight = 1080, frames = 10;
+    double distanceShare = 0.25;
+    std::string mdPath, dumpDir;
+    app.add_option("scenes", scenes, "cornell, spheres or mesh files")->required();
+    app.add_option("--res", resolutions, "Resolutions");
+    app.add_option("--cones", coneCounts, "Cone counts");
+    app.add_option("--width", width, "Compared image width")->check(CLI::PositiveNumber);
+    app.add_option("--height", height, "Compared image height")->check(CLI::PositiveNumber);
+    app.add_option("--samples", samples, "Reference AO rays per pixel")->check(CLI::PositiveNumber);
+    app.add_option("--distance", distanceShare, "AO distance, share of the bounding-box diagonal");
+    app.add_option("--time-size", timeWidth, "Timed frame width (height 9/16 of it)")->check(CLI::PositiveNumber);
+    app.add_option("--frames", frames, "Timed frames per point")->check(CLI::PositiveNumber);
+    app.add_option("--md", mdPath, "Markdown table to write");
+    app.add_option("--dump", dumpDir, "Write the reference and each AO image here as PGM");
+    CLI11_PARSE(app, argc, argv);
+    timeHeight = timeWidth * 9 / 16;
+    try {
+        svo::Voxelizer voxelizer;
+        svo::gl::Context context;
+        std::string md = fmt::format(
+            "Cone-traced AO (svo view --render ao) against path-traced AO ({} rays per pixel, Embree), {} x {} "
+            "pixels compared where both see a surface; AO distance {} of the scene's diagonal; GPU ms per frame "
+            "at {} x {} on {}.\n\n"
+            "| scene | grid | filter | cones | RMSE | p99 error | mean AO (svo) | mean AO (reference) | pixels | GPU ms "
+            "| wall ms |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
+            samples, width, height, distanceShare, timeWidth, timeHeight, context.info().renderer);
+        for (const std::string& name : scenes) {
+            const svo::TriangleMesh mesh = scene(name);
+            const svo::Bounds b = mesh.bounds();
+            const double diagonal = std::sqrt(svo::dot(b.extent(), b.extent()));
+            const double distance = distanceShare * diagonal;
+            const svo::gl::ViewCamera camera =
+                svo::gl::namedView({b.min, b.max}, "front", double(width) / height);
+            svo::reference::Camera refCamera;
+            refCamera.eye = camera.eye, refCamera.target = camera.target, refCamera.up = camera.up;
+            refCamera.orthographic = camera.orthographic, refCamera.fovYDegrees = camera.fovYDegrees;
+            refCamera.height = camera.height;
+            svo::reference::RenderOptions ro;
+            ro.mode = svo::reference::Mode::AmbientOcclusion;
+            ro.samples = samples;
+            ro.aoDistance = distance;
+            svo::reference::RenderStats rs;
+            svo::reference::Material material;
+            material.vertexColors = false;
+            const svo::reference::FloatImage reference =
+                svo::reference::render(mesh, material, refCamera, width, height, {}, ro, &rs);
+            fmt::print(stderr, "{}: reference AO in {:.0f} ms ({} rays)\n", name, rs.wallMs, rs.rays());
+            for (int r : resolutions) {
+                const svo::Octree octree = voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{r, 0}));
+                svo::gl::OctreeView view(context, octree);
+                for (const auto filter :
+                     {svo::gl::AmbientOcclusion::Filter::Max, svo::gl::AmbientOcclusion::Filter::Average})
+                    for (int cones : coneCounts) {
+                        svo::gl::ViewLayers layers;
+                        layers.outlines = false;
+                        layers.ao.cones = cones;
+                        layers.ao.filter = filter;
+                        layers.ao.only = true;
+                        layers.ao.distance = distance / octree.grid.voxelSize;
+                        const svo::gl::Image image = view.render(camera, width, height, layers);
+                        if (!dumpDir.empty()) {
+                            std::string pgm = fmt::format("P5 {} {} 255\n", width, height), ref = pgm;
+                            for (int y = 0; y < height; ++y)
+                                for (int x = 0; x < width; ++x) {
+                                    pgm += char(image.pixel(x, y)[1]);
+                                    ref += char(std::lround(255 * std::clamp(reference.at(x, y), 0.0f, 1.0f)));
+                                }
+                            const std::string stem = std::filesystem::path(name).stem().string();
+                            svo::writeFileAtomically(fmt::format("{}/{}_reference.pgm", dumpDir, stem), ref);
+                            svo::writeFileAtomically(fmt::format("{}/{}_{}_{}_{}.pgm", dumpDir, stem, r,
+                                                                 int(filter), cones),
+                                                     pgm);
+                        }
+                        std::vector<double> errors;
+                        double sumSvo = 0, sumRef = 0;
+                        for (int y = 0; y < height; ++y)
+                            for (int x = 0; x < width; ++x) {
+                                const uint8_t* p = image.pixel(x, y);
+                                const bool grey = p[0] == p[1] && p[1] == p[2]; // the background is bluish
+                                if (!grey || !reference.covered[size_t(y) * size_t(width) + size_t(x)]) continue;
+                                const double a = p[1] / 255.0, ref = reference.at(x, y);
+                                errors.push_back(std::abs(a - ref));
+                                sumSvo += a, sumRef += ref;
+                            }
+                        double squares = 0;
+                        for (double e : errors) squares += e * e;
+                        const double n = double(std::max<size_t>(errors.size(), 1));
+                        std::vector<double> gpu, wall;
+                        for (const auto& t : view.timeFrames(camera, timeWidth, timeHeight, layers, frames))
+                            gpu.push_back(t.gpuMs), wall.push_back(t.wallMs);
+                        const std::string line = fmt::format(
+                            "| {} | {}³ | {} | {} | {:.4f} | {:.3f} | {:.3f} | {:.3f} | {} | {:.2f} | {:.2f} |\n",
+                            std::filesystem::path(name).stem().string(), r,
+                            filter == svo::gl::AmbientOcclusion::Filter::Max ? "max" : "average", cones,
+                            std::sqrt(squares / n), quantile(errors, 0.99), sumSvo / n, sumRef / n, errors.size(),
+                            quantile(gpu, 0.5), quantile(wall, 0.5));
+                        fmt::print("{}", line);
+                        std::fflush(stdout);
+                        md += line;
+                    }
+            }
+        }
+        if (!mdPath.empty()) svo::writeFileAtomically(mdPath, md);
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "svo-bench-ao: {}\n", e.what());
+        return 1;
+    }
+    return 0;
+}
