@@ -280,7 +280,8 @@ void addViewCommand(CLI::App& app)
         ->capture_default_str();
     cmd->add_option("--frames", args->frames, "Window: close after this many frames (0: when closed)");
     cmd->add_option("--keys", args->keys,
-                    "Window: keys to press, one a frame from the second frame (v o m: layers; + -: resolution; b c t: "
+                    "Window: keys to press, one a frame from the second frame (v o m k: layers; a: colour; g r: AO on, AO "
+                    "alone; + -: resolution; b c t: "
                     "backend, dilation, mode; f x y z: views; p: screenshot; q: quit)");
     addOutputPath(*cmd, "--save", args->save, "Window: write the octree shown last to this .svo, .vdb or .nvdb on exit",
                   {".svo", ".vdb", ".nvdb"});

@@ -197,6 +197,11 @@ struct ViewerState {
         case 'm': l.mesh = !l.mesh; break;
         case 'k': l.bricks = !l.bricks; break;
         case 'a': nextColor(); break;
+        case 'g': l.ao.cones = l.ao.cones ? 0 : 7; if (!l.ao.cones) l.ao.only = false; break;
+        case 'r':
+            l.ao.only = !l.ao.only;
+            if (l.ao.only) l.ao.cones = std::max(l.ao.cones, 7), l.outlines = l.bricks = false;
+            break;
         case '+': case '=': revoxelize(resolution * 2); break;
         case '-': revoxelize(std::max<int64_t>(resolution / 2, 1)); break;
         case 'b': backend = (backend + 1) % int(std::size(kBackends)); revoxelize(resolution); break;
@@ -236,6 +241,23 @@ struct ViewerState {
         if (octree.attributes.empty()) {
             ImGui::SameLine();
             ImGui::TextDisabled("(no attribute channels; --attributes)");
+        }
+        // Ambient occlusion, cone-traced through the octree.
+        ImGui::SliderInt("AO cones (G)", &l.ao.cones, 0, 16);
+        if (l.ao.cones > 0) {
+            ImGui::SameLine();
+            ImGui::Checkbox("AO alone (R)", &l.ao.only);
+            float aperture = float(l.ao.apertureDegrees), offset = float(l.ao.offset), distance = float(l.ao.distance);
+            if (ImGui::SliderFloat("AO aperture", &aperture, 10.0f, 120.0f, "%.0f deg")) l.ao.apertureDegrees = aperture;
+            if (ImGui::SliderFloat("AO offset", &offset, 0.0f, 8.0f, "%.2f voxels")) l.ao.offset = offset;
+            if (ImGui::SliderFloat("AO distance", &distance, 1.0f, 1024.0f, "%.0f voxels", ImGuiSliderFlags_Logarithmic))
+                l.ao.distance = distance;
+            int filter = int(l.ao.filter);
+            static constexpr const char* kFilters[] = {"average", "max"};
+            if (ImGui::Combo("AO filter", &filter, kFilters, IM_ARRAYSIZE(kFilters)))
+                l.ao.filter = gl::AmbientOcclusion::Filter(filter);
+        } else {
+            l.ao.only = false;
         }
         int levels[2] = {int(std::min<uint32_t>(l.firstLevel, octree.brickLevel)),
                          int(std::min<uint32_t>(l.lastLevel, octree.brickLevel))};

@@ -682,6 +682,18 @@ TEST_F(Cli, ViewWindowRevoxelizesLiveToTheVoxelsOfVoxelize)
     EXPECT_EQ(withNormals.attributes.triangles.size(), withNormals.voxelCount());
     EXPECT_TRUE(sorted(octreeKeys(withNormals)) == sorted(octreeKeys(readOctreeFile(path("ref16.svo")))));
 
+    // 'r' shows the AO alone: the window's screenshot is the same picture,
+    // byte for byte, as `svo view --render ao --screenshot` of that size.
+    const auto ao = runSvo("view -r 32 --size 160x120 --frames 4 --keys rp", "cd " + path("") + " && " + xvfb);
+    ASSERT_EQ(ao.code, 0) << ao.out;
+    ASSERT_EQ(runSvo("view -r 32 --size 160x120 --render ao --screenshot " + path("ao.png")).code, 0);
+    auto bytes = [](const std::string& file) {
+        std::ifstream f(file, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(f), {});
+    };
+    EXPECT_GT(bytes(path("ao.png")).size(), 100u);
+    EXPECT_EQ(bytes(path("svo-view-2.png")), bytes(path("ao.png")));
+
     for (const char* args : {"--frames 3 --screenshot x.png", "--keys + --screenshot x.png", "--frames -1",
                              "--save x.svo --screenshot x.png"}) {
         const auto bad = runSvo(std::string("view -r 8 ") + args, xvfb);
