@@ -525,7 +525,26 @@ TEST(Solid, MatchesCgalsInsideTestAndUsesTiles)
     EXPECT_EQ(solid->activeVoxelCount(), openvdb::Index64(301) * 301 * 301);
     EXPECT_LT(solid->tree().leafCount(), 6u * 40 * 40);
     EXPECT_GT(solid->tree().activeTileCount(), 0u);
+    // A closed mesh: winding and parity give the same solid, here with
+    // thousands of band bricks (llvmpipe once dropped inside voxels past the
+    // 7,000th in one dispatch).
+    const TriangleMesh ico = icosphere({0.3, 0.1, -0.2}, 1.0, 3);
+    const GridSpec icoGrid = makeGrid(ico, GridRequest{240, 0});
+    const auto byParity = v.solid(ico, icoGrid, {}, SignOptions(SignMethod::Parity));
+    const auto byWinding = v.solid(ico, icoGrid, {}, SignOptions(SignMethod::Winding));
+    EXPECT_GT(byParity->activeVoxelCount(), 7'000'000u);
+    EXPECT_EQ(byWinding->activeVoxelCount(), byParity->activeVoxelCount());
+    EXPECT_TRUE(byWinding->tree().hasSameTopology(byParity->tree()));
+    // The box by winding numbers: whole 128³ nodes of inside bricks are tiles.
+    const auto winding = v.solid(big, grid, {}, SignOptions(SignMethod::Winding));
+    EXPECT_EQ(winding->activeVoxelCount(), openvdb::Index64(301) * 301 * 301);
+    EXPECT_LT(winding->tree().leafCount(), 6u * 40 * 40);
+    bool largeTile = false;
+    for (auto it = winding->tree().cbeginValueOn(); it; ++it)
+        largeTile |= it.isTileValue() && it.getLevel() >= 2;
+    EXPECT_TRUE(largeTile) << "no 128³ tile";
 }
 
 } // namespace
 } // namespace svo::test
+

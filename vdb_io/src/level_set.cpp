@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <limits>
 #include <openvdb/tools/SignedFloodFill.h>
+#include <unordered_map>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -256,6 +257,25 @@ openvdb::Coord leafOrigin(const GridSpec& grid, const BrickCoord& b)
 
 bool bitOf(const Brick& b, uint32_t bit) { return (b.words[bit >> 6] >> (bit & 63)) & 1u; }
 
+/// Adds whole bricks (the grid's brick coordinates) as tiles of `value`:
+/// where all 16³ leaves of a level-1 node (128³ voxels) are bricks of the
+/// list, one tile for the node, else one leaf-sized tile per brick, so that
+/// a solid's interior costs time and memory in proportion to its surface.
+template <typename TreeT>
+void addBrickTiles(TreeT& tree, const GridSpec& grid, const std::vector<BrickCoord>& bricks,
+                   const typename TreeT::ValueType& value, bool active)
+{
+    using Level1 = typename TreeT::RootNodeType::ChildNodeType::ChildNodeType;
+    constexpr uint32_t kFull = (Level1::DIM / 8) * (Level1::DIM / 8) * (Level1::DIM / 8);
+    auto nodeOf = [&](const BrickCoord& b) { return leafOrigin(grid, b) & ~(int32_t(Level1::DIM) - 1); };
+    std::unordered_map<openvdb::Coord, uint32_t> count; // the list's bricks per level-1 node
+    for (const BrickCoord& b : bricks) ++count[nodeOf(b)];
+    for (const auto& [origin, n] : count)
+        if (n == kFull) tree.addTile(2, origin, value, active); // a tile of the level-2 node: 128³ voxels
+    for (const BrickCoord& b : bricks)
+        if (count[nodeOf(b)] != kFull) tree.addTile(1, leafOrigin(grid, b), value, active);
+}
+
 /// Adds leaves made in parallel (null: none) to a tree, in order.
 template <typename TreeT>
 void addLeaves(TreeT& tree, std::vector<typename TreeT::LeafNodeType*>& leaves)
@@ -391,7 +411,7 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
             for (uint32_t v = 0; v < 512; ++v)
                 if (bitOf(m, v)) leaf->setValueOnly(v, -background);
         }
-        for (const auto& b : signs.insideBricks) distance->tree().addTile(1, leafOrigin(g, b), -background, false);
+        addBrickTiles(distance->tree(), g, signs.insideBricks, -background, false);
         distance->tree().prune();
     } else if (signedField) {
         openvdb::tools::signedFloodFill(distance->tree());
@@ -475,7 +495,7 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
         for (uint32_t v = 0; v < 512; ++v)
             if (bitOf(m, v)) leaf->setValueOn(v);
     }
-    for (const auto& b : signs.insideBricks) out->tree().addTile(1, leafOrigin(g, b), true, true);
+    addBrickTiles(out->tree(), g, signs.insideBricks, true, true);
     // Parity: runs of whole bricks inside, tiles where all 64 columns are inside.
     for (const auto& run : signs.runs) {
         const openvdb::Coord lo = leafOrigin(g, run.first);
