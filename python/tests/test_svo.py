@@ -455,6 +455,16 @@ def test_octree_render_draws_what_svo_view_draws(voxelizer, tmp_path):
         assert np.array_equal(image[:, :, :3], read_png_rgb(png))
         green = (image[:, :, 1].astype(int) > image[:, :, 0].astype(int) + 50).sum()
         assert 0 < green < 64 * 48  # voxels drawn, background left
+    # Ambient occlusion alone, grey: the same picture as svo view --render ao.
+    image = octree.render(size=(64, 48), view="front", layers=["voxels"], ao_only=True)
+    png = str(tmp_path / "ao.png")
+    subprocess.run([SVO_EXE, "view", path, "--screenshot", png, "--size", "64x48", "--view", "front",
+                    "--layers", "voxels", "--render", "ao"], check=True, capture_output=True)
+    assert np.array_equal(image[:, :, :3], read_png_rgb(png))
+    grey = (image[:, :, 0] == image[:, :, 1]) & (image[:, :, 1] == image[:, :, 2])
+    assert 0 < grey.sum() < 64 * 48
+    with pytest.raises(ValueError, match="ao"):
+        octree.render(ao=17)
     with pytest.raises(ValueError, match="no 'triangle' channel"):
         octree.render(color="triangle")
     with pytest.raises(ValueError, match="sideways"):
