@@ -271,7 +271,7 @@ void addViewCommand(CLI::App& app)
         ->capture_default_str();
     cmd->add_option("--ao-distance", args->ao.distance, "AO cones stop this far away, voxels")->capture_default_str();
     cmd->add_option("--ao-filter", args->aoFilter, "AO opacity up the octree: max (a node as opaque as its most opaque "
-                                                   "child: no leaks through walls) or average (its face share)")
+                                                   "child: fewer leaks through walls) or average (its face share)")
         ->check(CLI::IsMember({"max", "average"}))
         ->capture_default_str();
     cmd->add_option("--render", args->render, "debug: the layers; ao: the voxels as their ambient occlusion, grey "
