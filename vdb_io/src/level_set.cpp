@@ -379,29 +379,23 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
             auto leaf = std::make_unique<openvdb::FloatTree::LeafNodeType>(origin, background);
             std::unique_ptr<openvdb::Int32Tree::LeafNodeType> c;
             if (closest) c = std::make_unique<openvdb::Int32Tree::LeafNodeType>(origin, -1);
-            // The values directly: ±background by side, then the near voxels,
-            // set bits in order as they were packed; the active mask as words
-            // (NodeMask<3> has Brick's bit order).
-            const Brick noInside{};
-            const Brick& inside = signedField ? signs.inside[i] : noInside;
-            float* values = leaf->buffer().data();
-            for (uint32_t v = 0; v < 512; ++v) values[v] = bitOf(inside, v) ? -background : background;
-            openvdb::util::NodeMask<3> active;
             bool any = false;
-            size_t packed = field.bandOffsets[i];
-            for (uint32_t w = 0; w < 8; ++w)
-                for (uint64_t m = near.words[w]; m; m &= m - 1, ++packed) {
-                    const uint32_t v = 64 * w + uint32_t(__builtin_ctzll(m));
+            size_t packed = field.bandOffsets[i]; // the next near voxel's value
+            for (uint32_t v = 0; v < 512; ++v) {
+                const bool inside = signedField && bitOf(signs.inside[i], v);
+                float value = background;
+                if (bitOf(near, v)) {
                     const float d = field.distances[packed];
-                    const bool in = bitOf(inside, v);
-                    if (!(d < (in ? interior : exterior))) continue;
-                    const float value = float(double(d) * worldPerVoxel);
-                    values[v] = in ? -value : value;
-                    active.setOn(v);
-                    if (c) c->setValueOn(v, field.closest[packed]);
-                    any = true;
+                    if (d < (inside ? interior : exterior)) {
+                        value = float(double(d) * worldPerVoxel);
+                        leaf->setValueOn(v);
+                        if (c) c->setValueOn(v, field.closest[packed]);
+                        any = true;
+                    }
+                    ++packed;
                 }
-            leaf->setValueMask(active);
+                leaf->setValueOnly(v, inside ? -value : value);
+            }
             if (!any && !(winding && anyInside)) continue;
             if (c && any) closestLeaves[i] = c.release();
             leaves[i] = leaf.release();
