@@ -1,12 +1,14 @@
 // Cone-traced ambient occlusion through the octree (Crassin et al. 2011),
 // included by view_voxels.frag, which declares the node and brick buffers.
 //
-// The octree is the mip-map: a node's opacity is its voxels over the voxels
-// of one face of its box, at most 1 (uploaded per node; a surface crossing
-// the box covers it); inside a brick the 4³ and 2³ blocks and single voxels
-// give three finer levels, counted from the brick's bits here. A cone samples, at each step, the
-// level whose cell is as wide as the cone there, and composites front to
-// back; AO is one minus the mean occlusion of the cones.
+// The octree is the mip-map: per node two opacities, uploaded (its voxels
+// over the voxels of one face of its box, at most 1; and that or its most
+// opaque child's, the Max filter); inside a brick the 4³ and 2³ blocks and
+// single voxels give three finer levels, counted from the brick's bits here.
+// A cone samples, at each step, the cell half as wide as the cone there (a
+// finer one near the surface, see coneOcclusion), and composites front to
+// back; AO is one minus the cones' occlusion weighted by their shares of
+// the cosine-weighted hemisphere.
 
 layout(std430, binding = SVO_BIND_VIEW_OPACITY) readonly restrict buffer Opacity { float opacity[]; };
 

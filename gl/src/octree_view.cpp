@@ -216,7 +216,7 @@ struct OctreeView::Impl {
     uint32_t brickLevel = 0;
     std::vector<uint32_t> levelStart;
     Buffer nodes, bricks, origins;
-    Buffer opacity; ///< float per node: its share of occupied voxels (ambient occlusion's mip-map)
+    Buffer opacity; ///< 2 floats per node, ambient occlusion's mip-map: the Average and the Max filter's opacity
     /// Attribute channels, voxel order, when the octree has them; voxelStart
     /// gives each brick's first voxel.
     std::optional<Buffer> voxelStart, normals, colors, triangles;

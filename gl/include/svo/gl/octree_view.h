@@ -68,7 +68,8 @@ enum class VoxelColor { Flat, Normal, Color, Triangle };
 /// traced reference (svo/reference/path_trace.h): coarse cells that a
 /// surface crosses only in part (room corners) let light leak through walls
 /// with the Average filter; the Max filter (a node at least as opaque as its
-/// most opaque child) closes those leaks and darkens thin features instead.
+/// most opaque child) closes most of them (a closed box's floor: AO 0.03
+/// instead of 0.15) and darkens thin features instead.
 struct AmbientOcclusion {
     enum class Filter { Average, Max };
     int cones = 0;                ///< 0: none; 1: the normal only; n: the normal and n - 1 around it (at most 16)
