@@ -87,6 +87,8 @@ class Octree:
         layers: Sequence[str] = ("voxels", "outlines"),
         levels: Optional[Tuple[int, int]] = None,
         color: str = "flat",
+        ao: int = 0,
+        ao_only: bool = False,
     ) -> npt.NDArray[np.uint8]: ...
     def save(self, path: str) -> None: ...
 
