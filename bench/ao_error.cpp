@@ -77,10 +77,6 @@ int main(int argc, char** argv)
             const double distance = distanceShare * diagonal;
             const svo::gl::ViewCamera camera =
                 svo::gl::namedView({b.min, b.max}, "front", double(width) / height);
-            svo::reference::Camera refCamera;
-            refCamera.eye = camera.eye, refCamera.target = camera.target, refCamera.up = camera.up;
-            refCamera.orthographic = camera.orthographic, refCamera.fovYDegrees = camera.fovYDegrees;
-            refCamera.height = camera.height;
             svo::reference::RenderOptions ro;
             ro.mode = svo::reference::Mode::AmbientOcclusion;
             ro.samples = samples;
@@ -89,7 +85,7 @@ int main(int argc, char** argv)
             svo::reference::Material material;
             material.vertexColors = false;
             const svo::reference::FloatImage reference =
-                svo::reference::render(mesh, material, refCamera, width, height, {}, ro, &rs);
+                svo::reference::render(mesh, material, camera, width, height, {}, ro, &rs);
             fmt::print(stderr, "{}: reference AO in {:.0f} ms ({} rays)\n", name, rs.wallMs, rs.rays());
             for (int r : resolutions) {
                 const svo::Octree octree = voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{r, 0}));

@@ -33,21 +33,16 @@
 #include <string>
 #include <vector>
 
+#include "svo/core/camera.h"
 #include "svo/core/mesh.h"
 #include "svo/core/octree.h"
 #include "svo/gl/context.h"
 
 namespace svo::gl {
 
-/// A camera in world units.
-struct ViewCamera {
-    Vec3d eye{0, 0, 1};
-    Vec3d target{0, 0, 0};
-    Vec3d up{0, 1, 0};
-    bool orthographic = false;
-    double fovYDegrees = 40.0; ///< perspective: vertical field of view
-    double height = 1.0;       ///< orthographic: world units the image spans vertically
-};
+/// A camera in world units (svo/core/camera.h), shared with the path-traced
+/// reference so that both see each pixel along the same ray.
+using ViewCamera = svo::Camera;
 
 /// How voxels are coloured: flat green, or by an attribute channel of the
 /// octree (VoxelAttributes): the normal as 0.5 + 0.5 n, the colour, or a

@@ -1,10 +1,8 @@
 #pragma once
 /// @file camera.h
-/// @brief The reference's camera, as plain data: the same fields and the same
-/// pixel rays as svo::gl::ViewCamera (svo/gl/octree_view.h), so that pixel
-/// (x, y) of a reference image and of a GL view of the same camera see along
-/// the same ray. Core does not depend on gl, hence a struct of its own;
-/// copying a ViewCamera is field by field.
+/// @brief The reference's pixel rays for svo::Camera (svo/core/camera.h),
+/// which is also svo::gl::ViewCamera, so that pixel (x, y) of a reference
+/// image and of a GL view of the same camera see along the same ray.
 ///
 /// @details Convention (octree_view.h's): forward f = normalize(target - eye),
 /// right r = normalize(f x up), image up u = r x f. Pixel (x, y), rows from
@@ -21,19 +19,13 @@
 /// the scene in front of it (as gl::frameBox places it).
 #include <cstdint>
 
+#include "svo/core/camera.h"
 #include "svo/core/vec3.h"
 
 namespace svo::reference {
 
-/// A camera in world units: the fields and meaning of svo::gl::ViewCamera.
-struct Camera {
-    Vec3d eye{0, 0, 1};
-    Vec3d target{0, 0, 0};
-    Vec3d up{0, 1, 0};
-    bool orthographic = false;
-    double fovYDegrees = 40.0; ///< perspective: vertical field of view
-    double height = 1.0;       ///< orthographic: world units the image spans vertically
-};
+/// The camera of svo/core/camera.h, which svo::gl::ViewCamera is too.
+using Camera = svo::Camera;
 
 /// A ray in world units; `direction` is unit length.
 struct Ray {
