@@ -426,13 +426,31 @@ TEST_F(Cli, InterruptStopsTheXServerSvoStarted)
     };
     const auto before = sockets();
     Background svo = startSvo({"vtk", mesh, "-r", "256", "--png", path("m.png")}, path("log.txt"), true);
-    // Wait until the server svo started is up: its socket appears.
+    // Wait until the server svo started is up: its socket appears. The
+    // socket is the one that server listens on (other tests may start X
+    // servers at the same time): a path of /proc/net/unix whose inode is
+    // among the server's open files.
+    auto listensOn = [](pid_t pid, const std::string& socketPath) {
+        std::ifstream table("/proc/net/unix");
+        std::string line, inode;
+        while (std::getline(table, line))
+            if (line.size() > socketPath.size() && line.compare(line.size() - socketPath.size(), socketPath.size(), socketPath) == 0) {
+                std::istringstream fields(line);
+                std::string f;
+                for (int k = 0; k < 7 && fields >> f; ++k) inode = f; // the 7th field is the inode
+            }
+        if (inode.empty()) return false;
+        std::error_code ec;
+        for (const auto& fd : fs::directory_iterator("/proc/" + std::to_string(pid) + "/fd", ec))
+            if (fs::read_symlink(fd.path(), ec).string() == "socket:[" + inode + "]") return true;
+        return false;
+    };
     std::vector<pid_t> servers;
     std::string socket;
     for (int i = 0; i < 20000 && socket.empty(); ++i) {
         if (servers.empty()) servers = childrenNamed(svo.pid, "Xvfb");
         for (const auto& s : sockets())
-            if (!before.count(s)) socket = s;
+            if (!before.count(s) && servers.size() == 1 && listensOn(servers[0], s)) socket = s;
         if (socket.empty()) std::this_thread::sleep_for(std::chrono::microseconds(500));
         if (waitpid(svo.pid, nullptr, WNOHANG) != 0) break;
     }
