@@ -27,7 +27,43 @@ VoxelizeOptions BackendArgs::voxelizeOptions() const
                                               : Dilation::Auto;
     o.attributes = attributes;
     o.mode = parseVoxelMode(mode);
+    o.gpuMemory = gpuMemory;
     return o;
+}
+
+uint64_t parseByteSize(const std::string& text, const std::string& option)
+{
+    const auto bad = [&] {
+        return Error(fmt::format("{}: '{}' is not a size in bytes (a number, optionally with K, M, G or T)", option,
+                                 text));
+    };
+    size_t end = 0;
+    double v = 0;
+    try {
+        v = std::stod(text, &end);
+    } catch (const std::exception&) {
+        throw bad();
+    }
+    std::string unit = text.substr(end); // "G", "GiB", "GB", "B" or ""
+    if (unit.size() > 2 && unit.compare(unit.size() - 2, 2, "iB") == 0) unit.resize(unit.size() - 2);
+    else if (!unit.empty() && unit.back() == 'B') unit.pop_back();
+    int shift = 0;
+    if (unit == "K" || unit == "k") shift = 10;
+    else if (unit == "M" || unit == "m") shift = 20;
+    else if (unit == "G" || unit == "g") shift = 30;
+    else if (unit == "T" || unit == "t") shift = 40;
+    else if (!unit.empty()) throw bad();
+    const double bytes = std::ldexp(v, shift);
+    if (!std::isfinite(bytes) || bytes < 1 || bytes > 1e18) throw bad();
+    return uint64_t(bytes);
+}
+
+void addGpuMemoryOption(CLI::App& cmd, BackendArgs& a)
+{
+    cmd.add_option_function<std::string>(
+        "--gpu-memory", [&a](const std::string& t) { a.gpuMemory = parseByteSize(t, "--gpu-memory"); },
+        "GPU memory a voxelization may use (e.g. 8G, 512M); a grid that needs more is voxelized in tiles and "
+        "merged, with the same voxels (default: what the device reports free)");
 }
 
 void addBackendOptions(CLI::App& cmd, BackendArgs& a)

@@ -35,6 +35,7 @@ struct BackendArgs {
     bool glDebug = false;
     uint32_t attributes = 0; ///< AttributeChannel bits
     std::string mode = "conservative"; ///< conservative | thin
+    uint64_t gpuMemory = 0;  ///< --gpu-memory in bytes; 0: not given
 
     DeviceOptions deviceOptions() const;
     /// The options these arguments ask for (no interrupter, no statistics yet).
@@ -44,6 +45,11 @@ void addBackendOptions(CLI::App& cmd, BackendArgs& args);
 void addAttributeOption(CLI::App& cmd, BackendArgs& args);
 /// --mode conservative|thin: which voxels a triangle covers (for the commands that voxelize meshes).
 void addModeOption(CLI::App& cmd, BackendArgs& args);
+/// --gpu-memory SIZE: the GPU budget past which a grid is voxelized in tiles.
+void addGpuMemoryOption(CLI::App& cmd, BackendArgs& args);
+/// Bytes from "1073741824", "512M", "1.5G", "2GiB" (K, M, G, T: powers of 1024).
+/// Throws svo::Error naming `option` for anything else, or for 0.
+uint64_t parseByteSize(const std::string& text, const std::string& option);
 
 /// --band, --exterior-band, --interior-band, --sign, --winding-accuracy:
 /// the level-set arguments `svo voxelize` and `svo validate --sdf` share.

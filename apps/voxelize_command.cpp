@@ -95,8 +95,12 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
         throw Error("--winding-accuracy applies to --sdf and --fill solid");
     if (cmd.count("--winding-accuracy") && a.levelSet.sign == "parity")
         throw Error("--winding-accuracy applies to winding-number signs, not to --sign parity");
+    if (cmd.count("--gpu-memory") && a.backend.backend == "cpu")
+        throw Error("--gpu-memory applies to the GPU backends, not to --backend cpu");
     if (!a.field()) return;
     if (a.backend.attributes) throw Error("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
+    if (cmd.count("--gpu-memory"))
+        throw Error("--gpu-memory applies to surface voxels; --sdf, --udf and --fill solid do not tile yet");
     if (cmd.count("--fog") || cmd.count("--topology"))
         throw Error("--fog and --topology apply to surface voxels, not to --sdf, --udf or --fill solid");
     if (!a.output.empty() && outputFormat(a.output) != OutputFormat::Vdb)
@@ -281,8 +285,9 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
     fmt::print("  {:<11} {:.3g} voxels ({} grown by half of it on the GPU)\n", "guard band", grid.epsilon(),
                stats.mode == "thin" ? "centre segments" : "cubes");
-    fmt::print("  {:<11} {} entries, {} overflow retries, {:.1f} MB of GPU buffers\n", "voxel list",
-               thousands(stats.listEntries), stats.overflowRetries, double(stats.gpuBytes) / 1e6);
+    fmt::print("  {:<11} {} entries, {} overflow retries, {:.1f} MB of GPU buffers{}\n", "voxel list",
+               thousands(stats.listEntries), stats.overflowRetries, double(stats.gpuBytes) / 1e6,
+               stats.tiles > 1 ? fmt::format(", in {} tiles", stats.tiles) : std::string());
     fmt::print("  {:<11} {}\n", "output",
                timingOnly ? std::string("none (--repeat without -o times the runs only)")
                           : describeOutput(output, written, grids));
@@ -309,6 +314,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
             {"list_entries", stats.listEntries},
             {"overflow_retries", stats.overflowRetries},
             {"gpu_bytes", stats.gpuBytes},
+            {"tiles", stats.tiles},
             {"repeat", a.repeat},
             {"peak_rss_mb", peakRssMb()},
             {"startup",
@@ -339,6 +345,7 @@ void addVoxelizeCommand(CLI::App& app)
     addBackendOptions(*cmd, args->backend);
     addAttributeOption(*cmd, args->backend);
     addModeOption(*cmd, args->backend);
+    addGpuMemoryOption(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
     cmd->add_flag("--sdf", args->sdf,
                   "Write a narrow-band signed distance field (OpenVDB level set, grid 'surface') instead of voxels");

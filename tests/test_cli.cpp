@@ -526,6 +526,42 @@ TEST_F(Cli, SmallMisusesAreRefusedOrDoWhatTheySay)
     expectOnly({"m.off", "m.vdb", "g.off"});
 }
 
+// A GPU memory budget below what the grid needs: the grid is voxelized in
+// tiles, with the voxels of the untiled run, and vdb_print reads the file.
+TEST_F(Cli, AGpuMemoryBudgetTilesTheGridToTheSameVoxels)
+{
+    auto read = [&](const std::string& name) {
+        std::ifstream in(path(name));
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    auto number = [](const std::string& json, const std::string& key) {
+        std::smatch m;
+        return std::regex_search(json, m, std::regex("\"" + key + "\": ([0-9]+)")) ? std::stoull(m[1]) : 0ull;
+    };
+    auto r = runSvo("voxelize -r 128 -o " + path("whole.vdb") + " --json " + path("whole.json"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    r = runSvo("voxelize -r 128 --gpu-memory 2.5MiB -o " + path("tiled.vdb") + " --json " + path("tiled.json"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find(" tiles"), std::string::npos) << r.out;
+    const std::string whole = read("whole.json"), tiled = read("tiled.json");
+    EXPECT_EQ(number(whole, "tiles"), 1u) << whole;
+    EXPECT_GT(number(tiled, "tiles"), 1u) << tiled;
+    EXPECT_LE(number(tiled, "gpu_bytes"), uint64_t(2.5 * (1 << 20))) << tiled;
+    EXPECT_EQ(number(tiled, "voxels"), number(whole, "voxels"));
+    EXPECT_EQ(number(tiled, "bricks"), number(whole, "bricks"));
+    EXPECT_EQ(number(tiled, "list_entries"), number(whole, "list_entries"));
+    const std::string printed = runCommand("vdb_print -l " + path("tiled.vdb"));
+    EXPECT_NE(printed.find(fmt("file_voxel_count: {}\n", number(whole, "voxels"))), std::string::npos) << printed;
+
+    for (const std::string& bad : {"--gpu-memory 12Q", "--gpu-memory 0", "--gpu-memory -5M", "--gpu-memory 1K",
+                                   "--gpu-memory 1G --backend cpu", "--gpu-memory 1G --sdf"}) {
+        r = runSvo("voxelize -r 32 " + bad + " -o " + path("x.vdb"));
+        EXPECT_EQ(r.code, 1) << bad << "\n" << r.out;
+        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << bad << "\n" << r.out;
+    }
+    expectOnly({"whole.vdb", "whole.json", "tiled.vdb", "tiled.json"});
+}
+
 // --sdf and --fill solid write grids that OpenVDB's own vdb_print reads as a
 // level set and a solid; combinations without meaning are refused first.
 TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <memory>
 #include <random>
@@ -18,6 +19,7 @@
 #include "svo/core/mesh_io.h"
 #include "svo/core/octree.h"
 #include "svo/core/voxel_attributes.h"
+#include "svo/core/voxel_mode.h"
 #include "svo/gl/raster_voxelizer.h"
 #include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/vdb_file.h"
@@ -118,6 +120,63 @@ TEST_F(GpuOctree, OverflowingEveryBufferRetriesToTheSameResult)
     for (const auto& opt : {tinyList, tinyOctree}) {
         EXPECT_GE(gl::voxelizeToOctree(*context_, mesh, grid, opt).overflowRetries, 1);
         expectMatchesReference(mesh, {64, 0}, opt);
+    }
+}
+
+TEST_F(GpuOctree, TilesWithinAGpuBudgetGiveTheUntiledOctree)
+{
+    // A budget half of what the whole grid takes: the grid is cut into
+    // tiles, each within the budget, and the merged octree, its attribute
+    // channels and its voxel list equal the untiled ones bit for bit.
+    std::vector<std::pair<TriangleMesh, GridRequest>> scenes = {{cornellBox(), {256, 0}},
+                                                                {test::sphere({0.1, 0.2, 0.3}, 1.0, 64, 32), {150, 0}}};
+#ifdef SVO_CGAL_MESHES
+    const std::string dir = std::getenv("SVO_CGAL_MESHES") ? std::getenv("SVO_CGAL_MESHES") : SVO_CGAL_MESHES;
+    scenes.emplace_back(loadMesh(dir + "/elephant.off"), GridRequest{200, 0});
+#endif
+    for (const auto& [mesh, req] : scenes)
+        for (auto pipeline : {gl::Pipeline::Raster, gl::Pipeline::Compute})
+            for (auto mode : {VoxelMode::Conservative, VoxelMode::Thin}) {
+                const std::string what = fmt::format("{} {} {}", mesh.source,
+                                                     pipeline == gl::Pipeline::Raster ? "raster" : "compute",
+                                                     voxelModeName(mode));
+                const GridSpec grid = makeGrid(mesh, req);
+                gl::RasterOptions opt;
+                opt.pipeline = pipeline;
+                opt.mode = mode;
+                opt.attributes = kNormals | kTriangles | (mesh.colors.empty() ? 0 : kColors);
+                std::vector<uint64_t> wholeList, tiledList;
+                opt.voxelList = &wholeList;
+                gl::Context fresh; // scratch buffers from other tests would count against the budget
+                const gl::OctreeVoxelization whole = gl::voxelizeToOctree(fresh, mesh, grid, opt);
+                ASSERT_EQ(whole.tiles, 1u) << what;
+                fresh.releaseScratch();
+                opt.voxelList = &tiledList;
+                opt.gpuMemory = whole.gpuBytes / 2;
+                const gl::OctreeVoxelization tiled = gl::voxelizeToOctree(fresh, mesh, grid, opt);
+                EXPECT_GT(tiled.tiles, 2u) << what;
+                EXPECT_LE(tiled.gpuBytes, opt.gpuMemory) << what;
+                EXPECT_TRUE(checkOctree(tiled.octree).empty()) << what;
+                EXPECT_TRUE(sameOctree(tiled.octree, canonicalOrder(whole.octree))) << what;
+                EXPECT_FALSE(tiled.octree.attributes.normals.empty()) << what;
+                EXPECT_EQ(tiledList, wholeList) << what;
+                EXPECT_EQ(tiled.listEntries, whole.listEntries) << what;
+                std::printf("  %-40s %u tiles, GPU %.1f -> %.1f MiB, %lu voxels\n", what.c_str(), tiled.tiles,
+                            double(whole.gpuBytes) / (1 << 20), double(tiled.gpuBytes) / (1 << 20),
+                            (unsigned long)tiled.octree.voxelCount());
+            }
+}
+
+TEST_F(GpuOctree, ABudgetTheMeshAloneExceedsIsAClearError)
+{
+    const auto mesh = test::sphere({0, 0, 0}, 1.0, 64, 32);
+    gl::RasterOptions opt;
+    opt.gpuMemory = 1024; // less than the vertices
+    try {
+        gl::voxelizeToOctree(*context_, mesh, makeGrid(mesh, {64, 0}), opt);
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("cannot hold the mesh"), std::string::npos) << e.what();
     }
 }
 

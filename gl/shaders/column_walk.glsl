@@ -18,21 +18,27 @@ uniform float uHalf;      // cube half side, or thin segments' half length, with
 uniform uint uThin;       // 1: thin (6-separating) test, 0: conservative cube test
 uniform float uThickness; // thin segments' half width: the guard band's half
 uniform uint uCapacity;
-uniform ivec3 uDims;
+// Voxels are kept only inside [uClipLo, uClipHi): the whole grid, or one tile
+// of it when a grid's list or octree would not fit in GPU memory at once.
+uniform ivec3 uClipLo;
+uniform ivec3 uClipHi;
 const float kUlp = 5.96046448e-08;
 
 /// Column (col.x, col.y) on the plane across axis w; box = (umin, vmin, umax,
 /// vmax) of the projected triangle. Columns whose square misses the box, or
-/// that lie outside the grid, keep nothing.
+/// that lie outside the clip box, keep nothing; the clip box only removes
+/// voxels, so a tile keeps exactly the whole grid's voxels that lie in it.
 void svo_walk_column(vec3 a, vec3 b, vec3 c, int w, vec2 col, vec4 box, uint triangle)
 {
     if (col.x + uHalf < box.x || col.x - uHalf > box.z || col.y + uHalf < box.y || col.y - uHalf > box.w) return;
     int u = (w + 1) % 3;
     int v = (w + 2) % 3;
-    if (col.x < 0.0 || col.y < 0.0 || col.x >= float(uDims[u]) || col.y >= float(uDims[v])) return;
+    if (col.x < float(uClipLo[u]) || col.y < float(uClipLo[v]) || col.x >= float(uClipHi[u]) ||
+        col.y >= float(uClipHi[v]))
+        return;
     vec3 r = svo_column_range(a, b, c, w, col.x, col.y, uHalf, kUlp);
-    int k0 = max(int(ceil(r.x)), 0);
-    int k1 = min(int(floor(r.y)), uDims[w] - 1);
+    int k0 = max(int(ceil(r.x)), uClipLo[w]);
+    int k1 = min(int(floor(r.y)), uClipHi[w] - 1);
     for (int k = k0; k <= k1; ++k) {
         vec3 centre;
         centre[u] = col.x;

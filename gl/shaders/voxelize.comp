@@ -28,7 +28,7 @@ struct Triangle {
     vec3 a, b, c;
     int w;
     vec4 box;
-    ivec2 first, last; // columns (u, v) whose squares can meet the box, clamped to the grid
+    ivec2 first, last; // columns (u, v) whose squares can meet the box, clamped to the clip box
 };
 
 vec3 position(uint i) { return vec3(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]); }
@@ -50,8 +50,8 @@ Triangle load(uint t)
     T.box = vec4(lo, hi);
     // One column more on each side than the box needs, for rounding: the
     // walk's own test, the raster backend's, decides which of them count.
-    T.first = max(ivec2(ceil(lo - uHalf)) - 1, ivec2(0));
-    T.last = min(ivec2(floor(hi + uHalf)) + 1, ivec2(uDims[u], uDims[v]) - 1);
+    T.first = max(ivec2(ceil(lo - uHalf)) - 1, ivec2(uClipLo[u], uClipLo[v]));
+    T.last = min(ivec2(floor(hi + uHalf)) + 1, ivec2(uClipHi[u], uClipHi[v]) - 1);
     return T;
 }
 

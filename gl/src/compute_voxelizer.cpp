@@ -86,7 +86,6 @@ public:
         program_.set("uHalf", half_);
         program_.set("uThin", thin_ ? 1u : 0u);
         program_.set("uThickness", thickness_);
-        program_.set("uDims", int(dims_[0]), int(dims_[1]), int(dims_[2]));
         program_.set("uTriangles", uint32_t(triangles_));
         program_.set("uWorkCapacity", uint32_t(bound_));
     }
@@ -97,6 +96,7 @@ public:
         work_->clearUint(0, 8);
         program_.set("uCapacity", uint32_t(capacity));
         program_.set("uWriteTriangles", triangles ? 1u : 0u);
+        setClipUniforms(program_);
         (triangles ? *triangles : list).bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_RASTER_TRIANGLES);
         counter.bindBase(GL_ATOMIC_COUNTER_BUFFER, SVO_BIND_RASTER_COUNTER);
         list.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_RASTER_LIST);

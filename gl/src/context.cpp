@@ -18,6 +18,7 @@
 #include "objects.h"
 #include "program_cache.h"
 #include "svo/core/error.h"
+#include "svo/core/host_memory.h"
 
 namespace svo::gl {
 namespace {
@@ -252,6 +253,7 @@ struct Context::Impl {
         for (GLint i = 0; i < n; ++i) {
             const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
             if (e && std::strcmp(e, "GL_NV_conservative_raster") == 0) info.conservativeRasterNV = true;
+            if (e && std::strcmp(e, "GL_NVX_gpu_memory_info") == 0) info.memoryInfoNVX = true;
         }
         GLint vp[2] = {0, 0}, fw = 0, fh = 0;
         glGetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
@@ -448,6 +450,18 @@ void Context::releaseScratch() const
 {
     const Scope scope(*this);
     impl_->scratch.clear();
+}
+
+uint64_t Context::availableMemory() const
+{
+    if (impl_->info.software) return availableHostMemory();
+    if (!impl_->info.memoryInfoNVX) return 0;
+    const Scope scope(*this);
+    constexpr GLenum kCurrentAvailableVidmemNVX = 0x9049; // GL_NVX_gpu_memory_info, in KiB
+    GLint kib = 0;
+    glGetIntegerv(kCurrentAvailableVidmemNVX, &kib);
+    checkGl("querying free GPU memory");
+    return uint64_t(std::max(kib, 0)) * 1024;
 }
 
 uint64_t Context::scratchBytes() const

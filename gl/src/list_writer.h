@@ -12,6 +12,13 @@
 
 namespace svo::gl {
 
+/// Voxels [lo, hi) of the local grid: the whole grid, or one tile of it.
+/// Tiles start on multiples of 8, so no brick is shared by two tiles.
+struct VoxelBox {
+    std::array<uint32_t, 3> lo{}, hi{};
+    uint64_t volume() const { return uint64_t(hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
+};
+
 class ListWriter {
 public:
     /// Uploads the mesh (timed as the "upload" stage) and estimates the list size.
@@ -31,6 +38,14 @@ public:
     /// GPU bytes held besides the list: the mesh, and any work buffers.
     virtual uint64_t bytes() const { return meshBytes_; }
 
+    /// The next write()s keep only voxels in `box` (initially the whole grid)
+    /// and report progress to `checkpoint`.
+    void setClip(const VoxelBox& box, const Checkpoint& checkpoint)
+    {
+        clip_ = box;
+        checkpoint_ = checkpoint;
+    }
+
     uint64_t estimatedEntries() const { return estimate_; }
     StageTime uploadStage() const { return {"upload", uploadTimer_.milliseconds(), uploadWallMs_}; }
 
@@ -43,6 +58,10 @@ protected:
     bool thin_ = false;      ///< thin (6-separating) test instead of the cube
     std::array<uint32_t, 3> dims_{};
     Checkpoint checkpoint_; ///< the writer's part of the call
+    VoxelBox clip_;         ///< the voxels write() keeps
+
+    /// Sets the clip box uniforms column_walk.glsl reads.
+    void setClipUniforms(const Program& program) const;
 
 private:
     TimerQuery uploadTimer_;

@@ -220,13 +220,22 @@ Request makeRequest(const py::handle& vertices, const py::handle& triangles, std
     return r;
 }
 
+/// gpu_memory: bytes, or None for the device's free memory.
+uint64_t toGpuMemory(const std::optional<double>& bytes)
+{
+    if (!bytes) return 0;
+    if (!(*bytes >= 1 && *bytes <= 1e18)) badValue("gpu_memory: expected a positive number of bytes or None");
+    return uint64_t(*bytes);
+}
+
 svo::Octree run(svo::Voxelizer& v, const Request& r, const std::string& backend, svo::VoxelMode mode,
-                uint32_t channels, std::vector<uint64_t>* voxelList = nullptr)
+                uint32_t channels, std::vector<uint64_t>* voxelList = nullptr, uint64_t gpuMemory = 0)
 {
     svo::VoxelizeOptions o;
     o.backend = toBackend(backend);
     o.mode = mode;
     o.attributes = channels;
+    o.gpuMemory = gpuMemory;
     KeyboardInterrupter interrupter;
     o.interrupter = &interrupter;
     try {
@@ -263,13 +272,15 @@ py::array_t<int32_t> voxelOrder(const svo::Octree& octree)
 py::object voxelizeWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                         std::optional<double> resolution, std::optional<double> voxelSize,
                         const py::object& transform, const std::string& grid, const std::string& backend,
-                        const std::vector<std::string>& attributes, const std::string& mode)
+                        const std::vector<std::string>& attributes, const std::string& mode,
+                        std::optional<double> gpuMemory)
 {
     if (grid != "bool" && grid != "fog") badValue("grid: expected 'bool' or 'fog', got '" + grid + "'");
     const uint32_t channels = toChannels(attributes);
     const svo::VoxelMode m = toMode(mode);
+    const uint64_t budget = toGpuMemory(gpuMemory);
     const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
-    const svo::Octree octree = run(v, r, backend, m, channels);
+    const svo::Octree octree = run(v, r, backend, m, channels, nullptr, budget);
     svo::GridOptions g;
     g.topology = svo::GridOptions::Topology::Bool; // pyopenvdb has no MaskGrid
     g.fog = grid == "fog";
@@ -473,12 +484,14 @@ py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, c
 
 PyOctree octreeWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                     std::optional<double> resolution, std::optional<double> voxelSize, const py::object& transform,
-                    const std::string& backend, const std::vector<std::string>& attributes, const std::string& mode)
+                    const std::string& backend, const std::vector<std::string>& attributes, const std::string& mode,
+                    std::optional<double> gpuMemory)
 {
     const uint32_t channels = toChannels(attributes);
     const svo::VoxelMode m = toMode(mode);
+    const uint64_t budget = toGpuMemory(gpuMemory);
     const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
-    return PyOctree{run(v, r, backend, m, channels), r.xform};
+    return PyOctree{run(v, r, backend, m, channels, nullptr, budget), r.xform};
 }
 
 PyOctree octreeFromGrid(const py::handle& obj, svo::Voxelizer* v, const std::string& backend)
@@ -596,6 +609,9 @@ Args:
         the same order, "triangle_id" ((K,) int32), "normal_values" and
         "color_values" ((K, 3) float32).
     mode: "conservative" or "thin" (see above).
+    gpu_memory: GPU bytes the call may use; a grid that needs more is
+        voxelized in tiles and merged, with the same voxels. None: what the
+        device reports free.
 
 Raises:
     ValueError: a bad array, index, transform or option.
@@ -637,12 +653,13 @@ PYBIND11_MODULE(_svo, m)
         .def("voxelize", &voxelizeWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
              py::arg("transform") = py::none(), py::arg("grid") = "bool", py::arg("backend") = "auto",
-             py::arg("attributes") = std::vector<std::string>{}, py::arg("mode") = "conservative", kVoxelizeDoc)
+             py::arg("attributes") = std::vector<std::string>{}, py::arg("mode") = "conservative",
+             py::arg("gpu_memory") = py::none(), kVoxelizeDoc)
         .def("octree", &octreeWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
              py::arg("transform") = py::none(), py::arg("backend") = "auto",
              py::arg("attributes") = std::vector<std::string>{}, py::arg("mode") = "conservative",
-             "The voxels of a mesh as an svo.Octree (arguments as voxelize()).")
+             py::arg("gpu_memory") = py::none(), "The voxels of a mesh as an svo.Octree (arguments as voxelize()).")
         .def("level_set", &levelSetWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
              py::arg("transform") = py::none(), py::arg("exterior_band") = 3.0, py::arg("interior_band") = 3.0,
@@ -728,15 +745,16 @@ PYBIND11_MODULE(_svo, m)
         "voxelize",
         [](const py::handle& vertices, const py::handle& triangles, std::optional<double> resolution,
            std::optional<double> voxelSize, const py::object& transform, const std::string& grid,
-           const std::string& backend, const std::vector<std::string>& attributes, const std::string& mode) {
+           const std::string& backend, const std::vector<std::string>& attributes, const std::string& mode,
+           std::optional<double> gpuMemory) {
             svo::Voxelizer v;
             return voxelizeWith(v, vertices, triangles, resolution, voxelSize, transform, grid, backend, attributes,
-                                mode);
+                                mode, gpuMemory);
         },
         py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("resolution") = py::none(),
         py::arg("voxel_size") = py::none(), py::arg("transform") = py::none(), py::arg("grid") = "bool",
         py::arg("backend") = "auto", py::arg("attributes") = std::vector<std::string>{},
-        py::arg("mode") = "conservative",
+        py::arg("mode") = "conservative", py::arg("gpu_memory") = py::none(),
         (std::string("One-off call with a Voxelizer made for it (keep a Voxelizer for repeated calls).\n") +
          kVoxelizeDoc)
             .c_str());

@@ -22,6 +22,7 @@ class Voxelizer:
         backend: str = "auto",
         attributes: Sequence[str] = (),
         mode: str = "conservative",
+        gpu_memory: Optional[int] = None,
     ) -> Union[Grid, Dict[str, Any]]: ...
     def octree(
         self,
@@ -34,6 +35,7 @@ class Voxelizer:
         backend: str = "auto",
         attributes: Sequence[str] = (),
         mode: str = "conservative",
+        gpu_memory: Optional[int] = None,
     ) -> "Octree": ...
     def level_set(
         self,
@@ -105,6 +107,7 @@ def voxelize(
     backend: str = "auto",
     attributes: Sequence[str] = (),
     mode: str = "conservative",
+    gpu_memory: Optional[int] = None,
 ) -> Union[Grid, Dict[str, Any]]: ...
 def active_voxels(grid: Grid) -> npt.NDArray[np.int32]: ...
 def read_mesh(path: str) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.uint32]]: ...

@@ -145,6 +145,7 @@ def test_attribute_channels_come_as_grids_and_arrays(voxelizer):
     (np.eye(3), [[0, 1, 2]], {"backend": "vulkan"}, "backend:"),
     (np.eye(3), [[0, 1, 2]], {"attributes": ("curvature",)}, "attributes:"),
     (np.eye(3), [[0, 1, 2]], {"mode": "thick"}, "mode:"),
+    (np.eye(3), [[0, 1, 2]], {"gpu_memory": 0}, "gpu_memory:"),
 ])
 def test_bad_input_raises_value_error_and_leaves_it_usable(voxelizer, vertices, triangles, kwargs, message):
     with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
@@ -193,6 +194,18 @@ def test_compute_backend_gives_the_raster_voxels(voxelizer):
     raster = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="raster")))
     compute = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="compute")))
     assert compute == raster and len(raster) > 1000
+
+
+def test_a_small_gpu_memory_budget_tiles_to_the_same_voxels(voxelizer):
+    v, t = tetrahedron()
+    whole = voxelizer.voxelize(v, t, resolution=160, attributes=("normal", "triangle"))
+    tiled = voxelizer.voxelize(v, t, resolution=160, attributes=("normal", "triangle"), gpu_memory=1 << 20)
+    assert as_set(tiled["ijk"]) == as_set(whole["ijk"]) and len(whole["ijk"]) > 10000
+    assert np.array_equal(tiled["ijk"], whole["ijk"])  # the same voxel order
+    assert np.array_equal(tiled["triangle_id"], whole["triangle_id"])
+    assert np.array_equal(tiled["normal_values"], whole["normal_values"])
+    with pytest.raises(RuntimeError, match="cannot hold the mesh"):
+        voxelizer.voxelize(v, t, resolution=160, gpu_memory=1024)
 
 
 def test_thin_mode_is_inside_conservative_and_equal_on_every_backend(voxelizer):

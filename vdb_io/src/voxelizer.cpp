@@ -244,6 +244,7 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
         ro.attributes = options.attributes;
         ro.checkpoint = checkpoint.part(0.0, 0.98);
         ro.voxelList = voxelList;
+        ro.gpuMemory = options.gpuMemory;
         stats.dilation = gl::conservativeModeName(context, ro);
         gl::OctreeVoxelization r = gl::voxelizeToOctree(context, mesh, grid, ro);
         octree = std::move(r.octree);
@@ -251,6 +252,7 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
         stats.listEntries = r.listEntries;
         stats.overflowRetries = r.overflowRetries;
         stats.gpuBytes = r.gpuBytes;
+        stats.tiles = r.tiles;
     }
     stats.startup = impl_->takeStartup(stats.warnings);
     return finish(std::move(octree), stats, options, checkpoint);

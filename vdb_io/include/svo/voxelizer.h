@@ -155,6 +155,7 @@ struct VoxelizeStats {
     uint64_t voxels = 0, bricks = 0;
     uint64_t listEntries = 0;      ///< voxel-list entries written, duplicates included
     int overflowRetries = 0;       ///< passes repeated because a GPU buffer was too small
+    uint32_t tiles = 1;            ///< boxes the grid was voxelized in to stay within GPU memory (1: all at once)
     uint64_t gpuBytes = 0;         ///< GPU buffer bytes the call used (reused scratch counts at its full size)
     double epsilon = 0;            ///< guard band in voxels
     std::string backend;           ///< "raster", "compute" or "cpu"
@@ -190,6 +191,13 @@ struct VoxelizeOptions {
     /// Per-voxel channels to compute: AttributeChannel bits (kNormals,
     /// kTriangles, kColors). Colours need vertex colours and are left out otherwise.
     uint32_t attributes = 0;
+    /// GPU bytes a voxelization may allocate. A grid whose voxel list or
+    /// octree needs more is cut into tiles of whole bricks, voxelized one
+    /// after another and merged on the host: the same voxels and channels
+    /// (VoxelizeStats::tiles says how many). 0: what the device reports free,
+    /// less a margin (unbounded where the driver does not tell). Level sets
+    /// and solids do not tile yet: they report running out of memory instead.
+    uint64_t gpuMemory = 0;
     /// Polled between stages and between tiles with the percentage done;
     /// returning true cancels the call (svo::Interrupted). start() and end()
     /// bracket the call. Must outlive the call.

@@ -22,6 +22,7 @@ struct RunStats {
     uint64_t listEntries = 0; ///< voxel-list entries written, duplicates included
     int overflowRetries = 0;  ///< extra passes because a GPU buffer (list, nodes, bricks) overflowed
     uint64_t gpuBytes = 0;    ///< peak GPU buffer bytes allocated
+    uint32_t tiles = 1;       ///< boxes the grid was voxelized in, to stay within GPU memory (1: the whole grid at once)
 };
 
 /// A voxel set as sorted keys: the CPU reference's output, and the GPU's when

@@ -59,6 +59,7 @@ struct ContextInfo {
     std::string eglDevice;             ///< the EGL device used, or "the host's GLX context" (EGL) when adopted
     bool adopted = false;              ///< the context is the host's (ContextOptions::adoptCurrent)
     bool conservativeRasterNV = false; ///< GL_NV_conservative_raster present
+    bool memoryInfoNVX = false;        ///< GL_NVX_gpu_memory_info present (free video memory can be asked)
     bool software = false;             ///< a CPU rasterizer (llvmpipe, softpipe, lavapipe-like)
     int maxViewport = 0;               ///< largest framebuffer width/height usable
     std::vector<std::string> extensionsUsed;
@@ -120,6 +121,10 @@ public:
     void releaseScratch() const;
     /// Bytes of scratch buffers held.
     uint64_t scratchBytes() const;
+    /// Bytes of memory the device has free now: video memory where the driver
+    /// tells (GL_NVX_gpu_memory_info), host memory for a CPU rasterizer, whose
+    /// buffers live there; 0 when unknown.
+    uint64_t availableMemory() const;
 
 private:
     struct Impl;

@@ -59,6 +59,15 @@ struct RasterOptions {
     /// Guard band in voxels; negative means grid.epsilon(). Other values are
     /// for experiments only (docs/stability.md shows what 0 and too much do).
     double guardBand = -1.0;
+    /// GPU bytes the call may allocate (voxelizeToOctree): the mesh, the work
+    /// queue, the voxel list, the octree build and the attribute pass. When a
+    /// grid needs more, it is cut into tiles of whole bricks that are
+    /// voxelized one after another and merged on the host: the same octree,
+    /// in canonical order (canonicalOrder()). 0: what the device reports free
+    /// (Context::availableMemory(), less a margin; unbounded when unknown).
+    /// Grids whose list passes 2^32 entries or whose octree passes 2^28
+    /// bricks are tiled the same way, whatever the budget.
+    uint64_t gpuMemory = 0;
     /// Polled between stages and between viewport tiles; throws svo::Interrupted to stop.
     Checkpoint checkpoint;
     /// voxelizeToOctree only: when set, also receives the voxel list itself
@@ -74,6 +83,14 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
 /// The voxel set as an octree: rasterize, build the octree on the GPU from the
 /// voxel list (octree_builder.h), read back only nodes and bricks. The CPU
 /// waits once, after all passes are issued (and once more for attribute channels).
+/// Out of core: when the list or octree would pass options.gpuMemory (or the
+/// 32-bit limits), the grid is cut into tiles (boxes of whole bricks, halved
+/// along their longest side until each fits) that clip the same column walk,
+/// so each keeps exactly the whole grid's voxels inside it; their bricks and
+/// attributes are merged on the host. The result's `tiles` says how many.
+/// Throws svo::Error when the mesh alone passes the budget, when one brick's
+/// list does not fit, or when the merged octree would pass the host's free
+/// memory (estimated from triangle areas before any tile runs).
 /// Programs and buffers come from the context's caches, so a repeated call
 /// compiles nothing and allocates only when it needs more room.
 OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
