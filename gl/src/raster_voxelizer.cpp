@@ -547,6 +547,20 @@ uint64_t budgetBytes(const Context& context, const RasterOptions& options)
     return context.info().software ? usable / 2 : usable; // llvmpipe: the host also holds the result
 }
 
+/// Out of core, the host holds the merged octree: refuses, before any tile
+/// runs, a list of `entries` whose octree would not fit in the host's free
+/// memory (at about 150 list entries and 88 bytes a brick with its nodes, as
+/// on the benchmark scenes).
+void refuseBeyondHostMemory(uint64_t entries)
+{
+    const uint64_t hostFree = availableHostMemory();
+    const double hostNeed = double(entries) / 150.0 * 88.0;
+    if (hostFree && hostNeed > double(hostFree))
+        throw Error(fmt::format("the octree would need about {:.1f} GiB of host memory (estimated from the "
+                                "triangles' areas), more than the {:.1f} GiB free; use a coarser grid",
+                                hostNeed / double(1 << 30), double(hostFree) / double(1 << 30)));
+}
+
 /// The tiles' octrees as one: bricks merged by origin (no two tiles share a
 /// brick), the octree built on the host in canonical order, attribute values
 /// moved to their bricks' new places.
@@ -629,7 +643,11 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     // for the estimate (or, past the budget, for as much as fits).
     PassSize size = budget.sizeFor(writer->estimatedEntries());
     if (options.initialBrickCapacity) size.bricks = options.initialBrickCapacity;
-    if (!budget.fits(size)) size = largest;
+    if (!budget.fits(size)) {
+        // Tiles ahead: first make sure the host can hold what they make.
+        refuseBeyondHostMemory(writer->estimatedEntries());
+        size = largest;
+    }
     VoxelBox whole;
     whole.hi = grid.dims;
     OctreePasses::Outcome first = passes.run(whole, size, checkpoint.part(0.05, 0.95));
@@ -638,15 +656,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     std::vector<uint64_t> lists;
     uint64_t entries = first.entries;
     if (!first.fits) {
-        // Out of core: the host must hold the merged octree. Refuse before any
-        // tile runs when the estimate (about 150 list entries a brick on the
-        // benchmark scenes, 88 bytes a brick with its nodes) passes free memory.
-        const uint64_t hostFree = availableHostMemory();
-        const double hostNeed = double(writer->estimatedEntries()) / 150.0 * 88.0;
-        if (hostFree && hostNeed > double(hostFree))
-            throw Error(fmt::format("the octree would need about {:.1f} GiB of host memory (estimated from the "
-                                    "triangles' areas), more than the {:.1f} GiB free; use a coarser grid",
-                                    hostNeed / double(1 << 30), double(hostFree) / double(1 << 30)));
+        refuseBeyondHostMemory(first.needed.list);
         struct Pending {
             VoxelBox box;
             PassSize needed;
