@@ -229,6 +229,8 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     if (!timingOnly) checkOutputPath(output);
     if (!a.json.empty()) checkWritable(a.json);
     const GridSpec grid = makeGrid(mesh, request);
+    // An OpenVDB output must be able to hold the voxel size: refused before the GPU works.
+    if (!timingOnly && outputFormat(output) != OutputFormat::Svo) vdb::checkVdbVoxelSize(grid.voxelSize, output);
     if (a.field()) return runField(a, cmd, mesh, scene, grid, request, output, timingOnly, start);
     const GridOptions grids = a.out.gridOptions();
     if (!timingOnly && outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))

@@ -562,6 +562,27 @@ TEST_F(Cli, AGpuMemoryBudgetTilesTheGridToTheSameVoxels)
     expectOnly({"whole.vdb", "whole.json", "tiled.vdb", "tiled.json"});
 }
 
+// A voxel size below what OpenVDB's transforms take (a millimetre mesh at a
+// fine resolution) is refused for .vdb before any work; .svo still takes it.
+TEST_F(Cli, AVoxelSizeOpenVdbCannotHoldIsRefusedBeforeAnyWork)
+{
+    const std::string mesh = write("tiny.off", "OFF\n4 4 0\n0 0 0\n0.001 0 0\n0 0.001 0\n0 0 0.001\n"
+                                               "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    for (const std::string& extra : {std::string(), std::string(" --sdf")}) {
+        const auto r = runSvo("voxelize " + mesh + " -r 100" + extra + " -o " + path("t.vdb"));
+        EXPECT_EQ(r.code, 1) << r.out;
+        EXPECT_NE(r.out.find("t.vdb: voxel size 1e-05 is below the smallest an OpenVDB transform takes"),
+                  std::string::npos)
+            << r.out;
+        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    }
+    auto r = runSvo("voxelize " + mesh + " -r 100 -o " + path("t.svo"));
+    EXPECT_EQ(r.code, 0) << r.out;
+    r = runSvo("voxelize " + mesh + " -r 60 -o " + path("t.vdb")); // 1.67e-5: above the limit
+    EXPECT_EQ(r.code, 0) << r.out;
+    expectOnly({"tiny.off", "t.svo", "t.vdb"});
+}
+
 // --sdf and --fill solid write grids that OpenVDB's own vdb_print reads as a
 // level set and a solid; combinations without meaning are refused first.
 TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)

@@ -57,8 +57,19 @@ void copyMask(LeafT& leaf, const Brick& b)
 
 } // namespace
 
+void checkVdbVoxelSize(double voxelSize, const std::string& what)
+{
+    // The product, as ScaleMap forms it, decides; kMinVoxelSize is its cube root.
+    if (!(voxelSize * voxelSize * voxelSize >= 3e-15))
+        throw Error(fmt::format("{}: voxel size {:.6g} is below the smallest an OpenVDB transform takes ({:.6g}, as "
+                                "its scale map needs voxel size^3 >= 3e-15); scale the mesh up, use a coarser grid, "
+                                "or write .svo",
+                                what, voxelSize, kMinVoxelSize));
+}
+
 openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid)
 {
+    checkVdbVoxelSize(grid.voxelSize, "grid");
     auto xform = openvdb::math::Transform::createLinearTransform(grid.voxelSize);
     const auto t = grid.translation();
     if (t[0] != 0 || t[1] != 0 || t[2] != 0) xform->postTranslate(openvdb::Vec3d(t[0], t[1], t[2]));

@@ -18,6 +18,15 @@ namespace vdb {
 /// Active tiles a reader expands into bricks by default: 2^28 bricks, 137 G
 /// voxels, about 19 GB of bricks.
 inline constexpr uint64_t kMaxTileBricks = uint64_t(1) << 28;
+
+/// The smallest voxel size an OpenVDB linear transform takes: OpenVDB 10's
+/// ScaleMap refuses scales whose product is below 3e-15 (math/Maps.h), so
+/// the voxel size must be at least the cube root, about 1.4422e-5.
+inline constexpr double kMinVoxelSize = 1.4422495703074085e-05;
+
+/// Throws svo::Error, naming `what`, when `voxelSize` is below kMinVoxelSize:
+/// called before any work when the output is an OpenVDB grid.
+void checkVdbVoxelSize(double voxelSize, const std::string& what);
 } // namespace vdb
 
 } // namespace svo
