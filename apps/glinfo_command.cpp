@@ -18,8 +18,8 @@ void addGlInfoCommand(CLI::App& app)
         const auto& i = context.info();
         fmt::print("EGL        {}\nvendor     {}\nrenderer   {}\nversion    {}\n", i.eglDevice, i.vendor, i.renderer,
                    i.version);
-        fmt::print("GL_NV_conservative_raster  {}\nmax viewport               {}\n",
-                   i.conservativeRasterNV ? "yes" : "no", i.maxViewport);
+        fmt::print("GL_NV_conservative_raster  {}\nmax viewport               {}\nmax storage block          {} bytes\n",
+                   i.conservativeRasterNV ? "yes" : "no", i.maxViewport, i.maxStorageBlock);
         fmt::print("program binary formats     {}\nprogram cache              {}\ncontext set-up             {:.1f} ms\n",
                    i.programBinaryFormats,
                    !i.programCache.empty()      ? i.programCache

@@ -82,6 +82,16 @@ public:
             throw Error(fmt::format("the compute backend would queue up to {} column chunks, more than one pass "
                                     "holds; use the raster backend or a coarser grid",
                                     bound_));
+        // Shaders address at most maxStorageBlock bytes of a buffer (see storageBlockLimit).
+        const uint64_t block = context.info().software ? 0 : context.info().maxStorageBlock;
+        if (block && std::max<uint64_t>(local_.size(), triangles_) * 12 > block)
+            throw Error(fmt::format("{} vertices and {} triangles are more than one shader buffer of {} bytes holds; "
+                                    "use the raster backend",
+                                    local_.size(), triangles_, block));
+        if (block && 8 + bound_ * 8 > block)
+            throw Error(fmt::format("the compute backend would queue up to {} column chunks, more than one shader "
+                                    "buffer of {} bytes holds; use the raster backend or a coarser grid",
+                                    bound_, block));
         work_ = &context.scratch("compute work queue", 8 + std::max<uint64_t>(bound_, 1) * 8);
         program_.set("uHalf", half_);
         program_.set("uThin", thin_ ? 1u : 0u);

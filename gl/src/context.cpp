@@ -260,6 +260,9 @@ struct Context::Impl {
         glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &fw);
         glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &fh);
         info.maxViewport = std::min({vp[0], vp[1], fw, fh});
+        GLint64 block = 0;
+        glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
+        info.maxStorageBlock = uint64_t(std::max<GLint64>(block, 0));
         if (debug || options.debug) {
             glEnable(GL_DEBUG_OUTPUT);
             glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);

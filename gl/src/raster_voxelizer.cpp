@@ -309,10 +309,16 @@ struct PassSize {
 /// limits of the list counter and octree indices, as one test of a pass's size.
 class Budget {
 public:
-    Budget(uint64_t bytes, uint64_t fixed, bool attributes, uint32_t brickLevel, uint64_t triangles)
+    /// `maxBlock`: the most bytes of one buffer a shader addresses (0: no limit).
+    Budget(uint64_t bytes, uint64_t fixed, bool attributes, uint32_t brickLevel, uint64_t triangles, uint64_t maxBlock)
         : bytes_(bytes), fixed_(fixed + (attributes ? 24 * triangles : 0)), brickLevel_(brickLevel),
           perEntry_(8 + (attributes ? 4 + sizeof(AttributeSums) : 0)), perBrick_(64 + (attributes ? 4 : 0))
     {
+        if (!maxBlock) return;
+        // The list's keys (and with channels, one sum per voxel: at most one per entry), bricks and nodes.
+        maxEntries_ = std::min(maxEntries_, maxBlock / (attributes ? sizeof(AttributeSums) : 8));
+        maxBricks_ = std::min(maxBricks_, maxBlock / sizeof(Brick));
+        maxNodes_ = std::min(maxNodes_, maxBlock / sizeof(OctreeNode) - 16);
     }
 
     uint64_t limit() const { return bytes_; }
@@ -329,13 +335,14 @@ public:
     }
     bool withinLimits(const PassSize& s) const
     {
-        return s.list <= kMaxEntries && s.bricks <= kMaxBricks && s.nodes <= kMaxNodes;
+        return s.list <= maxEntries_ && s.bricks <= maxBricks_ && s.nodes <= maxNodes_;
     }
     bool fits(const PassSize& s) const { return withinLimits(s) && (!bytes_ || bytes(s) <= bytes_); }
     /// How many times over the budget or the limits a pass of this size is.
     double excess(const PassSize& s) const
     {
-        double r = std::max({double(s.list) / kMaxEntries, double(s.bricks) / kMaxBricks, double(s.nodes) / kMaxNodes});
+        double r = std::max({double(s.list) / double(maxEntries_), double(s.bricks) / double(maxBricks_),
+                             double(s.nodes) / double(maxNodes_)});
         if (bytes_) r = std::max(r, double(bytes(s) - fixed_) / double(bytes_ - fixed_));
         return r;
     }
@@ -345,7 +352,7 @@ public:
     PassSize largest() const
     {
         if (!fits(sizeFor(1))) return {};
-        uint64_t lo = 1, hi = kMaxEntries;
+        uint64_t lo = 1, hi = maxEntries_;
         while (lo < hi) {
             const uint64_t mid = lo + (hi - lo + 1) / 2;
             if (fits(sizeFor(mid))) lo = mid;
@@ -355,9 +362,9 @@ public:
     }
 
 private:
-    static constexpr uint64_t kMaxEntries = 0xFFFFFFFFull;            // the list's 32-bit counter
-    static constexpr uint64_t kMaxBricks = uint64_t(1) << 28;          // 16 words each, 32-bit word indices
-    static constexpr uint64_t kMaxNodes = (uint64_t(1) << 31) - 16;    // 2 words each
+    uint64_t maxEntries_ = 0xFFFFFFFFull;          // the list's 32-bit counter
+    uint64_t maxBricks_ = uint64_t(1) << 28;       // 16 words each, 32-bit word indices
+    uint64_t maxNodes_ = (uint64_t(1) << 31) - 16; // 2 words each
     uint64_t bytes_, fixed_;
     uint32_t brickLevel_;
     uint64_t perEntry_, perBrick_;
@@ -547,6 +554,16 @@ uint64_t budgetBytes(const Context& context, const RasterOptions& options)
     return context.info().software ? usable / 2 : usable; // llvmpipe: the host also holds the result
 }
 
+/// The most bytes of one buffer the shaders may address. NVIDIA's limit (2 GiB
+/// on an H100) is real: a 7.8 GB list lost two thirds of its voxels before
+/// this was a tiling limit. Mesa's CPU rasterizers report 128 MiB but address
+/// whole buffers (a 139 MB list of the bunny at 2048^3 keeps the H100's 14.4 M
+/// voxels, to 2 at the guard band), so for them the buffer's size is the limit.
+uint64_t storageBlockLimit(const Context& context)
+{
+    return context.info().software ? 0 : context.info().maxStorageBlock;
+}
+
 /// Out of core, the host holds the merged octree: refuses, before any tile
 /// runs, a list of `entries` whose octree would not fit in the host's free
 /// memory (at about 150 list entries and 88 bytes a brick with its nodes, as
@@ -631,7 +648,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     const Program* attributeProgram = options.attributes ? &context.program({"octree_attributes.comp"}) : nullptr;
     const uint32_t L = brickLevelFor(grid);
     const Budget budget(budgetBytes(context, options), writer->bytes(), options.attributes != 0, L,
-                        mesh.triangles.size());
+                        mesh.triangles.size(), storageBlockLimit(context));
     const PassSize largest = budget.largest();
     if (!largest.list)
         throw Error(fmt::format("a GPU memory budget of {} cannot hold the mesh ({}: vertices, indices, work "

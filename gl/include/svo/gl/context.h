@@ -62,6 +62,9 @@ struct ContextInfo {
     bool memoryInfoNVX = false;        ///< GL_NVX_gpu_memory_info present (free video memory can be asked)
     bool software = false;             ///< a CPU rasterizer (llvmpipe, softpipe, lavapipe-like)
     int maxViewport = 0;               ///< largest framebuffer width/height usable
+    /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the most bytes of one buffer a shader
+    /// can address; work whose buffers would pass it is tiled or refused.
+    uint64_t maxStorageBlock = 0;
     std::vector<std::string> extensionsUsed;
     double setupMs = 0;                ///< wall ms the constructor took: EGL display, context, queries
     int programBinaryFormats = 0;      ///< GL_NUM_PROGRAM_BINARY_FORMATS; 0 means no program cache
