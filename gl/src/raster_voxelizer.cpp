@@ -154,6 +154,16 @@ const Buffer& makeList(const Context& context, uint64_t capacity)
     return context.scratch("voxel list", capacity * 8);
 }
 
+/// The most bytes of one buffer the shaders may address. NVIDIA's limit (2 GiB
+/// on an H100) is real: a 7.8 GB list lost two thirds of its voxels before
+/// this was a tiling limit. Mesa's CPU rasterizers report 128 MiB but address
+/// whole buffers (a 139 MB list of the bunny at 2048^3 keeps the H100's 14.4 M
+/// voxels, to 2 at the guard band), so for them the buffer's size is the limit.
+uint64_t storageBlockLimit(const Context& context)
+{
+    return context.info().software ? 0 : context.info().maxStorageBlock;
+}
+
 /// The list's entries read back, sorted and unique.
 std::vector<uint64_t> readList(const Buffer& list, uint32_t count)
 {
@@ -264,7 +274,17 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
     const Buffer* listBuffer = nullptr;
     double voxelizeGpu = 0;
     uint32_t count = 0;
+    const uint64_t block = storageBlockLimit(context);
     for (int attempt = 0;; ++attempt) {
+        // One pass, no tiles (validation reads the whole list): past what a
+        // shader addresses, refuse. The estimate runs high, so try with less first.
+        if (block && capacity * 8 > block) {
+            if (attempt > 0)
+                throw Error(fmt::format("the voxel list needs {} entries, more than one shader buffer of {} bytes "
+                                        "holds; voxelizeRaster has no tiles: use voxelizeToOctree or a coarser grid",
+                                        capacity, block));
+            capacity = block / 8;
+        }
         listBuffer = &makeList(context, capacity);
         const Buffer& list = *listBuffer;
         TimerQuery timer;
@@ -314,6 +334,7 @@ public:
         : bytes_(bytes), fixed_(fixed + (attributes ? 24 * triangles : 0)), brickLevel_(brickLevel),
           perEntry_(8 + (attributes ? 4 + sizeof(AttributeSums) : 0)), perBrick_(64 + (attributes ? 4 : 0))
     {
+        if (attributes) maxEntries_ = uint64_t(1) << 28; // the attribute pass's voxels (at most one per entry)
         if (!maxBlock) return;
         // The list's keys (and with channels, one sum per voxel: at most one per entry), bricks and nodes.
         maxEntries_ = std::min(maxEntries_, maxBlock / (attributes ? sizeof(AttributeSums) : 8));
@@ -552,16 +573,6 @@ uint64_t budgetBytes(const Context& context, const RasterOptions& options)
     if (!free) return 0;
     const uint64_t usable = free / 10 * 9 + context.scratchBytes();
     return context.info().software ? usable / 2 : usable; // llvmpipe: the host also holds the result
-}
-
-/// The most bytes of one buffer the shaders may address. NVIDIA's limit (2 GiB
-/// on an H100) is real: a 7.8 GB list lost two thirds of its voxels before
-/// this was a tiling limit. Mesa's CPU rasterizers report 128 MiB but address
-/// whole buffers (a 139 MB list of the bunny at 2048^3 keeps the H100's 14.4 M
-/// voxels, to 2 at the guard band), so for them the buffer's size is the limit.
-uint64_t storageBlockLimit(const Context& context)
-{
-    return context.info().software ? 0 : context.info().maxStorageBlock;
 }
 
 /// Out of core, the host holds the merged octree: refuses, before any tile
