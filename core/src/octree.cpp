@@ -103,20 +103,25 @@ Octree buildOctreeFromBricks(const GridSpec& grid, std::vector<std::pair<uint64_
     out.brickLevel = brickLevelFor(grid);
     const uint32_t L = out.brickLevel;
 
-    // Bricks in Morton order, equal ones merged, empty ones dropped.
-    std::vector<std::pair<uint64_t, Brick>> sorted;
-    sorted.reserve(input.size());
-    for (auto& [key, brick] : input) {
+    // Bricks in Morton order, equal ones merged, empty ones dropped. Only
+    // (code, index) pairs are sorted; the 64-byte bricks move once.
+    for (const auto& [key, brick] : input) {
         const auto b = brickCoords(key);
         if (std::max({b[0], b[1], b[2]}) >> L)
             throw Error(fmt::format("brick at local ({}, {}, {}) lies outside the grid {} x {} x {}", b[0] * 8,
                                     b[1] * 8, b[2] * 8, grid.dims[0], grid.dims[1], grid.dims[2]));
-        sorted.emplace_back(morton(b[0], b[1], b[2]), brick);
     }
-    input.clear();
-    tbb::parallel_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<std::pair<uint64_t, size_t>> order(input.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, input.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const auto b = brickCoords(input[i].first);
+            order[i] = {morton(b[0], b[1], b[2]), i};
+        }
+    });
+    tbb::parallel_sort(order.begin(), order.end());
     std::vector<uint64_t> codes;
-    for (const auto& [code, brick] : sorted) {
+    for (const auto& [code, i] : order) {
+        const Brick& brick = input[i].second;
         if (brick.count() == 0) continue;
         if (!codes.empty() && codes.back() == code) {
             for (int w = 0; w < 8; ++w) out.bricks.back().words[w] |= brick.words[w];
@@ -125,38 +130,48 @@ Octree buildOctreeFromBricks(const GridSpec& grid, std::vector<std::pair<uint64_
             out.bricks.push_back(brick);
         }
     }
+    input = {};
+    order = {};
+    if (out.bricks.size() >= 0xFFFFFFFFull)
+        throw Error(fmt::format("{} bricks are more than an octree indexes (32-bit)", out.bricks.size()));
 
-    // Level by level: the occupied node ids of a level are the distinct Morton
-    // prefixes; each occupied internal node owns the block of 8 children at
+    // The occupied node ids of each level are the distinct Morton prefixes,
+    // found bottom-up from the bricks (each level from the one below, so the
+    // work is about the brick count, not the brick count per level). Each
+    // occupied node of level l owns the block of 8 children at
     // 8 * (its rank among the occupied nodes of its level).
     out.nodes.resize(1);
     out.levelStart = {0, 1};
-    std::vector<uint64_t> parents = {0};         // occupied ids at the current level
-    std::vector<uint32_t> parentNodes = {0};     // their node indices
     if (codes.empty()) {
         for (uint32_t l = 1; l <= L; ++l) out.levelStart.push_back(1);
         return out;
     }
+    std::vector<std::vector<uint64_t>> ids(L + 1);
+    ids[L] = std::move(codes);
+    for (uint32_t l = L; l-- > 0;) {
+        for (uint64_t id : ids[l + 1])
+            if (ids[l].empty() || ids[l].back() != (id >> 3)) ids[l].push_back(id >> 3);
+    }
+    uint64_t total = 1;
+    for (uint32_t l = 0; l < L; ++l) total += 8 * ids[l].size();
+    if (total >= 0xFFFFFFFFull) throw Error(fmt::format("{} octree nodes are more than 32-bit indices hold", total));
+    out.nodes.resize(total);
+    std::vector<uint32_t> parentNodes = {0}; // node index of each occupied id at the current level
     for (uint32_t l = 0; l < L; ++l) {
-        const uint32_t base = uint32_t(out.nodes.size());
-        out.nodes.resize(out.nodes.size() + 8 * parents.size());
-        out.levelStart.push_back(uint32_t(out.nodes.size()));
-        std::vector<uint64_t> ids;
-        std::vector<uint32_t> idNodes;
-        const int shift = 3 * int(L - l - 1);
+        const uint32_t base = out.levelStart.back();
+        out.levelStart.push_back(base + uint32_t(8 * ids[l].size()));
+        std::vector<uint32_t> childNodes(ids[l + 1].size());
         size_t rank = 0;
-        for (uint64_t code : codes) {
-            const uint64_t id = code >> shift;
-            if (!ids.empty() && ids.back() == id) continue;
-            while (parents[rank] != (id >> 3)) ++rank; // both sorted
+        for (size_t i = 0; i < ids[l + 1].size(); ++i) {
+            const uint64_t id = ids[l + 1][i];
+            while (ids[l][rank] != (id >> 3)) ++rank; // both sorted
             OctreeNode& parent = out.nodes[parentNodes[rank]];
             parent.child = base + uint32_t(8 * rank);
             parent.childMask |= 1u << (id & 7);
-            ids.push_back(id);
-            idNodes.push_back(parent.child + uint32_t(id & 7));
+            childNodes[i] = parent.child + uint32_t(id & 7);
         }
-        parents = std::move(ids);
-        parentNodes = std::move(idNodes);
+        parentNodes = std::move(childNodes);
+        ids[l] = {};
     }
     for (size_t b = 0; b < parentNodes.size(); ++b) out.nodes[parentNodes[b]] = {uint32_t(b), 1u};
     return out;
