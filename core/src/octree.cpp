@@ -120,6 +120,8 @@ Octree buildOctreeFromBricks(const GridSpec& grid, std::vector<std::pair<uint64_
     });
     tbb::parallel_sort(order.begin(), order.end());
     std::vector<uint64_t> codes;
+    codes.reserve(order.size());
+    out.bricks.reserve(order.size());
     for (const auto& [code, i] : order) {
         const Brick& brick = input[i].second;
         if (brick.count() == 0) continue;
