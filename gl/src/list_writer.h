@@ -75,5 +75,16 @@ std::unique_ptr<ListWriter> makeRasterWriter(const Context& context, const Trian
 /// The compute backend's writer (voxelize.comp).
 std::unique_ptr<ListWriter> makeComputeWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                                               const RasterOptions& options);
+/// The writer options.pipeline asks for.
+std::unique_ptr<ListWriter> makeWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                                       const RasterOptions& options);
+
+/// A voxel list with room for `capacity` entries (the context's scratch
+/// buffer); refused beyond the 2^32 - 1 its atomic counter addresses.
+const Buffer& makeList(const Context& context, uint64_t capacity);
+/// The list's first `count` entries read back, sorted and unique.
+std::vector<uint64_t> readList(const Buffer& list, uint32_t count);
+/// The most bytes of one buffer the shaders may address; 0: no limit but the buffer's.
+uint64_t storageBlockLimit(const Context& context);
 
 } // namespace svo::gl
