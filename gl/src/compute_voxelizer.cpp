@@ -82,8 +82,7 @@ public:
             throw Error(fmt::format("the compute backend would queue up to {} column chunks, more than one pass "
                                     "holds; use the raster backend or a coarser grid",
                                     bound_));
-        // Shaders address at most maxStorageBlock bytes of a buffer (see storageBlockLimit).
-        const uint64_t block = context.info().software ? 0 : context.info().maxStorageBlock;
+        const uint64_t block = context.shaderBufferLimit();
         if (block && std::max<uint64_t>(local_.size(), triangles_) * 12 > block)
             throw Error(fmt::format("{} vertices and {} triangles are more than one shader buffer of {} bytes holds; "
                                     "use the raster backend",

@@ -467,6 +467,11 @@ uint64_t Context::availableMemory() const
     return uint64_t(std::max(kib, 0)) * 1024;
 }
 
+uint64_t Context::shaderBufferLimit() const
+{
+    return impl_->info.software ? 0 : impl_->info.maxStorageBlock;
+}
+
 uint64_t Context::scratchBytes() const
 {
     uint64_t n = 0;

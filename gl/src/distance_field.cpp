@@ -126,6 +126,14 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         throw Error(fmt::format("the band has {} bricks, more than one distance pass holds (2^23); use a coarser "
                                 "grid or a narrower band",
                                 nb));
+    // One shader buffer holds each array (Context::shaderBufferLimit): refused, never cut short.
+    const uint64_t block = context.shaderBufferLimit();
+    const uint64_t largest = std::max({distances ? nb * 512 * 4 : 0, request.crossings ? nb * sizeof(Brick) : 0,
+                                       uint64_t(mesh.positions.size()) * sizeof(Vec3d)});
+    if (block && largest > block)
+        throw Error(fmt::format("the band's {} bricks need {} bytes in one GPU buffer, more than the {} a shader "
+                                "addresses; use a coarser grid or a narrower band",
+                                nb, largest, block));
     uint32_t tableMask = 0;
     const std::vector<uint32_t> table = brickTable(request.bricks, tableMask);
 

@@ -84,7 +84,5 @@ std::unique_ptr<ListWriter> makeWriter(const Context& context, const TriangleMes
 const Buffer& makeList(const Context& context, uint64_t capacity);
 /// The list's first `count` entries read back, sorted and unique.
 std::vector<uint64_t> readList(const Buffer& list, uint32_t count);
-/// The most bytes of one buffer the shaders may address; 0: no limit but the buffer's.
-uint64_t storageBlockLimit(const Context& context);
 
 } // namespace svo::gl

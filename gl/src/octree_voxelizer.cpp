@@ -412,7 +412,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     const Program* attributeProgram = options.attributes ? &context.program({"octree_attributes.comp"}) : nullptr;
     const uint32_t L = brickLevelFor(grid);
     const Budget budget(budgetBytes(context, options), writer->bytes(), options.attributes != 0, L,
-                        mesh.triangles.size(), storageBlockLimit(context));
+                        mesh.triangles.size(), context.shaderBufferLimit());
     const PassSize largest = budget.largest();
     if (!largest.list)
         throw Error(fmt::format("a GPU memory budget of {} cannot hold the mesh ({}: vertices, indices, work "

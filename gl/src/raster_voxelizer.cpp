@@ -142,16 +142,6 @@ const Buffer& makeList(const Context& context, uint64_t capacity)
     return context.scratch("voxel list", capacity * 8);
 }
 
-/// The most bytes of one buffer the shaders may address. NVIDIA's limit (2 GiB
-/// on an H100) is real: a 7.8 GB list lost two thirds of its voxels before
-/// this was a tiling limit. Mesa's CPU rasterizers report 128 MiB but address
-/// whole buffers (a 139 MB list of the bunny at 2048^3 keeps the H100's 14.4 M
-/// voxels, to 2 at the guard band), so for them the buffer's size is the limit.
-uint64_t storageBlockLimit(const Context& context)
-{
-    return context.info().software ? 0 : context.info().maxStorageBlock;
-}
-
 /// The list's entries read back, sorted and unique.
 std::vector<uint64_t> readList(const Buffer& list, uint32_t count)
 {
@@ -220,7 +210,7 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
     const Buffer* listBuffer = nullptr;
     double voxelizeGpu = 0;
     uint32_t count = 0;
-    const uint64_t block = storageBlockLimit(context);
+    const uint64_t block = context.shaderBufferLimit();
     for (int attempt = 0;; ++attempt) {
         // One pass, no tiles (validation reads the whole list): past what a
         // shader addresses, refuse. The estimate runs high, so try with less first.

@@ -62,6 +62,12 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
     const Buffer order("winding order", tree.order.size() * 4, tree.order.data());
     const Buffer bricks("winding bricks", brickWords.size() * 4, brickWords.data());
     const uint64_t outBytes = std::max<uint64_t>(std::max(nb * sizeof(Brick), request.perBrick ? boxBricks * 4 : 0), 4);
+    // One shader buffer holds each array (Context::shaderBufferLimit): refused, never cut short.
+    const uint64_t block = context.shaderBufferLimit();
+    if (block && std::max(outBytes, brickWords.size() * 4) > block)
+        throw Error(fmt::format("winding numbers for {} bricks need {} bytes in one GPU buffer, more than the {} a "
+                                "shader addresses; use a coarser grid",
+                                nb, std::max(outBytes, brickWords.size() * 4), block));
     const Buffer& out = context.scratch("winding output", outBytes);
     uploadTimer.end();
     checkGl("winding upload");
