@@ -443,6 +443,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
             PassSize needed;
         };
         std::vector<Pending> stack = {{whole, first.needed}};
+        result.tiles = 0;
         const double volume = double(whole.volume());
         double done = 0;
         while (!stack.empty()) {
@@ -465,13 +466,13 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
                     continue;
                 }
                 done += double(box.volume());
+                ++result.tiles;
                 entries += o.entries;
                 if (o.octree.bricks.empty()) continue;
                 tiles.push_back(std::move(o.octree));
                 lists.insert(lists.end(), o.list.begin(), o.list.end());
             }
         }
-        result.tiles = uint32_t(std::max<size_t>(tiles.size(), 1));
     }
 
     result.stages.push_back(writer->uploadStage());
