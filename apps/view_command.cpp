@@ -29,6 +29,9 @@ struct ViewArgs {
                                      gridName, keys, save, color = "flat", render = "debug", aoFilter = "max";
     int frames = 0;
     gl::AmbientOcclusion ao;
+    gl::Illumination light;
+    std::vector<std::string> lights;
+    std::string albedo;
     double fov = 40.0, ortho = 0.0;
     int64_t resolution = 0;
     double voxelSize = 0;
@@ -100,6 +103,35 @@ gl::ViewLayers parseLayers(const std::string& text)
     return l;
 }
 
+/// "r,g,b" or one value for all three.
+Vec3d parseColor(const std::string& text, const std::string& option)
+{
+    const auto parts = split(text, ',');
+    if (parts.size() == 1) {
+        const double v = number(parts[0], option);
+        return {v, v, v};
+    }
+    if (parts.size() == 3) return {number(parts[0], option), number(parts[1], option), number(parts[2], option)};
+    throw Error(fmt::format("{} '{}': expected one value or r,g,b", option, text));
+}
+
+/// "sun:dx,dy,dz[:E]" (a directional light travelling along d, irradiance E)
+/// or "point:x,y,z[:I]" (a point light at x,y,z, intensity I); E and I are
+/// one value or r,g,b, π by default.
+void parseLight(const std::string& text, Lights& lights)
+{
+    const auto parts = split(text, ':');
+    const bool sun = !parts.empty() && parts[0] == "sun", point = !parts.empty() && parts[0] == "point";
+    if ((!sun && !point) || parts.size() < 2 || parts.size() > 3)
+        throw Error(fmt::format("--light '{}': expected sun:dx,dy,dz[:E] or point:x,y,z[:I]", text));
+    const auto xyz = split(parts[1], ',');
+    if (xyz.size() != 3) throw Error(fmt::format("--light '{}': expected three coordinates after '{}:'", text, parts[0]));
+    const Vec3d v{number(xyz[0], "--light"), number(xyz[1], "--light"), number(xyz[2], "--light")};
+    const Vec3d power = parts.size() == 3 ? parseColor(parts[2], "--light") : Vec3d{M_PI, M_PI, M_PI};
+    if (sun) lights.directional.push_back({v, power});
+    else lights.point.push_back({v, power});
+}
+
 bool haveDisplay()
 {
     for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"})
@@ -132,6 +164,16 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         if (layers.ao.cones == 0) layers.ao.cones = 7;
         layers.outlines = layers.bricks = false;
     }
+    const bool lit = a.render == "direct" || a.render == "gi";
+    if (lit) {
+        layers.light = a.light;
+        layers.light.mode = a.render == "gi" ? gl::Illumination::Mode::Global : gl::Illumination::Mode::Direct;
+        for (const std::string& l : a.lights) parseLight(l, layers.light.lights);
+        if (!a.albedo.empty()) layers.light.albedo = parseColor(a.albedo, "--albedo");
+        layers.outlines = layers.bricks = false;
+    } else if (!a.lights.empty() || !a.albedo.empty()) {
+        throw Error("--light and --albedo light the voxels of --render direct or gi");
+    }
     layers.voxelColor = a.color == "normal" ? gl::VoxelColor::Normal
                         : a.color == "color" ? gl::VoxelColor::Color
                         : a.color == "triangle" ? gl::VoxelColor::Triangle
@@ -152,7 +194,9 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     if (!a.save.empty()) checkWritable(a.save);
     checkOutputs({a.input}, {a.screenshot, a.save});
 
-    LibraryCall call(a.backend, "building the octree");
+    BackendArgs backend = a.backend;
+    if (lit) backend.attributes |= kNormals; // lighting shades by the surface's normal
+    LibraryCall call(backend, "building the octree");
     LoadedOctree lo;
     const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
     if (a.input.empty()) {
@@ -173,6 +217,8 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
                                 a.color,
                                 a.color == "color" ? "; colours need vertex colours" : ""));
 
+    if (lit && layers.light.lights.directional.empty() && layers.light.lights.point.empty())
+        layers.light.lights = gl::defaultLights(gl::gridWorldBox(lo.octree.grid), a.input.empty());
     const double aspect = double(width) / double(height);
     gl::ViewCamera camera = gl::namedView(gl::gridWorldBox(lo.octree.grid), a.view, aspect);
     if (!cam.empty()) {
@@ -197,7 +243,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
                                                                            lo.octree.grid.dims.end()));
         in.loaded = std::move(lo);
         in.stats = call.stats;
-        in.backend = a.backend;
+        in.backend = backend;
         in.camera = camera;
         in.layers = layers;
         in.width = width;
@@ -274,10 +320,37 @@ void addViewCommand(CLI::App& app)
                                                    "child: fewer leaks through walls) or average (its face share)")
         ->check(CLI::IsMember({"max", "average"}))
         ->capture_default_str();
-    cmd->add_option("--render", args->render, "debug: the layers; ao: the voxels as their ambient occlusion, grey "
-                                              "(7 cones unless --ao says)")
-        ->check(CLI::IsMember({"debug", "ao"}))
+    cmd->add_option("--render", args->render,
+                    "debug: the layers; ao: the voxels as their ambient occlusion, grey (7 cones unless --ao says); "
+                    "direct: lit by --light with shadows; gi: direct and one diffuse bounce cone-traced through the "
+                    "lighting volume")
+        ->check(CLI::IsMember({"debug", "ao", "direct", "gi"}))
         ->capture_default_str();
+    cmd->add_option("--light", args->lights,
+                    "direct/gi: sun:dx,dy,dz[:E] (travelling along d) or point:x,y,z[:I], world units, E and I one "
+                    "value or r,g,b (default pi); repeatable. None: a point light under the Cornell box's ceiling, "
+                    "else a sun from above-left-front");
+    cmd->add_option("--albedo", args->albedo, "direct/gi: surface albedo, one value or r,g,b in [0, 1], where the "
+                                              "octree has no colour channel (default 0.75)");
+    cmd->add_option("--gi-cones", args->light.cones, "gi: cones gathering the bounce, 1 to 16")->capture_default_str();
+    cmd->add_option("--gi-aperture", args->light.apertureDegrees, "gi: cone aperture, degrees")->capture_default_str();
+    cmd->add_option("--gi-offset", args->light.offset, "gi: cones start this far out along the normal, voxels (less: "
+                                                       "more contact light, more self-lighting)")
+        ->capture_default_str();
+    cmd->add_option("--gi-distance", args->light.distance, "gi: cones stop this far away, voxels (0: the grid's "
+                                                           "diagonal)")
+        ->capture_default_str();
+    cmd->add_option("--shadow-offset", args->light.shadowOffset,
+                    "direct/gi: shadow rays start this far out of the surface, voxels (less: light through thinner "
+                    "gaps, more self-shadowing)")
+        ->capture_default_str();
+    cmd->add_option("--light-volume", args->light.volumeResolution,
+                    "direct/gi: the lighting volume's largest side in texels, a power of two (a texel holds 1 to 8³ "
+                    "voxels)")
+        ->capture_default_str();
+    cmd->add_option("--exposure", args->light.exposure, "direct/gi: the picture is (radiance x exposure)^(1/gamma)")
+        ->capture_default_str();
+    cmd->add_option("--gamma", args->light.gamma, "direct/gi: display gamma (1: linear radiance)")->capture_default_str();
     cmd->add_option("--frames", args->frames, "Window: close after this many frames (0: when closed)");
     cmd->add_option("--keys", args->keys,
                     "Window: keys to press, one a frame from the second frame (v o m k: layers; a: colour; g r: AO on, AO "

@@ -3,6 +3,7 @@
 /// Small owners for GL objects. Each holds one name, deletes it on
 /// destruction, moves but never copies, and exposes operations rather than the
 /// name itself. All use 4.5 direct state access.
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <initializer_list>
@@ -51,6 +52,7 @@ inline void deleteFramebuffer(GLuint n) { glDeleteFramebuffers(1, &n); }
 inline void deleteQuery(GLuint n) { glDeleteQueries(1, &n); }
 inline void deleteProgram(GLuint n) { glDeleteProgram(n); }
 inline void deleteShader(GLuint n) { glDeleteShader(n); }
+inline void deleteTexture(GLuint n) { glDeleteTextures(1, &n); }
 } // namespace detail
 
 /// Immutable-storage buffer (glNamedBufferStorage). Allocation failure throws.
@@ -91,6 +93,35 @@ private:
     friend class VertexArray;
     Handle<detail::deleteBuffer> h_;
     uint64_t bytes_ = 0;
+};
+
+/// Immutable-storage 3D texture with a full mip chain of `levels` levels
+/// (glTextureStorage3D), trilinearly filtered between levels, clamped to
+/// a transparent black border (outside the volume is empty). Allocation failure throws.
+class Texture3D {
+public:
+    Texture3D() = default;
+    /// `what` names the texture in out-of-memory errors.
+    Texture3D(const char* what, GLenum internalFormat, int levels, int width, int height, int depth);
+    int levels() const { return levels_; }
+    /// Level `level`'s size along `axis` (GL's rule: halved and floored, at least 1).
+    int size(int level, int axis) const { return std::max(1, size_[axis] >> level); }
+    void bindTexture(GLuint unit) const { glBindTextureUnit(unit, h_.get()); }
+    /// Binds one level as an image (imageLoad / imageStore); `format` is the image's layout qualifier format.
+    void bindImage(GLuint unit, int level, GLenum access, GLenum format) const
+    {
+        glBindImageTexture(unit, h_.get(), level, GL_TRUE, 0, access, format);
+    }
+    /// Reads one level back as `format`/`type` (glGetTextureImage) into `bytes` bytes at `out`.
+    void read(int level, GLenum format, GLenum type, uint64_t bytes, void* out) const
+    {
+        glGetTextureImage(h_.get(), level, format, type, GLsizei(bytes), out);
+    }
+
+private:
+    Handle<detail::deleteTexture> h_;
+    int levels_ = 0;
+    int size_[3] = {0, 0, 0};
 };
 
 /// A vertex array with one float3 attribute and an element buffer.

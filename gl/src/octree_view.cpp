@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "gl_api.h"
+#include "light_volume.h"
 #include "objects.h"
 #include "svo/core/error.h"
 #include "svo/core/gpu_layout.h"
@@ -211,6 +212,21 @@ ViewCamera namedView(const std::array<Vec3d, 2>& box, const std::string& name, d
     throw Error(fmt::format("view '{}': expected front, +x, -x, +y, -y, +z or -z", name));
 }
 
+Lights defaultLights(const std::array<Vec3d, 2>& box, bool inside)
+{
+    Lights l;
+    const Vec3d centre = 0.5 * (box[0] + box[1]);
+    if (inside) {
+        const Vec3d at{centre.x, box[1].y - 0.1 * (box[1].y - box[0].y), centre.z};
+        const double d2 = dot(at - centre, at - centre);
+        const double i = M_PI * (d2 > 0 ? d2 : 1.0);
+        l.point.push_back({at, {i, i, i}});
+    } else {
+        l.directional.push_back({{0.4, -1.0, -0.6}, {M_PI, M_PI, M_PI}});
+    }
+    return l;
+}
+
 struct OctreeView::Impl {
     GridSpec grid;
     uint32_t brickLevel = 0;
@@ -224,6 +240,28 @@ struct OctreeView::Impl {
     std::optional<VertexArray> meshArray;
     uint64_t meshIndexCount = 0;
     VertexArray empty; ///< attribute-less draws (full-screen pass, outlines)
+    /// The lighting volume, made when a lit frame first needs it and kept
+    /// while the lights stay (drawing is const; the cache is not).
+    mutable std::optional<LightVolumeTextures> light;
+
+    ViewBuffers buffers() const
+    {
+        return {grid, brickLevel, nodes, bricks, voxelStart ? &*voxelStart : nullptr, normals ? &*normals : nullptr,
+                colors ? &*colors : nullptr};
+    }
+    /// The volume `l` needs: the cached one, re-injected after the lights
+    /// changed, or a new one.
+    const LightVolumeTextures& lightVolume(const Context& context, const Illumination& l) const
+    {
+        if (light && sameInjection(light->built, l)) return *light;
+        if (light && sameVolume(light->built, l)) {
+            injectLight(context, buffers(), l, *light);
+            return *light;
+        }
+        light.reset(); // the old textures go before the new ones are allocated
+        light.emplace(buildLightVolume(context, buffers(), l));
+        return *light;
+    }
 };
 
 namespace {
@@ -403,6 +441,15 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
                                     ao.cones, ao.apertureDegrees, ao.offset, ao.distance));
         v.opacity.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_OPACITY);
         const Program& p = context.program({"view_fullscreen.vert", "view_voxels.frag"});
+        const Illumination& light = layers.light;
+        if (light.mode != Illumination::Mode::Off) {
+            bindLightVolume(p, v.lightVolume(context, light), v.buffers(), light);
+            p.set("uExposure", float(light.exposure));
+            p.set("uGamma", float(light.gamma));
+        }
+        p.set("uLightMode", light.mode == Illumination::Mode::Off      ? 0
+                            : light.mode == Illumination::Mode::Direct ? 1
+                                                                       : 2);
         p.set("uColorMode", mode);
         p.set("uAoCones", ao.cones);
         p.set("uAoTanHalf", float(std::tan(ao.apertureDegrees * M_PI / 360.0)));
@@ -479,7 +526,8 @@ void OctreeView::draw(const ViewCamera& camera, int width, int height, const Vie
 }
 
 std::vector<OctreeView::FrameTime> OctreeView::timeFrames(const ViewCamera& camera, int width, int height,
-                                                         const ViewLayers& layers, int frames) const
+                                                         const ViewLayers& layers, int frames,
+                                                         bool injectEachFrame) const
 {
     Context::Scope scope(context_);
     checkGl("the GL work before timing a view");
@@ -494,6 +542,8 @@ std::vector<OctreeView::FrameTime> OctreeView::timeFrames(const ViewCamera& came
     for (size_t i = 0; i < queries.size(); ++i) {
         const auto start = std::chrono::steady_clock::now();
         queries[i].begin();
+        if (injectEachFrame && layers.light.mode != Illumination::Mode::Off && impl_->light)
+            injectLight(context_, impl_->buffers(), layers.light, *impl_->light);
         drawLayers(context_, *impl_, camera, width, height, layers);
         queries[i].end();
         glFinish();
@@ -503,6 +553,13 @@ std::vector<OctreeView::FrameTime> OctreeView::timeFrames(const ViewCamera& came
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     checkGl("timing the view's frames");
     return times;
+}
+
+LightVolume OctreeView::readLightVolume(const Illumination& light) const
+{
+    Context::Scope scope(context_);
+    checkGl("the GL work before reading a lighting volume");
+    return svo::gl::readLightVolume(impl_->lightVolume(context_, light));
 }
 
 Image OctreeView::render(const ViewCamera& camera, int width, int height, const ViewLayers& layers) const

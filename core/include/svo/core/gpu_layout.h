@@ -132,6 +132,12 @@ SVO_CONST(uint) kSumWords = 8u;
 #define SVO_BIND_VIEW_VOXEL_START 3 /* uint per brick: its first voxel in voxel order */
 #define SVO_BIND_VIEW_ATTRIBUTE 4   /* the coloured channel, voxel order: 3 floats (normal, colour) or 1 uint (triangle) */
 #define SVO_BIND_VIEW_OPACITY 5     /* 2 floats per node, AO mip-map: min(1, voxels / face voxels); that or the most opaque child's */
+#define SVO_BIND_VIEW_LIGHTS 6      /* lighting: 2 vec4 per light, cell space (light_volume.glsl) */
+#define SVO_BIND_VIEW_NORMALS 7     /* lighting: the normal channel, 3 floats per voxel, voxel order */
+#define SVO_BIND_VIEW_ALBEDO 8      /* lighting: the colour channel, 3 floats per voxel (or unused) */
+/* Lighting volume (gl/src/light_volume.cpp): texture and image units. */
+#define SVO_UNIT_LIGHT_OPACITY 0  /* texture: rgb = opacity seen along x, y, z */
+#define SVO_UNIT_LIGHT_RADIANCE 1 /* texture: rgb = radiance x coverage, a = coverage */
 /* ViewLayers::voxelColor as the shader reads it. */
 #define SVO_VIEW_COLOR_FLAT 0
 #define SVO_VIEW_COLOR_NORMAL 1
@@ -237,7 +243,8 @@ static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRIC
                              SVO_BIND_ENTRY_TRIANGLES, SVO_BIND_BRICK_VOXEL_OFFSETS, SVO_BIND_TRIANGLE_VALUES,
                              SVO_BIND_ATTRIBUTE_SUMS}));
 static_assert(distinctSlots({SVO_BIND_VIEW_NODES, SVO_BIND_VIEW_BRICKS, SVO_BIND_VIEW_ORIGINS,
-                             SVO_BIND_VIEW_VOXEL_START, SVO_BIND_VIEW_ATTRIBUTE, SVO_BIND_VIEW_OPACITY}));
+                             SVO_BIND_VIEW_VOXEL_START, SVO_BIND_VIEW_ATTRIBUTE, SVO_BIND_VIEW_OPACITY,
+                             SVO_BIND_VIEW_LIGHTS, SVO_BIND_VIEW_NORMALS, SVO_BIND_VIEW_ALBEDO}));
 static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_FIELD_ITEMS,
                              SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
                              SVO_BIND_FIELD_FLIPS, SVO_BIND_FIELD_COUNTERS}));

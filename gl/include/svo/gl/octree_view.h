@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "svo/core/camera.h"
+#include "svo/core/lights.h"
 #include "svo/core/mesh.h"
 #include "svo/core/octree.h"
 #include "svo/gl/context.h"
@@ -75,6 +76,53 @@ struct AmbientOcclusion {
     bool only = false;            ///< draw the voxels as grey AO alone (no colour or face light), to measure it
 };
 
+/// Light injected into the octree and gathered by cones (design §7d;
+/// Crassin et al. 2011). When on, the voxels are drawn lit instead of by
+/// ViewLayers::voxelColor and AO:
+///   - injection: every voxel gets its outgoing radiance ρ/π Σ E cos θ V
+///     (two-sided Lambertian, the normal from the octree's normal channel,
+///     ρ from its colour channel or `albedo`), V from a ray marched through
+///     the octree's voxels towards each light (hard shadows at voxel
+///     resolution, no shadow-map bias to tune but `shadowOffset`);
+///   - a lighting volume: a 3D texture whose texels are the octree's voxels
+///     (or blocks of 2³ to 8³ voxels, so that its largest side is at most
+///     `volumeResolution`), holding opacity seen along x, y, z and radiance
+///     times coverage, mip-mapped on the GPU with the anisotropic filter;
+///     allocated only while lighting is on;
+///   - the picture: at each voxel the ray hits, the direct light (same
+///     shadow rays, from the side the camera sees) and, for Global, one
+///     diffuse bounce: the albedo times the radiance `cones` cones gather
+///     over the hemisphere, weighted as the cosine says.
+/// The volume is built once and kept until the lights, albedo, offsets or
+/// resolution change (a moved light re-injects). bench/results measures the
+/// pictures against the path-traced reference (svo/reference/path_trace.h).
+struct Illumination {
+    enum class Mode { Off, Direct, Global };
+    Mode mode = Mode::Off;
+    Lights lights;                        ///< world units; at least one light when on; no environment light
+    Vec3d albedo{0.75, 0.75, 0.75};       ///< ρ where the octree has no colour channel, each in [0, 1]
+    int cones = 7;                        ///< indirect light: 1 (the normal) to 16 cones
+    double apertureDegrees = 60;          ///< full cone angle, (0, 180)
+    double offset = 1.5;                  ///< cones start this far out along the normal, voxels
+    double distance = 0;                  ///< cones stop here, voxels; 0: the grid's diagonal
+    double shadowOffset = 2.0;            ///< shadow rays start this far out of the surface, voxels
+    uint32_t volumeResolution = 256;      ///< the lighting volume's largest side, texels: a power of two, 8 to 2048
+    double exposure = 1.0;                ///< the picture is (radiance x exposure)^(1 / gamma), clamped to 1
+    double gamma = 2.2;                   ///< 1: linear, to compare with a reference
+};
+
+/// The lighting volume as read back (OctreeView::readLightVolume): level 0
+/// first, texels x fastest.
+struct LightVolumeLevel {
+    int size[3] = {0, 0, 0};
+    std::vector<float> opacity;  ///< 4 per texel: seen along x, y, z, and coverage
+    std::vector<float> radiance; ///< 4 per texel: radiance x coverage (rgb), coverage
+};
+struct LightVolume {
+    uint32_t texelVoxels = 1; ///< voxels per texel edge at level 0
+    std::vector<LightVolumeLevel> levels;
+};
+
 /// What to draw.
 struct ViewLayers {
     bool voxels = true;
@@ -83,6 +131,7 @@ struct ViewLayers {
     bool mesh = false; ///< needs a mesh (ignored without one)
     VoxelColor voxelColor = VoxelColor::Flat; ///< a channel the octree lacks is an error
     AmbientOcclusion ao;                      ///< on the voxels; off by default
+    Illumination light;                       ///< lit voxels instead of colours and AO; off by default
     uint32_t firstLevel = 0;                                    ///< outline levels, 0 = root
     uint32_t lastLevel = std::numeric_limits<uint32_t>::max(); ///< clamped to the brick level
 };
@@ -117,6 +166,15 @@ ViewCamera frameBox(const std::array<Vec3d, 2>& box, const Vec3d& direction, boo
 /// box with frameBox. Throws svo::Error for another name.
 ViewCamera namedView(const std::array<Vec3d, 2>& box, const std::string& name, double aspect);
 
+/// Lights for a scene in the world box `box` when none are given: for a
+/// room seen from inside (`inside`, e.g. the Cornell box), a point light a
+/// tenth of the box's height below the top's centre, with intensity π d²
+/// for d its distance to the box's centre; otherwise a directional light
+/// from above, left and in front (travelling along (0.4, -1, -0.6)) with
+/// irradiance π. Either way a white surface facing the light at the centre
+/// reflects radiance 1.
+Lights defaultLights(const std::array<Vec3d, 2>& box, bool inside);
+
 /// Draws one octree (and optionally its mesh) with a Context. Not copyable.
 /// Every GL call happens inside a Context::Scope, so the caller's current
 /// context is left as it was.
@@ -140,8 +198,9 @@ public:
     /// reads it back. The same inputs give the same bytes. Throws svo::Error
     /// for a size outside [1, the driver's largest renderbuffer], a degenerate
     /// camera (eye at target, up along the view, height or fov not positive),
-    /// a voxel colour whose channel the octree lacks, AO options outside
-    /// their ranges, or a GL error.
+    /// a voxel colour whose channel the octree lacks, AO or lighting options
+    /// outside their ranges, lighting on an octree without a normal channel,
+    /// or a GL error.
     Image render(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
 
     /// Draws one frame into the framebuffer bound now (a window's, when the
@@ -155,12 +214,20 @@ public:
     /// frame gets its GPU time from GL timestamp queries and its wall time
     /// from issue to glFinish (software rasterizers such as llvmpipe draw at
     /// the flush, so only the wall time is meaningful there). Throws as
-    /// render() does, and for `frames` < 1.
+    /// render() does, and for `frames` < 1. `injectEachFrame` (lit layers)
+    /// injects the light and mip-maps the volume again inside each timed
+    /// frame, as after a light moves.
     struct FrameTime {
         double gpuMs = 0, wallMs = 0;
     };
     std::vector<FrameTime> timeFrames(const ViewCamera& camera, int width, int height, const ViewLayers& layers,
-                                      int frames) const;
+                                      int frames, bool injectEachFrame = false) const;
+
+    /// The lighting volume `light` gives (built or taken from the cache as
+    /// drawing does), every level read back: for tests and tools. Throws as
+    /// render() does for lighting options out of range or a missing normal
+    /// channel, and when the GPU cannot hold the volume.
+    LightVolume readLightVolume(const Illumination& light) const;
 
     const GridSpec& grid() const;
     uint32_t brickLevel() const;

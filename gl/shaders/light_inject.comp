@@ -1,0 +1,50 @@
+#version 450 core
+// Light injection (design §7d): level 0 of the lighting volume. One
+// invocation per texel, a block of uTexelCells³ voxels inside one brick:
+// opacity = its voxels over the voxels of one face of the block, at most 1
+// (a surface crossing a box of k³ voxels fills about k² of them), the same
+// along x, y and z; radiance = the mean outgoing radiance of its voxels,
+// ρ/π · irradiance (two-sided Lambertian), times that opacity.
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "gpu_layout.h"
+#include "view_octree.glsl"
+#include "view_lights.glsl"
+
+layout(binding = 0, rgba8) writeonly restrict uniform image3D uOpacityOut;
+layout(binding = 1, rgba16f) writeonly restrict uniform image3D uRadianceOut;
+
+uniform ivec3 uBaseSize;  // level 0's texels
+uniform int uTexelCells;  // voxels per texel edge: 1, 2, 4 or 8
+
+void main()
+{
+    ivec3 texel = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(texel, uBaseSize))) return;
+    ivec3 first = texel * uTexelCells;
+    vec4 opacity = vec4(0.0), radiance = vec4(0.0);
+    uint brick;
+    int emptyLog2;
+    if (all(lessThan(first, uDims)) && findBrick(first, brick, emptyLog2)) {
+        uint count = 0u;
+        vec3 sum = vec3(0.0);
+        for (int x = 0; x < uTexelCells; ++x)
+            for (int y = 0; y < uTexelCells; ++y)
+                for (int z = 0; z < uTexelCells; ++z) {
+                    ivec3 cell = first + ivec3(x, y, z);
+                    uint bit = brickBit(cell);
+                    if (any(greaterThanEqual(cell, uDims)) || !brickHas(brick, bit)) continue;
+                    uint v = voxelIndex(brick, bit);
+                    vec3 n = voxelNormal(v);
+                    float len = length(n);
+                    n = len > 1e-6 ? n / len : vec3(0.0);
+                    sum += voxelAlbedo(v) * (1.0 / 3.14159265) * irradiance(vec3(cell) + 0.5, n, true);
+                    ++count;
+                }
+        float k = float(uTexelCells);
+        float cover = min(1.0, float(count) / (k * k));
+        opacity = vec4(vec3(cover), cover);
+        if (count > 0u) radiance = vec4(sum / float(count) * cover, cover);
+    }
+    imageStore(uOpacityOut, texel, opacity);
+    imageStore(uRadianceOut, texel, radiance);
+}

@@ -1,0 +1,66 @@
+// Cones through the lighting volume (design §7d; Crassin et al. 2011): a
+// mip-mapped 3D texture of the octree's voxels, sampled trilinearly. Each
+// texel holds the opacity of its box seen along x, y and z, and its outgoing
+// radiance times its coverage. A cone of aperture 2·atan(uConeTanHalf)
+// samples, at distance t, the level whose texels are as wide as the cone
+// there, steps by half that width, and composites front to back.
+
+layout(binding = SVO_UNIT_LIGHT_OPACITY) uniform sampler3D uOpacityVolume;
+layout(binding = SVO_UNIT_LIGHT_RADIANCE) uniform sampler3D uRadianceVolume;
+
+uniform vec3 uVolumeScale;    // cell space -> texture coordinates
+uniform float uTexelCells;    // voxels per texel edge at level 0
+uniform float uConeTanHalf;   // tan of half the cone aperture
+uniform float uConeDistance;  // cones stop here, voxels
+uniform float uConeOffset;    // cones start this far out along the normal, voxels
+uniform int uCones;           // 1: the normal; n: the normal and a ring of n - 1
+
+/// Radiance gathered (rgb) and occlusion (a) along one cone from o, which
+/// lies `height` voxels out of the surface along its normal n. A sample
+/// whose texel (and its trilinear neighbours) would reach back through the
+/// surface's tangent plane takes a finer level: what lies behind the plane
+/// (the surface's own voxels, lit from the other side of a thin wall) must
+/// not light it.
+vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
+{
+    vec3 share = dir * dir; // directional opacity, weighted by the direction's squares (they sum to 1)
+    float occlusion = 0.0;
+    vec3 radiance = vec3(0.0);
+    float t = 0.0;
+    while (t < uConeDistance && occlusion < 0.99) {
+        float above = height + t * dot(dir, n);
+        float width = max(uTexelCells, min(2.0 * t * uConeTanHalf, 0.5 * above));
+        float lod = log2(width / uTexelCells);
+        vec3 tc = (o + t * dir) * uVolumeScale;
+        float a = dot(share, textureLod(uOpacityVolume, tc, lod).rgb);
+        vec4 r = textureLod(uRadianceVolume, tc, lod);
+        // The sample stands for a slab as deep as the texel is wide; the
+        // step is half that, so its opacity is corrected to half the path.
+        a = 1.0 - sqrt(max(1.0 - a, 0.0));
+        vec3 l = r.a > 1e-4 ? r.rgb / r.a : vec3(0.0);
+        radiance += (1.0 - occlusion) * a * l;
+        occlusion += (1.0 - occlusion) * a;
+        t += 0.5 * width;
+    }
+    return vec4(radiance, occlusion);
+}
+
+/// Cosine-weighted gather over the hemisphere of unit normal n at p: the
+/// normal's cone (up to 30 degrees) weighs a quarter, a ring of cones tilted
+/// 60 degrees three quarters. rgb: the mean incoming radiance (times albedo,
+/// the light one diffuse bounce reflects); a: the mean occlusion.
+vec4 hemisphereGather(vec3 p, vec3 n)
+{
+    vec3 o = p + uConeOffset * n;
+    if (uCones <= 1) return coneGather(o, n, n, uConeOffset);
+    vec3 t1 = normalize(abs(n.x) < 0.6 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
+    vec3 t2 = cross(n, t1);
+    vec4 sum = 0.25 * coneGather(o, n, n, uConeOffset);
+    int ring = uCones - 1;
+    for (int i = 0; i < ring; ++i) {
+        float phi = 6.2831853 * (float(i) + 0.5) / float(ring);
+        vec3 dir = normalize(0.5 * n + 0.8660254 * (cos(phi) * t1 + sin(phi) * t2));
+        sum += 0.75 / float(ring) * coneGather(o, dir, n, uConeOffset);
+    }
+    return sum;
+}

@@ -1,0 +1,219 @@
+#include "light_volume.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <vector>
+
+#include "svo/core/error.h"
+#include "svo/core/gpu_layout.h"
+
+namespace svo::gl {
+
+namespace {
+
+bool finite(const Vec3d& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool nonNegative(const Vec3d& v) { return finite(v) && v.x >= 0 && v.y >= 0 && v.z >= 0; }
+
+/// Voxels per texel edge at level 0: the smallest power of two that keeps
+/// the volume's largest side within the resolution asked for.
+uint32_t texelVoxels(const GridSpec& grid, uint32_t resolution)
+{
+    const uint64_t largest = *std::max_element(grid.dims.begin(), grid.dims.end());
+    uint32_t k = 1;
+    while ((largest + k - 1) / k > resolution) k *= 2;
+    return k;
+}
+
+int nextPowerOfTwo(uint64_t n)
+{
+    int p = 1;
+    while (uint64_t(p) < n) p *= 2;
+    return p;
+}
+
+} // namespace
+
+void checkIllumination(const Illumination& l, const ViewBuffers& octree)
+{
+    auto bad = [](const std::string& what) { throw Error("octree view: lighting: " + what); };
+    if (l.lights.directional.empty() && l.lights.point.empty()) bad("no light: give a directional or a point light");
+    for (const DirectionalLight& d : l.lights.directional) {
+        if (!finite(d.direction) || !(dot(d.direction, d.direction) > 0))
+            bad(fmt::format("directional light direction {},{},{} is zero or not finite", d.direction.x, d.direction.y,
+                            d.direction.z));
+        if (!nonNegative(d.irradiance)) bad("a directional light's irradiance is negative or not finite");
+    }
+    for (const PointLight& p : l.lights.point) {
+        if (!finite(p.position)) bad("a point light's position is not finite");
+        if (!nonNegative(p.intensity)) bad("a point light's intensity is negative or not finite");
+    }
+    if (!(l.lights.environment.x == 0 && l.lights.environment.y == 0 && l.lights.environment.z == 0))
+        bad("an environment light is not injected (directional and point lights are)");
+    if (!nonNegative(l.albedo) || l.albedo.x > 1 || l.albedo.y > 1 || l.albedo.z > 1)
+        bad(fmt::format("albedo {},{},{} is outside [0, 1]", l.albedo.x, l.albedo.y, l.albedo.z));
+    if (l.cones < 1 || l.cones > 16) bad(fmt::format("{} cones; 1 to 16", l.cones));
+    if (!(l.apertureDegrees > 0 && l.apertureDegrees < 180))
+        bad(fmt::format("cone aperture {} degrees is outside (0, 180)", l.apertureDegrees));
+    if (!(l.offset >= 0 && l.offset < 1e6)) bad(fmt::format("cone offset {} voxels is not in [0, 1e6)", l.offset));
+    if (!(l.distance >= 0 && l.distance <= 1e7)) bad(fmt::format("cone distance {} voxels is not in [0, 1e7]", l.distance));
+    if (!(l.shadowOffset >= 0 && l.shadowOffset < 1e6))
+        bad(fmt::format("shadow offset {} voxels is not in [0, 1e6)", l.shadowOffset));
+    const uint32_t r = l.volumeResolution;
+    if (r < 8 || r > 2048 || (r & (r - 1)) != 0)
+        bad(fmt::format("volume resolution {} is not a power of two from 8 to 2048", r));
+    if (!(l.exposure > 0 && std::isfinite(l.exposure))) bad(fmt::format("exposure {} is not positive", l.exposure));
+    if (!(l.gamma > 0 && std::isfinite(l.gamma))) bad(fmt::format("gamma {} is not positive", l.gamma));
+    if (!octree.normals)
+        bad("the octree has no normal channel (voxelize the mesh with --attributes normal, or normal,color)");
+    const uint32_t k = texelVoxels(octree.grid, r);
+    if (k > 8) {
+        const uint64_t largest = *std::max_element(octree.grid.dims.begin(), octree.grid.dims.end());
+        bad(fmt::format("a grid {} voxels wide needs a volume resolution of at least {} (a texel holds at most 8³ "
+                        "voxels)",
+                        largest, nextPowerOfTwo((largest + 7) / 8)));
+    }
+}
+
+bool sameInjection(const Illumination& a, const Illumination& b)
+{
+    auto same = [](const Vec3d& x, const Vec3d& y) { return x.x == y.x && x.y == y.y && x.z == y.z; };
+    if (a.lights.directional.size() != b.lights.directional.size() || a.lights.point.size() != b.lights.point.size())
+        return false;
+    for (size_t i = 0; i < a.lights.directional.size(); ++i)
+        if (!same(a.lights.directional[i].direction, b.lights.directional[i].direction) ||
+            !same(a.lights.directional[i].irradiance, b.lights.directional[i].irradiance))
+            return false;
+    for (size_t i = 0; i < a.lights.point.size(); ++i)
+        if (!same(a.lights.point[i].position, b.lights.point[i].position) ||
+            !same(a.lights.point[i].intensity, b.lights.point[i].intensity))
+            return false;
+    return same(a.albedo, b.albedo) && a.shadowOffset == b.shadowOffset && a.volumeResolution == b.volumeResolution;
+}
+
+void bindLights(const Program& p, const LightVolumeTextures& v, const ViewBuffers& o, const Illumination& l)
+{
+    v.lights.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_LIGHTS);
+    o.normals->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_NORMALS);
+    (o.colors ? o.colors : o.normals)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ALBEDO);
+    o.voxelStart->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_VOXEL_START);
+    p.set("uLightCount", v.lightCount);
+    p.set("uShadowOffset", float(l.shadowOffset));
+    p.set("uVoxelSize", float(o.grid.voxelSize));
+    p.set("uAlbedo", float(l.albedo.x), float(l.albedo.y), float(l.albedo.z));
+    p.set("uHasAlbedo", o.colors ? 1u : 0u);
+}
+
+void bindLightVolume(const Program& p, const LightVolumeTextures& v, const ViewBuffers& o, const Illumination& l)
+{
+    bindLights(p, v, o, l);
+    v.opacity.bindTexture(SVO_UNIT_LIGHT_OPACITY);
+    v.radiance.bindTexture(SVO_UNIT_LIGHT_RADIANCE);
+    const double k = v.texelVoxels;
+    p.set("uVolumeScale", float(1.0 / (k * v.size[0])), float(1.0 / (k * v.size[1])), float(1.0 / (k * v.size[2])));
+    p.set("uTexelCells", float(k));
+    p.set("uConeTanHalf", float(std::tan(l.apertureDegrees * M_PI / 360.0)));
+    const auto& d = o.grid.dims;
+    const double diagonal = std::sqrt(double(d[0]) * d[0] + double(d[1]) * d[1] + double(d[2]) * d[2]);
+    p.set("uConeDistance", float(l.distance > 0 ? l.distance : diagonal));
+    p.set("uConeOffset", float(l.offset));
+    p.set("uCones", l.cones);
+}
+
+LightVolumeTextures buildLightVolume(const Context& context, const ViewBuffers& o, const Illumination& l)
+{
+    checkIllumination(l, o);
+    LightVolumeTextures v;
+    v.texelVoxels = texelVoxels(o.grid, l.volumeResolution);
+    int largest = 1;
+    for (int i = 0; i < 3; ++i) {
+        v.size[i] = nextPowerOfTwo((o.grid.dims[size_t(i)] + v.texelVoxels - 1) / v.texelVoxels);
+        largest = std::max(largest, v.size[i]);
+    }
+    int levels = 1;
+    while ((1 << (levels - 1)) < largest) ++levels;
+    v.opacity = Texture3D("lighting volume's opacity", GL_RGBA8, levels, v.size[0], v.size[1], v.size[2]);
+    v.radiance = Texture3D("lighting volume's radiance", GL_RGBA16F, levels, v.size[0], v.size[1], v.size[2]);
+    injectLight(context, o, l, v);
+    return v;
+}
+
+void injectLight(const Context& context, const ViewBuffers& o, const Illumination& l, LightVolumeTextures& v)
+{
+    checkIllumination(l, o);
+    if (texelVoxels(o.grid, l.volumeResolution) != v.texelVoxels)
+        throw Error("octree view: lighting: re-injecting at another volume resolution"); // callers rebuild instead
+    v.built = l;
+    const int levels = v.opacity.levels();
+    // Lights in cell space (local + 1/2), two vec4 each (view_lights.glsl).
+    std::vector<float> lights;
+    for (const DirectionalLight& d : l.lights.directional) {
+        const Vec3d u = (1.0 / std::sqrt(dot(d.direction, d.direction))) * d.direction;
+        lights.insert(lights.end(), {float(u.x), float(u.y), float(u.z), 0.0f, float(d.irradiance.x),
+                                     float(d.irradiance.y), float(d.irradiance.z), 0.0f});
+    }
+    for (const PointLight& p : l.lights.point) {
+        const Vec3d c = o.grid.toLocal(p.position);
+        lights.insert(lights.end(), {float(c.x + 0.5), float(c.y + 0.5), float(c.z + 0.5), 1.0f, float(p.intensity.x),
+                                     float(p.intensity.y), float(p.intensity.z), 0.0f});
+    }
+    v.lightCount = int(lights.size() / 8);
+    v.lights = Buffer("lights (view)", lights.size() * 4, lights.data(), 0);
+
+    // Level 0: injection.
+    const Program& inject = context.program({"light_inject.comp"});
+    o.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_NODES);
+    o.bricks.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_BRICKS);
+    bindLights(inject, v, o, l);
+    inject.set("uBrickLevel", o.brickLevel);
+    inject.set("uDims", int(o.grid.dims[0]), int(o.grid.dims[1]), int(o.grid.dims[2]));
+    inject.set("uBaseSize", v.size[0], v.size[1], v.size[2]);
+    inject.set("uTexelCells", int(v.texelVoxels));
+    v.opacity.bindImage(0, 0, GL_WRITE_ONLY, GL_RGBA8);
+    v.radiance.bindImage(1, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    inject.use();
+    glDispatchCompute(GLuint((v.size[0] + 3) / 4), GLuint((v.size[1] + 3) / 4), GLuint((v.size[2] + 3) / 4));
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    checkGl("injecting light into the lighting volume");
+
+    // The mip-map, level by level.
+    const Program& mip = context.program({"light_mip.comp"});
+    for (int level = 1; level < levels; ++level) {
+        v.opacity.bindImage(0, level - 1, GL_READ_ONLY, GL_RGBA8);
+        v.radiance.bindImage(1, level - 1, GL_READ_ONLY, GL_RGBA16F);
+        v.opacity.bindImage(2, level, GL_WRITE_ONLY, GL_RGBA8);
+        v.radiance.bindImage(3, level, GL_WRITE_ONLY, GL_RGBA16F);
+        const int in[3] = {v.opacity.size(level - 1, 0), v.opacity.size(level - 1, 1), v.opacity.size(level - 1, 2)};
+        const int out[3] = {v.opacity.size(level, 0), v.opacity.size(level, 1), v.opacity.size(level, 2)};
+        mip.set("uInSize", in[0], in[1], in[2]);
+        mip.set("uOutSize", out[0], out[1], out[2]);
+        mip.use();
+        glDispatchCompute(GLuint((out[0] + 3) / 4), GLuint((out[1] + 3) / 4), GLuint((out[2] + 3) / 4));
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    for (GLuint unit = 0; unit < 4; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
+    glUseProgram(0);
+    checkGl("mip-mapping the lighting volume");
+}
+
+LightVolume readLightVolume(const LightVolumeTextures& v)
+{
+    LightVolume out;
+    out.texelVoxels = v.texelVoxels;
+    for (int level = 0; level < v.opacity.levels(); ++level) {
+        LightVolumeLevel l;
+        for (int i = 0; i < 3; ++i) l.size[i] = v.opacity.size(level, i);
+        const size_t n = size_t(l.size[0]) * size_t(l.size[1]) * size_t(l.size[2]) * 4;
+        l.opacity.resize(n);
+        l.radiance.resize(n);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        v.opacity.read(level, GL_RGBA, GL_FLOAT, n * 4, l.opacity.data());
+        v.radiance.read(level, GL_RGBA, GL_FLOAT, n * 4, l.radiance.data());
+        out.levels.push_back(std::move(l));
+    }
+    checkGl("reading the lighting volume back");
+    return out;
+}
+
+} // namespace svo::gl

@@ -1,0 +1,68 @@
+#pragma once
+/// @file light_volume.h
+/// The lighting volume behind Illumination (svo/gl/octree_view.h, design
+/// §7d): light injected from the octree's voxels into level 0 of a 3D
+/// texture pair, then mip-mapped on the GPU. The view binds it to draw.
+#include <cstdint>
+
+#include "objects.h"
+#include "svo/gl/context.h"
+#include "svo/gl/octree_view.h"
+
+namespace svo::gl {
+
+/// The octree's buffers as OctreeView uploaded them; the channels are null
+/// when the octree lacks them.
+struct ViewBuffers {
+    const GridSpec& grid;
+    uint32_t brickLevel;
+    const Buffer& nodes;
+    const Buffer& bricks;
+    const Buffer* voxelStart;
+    const Buffer* normals;
+    const Buffer* colors;
+};
+
+struct LightVolumeTextures {
+    Texture3D opacity;  ///< rgba8: opacity seen along x, y, z; coverage
+    Texture3D radiance; ///< rgba16f: radiance x coverage; coverage
+    Buffer lights;      ///< 2 vec4 per light, cell space (view_lights.glsl)
+    int lightCount = 0;
+    uint32_t texelVoxels = 1;
+    int size[3] = {0, 0, 0}; ///< level 0, texels
+    Illumination built;      ///< what it was injected with
+};
+
+/// Throws svo::Error naming the first option of `light` out of range, or the
+/// missing normal channel.
+void checkIllumination(const Illumination& light, const ViewBuffers& octree);
+
+/// Whether a volume injected for `a` is the one `b` needs.
+bool sameInjection(const Illumination& a, const Illumination& b);
+
+/// Injects and mip-maps. Throws svo::Error as checkIllumination does, and
+/// when the GPU cannot hold the textures.
+LightVolumeTextures buildLightVolume(const Context& context, const ViewBuffers& octree, const Illumination& light);
+
+/// Injects `light` again into `volume` (a moved light) and mip-maps; the
+/// volume resolution must be the one it was built for.
+void injectLight(const Context& context, const ViewBuffers& octree, const Illumination& light,
+                 LightVolumeTextures& volume);
+
+/// Whether a volume built for `a` can be re-injected for `b` (same texture sizes).
+inline bool sameVolume(const Illumination& a, const Illumination& b) { return a.volumeResolution == b.volumeResolution; }
+
+/// Binds the octree's lighting inputs (lights, normals, albedo) and sets the
+/// lighting uniforms of `program` (one that includes view_lights.glsl).
+void bindLights(const Program& program, const LightVolumeTextures& volume, const ViewBuffers& octree,
+                const Illumination& light);
+
+/// bindLights, plus the volume's textures and the cone uniforms
+/// (view_gather.glsl).
+void bindLightVolume(const Program& program, const LightVolumeTextures& volume, const ViewBuffers& octree,
+                     const Illumination& light);
+
+/// Every level read back.
+LightVolume readLightVolume(const LightVolumeTextures& volume);
+
+} // namespace svo::gl
