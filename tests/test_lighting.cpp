@@ -1,0 +1,311 @@
+// Light injection and the lighting volume (svo/gl/octree_view.h,
+// Illumination; design §7d) against values computed on the CPU from the
+// voxel set alone: the radiance injected into a lit plane (directional and
+// point lights, and the shadow of an occluder, from the voxels above each
+// one), the anisotropic mip-map of random octrees level by level, and lit
+// pictures: deterministic, and one diffuse bounce only adds light.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <gtest/gtest.h>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "svo/core/default_scene.h"
+#include "svo/core/error.h"
+#include "svo/core/grid.h"
+#include "svo/core/octree.h"
+#include "svo/core/voxel_key.h"
+#include "svo/gl/context.h"
+#include "svo/gl/octree_view.h"
+#include "svo/voxelizer.h"
+
+namespace {
+
+using svo::Vec3d;
+using svo::gl::Illumination;
+using svo::gl::LightVolume;
+using svo::gl::LightVolumeLevel;
+using Voxel = std::array<uint32_t, 3>;
+
+svo::gl::Context& context()
+{
+    static svo::gl::Context c;
+    return c;
+}
+
+svo::GridSpec unitGrid(uint32_t x, uint32_t y, uint32_t z)
+{
+    svo::GridSpec g;
+    g.voxelSize = 1.0;
+    g.dims = {x, y, z};
+    return g;
+}
+
+/// An octree of `voxels` whose normal channel is `normal` at every voxel.
+svo::Octree octreeOf(const svo::GridSpec& grid, const std::vector<Voxel>& voxels, const std::vector<svo::Vec3f>& normals)
+{
+    std::vector<uint64_t> keys;
+    for (const Voxel& v : voxels) keys.push_back(svo::packVoxelKey(v[0], v[1], v[2]));
+    svo::Octree o = svo::buildOctree(grid, keys);
+    o.attributes.normals = normals;
+    o.attributes.normals.resize(o.voxelCount(), normals.empty() ? svo::Vec3f{0, 1, 0} : normals.back());
+    return o;
+}
+
+size_t texel(const LightVolumeLevel& l, int x, int y, int z)
+{
+    return 4 * ((size_t(z) * size_t(l.size[1]) + size_t(y)) * size_t(l.size[0]) + size_t(x));
+}
+
+double halfTolerance(double v) { return 2e-3 * std::abs(v) + 1e-4; } // rgba16f: 11 significant bits
+
+} // namespace
+
+TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
+{
+    // A plane of voxels at y = 4 across a 32³ grid, normal +y, and above part
+    // of it an occluder at y = 20 over x, z in [8, 16).
+    const svo::GridSpec grid = unitGrid(32, 32, 32);
+    std::vector<Voxel> voxels;
+    std::set<std::pair<uint32_t, uint32_t>> occluded;
+    for (uint32_t x = 0; x < 32; ++x)
+        for (uint32_t z = 0; z < 32; ++z) voxels.push_back({x, 4, z});
+    for (uint32_t x = 8; x < 16; ++x)
+        for (uint32_t z = 8; z < 16; ++z) {
+            voxels.push_back({x, 20, z});
+            occluded.insert({x, z});
+        }
+    const svo::Octree octree = octreeOf(grid, voxels, {{0, 1, 0}});
+    svo::gl::OctreeView view(context(), octree);
+
+    const Vec3d albedo{0.5, 0.6, 0.7};
+    // A sun straight down: the occluder's shadow is exactly the columns under it.
+    Illumination sun;
+    sun.mode = Illumination::Mode::Direct;
+    sun.albedo = albedo;
+    sun.lights.directional.push_back({{0, -2, 0}, {2.0, 1.0, 0.5}});
+    // A point light off to the side, above the plane: radiance falls off as cos / r².
+    Illumination point = sun;
+    point.lights.directional.clear();
+    point.lights.point.push_back({{40.0, 12.0, 16.0}, {300.0, 200.0, 100.0}});
+
+    for (const Illumination* light : {&sun, &point}) {
+        const LightVolume volume = view.readLightVolume(*light);
+        ASSERT_EQ(volume.texelVoxels, 1u);
+        ASSERT_EQ(volume.levels.size(), 6u); // 32³ down to 1³
+        const LightVolumeLevel& l0 = volume.levels[0];
+        ASSERT_EQ(l0.size[0], 32);
+        int lit = 0, dark = 0;
+        for (int z = 0; z < 32; ++z)
+            for (int y = 0; y < 32; ++y)
+                for (int x = 0; x < 32; ++x) {
+                    const size_t i = texel(l0, x, y, z);
+                    const bool plane = y == 4, top = y == 20 && x >= 8 && x < 16 && z >= 8 && z < 16;
+                    const double cover = plane || top ? 1.0 : 0.0;
+                    ASSERT_EQ(l0.opacity[i], cover) << x << "," << y << "," << z;
+                    ASSERT_EQ(l0.opacity[i + 3], cover);
+                    ASSERT_EQ(l0.radiance[i + 3], cover);
+                    Vec3d expected{0, 0, 0};
+                    if (plane || top) {
+                        if (light == &sun) {
+                            // cos = 1; a plane voxel under the occluder sees none of the sun.
+                            const bool shadow = plane && occluded.count({uint32_t(x), uint32_t(z)});
+                            if (!shadow) expected = {albedo.x / M_PI * 2.0, albedo.y / M_PI * 1.0, albedo.z / M_PI * 0.5};
+                        } else {
+                            // The light at (40, 12, 16) is above the plane (y = 4) and
+                            // level with nothing between: no shadow on the plane beyond
+                            // the occluder's reach; the test looks at the plane only.
+                            const Vec3d c{double(x), double(y), double(z)}; // world = local voxel centre
+                            const Vec3d to = light->lights.point[0].position - c;
+                            const double r2 = svo::dot(to, to), cosTheta = std::abs(to.y) / std::sqrt(r2);
+                            const Vec3d& i0 = light->lights.point[0].intensity;
+                            expected = {albedo.x / M_PI * i0.x * cosTheta / r2, albedo.y / M_PI * i0.y * cosTheta / r2,
+                                        albedo.z / M_PI * i0.z * cosTheta / r2};
+                            if (!plane) continue; // the occluder's own lighting is not checked here
+                            // The occluder's shadow from the side: skip plane voxels whose
+                            // ray to the light passes under it (x in [8, 16) region, far side).
+                            if (x < 16 && z >= 6 && z < 18) continue;
+                        }
+                    }
+                    const double got[3] = {l0.radiance[i], l0.radiance[i + 1], l0.radiance[i + 2]};
+                    const double want[3] = {expected.x, expected.y, expected.z};
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_NEAR(got[c], want[c], halfTolerance(want[c])) << x << "," << y << "," << z;
+                    if (plane) (expected.x > 0 ? lit : dark) += 1;
+                }
+        if (light == &sun) {
+            EXPECT_EQ(dark, 64); // the occluder's 8 x 8 shadow
+            EXPECT_EQ(lit, 32 * 32 - 64);
+        }
+    }
+}
+
+TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
+{
+    // Random voxels with random normals in grids of several shapes (one flat,
+    // so an axis reaches one texel before the others), lit by a sun and a
+    // point light. Each level must be the filter of the level below as read
+    // back: radiance and coverage the mean of the children, opacity along an
+    // axis the mean over columns of 1 - Π(1 - a) along it.
+    std::mt19937 rng(7);
+    for (const auto& dims : std::vector<std::array<uint32_t, 3>>{{32, 32, 32}, {64, 8, 32}, {24, 40, 16}}) {
+        const svo::GridSpec grid = unitGrid(dims[0], dims[1], dims[2]);
+        std::vector<Voxel> voxels;
+        std::uniform_int_distribution<uint32_t> x(0, dims[0] - 1), y(0, dims[1] - 1), z(0, dims[2] - 1);
+        for (int i = 0; i < 3000; ++i) voxels.push_back({x(rng), y(rng), z(rng)});
+        std::normal_distribution<float> g;
+        std::vector<svo::Vec3f> normals;
+        for (int i = 0; i < 3000; ++i) normals.push_back({g(rng), g(rng), g(rng)});
+        svo::Octree octree = octreeOf(grid, voxels, {});
+        normals.resize(octree.voxelCount());
+        octree.attributes.normals = normals;
+        svo::gl::OctreeView view(context(), octree);
+        Illumination light;
+        light.mode = Illumination::Mode::Global;
+        light.lights.directional.push_back({{0.3, -1, 0.2}, {3, 2, 1}});
+        light.lights.point.push_back({{10, 30, 5}, {400, 400, 400}});
+        const LightVolume v = view.readLightVolume(light);
+        ASSERT_GE(v.levels.size(), 6u);
+        double total0 = 0;
+        for (size_t i = 0; i < v.levels[0].radiance.size(); i += 4) total0 += v.levels[0].radiance[i];
+        ASSERT_GT(total0, 0);
+        for (size_t level = 1; level < v.levels.size(); ++level) {
+            const LightVolumeLevel& in = v.levels[level - 1];
+            const LightVolumeLevel& out = v.levels[level];
+            int n[3];
+            for (int a = 0; a < 3; ++a) {
+                ASSERT_EQ(out.size[a], std::max(1, in.size[a] / 2));
+                n[a] = in.size[a] > 1 ? 2 : 1;
+            }
+            double total = 0;
+            for (int pz = 0; pz < out.size[2]; ++pz)
+                for (int py = 0; py < out.size[1]; ++py)
+                    for (int px = 0; px < out.size[0]; ++px) {
+                        auto child = [&](int i, int j, int k) {
+                            return texel(in, n[0] > 1 ? 2 * px + i : px, n[1] > 1 ? 2 * py + j : py,
+                                         n[2] > 1 ? 2 * pz + k : pz);
+                        };
+                        double radiance[4] = {0, 0, 0, 0}, through[3] = {0, 0, 0};
+                        for (int k = 0; k < n[2]; ++k)
+                            for (int j = 0; j < n[1]; ++j)
+                                for (int i = 0; i < n[0]; ++i)
+                                    for (int c = 0; c < 4; ++c) radiance[c] += in.radiance[child(i, j, k) + c];
+                        for (int k = 0; k < n[2]; ++k)
+                            for (int j = 0; j < n[1]; ++j) {
+                                double t = 1;
+                                for (int i = 0; i < n[0]; ++i) t *= 1 - in.opacity[child(i, j, k)];
+                                through[0] += t;
+                            }
+                        for (int k = 0; k < n[2]; ++k)
+                            for (int i = 0; i < n[0]; ++i) {
+                                double t = 1;
+                                for (int j = 0; j < n[1]; ++j) t *= 1 - in.opacity[child(i, j, k) + 1];
+                                through[1] += t;
+                            }
+                        for (int j = 0; j < n[1]; ++j)
+                            for (int i = 0; i < n[0]; ++i) {
+                                double t = 1;
+                                for (int k = 0; k < n[2]; ++k) t *= 1 - in.opacity[child(i, j, k) + 2];
+                                through[2] += t;
+                            }
+                        const double count = n[0] * n[1] * n[2];
+                        const double columns[3] = {double(n[1] * n[2]), double(n[0] * n[2]), double(n[0] * n[1])};
+                        const size_t o = texel(out, px, py, pz);
+                        for (int c = 0; c < 4; ++c)
+                            ASSERT_NEAR(out.radiance[o + c], radiance[c] / count, halfTolerance(radiance[c] / count))
+                                << "level " << level << " texel " << px << "," << py << "," << pz;
+                        for (int a = 0; a < 3; ++a) // rgba8: one step of 1/255, rounded
+                            ASSERT_NEAR(out.opacity[o + a], 1 - through[a] / columns[a], 0.5 / 255 + 1e-6)
+                                << "level " << level << " axis " << a;
+                        total += out.radiance[o] * count;
+                    }
+            // The box filter keeps the level's total radiance (times texel volume).
+            double totalIn = 0;
+            for (size_t i = 0; i < in.radiance.size(); i += 4) totalIn += in.radiance[i];
+            EXPECT_NEAR(total, totalIn, 4e-3 * totalIn);
+        }
+    }
+}
+
+TEST(Lighting, LitPicturesAreDeterministicAndOneBounceOnlyAddsLight)
+{
+    const svo::TriangleMesh mesh = svo::cornellBox();
+    svo::Voxelizer voxelizer;
+    svo::VoxelizeOptions options;
+    options.attributes = svo::kNormals;
+    const svo::Octree octree = voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{64, 0}), options);
+    svo::gl::OctreeView view(context(), octree);
+    const auto box = svo::gl::gridWorldBox(octree.grid);
+    const svo::gl::ViewCamera camera = svo::gl::namedView(box, "front", 1.0);
+    svo::gl::ViewLayers layers;
+    layers.outlines = false;
+    layers.light.mode = Illumination::Mode::Direct;
+    layers.light.lights = svo::gl::defaultLights(box, true);
+    layers.light.gamma = 1.0;
+    const svo::gl::Image direct = view.render(camera, 96, 96, layers);
+    EXPECT_EQ(direct.rgba, view.render(camera, 96, 96, layers).rgba);
+    layers.light.mode = Illumination::Mode::Global;
+    const svo::gl::Image global = view.render(camera, 96, 96, layers);
+    EXPECT_EQ(global.rgba, view.render(camera, 96, 96, layers).rgba);
+    // Every voxel pixel of the GI picture is at least its direct light; the
+    // pixels in shadow (black in the direct picture) get some bounce light.
+    int voxelPixels = 0, shadowed = 0, bounced = 0;
+    for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 96; ++x) {
+            const uint8_t* d = direct.pixel(x, y);
+            const uint8_t* g = global.pixel(x, y);
+            const bool voxel = d[0] == d[1] && d[1] == d[2]; // grey: the background is bluish
+            if (!voxel) continue;
+            ++voxelPixels;
+            ASSERT_GE(g[1], d[1]) << x << "," << y;
+            if (d[1] == 0) {
+                ++shadowed;
+                bounced += g[1] > 0;
+            }
+        }
+    EXPECT_GT(voxelPixels, 96 * 96 / 4);
+    EXPECT_GT(shadowed, 50);
+    EXPECT_GT(bounced, shadowed * 3 / 4);
+}
+
+TEST(Lighting, BadLightingIsAClearError)
+{
+    const svo::GridSpec grid = unitGrid(16, 16, 16);
+    const svo::Octree withNormals = octreeOf(grid, {{1, 2, 3}, {4, 5, 6}}, {{0, 1, 0}});
+    svo::Octree without = withNormals;
+    without.attributes = {};
+    Illumination ok;
+    ok.mode = Illumination::Mode::Global;
+    ok.lights.directional.push_back({});
+    auto message = [](const svo::Octree& o, const Illumination& l) {
+        try {
+            svo::gl::OctreeView view(context(), o);
+            view.readLightVolume(l);
+        } catch (const svo::Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(message(withNormals, ok), "");
+    EXPECT_NE(message(without, ok).find("no normal channel"), std::string::npos);
+    auto bad = [&](auto change, const char* expected) {
+        Illumination l = ok;
+        change(l);
+        const std::string m = message(withNormals, l);
+        EXPECT_NE(m.find(expected), std::string::npos) << m;
+    };
+    bad([](Illumination& l) { l.lights = {}; }, "no light");
+    bad([](Illumination& l) { l.lights.directional[0].direction = {0, 0, 0}; }, "is zero");
+    bad([](Illumination& l) { l.lights.environment = {1, 1, 1}; }, "environment");
+    bad([](Illumination& l) { l.cones = 0; }, "0 cones");
+    bad([](Illumination& l) { l.volumeResolution = 100; }, "power of two");
+    bad([](Illumination& l) { l.albedo = {1.5, 0, 0}; }, "albedo");
+    bad([](Illumination& l) { l.exposure = 0; }, "exposure");
+    // A grid too wide for the volume: a texel holds at most 8³ voxels.
+    const svo::Octree wide = octreeOf(unitGrid(1024, 8, 8), {{1000, 1, 1}}, {{1, 0, 0}});
+    Illumination small = ok;
+    small.volumeResolution = 64;
+    EXPECT_NE(message(wide, small).find("at least 128"), std::string::npos) << message(wide, small);
+}
