@@ -1,9 +1,16 @@
-// Error against time of the octree view's cone-traced ambient occlusion:
-// for each scene, resolution, cone count and opacity filter, the AO image
-// (OctreeView with AmbientOcclusion::only) is compared pixel by pixel with
-// the path-traced reference AO of the same triangles, camera and distance
-// (svo/reference/path_trace.h), and the frame is timed at the benchmark size.
-//   svo-bench-ao cornell spheres MESH... --res 64 128 256 512 --cones 1 3 7 16 --md out.md
+// Error against time of the octree view's cone tracing: for each scene,
+// resolution, cone count (and for AO opacity filter), the picture is compared
+// pixel by pixel with the path-traced reference of the same triangles, camera
+// and lights (svo/reference/path_trace.h), and the frame is timed at the
+// benchmark size.
+//   --render ao: the AO image (AmbientOcclusion::only) against reference AO
+//     with the same distance;
+//   --render direct / gi: the lit voxels (Illumination, linear radiance)
+//     against the reference's Direct / OneBounce radiance with the same
+//     lights (defaultLights: a point light in the Cornell box, else a sun)
+//     and albedo; timed frames inject the light and mip-map again each frame,
+//     as after a light moves.
+//   svo-bench-ao cornell spheres MESH... --res 64 128 256 512 --cones 1 3 7 16 --md out.md [--render gi]
 // Scenes: "cornell" and "spheres" are the built-in scenes; anything else is a mesh file.
 // The AO distance is a fraction of the scene's bounding-box diagonal, the
 // same in world units at every resolution; the camera frames the mesh's box
@@ -46,7 +53,7 @@ int main(int argc, char** argv)
     std::vector<int> resolutions{64, 128, 256, 512}, coneCounts{1, 3, 7, 16};
     int width = 320, height = 240, samples = 256, timeWidth = 1920, timeHeight = 1080, frames = 10;
     double distanceShare = 0.25;
-    std::string mdPath, dumpDir;
+    std::string mdPath, dumpDir, render = "ao";
     app.add_option("scenes", scenes, "cornell, spheres or mesh files")->required();
     app.add_option("--res", resolutions, "Resolutions");
     app.add_option("--cones", coneCounts, "Cone counts");
@@ -57,19 +64,31 @@ int main(int argc, char** argv)
     app.add_option("--time-size", timeWidth, "Timed frame width (height 9/16 of it)")->check(CLI::PositiveNumber);
     app.add_option("--frames", frames, "Timed frames per point")->check(CLI::PositiveNumber);
     app.add_option("--md", mdPath, "Markdown table to write");
-    app.add_option("--dump", dumpDir, "Write the reference and each AO image here as PGM");
+    app.add_option("--dump", dumpDir, "Write the reference and each image here as PGM");
+    app.add_option("--render", render, "ao, direct or gi")->check(CLI::IsMember({"ao", "direct", "gi"}));
     CLI11_PARSE(app, argc, argv);
     timeHeight = timeWidth * 9 / 16;
     try {
         svo::Voxelizer voxelizer;
         svo::gl::Context context;
-        std::string md = fmt::format(
-            "Cone-traced AO (svo view --render ao) against path-traced AO ({} rays per pixel, Embree), {} x {} "
-            "pixels compared where both see a surface; AO distance {} of the scene's diagonal; GPU ms per frame "
-            "at {} x {} on {}.\n\n"
-            "| scene | grid | filter | cones | RMSE | p99 error | mean AO (svo) | mean AO (reference) | pixels | GPU ms "
-            "| wall ms |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
-            samples, width, height, distanceShare, timeWidth, timeHeight, context.info().renderer);
+        const bool ao = render == "ao";
+        const double albedo = 0.75;
+        std::string md =
+            ao ? fmt::format(
+                     "Cone-traced AO (svo view --render ao) against path-traced AO ({} rays per pixel, Embree), {} x "
+                     "{} pixels compared where both see a surface; AO distance {} of the scene's diagonal; GPU ms per "
+                     "frame at {} x {} on {}.\n\n",
+                     samples, width, height, distanceShare, timeWidth, timeHeight, context.info().renderer)
+               : fmt::format("Cone-traced {} light (svo view --render {}) against the path-traced reference's {} "
+                             "({} paths per pixel, Embree), linear radiance (albedo {}, svo's default lights), {} x {} "
+                             "pixels compared where both see a surface, values clamped to [0, 1]; GPU ms per frame at "
+                             "{} x {} on {}, injection and mip-map included.\n\n",
+                             render == "gi" ? "one-bounce" : "direct", render,
+                             render == "gi" ? "OneBounce" : "Direct", samples, albedo, width, height, timeWidth,
+                             timeHeight, context.info().renderer);
+        md += fmt::format("| scene | grid | filter | cones | RMSE | p99 error | mean {} (svo) | mean {} (reference) | "
+                          "pixels | GPU ms | wall ms |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
+                          ao ? "AO" : "radiance", ao ? "AO" : "radiance");
         for (const std::string& name : scenes) {
             const svo::TriangleMesh mesh = scene(name);
             const svo::Bounds b = mesh.bounds();
@@ -78,34 +97,53 @@ int main(int argc, char** argv)
             const svo::gl::ViewCamera camera =
                 svo::gl::namedView({b.min, b.max}, "front", double(width) / height);
             svo::reference::RenderOptions ro;
-            ro.mode = svo::reference::Mode::AmbientOcclusion;
+            ro.mode = ao                 ? svo::reference::Mode::AmbientOcclusion
+                      : render == "gi" ? svo::reference::Mode::OneBounce
+                                       : svo::reference::Mode::Direct;
             ro.samples = samples;
             ro.aoDistance = distance;
             svo::reference::RenderStats rs;
             svo::reference::Material material;
             material.vertexColors = false;
+            material.albedo = {albedo, albedo, albedo};
+            // Lights from the mesh's box, the same for the reference and every resolution.
+            const svo::Lights lights = svo::gl::defaultLights({b.min, b.max}, name == "cornell");
             const svo::reference::FloatImage reference =
-                svo::reference::render(mesh, material, camera, width, height, {}, ro, &rs);
-            fmt::print(stderr, "{}: reference AO in {:.0f} ms ({} rays)\n", name, rs.wallMs, rs.rays());
+                svo::reference::render(mesh, material, camera, width, height, ao ? svo::Lights{} : lights, ro, &rs);
+            fmt::print(stderr, "{}: reference {} in {:.0f} ms ({} rays)\n", name, render, rs.wallMs, rs.rays());
             for (int r : resolutions) {
-                const svo::Octree octree = voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{r, 0}));
+                svo::VoxelizeOptions vo;
+                if (!ao) vo.attributes = svo::kNormals;
+                const svo::Octree octree =
+                    voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{r, 0}), vo);
                 svo::gl::OctreeView view(context, octree);
-                for (const auto filter :
-                     {svo::gl::AmbientOcclusion::Filter::Max, svo::gl::AmbientOcclusion::Filter::Average})
+                using Filter = svo::gl::AmbientOcclusion::Filter;
+                const std::vector<Filter> filters =
+                    ao ? std::vector<Filter>{Filter::Max, Filter::Average} : std::vector<Filter>{Filter::Max};
+                for (const auto filter : filters)
                     for (int cones : coneCounts) {
                         svo::gl::ViewLayers layers;
                         layers.outlines = false;
-                        layers.ao.cones = cones;
-                        layers.ao.filter = filter;
-                        layers.ao.only = true;
-                        layers.ao.distance = distance / octree.grid.voxelSize;
+                        if (ao) {
+                            layers.ao.cones = cones;
+                            layers.ao.filter = filter;
+                            layers.ao.only = true;
+                            layers.ao.distance = distance / octree.grid.voxelSize;
+                        } else {
+                            layers.light.mode = render == "gi" ? svo::gl::Illumination::Mode::Global
+                                                               : svo::gl::Illumination::Mode::Direct;
+                            layers.light.lights = lights;
+                            layers.light.albedo = {albedo, albedo, albedo};
+                            layers.light.cones = cones;
+                            layers.light.gamma = 1.0;
+                        }
                         const svo::gl::Image image = view.render(camera, width, height, layers);
                         if (!dumpDir.empty()) {
                             std::string pgm = fmt::format("P5 {} {} 255\n", width, height), ref = pgm;
                             for (int y = 0; y < height; ++y)
                                 for (int x = 0; x < width; ++x) {
                                     pgm += char(image.pixel(x, y)[1]);
-                                    ref += char(std::lround(255 * std::clamp(reference.at(x, y), 0.0f, 1.0f)));
+                                    ref += char(std::lround(255 * std::clamp(reference.at(x, y, 1), 0.0f, 1.0f)));
                                 }
                             const std::string stem = std::filesystem::path(name).stem().string();
                             svo::writeFileAtomically(fmt::format("{}/{}_reference.pgm", dumpDir, stem), ref);
@@ -120,7 +158,8 @@ int main(int argc, char** argv)
                                 const uint8_t* p = image.pixel(x, y);
                                 const bool grey = p[0] == p[1] && p[1] == p[2]; // the background is bluish
                                 if (!grey || !reference.covered[size_t(y) * size_t(width) + size_t(x)]) continue;
-                                const double a = p[1] / 255.0, ref = reference.at(x, y);
+                                const double a = p[1] / 255.0,
+                                             ref = std::clamp(double(reference.at(x, y, ao ? 0 : 1)), 0.0, 1.0);
                                 errors.push_back(std::abs(a - ref));
                                 sumSvo += a, sumRef += ref;
                             }
@@ -128,12 +167,12 @@ int main(int argc, char** argv)
                         for (double e : errors) squares += e * e;
                         const double n = double(std::max<size_t>(errors.size(), 1));
                         std::vector<double> gpu, wall;
-                        for (const auto& t : view.timeFrames(camera, timeWidth, timeHeight, layers, frames))
+                        for (const auto& t : view.timeFrames(camera, timeWidth, timeHeight, layers, frames, !ao))
                             gpu.push_back(t.gpuMs), wall.push_back(t.wallMs);
                         const std::string line = fmt::format(
                             "| {} | {}³ | {} | {} | {:.4f} | {:.3f} | {:.3f} | {:.3f} | {} | {:.2f} | {:.2f} |\n",
                             std::filesystem::path(name).stem().string(), r,
-                            filter == svo::gl::AmbientOcclusion::Filter::Max ? "max" : "average", cones,
+                            !ao ? "–" : filter == Filter::Max ? "max" : "average", cones,
                             std::sqrt(squares / n), quantile(errors, 0.99), sumSvo / n, sumRef / n, errors.size(),
                             quantile(gpu, 0.5), quantile(wall, 0.5));
                         fmt::print("{}", line);
