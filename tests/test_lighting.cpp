@@ -216,8 +216,10 @@ TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
                         for (int c = 0; c < 4; ++c)
                             ASSERT_NEAR(out.radiance[o + c], radiance[c] / count, halfTolerance(radiance[c] / count))
                                 << "level " << level << " texel " << px << "," << py << "," << pz;
-                        for (int a = 0; a < 3; ++a) // rgba8: one step of 1/255, rounded
-                            ASSERT_NEAR(out.opacity[o + a], 1 - through[a] / columns[a], 0.5 / 255 + 1e-6)
+                        // rgba8: GL may round a value to either neighbouring step of 1/255
+                        // (the H100 stored 87/255 for 0.3433, llvmpipe rounds to nearest).
+                        for (int a = 0; a < 3; ++a)
+                            ASSERT_NEAR(out.opacity[o + a], 1 - through[a] / columns[a], 1.0 / 255 + 1e-6)
                                 << "level " << level << " axis " << a;
                         total += out.radiance[o] * count;
                     }

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Lit voxels (issue 16) on the GPU host: the lighting tests, then direct and
+# one-bounce GI against the path-traced reference over resolutions and cone
+# counts, and a 1920x1080 picture. Needs the bundle with svo-bench-ao,
+# test_lighting and test_view (scripts/bundle.sh).
+set -uo pipefail
+source bench/gpu_host_env.sh
+"$bin/test_lighting" 2>&1 | tail -4 | tee "$out/test_lighting.txt"
+"$bin/test_view" 2>&1 | tail -3 | tee "$out/test_view.txt"
+"$bin/svo-bench-ao" cornell spheres --render direct --res 64 128 256 512 --cones 1 --samples 1 --frames 10 \
+  --md "$out/direct.md" 2>&1 | tee "$out/direct.txt"
+"$bin/svo-bench-ao" cornell spheres --render gi --res 64 128 256 512 --cones 1 3 7 16 --samples 1024 --frames 10 \
+  --md "$out/gi.md" 2>&1 | tee "$out/gi.txt"
+"$bin/svo" view -r 256 --render gi --size 1920x1080 --screenshot "$out/gi_cornell_256.png" 2>&1 | tee -a "$out/gi.txt"
