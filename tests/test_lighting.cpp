@@ -1,8 +1,9 @@
 // Light injection and the lighting volume (svo/gl/octree_view.h,
 // Illumination; design §7d) against values computed on the CPU from the
 // voxel set alone: the radiance injected into a lit plane (directional and
-// point lights, and the shadow of an occluder, from the voxels above each
-// one), the anisotropic mip-map of random octrees level by level, and lit
+// point lights, the shadow of an occluder from the voxels above each one,
+// and the shares leaving towards each face), the anisotropic mip-map of
+// random octrees level by level, and lit
 // pictures: deterministic, and one diffuse bounce only adds light.
 #include <algorithm>
 #include <array>
@@ -133,6 +134,15 @@ TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
                     const double want[3] = {expected.x, expected.y, expected.z};
                     for (int c = 0; c < 3; ++c)
                         ASSERT_NEAR(got[c], want[c], halfTolerance(want[c])) << x << "," << y << "," << z;
+                    // The plane's lit side faces +y (both lights are above it): its light
+                    // leaves towards +x, +y, +z, -x and -z, none towards -y; each share
+                    // is stored times the radiance's mean over rgb.
+                    const double mean = (want[0] + want[1] + want[2]) / 3;
+                    const double positive[3] = {mean, mean, mean}, negative[3] = {mean, 0, mean};
+                    for (int c = 0; c < 3; ++c) {
+                        ASSERT_NEAR(l0.towardsPositive[i + size_t(c)], positive[c], halfTolerance(positive[c]));
+                        ASSERT_NEAR(l0.towardsNegative[i + size_t(c)], negative[c], halfTolerance(negative[c]));
+                    }
                     if (plane) (expected.x > 0 ? lit : dark) += 1;
                 }
         if (light == &sun) {
@@ -187,11 +197,18 @@ TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
                             return texel(in, n[0] > 1 ? 2 * px + i : px, n[1] > 1 ? 2 * py + j : py,
                                          n[2] > 1 ? 2 * pz + k : pz);
                         };
-                        double radiance[4] = {0, 0, 0, 0}, through[3] = {0, 0, 0};
+                        double radiance[4] = {0, 0, 0, 0}, through[3] = {0, 0, 0}, positive[3] = {0, 0, 0},
+                               negative[3] = {0, 0, 0};
                         for (int k = 0; k < n[2]; ++k)
                             for (int j = 0; j < n[1]; ++j)
-                                for (int i = 0; i < n[0]; ++i)
-                                    for (int c = 0; c < 4; ++c) radiance[c] += in.radiance[child(i, j, k) + c];
+                                for (int i = 0; i < n[0]; ++i) {
+                                    const size_t c0 = child(i, j, k);
+                                    for (int c = 0; c < 4; ++c) radiance[c] += in.radiance[c0 + size_t(c)];
+                                    for (int c = 0; c < 3; ++c) {
+                                        positive[c] += in.towardsPositive[c0 + size_t(c)];
+                                        negative[c] += in.towardsNegative[c0 + size_t(c)];
+                                    }
+                                }
                         for (int k = 0; k < n[2]; ++k)
                             for (int j = 0; j < n[1]; ++j) {
                                 double t = 1;
@@ -216,6 +233,12 @@ TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
                         for (int c = 0; c < 4; ++c)
                             ASSERT_NEAR(out.radiance[o + c], radiance[c] / count, halfTolerance(radiance[c] / count))
                                 << "level " << level << " texel " << px << "," << py << "," << pz;
+                        for (int c = 0; c < 3; ++c) {
+                            ASSERT_NEAR(out.towardsPositive[o + size_t(c)], positive[c] / count,
+                                        halfTolerance(positive[c] / count));
+                            ASSERT_NEAR(out.towardsNegative[o + size_t(c)], negative[c] / count,
+                                        halfTolerance(negative[c] / count));
+                        }
                         // rgba8: GL may round a value to either neighbouring step of 1/255
                         // (the H100 stored 87/255 for 0.3433, llvmpipe rounds to nearest).
                         for (int a = 0; a < 3; ++a)

@@ -1,12 +1,17 @@
 // Cones through the lighting volume (design §7d; Crassin et al. 2011): a
 // mip-mapped 3D texture of the octree's voxels, sampled trilinearly. Each
-// texel holds the opacity of its box seen along x, y and z, and its outgoing
-// radiance times its coverage. A cone of aperture 2·atan(uConeTanHalf)
+// texel holds the opacity of its box seen along x, y and z, its outgoing
+// radiance times its coverage, and how much of that radiance leaves towards
+// each face direction (times the radiance's mean): a cone takes the share
+// leaving back towards its apex, so the dark side of a thin wall does not
+// glow with the light of its lit side. A cone of aperture 2·atan(uConeTanHalf)
 // samples, at distance t, the level whose texels are as wide as the cone
 // there, steps by half that width, and composites front to back.
 
 layout(binding = SVO_UNIT_LIGHT_OPACITY) uniform sampler3D uOpacityVolume;
 layout(binding = SVO_UNIT_LIGHT_RADIANCE) uniform sampler3D uRadianceVolume;
+layout(binding = SVO_UNIT_LIGHT_TOWARDS_POSITIVE) uniform sampler3D uTowardsPositiveVolume;
+layout(binding = SVO_UNIT_LIGHT_TOWARDS_NEGATIVE) uniform sampler3D uTowardsNegativeVolume;
 
 uniform vec3 uVolumeScale;    // cell space -> texture coordinates
 uniform float uTexelCells;    // voxels per texel edge at level 0
@@ -37,7 +42,12 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
         // The sample stands for a slab as deep as the texel is wide; the
         // step is half that, so its opacity is corrected to half the path.
         a = 1.0 - sqrt(max(1.0 - a, 0.0));
-        vec3 l = r.a > 1e-4 ? r.rgb / r.a : vec3(0.0);
+        // Light leaving towards -dir: per axis, the negative face's share where
+        // dir is positive, weighted like the opacity.
+        float mean = dot(r.rgb, vec3(1.0 / 3.0));
+        vec3 pos = textureLod(uTowardsPositiveVolume, tc, lod).xyz, neg = textureLod(uTowardsNegativeVolume, tc, lod).xyz;
+        float towards = dot(share, mix(pos, neg, step(0.0, dir))) / max(mean, 1e-8);
+        vec3 l = r.a > 1e-4 && mean > 1e-8 ? r.rgb / r.a * min(towards, 1.0) : vec3(0.0);
         radiance += (1.0 - occlusion) * a * l;
         occlusion += (1.0 - occlusion) * a;
         t += 0.5 * width;

@@ -26,6 +26,7 @@ struct ViewBuffers {
 struct LightVolumeTextures {
     Texture3D opacity;  ///< rgba8: opacity seen along x, y, z; coverage
     Texture3D radiance; ///< rgba16f: radiance x coverage; coverage
+    Texture3D towardsPositive, towardsNegative; ///< rgba16f: shares leaving towards +x +y +z / -x -y -z, x radiance
     Buffer lights;      ///< 2 vec4 per light, cell space (view_lights.glsl)
     int lightCount = 0;
     uint32_t texelVoxels = 1;

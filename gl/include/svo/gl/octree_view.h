@@ -87,7 +87,9 @@ struct AmbientOcclusion {
 ///   - a lighting volume: a 3D texture whose texels are the octree's voxels
 ///     (or blocks of 2³ to 8³ voxels, so that its largest side is at most
 ///     `volumeResolution`), holding opacity seen along x, y, z and radiance
-///     times coverage, mip-mapped on the GPU with the anisotropic filter;
+///     times coverage, and the shares of that radiance leaving towards each
+///     of the six face directions (a wall lit on one side sends nothing out
+///     of the other), mip-mapped on the GPU with the anisotropic filter;
 ///     allocated only while lighting is on;
 ///   - the picture: at each voxel the ray hits, the direct light (same
 ///     shadow rays, from the side the camera sees) and, for Global, one
@@ -117,6 +119,9 @@ struct LightVolumeLevel {
     int size[3] = {0, 0, 0};
     std::vector<float> opacity;  ///< 4 per texel: seen along x, y, z, and coverage
     std::vector<float> radiance; ///< 4 per texel: radiance x coverage (rgb), coverage
+    /// 4 per texel: the shares of the radiance leaving towards +x, +y, +z
+    /// (and -x, -y, -z), times the radiance's mean over rgb; 0
+    std::vector<float> towardsPositive, towardsNegative;
 };
 struct LightVolume {
     uint32_t texelVoxels = 1; ///< voxels per texel edge at level 0
