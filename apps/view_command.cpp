@@ -340,6 +340,12 @@ void addViewCommand(CLI::App& app)
     cmd->add_option("--gi-distance", args->light.distance, "gi: cones stop this far away, voxels (0: the grid's "
                                                            "diagonal)")
         ->capture_default_str();
+    cmd->add_option_function<std::string>(
+           "--gi-emission", [args](const std::string& e) { args->light.directional = e == "directional"; },
+           "gi: isotropic (each texel's light leaves every way: faster) or directional (each texel keeps the share "
+           "leaving towards each face: a wall lit on one side does not light its other side)")
+        ->check(CLI::IsMember({"isotropic", "directional"}))
+        ->default_str("isotropic");
     cmd->add_option("--shadow-offset", args->light.shadowOffset,
                     "direct/gi: shadow rays start this far out of the surface, voxels (less: light through thinner "
                     "gaps, more self-shadowing)")

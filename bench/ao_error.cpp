@@ -66,6 +66,8 @@ int main(int argc, char** argv)
     app.add_option("--md", mdPath, "Markdown table to write");
     app.add_option("--dump", dumpDir, "Write the reference and each image here as PGM");
     app.add_option("--render", render, "ao, direct or gi")->check(CLI::IsMember({"ao", "direct", "gi"}));
+    bool directional = false;
+    app.add_flag("--directional", directional, "gi: emission by direction (Illumination::directional)");
     CLI11_PARSE(app, argc, argv);
     timeHeight = timeWidth * 9 / 16;
     try {
@@ -83,10 +85,10 @@ int main(int argc, char** argv)
                              "({} paths per pixel, Embree), linear radiance (albedo {}, svo's default lights), {} x {} "
                              "pixels compared where both see a surface, values clamped to [0, 1]; GPU ms per frame at "
                              "{} x {} on {}, and with the light injected and the volume mip-mapped again in each "
-                             "frame (light moved).\n\n",
+                             "frame (light moved); emission {}.\n\n",
                              render == "gi" ? "one-bounce" : "direct", render,
                              render == "gi" ? "OneBounce" : "Direct", samples, albedo, width, height, timeWidth,
-                             timeHeight, context.info().renderer);
+                             timeHeight, context.info().renderer, directional ? "by direction" : "isotropic");
         md += fmt::format("| scene | grid | filter | cones | RMSE | p99 error | mean {} (svo) | mean {} (reference) | "
                           "pixels | GPU ms | GPU ms, light moved | wall ms |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                           ao ? "AO" : "radiance", ao ? "AO" : "radiance");
@@ -136,6 +138,7 @@ int main(int argc, char** argv)
                             layers.light.lights = lights;
                             layers.light.albedo = {albedo, albedo, albedo};
                             layers.light.cones = cones;
+                            layers.light.directional = directional;
                             layers.light.gamma = 1.0;
                         }
                         const svo::gl::Image image = view.render(camera, width, height, layers);

@@ -86,6 +86,7 @@ TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
     Illumination sun;
     sun.mode = Illumination::Mode::Direct;
     sun.albedo = albedo;
+    sun.directional = true; // the shares by direction, checked below
     sun.lights.directional.push_back({{0, -2, 0}, {2.0, 1.0, 0.5}});
     // A point light off to the side, above the plane: radiance falls off as cos / r².
     Illumination point = sun;
@@ -174,6 +175,7 @@ TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
         svo::gl::OctreeView view(context(), octree);
         Illumination light;
         light.mode = Illumination::Mode::Global;
+        light.directional = true;
         light.lights.directional.push_back({{0.3, -1, 0.2}, {3, 2, 1}});
         light.lights.point.push_back({{10, 30, 5}, {400, 400, 400}});
         const LightVolume v = view.readLightVolume(light);
@@ -271,7 +273,9 @@ TEST(Lighting, LitPicturesAreDeterministicAndOneBounceOnlyAddsLight)
     layers.light.gamma = 1.0;
     const svo::gl::Image direct = view.render(camera, 96, 96, layers);
     EXPECT_EQ(direct.rgba, view.render(camera, 96, 96, layers).rgba);
+    for (const bool directional : {false, true}) {
     layers.light.mode = Illumination::Mode::Global;
+    layers.light.directional = directional;
     const svo::gl::Image global = view.render(camera, 96, 96, layers);
     EXPECT_EQ(global.rgba, view.render(camera, 96, 96, layers).rgba);
     // Every voxel pixel of the GI picture is at least its direct light; the
@@ -293,6 +297,13 @@ TEST(Lighting, LitPicturesAreDeterministicAndOneBounceOnlyAddsLight)
     EXPECT_GT(voxelPixels, 96 * 96 / 4);
     EXPECT_GT(shadowed, 50);
     EXPECT_GT(bounced, shadowed * 3 / 4);
+    }
+    // Without the shares by direction the volume has none to read back.
+    Illumination isotropic = layers.light;
+    isotropic.directional = false;
+    const LightVolume v = view.readLightVolume(isotropic);
+    EXPECT_TRUE(v.levels[0].towardsPositive.empty());
+    EXPECT_FALSE(v.levels[0].radiance.empty());
 }
 
 TEST(Lighting, BadLightingIsAClearError)

@@ -4,8 +4,9 @@
 // opacity = its voxels over the voxels of one face of the block, at most 1
 // (a surface crossing a box of k³ voxels fills about k² of them), the same
 // along x, y and z; radiance = the mean outgoing radiance of its voxels,
-// ρ/π · irradiance (two-sided Lambertian), times that opacity; and per face
-// direction the share of it that leaves towards that face (the lit sides'
+// ρ/π · irradiance (two-sided Lambertian), times that opacity; and, for
+// Illumination::directional, per face direction the share of it that leaves
+// towards that face (the lit sides'
 // normals, view_lights.glsl), times the radiance's mean over rgb, so that
 // the box filter up the mip-map weighs each texel's shares by its light.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
@@ -20,6 +21,7 @@ layout(binding = 3, rgba16f) writeonly restrict uniform image3D uTowardsNegative
 
 uniform ivec3 uBaseSize;  // level 0's texels
 uniform int uTexelCells;  // voxels per texel edge: 1, 2, 4 or 8
+uniform uint uDirectional; // 1: write the shares by direction
 
 void main()
 {
@@ -63,6 +65,8 @@ void main()
     }
     imageStore(uOpacityOut, texel, opacity);
     imageStore(uRadianceOut, texel, radiance);
-    imageStore(uTowardsPositiveOut, texel, positive);
-    imageStore(uTowardsNegativeOut, texel, negative);
+    if (uDirectional != 0u) {
+        imageStore(uTowardsPositiveOut, texel, positive);
+        imageStore(uTowardsNegativeOut, texel, negative);
+    }
 }

@@ -19,6 +19,7 @@ layout(binding = 7, rgba16f) writeonly restrict uniform image3D uTowardsNegative
 
 uniform ivec3 uInSize;
 uniform ivec3 uOutSize;
+uniform uint uDirectional; // 1: the shares by direction too
 
 void main()
 {
@@ -33,8 +34,8 @@ void main()
         ivec3 c = ivec3(i & 1, (i >> 1) & 1, i >> 2);
         bool used = all(lessThan(c, n));
         children[i] = used ? imageLoad(uOpacityIn, base + c) : vec4(0.0);
-        if (used) {
-            radiance += imageLoad(uRadianceIn, base + c);
+        if (used) radiance += imageLoad(uRadianceIn, base + c);
+        if (used && uDirectional != 0u) {
             positive += imageLoad(uTowardsPositiveIn, base + c);
             negative += imageLoad(uTowardsNegativeIn, base + c);
         }
@@ -64,6 +65,8 @@ void main()
     vec3 columns = vec3(n.y * n.z, n.x * n.z, n.x * n.y);
     imageStore(uOpacityOut, p, vec4(vec3(1.0) - through / columns, coverage / count));
     imageStore(uRadianceOut, p, radiance / count);
-    imageStore(uTowardsPositiveOut, p, positive / count);
-    imageStore(uTowardsNegativeOut, p, negative / count);
+    if (uDirectional != 0u) {
+        imageStore(uTowardsPositiveOut, p, positive / count);
+        imageStore(uTowardsNegativeOut, p, negative / count);
+    }
 }

@@ -1,10 +1,10 @@
 // Cones through the lighting volume (design §7d; Crassin et al. 2011): a
 // mip-mapped 3D texture of the octree's voxels, sampled trilinearly. Each
 // texel holds the opacity of its box seen along x, y and z, its outgoing
-// radiance times its coverage, and how much of that radiance leaves towards
-// each face direction (times the radiance's mean): a cone takes the share
-// leaving back towards its apex, so the dark side of a thin wall does not
-// glow with the light of its lit side. A cone of aperture 2·atan(uConeTanHalf)
+// radiance times its coverage, and (uDirectional) how much of that radiance
+// leaves towards each face direction (times the radiance's mean): a cone
+// takes the share leaving back towards its apex, so the dark side of a thin
+// wall does not glow with the light of its lit side. A cone of aperture 2·atan(uConeTanHalf)
 // samples, at distance t, the level whose texels are as wide as the cone
 // there, steps by half that width, and composites front to back.
 
@@ -19,6 +19,7 @@ uniform float uConeTanHalf;   // tan of half the cone aperture
 uniform float uConeDistance;  // cones stop here, voxels
 uniform float uConeOffset;    // cones start this far out along the normal, voxels
 uniform int uCones;           // 1: the normal; n: the normal and a ring of n - 1
+uniform uint uDirectional;    // 1: the volume has the shares by direction
 
 /// Radiance gathered (rgb) and occlusion (a) along one cone from o, which
 /// lies `height` voxels out of the surface along its normal n. A sample
@@ -42,12 +43,15 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
         // The sample stands for a slab as deep as the texel is wide; the
         // step is half that, so its opacity is corrected to half the path.
         a = 1.0 - sqrt(max(1.0 - a, 0.0));
-        // Light leaving towards -dir: per axis, the negative face's share where
-        // dir is positive, weighted like the opacity.
-        float mean = dot(r.rgb, vec3(1.0 / 3.0));
-        vec3 pos = textureLod(uTowardsPositiveVolume, tc, lod).xyz, neg = textureLod(uTowardsNegativeVolume, tc, lod).xyz;
-        float towards = dot(share, mix(pos, neg, step(0.0, dir))) / max(mean, 1e-8);
-        vec3 l = r.a > 1e-4 && mean > 1e-8 ? r.rgb / r.a * min(towards, 1.0) : vec3(0.0);
+        vec3 l = r.a > 1e-4 ? r.rgb / r.a : vec3(0.0);
+        if (uDirectional != 0u) {
+            // Light leaving towards -dir: per axis, the negative face's share
+            // where dir is positive, weighted like the opacity.
+            float mean = dot(r.rgb, vec3(1.0 / 3.0));
+            vec3 pos = textureLod(uTowardsPositiveVolume, tc, lod).xyz;
+            vec3 neg = textureLod(uTowardsNegativeVolume, tc, lod).xyz;
+            l *= mean > 1e-8 ? min(dot(share, mix(pos, neg, step(0.0, dir))) / mean, 1.0) : 0.0;
+        }
         radiance += (1.0 - occlusion) * a * l;
         occlusion += (1.0 - occlusion) * a;
         t += 0.5 * width;

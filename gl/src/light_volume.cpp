@@ -88,7 +88,8 @@ bool sameInjection(const Illumination& a, const Illumination& b)
         if (!same(a.lights.point[i].position, b.lights.point[i].position) ||
             !same(a.lights.point[i].intensity, b.lights.point[i].intensity))
             return false;
-    return same(a.albedo, b.albedo) && a.shadowOffset == b.shadowOffset && a.volumeResolution == b.volumeResolution;
+    return same(a.albedo, b.albedo) && a.shadowOffset == b.shadowOffset && a.volumeResolution == b.volumeResolution &&
+           a.directional == b.directional;
 }
 
 void bindLights(const Program& p, const LightVolumeTextures& v, const ViewBuffers& o, const Illumination& l)
@@ -109,8 +110,11 @@ void bindLightVolume(const Program& p, const LightVolumeTextures& v, const ViewB
     bindLights(p, v, o, l);
     v.opacity.bindTexture(SVO_UNIT_LIGHT_OPACITY);
     v.radiance.bindTexture(SVO_UNIT_LIGHT_RADIANCE);
-    v.towardsPositive.bindTexture(SVO_UNIT_LIGHT_TOWARDS_POSITIVE);
-    v.towardsNegative.bindTexture(SVO_UNIT_LIGHT_TOWARDS_NEGATIVE);
+    if (v.built.directional) {
+        v.towardsPositive.bindTexture(SVO_UNIT_LIGHT_TOWARDS_POSITIVE);
+        v.towardsNegative.bindTexture(SVO_UNIT_LIGHT_TOWARDS_NEGATIVE);
+    }
+    p.set("uDirectional", v.built.directional ? 1u : 0u);
     const double k = v.texelVoxels;
     p.set("uVolumeScale", float(1.0 / (k * v.size[0])), float(1.0 / (k * v.size[1])), float(1.0 / (k * v.size[2])));
     p.set("uTexelCells", float(k));
@@ -136,8 +140,12 @@ LightVolumeTextures buildLightVolume(const Context& context, const ViewBuffers& 
     while ((1 << (levels - 1)) < largest) ++levels;
     v.opacity = Texture3D("lighting volume's opacity", GL_RGBA8, levels, v.size[0], v.size[1], v.size[2]);
     v.radiance = Texture3D("lighting volume's radiance", GL_RGBA16F, levels, v.size[0], v.size[1], v.size[2]);
-    v.towardsPositive = Texture3D("lighting volume's +x +y +z shares", GL_RGBA16F, levels, v.size[0], v.size[1], v.size[2]);
-    v.towardsNegative = Texture3D("lighting volume's -x -y -z shares", GL_RGBA16F, levels, v.size[0], v.size[1], v.size[2]);
+    if (l.directional) {
+        v.towardsPositive =
+            Texture3D("lighting volume's +x +y +z shares", GL_RGBA16F, levels, v.size[0], v.size[1], v.size[2]);
+        v.towardsNegative =
+            Texture3D("lighting volume's -x -y -z shares", GL_RGBA16F, levels, v.size[0], v.size[1], v.size[2]);
+    }
     injectLight(context, o, l, v);
     return v;
 }
@@ -175,8 +183,11 @@ void injectLight(const Context& context, const ViewBuffers& o, const Illuminatio
     inject.set("uTexelCells", int(v.texelVoxels));
     v.opacity.bindImage(0, 0, GL_WRITE_ONLY, GL_RGBA8);
     v.radiance.bindImage(1, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    v.towardsPositive.bindImage(2, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    v.towardsNegative.bindImage(3, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    if (l.directional) {
+        v.towardsPositive.bindImage(2, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        v.towardsNegative.bindImage(3, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    }
+    inject.set("uDirectional", l.directional ? 1u : 0u);
     inject.use();
     glDispatchCompute(GLuint((v.size[0] + 3) / 4), GLuint((v.size[1] + 3) / 4), GLuint((v.size[2] + 3) / 4));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -187,12 +198,15 @@ void injectLight(const Context& context, const ViewBuffers& o, const Illuminatio
     for (int level = 1; level < levels; ++level) {
         v.opacity.bindImage(0, level - 1, GL_READ_ONLY, GL_RGBA8);
         v.radiance.bindImage(1, level - 1, GL_READ_ONLY, GL_RGBA16F);
-        v.towardsPositive.bindImage(2, level - 1, GL_READ_ONLY, GL_RGBA16F);
-        v.towardsNegative.bindImage(3, level - 1, GL_READ_ONLY, GL_RGBA16F);
         v.opacity.bindImage(4, level, GL_WRITE_ONLY, GL_RGBA8);
         v.radiance.bindImage(5, level, GL_WRITE_ONLY, GL_RGBA16F);
-        v.towardsPositive.bindImage(6, level, GL_WRITE_ONLY, GL_RGBA16F);
-        v.towardsNegative.bindImage(7, level, GL_WRITE_ONLY, GL_RGBA16F);
+        if (l.directional) {
+            v.towardsPositive.bindImage(2, level - 1, GL_READ_ONLY, GL_RGBA16F);
+            v.towardsNegative.bindImage(3, level - 1, GL_READ_ONLY, GL_RGBA16F);
+            v.towardsPositive.bindImage(6, level, GL_WRITE_ONLY, GL_RGBA16F);
+            v.towardsNegative.bindImage(7, level, GL_WRITE_ONLY, GL_RGBA16F);
+        }
+        mip.set("uDirectional", l.directional ? 1u : 0u);
         const int in[3] = {v.opacity.size(level - 1, 0), v.opacity.size(level - 1, 1), v.opacity.size(level - 1, 2)};
         const int out[3] = {v.opacity.size(level, 0), v.opacity.size(level, 1), v.opacity.size(level, 2)};
         mip.set("uInSize", in[0], in[1], in[2]);
@@ -217,13 +231,17 @@ LightVolume readLightVolume(const LightVolumeTextures& v)
         const size_t n = size_t(l.size[0]) * size_t(l.size[1]) * size_t(l.size[2]) * 4;
         l.opacity.resize(n);
         l.radiance.resize(n);
-        l.towardsPositive.resize(n);
-        l.towardsNegative.resize(n);
+        if (v.built.directional) {
+            l.towardsPositive.resize(n);
+            l.towardsNegative.resize(n);
+        }
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
         v.opacity.read(level, GL_RGBA, GL_FLOAT, n * 4, l.opacity.data());
         v.radiance.read(level, GL_RGBA, GL_FLOAT, n * 4, l.radiance.data());
-        v.towardsPositive.read(level, GL_RGBA, GL_FLOAT, n * 4, l.towardsPositive.data());
-        v.towardsNegative.read(level, GL_RGBA, GL_FLOAT, n * 4, l.towardsNegative.data());
+        if (v.built.directional) {
+            v.towardsPositive.read(level, GL_RGBA, GL_FLOAT, n * 4, l.towardsPositive.data());
+            v.towardsNegative.read(level, GL_RGBA, GL_FLOAT, n * 4, l.towardsNegative.data());
+        }
         out.levels.push_back(std::move(l));
     }
     checkGl("reading the lighting volume back");

@@ -26,7 +26,9 @@ struct ViewBuffers {
 struct LightVolumeTextures {
     Texture3D opacity;  ///< rgba8: opacity seen along x, y, z; coverage
     Texture3D radiance; ///< rgba16f: radiance x coverage; coverage
-    Texture3D towardsPositive, towardsNegative; ///< rgba16f: shares leaving towards +x +y +z / -x -y -z, x radiance
+    /// rgba16f, with Illumination::directional only: shares leaving towards
+    /// +x +y +z / -x -y -z, times the radiance's mean
+    Texture3D towardsPositive, towardsNegative;
     Buffer lights;      ///< 2 vec4 per light, cell space (view_lights.glsl)
     int lightCount = 0;
     uint32_t texelVoxels = 1;
@@ -50,8 +52,11 @@ LightVolumeTextures buildLightVolume(const Context& context, const ViewBuffers& 
 void injectLight(const Context& context, const ViewBuffers& octree, const Illumination& light,
                  LightVolumeTextures& volume);
 
-/// Whether a volume built for `a` can be re-injected for `b` (same texture sizes).
-inline bool sameVolume(const Illumination& a, const Illumination& b) { return a.volumeResolution == b.volumeResolution; }
+/// Whether a volume built for `a` can be re-injected for `b` (the same textures).
+inline bool sameVolume(const Illumination& a, const Illumination& b)
+{
+    return a.volumeResolution == b.volumeResolution && a.directional == b.directional;
+}
 
 /// Binds the octree's lighting inputs (lights, normals, albedo) and sets the
 /// lighting uniforms of `program` (one that includes view_lights.glsl).
