@@ -11,7 +11,9 @@
 //     and albedo; frames are timed as they are, and again injecting the light
 //     and mip-mapping each frame, as after a light moves.
 //   svo-bench-ao cornell spheres MESH... --res 64 128 256 512 --cones 1 3 7 16 --md out.md [--render gi]
-// Scenes: "cornell" and "spheres" are the built-in scenes; anything else is a mesh file.
+// Scenes: "cornell", "spheres" and "two_rooms" (the thin-wall leak scene,
+// seen from inside its dark room, where the reference is black) are built
+// in; anything else is a mesh file.
 // The AO distance is a fraction of the scene's bounding-box diagonal, the
 // same in world units at every resolution; the camera frames the mesh's box
 // from the front, so every resolution is compared on the same pixels.
@@ -41,6 +43,7 @@ svo::TriangleMesh scene(const std::string& name)
 {
     if (name == "cornell") return svo::cornellBox();
     if (name == "spheres") return svo::sphereGrid();
+    if (name == "two_rooms") return svo::twoRooms();
     return svo::loadMesh(name);
 }
 
@@ -97,8 +100,15 @@ int main(int argc, char** argv)
             const svo::Bounds b = mesh.bounds();
             const double diagonal = std::sqrt(svo::dot(b.extent(), b.extent()));
             const double distance = distanceShare * diagonal;
-            const svo::gl::ViewCamera camera =
-                svo::gl::namedView({b.min, b.max}, "front", double(width) / height);
+            // The two rooms are seen from inside the dark one, looking at the wall
+            // with the light behind it; other scenes from the front.
+            const bool rooms = name == "two_rooms";
+            svo::gl::ViewCamera camera = svo::gl::namedView({b.min, b.max}, "front", double(width) / height);
+            if (rooms) {
+                camera.eye = {0.9, 0.7, 0.9};
+                camera.target = {0.0, 0.35, -0.3};
+                camera.fovYDegrees = 70;
+            }
             svo::reference::RenderOptions ro;
             ro.mode = ao                 ? svo::reference::Mode::AmbientOcclusion
                       : render == "gi" ? svo::reference::Mode::OneBounce
@@ -110,7 +120,11 @@ int main(int argc, char** argv)
             material.vertexColors = false;
             material.albedo = {albedo, albedo, albedo};
             // Lights from the mesh's box, the same for the reference and every resolution.
-            const svo::Lights lights = svo::gl::defaultLights({b.min, b.max}, name == "cornell");
+            svo::Lights lights = svo::gl::defaultLights({b.min, b.max}, name == "cornell");
+            if (rooms) { // a point light in the left room
+                lights = {};
+                lights.point.push_back({{-0.5, 0.8, 0.0}, {M_PI, M_PI, M_PI}});
+            }
             const svo::reference::FloatImage reference =
                 svo::reference::render(mesh, material, camera, width, height, ao ? svo::Lights{} : lights, ro, &rs);
             fmt::print(stderr, "{}: reference {} in {:.0f} ms ({} rays)\n", name, render, rs.wallMs, rs.rays());

@@ -56,6 +56,21 @@ TriangleMesh cornellBox()
     return m;
 }
 
+TriangleMesh twoRooms()
+{
+    TriangleMesh m;
+    m.source = "two_rooms";
+    const int n = 8;
+    addQuad(m, {-1, 0, -1}, {2, 0, 0}, {0, 0, 2}, n); // floor
+    addQuad(m, {-1, 1, -1}, {0, 0, 2}, {2, 0, 0}, n); // ceiling
+    addQuad(m, {-1, 0, -1}, {0, 1, 0}, {2, 0, 0}, n); // back
+    addQuad(m, {-1, 0, 1}, {2, 0, 0}, {0, 1, 0}, n);  // front
+    addQuad(m, {-1, 0, -1}, {0, 0, 2}, {0, 1, 0}, n); // left
+    addQuad(m, {1, 0, -1}, {0, 1, 0}, {0, 0, 2}, n);  // right
+    addQuad(m, {0, 0, -1}, {0, 1, 0}, {0, 0, 2}, n);  // the wall between the rooms
+    return m;
+}
+
 TriangleMesh sphereGrid()
 {
     TriangleMesh m;

@@ -1,7 +1,8 @@
 #pragma once
 /// @file default_scene.h
 /// Generated scenes: the built-in Cornell box (so the main job runs with no
-/// input file), the seed's PBR-demo-like grid of spheres, and icospheres.
+/// input file), the seed's PBR-demo-like grid of spheres, the two rooms of
+/// the thin-wall leak test, and icospheres.
 #include "svo/core/mesh.h"
 
 namespace svo {
@@ -14,6 +15,12 @@ TriangleMesh cornellBox();
 /// A 6 x 6 grid of UV spheres (40 slices, 19 stacks) on a floor-less stage,
 /// like the seed's PBR demo: 36 * 1,520 = 54,720 triangles.
 TriangleMesh sphereGrid();
+
+/// The thin-wall leak scene: a closed 2 x 1 x 2 box ([-1, 1] x [0, 1] x
+/// [-1, 1]) split into two rooms by one wall of zero thickness at x = 0,
+/// every face tessellated 8 x 8: 7 * 128 = 896 triangles. A light in one
+/// room leaves the other one dark after any number of bounces.
+TriangleMesh twoRooms();
 
 /// A closed icosphere: an icosahedron split `levels` times, vertices on the
 /// sphere, shared between faces (20 * 4^levels triangles; level 8 gives 1,310,720).
