@@ -9,8 +9,8 @@ source bench/gpu_host_env.sh
 "$bin/test_view" 2>&1 | tail -3 | tee "$out/test_view.txt"
 "$bin/svo-bench-ao" cornell spheres --render direct --res 64 128 256 512 --cones 1 --samples 1 --frames 10 \
   --md "$out/direct.md" 2>&1 | tee "$out/direct.txt"
-"$bin/svo-bench-ao" cornell spheres --render gi --res 64 128 256 512 --cones 1 3 7 16 --samples 1024 --frames 10 \
+"$bin/svo-bench-ao" cornell spheres two_rooms --render gi --res 64 128 256 512 --cones 1 3 7 16 --samples 1024 --frames 10 \
   --md "$out/gi.md" 2>&1 | tee "$out/gi.txt"
-"$bin/svo-bench-ao" cornell spheres --render gi --directional --res 64 128 256 512 --cones 1 3 7 16 --samples 1024 \
+"$bin/svo-bench-ao" cornell spheres two_rooms --render gi --directional --res 64 128 256 512 --cones 1 3 7 16 --samples 1024 \
   --frames 10 --md "$out/gi_directional.md" 2>&1 | tee "$out/gi_directional.txt"
 "$bin/svo" view -r 256 --render gi --size 1920x1080 --screenshot "$out/gi_cornell_256.png" 2>&1 | tee -a "$out/gi.txt"

@@ -26,7 +26,9 @@ uniform uint uDirectional;    // 1: the volume has the shares by direction
 /// whose texel (and its trilinear neighbours) would reach back through the
 /// surface's tangent plane takes a finer level: what lies behind the plane
 /// (the surface's own voxels, lit from the other side of a thin wall) must
-/// not light it.
+/// not light it. The cone still steps by half its own width, and the finer
+/// sample's opacity is corrected to the longer path: stepping by the finer
+/// width took twice the time for the same error (bench/results gi.md).
 vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
 {
     vec3 share = dir * dir; // directional opacity, weighted by the direction's squares (they sum to 1)
@@ -35,14 +37,16 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
     float t = 0.0;
     while (t < uConeDistance && occlusion < 0.99) {
         float above = height + t * dot(dir, n);
-        float width = max(uTexelCells, min(2.0 * t * uConeTanHalf, 0.5 * above));
+        float cone = max(uTexelCells, 2.0 * t * uConeTanHalf);
+        float width = max(uTexelCells, min(cone, 0.5 * above));
+        float stride = 0.5 * cone;
         float lod = log2(width / uTexelCells);
         vec3 tc = (o + t * dir) * uVolumeScale;
         float a = dot(share, textureLod(uOpacityVolume, tc, lod).rgb);
         vec4 r = textureLod(uRadianceVolume, tc, lod);
         // The sample stands for a slab as deep as the texel is wide; the
         // step is half that, so its opacity is corrected to half the path.
-        a = 1.0 - sqrt(max(1.0 - a, 0.0));
+        a = 1.0 - pow(max(1.0 - a, 0.0), stride / width);
         vec3 l = r.a > 1e-4 ? r.rgb / r.a : vec3(0.0);
         if (uDirectional != 0u) {
             // Light leaving towards -dir: per axis, the negative face's share
@@ -54,7 +58,7 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
         }
         radiance += (1.0 - occlusion) * a * l;
         occlusion += (1.0 - occlusion) * a;
-        t += 0.5 * width;
+        t += stride;
     }
     return vec4(radiance, occlusion);
 }
