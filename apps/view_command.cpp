@@ -342,8 +342,8 @@ void addViewCommand(CLI::App& app)
         ->capture_default_str();
     cmd->add_option_function<std::string>(
            "--gi-emission", [args](const std::string& e) { args->light.directional = e == "directional"; },
-           "gi: isotropic (each texel's light leaves every way: faster) or directional (each texel keeps the share "
-           "leaving towards each face: a wall lit on one side does not light its other side)")
+           "gi: isotropic (one radiance per texel: faster) or directional (from the second level up, the radiance "
+           "seen along each of six directions, composited front to back: thin walls leak less)")
         ->check(CLI::IsMember({"isotropic", "directional"}))
         ->default_str("isotropic");
     cmd->add_option("--shadow-offset", args->light.shadowOffset,

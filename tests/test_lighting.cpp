@@ -1,9 +1,9 @@
 // Light injection and the lighting volume (svo/gl/octree_view.h,
 // Illumination; design §7d) against values computed on the CPU from the
 // voxel set alone: the radiance injected into a lit plane (directional and
-// point lights, the shadow of an occluder from the voxels above each one,
-// and the shares leaving towards each face), the anisotropic mip-map of
-// random octrees level by level, and lit
+// point lights, and the shadow of an occluder from the voxels above each
+// one), the anisotropic mip-map and the six-way radiance of random octrees
+// level by level, and lit
 // pictures: deterministic, and one diffuse bounce only adds light.
 #include <algorithm>
 #include <array>
@@ -86,7 +86,6 @@ TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
     Illumination sun;
     sun.mode = Illumination::Mode::Direct;
     sun.albedo = albedo;
-    sun.directional = true; // the shares by direction, checked below
     sun.lights.directional.push_back({{0, -2, 0}, {2.0, 1.0, 0.5}});
     // A point light off to the side, above the plane: radiance falls off as cos / r².
     Illumination point = sun;
@@ -135,15 +134,6 @@ TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
                     const double want[3] = {expected.x, expected.y, expected.z};
                     for (int c = 0; c < 3; ++c)
                         ASSERT_NEAR(got[c], want[c], halfTolerance(want[c])) << x << "," << y << "," << z;
-                    // The plane's lit side faces +y (both lights are above it): its light
-                    // leaves towards +x, +y, +z, -x and -z, none towards -y; each share
-                    // is stored times the radiance's mean over rgb.
-                    const double mean = (want[0] + want[1] + want[2]) / 3;
-                    const double positive[3] = {mean, mean, mean}, negative[3] = {mean, 0, mean};
-                    for (int c = 0; c < 3; ++c) {
-                        ASSERT_NEAR(l0.towardsPositive[i + size_t(c)], positive[c], halfTolerance(positive[c]));
-                        ASSERT_NEAR(l0.towardsNegative[i + size_t(c)], negative[c], halfTolerance(negative[c]));
-                    }
                     if (plane) (expected.x > 0 ? lit : dark) += 1;
                 }
         if (light == &sun) {
@@ -199,18 +189,11 @@ TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
                             return texel(in, n[0] > 1 ? 2 * px + i : px, n[1] > 1 ? 2 * py + j : py,
                                          n[2] > 1 ? 2 * pz + k : pz);
                         };
-                        double radiance[4] = {0, 0, 0, 0}, through[3] = {0, 0, 0}, positive[3] = {0, 0, 0},
-                               negative[3] = {0, 0, 0};
+                        double radiance[4] = {0, 0, 0, 0}, through[3] = {0, 0, 0};
                         for (int k = 0; k < n[2]; ++k)
                             for (int j = 0; j < n[1]; ++j)
-                                for (int i = 0; i < n[0]; ++i) {
-                                    const size_t c0 = child(i, j, k);
-                                    for (int c = 0; c < 4; ++c) radiance[c] += in.radiance[c0 + size_t(c)];
-                                    for (int c = 0; c < 3; ++c) {
-                                        positive[c] += in.towardsPositive[c0 + size_t(c)];
-                                        negative[c] += in.towardsNegative[c0 + size_t(c)];
-                                    }
-                                }
+                                for (int i = 0; i < n[0]; ++i)
+                                    for (int c = 0; c < 4; ++c) radiance[c] += in.radiance[child(i, j, k) + size_t(c)];
                         for (int k = 0; k < n[2]; ++k)
                             for (int j = 0; j < n[1]; ++j) {
                                 double t = 1;
@@ -235,11 +218,30 @@ TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
                         for (int c = 0; c < 4; ++c)
                             ASSERT_NEAR(out.radiance[o + c], radiance[c] / count, halfTolerance(radiance[c] / count))
                                 << "level " << level << " texel " << px << "," << py << "," << pz;
-                        for (int c = 0; c < 3; ++c) {
-                            ASSERT_NEAR(out.towardsPositive[o + size_t(c)], positive[c] / count,
-                                        halfTolerance(positive[c] / count));
-                            ASSERT_NEAR(out.towardsNegative[o + size_t(c)], negative[c] / count,
-                                        halfTolerance(negative[c] / count));
+                        // Six-way: along each direction, the children composited front
+                        // to back (premultiplied) in the ray's order, columns averaged.
+                        // Level 1 composites level 0's isotropic radiance.
+                        for (int d = 0; d < 6; ++d) {
+                            const int axis = d / 2, u = (axis + 1) % 3, w = (axis + 2) % 3;
+                            const std::vector<float>& below = level == 1 ? in.radiance : in.along[size_t(d)];
+                            double sum[4] = {0, 0, 0, 0};
+                            for (int i = 0; i < n[u]; ++i)
+                                for (int j = 0; j < n[w]; ++j) {
+                                    double t = 1;
+                                    for (int k = 0; k < n[axis]; ++k) {
+                                        int c[3];
+                                        c[u] = i, c[w] = j, c[axis] = d % 2 == 0 ? k : n[axis] - 1 - k;
+                                        const size_t ci = child(c[0], c[1], c[2]);
+                                        for (int ch = 0; ch < 3; ++ch) sum[ch] += t * below[ci + size_t(ch)];
+                                        t *= 1 - in.opacity[ci + size_t(axis)];
+                                    }
+                                    sum[3] += 1 - t;
+                                }
+                            const double across = n[u] * n[w];
+                            for (int ch = 0; ch < 4; ++ch)
+                                ASSERT_NEAR(out.along[size_t(d)][o + size_t(ch)], sum[ch] / across,
+                                            halfTolerance(sum[ch] / across) + (ch == 3 ? 1e-3 : 0.0))
+                                    << "level " << level << " direction " << d << " channel " << ch;
                         }
                         // rgba8: GL may round a value to either neighbouring step of 1/255
                         // (the H100 stored 87/255 for 0.3433, llvmpipe rounds to nearest).
@@ -298,11 +300,11 @@ TEST(Lighting, LitPicturesAreDeterministicAndOneBounceOnlyAddsLight)
     EXPECT_GT(shadowed, 50);
     EXPECT_GT(bounced, shadowed * 3 / 4);
     }
-    // Without the shares by direction the volume has none to read back.
+    // Without six-way radiance the volume has none to read back.
     Illumination isotropic = layers.light;
     isotropic.directional = false;
     const LightVolume v = view.readLightVolume(isotropic);
-    EXPECT_TRUE(v.levels[0].towardsPositive.empty());
+    EXPECT_TRUE(v.levels[1].along[0].empty());
     EXPECT_FALSE(v.levels[0].radiance.empty());
 }
 

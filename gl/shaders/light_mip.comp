@@ -10,16 +10,11 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(binding = 0, rgba8) readonly restrict uniform image3D uOpacityIn;
 layout(binding = 1, rgba16f) readonly restrict uniform image3D uRadianceIn;
-layout(binding = 2, rgba16f) readonly restrict uniform image3D uTowardsPositiveIn;
-layout(binding = 3, rgba16f) readonly restrict uniform image3D uTowardsNegativeIn;
-layout(binding = 4, rgba8) writeonly restrict uniform image3D uOpacityOut;
-layout(binding = 5, rgba16f) writeonly restrict uniform image3D uRadianceOut;
-layout(binding = 6, rgba16f) writeonly restrict uniform image3D uTowardsPositiveOut;
-layout(binding = 7, rgba16f) writeonly restrict uniform image3D uTowardsNegativeOut;
+layout(binding = 2, rgba8) writeonly restrict uniform image3D uOpacityOut;
+layout(binding = 3, rgba16f) writeonly restrict uniform image3D uRadianceOut;
 
 uniform ivec3 uInSize;
 uniform ivec3 uOutSize;
-uniform uint uDirectional; // 1: the shares by direction too
 
 void main()
 {
@@ -28,17 +23,13 @@ void main()
     ivec3 n = ivec3(uInSize.x > 1 ? 2 : 1, uInSize.y > 1 ? 2 : 1, uInSize.z > 1 ? 2 : 1);
     ivec3 base = ivec3(uInSize.x > 1 ? 2 * p.x : p.x, uInSize.y > 1 ? 2 * p.y : p.y, uInSize.z > 1 ? 2 * p.z : p.z);
     vec4 children[8];
-    vec4 radiance = vec4(0.0), positive = vec4(0.0), negative = vec4(0.0);
+    vec4 radiance = vec4(0.0);
     float coverage = 0.0;
     for (int i = 0; i < 8; ++i) {
         ivec3 c = ivec3(i & 1, (i >> 1) & 1, i >> 2);
         bool used = all(lessThan(c, n));
         children[i] = used ? imageLoad(uOpacityIn, base + c) : vec4(0.0);
         if (used) radiance += imageLoad(uRadianceIn, base + c);
-        if (used && uDirectional != 0u) {
-            positive += imageLoad(uTowardsPositiveIn, base + c);
-            negative += imageLoad(uTowardsNegativeIn, base + c);
-        }
         coverage += children[i].a;
     }
     float count = float(n.x * n.y * n.z);
@@ -65,8 +56,4 @@ void main()
     vec3 columns = vec3(n.y * n.z, n.x * n.z, n.x * n.y);
     imageStore(uOpacityOut, p, vec4(vec3(1.0) - through / columns, coverage / count));
     imageStore(uRadianceOut, p, radiance / count);
-    if (uDirectional != 0u) {
-        imageStore(uTowardsPositiveOut, p, positive / count);
-        imageStore(uTowardsNegativeOut, p, negative / count);
-    }
 }

@@ -1,17 +1,23 @@
 // Cones through the lighting volume (design §7d; Crassin et al. 2011): a
 // mip-mapped 3D texture of the octree's voxels, sampled trilinearly. Each
 // texel holds the opacity of its box seen along x, y and z, its outgoing
-// radiance times its coverage, and (uDirectional) how much of that radiance
-// leaves towards each face direction (times the radiance's mean): a cone
-// takes the share leaving back towards its apex, so the dark side of a thin
-// wall does not glow with the light of its lit side. A cone of aperture 2·atan(uConeTanHalf)
+// radiance times its coverage; with uDirectional, from level 1 up, the
+// radiance a ray along each axis direction sees, composited front to back,
+// so that a wall hides the light behind it at every level. A cone of aperture 2·atan(uConeTanHalf)
 // samples, at distance t, the level whose texels are as wide as the cone
 // there, steps by half that width, and composites front to back.
 
 layout(binding = SVO_UNIT_LIGHT_OPACITY) uniform sampler3D uOpacityVolume;
 layout(binding = SVO_UNIT_LIGHT_RADIANCE) uniform sampler3D uRadianceVolume;
-layout(binding = SVO_UNIT_LIGHT_TOWARDS_POSITIVE) uniform sampler3D uTowardsPositiveVolume;
-layout(binding = SVO_UNIT_LIGHT_TOWARDS_NEGATIVE) uniform sampler3D uTowardsNegativeVolume;
+// Six-way radiance from level 1 up (uDirectional): premultiplied radiance a
+// ray travelling along +x, -x, +y, -y, +z, -z sees, composited front to
+// back; texture level j is the volume's level j + 1.
+layout(binding = SVO_UNIT_LIGHT_ALONG + 0) uniform sampler3D uAlongPositiveX;
+layout(binding = SVO_UNIT_LIGHT_ALONG + 1) uniform sampler3D uAlongNegativeX;
+layout(binding = SVO_UNIT_LIGHT_ALONG + 2) uniform sampler3D uAlongPositiveY;
+layout(binding = SVO_UNIT_LIGHT_ALONG + 3) uniform sampler3D uAlongNegativeY;
+layout(binding = SVO_UNIT_LIGHT_ALONG + 4) uniform sampler3D uAlongPositiveZ;
+layout(binding = SVO_UNIT_LIGHT_ALONG + 5) uniform sampler3D uAlongNegativeZ;
 
 uniform vec3 uVolumeScale;    // cell space -> texture coordinates
 uniform float uTexelCells;    // voxels per texel edge at level 0
@@ -19,7 +25,18 @@ uniform float uConeTanHalf;   // tan of half the cone aperture
 uniform float uConeDistance;  // cones stop here, voxels
 uniform float uConeOffset;    // cones start this far out along the normal, voxels
 uniform int uCones;           // 1: the normal; n: the normal and a ring of n - 1
-uniform uint uDirectional;    // 1: the volume has the shares by direction
+uniform uint uDirectional;    // 1: the volume has six-way radiance from level 1 up
+
+/// Radiance (premultiplied; a: opacity) a ray along `dir` sees at level
+/// `lod` >= 1, the three axes it travels along weighted by `share`.
+vec4 radianceAlong(vec3 dir, vec3 share, vec3 tc, float lod)
+{
+    float l = lod - 1.0;
+    vec4 x = dir.x >= 0.0 ? textureLod(uAlongPositiveX, tc, l) : textureLod(uAlongNegativeX, tc, l);
+    vec4 y = dir.y >= 0.0 ? textureLod(uAlongPositiveY, tc, l) : textureLod(uAlongNegativeY, tc, l);
+    vec4 z = dir.z >= 0.0 ? textureLod(uAlongPositiveZ, tc, l) : textureLod(uAlongNegativeZ, tc, l);
+    return share.x * x + share.y * y + share.z * z;
+}
 
 /// Radiance gathered (rgb) and occlusion (a) along one cone from o, which
 /// lies `height` voxels out of the surface along its normal n. A sample
@@ -43,19 +60,19 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
         float lod = log2(width / uTexelCells);
         vec3 tc = (o + t * dir) * uVolumeScale;
         float a = dot(share, textureLod(uOpacityVolume, tc, lod).rgb);
-        vec4 r = textureLod(uRadianceVolume, tc, lod);
-        // The sample stands for a slab as deep as the texel is wide; the
-        // step is half that, so its opacity is corrected to half the path.
+        // Six-way: from level 1 up, what a ray along dir sees; between levels
+        // 0 and 1, blended with level 0's isotropic radiance.
+        vec4 r;
+        if (uDirectional != 0u && lod > 0.0) {
+            vec4 along = radianceAlong(dir, share, tc, max(lod, 1.0));
+            r = lod >= 1.0 ? along : mix(textureLod(uRadianceVolume, tc, 0.0), along, lod);
+        } else {
+            r = textureLod(uRadianceVolume, tc, lod);
+        }
+        // The sample stands for a slab as deep as the texel is wide; its
+        // opacity is corrected to the path the step covers.
         a = 1.0 - pow(max(1.0 - a, 0.0), stride / width);
         vec3 l = r.a > 1e-4 ? r.rgb / r.a : vec3(0.0);
-        if (uDirectional != 0u) {
-            // Light leaving towards -dir: per axis, the negative face's share
-            // where dir is positive, weighted like the opacity.
-            float mean = dot(r.rgb, vec3(1.0 / 3.0));
-            vec3 pos = textureLod(uTowardsPositiveVolume, tc, lod).xyz;
-            vec3 neg = textureLod(uTowardsNegativeVolume, tc, lod).xyz;
-            l *= mean > 1e-8 ? min(dot(share, mix(pos, neg, step(0.0, dir))) / mean, 1.0) : 0.0;
-        }
         radiance += (1.0 - occlusion) * a * l;
         occlusion += (1.0 - occlusion) * a;
         t += stride;

@@ -31,20 +31,10 @@ vec3 voxelAlbedo(uint v)
 /// centre c of a voxel with unit normal n. Two-sided: each light lights the
 /// side it is on (the voxel stands for a thin surface seen from both sides);
 /// one-sided: only lights on n's side count. n = 0 (a voxel whose normals
-/// cancel) takes every light as if facing it. `towards` gets, per face
-/// direction (+x, +y, +z in xyz of the first, -x, -y, -z of the second),
-/// the share of the reflected light that leaves towards it: the lit side's
-/// normal m gives face f the weight clamp(1 + 2 m·f, 0, 1), averaged over
-/// the lights by their irradiance. A cone blends the faces by its
-/// direction's squared components, so every direction in front of the
-/// surface (m·v > 0) takes all of its light, and one behind it none unless
-/// it grazes the surface.
-vec3 irradiance(vec3 c, vec3 n, bool twoSided, out vec3 towardsPositive, out vec3 towardsNegative)
+/// cancel) takes every light as if facing it.
+vec3 irradiance(vec3 c, vec3 n, bool twoSided)
 {
     vec3 sum = vec3(0.0);
-    towardsPositive = vec3(0.0);
-    towardsNegative = vec3(0.0);
-    float power = 0.0;
     for (int i = 0; i < uLightCount; ++i) {
         vec4 a = lights[2 * i], b = lights[2 * i + 1];
         vec3 l, e;
@@ -72,20 +62,6 @@ vec3 irradiance(vec3 c, vec3 n, bool twoSided, out vec3 towardsPositive, out vec
         VoxelHit h;
         if (reach > 0.0 && marchOctree(o, l, 0.0, reach, h)) continue;
         sum += e * cosTheta;
-        float p = dot(e, vec3(1.0 / 3.0)) * cosTheta;
-        towardsPositive += p * clamp(1.0 + 2.0 * side, 0.0, 1.0);
-        towardsNegative += p * clamp(1.0 - 2.0 * side, 0.0, 1.0);
-        power += p;
-    }
-    if (power > 0.0) {
-        towardsPositive /= power;
-        towardsNegative /= power;
     }
     return sum;
-}
-
-vec3 irradiance(vec3 c, vec3 n, bool twoSided)
-{
-    vec3 positive, negative;
-    return irradiance(c, n, twoSided, positive, negative);
 }

@@ -110,11 +110,10 @@ void bindLightVolume(const Program& p, const LightVolumeTextures& v, const ViewB
     bindLights(p, v, o, l);
     v.opacity.bindTexture(SVO_UNIT_LIGHT_OPACITY);
     v.radiance.bindTexture(SVO_UNIT_LIGHT_RADIANCE);
-    if (v.built.directional) {
-        v.towardsPositive.bindTexture(SVO_UNIT_LIGHT_TOWARDS_POSITIVE);
-        v.towardsNegative.bindTexture(SVO_UNIT_LIGHT_TOWARDS_NEGATIVE);
-    }
-    p.set("uDirectional", v.built.directional ? 1u : 0u);
+    const bool sixWay = v.built.directional && v.opacity.levels() > 1;
+    if (sixWay)
+        for (GLuint d = 0; d < 6; ++d) v.along[d].bindTexture(SVO_UNIT_LIGHT_ALONG + d);
+    p.set("uDirectional", sixWay ? 1u : 0u);
     const double k = v.texelVoxels;
     p.set("uVolumeScale", float(1.0 / (k * v.size[0])), float(1.0 / (k * v.size[1])), float(1.0 / (k * v.size[2])));
     p.set("uTexelCells", float(k));
@@ -140,11 +139,13 @@ LightVolumeTextures buildLightVolume(const Context& context, const ViewBuffers& 
     while ((1 << (levels - 1)) < largest) ++levels;
     v.opacity = Texture3D("lighting volume's opacity", GL_RGBA8, levels, v.size[0], v.size[1], v.size[2]);
     v.radiance = Texture3D("lighting volume's radiance", GL_RGBA16F, levels, v.size[0], v.size[1], v.size[2]);
-    if (l.directional) {
-        v.towardsPositive =
-            Texture3D("lighting volume's +x +y +z shares", GL_RGBA16F, levels, v.size[0], v.size[1], v.size[2]);
-        v.towardsNegative =
-            Texture3D("lighting volume's -x -y -z shares", GL_RGBA16F, levels, v.size[0], v.size[1], v.size[2]);
+    if (l.directional && levels > 1) {
+        static const char* names[6] = {"lighting volume's radiance along +x", "lighting volume's radiance along -x",
+                                       "lighting volume's radiance along +y", "lighting volume's radiance along -y",
+                                       "lighting volume's radiance along +z", "lighting volume's radiance along -z"};
+        for (int d = 0; d < 6; ++d)
+            v.along[size_t(d)] = Texture3D(names[d], GL_RGBA16F, levels - 1, std::max(1, v.size[0] / 2),
+                                           std::max(1, v.size[1] / 2), std::max(1, v.size[2] / 2));
     }
     injectLight(context, o, l, v);
     return v;
@@ -183,36 +184,42 @@ void injectLight(const Context& context, const ViewBuffers& o, const Illuminatio
     inject.set("uTexelCells", int(v.texelVoxels));
     v.opacity.bindImage(0, 0, GL_WRITE_ONLY, GL_RGBA8);
     v.radiance.bindImage(1, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    if (l.directional) {
-        v.towardsPositive.bindImage(2, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        v.towardsNegative.bindImage(3, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    }
-    inject.set("uDirectional", l.directional ? 1u : 0u);
     inject.use();
     glDispatchCompute(GLuint((v.size[0] + 3) / 4), GLuint((v.size[1] + 3) / 4), GLuint((v.size[2] + 3) / 4));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     checkGl("injecting light into the lighting volume");
 
-    // The mip-map, level by level.
+    // The mip-map, level by level; with six-way radiance, each direction's
+    // level from the level below (level 1 from level 0's isotropic radiance).
     const Program& mip = context.program({"light_mip.comp"});
+    const Program* along = l.directional ? &context.program({"light_mip_along.comp"}) : nullptr;
     for (int level = 1; level < levels; ++level) {
-        v.opacity.bindImage(0, level - 1, GL_READ_ONLY, GL_RGBA8);
-        v.radiance.bindImage(1, level - 1, GL_READ_ONLY, GL_RGBA16F);
-        v.opacity.bindImage(4, level, GL_WRITE_ONLY, GL_RGBA8);
-        v.radiance.bindImage(5, level, GL_WRITE_ONLY, GL_RGBA16F);
-        if (l.directional) {
-            v.towardsPositive.bindImage(2, level - 1, GL_READ_ONLY, GL_RGBA16F);
-            v.towardsNegative.bindImage(3, level - 1, GL_READ_ONLY, GL_RGBA16F);
-            v.towardsPositive.bindImage(6, level, GL_WRITE_ONLY, GL_RGBA16F);
-            v.towardsNegative.bindImage(7, level, GL_WRITE_ONLY, GL_RGBA16F);
-        }
-        mip.set("uDirectional", l.directional ? 1u : 0u);
         const int in[3] = {v.opacity.size(level - 1, 0), v.opacity.size(level - 1, 1), v.opacity.size(level - 1, 2)};
         const int out[3] = {v.opacity.size(level, 0), v.opacity.size(level, 1), v.opacity.size(level, 2)};
+        const GLuint groups[3] = {GLuint((out[0] + 3) / 4), GLuint((out[1] + 3) / 4), GLuint((out[2] + 3) / 4)};
+        v.opacity.bindImage(0, level - 1, GL_READ_ONLY, GL_RGBA8);
+        v.radiance.bindImage(1, level - 1, GL_READ_ONLY, GL_RGBA16F);
+        v.opacity.bindImage(2, level, GL_WRITE_ONLY, GL_RGBA8);
+        v.radiance.bindImage(3, level, GL_WRITE_ONLY, GL_RGBA16F);
         mip.set("uInSize", in[0], in[1], in[2]);
         mip.set("uOutSize", out[0], out[1], out[2]);
         mip.use();
-        glDispatchCompute(GLuint((out[0] + 3) / 4), GLuint((out[1] + 3) / 4), GLuint((out[2] + 3) / 4));
+        glDispatchCompute(groups[0], groups[1], groups[2]);
+        if (along) {
+            along->set("uInSize", in[0], in[1], in[2]);
+            along->set("uOutSize", out[0], out[1], out[2]);
+            for (int d = 0; d < 6; ++d) {
+                const Texture3D& t = v.along[size_t(d)];
+                v.opacity.bindImage(0, level - 1, GL_READ_ONLY, GL_RGBA8);
+                if (level == 1) v.radiance.bindImage(1, 0, GL_READ_ONLY, GL_RGBA16F);
+                else t.bindImage(1, level - 2, GL_READ_ONLY, GL_RGBA16F);
+                t.bindImage(2, level - 1, GL_WRITE_ONLY, GL_RGBA16F);
+                along->set("uAxis", d / 2);
+                along->set("uPositive", d % 2 == 0 ? 1 : 0);
+                along->use();
+                glDispatchCompute(groups[0], groups[1], groups[2]);
+            }
+        }
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -231,17 +238,14 @@ LightVolume readLightVolume(const LightVolumeTextures& v)
         const size_t n = size_t(l.size[0]) * size_t(l.size[1]) * size_t(l.size[2]) * 4;
         l.opacity.resize(n);
         l.radiance.resize(n);
-        if (v.built.directional) {
-            l.towardsPositive.resize(n);
-            l.towardsNegative.resize(n);
-        }
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
         v.opacity.read(level, GL_RGBA, GL_FLOAT, n * 4, l.opacity.data());
         v.radiance.read(level, GL_RGBA, GL_FLOAT, n * 4, l.radiance.data());
-        if (v.built.directional) {
-            v.towardsPositive.read(level, GL_RGBA, GL_FLOAT, n * 4, l.towardsPositive.data());
-            v.towardsNegative.read(level, GL_RGBA, GL_FLOAT, n * 4, l.towardsNegative.data());
-        }
+        if (level > 0 && v.built.directional)
+            for (size_t d = 0; d < 6; ++d) {
+                l.along[d].resize(n);
+                v.along[d].read(level - 1, GL_RGBA, GL_FLOAT, n * 4, l.along[d].data());
+            }
         out.levels.push_back(std::move(l));
     }
     checkGl("reading the lighting volume back");

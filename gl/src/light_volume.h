@@ -3,6 +3,7 @@
 /// The lighting volume behind Illumination (svo/gl/octree_view.h, design
 /// §7d): light injected from the octree's voxels into level 0 of a 3D
 /// texture pair, then mip-mapped on the GPU. The view binds it to draw.
+#include <array>
 #include <cstdint>
 
 #include "objects.h"
@@ -26,9 +27,10 @@ struct ViewBuffers {
 struct LightVolumeTextures {
     Texture3D opacity;  ///< rgba8: opacity seen along x, y, z; coverage
     Texture3D radiance; ///< rgba16f: radiance x coverage; coverage
-    /// rgba16f, with Illumination::directional only: shares leaving towards
-    /// +x +y +z / -x -y -z, times the radiance's mean
-    Texture3D towardsPositive, towardsNegative;
+    /// rgba16f, with Illumination::directional only: the premultiplied
+    /// radiance (a: opacity) a ray travelling along +x, -x, +y, -y, +z, -z
+    /// sees, from level 1 up (texture level j is the volume's level j + 1)
+    std::array<Texture3D, 6> along;
     Buffer lights;      ///< 2 vec4 per light, cell space (view_lights.glsl)
     int lightCount = 0;
     uint32_t texelVoxels = 1;

@@ -138,8 +138,7 @@ SVO_CONST(uint) kSumWords = 8u;
 /* Lighting volume (gl/src/light_volume.cpp): texture and image units. */
 #define SVO_UNIT_LIGHT_OPACITY 0  /* texture: rgb = opacity seen along x, y, z */
 #define SVO_UNIT_LIGHT_RADIANCE 1 /* texture: rgb = radiance x coverage, a = coverage */
-#define SVO_UNIT_LIGHT_TOWARDS_POSITIVE 2 /* texture: xyz = share leaving towards +x, +y, +z, x radiance */
-#define SVO_UNIT_LIGHT_TOWARDS_NEGATIVE 3 /* texture: xyz = share leaving towards -x, -y, -z, x radiance */
+#define SVO_UNIT_LIGHT_ALONG 2 /* textures 2..7: radiance seen along +x -x +y -y +z -z, levels 1.. */
 /* ViewLayers::voxelColor as the shader reads it. */
 #define SVO_VIEW_COLOR_FLAT 0
 #define SVO_VIEW_COLOR_NORMAL 1

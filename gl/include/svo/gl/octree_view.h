@@ -87,9 +87,9 @@ struct AmbientOcclusion {
 ///   - a lighting volume: a 3D texture whose texels are the octree's voxels
 ///     (or blocks of 2³ to 8³ voxels, so that its largest side is at most
 ///     `volumeResolution`), holding opacity seen along x, y, z and radiance
-///     times coverage (and with `directional` the shares of that radiance
-///     leaving towards each of the six face directions), mip-mapped on the
-///     GPU with the anisotropic filter; allocated only while lighting is on;
+///     times coverage, mip-mapped on the GPU with the anisotropic filter
+///     (and with `directional`, six-way radiance from level 1 up);
+///     allocated only while lighting is on;
 ///   - the picture: at each voxel the ray hits, the direct light (same
 ///     shadow rays, from the side the camera sees) and, for Global, one
 ///     diffuse bounce: the albedo times the radiance `cones` cones gather
@@ -106,12 +106,12 @@ struct Illumination {
     double apertureDegrees = 60;          ///< full cone angle, (0, 180)
     double offset = 1.5;                  ///< cones start this far out along the normal, voxels
     double distance = 0;                  ///< cones stop here, voxels; 0: the grid's diagonal
-    /// Emission by direction: each texel also keeps the share of its light
-    /// leaving towards each of the six face directions, and a cone takes the
-    /// share leaving back towards it, so the dark side of a thin wall does not
-    /// glow with its lit side's light. Two more textures (28 instead of 12
-    /// bytes a texel) and two more fetches a sample; bench/results gives the
-    /// error and time of both.
+    /// Six-way radiance (Crassin's anisotropic mip-map): from level 1 up, the
+    /// radiance a ray along each of the six axis directions sees, composited
+    /// front to back, so that a wall hides what lies behind it at every
+    /// level (thin walls leak less). Six more textures at half resolution
+    /// (about 7 bytes a texel of level 0) and three fetches a sample instead
+    /// of one; bench/results gives the error and time of both.
     bool directional = false;
     double shadowOffset = 2.0;            ///< shadow rays start this far out of the surface, voxels
     uint32_t volumeResolution = 256;      ///< the lighting volume's largest side, texels: a power of two, 8 to 2048
@@ -125,10 +125,10 @@ struct LightVolumeLevel {
     int size[3] = {0, 0, 0};
     std::vector<float> opacity;  ///< 4 per texel: seen along x, y, z, and coverage
     std::vector<float> radiance; ///< 4 per texel: radiance x coverage (rgb), coverage
-    /// With Illumination::directional, 4 per texel: the shares of the
-    /// radiance leaving towards +x, +y, +z (and -x, -y, -z), times the
-    /// radiance's mean over rgb; 0. Empty otherwise.
-    std::vector<float> towardsPositive, towardsNegative;
+    /// With Illumination::directional, from level 1 up, 4 per texel each:
+    /// the premultiplied radiance (rgb) and opacity (a) a ray travelling
+    /// along +x, -x, +y, -y, +z, -z sees. Empty otherwise.
+    std::array<std::vector<float>, 6> along;
 };
 struct LightVolume {
     uint32_t texelVoxels = 1; ///< voxels per texel edge at level 0
