@@ -86,6 +86,7 @@ TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
     Illumination sun;
     sun.mode = Illumination::Mode::Direct;
     sun.albedo = albedo;
+    sun.directional = true; // the lit side is checked below
     sun.lights.directional.push_back({{0, -2, 0}, {2.0, 1.0, 0.5}});
     // A point light off to the side, above the plane: radiance falls off as cos / r².
     Illumination point = sun;
@@ -134,6 +135,9 @@ TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
                     const double want[3] = {expected.x, expected.y, expected.z};
                     for (int c = 0; c < 3; ++c)
                         ASSERT_NEAR(got[c], want[c], halfTolerance(want[c])) << x << "," << y << "," << z;
+                    if (light == &sun) // lit from above: the lit side is +y; unlit: none
+                        for (int c = 0; c < 3; ++c)
+                            ASSERT_NEAR(l0.litSide[i + size_t(c)], c == 1 && expected.x > 0 ? 1.0 : 0.0, 1.0 / 127);
                     if (plane) (expected.x > 0 ? lit : dark) += 1;
                 }
         if (light == &sun) {
@@ -232,7 +236,15 @@ TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
                                         int c[3];
                                         c[u] = i, c[w] = j, c[axis] = d % 2 == 0 ? k : n[axis] - 1 - k;
                                         const size_t ci = child(c[0], c[1], c[2]);
-                                        for (int ch = 0; ch < 3; ++ch) sum[ch] += t * below[ci + size_t(ch)];
+                                        // From level 0, only the light leaving back towards the
+                                        // ray: its lit side m gives clamp(1 + 2 m·back, 0, 1).
+                                        double towards = 1;
+                                        if (level == 1) {
+                                            const double back = d % 2 == 0 ? -1.0 : 1.0;
+                                            towards = std::clamp(1 + 2 * back * in.litSide[ci + size_t(axis)], 0.0, 1.0);
+                                        }
+                                        for (int ch = 0; ch < 3; ++ch)
+                                            sum[ch] += t * towards * below[ci + size_t(ch)];
                                         t *= 1 - in.opacity[ci + size_t(axis)];
                                     }
                                     sum[3] += 1 - t;

@@ -4,7 +4,9 @@
 // opacity = its voxels over the voxels of one face of the block, at most 1
 // (a surface crossing a box of k³ voxels fills about k² of them), the same
 // along x, y and z; radiance = the mean outgoing radiance of its voxels,
-// ρ/π · irradiance (two-sided Lambertian), times that opacity.
+// ρ/π · irradiance (two-sided Lambertian), times that opacity; and the lit
+// side (view_lights.glsl), averaged over the voxels by their light, which
+// six-way radiance (Illumination::directional) reads.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 #include "gpu_layout.h"
 #include "view_octree.glsl"
@@ -12,9 +14,11 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(binding = 0, rgba8) writeonly restrict uniform image3D uOpacityOut;
 layout(binding = 1, rgba16f) writeonly restrict uniform image3D uRadianceOut;
+layout(binding = 2, rgba8_snorm) writeonly restrict uniform image3D uLitSideOut;
 
 uniform ivec3 uBaseSize;  // level 0's texels
 uniform int uTexelCells;  // voxels per texel edge: 1, 2, 4 or 8
+uniform uint uDirectional; // 1: write the lit side
 
 void main()
 {
@@ -22,6 +26,7 @@ void main()
     if (any(greaterThanEqual(texel, uBaseSize))) return;
     ivec3 first = texel * uTexelCells;
     vec4 opacity = vec4(0.0), radiance = vec4(0.0);
+    vec3 litSide = vec3(0.0);
     uint brick;
     int emptyLog2;
     if (all(lessThan(first, uDims)) && findBrick(first, brick, emptyLog2)) {
@@ -37,14 +42,20 @@ void main()
                     vec3 n = voxelNormal(v);
                     float len = length(n);
                     n = len > 1e-6 ? n / len : vec3(0.0);
-                    sum += voxelAlbedo(v) * (1.0 / 3.14159265) * irradiance(vec3(cell) + 0.5, n, true);
+                    vec3 side;
+                    vec3 l = voxelAlbedo(v) * (1.0 / 3.14159265) * irradiance(vec3(cell) + 0.5, n, true, side);
+                    sum += l;
+                    litSide += dot(l, vec3(1.0)) * side;
                     ++count;
                 }
         float k = float(uTexelCells);
         float cover = min(1.0, float(count) / (k * k));
         opacity = vec4(vec3(cover), cover);
         if (count > 0u) radiance = vec4(sum / float(count) * cover, cover);
+        float total = dot(sum, vec3(1.0));
+        if (total > 0.0) litSide /= total;
     }
     imageStore(uOpacityOut, texel, opacity);
     imageStore(uRadianceOut, texel, radiance);
+    if (uDirectional != 0u) imageStore(uLitSideOut, texel, vec4(litSide, 0.0));
 }

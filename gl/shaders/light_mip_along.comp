@@ -5,19 +5,25 @@
 // children are composited front to back in the ray's order, premultiplied:
 // C = C_front + (1 - a_front) C_back, with a the child's opacity along the
 // axis, so what a wall hides stays hidden; across the axis the columns are
-// averaged. Level 1 reads level 0's isotropic radiance, higher levels the
-// same direction's level below. An axis already one texel wide has one child
+// averaged. Level 1 reads level 0's isotropic radiance, taking from each
+// texel only the light leaving towards the ray (its lit side), higher
+// levels the same direction's level below. An axis already one texel wide has one child
 // along it.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(binding = 0, rgba8) readonly restrict uniform image3D uOpacityIn;
 layout(binding = 1, rgba16f) readonly restrict uniform image3D uRadianceIn;
 layout(binding = 2, rgba16f) writeonly restrict uniform image3D uRadianceOut;
+layout(binding = 3, rgba8_snorm) readonly restrict uniform image3D uLitSideIn; // level 0's lit side
 
 uniform ivec3 uInSize;
 uniform ivec3 uOutSize;
 uniform int uAxis;     // 0, 1, 2: x, y, z
 uniform int uPositive; // 1: the ray travels towards +axis (meets the low child first)
+uniform uint uFromBase; // 1: the level below is level 0
+
+/// As towardsLitSide in view_lights.glsl.
+float towardsLitSide(vec3 m, vec3 v) { return clamp(1.0 + 2.0 * dot(m, v), 0.0, 1.0); }
 
 void main()
 {
@@ -38,7 +44,13 @@ void main()
                 child[v] = j;
                 child[uAxis] = uPositive != 0 ? k : n[uAxis] - 1 - k;
                 float a = imageLoad(uOpacityIn, base + child)[uAxis];
-                c += through * imageLoad(uRadianceIn, base + child).rgb;
+                vec3 r = imageLoad(uRadianceIn, base + child).rgb;
+                if (uFromBase != 0u) { // the light leaving back towards the ray: along -axis for +axis
+                    vec3 back = vec3(0.0);
+                    back[uAxis] = uPositive != 0 ? -1.0 : 1.0;
+                    r *= towardsLitSide(imageLoad(uLitSideIn, base + child).xyz, back);
+                }
+                c += through * r;
                 through *= 1.0 - a;
             }
             sum += c;

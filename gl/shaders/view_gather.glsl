@@ -18,6 +18,7 @@ layout(binding = SVO_UNIT_LIGHT_ALONG + 2) uniform sampler3D uAlongPositiveY;
 layout(binding = SVO_UNIT_LIGHT_ALONG + 3) uniform sampler3D uAlongNegativeY;
 layout(binding = SVO_UNIT_LIGHT_ALONG + 4) uniform sampler3D uAlongPositiveZ;
 layout(binding = SVO_UNIT_LIGHT_ALONG + 5) uniform sampler3D uAlongNegativeZ;
+layout(binding = SVO_UNIT_LIGHT_LIT_SIDE) uniform sampler3D uLitSide; // level 0's lit side (uDirectional)
 
 uniform vec3 uVolumeScale;    // cell space -> texture coordinates
 uniform float uTexelCells;    // voxels per texel edge at level 0
@@ -62,10 +63,16 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
         float a = dot(share, textureLod(uOpacityVolume, tc, lod).rgb);
         // Six-way: from level 1 up, what a ray along dir sees; between levels
         // 0 and 1, blended with level 0's isotropic radiance.
+        // Level 0 sends its light only towards its lit side.
         vec4 r;
-        if (uDirectional != 0u && lod > 0.0) {
-            vec4 along = radianceAlong(dir, share, tc, max(lod, 1.0));
-            r = lod >= 1.0 ? along : mix(textureLod(uRadianceVolume, tc, 0.0), along, lod);
+        if (uDirectional != 0u) {
+            vec4 base = vec4(0.0);
+            if (lod < 1.0) {
+                base = textureLod(uRadianceVolume, tc, 0.0);
+                base.rgb *= towardsLitSide(textureLod(uLitSide, tc, 0.0).xyz, -dir);
+            }
+            r = lod <= 0.0 ? base : (lod >= 1.0 ? radianceAlong(dir, share, tc, lod)
+                                                : mix(base, radianceAlong(dir, share, tc, 1.0), lod));
         } else {
             r = textureLod(uRadianceVolume, tc, lod);
         }

@@ -31,10 +31,14 @@ vec3 voxelAlbedo(uint v)
 /// centre c of a voxel with unit normal n. Two-sided: each light lights the
 /// side it is on (the voxel stands for a thin surface seen from both sides);
 /// one-sided: only lights on n's side count. n = 0 (a voxel whose normals
-/// cancel) takes every light as if facing it.
-vec3 irradiance(vec3 c, vec3 n, bool twoSided)
+/// cancel) takes every light as if facing it. `litSide` gets the normal
+/// turned to each light's side, averaged by the light each gives (0 when
+/// none arrives; short when lights reach both sides).
+vec3 irradiance(vec3 c, vec3 n, bool twoSided, out vec3 litSide)
 {
     vec3 sum = vec3(0.0);
+    litSide = vec3(0.0);
+    float power = 0.0;
     for (int i = 0; i < uLightCount; ++i) {
         vec4 a = lights[2 * i], b = lights[2 * i + 1];
         vec3 l, e;
@@ -62,6 +66,22 @@ vec3 irradiance(vec3 c, vec3 n, bool twoSided)
         VoxelHit h;
         if (reach > 0.0 && marchOctree(o, l, 0.0, reach, h)) continue;
         sum += e * cosTheta;
+        float p = dot(e, vec3(1.0)) * cosTheta;
+        litSide += p * side;
+        power += p;
     }
+    if (power > 0.0) litSide /= power;
     return sum;
 }
+
+vec3 irradiance(vec3 c, vec3 n, bool twoSided)
+{
+    vec3 litSide;
+    return irradiance(c, n, twoSided, litSide);
+}
+
+/// The share of a texel's light that leaves towards unit direction v when
+/// its lit side is m (light_inject.comp): all of it in front of the lit
+/// side and along it, none behind it; a texel lit from both sides (m short)
+/// sends light both ways.
+float towardsLitSide(vec3 m, vec3 v) { return clamp(1.0 + 2.0 * dot(m, v), 0.0, 1.0); }

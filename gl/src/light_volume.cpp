@@ -111,8 +111,10 @@ void bindLightVolume(const Program& p, const LightVolumeTextures& v, const ViewB
     v.opacity.bindTexture(SVO_UNIT_LIGHT_OPACITY);
     v.radiance.bindTexture(SVO_UNIT_LIGHT_RADIANCE);
     const bool sixWay = v.built.directional && v.opacity.levels() > 1;
-    if (sixWay)
+    if (sixWay) {
         for (GLuint d = 0; d < 6; ++d) v.along[d].bindTexture(SVO_UNIT_LIGHT_ALONG + d);
+        v.litSide.bindTexture(SVO_UNIT_LIGHT_LIT_SIDE);
+    }
     p.set("uDirectional", sixWay ? 1u : 0u);
     const double k = v.texelVoxels;
     p.set("uVolumeScale", float(1.0 / (k * v.size[0])), float(1.0 / (k * v.size[1])), float(1.0 / (k * v.size[2])));
@@ -143,6 +145,7 @@ LightVolumeTextures buildLightVolume(const Context& context, const ViewBuffers& 
         static const char* names[6] = {"lighting volume's radiance along +x", "lighting volume's radiance along -x",
                                        "lighting volume's radiance along +y", "lighting volume's radiance along -y",
                                        "lighting volume's radiance along +z", "lighting volume's radiance along -z"};
+        v.litSide = Texture3D("lighting volume's lit sides", GL_RGBA8_SNORM, 1, v.size[0], v.size[1], v.size[2]);
         for (int d = 0; d < 6; ++d)
             v.along[size_t(d)] = Texture3D(names[d], GL_RGBA16F, levels - 1, std::max(1, v.size[0] / 2),
                                            std::max(1, v.size[1] / 2), std::max(1, v.size[2] / 2));
@@ -184,6 +187,9 @@ void injectLight(const Context& context, const ViewBuffers& o, const Illuminatio
     inject.set("uTexelCells", int(v.texelVoxels));
     v.opacity.bindImage(0, 0, GL_WRITE_ONLY, GL_RGBA8);
     v.radiance.bindImage(1, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    const bool sixWay = l.directional && levels > 1;
+    if (sixWay) v.litSide.bindImage(2, 0, GL_WRITE_ONLY, GL_RGBA8_SNORM);
+    inject.set("uDirectional", sixWay ? 1u : 0u);
     inject.use();
     glDispatchCompute(GLuint((v.size[0] + 3) / 4), GLuint((v.size[1] + 3) / 4), GLuint((v.size[2] + 3) / 4));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -192,7 +198,7 @@ void injectLight(const Context& context, const ViewBuffers& o, const Illuminatio
     // The mip-map, level by level; with six-way radiance, each direction's
     // level from the level below (level 1 from level 0's isotropic radiance).
     const Program& mip = context.program({"light_mip.comp"});
-    const Program* along = l.directional ? &context.program({"light_mip_along.comp"}) : nullptr;
+    const Program* along = sixWay ? &context.program({"light_mip_along.comp"}) : nullptr;
     for (int level = 1; level < levels; ++level) {
         const int in[3] = {v.opacity.size(level - 1, 0), v.opacity.size(level - 1, 1), v.opacity.size(level - 1, 2)};
         const int out[3] = {v.opacity.size(level, 0), v.opacity.size(level, 1), v.opacity.size(level, 2)};
@@ -214,6 +220,8 @@ void injectLight(const Context& context, const ViewBuffers& o, const Illuminatio
                 if (level == 1) v.radiance.bindImage(1, 0, GL_READ_ONLY, GL_RGBA16F);
                 else t.bindImage(1, level - 2, GL_READ_ONLY, GL_RGBA16F);
                 t.bindImage(2, level - 1, GL_WRITE_ONLY, GL_RGBA16F);
+                v.litSide.bindImage(3, 0, GL_READ_ONLY, GL_RGBA8_SNORM);
+                along->set("uFromBase", level == 1 ? 1u : 0u);
                 along->set("uAxis", d / 2);
                 along->set("uPositive", d % 2 == 0 ? 1 : 0);
                 along->use();
@@ -241,6 +249,10 @@ LightVolume readLightVolume(const LightVolumeTextures& v)
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
         v.opacity.read(level, GL_RGBA, GL_FLOAT, n * 4, l.opacity.data());
         v.radiance.read(level, GL_RGBA, GL_FLOAT, n * 4, l.radiance.data());
+        if (level == 0 && v.built.directional && v.opacity.levels() > 1) {
+            l.litSide.resize(n);
+            v.litSide.read(0, GL_RGBA, GL_FLOAT, n * 4, l.litSide.data());
+        }
         if (level > 0 && v.built.directional)
             for (size_t d = 0; d < 6; ++d) {
                 l.along[d].resize(n);

@@ -31,6 +31,9 @@ struct LightVolumeTextures {
     /// radiance (a: opacity) a ray travelling along +x, -x, +y, -y, +z, -z
     /// sees, from level 1 up (texture level j is the volume's level j + 1)
     std::array<Texture3D, 6> along;
+    /// rgba8 snorm, level 0 only, with Illumination::directional: each
+    /// texel's lit side (the normal turned to its lights, averaged by light)
+    Texture3D litSide;
     Buffer lights;      ///< 2 vec4 per light, cell space (view_lights.glsl)
     int lightCount = 0;
     uint32_t texelVoxels = 1;

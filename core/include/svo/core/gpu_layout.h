@@ -139,6 +139,7 @@ SVO_CONST(uint) kSumWords = 8u;
 #define SVO_UNIT_LIGHT_OPACITY 0  /* texture: rgb = opacity seen along x, y, z */
 #define SVO_UNIT_LIGHT_RADIANCE 1 /* texture: rgb = radiance x coverage, a = coverage */
 #define SVO_UNIT_LIGHT_ALONG 2 /* textures 2..7: radiance seen along +x -x +y -y +z -z, levels 1.. */
+#define SVO_UNIT_LIGHT_LIT_SIDE 8 /* texture: level 0's lit side (xyz, snorm) */
 /* ViewLayers::voxelColor as the shader reads it. */
 #define SVO_VIEW_COLOR_FLAT 0
 #define SVO_VIEW_COLOR_NORMAL 1

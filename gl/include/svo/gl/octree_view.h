@@ -109,9 +109,11 @@ struct Illumination {
     /// Six-way radiance (Crassin's anisotropic mip-map): from level 1 up, the
     /// radiance a ray along each of the six axis directions sees, composited
     /// front to back, so that a wall hides what lies behind it at every
-    /// level (thin walls leak less). Six more textures at half resolution
-    /// (about 7 bytes a texel of level 0) and three fetches a sample instead
-    /// of one; bench/results gives the error and time of both.
+    /// level; and at level 0 each texel's lit side, so that a one-voxel wall
+    /// lit on one side sends no light out of the other. Six textures at half
+    /// resolution and one at level 0 (about 11 bytes a texel of level 0) and
+    /// up to four fetches a sample instead of one; bench/results gives the
+    /// error and time of both.
     bool directional = false;
     double shadowOffset = 2.0;            ///< shadow rays start this far out of the surface, voxels
     uint32_t volumeResolution = 256;      ///< the lighting volume's largest side, texels: a power of two, 8 to 2048
@@ -129,6 +131,9 @@ struct LightVolumeLevel {
     /// the premultiplied radiance (rgb) and opacity (a) a ray travelling
     /// along +x, -x, +y, -y, +z, -z sees. Empty otherwise.
     std::array<std::vector<float>, 6> along;
+    /// With Illumination::directional, level 0 only, 4 per texel: its lit
+    /// side (the normal turned to its lights, averaged by light; 0 unlit).
+    std::vector<float> litSide;
 };
 struct LightVolume {
     uint32_t texelVoxels = 1; ///< voxels per texel edge at level 0
