@@ -228,7 +228,7 @@ TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
                         for (int d = 0; d < 6; ++d) {
                             const int axis = d / 2, u = (axis + 1) % 3, w = (axis + 2) % 3;
                             const std::vector<float>& below = level == 1 ? in.radiance : in.along[size_t(d)];
-                            double sum[4] = {0, 0, 0, 0};
+                            double sum[4] = {0, 0, 0, 0}, slack[3] = {0, 0, 0};
                             for (int i = 0; i < n[u]; ++i)
                                 for (int j = 0; j < n[w]; ++j) {
                                     double t = 1;
@@ -243,8 +243,13 @@ TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
                                             const double back = d % 2 == 0 ? -1.0 : 1.0;
                                             towards = std::clamp(1 + 2 * back * in.litSide[ci + size_t(axis)], 0.0, 1.0);
                                         }
-                                        for (int ch = 0; ch < 3; ++ch)
+                                        for (int ch = 0; ch < 3; ++ch) {
                                             sum[ch] += t * towards * below[ci + size_t(ch)];
+                                            // The lit side read back may be one snorm step off
+                                            // what the shader read (on the H100 the composite
+                                            // differed by about that): the weight moves by 2/127.
+                                            if (level == 1) slack[ch] += t * 2.0 / 127 * below[ci + size_t(ch)];
+                                        }
                                         t *= 1 - in.opacity[ci + size_t(axis)];
                                     }
                                     sum[3] += 1 - t;
@@ -252,7 +257,7 @@ TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
                             const double across = n[u] * n[w];
                             for (int ch = 0; ch < 4; ++ch)
                                 ASSERT_NEAR(out.along[size_t(d)][o + size_t(ch)], sum[ch] / across,
-                                            halfTolerance(sum[ch] / across) + (ch == 3 ? 1e-3 : 0.0))
+                                            halfTolerance(sum[ch] / across) + (ch == 3 ? 1e-3 : slack[ch] / across))
                                     << "level " << level << " direction " << d << " channel " << ch;
                         }
                         // rgba8: GL may round a value to either neighbouring step of 1/255
