@@ -217,6 +217,10 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
                                 a.color,
                                 a.color == "color" ? "; colours need vertex colours" : ""));
 
+    if (lit && at.normals.empty())
+        throw Error(fmt::format("{}: --render {} needs the octree's normal channel, which it lacks (voxelize the mesh "
+                                "with --attributes normal, or view the mesh itself)",
+                                a.input, a.render));
     if (lit && layers.light.lights.directional.empty() && layers.light.lights.point.empty())
         layers.light.lights = gl::defaultLights(gl::gridWorldBox(lo.octree.grid), a.input.empty());
     const double aspect = double(width) / double(height);

@@ -708,6 +708,30 @@ TEST_F(Cli, ViewBadInputFailsAsVoxelizeDoes)
     expectOnly({"bad.obj"});
 }
 
+TEST_F(Cli, ViewLightsTheVoxelsAndRefusesBadLighting)
+{
+    // A lit picture of the built-in Cornell box (its mesh is voxelized with normals).
+    for (const char* render : {"direct", "gi --gi-emission directional --gi-cones 3"}) {
+        const auto lit = runSvo(std::string("view -r 16 --size 64x48 --render ") + render +
+                                " --light point:0,1.8,0:5 --light sun:0.3,-1,0.2:1,1,0.5 --screenshot " + path("lit.png"));
+        ASSERT_EQ(lit.code, 0) << lit.out;
+    }
+    // An octree file without the normal channel cannot be lit; the error says what to do.
+    ASSERT_EQ(runSvo("voxelize -r 16 -o " + path("plain.svo")).code, 0);
+    const auto plain = runSvo("view " + path("plain.svo") + " --render gi --screenshot " + path("x.png"));
+    EXPECT_EQ(plain.code, 1);
+    EXPECT_EQ(lineCount(plain.out), 1u) << plain.out;
+    EXPECT_NE(plain.out.find("plain.svo: --render gi needs the octree's normal channel"), std::string::npos) << plain.out;
+    for (const char* args : {"--render gi --light lamp:1,2,3", "--render gi --light sun:0,0,0", "--render gi --light point:1,2",
+                             "--render direct --albedo 2", "--render gi --light-volume 100", "--render gi --gi-cones 0",
+                             "--render gi --gi-emission sideways", "--light sun:0,-1,0"}) {
+        const auto r = runSvo(std::string("view -r 8 --screenshot ") + path("x.png") + " " + args);
+        EXPECT_EQ(r.code, 1) << args;
+        EXPECT_EQ(lineCount(r.out), 1u) << args << ": " << r.out;
+    }
+    expectOnly({"lit.png", "plain.svo"});
+}
+
 /// The window under Xvfb (xvfb-run): it opens, follows scripted keys, and
 /// its live re-voxelization gives exactly `svo voxelize`'s voxels.
 TEST_F(Cli, ViewWindowRevoxelizesLiveToTheVoxelsOfVoxelize)
