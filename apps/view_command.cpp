@@ -26,7 +26,8 @@ namespace {
 
 struct ViewArgs {
     std::string input, screenshot, size = "1280x960", camera, view = "front", layers = "voxels,outlines", levels,
-                                     gridName, keys, save, color = "flat", render = "debug", aoFilter = "max";
+                                     gridName, keys, save, color = "flat", render = "debug", aoFilter = "max",
+                                     aoSource = "volume";
     int frames = 0;
     gl::AmbientOcclusion ao;
     gl::Illumination light;
@@ -159,6 +160,8 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     parseLevels(a.levels, layers);
     layers.ao = a.ao;
     layers.ao.filter = a.aoFilter == "average" ? gl::AmbientOcclusion::Filter::Average : gl::AmbientOcclusion::Filter::Max;
+    layers.ao.source = a.aoSource == "octree" ? gl::AmbientOcclusion::Source::Octree : gl::AmbientOcclusion::Source::Volume;
+    layers.ao.volumeResolution = a.light.volumeResolution;
     if (a.render == "ao") {
         layers.ao.only = true;
         if (layers.ao.cones == 0) layers.ao.cones = 7;
@@ -195,7 +198,9 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     checkOutputs({a.input}, {a.screenshot, a.save});
 
     BackendArgs backend = a.backend;
-    if (lit) backend.attributes |= kNormals; // lighting shades by the surface's normal
+    // Lighting shades by the surface's normal; AO from the volume leaves along it.
+    if (lit || (layers.ao.cones > 0 && layers.ao.source == gl::AmbientOcclusion::Source::Volume))
+        backend.attributes |= kNormals;
     LibraryCall call(backend, "building the octree");
     LoadedOctree lo;
     const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
@@ -312,15 +317,21 @@ void addViewCommand(CLI::App& app)
         ->capture_default_str();
     cmd->add_option("--levels", args->levels, "Outline levels a:b (0 = root; a, a: or :b)");
     cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
-    cmd->add_option("--ao", args->ao.cones, "Ambient occlusion cone-traced through the octree: cones per pixel (0: off, "
-                                            "1 to 16)")
+    cmd->add_option("--ao", args->ao.cones, "Ambient occlusion, cone-traced: cones per pixel (0: off, 1 to 16)")
         ->check(CLI::Range(0, 16));
     cmd->add_option("--ao-aperture", args->ao.apertureDegrees, "AO cone aperture, degrees")->capture_default_str();
-    cmd->add_option("--ao-offset", args->ao.offset, "AO cones start this far from the surface, voxels (less: more "
-                                                    "contact shadow, more self-occlusion)")
+    cmd->add_option("--ao-offset", args->ao.offset, "AO cones start this far from the surface, texels of the volume "
+                                                    "(voxels with --ao-source octree; less: more contact shadow, more "
+                                                    "self-occlusion)")
         ->capture_default_str();
     cmd->add_option("--ao-distance", args->ao.distance, "AO cones stop this far away, voxels")->capture_default_str();
-    cmd->add_option("--ao-filter", args->aoFilter, "AO opacity up the octree: max (a node as opaque as its most opaque "
+    cmd->add_option("--ao-source", args->aoSource, "AO opacity: volume (the lighting volume's opacity, mip-mapped "
+                                                   "and sampled trilinearly: closer to a path tracer, faster) or octree "
+                                                   "(the octree's nodes as the mip-map: no extra memory, fewer leaks "
+                                                   "in closed rooms)")
+        ->check(CLI::IsMember({"volume", "octree"}))
+        ->capture_default_str();
+    cmd->add_option("--ao-filter", args->aoFilter, "--ao-source octree: opacity up the octree: max (a node as opaque as its most opaque "
                                                    "child: fewer leaks through walls) or average (its face share)")
         ->check(CLI::IsMember({"max", "average"}))
         ->capture_default_str();
@@ -338,8 +349,8 @@ void addViewCommand(CLI::App& app)
                                               "octree has no colour channel (default 0.75)");
     cmd->add_option("--gi-cones", args->light.cones, "gi: cones gathering the bounce, 1 to 16")->capture_default_str();
     cmd->add_option("--gi-aperture", args->light.apertureDegrees, "gi: cone aperture, degrees")->capture_default_str();
-    cmd->add_option("--gi-offset", args->light.offset, "gi: cones start this far out along the normal, voxels (less: "
-                                                       "more contact light, more self-lighting)")
+    cmd->add_option("--gi-offset", args->light.offset, "gi: cones start this far out along the normal, texels of the "
+                                                       "lighting volume (less: more contact light, more self-lighting)")
         ->capture_default_str();
     cmd->add_option("--gi-distance", args->light.distance, "gi: cones stop this far away, voxels (0: the grid's "
                                                            "diagonal)")
@@ -355,8 +366,8 @@ void addViewCommand(CLI::App& app)
                     "gaps, more self-shadowing)")
         ->capture_default_str();
     cmd->add_option("--light-volume", args->light.volumeResolution,
-                    "direct/gi: the lighting volume's largest side in texels, a power of two (a texel holds 1 to 8³ "
-                    "voxels)")
+                    "direct/gi, and ao from the volume: the lighting volume's largest side in texels, a power of two "
+                    "(a texel holds 1 to 8³ voxels)")
         ->capture_default_str();
     cmd->add_option("--exposure", args->light.exposure, "direct/gi: the picture is (radiance x exposure)^(1/gamma)")
         ->capture_default_str();

@@ -1,5 +1,6 @@
 // Error against time of the octree view's cone tracing: for each scene,
-// resolution, cone count (and for AO opacity filter), the picture is compared
+// resolution, cone count (and for AO the opacity source: the volume, or the
+// octree with either filter), the picture is compared
 // pixel by pixel with the path-traced reference of the same triangles, camera
 // and lights (svo/reference/path_trace.h), and the frame is timed at the
 // benchmark size.
@@ -69,6 +70,11 @@ int main(int argc, char** argv)
     app.add_option("--md", mdPath, "Markdown table to write");
     app.add_option("--dump", dumpDir, "Write the reference and each image here as PGM");
     app.add_option("--render", render, "ao, direct or gi")->check(CLI::IsMember({"ao", "direct", "gi"}));
+    double offset = -1;
+    app.add_option("--offset", offset, "Cones start this far out of the surface, voxels (default: the option's)");
+    std::string aoSource = "volume";
+    app.add_option("--ao-source", aoSource, "ao: opacity from the volume, the octree (both filters), or both")
+        ->check(CLI::IsMember({"volume", "octree", "both"}));
     bool directional = false;
     app.add_flag("--directional", directional, "gi: emission by direction (Illumination::directional)");
     CLI11_PARSE(app, argc, argv);
@@ -92,7 +98,7 @@ int main(int argc, char** argv)
                              render == "gi" ? "one-bounce" : "direct", render,
                              render == "gi" ? "OneBounce" : "Direct", samples, albedo, width, height, timeWidth,
                              timeHeight, context.info().renderer, directional ? "by direction" : "isotropic");
-        md += fmt::format("| scene | grid | filter | cones | RMSE | p99 error | mean {} (svo) | mean {} (reference) | "
+        md += fmt::format("| scene | grid | opacity | cones | RMSE | p99 error | mean {} (svo) | mean {} (reference) | "
                           "pixels | GPU ms | GPU ms, light moved | wall ms |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                           ao ? "AO" : "radiance", ao ? "AO" : "radiance");
         for (const std::string& name : scenes) {
@@ -130,20 +136,25 @@ int main(int argc, char** argv)
             fmt::print(stderr, "{}: reference {} in {:.0f} ms ({} rays)\n", name, render, rs.wallMs, rs.rays());
             for (int r : resolutions) {
                 svo::VoxelizeOptions vo;
-                if (!ao) vo.attributes = svo::kNormals;
+                vo.attributes = svo::kNormals; // lit modes need them; AO from the volume leaves along them
                 const svo::Octree octree =
                     voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{r, 0}), vo);
                 svo::gl::OctreeView view(context, octree);
                 using Filter = svo::gl::AmbientOcclusion::Filter;
-                const std::vector<Filter> filters =
-                    ao ? std::vector<Filter>{Filter::Max, Filter::Average} : std::vector<Filter>{Filter::Max};
-                for (const auto filter : filters)
+                using Source = svo::gl::AmbientOcclusion::Source;
+                std::vector<std::pair<Source, Filter>> opacities;
+                if (!ao || aoSource != "octree") opacities.push_back({Source::Volume, Filter::Max});
+                if (ao && aoSource != "volume")
+                    opacities.insert(opacities.end(), {{Source::Octree, Filter::Max}, {Source::Octree, Filter::Average}});
+                for (const auto& [source, filter] : opacities)
                     for (int cones : coneCounts) {
                         svo::gl::ViewLayers layers;
                         layers.outlines = false;
                         if (ao) {
                             layers.ao.cones = cones;
+                            layers.ao.source = source;
                             layers.ao.filter = filter;
+                            if (offset >= 0) layers.ao.offset = offset;
                             layers.ao.only = true;
                             layers.ao.distance = distance / octree.grid.voxelSize;
                         } else {
@@ -152,6 +163,7 @@ int main(int argc, char** argv)
                             layers.light.lights = lights;
                             layers.light.albedo = {albedo, albedo, albedo};
                             layers.light.cones = cones;
+                            if (offset >= 0) layers.light.offset = offset;
                             layers.light.directional = directional;
                             layers.light.gamma = 1.0;
                         }
@@ -165,8 +177,8 @@ int main(int argc, char** argv)
                                 }
                             const std::string stem = std::filesystem::path(name).stem().string();
                             svo::writeFileAtomically(fmt::format("{}/{}_reference.pgm", dumpDir, stem), ref);
-                            svo::writeFileAtomically(fmt::format("{}/{}_{}_{}_{}.pgm", dumpDir, stem, r,
-                                                                 int(filter), cones),
+                            svo::writeFileAtomically(fmt::format("{}/{}_{}_{}_{}_{}.pgm", dumpDir, stem, r,
+                                                                 int(source), int(filter), cones),
                                                      pgm);
                         }
                         std::vector<double> errors;
@@ -193,7 +205,11 @@ int main(int argc, char** argv)
                         const std::string line = fmt::format(
                             "| {} | {}³ | {} | {} | {:.4f} | {:.3f} | {:.3f} | {:.3f} | {} | {:.2f} | {} | {:.2f} |\n",
                             std::filesystem::path(name).stem().string(), r,
-                            !ao ? "–" : filter == Filter::Max ? "max" : "average", cones,
+                            !ao                        ? "–"
+                            : source == Source::Volume ? "volume"
+                            : filter == Filter::Max    ? "octree, max"
+                                                       : "octree, average",
+                            cones,
                             std::sqrt(squares / n), quantile(errors, 0.99), sumSvo / n, sumRef / n, errors.size(),
                             quantile(gpu, 0.5), ao ? "–" : fmt::format("{:.2f}", quantile(moved, 0.5)),
                             quantile(wall, 0.5));

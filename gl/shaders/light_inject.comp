@@ -6,7 +6,8 @@
 // along x, y and z; radiance = the mean outgoing radiance of its voxels,
 // ρ/π · irradiance (two-sided Lambertian), times that opacity; and the lit
 // side (view_lights.glsl), averaged over the voxels by their light, which
-// six-way radiance (Illumination::directional) reads.
+// six-way radiance (Illumination::directional) reads. With uLit 0 (ambient
+// occlusion's opacity volume), opacity alone: no lights, no normals.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 #include "gpu_layout.h"
 #include "view_octree.glsl"
@@ -19,6 +20,7 @@ layout(binding = 2, rgba8_snorm) writeonly restrict uniform image3D uLitSideOut;
 uniform ivec3 uBaseSize;  // level 0's texels
 uniform int uTexelCells;  // voxels per texel edge: 1, 2, 4 or 8
 uniform uint uDirectional; // 1: write the lit side
+uniform uint uLit;         // 0: opacity only
 
 void main()
 {
@@ -38,6 +40,8 @@ void main()
                     ivec3 cell = first + ivec3(x, y, z);
                     uint bit = brickBit(cell);
                     if (any(greaterThanEqual(cell, uDims)) || !brickHas(brick, bit)) continue;
+                    ++count;
+                    if (uLit == 0u) continue;
                     uint v = voxelIndex(brick, bit);
                     vec3 n = voxelNormal(v);
                     float len = length(n);
@@ -46,7 +50,6 @@ void main()
                     vec3 l = voxelAlbedo(v) * (1.0 / 3.14159265) * irradiance(vec3(cell) + 0.5, n, true, side);
                     sum += l;
                     litSide += dot(l, vec3(1.0)) * side;
-                    ++count;
                 }
         float k = float(uTexelCells);
         float cover = min(1.0, float(count) / (k * k));
@@ -56,6 +59,7 @@ void main()
         if (total > 0.0) litSide /= total;
     }
     imageStore(uOpacityOut, texel, opacity);
+    if (uLit == 0u) return;
     imageStore(uRadianceOut, texel, radiance);
     if (uDirectional != 0u) imageStore(uLitSideOut, texel, vec4(litSide, 0.0));
 }

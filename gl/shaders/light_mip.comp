@@ -5,7 +5,8 @@
 // that axis (1 - Π(1 - a)) and averages the columns across it, so a wall
 // across the axis stays opaque and one along it covers its share
 // (Crassin's anisotropic filter). An axis already one texel wide has one
-// child along it.
+// child along it. With uLit 0 (ambient occlusion's opacity volume), opacity
+// alone.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(binding = 0, rgba8) readonly restrict uniform image3D uOpacityIn;
@@ -15,6 +16,7 @@ layout(binding = 3, rgba16f) writeonly restrict uniform image3D uRadianceOut;
 
 uniform ivec3 uInSize;
 uniform ivec3 uOutSize;
+uniform uint uLit; // 0: no radiance images
 
 void main()
 {
@@ -29,7 +31,7 @@ void main()
         ivec3 c = ivec3(i & 1, (i >> 1) & 1, i >> 2);
         bool used = all(lessThan(c, n));
         children[i] = used ? imageLoad(uOpacityIn, base + c) : vec4(0.0);
-        if (used) radiance += imageLoad(uRadianceIn, base + c);
+        if (used && uLit != 0u) radiance += imageLoad(uRadianceIn, base + c);
         coverage += children[i].a;
     }
     float count = float(n.x * n.y * n.z);
@@ -55,5 +57,5 @@ void main()
         }
     vec3 columns = vec3(n.y * n.z, n.x * n.z, n.x * n.y);
     imageStore(uOpacityOut, p, vec4(vec3(1.0) - through / columns, coverage / count));
-    imageStore(uRadianceOut, p, radiance / count);
+    if (uLit != 0u) imageStore(uRadianceOut, p, radiance / count);
 }

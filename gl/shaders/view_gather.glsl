@@ -5,7 +5,8 @@
 // radiance a ray along each axis direction sees, composited front to back,
 // so that a wall hides the light behind it at every level. A cone of aperture 2·atan(uConeTanHalf)
 // samples, at distance t, the level whose texels are as wide as the cone
-// there, steps by half that width, and composites front to back.
+// there, steps by half that width, and composites front to back. Ambient
+// occlusion (AmbientOcclusion::Source::Volume) takes the opacity alone.
 
 layout(binding = SVO_UNIT_LIGHT_OPACITY) uniform sampler3D uOpacityVolume;
 layout(binding = SVO_UNIT_LIGHT_RADIANCE) uniform sampler3D uRadianceVolume;
@@ -39,15 +40,15 @@ vec4 radianceAlong(vec3 dir, vec3 share, vec3 tc, float lod)
     return share.x * x + share.y * y + share.z * z;
 }
 
-/// Radiance gathered (rgb) and occlusion (a) along one cone from o, which
-/// lies `height` voxels out of the surface along its normal n. A sample
+/// Radiance gathered (rgb; 0 unless `lit`) and occlusion (a) along one cone
+/// from o, which lies `height` voxels out of the surface along its normal n. A sample
 /// whose texel (and its trilinear neighbours) would reach back through the
 /// surface's tangent plane takes a finer level: what lies behind the plane
 /// (the surface's own voxels, lit from the other side of a thin wall) must
 /// not light it. The cone still steps by half its own width, and the finer
 /// sample's opacity is corrected to the longer path: stepping by the finer
 /// width took twice the time for the same error (bench/results gi.md).
-vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
+vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit)
 {
     vec3 share = dir * dir; // directional opacity, weighted by the direction's squares (they sum to 1)
     float occlusion = 0.0;
@@ -56,11 +57,19 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
     while (t < uConeDistance && occlusion < 0.99) {
         float above = height + t * dot(dir, n);
         float cone = max(uTexelCells, 2.0 * t * uConeTanHalf);
-        float width = max(uTexelCells, min(cone, 0.5 * above));
-        float stride = 0.5 * cone;
+        float width = max(uTexelCells, min(cone, above / 3.0));
+        float stride = min(0.5 * cone, width);
         float lod = log2(width / uTexelCells);
         vec3 tc = (o + t * dir) * uVolumeScale;
         float a = dot(share, textureLod(uOpacityVolume, tc, lod).rgb);
+        // The sample stands for a slab as deep as the texel is wide; its
+        // opacity is corrected to the path the step covers.
+        a = 1.0 - pow(max(1.0 - a, 0.0), stride / width);
+        if (!lit) {
+            occlusion += (1.0 - occlusion) * a;
+            t += stride;
+            continue;
+        }
         // Six-way: from level 1 up, what a ray along dir sees; between levels
         // 0 and 1, blended with level 0's isotropic radiance.
         // Level 0 sends its light only towards its lit side.
@@ -76,9 +85,6 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
         } else {
             r = textureLod(uRadianceVolume, tc, lod);
         }
-        // The sample stands for a slab as deep as the texel is wide; its
-        // opacity is corrected to the path the step covers.
-        a = 1.0 - pow(max(1.0 - a, 0.0), stride / width);
         vec3 l = r.a > 1e-4 ? r.rgb / r.a : vec3(0.0);
         radiance += (1.0 - occlusion) * a * l;
         occlusion += (1.0 - occlusion) * a;
@@ -90,19 +96,20 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height)
 /// Cosine-weighted gather over the hemisphere of unit normal n at p: the
 /// normal's cone (up to 30 degrees) weighs a quarter, a ring of cones tilted
 /// 60 degrees three quarters. rgb: the mean incoming radiance (times albedo,
-/// the light one diffuse bounce reflects); a: the mean occlusion.
-vec4 hemisphereGather(vec3 p, vec3 n)
+/// the light one diffuse bounce reflects; 0 unless `lit`); a: the mean
+/// occlusion.
+vec4 hemisphereGather(vec3 p, vec3 n, bool lit)
 {
     vec3 o = p + uConeOffset * n;
-    if (uCones <= 1) return coneGather(o, n, n, uConeOffset);
+    if (uCones <= 1) return coneGather(o, n, n, uConeOffset, lit);
     vec3 t1 = normalize(abs(n.x) < 0.6 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
     vec3 t2 = cross(n, t1);
-    vec4 sum = 0.25 * coneGather(o, n, n, uConeOffset);
+    vec4 sum = 0.25 * coneGather(o, n, n, uConeOffset, lit);
     int ring = uCones - 1;
     for (int i = 0; i < ring; ++i) {
         float phi = 6.2831853 * (float(i) + 0.5) / float(ring);
         vec3 dir = normalize(0.5 * n + 0.8660254 * (cos(phi) * t1 + sin(phi) * t2));
-        sum += 0.75 / float(ring) * coneGather(o, dir, n, uConeOffset);
+        sum += 0.75 / float(ring) * coneGather(o, dir, n, uConeOffset, lit);
     }
     return sum;
 }

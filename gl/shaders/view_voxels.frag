@@ -33,6 +33,8 @@ vec3 voxelColor(uint brick, uint bit)
 #include "view_gather.glsl"
 
 uniform uint uAoOnly;    // 1: the voxels are their AO, grey
+uniform uint uAoVolume;  // 1: AO from cones through the opacity volume (view_gather.glsl); 0: through the octree
+uniform uint uAoNormals; // 1: the octree has a normal channel (Volume AO leaves along it)
 uniform int uLightMode;  // 0: head light; 1: direct light; 2: direct and one diffuse bounce
 uniform float uExposure; // lit modes: radiance x exposure ...
 uniform float uGamma;    // ... to the power 1 / gamma
@@ -63,12 +65,24 @@ void main()
         vec3 c = vec3(hit.cell) + 0.5;
         vec3 albedo = voxelAlbedo(v);
         vec3 radiance = albedo * (1.0 / 3.14159265) * irradiance(c, n, false);
-        if (uLightMode == 2) radiance += albedo * hemisphereGather(c, n).rgb;
+        if (uLightMode == 2) radiance += albedo * hemisphereGather(c, n, true).rgb;
         fragColor = vec4(pow(clamp(radiance * uExposure, 0.0, 1.0), vec3(1.0 / uGamma)), 1.0);
     } else {
         // Lit by the face normal: a head light plus a little ambient.
         float light = 0.45 + 0.55 * abs(dot(face, normalize(d)));
-        float ao = ambientOcclusion(p, face);
+        float ao = 1.0;
+        if (uAoVolume == 0u) {
+            ao = ambientOcclusion(p, face);
+        } else if (uCones > 0) {
+            // From the voxel's centre along its normal (the face's where it
+            // has none, or its normals cancel), turned to the viewer.
+            vec3 n = face;
+            if (uAoNormals != 0u) {
+                vec3 m = voxelNormal(voxelIndex(hit.brick, hit.bit));
+                if (length(m) > 1e-6) n = normalize(dot(m, d) > 0.0 ? -m : m);
+            }
+            ao = 1.0 - hemisphereGather(vec3(hit.cell) + 0.5, n, false).a;
+        }
         fragColor = uAoOnly != 0u ? vec4(vec3(ao), 1.0) : vec4(voxelColor(hit.brick, hit.bit) * light * ao, 1.0);
     }
     vec4 clip = uViewProjection * vec4(p, 1.0);

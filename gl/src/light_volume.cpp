@@ -15,16 +15,6 @@ namespace {
 bool finite(const Vec3d& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool nonNegative(const Vec3d& v) { return finite(v) && v.x >= 0 && v.y >= 0 && v.z >= 0; }
 
-/// Voxels per texel edge at level 0: the smallest power of two that keeps
-/// the volume's largest side within the resolution asked for.
-uint32_t texelVoxels(const GridSpec& grid, uint32_t resolution)
-{
-    const uint64_t largest = *std::max_element(grid.dims.begin(), grid.dims.end());
-    uint32_t k = 1;
-    while ((largest + k - 1) / k > resolution) k *= 2;
-    return k;
-}
-
 int nextPowerOfTwo(uint64_t n)
 {
     int p = 1;
@@ -32,7 +22,63 @@ int nextPowerOfTwo(uint64_t n)
     return p;
 }
 
+/// Textures for level 0 of `resolution` texels at most and every mip level:
+/// opacity, and when `lit` radiance (and with `directional` the six-way and
+/// lit-side textures).
+LightVolumeTextures allocateVolume(const GridSpec& grid, uint32_t resolution, bool lit, bool directional)
+{
+    LightVolumeTextures v;
+    v.lit = lit;
+    v.texelVoxels = texelVoxels(grid, resolution);
+    int largest = 1;
+    for (int i = 0; i < 3; ++i) {
+        v.size[i] = nextPowerOfTwo((grid.dims[size_t(i)] + v.texelVoxels - 1) / v.texelVoxels);
+        largest = std::max(largest, v.size[i]);
+    }
+    int levels = 1;
+    while ((1 << (levels - 1)) < largest) ++levels;
+    v.opacity = Texture3D("lighting volume's opacity", GL_RGBA8, levels, v.size[0], v.size[1], v.size[2]);
+    if (!lit) return v;
+    v.radiance = Texture3D("lighting volume's radiance", GL_RGBA16F, levels, v.size[0], v.size[1], v.size[2]);
+    if (directional && levels > 1) {
+        static const char* names[6] = {"lighting volume's radiance along +x", "lighting volume's radiance along -x",
+                                       "lighting volume's radiance along +y", "lighting volume's radiance along -y",
+                                       "lighting volume's radiance along +z", "lighting volume's radiance along -z"};
+        v.litSide = Texture3D("lighting volume's lit sides", GL_RGBA8_SNORM, 1, v.size[0], v.size[1], v.size[2]);
+        for (int d = 0; d < 6; ++d)
+            v.along[size_t(d)] = Texture3D(names[d], GL_RGBA16F, levels - 1, std::max(1, v.size[0] / 2),
+                                           std::max(1, v.size[1] / 2), std::max(1, v.size[2] / 2));
+    }
+    return v;
+}
+
+/// Level 0 from the octree's voxels (with `light`, its radiance too), then
+/// the mip-map on the GPU.
+void fillVolume(const Context& context, const ViewBuffers& o, const Illumination* light, LightVolumeTextures& v);
+
 } // namespace
+
+uint32_t texelVoxels(const GridSpec& grid, uint32_t resolution)
+{
+    // The smallest power of two that keeps the volume's largest side within
+    // the resolution asked for.
+    const uint64_t largest = *std::max_element(grid.dims.begin(), grid.dims.end());
+    uint32_t k = 1;
+    while ((largest + k - 1) / k > resolution) k *= 2;
+    return k;
+}
+
+void checkVolumeResolution(const GridSpec& grid, uint32_t r, const char* what)
+{
+    if (r < 8 || r > 2048 || (r & (r - 1)) != 0)
+        throw Error(fmt::format("octree view: {} {} is not a power of two from 8 to 2048", what, r));
+    if (texelVoxels(grid, r) > 8) {
+        const uint64_t largest = *std::max_element(grid.dims.begin(), grid.dims.end());
+        throw Error(fmt::format("octree view: {} {} is too small for a grid {} voxels wide: at least {} (a texel "
+                                "holds at most 8³ voxels)",
+                                what, r, largest, nextPowerOfTwo((largest + 7) / 8)));
+    }
+}
 
 void checkIllumination(const Illumination& l, const ViewBuffers& octree)
 {
@@ -59,20 +105,11 @@ void checkIllumination(const Illumination& l, const ViewBuffers& octree)
     if (!(l.distance >= 0 && l.distance <= 1e7)) bad(fmt::format("cone distance {} voxels is not in [0, 1e7]", l.distance));
     if (!(l.shadowOffset >= 0 && l.shadowOffset < 1e6))
         bad(fmt::format("shadow offset {} voxels is not in [0, 1e6)", l.shadowOffset));
-    const uint32_t r = l.volumeResolution;
-    if (r < 8 || r > 2048 || (r & (r - 1)) != 0)
-        bad(fmt::format("volume resolution {} is not a power of two from 8 to 2048", r));
     if (!(l.exposure > 0 && std::isfinite(l.exposure))) bad(fmt::format("exposure {} is not positive", l.exposure));
     if (!(l.gamma > 0 && std::isfinite(l.gamma))) bad(fmt::format("gamma {} is not positive", l.gamma));
     if (!octree.normals)
         bad("the octree has no normal channel (voxelize the mesh with --attributes normal, or normal,color)");
-    const uint32_t k = texelVoxels(octree.grid, r);
-    if (k > 8) {
-        const uint64_t largest = *std::max_element(octree.grid.dims.begin(), octree.grid.dims.end());
-        bad(fmt::format("a grid {} voxels wide needs a volume resolution of at least {} (a texel holds at most 8³ "
-                        "voxels)",
-                        largest, nextPowerOfTwo((largest + 7) / 8)));
-    }
+    checkVolumeResolution(octree.grid, l.volumeResolution, "lighting: volume resolution");
 }
 
 bool sameInjection(const Illumination& a, const Illumination& b)
@@ -105,10 +142,26 @@ void bindLights(const Program& p, const LightVolumeTextures& v, const ViewBuffer
     p.set("uHasAlbedo", o.colors ? 1u : 0u);
 }
 
+void bindOpacityVolume(const Program& p, const LightVolumeTextures& v, const GridSpec& grid, int cones,
+                       double apertureDegrees, double offset, double distance)
+{
+    v.opacity.bindTexture(SVO_UNIT_LIGHT_OPACITY);
+    p.set("uDirectional", 0u);
+    const double k = v.texelVoxels;
+    p.set("uVolumeScale", float(1.0 / (k * v.size[0])), float(1.0 / (k * v.size[1])), float(1.0 / (k * v.size[2])));
+    p.set("uTexelCells", float(k));
+    p.set("uConeTanHalf", float(std::tan(apertureDegrees * M_PI / 360.0)));
+    const auto& d = grid.dims;
+    const double diagonal = std::sqrt(double(d[0]) * d[0] + double(d[1]) * d[1] + double(d[2]) * d[2]);
+    p.set("uConeDistance", float(distance > 0 ? distance : diagonal));
+    p.set("uConeOffset", float(offset * k)); // texels of level 0, in voxels
+    p.set("uCones", cones);
+}
+
 void bindLightVolume(const Program& p, const LightVolumeTextures& v, const ViewBuffers& o, const Illumination& l)
 {
     bindLights(p, v, o, l);
-    v.opacity.bindTexture(SVO_UNIT_LIGHT_OPACITY);
+    bindOpacityVolume(p, v, o.grid, l.cones, l.apertureDegrees, l.offset, l.distance);
     v.radiance.bindTexture(SVO_UNIT_LIGHT_RADIANCE);
     const bool sixWay = v.built.directional && v.opacity.levels() > 1;
     if (sixWay) {
@@ -116,51 +169,30 @@ void bindLightVolume(const Program& p, const LightVolumeTextures& v, const ViewB
         v.litSide.bindTexture(SVO_UNIT_LIGHT_LIT_SIDE);
     }
     p.set("uDirectional", sixWay ? 1u : 0u);
-    const double k = v.texelVoxels;
-    p.set("uVolumeScale", float(1.0 / (k * v.size[0])), float(1.0 / (k * v.size[1])), float(1.0 / (k * v.size[2])));
-    p.set("uTexelCells", float(k));
-    p.set("uConeTanHalf", float(std::tan(l.apertureDegrees * M_PI / 360.0)));
-    const auto& d = o.grid.dims;
-    const double diagonal = std::sqrt(double(d[0]) * d[0] + double(d[1]) * d[1] + double(d[2]) * d[2]);
-    p.set("uConeDistance", float(l.distance > 0 ? l.distance : diagonal));
-    p.set("uConeOffset", float(l.offset));
-    p.set("uCones", l.cones);
 }
 
 LightVolumeTextures buildLightVolume(const Context& context, const ViewBuffers& o, const Illumination& l)
 {
     checkIllumination(l, o);
-    LightVolumeTextures v;
-    v.texelVoxels = texelVoxels(o.grid, l.volumeResolution);
-    int largest = 1;
-    for (int i = 0; i < 3; ++i) {
-        v.size[i] = nextPowerOfTwo((o.grid.dims[size_t(i)] + v.texelVoxels - 1) / v.texelVoxels);
-        largest = std::max(largest, v.size[i]);
-    }
-    int levels = 1;
-    while ((1 << (levels - 1)) < largest) ++levels;
-    v.opacity = Texture3D("lighting volume's opacity", GL_RGBA8, levels, v.size[0], v.size[1], v.size[2]);
-    v.radiance = Texture3D("lighting volume's radiance", GL_RGBA16F, levels, v.size[0], v.size[1], v.size[2]);
-    if (l.directional && levels > 1) {
-        static const char* names[6] = {"lighting volume's radiance along +x", "lighting volume's radiance along -x",
-                                       "lighting volume's radiance along +y", "lighting volume's radiance along -y",
-                                       "lighting volume's radiance along +z", "lighting volume's radiance along -z"};
-        v.litSide = Texture3D("lighting volume's lit sides", GL_RGBA8_SNORM, 1, v.size[0], v.size[1], v.size[2]);
-        for (int d = 0; d < 6; ++d)
-            v.along[size_t(d)] = Texture3D(names[d], GL_RGBA16F, levels - 1, std::max(1, v.size[0] / 2),
-                                           std::max(1, v.size[1] / 2), std::max(1, v.size[2] / 2));
-    }
+    LightVolumeTextures v = allocateVolume(o.grid, l.volumeResolution, true, l.directional);
     injectLight(context, o, l, v);
+    return v;
+}
+
+LightVolumeTextures buildOpacityVolume(const Context& context, const ViewBuffers& o, uint32_t resolution)
+{
+    checkVolumeResolution(o.grid, resolution, "ambient occlusion: volume resolution");
+    LightVolumeTextures v = allocateVolume(o.grid, resolution, false, false);
+    fillVolume(context, o, nullptr, v);
     return v;
 }
 
 void injectLight(const Context& context, const ViewBuffers& o, const Illumination& l, LightVolumeTextures& v)
 {
     checkIllumination(l, o);
-    if (texelVoxels(o.grid, l.volumeResolution) != v.texelVoxels)
-        throw Error("octree view: lighting: re-injecting at another volume resolution"); // callers rebuild instead
+    if (!v.lit || texelVoxels(o.grid, l.volumeResolution) != v.texelVoxels)
+        throw Error("octree view: lighting: re-injecting into another volume"); // callers rebuild instead
     v.built = l;
-    const int levels = v.opacity.levels();
     // Lights in cell space (local + 1/2), two vec4 each (view_lights.glsl).
     std::vector<float> lights;
     for (const DirectionalLight& d : l.lights.directional) {
@@ -175,38 +207,49 @@ void injectLight(const Context& context, const ViewBuffers& o, const Illuminatio
     }
     v.lightCount = int(lights.size() / 8);
     v.lights = Buffer("lights (view)", lights.size() * 4, lights.data(), 0);
+    fillVolume(context, o, &l, v);
+}
 
-    // Level 0: injection.
+namespace {
+
+void fillVolume(const Context& context, const ViewBuffers& o, const Illumination* l, LightVolumeTextures& v)
+{
+    const int levels = v.opacity.levels();
+    // Level 0: opacity, and the injected light.
     const Program& inject = context.program({"light_inject.comp"});
     o.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_NODES);
     o.bricks.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_BRICKS);
-    bindLights(inject, v, o, l);
+    if (l) bindLights(inject, v, o, *l);
     inject.set("uBrickLevel", o.brickLevel);
     inject.set("uDims", int(o.grid.dims[0]), int(o.grid.dims[1]), int(o.grid.dims[2]));
     inject.set("uBaseSize", v.size[0], v.size[1], v.size[2]);
     inject.set("uTexelCells", int(v.texelVoxels));
+    inject.set("uLit", l ? 1u : 0u);
     v.opacity.bindImage(0, 0, GL_WRITE_ONLY, GL_RGBA8);
-    v.radiance.bindImage(1, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    const bool sixWay = l.directional && levels > 1;
+    if (l) v.radiance.bindImage(1, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    const bool sixWay = l && l->directional && levels > 1;
     if (sixWay) v.litSide.bindImage(2, 0, GL_WRITE_ONLY, GL_RGBA8_SNORM);
     inject.set("uDirectional", sixWay ? 1u : 0u);
     inject.use();
     glDispatchCompute(GLuint((v.size[0] + 3) / 4), GLuint((v.size[1] + 3) / 4), GLuint((v.size[2] + 3) / 4));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    checkGl("injecting light into the lighting volume");
+    checkGl(l ? "injecting light into the lighting volume" : "filling the opacity volume");
 
     // The mip-map, level by level; with six-way radiance, each direction's
     // level from the level below (level 1 from level 0's isotropic radiance).
     const Program& mip = context.program({"light_mip.comp"});
     const Program* along = sixWay ? &context.program({"light_mip_along.comp"}) : nullptr;
+    mip.set("uLit", l ? 1u : 0u);
     for (int level = 1; level < levels; ++level) {
         const int in[3] = {v.opacity.size(level - 1, 0), v.opacity.size(level - 1, 1), v.opacity.size(level - 1, 2)};
         const int out[3] = {v.opacity.size(level, 0), v.opacity.size(level, 1), v.opacity.size(level, 2)};
         const GLuint groups[3] = {GLuint((out[0] + 3) / 4), GLuint((out[1] + 3) / 4), GLuint((out[2] + 3) / 4)};
         v.opacity.bindImage(0, level - 1, GL_READ_ONLY, GL_RGBA8);
-        v.radiance.bindImage(1, level - 1, GL_READ_ONLY, GL_RGBA16F);
         v.opacity.bindImage(2, level, GL_WRITE_ONLY, GL_RGBA8);
-        v.radiance.bindImage(3, level, GL_WRITE_ONLY, GL_RGBA16F);
+        if (l) {
+            v.radiance.bindImage(1, level - 1, GL_READ_ONLY, GL_RGBA16F);
+            v.radiance.bindImage(3, level, GL_WRITE_ONLY, GL_RGBA16F);
+        }
         mip.set("uInSize", in[0], in[1], in[2]);
         mip.set("uOutSize", out[0], out[1], out[2]);
         mip.use();
@@ -236,6 +279,8 @@ void injectLight(const Context& context, const ViewBuffers& o, const Illuminatio
     checkGl("mip-mapping the lighting volume");
 }
 
+} // namespace
+
 LightVolume readLightVolume(const LightVolumeTextures& v)
 {
     LightVolume out;
@@ -245,9 +290,13 @@ LightVolume readLightVolume(const LightVolumeTextures& v)
         for (int i = 0; i < 3; ++i) l.size[i] = v.opacity.size(level, i);
         const size_t n = size_t(l.size[0]) * size_t(l.size[1]) * size_t(l.size[2]) * 4;
         l.opacity.resize(n);
-        l.radiance.resize(n);
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
         v.opacity.read(level, GL_RGBA, GL_FLOAT, n * 4, l.opacity.data());
+        if (!v.lit) {
+            out.levels.push_back(std::move(l));
+            continue;
+        }
+        l.radiance.resize(n);
         v.radiance.read(level, GL_RGBA, GL_FLOAT, n * 4, l.radiance.data());
         if (level == 0 && v.built.directional && v.opacity.levels() > 1) {
             l.litSide.resize(n);

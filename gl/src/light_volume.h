@@ -3,6 +3,7 @@
 /// The lighting volume behind Illumination (svo/gl/octree_view.h, design
 /// §7d): light injected from the octree's voxels into level 0 of a 3D
 /// texture pair, then mip-mapped on the GPU. The view binds it to draw.
+/// Ambient occlusion's Volume source uses its opacity alone.
 #include <array>
 #include <cstdint>
 
@@ -26,7 +27,7 @@ struct ViewBuffers {
 
 struct LightVolumeTextures {
     Texture3D opacity;  ///< rgba8: opacity seen along x, y, z; coverage
-    Texture3D radiance; ///< rgba16f: radiance x coverage; coverage
+    Texture3D radiance; ///< rgba16f: radiance x coverage; coverage (lit volumes only)
     /// rgba16f, with Illumination::directional only: the premultiplied
     /// radiance (a: opacity) a ray travelling along +x, -x, +y, -y, +z, -z
     /// sees, from level 1 up (texture level j is the volume's level j + 1)
@@ -38,12 +39,33 @@ struct LightVolumeTextures {
     int lightCount = 0;
     uint32_t texelVoxels = 1;
     int size[3] = {0, 0, 0}; ///< level 0, texels
-    Illumination built;      ///< what it was injected with
+    bool lit = false;        ///< false: opacity only (buildOpacityVolume)
+    Illumination built;      ///< what it was injected with, when lit
 };
 
 /// Throws svo::Error naming the first option of `light` out of range, or the
 /// missing normal channel.
 void checkIllumination(const Illumination& light, const ViewBuffers& octree);
+
+/// Throws svo::Error unless `resolution` is a power of two from 8 to 2048
+/// large enough for the grid (a texel holds at most 8³ voxels). `what`
+/// names the option in the message.
+void checkVolumeResolution(const GridSpec& grid, uint32_t resolution, const char* what);
+
+/// Voxels per texel edge at level 0 for a volume of at most `resolution`
+/// texels a side.
+uint32_t texelVoxels(const GridSpec& grid, uint32_t resolution);
+
+/// The opacity volume alone, for ambient occlusion: no lights, no normals.
+/// Throws svo::Error as checkVolumeResolution does, and when the GPU cannot
+/// hold the texture.
+LightVolumeTextures buildOpacityVolume(const Context& context, const ViewBuffers& octree, uint32_t resolution);
+
+/// Binds the volume's opacity and sets the cone uniforms of `program` (one
+/// that includes view_gather.glsl) for `cones` cones of `apertureDegrees`,
+/// from `offset` to `distance` voxels (0: the grid's diagonal), isotropic.
+void bindOpacityVolume(const Program& program, const LightVolumeTextures& volume, const GridSpec& grid, int cones,
+                       double apertureDegrees, double offset, double distance);
 
 /// Whether a volume injected for `a` is the one `b` needs.
 bool sameInjection(const Illumination& a, const Illumination& b);

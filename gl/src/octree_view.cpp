@@ -240,8 +240,9 @@ struct OctreeView::Impl {
     std::optional<VertexArray> meshArray;
     uint64_t meshIndexCount = 0;
     VertexArray empty; ///< attribute-less draws (full-screen pass, outlines)
-    /// The lighting volume, made when a lit frame first needs it and kept
-    /// while the lights stay (drawing is const; the cache is not).
+    /// The lighting volume, made when a lit frame (or AO from the volume)
+    /// first needs it and kept while the lights stay (drawing is const; the
+    /// cache is not). AO reads any volume of its resolution, lit or not.
     mutable std::optional<LightVolumeTextures> light;
 
     ViewBuffers buffers() const
@@ -253,13 +254,22 @@ struct OctreeView::Impl {
     /// changed, or a new one.
     const LightVolumeTextures& lightVolume(const Context& context, const Illumination& l) const
     {
-        if (light && sameInjection(light->built, l)) return *light;
-        if (light && sameVolume(light->built, l)) {
+        if (light && light->lit && sameInjection(light->built, l)) return *light;
+        if (light && light->lit && sameVolume(light->built, l)) {
             injectLight(context, buffers(), l, *light);
             return *light;
         }
         light.reset(); // the old textures go before the new ones are allocated
         light.emplace(buildLightVolume(context, buffers(), l));
+        return *light;
+    }
+    /// The opacity volume of `resolution` texels at most, for AO.
+    const LightVolumeTextures& opacityVolume(const Context& context, uint32_t resolution) const
+    {
+        checkVolumeResolution(grid, resolution, "ambient occlusion: volume resolution");
+        if (light && light->texelVoxels == texelVoxels(grid, resolution)) return *light;
+        light.reset();
+        light.emplace(buildOpacityVolume(context, buffers(), resolution));
         return *light;
     }
 };
@@ -442,11 +452,26 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         v.opacity.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_OPACITY);
         const Program& p = context.program({"view_fullscreen.vert", "view_voxels.frag"});
         const Illumination& light = layers.light;
+        const bool aoVolume = ao.source == AmbientOcclusion::Source::Volume;
         if (light.mode != Illumination::Mode::Off) {
             bindLightVolume(p, v.lightVolume(context, light), v.buffers(), light);
             p.set("uExposure", float(light.exposure));
             p.set("uGamma", float(light.gamma));
+        } else if (aoVolume) {
+            // Cones through the opacity volume: the gather's uniforms; with no
+            // cones the volume is neither built nor sampled.
+            if (ao.cones > 0)
+                bindOpacityVolume(p, v.opacityVolume(context, ao.volumeResolution), v.grid, ao.cones,
+                                  ao.apertureDegrees, ao.offset, ao.distance);
+            else
+                p.set("uCones", 0);
+            if (v.normals) {
+                v.normals->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_NORMALS);
+                v.voxelStart->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_VOXEL_START);
+            }
         }
+        p.set("uAoVolume", aoVolume ? 1u : 0u);
+        p.set("uAoNormals", v.normals ? 1u : 0u);
         p.set("uLightMode", light.mode == Illumination::Mode::Off      ? 0
                             : light.mode == Illumination::Mode::Direct ? 1
                                                                        : 2);

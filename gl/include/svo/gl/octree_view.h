@@ -50,29 +50,46 @@ using ViewCamera = svo::Camera;
 /// colour hashed from the triangle id.
 enum class VoxelColor { Flat, Normal, Color, Triangle };
 
-/// Ambient occlusion on the voxels, cone-traced through the octree as a
-/// mip-map of opacity (Crassin et al. 2011): a node's opacity is its voxels
-/// over the voxels of one face of its box, at most 1 (a surface crossing the
-/// box covers it); inside bricks, 4³ and 2³ blocks and voxels give three
-/// finer levels. One cone along the face normal and a ring tilted 60 degrees
-/// around it, each weighted by its share of the cosine-weighted hemisphere,
-/// composited front to back; AO is one minus the weighted occlusion. A sample
-/// whose cell would reach behind the surface's tangent plane takes a finer
-/// cell (what lies behind cannot occlude). Distances in voxels.
+/// Ambient occlusion on the voxels (Crassin et al. 2011): cones over the
+/// hemisphere, one along the normal and a ring tilted 60 degrees around it,
+/// each weighted by its share of the cosine-weighted hemisphere, composited
+/// front to back; AO is one minus the weighted occlusion. Distances in
+/// voxels. Two sources of opacity:
+///   - Volume (the default): the lighting volume's opacity alone (see
+///     Illumination; no lights, no normals needed), a mip-mapped 3D texture
+///     sampled trilinearly, opacity seen along x, y and z (Crassin's
+///     anisotropic filter). The cones leave the voxel's centre along the
+///     octree's normal channel when it has one, else along the face the ray
+///     hit. Allocated while AO is on, `volumeResolution` texels at most.
+///   - Octree: the octree itself as the mip-map: a node's opacity is its
+///     voxels over the voxels of one face of its box, at most 1 (a surface
+///     crossing the box covers it); inside bricks, 4³ and 2³ blocks and
+///     voxels give three finer levels; aligned cells, no filtering; the
+///     face the ray hit is the normal. No extra memory; slower (each sample
+///     descends from the root) and further from the reference.
+/// A sample whose cell would reach behind the surface's tangent plane takes
+/// a finer one (what lies behind cannot occlude).
 ///
-/// The cone model is biased, and bench/results measures it against a path-
-/// traced reference (svo/reference/path_trace.h): coarse cells that a
-/// surface crosses only in part (room corners) let light leak through walls
-/// with the Average filter; the Max filter (a node at least as opaque as its
-/// most opaque child) closes most of them (a closed box's floor: AO 0.03
-/// instead of 0.15) and darkens thin features instead.
+/// The cone model is biased, and bench/results measures both sources against
+/// a path-traced reference (svo/reference/path_trace.h). With the Octree
+/// source, coarse cells that a surface crosses only in part (room corners)
+/// let light leak through walls with the Average filter; the Max filter (a
+/// node at least as opaque as its most opaque child) closes most of them (a
+/// closed box's floor: AO 0.03 instead of 0.15) and darkens thin features
+/// instead.
 struct AmbientOcclusion {
+    enum class Source { Volume, Octree };
     enum class Filter { Average, Max };
     int cones = 0;                ///< 0: none; 1: the normal only; n: the normal and n - 1 around it (at most 16)
     double apertureDegrees = 60;  ///< full cone angle, (0, 180)
-    double offset = 1.0;          ///< first sample along the normal, voxels
+    /// First sample along the normal: Volume, in texels of the volume's level
+    /// 0 (voxels while a texel is one voxel): a surface's own texels reach
+    /// about two texels out of it; Octree, in voxels.
+    double offset = 2.0;
     double distance = 32.0;       ///< cones stop here, voxels
-    Filter filter = Filter::Max;  ///< how node opacities are filtered up the octree
+    Source source = Source::Volume;
+    uint32_t volumeResolution = 256; ///< Volume: its largest side, texels: a power of two, 8 to 2048
+    Filter filter = Filter::Max;  ///< Octree: how node opacities are filtered up the octree
     bool only = false;            ///< draw the voxels as grey AO alone (no colour or face light), to measure it
 };
 
@@ -104,7 +121,7 @@ struct Illumination {
     Vec3d albedo{0.75, 0.75, 0.75};       ///< ρ where the octree has no colour channel, each in [0, 1]
     int cones = 7;                        ///< indirect light: 1 (the normal) to 16 cones
     double apertureDegrees = 60;          ///< full cone angle, (0, 180)
-    double offset = 1.5;                  ///< cones start this far out along the normal, voxels
+    double offset = 1.5;                  ///< cones start this far out along the normal, texels of level 0 (voxels while a texel is one voxel)
     double distance = 0;                  ///< cones stop here, voxels; 0: the grid's diagonal
     /// Six-way radiance (Crassin's anisotropic mip-map): from level 1 up, the
     /// radiance a ray along each of the six axis directions sees, composited
