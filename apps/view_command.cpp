@@ -32,7 +32,7 @@ struct ViewArgs {
     gl::AmbientOcclusion ao;
     gl::Illumination light;
     std::vector<std::string> lights;
-    std::string albedo;
+    std::string albedo, specular;
     double fov = 40.0, ortho = 0.0;
     int64_t resolution = 0;
     double voxelSize = 0;
@@ -173,9 +173,13 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         layers.light.mode = a.render == "gi" ? gl::Illumination::Mode::Global : gl::Illumination::Mode::Direct;
         for (const std::string& l : a.lights) parseLight(l, layers.light.lights);
         if (!a.albedo.empty()) layers.light.albedo = parseColor(a.albedo, "--albedo");
+        if (!a.specular.empty()) {
+            if (a.render != "gi") throw Error("--specular: the glossy cone is part of --render gi");
+            layers.light.specular = parseColor(a.specular, "--specular");
+        }
         layers.outlines = layers.bricks = false;
-    } else if (!a.lights.empty() || !a.albedo.empty()) {
-        throw Error("--light and --albedo light the voxels of --render direct or gi");
+    } else if (!a.lights.empty() || !a.albedo.empty() || !a.specular.empty()) {
+        throw Error("--light, --albedo and --specular light the voxels of --render direct or gi");
     }
     layers.voxelColor = a.color == "normal" ? gl::VoxelColor::Normal
                         : a.color == "color" ? gl::VoxelColor::Color
@@ -198,8 +202,9 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     checkOutputs({a.input}, {a.screenshot, a.save});
 
     BackendArgs backend = a.backend;
-    // Lighting shades by the surface's normal; AO from the volume leaves along it.
-    if (lit || (layers.ao.cones > 0 && layers.ao.source == gl::AmbientOcclusion::Source::Volume))
+    // Lighting shades by the surface's normal; AO from the volume leaves along
+    // it (in a window, AO can be turned on at any time).
+    if (lit || (layers.ao.source == gl::AmbientOcclusion::Source::Volume && (layers.ao.cones > 0 || window)))
         backend.attributes |= kNormals;
     LibraryCall call(backend, "building the octree");
     LoadedOctree lo;
@@ -347,6 +352,11 @@ void addViewCommand(CLI::App& app)
                     "else a sun from above-left-front");
     cmd->add_option("--albedo", args->albedo, "direct/gi: surface albedo, one value or r,g,b in [0, 1], where the "
                                               "octree has no colour channel (default 0.75)");
+    cmd->add_option("--specular", args->specular, "gi: glossy reflectance, one value or r,g,b in [0, 1]: one more "
+                                                  "cone along the mirrored view ray (default 0: none)");
+    cmd->add_option("--specular-aperture", args->light.specularApertureDegrees,
+                    "gi: the glossy cone's aperture, degrees (narrower: shinier)")
+        ->capture_default_str();
     cmd->add_option("--gi-cones", args->light.cones, "gi: cones gathering the bounce, 1 to 16")->capture_default_str();
     cmd->add_option("--gi-aperture", args->light.apertureDegrees, "gi: cone aperture, degrees")->capture_default_str();
     cmd->add_option("--gi-offset", args->light.offset, "gi: cones start this far out along the normal, texels of the "

@@ -171,11 +171,12 @@ struct ViewerState {
     }
 
     /// The next voxel colouring the octree has a channel for. A mesh input
-    /// voxelized without channels is voxelized again with every channel it
-    /// can give (normals, triangle ids, colours when it has vertex colours).
+    /// voxelized without the triangle ids (the window voxelizes with the
+    /// normals alone, for AO) is voxelized again with every channel it can
+    /// give (normals, triangle ids, colours when it has vertex colours).
     void nextColor()
     {
-        if (octree.attributes.empty() && canRevoxelize()) {
+        if (octree.attributes.triangles.empty() && canRevoxelize()) {
             in.backend.attributes = kNormals | kTriangles | (in.loaded.mesh->colors.empty() ? 0u : uint32_t(kColors));
             revoxelize(resolution);
         }
@@ -242,19 +243,25 @@ struct ViewerState {
             ImGui::SameLine();
             ImGui::TextDisabled("(no attribute channels; --attributes)");
         }
-        // Ambient occlusion, cone-traced through the octree.
+        // Ambient occlusion, cone-traced through the volume or the octree.
         ImGui::SliderInt("AO cones (G)", &l.ao.cones, 0, 16);
         if (l.ao.cones > 0) {
             ImGui::SameLine();
             ImGui::Checkbox("AO alone (R)", &l.ao.only);
             float aperture = float(l.ao.apertureDegrees), offset = float(l.ao.offset), distance = float(l.ao.distance);
             if (ImGui::SliderFloat("AO aperture", &aperture, 10.0f, 120.0f, "%.0f deg")) l.ao.apertureDegrees = aperture;
-            if (ImGui::SliderFloat("AO offset", &offset, 0.0f, 8.0f, "%.2f voxels")) l.ao.offset = offset;
+            const bool volume = l.ao.source == gl::AmbientOcclusion::Source::Volume;
+            int source = volume ? 0 : 1;
+            static constexpr const char* kSources[] = {"volume", "octree"};
+            if (ImGui::Combo("AO source", &source, kSources, IM_ARRAYSIZE(kSources)))
+                l.ao.source = source == 0 ? gl::AmbientOcclusion::Source::Volume : gl::AmbientOcclusion::Source::Octree;
+            if (ImGui::SliderFloat("AO offset", &offset, 0.0f, 8.0f, volume ? "%.2f texels" : "%.2f voxels"))
+                l.ao.offset = offset;
             if (ImGui::SliderFloat("AO distance", &distance, 1.0f, 1024.0f, "%.0f voxels", ImGuiSliderFlags_Logarithmic))
                 l.ao.distance = distance;
             int filter = int(l.ao.filter);
             static constexpr const char* kFilters[] = {"average", "max"};
-            if (ImGui::Combo("AO filter", &filter, kFilters, IM_ARRAYSIZE(kFilters)))
+            if (!volume && ImGui::Combo("AO filter", &filter, kFilters, IM_ARRAYSIZE(kFilters)))
                 l.ao.filter = gl::AmbientOcclusion::Filter(filter);
         } else {
             l.ao.only = false;

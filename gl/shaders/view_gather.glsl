@@ -41,14 +41,15 @@ vec4 radianceAlong(vec3 dir, vec3 share, vec3 tc, float lod)
 }
 
 /// Radiance gathered (rgb; 0 unless `lit`) and occlusion (a) along one cone
-/// from o, which lies `height` voxels out of the surface along its normal n. A sample
+/// of half-angle tangent `tanHalf` from o, which lies `height` voxels out of
+/// the surface along its normal n. A sample
 /// whose texel (and its trilinear neighbours) would reach back through the
 /// surface's tangent plane takes a finer level: what lies behind the plane
 /// (the surface's own voxels, lit from the other side of a thin wall) must
 /// not light it. The cone still steps by half its own width, and the finer
 /// sample's opacity is corrected to the longer path: stepping by the finer
 /// width took twice the time for the same error (bench/results gi.md).
-vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit)
+vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit, float tanHalf)
 {
     vec3 share = dir * dir; // directional opacity, weighted by the direction's squares (they sum to 1)
     float occlusion = 0.0;
@@ -56,7 +57,7 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit)
     float t = 0.0;
     while (t < uConeDistance && occlusion < 0.99) {
         float above = height + t * dot(dir, n);
-        float cone = max(uTexelCells, 2.0 * t * uConeTanHalf);
+        float cone = max(uTexelCells, 2.0 * t * tanHalf);
         float width = max(uTexelCells, min(cone, above / 3.0));
         float stride = min(0.5 * cone, width);
         float lod = log2(width / uTexelCells);
@@ -101,15 +102,15 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit)
 vec4 hemisphereGather(vec3 p, vec3 n, bool lit)
 {
     vec3 o = p + uConeOffset * n;
-    if (uCones <= 1) return coneGather(o, n, n, uConeOffset, lit);
+    if (uCones <= 1) return coneGather(o, n, n, uConeOffset, lit, uConeTanHalf);
     vec3 t1 = normalize(abs(n.x) < 0.6 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
     vec3 t2 = cross(n, t1);
-    vec4 sum = 0.25 * coneGather(o, n, n, uConeOffset, lit);
+    vec4 sum = 0.25 * coneGather(o, n, n, uConeOffset, lit, uConeTanHalf);
     int ring = uCones - 1;
     for (int i = 0; i < ring; ++i) {
         float phi = 6.2831853 * (float(i) + 0.5) / float(ring);
         vec3 dir = normalize(0.5 * n + 0.8660254 * (cos(phi) * t1 + sin(phi) * t2));
-        sum += 0.75 / float(ring) * coneGather(o, dir, n, uConeOffset, lit);
+        sum += 0.75 / float(ring) * coneGather(o, dir, n, uConeOffset, lit, uConeTanHalf);
     }
     return sum;
 }

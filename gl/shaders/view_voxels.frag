@@ -38,6 +38,8 @@ uniform uint uAoNormals; // 1: the octree has a normal channel (Volume AO leaves
 uniform int uLightMode;  // 0: head light; 1: direct light; 2: direct and one diffuse bounce
 uniform float uExposure; // lit modes: radiance x exposure ...
 uniform float uGamma;    // ... to the power 1 / gamma
+uniform vec3 uSpecular;         // glossy reflectance (Illumination::specular)
+uniform float uSpecularTanHalf; // tan of half the glossy cone's aperture
 
 out vec4 fragColor;
 
@@ -65,7 +67,13 @@ void main()
         vec3 c = vec3(hit.cell) + 0.5;
         vec3 albedo = voxelAlbedo(v);
         vec3 radiance = albedo * (1.0 / 3.14159265) * irradiance(c, n, false);
-        if (uLightMode == 2) radiance += albedo * hemisphereGather(c, n, true).rgb;
+        if (uLightMode == 2) {
+            radiance += albedo * hemisphereGather(c, n, true).rgb;
+            // Glossy: one cone along the view ray mirrored about the normal.
+            if (any(greaterThan(uSpecular, vec3(0.0))))
+                radiance += uSpecular * coneGather(c + uConeOffset * n, reflect(normalize(d), n), n, uConeOffset,
+                                                   true, uSpecularTanHalf).rgb;
+        }
         fragColor = vec4(pow(clamp(radiance * uExposure, 0.0, 1.0), vec3(1.0 / uGamma)), 1.0);
     } else {
         // Lit by the face normal: a head light plus a little ambient.

@@ -101,6 +101,10 @@ void checkIllumination(const Illumination& l, const ViewBuffers& octree)
     if (l.cones < 1 || l.cones > 16) bad(fmt::format("{} cones; 1 to 16", l.cones));
     if (!(l.apertureDegrees > 0 && l.apertureDegrees < 180))
         bad(fmt::format("cone aperture {} degrees is outside (0, 180)", l.apertureDegrees));
+    if (!nonNegative(l.specular) || l.specular.x > 1 || l.specular.y > 1 || l.specular.z > 1)
+        bad(fmt::format("specular {},{},{} is outside [0, 1]", l.specular.x, l.specular.y, l.specular.z));
+    if (!(l.specularApertureDegrees > 0 && l.specularApertureDegrees < 180))
+        bad(fmt::format("specular cone aperture {} degrees is outside (0, 180)", l.specularApertureDegrees));
     if (!(l.offset >= 0 && l.offset < 1e6)) bad(fmt::format("cone offset {} voxels is not in [0, 1e6)", l.offset));
     if (!(l.distance >= 0 && l.distance <= 1e7)) bad(fmt::format("cone distance {} voxels is not in [0, 1e7]", l.distance));
     if (!(l.shadowOffset >= 0 && l.shadowOffset < 1e6))
@@ -169,6 +173,8 @@ void bindLightVolume(const Program& p, const LightVolumeTextures& v, const ViewB
         v.litSide.bindTexture(SVO_UNIT_LIGHT_LIT_SIDE);
     }
     p.set("uDirectional", sixWay ? 1u : 0u);
+    p.set("uSpecular", float(l.specular.x), float(l.specular.y), float(l.specular.z));
+    p.set("uSpecularTanHalf", float(std::tan(l.specularApertureDegrees * M_PI / 360.0)));
 }
 
 LightVolumeTextures buildLightVolume(const Context& context, const ViewBuffers& o, const Illumination& l)

@@ -431,10 +431,14 @@ const svo::gl::Context& pictureContext()
 /// Octree.render: one frame of the octree view, (H, W, 4) uint8, rows from the top.
 py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, const std::string& view,
                                   const std::vector<std::string>& layers, std::optional<std::pair<int, int>> levels,
-                                  const std::string& color, int ao, bool aoOnly)
+                                  const std::string& color, int ao, bool aoOnly, const std::string& aoSource)
 {
     svo::gl::ViewLayers l;
     if (ao < 0 || ao > 16) badValue("ao: expected 0 (none) to 16 cones");
+    if (aoSource != "volume" && aoSource != "octree")
+        badValue("ao_source: expected 'volume' or 'octree', got '" + aoSource + "'");
+    l.ao.source = aoSource == "octree" ? svo::gl::AmbientOcclusion::Source::Octree
+                                       : svo::gl::AmbientOcclusion::Source::Volume;
     if (aoOnly && ao == 0) ao = 7;
     l.ao.cones = ao;
     l.ao.only = aoOnly;
@@ -713,12 +717,14 @@ PYBIND11_MODULE(_svo, m)
         .def("render", &renderOctree, py::kw_only(), py::arg("size") = std::pair<int, int>(640, 480),
              py::arg("view") = "front", py::arg("layers") = std::vector<std::string>{"voxels", "outlines"},
              py::arg("levels") = py::none(), py::arg("color") = "flat", py::arg("ao") = 0, py::arg("ao_only") = false,
+             py::arg("ao_source") = "volume",
              "A picture of the octree drawn on the GPU, as svo view --screenshot draws it: (H, W, 4) uint8,\n"
              "rows from the top. view: 'front' or an axis view '+x', '-x', '+y', '-y', '+z', '-z';\n"
              "layers: 'voxels', 'outlines', 'bricks'; levels: (first, last) outline levels; color: 'flat'\n"
              "or an attribute channel the octree has ('normal', 'color', 'triangle'); ao: cones of ambient\n"
-             "occlusion traced through the octree (0: none, up to 16); ao_only: the voxels as their AO,\n"
-             "grey (7 cones unless ao says; as svo view --render ao).")
+             "occlusion (0: none, up to 16); ao_only: the voxels as their AO, grey (7 cones unless ao says;\n"
+             "as svo view --render ao); ao_source: 'volume' (cones through the lighting volume's opacity)\n"
+             "or 'octree' (through the octree's nodes), as svo view --ao-source.")
         .def("save", [](const PyOctree& p, const std::string& path) {
             if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
                 badValue("save: a .svo file holds a uniform voxel size and a whole-voxel translation; this octree's "

@@ -481,8 +481,15 @@ def test_octree_render_draws_what_svo_view_draws(voxelizer, tmp_path):
     assert np.array_equal(image[:, :, :3], read_png_rgb(png))
     grey = (image[:, :, 0] == image[:, :, 1]) & (image[:, :, 1] == image[:, :, 2])
     assert 0 < grey.sum() < 64 * 48
+    octree_ao = octree.render(size=(64, 48), view="front", layers=["voxels"], ao_only=True, ao_source="octree")
+    subprocess.run([SVO_EXE, "view", path, "--screenshot", png, "--size", "64x48", "--view", "front",
+                    "--layers", "voxels", "--render", "ao", "--ao-source", "octree"], check=True, capture_output=True)
+    assert np.array_equal(octree_ao[:, :, :3], read_png_rgb(png))
+    assert not np.array_equal(octree_ao, image)  # two opacity sources, two pictures
     with pytest.raises(ValueError, match="ao"):
         octree.render(ao=17)
+    with pytest.raises(ValueError, match="ao_source"):
+        octree.render(ao_source="mesh")
     with pytest.raises(ValueError, match="no 'triangle' channel"):
         octree.render(color="triangle")
     with pytest.raises(ValueError, match="sideways"):

@@ -110,7 +110,8 @@ struct AmbientOcclusion {
 ///   - the picture: at each voxel the ray hits, the direct light (same
 ///     shadow rays, from the side the camera sees) and, for Global, one
 ///     diffuse bounce: the albedo times the radiance `cones` cones gather
-///     over the hemisphere, weighted as the cosine says.
+///     over the hemisphere, weighted as the cosine says; and with `specular`
+///     a glossy reflection from one more cone.
 /// The volume is built once and kept until the lights, albedo, offsets or
 /// resolution change (a moved light re-injects). bench/results measures the
 /// pictures against the path-traced reference (svo/reference/path_trace.h).
@@ -132,6 +133,13 @@ struct Illumination {
     /// up to four fetches a sample instead of one; bench/results gives the
     /// error and time of both.
     bool directional = false;
+    /// Glossy reflection (Global only): one cone along the view direction
+    /// mirrored about the normal, `specularApertureDegrees` wide, through the
+    /// same volume; the radiance it gathers times `specular` (each in [0, 1])
+    /// is added to the picture. It reflects the lit surfaces, not the lights
+    /// themselves (a point or directional light has no area to see). 0: none.
+    Vec3d specular{0, 0, 0};
+    double specularApertureDegrees = 15;  ///< the glossy cone's full angle, (0, 180): narrower is shinier
     double shadowOffset = 2.0;            ///< shadow rays start this far out of the surface, voxels
     uint32_t volumeResolution = 256;      ///< the lighting volume's largest side, texels: a power of two, 8 to 2048
     double exposure = 1.0;                ///< the picture is (radiance x exposure)^(1 / gamma), clamped to 1
