@@ -3,10 +3,11 @@
 // texel holds the opacity of its box seen along x, y and z, its outgoing
 // radiance times its coverage; with uDirectional, from level 1 up, the
 // radiance a ray along each axis direction sees, composited front to back,
-// so that a wall hides the light behind it at every level. A cone of aperture 2·atan(uConeTanHalf)
-// samples, at distance t, the level whose texels are as wide as the cone
-// there, steps by half that width, and composites front to back. Ambient
-// occlusion (AmbientOcclusion::Source::Volume) takes the opacity alone.
+// so that a wall hides the light behind it at every level. A cone samples,
+// at distance t, the level whose texels are as wide as the cone there (a
+// finer one near the surface), steps by half that width at most, and
+// composites front to back. Ambient occlusion
+// (AmbientOcclusion::Source::Volume) takes the opacity alone.
 
 layout(binding = SVO_UNIT_LIGHT_OPACITY) uniform sampler3D uOpacityVolume;
 layout(binding = SVO_UNIT_LIGHT_RADIANCE) uniform sampler3D uRadianceVolume;
@@ -42,13 +43,14 @@ vec4 radianceAlong(vec3 dir, vec3 share, vec3 tc, float lod)
 
 /// Radiance gathered (rgb; 0 unless `lit`) and occlusion (a) along one cone
 /// of half-angle tangent `tanHalf` from o, which lies `height` voxels out of
-/// the surface along its normal n. A sample
-/// whose texel (and its trilinear neighbours) would reach back through the
-/// surface's tangent plane takes a finer level: what lies behind the plane
-/// (the surface's own voxels, lit from the other side of a thin wall) must
-/// not light it. The cone still steps by half its own width, and the finer
-/// sample's opacity is corrected to the longer path: stepping by the finer
-/// width took twice the time for the same error (bench/results gi.md).
+/// the surface along its normal n. Near the surface a sample must not see
+/// the surface's own texels (design §7c): a trilinear sample between two
+/// levels reaches 1.5 texels of the coarser one, up to twice its width, and
+/// a surface's texel can sit half a texel above it, so a sample takes a
+/// level no wider than a third of its height above the surface (then an
+/// open plane is unoccluded), and the cone steps by at most that width, so
+/// that it cannot step over a thin wall; each sample's opacity is corrected
+/// to the path its step covers.
 vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit, float tanHalf)
 {
     vec3 share = dir * dir; // directional opacity, weighted by the direction's squares (they sum to 1)
