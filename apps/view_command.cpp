@@ -231,7 +231,8 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         throw Error(fmt::format("{}: --render {} needs the octree's normal channel, which it lacks (voxelize the mesh "
                                 "with --attributes normal, or view the mesh itself)",
                                 a.input, a.render));
-    if (lit && layers.light.lights.directional.empty() && layers.light.lights.point.empty())
+    // The window can turn lighting on at any time: it gets the lights too.
+    if ((lit || window) && layers.light.lights.directional.empty() && layers.light.lights.point.empty())
         layers.light.lights = gl::defaultLights(gl::gridWorldBox(lo.octree.grid), a.input.empty());
     const double aspect = double(width) / double(height);
     gl::ViewCamera camera = gl::namedView(gl::gridWorldBox(lo.octree.grid), a.view, aspect);

@@ -188,6 +188,21 @@ struct ViewerState {
         in.layers.voxelColor = gl::VoxelColor(c);
     }
 
+    /// Lighting off, direct, or direct and one bounce (as --render direct|gi:
+    /// the outlines and brick boxes go while it is on). An octree without
+    /// the normal channel cannot be lit: the panel says so.
+    void setLighting(gl::Illumination::Mode m)
+    {
+        gl::ViewLayers& l = in.layers;
+        if (m != gl::Illumination::Mode::Off && octree.attributes.normals.empty()) {
+            message = "lighting needs the octree's normal channel (voxelize the mesh with --attributes normal)";
+            return;
+        }
+        if (m != gl::Illumination::Mode::Off && l.light.mode == gl::Illumination::Mode::Off)
+            l.outlines = l.bricks = false;
+        l.light.mode = m;
+    }
+
     /// One key, from the keyboard or the --keys script.
     void press(unsigned key)
     {
@@ -198,6 +213,7 @@ struct ViewerState {
         case 'm': l.mesh = !l.mesh; break;
         case 'k': l.bricks = !l.bricks; break;
         case 'a': nextColor(); break;
+        case 'l': setLighting(gl::Illumination::Mode((int(l.light.mode) + 1) % 3)); break;
         case 'g': l.ao.cones = l.ao.cones ? 0 : 7; if (!l.ao.cones) l.ao.only = false; break;
         case 'r':
             l.ao.only = !l.ao.only;
@@ -216,6 +232,48 @@ struct ViewerState {
         case 'q': quit = true; break;
         default: break;
         }
+    }
+
+    /// The lighting controls: mode, the first light, the cones, exposure.
+    /// A moved light re-injects the volume on the next frame.
+    void lightingPanel()
+    {
+        gl::Illumination& li = in.layers.light;
+        static constexpr const char* kLighting[] = {"off", "direct", "direct + one bounce"};
+        int m = int(li.mode);
+        if (ImGui::Combo("lighting (L)", &m, kLighting, IM_ARRAYSIZE(kLighting))) setLighting(gl::Illumination::Mode(m));
+        if (li.mode == gl::Illumination::Mode::Off) return;
+        if (!li.lights.directional.empty()) {
+            // The sun by where it comes from: azimuth around +y, elevation above the horizon.
+            Vec3d& d = li.lights.directional[0].direction;
+            const Vec3d from = -1.0 * unit(d);
+            float angles[2] = {float(std::atan2(from.z, from.x) * 180 / M_PI),
+                               float(std::asin(std::clamp(from.y, -1.0, 1.0)) * 180 / M_PI)};
+            if (ImGui::SliderFloat2("sun azimuth, elevation", angles, -180.0f, 180.0f, "%.0f deg")) {
+                const double az = angles[0] * M_PI / 180, el = std::clamp(double(angles[1]), -89.0, 89.0) * M_PI / 180;
+                d = -1.0 * Vec3d{std::cos(el) * std::cos(az), std::sin(el), std::cos(el) * std::sin(az)};
+            }
+        } else if (!li.lights.point.empty()) {
+            const auto box = gl::gridWorldBox(octree.grid);
+            Vec3d& p = li.lights.point[0].position;
+            float xyz[3] = {float(p.x), float(p.y), float(p.z)};
+            const float lo = float(std::min({box[0].x, box[0].y, box[0].z})),
+                        hi = float(std::max({box[1].x, box[1].y, box[1].z}));
+            if (ImGui::SliderFloat3("point light", xyz, lo, hi, "%.3f")) p = {xyz[0], xyz[1], xyz[2]};
+        }
+        float exposure = float(li.exposure);
+        if (ImGui::SliderFloat("exposure", &exposure, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+            li.exposure = exposure;
+        if (li.mode != gl::Illumination::Mode::Global) return;
+        ImGui::SliderInt("GI cones", &li.cones, 1, 16);
+        float aperture = float(li.apertureDegrees), offset = float(li.offset), specular = float(li.specular.x),
+              glossy = float(li.specularApertureDegrees);
+        if (ImGui::SliderFloat("GI aperture", &aperture, 10.0f, 120.0f, "%.0f deg")) li.apertureDegrees = aperture;
+        if (ImGui::SliderFloat("GI offset", &offset, 0.0f, 8.0f, "%.2f texels")) li.offset = offset;
+        ImGui::Checkbox("six-way radiance", &li.directional);
+        if (ImGui::SliderFloat("specular", &specular, 0.0f, 1.0f, "%.2f")) li.specular = {specular, specular, specular};
+        if (li.specular.x > 0 && ImGui::SliderFloat("specular aperture", &glossy, 2.0f, 90.0f, "%.0f deg"))
+            li.specularApertureDegrees = glossy;
     }
 
     void panel(double frameMs)
@@ -266,6 +324,7 @@ struct ViewerState {
         } else {
             l.ao.only = false;
         }
+        lightingPanel();
         int levels[2] = {int(std::min<uint32_t>(l.firstLevel, octree.brickLevel)),
                          int(std::min<uint32_t>(l.lastLevel, octree.brickLevel))};
         if (ImGui::SliderInt2("outline levels", levels, 0, int(octree.brickLevel))) {

@@ -795,6 +795,16 @@ TEST_F(Cli, ViewWindowRevoxelizesLiveToTheVoxelsOfVoxelize)
     EXPECT_GT(bytes(path("ao.png")).size(), 100u);
     EXPECT_EQ(bytes(path("svo-view-2.png")), bytes(path("ao.png")));
 
+    // 'l' turns direct light on, a second 'l' adds the bounce: the same
+    // pictures as --render direct and --render gi.
+    const auto lit = runSvo("view -r 32 --size 160x120 --frames 6 --keys lplp", "cd " + path("") + " && " + xvfb);
+    ASSERT_EQ(lit.code, 0) << lit.out;
+    ASSERT_EQ(runSvo("view -r 32 --size 160x120 --render direct --screenshot " + path("direct.png")).code, 0);
+    ASSERT_EQ(runSvo("view -r 32 --size 160x120 --render gi --screenshot " + path("gi.png")).code, 0);
+    EXPECT_EQ(bytes(path("svo-view-3.png")), bytes(path("direct.png")));
+    EXPECT_EQ(bytes(path("svo-view-4.png")), bytes(path("gi.png")));
+    EXPECT_NE(bytes(path("direct.png")), bytes(path("gi.png")));
+
     for (const char* args : {"--frames 3 --screenshot x.png", "--keys + --screenshot x.png", "--frames -1",
                              "--save x.svo --screenshot x.png"}) {
         const auto bad = runSvo(std::string("view -r 8 ") + args, xvfb);
