@@ -144,6 +144,41 @@ TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
             EXPECT_EQ(dark, 64); // the occluder's 8 x 8 shadow
             EXPECT_EQ(lit, 32 * 32 - 64);
         }
+
+        // The picture's direct light (Illumination::Direct, linear) is each
+        // visible voxel's injected irradiance on the side the camera sees,
+        // times ρ/π: from above, the volume's radiance of the plane, or of the
+        // occluder's top where the light is above it (the sun; the point
+        // light at y = 12 lights only its underside); from below, nothing.
+        svo::gl::ViewLayers layers;
+        layers.outlines = false;
+        layers.light = *light;
+        layers.light.gamma = 1.0;
+        for (const double side : {1.0, -1.0}) {
+            svo::gl::ViewCamera camera; // one pixel a voxel, pixel centres on voxel centres
+            camera.orthographic = true;
+            camera.target = {15.5, 10.0, 15.5};
+            camera.eye = camera.target + Vec3d{0, 100.0 * side, 0};
+            camera.up = {0, 0, -side};
+            camera.height = 32;
+            const svo::gl::Image picture = view.render(camera, 32, 32, layers);
+            for (int row = 0; row < 32; ++row)
+                for (int col = 0; col < 32; ++col) {
+                    const uint8_t* px = picture.pixel(col, row);
+                    if (side < 0) {
+                        for (int c = 0; c < 3; ++c) ASSERT_EQ(px[c], 0) << "from below " << col << "," << row;
+                        continue;
+                    }
+                    const int x = col, z = row;
+                    const int y = x >= 8 && x < 16 && z >= 8 && z < 16 ? 20 : 4;
+                    const size_t i = texel(l0, x, y, z);
+                    const bool facesLight = y == 4 || light == &sun;
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_NEAR(px[c] / 255.0, facesLight ? std::min(1.0, double(l0.radiance[i + size_t(c)])) : 0.0,
+                                    0.5 / 255 + halfTolerance(l0.radiance[i + size_t(c)]))
+                            << "from above " << col << "," << row << " channel " << c;
+                }
+        }
     }
 }
 

@@ -4,7 +4,8 @@
 // opacity = its voxels over the voxels of one face of the block, at most 1
 // (a surface crossing a box of k³ voxels fills about k² of them), the same
 // along x, y and z; radiance = the mean outgoing radiance of its voxels,
-// ρ/π · irradiance (two-sided Lambertian), times that opacity; and the lit
+// ρ/π · irradiance (two-sided Lambertian), times that opacity; each voxel's
+// irradiance by side, for the picture's direct light; and the lit
 // side (view_lights.glsl), averaged over the voxels by their light, which
 // six-way radiance (Illumination::directional) reads. With uLit 0 (ambient
 // occlusion's opacity volume), opacity alone: no lights, no normals.
@@ -46,8 +47,10 @@ void main()
                     vec3 n = voxelNormal(v);
                     float len = length(n);
                     n = len > 1e-6 ? n / len : vec3(0.0);
-                    vec3 side;
-                    vec3 l = voxelAlbedo(v) * (1.0 / 3.14159265) * irradiance(vec3(cell) + 0.5, n, true, side);
+                    vec3 front, back, side;
+                    irradianceBySide(vec3(cell) + 0.5, n, front, back, side);
+                    storeIrradiance(v, front, back); // the picture's direct light
+                    vec3 l = voxelAlbedo(v) * (1.0 / 3.14159265) * (front + back);
                     sum += l;
                     litSide += dot(l, vec3(1.0)) * side;
                 }

@@ -13,6 +13,12 @@ layout(std430, binding = SVO_BIND_VIEW_LIGHTS) readonly restrict buffer LightLis
 layout(std430, binding = SVO_BIND_VIEW_NORMALS) readonly restrict buffer Normals { float normals[]; };
 layout(std430, binding = SVO_BIND_VIEW_ALBEDO) readonly restrict buffer Albedo { float albedos[]; };
 
+// Written by the injection, read by the picture: per voxel in voxel order,
+// the irradiance on the side its normal points to and on the other (rgb
+// each, as halves: front.rg, front.b back.r, back.gb), so that a picture's
+// pixel needs no shadow ray of its own.
+layout(std430, binding = SVO_BIND_VIEW_DIRECT) restrict buffer DirectLight { uvec4 directLight[]; };
+
 uniform int uLightCount;
 uniform float uShadowOffset; // voxels
 uniform float uVoxelSize;    // world units per voxel: point lights fall off with world distance
@@ -28,15 +34,16 @@ vec3 voxelAlbedo(uint v)
 }
 
 /// The irradiance Σ E cos θ V (Σ I cos θ / r² V for point lights) at the
-/// centre c of a voxel with unit normal n. Two-sided: each light lights the
-/// side it is on (the voxel stands for a thin surface seen from both sides);
-/// one-sided: only lights on n's side count. n = 0 (a voxel whose normals
-/// cancel) takes every light as if facing it. `litSide` gets the normal
+/// centre c of a voxel with unit normal n, from the lights on n's side
+/// (`front`) and from those on the other side (`back`): a voxel stands for
+/// a thin surface seen from both sides. n = 0 (a voxel whose normals cancel)
+/// takes every light as if facing it, in front. `litSide` gets the normal
 /// turned to each light's side, averaged by the light each gives (0 when
 /// none arrives; short when lights reach both sides).
-vec3 irradiance(vec3 c, vec3 n, bool twoSided, out vec3 litSide)
+void irradianceBySide(vec3 c, vec3 n, out vec3 front, out vec3 back, out vec3 litSide)
 {
-    vec3 sum = vec3(0.0);
+    front = vec3(0.0);
+    back = vec3(0.0);
     litSide = vec3(0.0);
     float power = 0.0;
     for (int i = 0; i < uLightCount; ++i) {
@@ -58,26 +65,41 @@ vec3 irradiance(vec3 c, vec3 n, bool twoSided, out vec3 litSide)
         }
         bool isotropic = dot(n, n) == 0.0;
         float cosTheta = isotropic ? 1.0 : dot(n, l);
-        if (twoSided) cosTheta = abs(cosTheta);
-        if (cosTheta <= 0.0) continue;
-        vec3 side = isotropic ? l : (dot(n, l) >= 0.0 ? n : -n);
+        if (cosTheta == 0.0) continue;
+        vec3 side = isotropic ? l : (cosTheta > 0.0 ? n : -n);
         vec3 o = c + uShadowOffset * side;
         if (a.w != 0.0) reach = dot(a.xyz - o, l);
         VoxelHit h;
         if (reach > 0.0 && marchOctree(o, l, 0.0, reach, h)) continue;
-        sum += e * cosTheta;
-        float p = dot(e, vec3(1.0)) * cosTheta;
+        if (cosTheta > 0.0) front += e * cosTheta;
+        else back -= e * cosTheta;
+        float p = dot(e, vec3(1.0)) * abs(cosTheta);
         litSide += p * side;
         power += p;
     }
     if (power > 0.0) litSide /= power;
-    return sum;
 }
 
-vec3 irradiance(vec3 c, vec3 n, bool twoSided)
+/// One-sided: the lights on n's side (n not 0).
+vec3 irradiance(vec3 c, vec3 n)
 {
-    vec3 litSide;
-    return irradiance(c, n, twoSided, litSide);
+    vec3 front, back, litSide;
+    irradianceBySide(c, n, front, back, litSide);
+    return front;
+}
+
+/// Voxel v's stored irradiance on the side of unit normal n (`front`: n is
+/// the voxel's normal, not its opposite).
+vec3 storedIrradiance(uint v, bool front)
+{
+    uvec4 p = directLight[v];
+    vec2 a = unpackHalf2x16(p.x), b = unpackHalf2x16(p.y), c = unpackHalf2x16(p.z);
+    return front ? vec3(a, b.x) : vec3(b.y, c);
+}
+
+void storeIrradiance(uint v, vec3 front, vec3 back)
+{
+    directLight[v] = uvec4(packHalf2x16(front.rg), packHalf2x16(vec2(front.b, back.r)), packHalf2x16(back.gb), 0u);
 }
 
 /// The share of a texel's light that leaves towards unit direction v when

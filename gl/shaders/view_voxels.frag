@@ -60,13 +60,19 @@ void main()
         // Lit: the surface's normal (its channel, turned to the viewer; the
         // face's where the normals cancel), direct light at the voxel's
         // centre, and for GI the albedo times the light the cones gather.
+        // The direct light on the side the camera sees was computed once per
+        // voxel by the injection; a voxel without a normal takes the face's,
+        // which depends on the ray, and marches its own shadow rays.
         uint v = voxelIndex(hit.brick, hit.bit);
-        vec3 n = voxelNormal(v);
-        n = length(n) > 1e-6 ? normalize(n) : face;
-        if (dot(n, d) > 0.0) n = -n;
+        vec3 m = voxelNormal(v);
+        bool hasNormal = length(m) > 1e-6;
+        vec3 n = hasNormal ? normalize(m) : face;
+        bool front = dot(n, d) <= 0.0;
+        if (!front) n = -n;
         vec3 c = vec3(hit.cell) + 0.5;
         vec3 albedo = voxelAlbedo(v);
-        vec3 radiance = albedo * (1.0 / 3.14159265) * irradiance(c, n, false);
+        vec3 e = hasNormal ? storedIrradiance(v, front) : irradiance(c, n);
+        vec3 radiance = albedo * (1.0 / 3.14159265) * e;
         if (uLightMode == 2) {
             radiance += albedo * hemisphereGather(c, n, true).rgb;
             // Glossy: one cone along the view ray mirrored about the normal.

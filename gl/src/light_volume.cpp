@@ -136,6 +136,7 @@ bool sameInjection(const Illumination& a, const Illumination& b)
 void bindLights(const Program& p, const LightVolumeTextures& v, const ViewBuffers& o, const Illumination& l)
 {
     v.lights.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_LIGHTS);
+    v.direct.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_DIRECT);
     o.normals->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_NORMALS);
     (o.colors ? o.colors : o.normals)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ALBEDO);
     o.voxelStart->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_VOXEL_START);
@@ -181,6 +182,7 @@ LightVolumeTextures buildLightVolume(const Context& context, const ViewBuffers& 
 {
     checkIllumination(l, o);
     LightVolumeTextures v = allocateVolume(o.grid, l.volumeResolution, true, l.directional);
+    v.direct = Buffer("voxels' direct light", std::max<uint64_t>(o.normals->bytes() / 12, 1) * 16, nullptr, 0);
     injectLight(context, o, l, v);
     return v;
 }
@@ -279,7 +281,7 @@ void fillVolume(const Context& context, const ViewBuffers& o, const Illumination
         }
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     for (GLuint unit = 0; unit < 8; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
     glUseProgram(0);
     checkGl("mip-mapping the lighting volume");

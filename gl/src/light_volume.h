@@ -36,6 +36,7 @@ struct LightVolumeTextures {
     /// texel's lit side (the normal turned to its lights, averaged by light)
     Texture3D litSide;
     Buffer lights;      ///< 2 vec4 per light, cell space (view_lights.glsl)
+    Buffer direct;      ///< per voxel: irradiance on each side, packed halves (view_lights.glsl), lit volumes only
     int lightCount = 0;
     uint32_t texelVoxels = 1;
     int size[3] = {0, 0, 0}; ///< level 0, texels

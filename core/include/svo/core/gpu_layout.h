@@ -135,6 +135,7 @@ SVO_CONST(uint) kSumWords = 8u;
 #define SVO_BIND_VIEW_LIGHTS 6      /* lighting: 2 vec4 per light, cell space (light_volume.glsl) */
 #define SVO_BIND_VIEW_NORMALS 7     /* lighting: the normal channel, 3 floats per voxel, voxel order */
 #define SVO_BIND_VIEW_ALBEDO 8      /* lighting: the colour channel, 3 floats per voxel (or unused) */
+#define SVO_BIND_VIEW_DIRECT 9      /* lighting: per voxel, the irradiance on its normal's side and on the other, packed halves (view_lights.glsl) */
 /* Lighting volume (gl/src/light_volume.cpp): texture and image units. */
 #define SVO_UNIT_LIGHT_OPACITY 0  /* texture: rgb = opacity seen along x, y, z */
 #define SVO_UNIT_LIGHT_RADIANCE 1 /* texture: rgb = radiance x coverage, a = coverage */
@@ -246,7 +247,8 @@ static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRIC
                              SVO_BIND_ATTRIBUTE_SUMS}));
 static_assert(distinctSlots({SVO_BIND_VIEW_NODES, SVO_BIND_VIEW_BRICKS, SVO_BIND_VIEW_ORIGINS,
                              SVO_BIND_VIEW_VOXEL_START, SVO_BIND_VIEW_ATTRIBUTE, SVO_BIND_VIEW_OPACITY,
-                             SVO_BIND_VIEW_LIGHTS, SVO_BIND_VIEW_NORMALS, SVO_BIND_VIEW_ALBEDO}));
+                             SVO_BIND_VIEW_LIGHTS, SVO_BIND_VIEW_NORMALS, SVO_BIND_VIEW_ALBEDO,
+                             SVO_BIND_VIEW_DIRECT}));
 static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_FIELD_ITEMS,
                              SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
                              SVO_BIND_FIELD_FLIPS, SVO_BIND_FIELD_COUNTERS}));
