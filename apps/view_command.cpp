@@ -331,6 +331,9 @@ void addViewCommand(CLI::App& app)
                                                     "self-occlusion)")
         ->capture_default_str();
     cmd->add_option("--ao-distance", args->ao.distance, "AO cones stop this far away, voxels")->capture_default_str();
+    cmd->add_option("--ao-step", args->ao.step, "AO cone steps, share of the cone's width, (0, 1] (smaller: slower, "
+                                                "fewer thin walls missed)")
+        ->capture_default_str();
     cmd->add_option("--ao-source", args->aoSource, "AO opacity: volume (the lighting volume's opacity, mip-mapped "
                                                    "and sampled trilinearly: closer to a path tracer, faster) or octree "
                                                    "(the octree's nodes as the mip-map: no extra memory, fewer leaks "
@@ -362,6 +365,8 @@ void addViewCommand(CLI::App& app)
     cmd->add_option("--gi-aperture", args->light.apertureDegrees, "gi: cone aperture, degrees")->capture_default_str();
     cmd->add_option("--gi-offset", args->light.offset, "gi: cones start this far out along the normal, texels of the "
                                                        "lighting volume (less: more contact light, more self-lighting)")
+        ->capture_default_str();
+    cmd->add_option("--gi-step", args->light.step, "gi: cone steps, share of the cone's width, (0, 1]")
         ->capture_default_str();
     cmd->add_option("--gi-distance", args->light.distance, "gi: cones stop this far away, voxels (0: the grid's "
                                                            "diagonal)")

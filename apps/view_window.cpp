@@ -234,7 +234,7 @@ struct ViewerState {
         }
     }
 
-    /// The lighting controls: mode, the first light, the cones, exposure.
+    /// The lighting controls: mode, the first light, exposure, the cones.
     /// A moved light re-injects the volume on the next frame.
     void lightingPanel()
     {
@@ -270,6 +270,8 @@ struct ViewerState {
               glossy = float(li.specularApertureDegrees);
         if (ImGui::SliderFloat("GI aperture", &aperture, 10.0f, 120.0f, "%.0f deg")) li.apertureDegrees = aperture;
         if (ImGui::SliderFloat("GI offset", &offset, 0.0f, 8.0f, "%.2f texels")) li.offset = offset;
+        float step = float(li.step);
+        if (ImGui::SliderFloat("GI step", &step, 0.05f, 1.0f, "%.2f of the cone")) li.step = step;
         ImGui::Checkbox("six-way radiance", &li.directional);
         if (ImGui::SliderFloat("specular", &specular, 0.0f, 1.0f, "%.2f")) li.specular = {specular, specular, specular};
         if (li.specular.x > 0 && ImGui::SliderFloat("specular aperture", &glossy, 2.0f, 90.0f, "%.0f deg"))
@@ -317,6 +319,8 @@ struct ViewerState {
                 l.ao.offset = offset;
             if (ImGui::SliderFloat("AO distance", &distance, 1.0f, 1024.0f, "%.0f voxels", ImGuiSliderFlags_Logarithmic))
                 l.ao.distance = distance;
+            float step = float(l.ao.step);
+            if (ImGui::SliderFloat("AO step", &step, 0.05f, 1.0f, "%.2f of the cone")) l.ao.step = step;
             int filter = int(l.ao.filter);
             static constexpr const char* kFilters[] = {"average", "max"};
             if (!volume && ImGui::Combo("AO filter", &filter, kFilters, IM_ARRAYSIZE(kFilters)))

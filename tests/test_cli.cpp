@@ -726,7 +726,8 @@ TEST_F(Cli, ViewLightsTheVoxelsAndRefusesBadLighting)
                              "--render direct --albedo 2", "--render gi --light-volume 100", "--render gi --gi-cones 0",
                              "--render gi --gi-emission sideways", "--light sun:0,-1,0", "--render gi --specular 1.5",
                              "--render direct --specular 0.5", "--render gi --specular 0.5 --specular-aperture 0",
-                             "--render ao --ao-source mesh", "--render ao --light-volume 100"}) {
+                             "--render ao --ao-source mesh", "--render ao --light-volume 100", "--render gi --gi-step 0",
+                             "--render ao --ao-step 1.5"}) {
         const auto r = runSvo(std::string("view -r 8 --screenshot ") + path("x.png") + " " + args);
         EXPECT_EQ(r.code, 1) << args;
         EXPECT_EQ(lineCount(r.out), 1u) << args << ": " << r.out;

@@ -464,6 +464,7 @@ TEST(Lighting, BadLightingIsAClearError)
     bad([](Illumination& l) { l.albedo = {1.5, 0, 0}; }, "albedo");
     bad([](Illumination& l) { l.exposure = 0; }, "exposure");
     bad([](Illumination& l) { l.specular = {0, 2, 0}; }, "specular");
+    bad([](Illumination& l) { l.step = 0; }, "cone step");
     bad([](Illumination& l) { l.specularApertureDegrees = 180; }, "specular cone aperture");
     // A grid too wide for the volume: a texel holds at most 8³ voxels.
     const svo::Octree wide = octreeOf(unitGrid(1024, 8, 8), {{1000, 1, 1}}, {{1, 0, 0}});

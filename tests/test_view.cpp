@@ -656,6 +656,19 @@ TEST(View, AmbientOcclusionOfAnOpenPlaneAndInsideAClosedBox)
             EXPECT_LT(highest, source == Source::Volume ? 0.35 : filter == Filter::Average ? 0.2 : 0.05)
                 << "the floor of a closed box, " << what;
         }
+    // Finer steps keep both answers (the plane's exactly, the box's within
+    // its bias).
+    l.ao.step = 0.25;
+    for (const Source source : {Source::Volume, Source::Octree}) {
+        l.ao.source = source;
+        l.ao.filter = Filter::Max;
+        EXPECT_GT(aoAt(planeView.render(above.camera, 64, 64, l), 32, 32), 0.99);
+        const Image dark = boxView.render(inside, 60, 60, l);
+        EXPECT_LT(aoAt(dark, 30, 30), source == Source::Volume ? 0.35 : 0.05);
+    }
+    l.ao.step = 1.5;
+    EXPECT_THROW(planeView.render(above.camera, 8, 8, l), svo::Error);
+    l.ao.step = 0.5;
     l.ao.source = Source::Octree;
     // AO alone: grey, the value that scales the lit voxel colour (at the
     // pixel where the Average filter leaks most, so that it is not 0).

@@ -16,6 +16,7 @@ uniform int uAoCones;          // 0: no AO; else 1 (the normal) or 1 + a ring of
 uniform float uAoTanHalf;      // tan of half the cone aperture
 uniform float uAoOffset;       // start along the normal, voxels
 uniform float uAoDistance;     // cones stop here, voxels
+uniform float uAoStep;         // steps: this share of the cone's width
 uniform uint uAoFilter;        // 0: face-share opacity; 1: at least the most opaque child's
 
 /// The opacity of the cell of `level` holding cell-space point p: levels
@@ -85,10 +86,11 @@ float coneOcclusion(vec3 o, vec3 dir, vec3 p, vec3 n)
         }
         float a = behind ? 0.0 : opacityAt(q, level);
         // A sample stands for a slab as long as the cone is wide; the step
-        // is half that, and no longer than the cell, so that a finer cell
+        // is uAoStep of that (a half by default), and no longer than the
+        // cell at that default, so that a finer cell
         // near the surface cannot step over a thin wall. The opacity is
         // corrected for the path the step covers.
-        float step = min(0.5 * width, cellWidth);
+        float step = uAoStep * min(width, 2.0 * cellWidth);
         a = 1.0 - pow(1.0 - a, step / cellWidth);
         occlusion += (1.0 - occlusion) * a;
         t += step;

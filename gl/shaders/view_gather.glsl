@@ -5,7 +5,7 @@
 // radiance a ray along each axis direction sees, composited front to back,
 // so that a wall hides the light behind it at every level. A cone samples,
 // at distance t, the level whose texels are as wide as the cone there (a
-// finer one near the surface), steps by half that width at most, and
+// finer one near the surface), steps by a share of that width, and
 // composites front to back. Ambient occlusion
 // (AmbientOcclusion::Source::Volume) takes the opacity alone.
 
@@ -27,6 +27,7 @@ uniform float uTexelCells;    // voxels per texel edge at level 0
 uniform float uConeTanHalf;   // tan of half the cone aperture
 uniform float uConeDistance;  // cones stop here, voxels
 uniform float uConeOffset;    // cones start this far out along the normal, voxels
+uniform float uConeStep;      // steps: this share of the cone's width (of twice the sample's near the surface)
 uniform int uCones;           // 1: the normal; n: the normal and a ring of n - 1
 uniform uint uDirectional;    // 1: the volume has six-way radiance from level 1 up
 
@@ -48,9 +49,10 @@ vec4 radianceAlong(vec3 dir, vec3 share, vec3 tc, float lod)
 /// levels reaches 1.5 texels of the coarser one, up to twice its width, and
 /// a surface's texel can sit half a texel above it, so a sample takes a
 /// level no wider than a third of its height above the surface (then an
-/// open plane is unoccluded), and the cone steps by at most that width, so
-/// that it cannot step over a thin wall; each sample's opacity is corrected
-/// to the path its step covers.
+/// open plane is unoccluded), and the cone steps by uConeStep of its width
+/// but (at the default of a half) by at most the sample's width, so that it
+/// cannot step over a thin wall; each sample's opacity is corrected to the
+/// path its step covers.
 vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit, float tanHalf)
 {
     vec3 share = dir * dir; // directional opacity, weighted by the direction's squares (they sum to 1)
@@ -61,7 +63,7 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit, float tanHalf)
         float above = height + t * dot(dir, n);
         float cone = max(uTexelCells, 2.0 * t * tanHalf);
         float width = max(uTexelCells, min(cone, above / 3.0));
-        float stride = min(0.5 * cone, width);
+        float stride = uConeStep * min(cone, 2.0 * width);
         float lod = log2(width / uTexelCells);
         vec3 tc = (o + t * dir) * uVolumeScale;
         float a = dot(share, textureLod(uOpacityVolume, tc, lod).rgb);

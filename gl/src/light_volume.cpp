@@ -107,6 +107,7 @@ void checkIllumination(const Illumination& l, const ViewBuffers& octree)
         bad(fmt::format("specular cone aperture {} degrees is outside (0, 180)", l.specularApertureDegrees));
     if (!(l.offset >= 0 && l.offset < 1e6)) bad(fmt::format("cone offset {} voxels is not in [0, 1e6)", l.offset));
     if (!(l.distance >= 0 && l.distance <= 1e7)) bad(fmt::format("cone distance {} voxels is not in [0, 1e7]", l.distance));
+    if (!(l.step > 0 && l.step <= 1)) bad(fmt::format("cone step {} is not in (0, 1]", l.step));
     if (!(l.shadowOffset >= 0 && l.shadowOffset < 1e6))
         bad(fmt::format("shadow offset {} voxels is not in [0, 1e6)", l.shadowOffset));
     if (!(l.exposure > 0 && std::isfinite(l.exposure))) bad(fmt::format("exposure {} is not positive", l.exposure));
@@ -148,8 +149,9 @@ void bindLights(const Program& p, const LightVolumeTextures& v, const ViewBuffer
 }
 
 void bindOpacityVolume(const Program& p, const LightVolumeTextures& v, const GridSpec& grid, int cones,
-                       double apertureDegrees, double offset, double distance)
+                       double apertureDegrees, double offset, double distance, double step)
 {
+    p.set("uConeStep", float(step));
     v.opacity.bindTexture(SVO_UNIT_LIGHT_OPACITY);
     p.set("uDirectional", 0u);
     const double k = v.texelVoxels;
@@ -166,7 +168,7 @@ void bindOpacityVolume(const Program& p, const LightVolumeTextures& v, const Gri
 void bindLightVolume(const Program& p, const LightVolumeTextures& v, const ViewBuffers& o, const Illumination& l)
 {
     bindLights(p, v, o, l);
-    bindOpacityVolume(p, v, o.grid, l.cones, l.apertureDegrees, l.offset, l.distance);
+    bindOpacityVolume(p, v, o.grid, l.cones, l.apertureDegrees, l.offset, l.distance, l.step);
     v.radiance.bindTexture(SVO_UNIT_LIGHT_RADIANCE);
     const bool sixWay = v.built.directional && v.opacity.levels() > 1;
     if (sixWay) {

@@ -64,9 +64,10 @@ LightVolumeTextures buildOpacityVolume(const Context& context, const ViewBuffers
 
 /// Binds the volume's opacity and sets the cone uniforms of `program` (one
 /// that includes view_gather.glsl) for `cones` cones of `apertureDegrees`,
-/// from `offset` to `distance` voxels (0: the grid's diagonal), isotropic.
+/// from `offset` texels to `distance` voxels (0: the grid's diagonal),
+/// stepping by `step` of the cone's width, isotropic.
 void bindOpacityVolume(const Program& program, const LightVolumeTextures& volume, const GridSpec& grid, int cones,
-                       double apertureDegrees, double offset, double distance);
+                       double apertureDegrees, double offset, double distance, double step);
 
 /// Whether a volume injected for `a` is the one `b` needs.
 bool sameInjection(const Illumination& a, const Illumination& b);

@@ -445,10 +445,11 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         }
         const AmbientOcclusion& ao = layers.ao;
         if (ao.cones < 0 || ao.cones > 16 || (ao.only && ao.cones == 0) || !(ao.apertureDegrees > 0 && ao.apertureDegrees < 180) ||
-            !(ao.offset >= 0 && ao.offset < 1e6) || !(ao.distance > 0 && ao.distance <= 1e7))
+            !(ao.offset >= 0 && ao.offset < 1e6) || !(ao.distance > 0 && ao.distance <= 1e7) ||
+            !(ao.step > 0 && ao.step <= 1))
             throw Error(fmt::format("octree view: ambient occlusion with {} cones (0 to 16; 1 or more to draw AO alone), aperture {} degrees "
-                                    "(0 to 180), offset {} and distance {} voxels (0 or more, positive)",
-                                    ao.cones, ao.apertureDegrees, ao.offset, ao.distance));
+                                    "(0 to 180), offset {} and distance {} voxels (0 or more, positive), step {} (0 to 1)",
+                                    ao.cones, ao.apertureDegrees, ao.offset, ao.distance, ao.step));
         v.opacity.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_OPACITY);
         const Program& p = context.program({"view_fullscreen.vert", "view_voxels.frag"});
         const Illumination& light = layers.light;
@@ -462,7 +463,7 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
             // cones the volume is neither built nor sampled.
             if (ao.cones > 0)
                 bindOpacityVolume(p, v.opacityVolume(context, ao.volumeResolution), v.grid, ao.cones,
-                                  ao.apertureDegrees, ao.offset, ao.distance);
+                                  ao.apertureDegrees, ao.offset, ao.distance, ao.step);
             else
                 p.set("uCones", 0);
             if (v.normals) {
@@ -480,6 +481,7 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         p.set("uAoTanHalf", float(std::tan(ao.apertureDegrees * M_PI / 360.0)));
         p.set("uAoOffset", float(ao.offset));
         p.set("uAoDistance", float(ao.distance));
+        p.set("uAoStep", float(ao.step));
         p.set("uAoFilter", ao.filter == AmbientOcclusion::Filter::Max ? 1u : 0u);
         p.set("uAoOnly", ao.only ? 1u : 0u);
         p.setMatrix("uInverseViewProjection", inverseViewProjection.data());

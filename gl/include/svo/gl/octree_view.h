@@ -87,6 +87,10 @@ struct AmbientOcclusion {
     /// about two texels out of it; Octree, in voxels.
     double offset = 2.0;
     double distance = 32.0;       ///< cones stop here, voxels
+    /// Each step, this share of the cone's width there, (0, 1]: smaller is
+    /// slower and misses thinner walls less. Near the surface, where a
+    /// sample is finer than the cone, at most twice the share of its width.
+    double step = 0.5;
     Source source = Source::Volume;
     uint32_t volumeResolution = 256; ///< Volume: its largest side, texels: a power of two, 8 to 2048
     Filter filter = Filter::Max;  ///< Octree: how node opacities are filtered up the octree
@@ -124,6 +128,7 @@ struct Illumination {
     double apertureDegrees = 60;          ///< full cone angle, (0, 180)
     double offset = 1.5;                  ///< cones start this far out along the normal, texels of level 0 (voxels while a texel is one voxel)
     double distance = 0;                  ///< cones stop here, voxels; 0: the grid's diagonal
+    double step = 0.5;                    ///< cone steps, share of the cone's width, (0, 1] (AmbientOcclusion::step)
     /// Six-way radiance (Crassin's anisotropic mip-map): from level 1 up, the
     /// radiance a ray along each of the six axis directions sees, composited
     /// front to back, so that a wall hides what lies behind it at every
