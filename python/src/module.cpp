@@ -428,12 +428,69 @@ const svo::gl::Context& pictureContext()
     return *context;
 }
 
+/// A number, or three (r, g, b), as svo's colours and light powers.
+svo::Vec3d colorOf(const py::handle& h, const std::string& what)
+{
+    if (py::isinstance<py::float_>(h) || py::isinstance<py::int_>(h)) {
+        const double v = py::cast<double>(h);
+        return {v, v, v};
+    }
+    try {
+        const auto c = py::cast<std::array<double, 3>>(h);
+        return {c[0], c[1], c[2]};
+    } catch (const py::cast_error&) {
+        badValue(what + ": expected a number or (r, g, b)");
+    }
+}
+
+/// [('sun', (dx, dy, dz)[, E]) or ('point', (x, y, z)[, I]), ...], as svo
+/// view --light: a sun travelling along d with irradiance E, a point light
+/// of intensity I; E and I a number or (r, g, b), pi by default.
+svo::Lights lightsOf(const py::iterable& list)
+{
+    const std::string form = "lights: each light is ('sun', (dx, dy, dz)[, E]) or ('point', (x, y, z)[, I])";
+    svo::Lights out;
+    for (const py::handle& item : list) {
+        if (!py::isinstance<py::tuple>(item) && !py::isinstance<py::list>(item)) badValue(form);
+        const py::sequence t = py::reinterpret_borrow<py::sequence>(item);
+        if (t.size() < 2 || t.size() > 3 || !py::isinstance<py::str>(t[0])) badValue(form);
+        const std::string kind = py::cast<std::string>(t[0]);
+        std::array<double, 3> v{};
+        try {
+            v = py::cast<std::array<double, 3>>(t[1]);
+        } catch (const py::cast_error&) {
+            badValue(form);
+        }
+        const svo::Vec3d power = t.size() == 3 ? colorOf(t[2], "lights") : svo::Vec3d{M_PI, M_PI, M_PI};
+        if (kind == "sun") out.directional.push_back({{v[0], v[1], v[2]}, power});
+        else if (kind == "point") out.point.push_back({{v[0], v[1], v[2]}, power});
+        else badValue(form + ", got '" + kind + "'");
+    }
+    return out;
+}
+
 /// Octree.render: one frame of the octree view, (H, W, 4) uint8, rows from the top.
 py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, const std::string& view,
                                   const std::vector<std::string>& layers, std::optional<std::pair<int, int>> levels,
-                                  const std::string& color, int ao, bool aoOnly, const std::string& aoSource)
+                                  const std::string& color, int ao, bool aoOnly, const std::string& aoSource,
+                                  const std::string& lighting, const std::optional<py::iterable>& lights,
+                                  const py::object& albedo, const py::object& specular)
 {
     svo::gl::ViewLayers l;
+    if (lighting != "off" && lighting != "direct" && lighting != "gi")
+        badValue("lighting: expected 'off', 'direct' or 'gi', got '" + lighting + "'");
+    if (lighting != "off") {
+        // As svo view --render direct|gi: lit voxels, no outlines.
+        l.light.mode = lighting == "gi" ? svo::gl::Illumination::Mode::Global : svo::gl::Illumination::Mode::Direct;
+        l.light.lights = lights ? lightsOf(*lights)
+                                : svo::gl::defaultLights(svo::gl::gridWorldBox(p.octree.grid), false);
+        if (!albedo.is_none()) l.light.albedo = colorOf(albedo, "albedo");
+        if (!specular.is_none()) l.light.specular = colorOf(specular, "specular");
+        if (p.octree.attributes.normals.empty())
+            badValue("lighting: the octree has no normal channel (make it with attributes=['normal'])");
+    } else if (lights || !albedo.is_none() || !specular.is_none()) {
+        badValue("lights, albedo and specular light the voxels of lighting='direct' or 'gi'");
+    }
     if (ao < 0 || ao > 16) badValue("ao: expected 0 (none) to 16 cones");
     if (aoSource != "volume" && aoSource != "octree")
         badValue("ao_source: expected 'volume' or 'octree', got '" + aoSource + "'");
@@ -444,6 +501,7 @@ py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, c
     l.ao.only = aoOnly;
     l.voxels = l.outlines = false;
     for (const std::string& name : layers) {
+        if (lighting != "off" && name != "voxels") continue; // lit: the voxels alone
         if (name == "voxels") l.voxels = true;
         else if (name == "outlines") l.outlines = true;
         else if (name == "bricks") l.bricks = true;
@@ -717,14 +775,19 @@ PYBIND11_MODULE(_svo, m)
         .def("render", &renderOctree, py::kw_only(), py::arg("size") = std::pair<int, int>(640, 480),
              py::arg("view") = "front", py::arg("layers") = std::vector<std::string>{"voxels", "outlines"},
              py::arg("levels") = py::none(), py::arg("color") = "flat", py::arg("ao") = 0, py::arg("ao_only") = false,
-             py::arg("ao_source") = "volume",
+             py::arg("ao_source") = "volume", py::arg("lighting") = "off", py::arg("lights") = py::none(),
+             py::arg("albedo") = py::none(), py::arg("specular") = py::none(),
              "A picture of the octree drawn on the GPU, as svo view --screenshot draws it: (H, W, 4) uint8,\n"
              "rows from the top. view: 'front' or an axis view '+x', '-x', '+y', '-y', '+z', '-z';\n"
              "layers: 'voxels', 'outlines', 'bricks'; levels: (first, last) outline levels; color: 'flat'\n"
              "or an attribute channel the octree has ('normal', 'color', 'triangle'); ao: cones of ambient\n"
              "occlusion (0: none, up to 16); ao_only: the voxels as their AO, grey (7 cones unless ao says;\n"
              "as svo view --render ao); ao_source: 'volume' (cones through the lighting volume's opacity)\n"
-             "or 'octree' (through the octree's nodes), as svo view --ao-source.")
+             "or 'octree' (through the octree's nodes), as svo view --ao-source. lighting: 'direct' (direct\n"
+             "light with shadows) or 'gi' (and one diffuse bounce), as svo view --render direct|gi: needs the\n"
+             "normal channel; lights: [('sun', (dx, dy, dz)[, E]), ('point', (x, y, z)[, I]), ...] in world\n"
+             "units, E and I a number or (r, g, b), pi by default (none: a sun from above); albedo and\n"
+             "specular: a number or (r, g, b) in [0, 1].")
         .def("save", [](const PyOctree& p, const std::string& path) {
             if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
                 badValue("save: a .svo file holds a uniform voxel size and a whole-voxel translation; this octree's "

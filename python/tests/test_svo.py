@@ -490,6 +490,28 @@ def test_octree_render_draws_what_svo_view_draws(voxelizer, tmp_path):
         octree.render(ao=17)
     with pytest.raises(ValueError, match="ao_source"):
         octree.render(ao_source="mesh")
+    # Lit voxels: the same pictures as svo view --render direct|gi with the same lights.
+    for lighting in ("direct", "gi"):
+        image = octree.render(size=(64, 48), view="front", lighting=lighting,
+                              lights=[("sun", (0.3, -1, 0.2), 2.0), ("point", (0.2, 0.9, 0.3), (1, 1, 0.5))],
+                              specular=0.2 if lighting == "gi" else None)
+        png = str(tmp_path / f"{lighting}.png")
+        subprocess.run([SVO_EXE, "view", path, "--screenshot", png, "--size", "64x48", "--view", "front",
+                        "--render", lighting, "--light", "sun:0.3,-1,0.2:2", "--light", "point:0.2,0.9,0.3:1,1,0.5"]
+                       + (["--specular", "0.2"] if lighting == "gi" else []), check=True, capture_output=True)
+        assert np.array_equal(image[:, :, :3], read_png_rgb(png))
+        assert image[:, :, 1].max() > 0
+    with pytest.raises(ValueError, match="lighting"):
+        octree.render(lighting="bright")
+    with pytest.raises(ValueError, match="lights"):
+        octree.render(lighting="direct", lights=[("lamp", (1, 2, 3))])
+    with pytest.raises(ValueError, match="lights"):
+        octree.render(lights=[("sun", (0, -1, 0))])  # lights without lighting
+    with pytest.raises(RuntimeError, match="albedo"):
+        octree.render(lighting="direct", albedo=2.0)
+    plain = voxelizer.octree(v, t, resolution=24)
+    with pytest.raises(ValueError, match="normal channel"):
+        plain.render(lighting="gi")
     with pytest.raises(ValueError, match="no 'triangle' channel"):
         octree.render(color="triangle")
     with pytest.raises(ValueError, match="sideways"):
