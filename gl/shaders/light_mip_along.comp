@@ -22,8 +22,7 @@ uniform int uAxis;     // 0, 1, 2: x, y, z
 uniform int uPositive; // 1: the ray travels towards +axis (meets the low child first)
 uniform uint uFromBase; // 1: the level below is level 0
 
-/// As towardsLitSide in view_lights.glsl.
-float towardsLitSide(vec3 m, vec3 v) { return clamp(1.0 + 2.0 * dot(m, v), 0.0, 1.0); }
+#include "lit_side.glsl"
 
 void main()
 {

@@ -9,6 +9,8 @@
 // composites front to back. Ambient occlusion
 // (AmbientOcclusion::Source::Volume) takes the opacity alone.
 
+#include "lit_side.glsl"
+
 layout(binding = SVO_UNIT_LIGHT_OPACITY) uniform sampler3D uOpacityVolume;
 layout(binding = SVO_UNIT_LIGHT_RADIANCE) uniform sampler3D uRadianceVolume;
 // Six-way radiance from level 1 up (uDirectional): premultiplied radiance a

@@ -102,8 +102,3 @@ void storeIrradiance(uint v, vec3 front, vec3 back)
     directLight[v] = uvec4(packHalf2x16(front.rg), packHalf2x16(vec2(front.b, back.r)), packHalf2x16(back.gb), 0u);
 }
 
-/// The share of a texel's light that leaves towards unit direction v when
-/// its lit side is m (light_inject.comp): all of it in front of the lit
-/// side and along it, none behind it; a texel lit from both sides (m short)
-/// sends light both ways.
-float towardsLitSide(vec3 m, vec3 v) { return clamp(1.0 + 2.0 * dot(m, v), 0.0, 1.0); }
