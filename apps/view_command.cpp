@@ -201,6 +201,16 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     if (!a.save.empty()) checkWritable(a.save);
     checkOutputs({a.input}, {a.screenshot, a.save});
 
+    // Options out of range are refused before any voxelizing (the default
+    // lights come once the octree's box is known: a stand-in meanwhile).
+    gl::checkAmbientOcclusion(layers.ao);
+    if (lit) {
+        gl::Illumination probe = layers.light;
+        if (probe.lights.directional.empty() && probe.lights.point.empty())
+            probe.lights.directional.push_back({{0, -1, 0}, {1, 1, 1}});
+        gl::checkIllumination(probe);
+    }
+
     BackendArgs backend = a.backend;
     // Lighting shades by the surface's normal; AO from the volume leaves along
     // it (in a window, AO can be turned on at any time).

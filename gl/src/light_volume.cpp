@@ -80,7 +80,7 @@ void checkVolumeResolution(const GridSpec& grid, uint32_t r, const char* what)
     }
 }
 
-void checkIllumination(const Illumination& l, const ViewBuffers& octree)
+void checkIllumination(const Illumination& l)
 {
     auto bad = [](const std::string& what) { throw Error("octree view: lighting: " + what); };
     if (l.lights.directional.empty() && l.lights.point.empty()) bad("no light: give a directional or a point light");
@@ -105,13 +105,22 @@ void checkIllumination(const Illumination& l, const ViewBuffers& octree)
         bad(fmt::format("specular {},{},{} is outside [0, 1]", l.specular.x, l.specular.y, l.specular.z));
     if (!(l.specularApertureDegrees > 0 && l.specularApertureDegrees < 180))
         bad(fmt::format("specular cone aperture {} degrees is outside (0, 180)", l.specularApertureDegrees));
-    if (!(l.offset >= 0 && l.offset < 1e6)) bad(fmt::format("cone offset {} voxels is not in [0, 1e6)", l.offset));
+    if (!(l.offset >= 0 && l.offset < 1e6)) bad(fmt::format("cone offset {} texels is not in [0, 1e6)", l.offset));
     if (!(l.distance >= 0 && l.distance <= 1e7)) bad(fmt::format("cone distance {} voxels is not in [0, 1e7]", l.distance));
     if (!(l.step > 0 && l.step <= 1)) bad(fmt::format("cone step {} is not in (0, 1]", l.step));
     if (!(l.shadowOffset >= 0 && l.shadowOffset < 1e6))
         bad(fmt::format("shadow offset {} voxels is not in [0, 1e6)", l.shadowOffset));
     if (!(l.exposure > 0 && std::isfinite(l.exposure))) bad(fmt::format("exposure {} is not positive", l.exposure));
     if (!(l.gamma > 0 && std::isfinite(l.gamma))) bad(fmt::format("gamma {} is not positive", l.gamma));
+    const uint32_t r = l.volumeResolution;
+    if (r < 8 || r > 2048 || (r & (r - 1)) != 0)
+        bad(fmt::format("volume resolution {} is not a power of two from 8 to 2048", r));
+}
+
+void checkIllumination(const Illumination& l, const ViewBuffers& octree)
+{
+    checkIllumination(l);
+    auto bad = [](const std::string& what) { throw Error("octree view: lighting: " + what); };
     if (!octree.normals)
         bad("the octree has no normal channel (voxelize the mesh with --attributes normal, or normal,color)");
     checkVolumeResolution(octree.grid, l.volumeResolution, "lighting: volume resolution");

@@ -227,6 +227,20 @@ Lights defaultLights(const std::array<Vec3d, 2>& box, bool inside)
     return l;
 }
 
+void checkAmbientOcclusion(const AmbientOcclusion& ao)
+{
+    if (ao.cones < 0 || ao.cones > 16 || (ao.only && ao.cones == 0) || !(ao.apertureDegrees > 0 && ao.apertureDegrees < 180) ||
+        !(ao.offset >= 0 && ao.offset < 1e6) || !(ao.distance > 0 && ao.distance <= 1e7) ||
+        !(ao.step > 0 && ao.step <= 1))
+        throw Error(fmt::format("octree view: ambient occlusion with {} cones (0 to 16; 1 or more to draw AO alone), aperture {} degrees "
+                                "(0 to 180), offset {} (0 or more), distance {} voxels (positive), step {} (0 to 1)",
+                                ao.cones, ao.apertureDegrees, ao.offset, ao.distance, ao.step));
+    const uint32_t r = ao.volumeResolution;
+    if (ao.source == AmbientOcclusion::Source::Volume && (r < 8 || r > 2048 || (r & (r - 1)) != 0))
+        throw Error(fmt::format("octree view: ambient occlusion: volume resolution {} is not a power of two from 8 to "
+                                "2048", r));
+}
+
 struct OctreeView::Impl {
     GridSpec grid;
     uint32_t brickLevel = 0;
@@ -444,12 +458,7 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
             v.voxelStart->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_VOXEL_START);
         }
         const AmbientOcclusion& ao = layers.ao;
-        if (ao.cones < 0 || ao.cones > 16 || (ao.only && ao.cones == 0) || !(ao.apertureDegrees > 0 && ao.apertureDegrees < 180) ||
-            !(ao.offset >= 0 && ao.offset < 1e6) || !(ao.distance > 0 && ao.distance <= 1e7) ||
-            !(ao.step > 0 && ao.step <= 1))
-            throw Error(fmt::format("octree view: ambient occlusion with {} cones (0 to 16; 1 or more to draw AO alone), aperture {} degrees "
-                                    "(0 to 180), offset {} and distance {} voxels (0 or more, positive), step {} (0 to 1)",
-                                    ao.cones, ao.apertureDegrees, ao.offset, ao.distance, ao.step));
+        checkAmbientOcclusion(ao);
         v.opacity.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_OPACITY);
         const Program& p = context.program({"view_fullscreen.vert", "view_voxels.frag"});
         const Illumination& light = layers.light;

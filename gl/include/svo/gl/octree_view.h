@@ -151,6 +151,15 @@ struct Illumination {
     double gamma = 2.2;                   ///< 1: linear, to compare with a reference
 };
 
+/// Throw svo::Error, in one line naming the option, for options out of
+/// range: what OctreeView::render would refuse, checked before any work
+/// (a command line checks them before it voxelizes). checkIllumination
+/// needs at least one light; what depends on the octree (its normal
+/// channel, a volume resolution too small for its grid) is checked when
+/// drawing.
+void checkIllumination(const Illumination& light);
+void checkAmbientOcclusion(const AmbientOcclusion& ao);
+
 /// The lighting volume as read back (OctreeView::readLightVolume): level 0
 /// first, texels x fastest.
 struct LightVolumeLevel {
