@@ -669,6 +669,23 @@ TEST(View, AmbientOcclusionOfAnOpenPlaneAndInsideAClosedBox)
     l.ao.step = 1.5;
     EXPECT_THROW(planeView.render(above.camera, 8, 8, l), svo::Error);
     l.ao.step = 0.5;
+    // A grid wider than 8 texels a side per texel of the volume: the error
+    // names both ways out; the octree's opacity needs no volume.
+    GridSpec wide = unitGrid(8);
+    wide.dims = {4096, 8, 8};
+    svo::gl::OctreeView wideView(context(), octreeOf(wide, {{4000, 1, 1}}));
+    l.ao.source = Source::Volume;
+    try {
+        wideView.render(above.camera, 8, 8, l);
+        ADD_FAILURE() << "a 4096-wide grid with a 256 volume drew AO";
+    } catch (const svo::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("--ao-source octree"), std::string::npos) << e.what();
+    }
+    l.ao.volumeResolution = 512;
+    EXPECT_NO_THROW(wideView.render(above.camera, 8, 8, l));
+    l.ao.volumeResolution = 256;
+    l.ao.source = Source::Octree;
+    EXPECT_NO_THROW(wideView.render(above.camera, 8, 8, l));
     l.ao.source = Source::Octree;
     // AO alone: grey, the value that scales the lit voxel colour (at the
     // pixel where the Average filter leaks most, so that it is not 0).

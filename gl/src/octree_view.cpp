@@ -280,6 +280,11 @@ struct OctreeView::Impl {
     /// The opacity volume of `resolution` texels at most, for AO.
     const LightVolumeTextures& opacityVolume(const Context& context, uint32_t resolution) const
     {
+        if (texelVoxels(grid, resolution) > 8) // a texel holds at most 8³ voxels
+            throw Error(fmt::format("octree view: ambient occlusion: a grid {} voxels wide needs a volume of more "
+                                    "than {} texels a side (--light-volume), or the octree's opacity "
+                                    "(AmbientOcclusion::Source::Octree, --ao-source octree)",
+                                    *std::max_element(grid.dims.begin(), grid.dims.end()), resolution));
         checkVolumeResolution(grid, resolution, "ambient occlusion: volume resolution");
         if (light && light->texelVoxels == texelVoxels(grid, resolution)) return *light;
         light.reset();

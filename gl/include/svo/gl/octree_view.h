@@ -92,7 +92,11 @@ struct AmbientOcclusion {
     /// sample is finer than the cone, at most twice the share of its width.
     double step = 0.5;
     Source source = Source::Volume;
-    uint32_t volumeResolution = 256; ///< Volume: its largest side, texels: a power of two, 8 to 2048
+    /// Volume: its largest side, texels: a power of two, 8 to 2048, and at
+    /// least an eighth of the grid's largest side (a texel holds at most 8³
+    /// voxels: 256 serves grids up to 2048 wide); wider grids are an error
+    /// that names both ways out (a larger volume, or the Octree source).
+    uint32_t volumeResolution = 256;
     Filter filter = Filter::Max;  ///< Octree: how node opacities are filtered up the octree
     bool only = false;            ///< draw the voxels as grey AO alone (no colour or face light), to measure it
 };
