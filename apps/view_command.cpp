@@ -213,8 +213,8 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
 
     BackendArgs backend = a.backend;
     // Lighting shades by the surface's normal; AO from the volume leaves along
-    // it (in a window, AO can be turned on at any time).
-    if (lit || (layers.ao.source == gl::AmbientOcclusion::Source::Volume && (layers.ao.cones > 0 || window)))
+    // it. (The window voxelizes again with normals when either is turned on.)
+    if (lit || (layers.ao.source == gl::AmbientOcclusion::Source::Volume && layers.ao.cones > 0))
         backend.attributes |= kNormals;
     LibraryCall call(backend, "building the octree");
     LoadedOctree lo;

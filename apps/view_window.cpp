@@ -171,9 +171,9 @@ struct ViewerState {
     }
 
     /// The next voxel colouring the octree has a channel for. A mesh input
-    /// voxelized without the triangle ids (the window voxelizes with the
-    /// normals alone, for AO) is voxelized again with every channel it can
-    /// give (normals, triangle ids, colours when it has vertex colours).
+    /// voxelized without the triangle ids (or with the normals alone, for AO
+    /// and lighting) is voxelized again with every channel it can give
+    /// (normals, triangle ids, colours when it has vertex colours).
     void nextColor()
     {
         if (octree.attributes.triangles.empty() && canRevoxelize()) {
@@ -188,12 +188,23 @@ struct ViewerState {
         in.layers.voxelColor = gl::VoxelColor(c);
     }
 
+    /// Lighting and AO from the volume use the normal channel: a mesh input
+    /// voxelized without it is voxelized again with it (once; a failure
+    /// shows in the panel and keeps the octree).
+    void ensureNormals()
+    {
+        if (!octree.attributes.normals.empty() || !canRevoxelize() || (in.backend.attributes & kNormals)) return;
+        in.backend.attributes |= kNormals;
+        revoxelize(resolution);
+    }
+
     /// Lighting off, direct, or direct and one bounce (as --render direct|gi:
-    /// the outlines and brick boxes go while it is on). An octree without
-    /// the normal channel cannot be lit: the panel says so.
+    /// the outlines and brick boxes go while it is on). An octree file
+    /// without the normal channel cannot be lit: the panel says so.
     void setLighting(gl::Illumination::Mode m)
     {
         gl::ViewLayers& l = in.layers;
+        if (m != gl::Illumination::Mode::Off) ensureNormals();
         if (m != gl::Illumination::Mode::Off && octree.attributes.normals.empty()) {
             message = "lighting needs the octree's normal channel (voxelize the mesh with --attributes normal)";
             return;
@@ -467,6 +478,9 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
         glfwPollEvents();
         if (st.result.frames > 0 && scripted < st.in.keys.size()) st.press(static_cast<unsigned char>(st.in.keys[scripted++]));
         if (st.quit) break;
+        // AO turned on (a key or the panel) leaves along the normals.
+        if (st.in.layers.ao.cones > 0 && st.in.layers.ao.source == gl::AmbientOcclusion::Source::Volume)
+            st.ensureNormals();
         glfwGetFramebufferSize(ws.window, &st.width, &st.height);
         if (st.width < 1 || st.height < 1) { // minimized
             glfwWaitEventsTimeout(0.1);
