@@ -492,7 +492,19 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
         st.panel(frameMs);
         ImGui::Render();
 
-        st.view->draw(st.orbit.camera, st.width, st.height, st.in.layers);
+        try {
+            st.view->draw(st.orbit.camera, st.width, st.height, st.in.layers);
+        } catch (const Error& e) {
+            // What the panel turned on cannot be drawn (a grid too wide for
+            // the lighting volume, the GPU out of memory): say so in the
+            // panel, turn AO and lighting off, and draw again without them.
+            st.message = e.what();
+            st.result.errors.push_back(st.message);
+            st.in.layers.ao.cones = 0;
+            st.in.layers.ao.only = false;
+            st.in.layers.light.mode = gl::Illumination::Mode::Off;
+            st.view->draw(st.orbit.camera, st.width, st.height, st.in.layers);
+        }
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         glfwSwapBuffers(ws.window);
 

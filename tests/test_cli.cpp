@@ -811,6 +811,15 @@ TEST_F(Cli, ViewWindowRevoxelizesLiveToTheVoxelsOfVoxelize)
     EXPECT_EQ(bytes(path("svo-view-4.png")), bytes(path("gi.png")));
     EXPECT_NE(bytes(path("direct.png")), bytes(path("gi.png")));
 
+    // AO turned on for a grid too wide for the lighting volume: the window
+    // says why in the panel (and a warning on exit) and goes on without it.
+    const std::string thin = write("thin.obj", "v 0 0 0\nv 1000 0 0\nv 0 1 0\nf 1 2 3\n");
+    const auto wide = runSvo("view " + thin + " -r 4096 --size 160x120 --frames 4 --keys g", xvfb);
+    ASSERT_EQ(wide.code, 0) << wide.out;
+    EXPECT_NE(wide.out.find("warning: octree view: ambient occlusion: a grid 41"), std::string::npos) // 4096 and padding
+        << wide.out;
+    EXPECT_NE(wide.out.find("--ao-source octree"), std::string::npos) << wide.out;
+
     for (const char* args : {"--frames 3 --screenshot x.png", "--keys + --screenshot x.png", "--frames -1",
                              "--save x.svo --screenshot x.png"}) {
         const auto bad = runSvo(std::string("view -r 8 ") + args, xvfb);
