@@ -3,12 +3,12 @@
 # run on a GPU host. Needs the bundle (scripts/bundle.sh with test_api,
 # test_gpu_voxelize and test_stability as extra executables), bundle/meshes,
 # and cuda_voxelizer's sources in bundle/peers (with its build script).
-#   OUT=dir bash bench/gpu_host_compute.sh
+#   OUT=dir [BACKENDS="raster compute"] bash bench/gpu_host_compute.sh
 set -uo pipefail
 source "$(dirname "$0")/gpu_host_env.sh"
 
 # The GPU suites: compute must equal raster on every scene there.
-for t in test_gpu_voxelize test_stability test_api; do
+for t in test_gpu_voxelize test_gpu_octree test_stability test_api; do
   [ -x "$bin/$t" ] && SVO_CGAL_MESHES="$PWD/bundle/meshes" "$bin/$t" 2>&1 | tee "$out/$t.txt" | grep -E "^\[  |FAILED|PASSED|differs"
 done
 
@@ -23,7 +23,7 @@ cp bundle/meshes/stanford-bunny.obj "$work/bunny.obj"
 # cuda_voxelizer: its kernel time, median of 3 runs.
 for mesh in bunny icosphere; do
   for res in 256 512 1024 2048; do
-    for backend in raster compute; do
+    for backend in ${BACKENDS:-raster compute}; do
       echo "== svo $mesh $res $backend"
       "$bin/svo" voxelize "$work/$mesh.obj" -r "$res" --backend "$backend" --repeat 5 --json "$work/r.json" 2>&1 \
         | grep -E "voxels  |voxel list|upload|voxelize |octree build|readback|error"

@@ -207,6 +207,10 @@ public:
     void set(const char* name, float x, float y) const { glProgramUniform2f(h_.get(), location(name), x, y); }
     void set(const char* name, int x, int y, int z) const { glProgramUniform3i(h_.get(), location(name), x, y, z); }
     void set(const char* name, uint32_t v) const { glProgramUniform1ui(h_.get(), location(name), v); }
+    void set(const char* name, const std::vector<uint32_t>& v) const
+    {
+        glProgramUniform1uiv(h_.get(), location(name), GLsizei(v.size()), v.data());
+    }
     void set(const char* name, uint32_t x, uint32_t y, uint32_t z) const
     {
         glProgramUniform3ui(h_.get(), location(name), x, y, z);

@@ -21,9 +21,27 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 
 OctreeBuilder::OctreeBuilder(const Context& context)
     : context_(context), prepare_(context.program({"octree_prepare.comp"})),
-      flag_(context.program({"octree_flag.comp"})), alloc_(context.program({"octree_alloc.comp"})),
       fill_(context.program({"octree_fill.comp"}))
 {
+}
+
+bool OctreeBuilder::bitmapBuild(uint32_t brickLevel) { return brickLevel <= SVO_BUILD_BITMAP_MAX_LEVEL; }
+
+std::vector<uint32_t> OctreeBuilder::levelBlocks(uint32_t brickLevel)
+{
+    // Level l holds 8^l bits, at least one block.
+    std::vector<uint32_t> first(SVO_BUILD_BITMAP_MAX_LEVEL + 2, 0);
+    for (uint32_t l = 0; l <= brickLevel && l <= SVO_BUILD_BITMAP_MAX_LEVEL; ++l)
+        first[l + 1] = first[l] + std::max<uint32_t>(1, uint32_t((uint64_t(1) << 3 * l) >> gpu::kBitmapBlockShift));
+    for (uint32_t l = brickLevel + 2; l < first.size(); ++l) first[l] = first[brickLevel + 1];
+    return first;
+}
+
+uint64_t OctreeBuilder::bitmapBytes(uint32_t brickLevel)
+{
+    if (!bitmapBuild(brickLevel)) return 0;
+    const uint64_t blocks = levelBlocks(brickLevel)[brickLevel + 1];
+    return blocks * gpu::kBitmapBlockWords * 4 + 2 * blocks * 4;
 }
 
 uint64_t OctreeBuilder::nodeBound(uint32_t brickLevel, uint64_t bricks)
@@ -58,17 +76,12 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
     b.nodes = &context_.scratch("octree nodes", b.nodeCapacity * sizeof(OctreeNode));
     b.bricks = &context_.scratch("octree bricks", b.brickCapacity * sizeof(Brick));
     b.state->write(0, sizeof init, &init);
-    b.nodes->clearUint(0, b.nodeCapacity * sizeof(OctreeNode));
     b.bricks->clearUint(0, b.brickCapacity * sizeof(Brick));
 
     b.state->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_STATE);
     b.nodes->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NODES);
     b.bricks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BRICKS);
     in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_ENTRIES);
-    for (const Program* p : {&flag_, &alloc_, &fill_}) p->set("uBrickLevel", L); // prepare_ does not read it
-    prepare_.set("uNodeCapacity", uint32_t(b.nodeCapacity));
-    alloc_.set("uNodeCapacity", uint32_t(b.nodeCapacity));
-    alloc_.set("uBrickCapacity", uint32_t(b.brickCapacity));
     if (in.listCounter) {
         in.listCounter->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_LIST_COUNTER);
         prepare_.set("uMode", 0u);
@@ -77,16 +90,15 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
         prepare_.dispatch(1);
         passBarrier();
     }
-    prepare_.set("uMode", 1u);
-    for (uint32_t level = 0; level <= L; ++level) {
-        if (poll) poll();
-        for (const Program* p : {&prepare_, &flag_, &alloc_}) p->set("uLevel", level);
-        flag_.dispatchIndirect(*b.state, offsetof(BuildState, entryDispatch));
-        prepare_.dispatch(1);
-        passBarrier();
-        alloc_.dispatchIndirect(*b.state, offsetof(BuildState, levelDispatch));
-        passBarrier();
-    }
+    const bool bitmap = bitmapBuild(L);
+    if (bitmap) recordBitmap(b, L, poll);
+    else recordDescent(b, L, poll);
+
+    fill_.set("uBrickLevel", L);
+    fill_.set("uBitmapBuild", bitmap ? 1u : 0u);
+    fill_.set("uNodeCapacity", uint32_t(b.nodeCapacity));
+    fill_.set("uBrickCapacity", uint32_t(b.brickCapacity));
+    if (bitmap) fill_.set("uLevelBlock", levelBlocks(L));
     fill_.set("uBrickMasks", in.masks ? 1u : 0u);
     if (in.masks) in.masks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_ENTRY_MASKS);
     else in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_ENTRY_MASKS); // unused, but bound
@@ -94,6 +106,60 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT); // readback, attribute pass
     checkGl("octree build");
     return b;
+}
+
+void OctreeBuilder::recordBitmap(Build& b, uint32_t L, const std::function<void()>& poll) const
+{
+    // Mark every level's occupancy, rank the nodes of each level in Morton
+    // order, write each block of children: four passes whatever the depth
+    // (the descent's three per level cost more in dispatch chain than in work).
+    const std::vector<uint32_t> first = levelBlocks(L);
+    const uint64_t blocks = first[L + 1];
+    b.bitmap = &context_.scratch("octree bitmaps", blocks * gpu::kBitmapBlockWords * 4);
+    b.blocks = &context_.scratch("octree bitmap blocks", 2 * blocks * 4);
+    b.bitmap->clearUint(0, blocks * gpu::kBitmapBlockWords * 4);
+    b.blocks->clearUint(0, blocks * 4);
+    b.bitmap->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_BITMAP);
+    b.blocks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_BLOCKS);
+    const Program& mark = context_.program({"octree_mark.comp"});
+    const Program& scan = context_.program({"octree_scan.comp"});
+    const Program& nodePass = context_.program({"octree_nodes.comp"});
+    for (const Program* p : {&mark, &scan, &nodePass}) {
+        p->set("uBrickLevel", L);
+        p->set("uLevelBlock", first);
+    }
+    nodePass.set("uNodeCapacity", uint32_t(b.nodeCapacity));
+    nodePass.set("uBrickCapacity", uint32_t(b.brickCapacity));
+    mark.dispatchIndirect(*b.state, offsetof(BuildState, entryDispatch));
+    passBarrier();
+    if (poll) poll();
+    scan.dispatch(1);
+    passBarrier();
+    const uint64_t words = uint64_t(first[L]) * gpu::kBitmapBlockWords;
+    nodePass.dispatch(std::clamp<uint32_t>(uint32_t((words + 255) / 256), 1, 65535));
+    // The fill reads the bitmap and blocks, written before the last barrier;
+    // it writes bricks, which the node pass does not touch.
+}
+
+void OctreeBuilder::recordDescent(Build& b, uint32_t L, const std::function<void()>& poll) const
+{
+    b.nodes->clearUint(0, b.nodeCapacity * sizeof(OctreeNode));
+    const Program& flag = context_.program({"octree_flag.comp"});
+    const Program& alloc = context_.program({"octree_alloc.comp"});
+    for (const Program* p : {&flag, &alloc}) p->set("uBrickLevel", L); // prepare_ does not read it
+    prepare_.set("uNodeCapacity", uint32_t(b.nodeCapacity));
+    alloc.set("uNodeCapacity", uint32_t(b.nodeCapacity));
+    alloc.set("uBrickCapacity", uint32_t(b.brickCapacity));
+    prepare_.set("uMode", 1u);
+    for (uint32_t level = 0; level <= L; ++level) {
+        if (poll) poll();
+        for (const Program* p : {&prepare_, &flag, &alloc}) p->set("uLevel", level);
+        flag.dispatchIndirect(*b.state, offsetof(BuildState, entryDispatch));
+        prepare_.dispatch(1);
+        passBarrier();
+        alloc.dispatchIndirect(*b.state, offsetof(BuildState, levelDispatch));
+        passBarrier();
+    }
 }
 
 void OctreeBuilder::readCounts(Build& b) { b.state->read(0, sizeof b.counts, &b.counts); }

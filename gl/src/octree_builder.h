@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "objects.h"
 #include "svo/core/gpu_layout.h"
@@ -35,13 +36,22 @@ public:
     /// counters read back after it.
     struct Build {
         const Buffer *state = nullptr, *nodes = nullptr, *bricks = nullptr;
+        const Buffer *bitmap = nullptr, *blocks = nullptr; ///< the bitmap build's, else null
         uint64_t nodeCapacity = 0, brickCapacity = 0;
         BuildState counts{};
         bool overflowed() const { return counts.nodeCount > nodeCapacity || counts.brickCount > brickCapacity; }
-        uint64_t bytes() const { return state->bytes() + nodes->bytes() + bricks->bytes(); }
+        uint64_t bytes() const
+        {
+            return state->bytes() + nodes->bytes() + bricks->bytes() + (bitmap ? bitmap->bytes() : 0) +
+                   (blocks ? blocks->bytes() : 0);
+        }
     };
 
-    /// Allocates the buffers and issues every pass without waiting. `poll`,
+    /// Allocates the buffers and issues every pass without waiting. Up to
+    /// brick level SVO_BUILD_BITMAP_MAX_LEVEL the build marks occupancy
+    /// bitmaps and ranks each level's nodes in Morton order (four passes, and
+    /// exact node and brick counts even when the capacities are too small);
+    /// past it every entry descends from the root, three passes a level. `poll`,
     /// when set, runs between levels (software drivers run the passes as they
     /// are issued, so this is where an interrupter is heard there).
     Build record(const GridSpec& grid, const OctreeInput& input, uint64_t nodeCapacity, uint64_t brickCapacity,
@@ -53,10 +63,19 @@ public:
 
     /// Upper bound on nodes for at most `bricks` occupied bricks.
     static uint64_t nodeBound(uint32_t brickLevel, uint64_t bricks);
+    /// Whether a grid of this brick level is built from bitmaps.
+    static bool bitmapBuild(uint32_t brickLevel);
+    /// GPU bytes of the bitmap build's own buffers (0 past its levels).
+    static uint64_t bitmapBytes(uint32_t brickLevel);
 
 private:
+    /// First bitmap block of each level, SVO_BUILD_BITMAP_MAX_LEVEL + 2 entries.
+    static std::vector<uint32_t> levelBlocks(uint32_t brickLevel);
+    void recordBitmap(Build& b, uint32_t brickLevel, const std::function<void()>& poll) const;
+    void recordDescent(Build& b, uint32_t brickLevel, const std::function<void()>& poll) const;
+
     const Context& context_;
-    const Program &prepare_, &flag_, &alloc_, &fill_;
+    const Program &prepare_, &fill_; // the others come from the context's cache when a build needs them
 };
 
 } // namespace svo::gl

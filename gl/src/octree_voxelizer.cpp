@@ -84,7 +84,8 @@ class Budget {
 public:
     /// `maxBlock`: the most bytes of one buffer a shader addresses (0: no limit).
     Budget(uint64_t bytes, uint64_t fixed, bool attributes, uint32_t brickLevel, uint64_t triangles, uint64_t maxBlock)
-        : bytes_(bytes), fixed_(fixed + (attributes ? 24 * triangles : 0)), brickLevel_(brickLevel),
+        : bytes_(bytes), fixed_(fixed + (attributes ? 24 * triangles : 0) + OctreeBuilder::bitmapBytes(brickLevel)),
+          brickLevel_(brickLevel),
           perEntry_(8 + (attributes ? 4 + sizeof(AttributeSums) : 0)), perBrick_(64 + (attributes ? 4 : 0))
     {
         if (attributes) maxEntries_ = uint64_t(1) << 28; // the attribute pass's voxels (at most one per entry)

@@ -93,6 +93,14 @@ SVO_CONST(uint) kSumWords = 8u;
 #if SVO_BUILD_LEVEL_SLOTS < SVO_KEY_BRICK_BITS + 2
 #error gpu_layout.h: levelStart needs brick levels 0 to SVO_KEY_BRICK_BITS and one past the end
 #endif
+/* Up to this brick level the build works from occupancy bitmaps
+   (octree_bitmap.glsl): level l's nodes one bit each in Morton order (x the
+   lowest bit of each triple), level by level, each level from a block of
+   kBitmapBlockWords uints. Past it (grids over 4096 voxels a side, whose
+   level-L bitmap would pass 16 MiB) the build descends from the root. */
+#define SVO_BUILD_BITMAP_MAX_LEVEL 9
+SVO_CONST(uint) kBitmapBlockWords = 16u;
+SVO_CONST(uint) kBitmapBlockShift = 9u; /* 512 bits a block */
 #define SVO_BUILD_STATE_FIELDS                                                  \
     uint entryDispatch[3]; /* indirect args over the input entries */          \
     uint levelDispatch[3]; /* indirect args over the nodes of the level */     \
@@ -119,6 +127,8 @@ SVO_CONST(uint) kSumWords = 8u;
 /* ... then each pass its own. */
 #define SVO_BIND_LIST_COUNTER 4       /* prepare: the raster counters, read as uints */
 #define SVO_BIND_ENTRY_MASKS 5        /* fill: 16 uints per brick entry */
+#define SVO_BIND_BUILD_BITMAP 6       /* bitmap build: the levels' occupancy bits */
+#define SVO_BIND_BUILD_BLOCKS 7       /* bitmap build: per block its set bits, then the exclusive prefix of them */
 #define SVO_BIND_ENTRY_TRIANGLES 4    /* attributes: the raster triangle list */
 #define SVO_BIND_BRICK_VOXEL_OFFSETS 5 /* attributes: first voxel of each brick */
 #define SVO_BIND_TRIANGLE_VALUES 6    /* attributes: 6 floats per triangle, normal then colour */
@@ -241,7 +251,7 @@ static_assert(distinctSlots({SVO_BIND_RASTER_LIST, SVO_BIND_RASTER_TRIANGLES, SV
 static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRICKS, SVO_BIND_ENTRIES,
                              SVO_BIND_LIST_COUNTER}));
 static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRICKS, SVO_BIND_ENTRIES,
-                             SVO_BIND_ENTRY_MASKS}));
+                             SVO_BIND_ENTRY_MASKS, SVO_BIND_LIST_COUNTER, SVO_BIND_BUILD_BITMAP, SVO_BIND_BUILD_BLOCKS}));
 static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRICKS, SVO_BIND_ENTRIES,
                              SVO_BIND_ENTRY_TRIANGLES, SVO_BIND_BRICK_VOXEL_OFFSETS, SVO_BIND_TRIANGLE_VALUES,
                              SVO_BIND_ATTRIBUTE_SUMS}));
