@@ -151,7 +151,7 @@ void main()
     state.entryCount = 300u;
     state.nodeCount = 301u;
     state.brickCount = 302u;
-    state.groupsDone = kNoChild; // and the marker, while here
+    state.pad = kNoChild; // and the marker, while here
     for (uint k = 0u; k < uint(state.levelStart.length()); ++k) state.levelStart[k] = 400u + k;
 }
 )";
@@ -167,7 +167,7 @@ void main()
     EXPECT_EQ(s.entryCount, 300u);
     EXPECT_EQ(s.nodeCount, 301u);
     EXPECT_EQ(s.brickCount, 302u);
-    EXPECT_EQ(s.groupsDone, kNoChild);
+    EXPECT_EQ(s.pad, kNoChild);
     for (uint32_t k = 0; k < SVO_BUILD_LEVEL_SLOTS; ++k) EXPECT_EQ(s.levelStart[k], 400 + k);
 }
 

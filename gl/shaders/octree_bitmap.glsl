@@ -1,17 +1,13 @@
 // The bitmap build's occupancy bits (octree_builder.cpp, gpu_layout.h): level
 // l's nodes one bit each in Morton order from block uLevelBlock[l]. After
-// octree_mark.comp has ranked the blocks, a node's rank among the occupied nodes of its level is
+// octree_scan.comp, a node's rank among the occupied nodes of its level is
 // its block's prefix plus the bits before it in its block, which is what
 // places it: the linear octree keeps each level in Morton order.
 #include "gpu_layout.h"
 
 layout(std430, binding = SVO_BIND_BUILD_BITMAP) restrict buffer Bitmap { uint bitmap[]; };
 // Per block its set bits (first uBlockCount), then the exclusive prefix of those.
-// The pass that reads other workgroups' counts declares it coherent.
-#ifndef SVO_BLOCKS_COHERENCE
-#define SVO_BLOCKS_COHERENCE
-#endif
-layout(std430, binding = SVO_BIND_BUILD_BLOCKS) SVO_BLOCKS_COHERENCE restrict buffer Blocks { uint blocks[]; };
+layout(std430, binding = SVO_BIND_BUILD_BLOCKS) restrict buffer Blocks { uint blocks[]; };
 
 // First block of each level; [L + 1] is one past the last, the block count.
 uniform uint uLevelBlock[SVO_BUILD_BITMAP_MAX_LEVEL + 2];
@@ -37,7 +33,7 @@ uint childBits(uint level, uint m)
 {
     return (bitmap[uLevelBlock[level + 1u] * kBitmapBlockWords + (m >> 2u)] >> (8u * (m & 3u))) & 0xFFu;
 }
-// Occupied nodes of `level` before code m (valid after octree_mark.comp).
+// Occupied nodes of `level` before code m (valid after octree_scan.comp).
 uint rankOf(uint level, uint m, uint brickLevel)
 {
     uint n = blockCount(brickLevel);

@@ -87,11 +87,11 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
         prepare_.set("uMode", 0u);
         prepare_.set("uEntryCapacity", uint32_t(std::min<uint64_t>(in.entryCapacity, 0xFFFFFFFFu)));
         glMemoryBarrier(GL_ATOMIC_COUNTER_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        prepare_.dispatch(1); // the fill's dispatch size; the bitmap build's mark reads the counter itself
+        prepare_.dispatch(1);
+        passBarrier();
     }
     const bool bitmap = bitmapBuild(L);
-    if (!bitmap && in.listCounter) passBarrier();
-    if (bitmap) recordBitmap(b, L, in, poll);
+    if (bitmap) recordBitmap(b, L, poll);
     else recordDescent(b, L, poll);
 
     fill_.set("uBrickLevel", L);
@@ -108,13 +108,11 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
     return b;
 }
 
-void OctreeBuilder::recordBitmap(Build& b, uint32_t L, const OctreeInput& in, const std::function<void()>& poll) const
+void OctreeBuilder::recordBitmap(Build& b, uint32_t L, const std::function<void()>& poll) const
 {
-    // Mark every level's occupancy and rank each level's nodes in Morton
-    // order (one pass: its last workgroup ranks), then write each block of
-    // children and fill the bricks (two independent passes): the GPU waits
-    // twice whatever the depth, where the descent's three passes a level
-    // cost more in dependent dispatches than in work.
+    // Mark every level's occupancy, rank the nodes of each level in Morton
+    // order, write each block of children: four passes whatever the depth
+    // (the descent's three per level cost more in dispatch chain than in work).
     const std::vector<uint32_t> first = levelBlocks(L);
     const uint64_t blocks = first[L + 1];
     b.bitmap = &context_.scratch("octree bitmaps", blocks * gpu::kBitmapBlockWords * 4);
@@ -124,24 +122,23 @@ void OctreeBuilder::recordBitmap(Build& b, uint32_t L, const OctreeInput& in, co
     b.bitmap->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_BITMAP);
     b.blocks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_BLOCKS);
     const Program& mark = context_.program({"octree_mark.comp"});
+    const Program& scan = context_.program({"octree_scan.comp"});
     const Program& nodePass = context_.program({"octree_nodes.comp"});
-    for (const Program* p : {&mark, &nodePass}) {
+    for (const Program* p : {&mark, &scan, &nodePass}) {
         p->set("uBrickLevel", L);
         p->set("uLevelBlock", first);
     }
-    const uint64_t entries = in.listCounter ? in.entryCapacity : in.entryCount;
-    mark.set("uCountFromList", in.listCounter ? 1u : 0u);
-    mark.set("uEntryCapacity", uint32_t(std::min<uint64_t>(entries, 0xFFFFFFFFu)));
-    if (!in.listCounter) in.entries->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_LIST_COUNTER); // unused, but bound
     nodePass.set("uNodeCapacity", uint32_t(b.nodeCapacity));
     nodePass.set("uBrickCapacity", uint32_t(b.brickCapacity));
-    mark.dispatch(std::clamp<uint32_t>(uint32_t((entries + 255) / 256), 1, 65535));
+    mark.dispatchIndirect(*b.state, offsetof(BuildState, entryDispatch));
     passBarrier();
     if (poll) poll();
+    scan.dispatch(1);
+    passBarrier();
     const uint64_t words = uint64_t(first[L]) * gpu::kBitmapBlockWords;
     nodePass.dispatch(std::clamp<uint32_t>(uint32_t((words + 255) / 256), 1, 65535));
-    // The fill reads the bitmap, blocks and counts, written before the last
-    // barrier; it writes bricks, which the node pass does not touch.
+    // The fill reads the bitmap and blocks, written before the last barrier;
+    // it writes bricks, which the node pass does not touch.
 }
 
 void OctreeBuilder::recordDescent(Build& b, uint32_t L, const std::function<void()>& poll) const

@@ -49,9 +49,8 @@ public:
 
     /// Allocates the buffers and issues every pass without waiting. Up to
     /// brick level SVO_BUILD_BITMAP_MAX_LEVEL the build marks occupancy
-    /// bitmaps and ranks each level's nodes in Morton order (three passes, the
-    /// GPU waiting between them twice; exact node and brick counts
-    /// even when the capacities are too small);
+    /// bitmaps and ranks each level's nodes in Morton order (four passes, and
+    /// exact node and brick counts even when the capacities are too small);
     /// past it every entry descends from the root, three passes a level. `poll`,
     /// when set, runs between levels (software drivers run the passes as they
     /// are issued, so this is where an interrupter is heard there).
@@ -72,7 +71,7 @@ public:
 private:
     /// First bitmap block of each level, SVO_BUILD_BITMAP_MAX_LEVEL + 2 entries.
     static std::vector<uint32_t> levelBlocks(uint32_t brickLevel);
-    void recordBitmap(Build& b, uint32_t brickLevel, const OctreeInput& in, const std::function<void()>& poll) const;
+    void recordBitmap(Build& b, uint32_t brickLevel, const std::function<void()>& poll) const;
     void recordDescent(Build& b, uint32_t brickLevel, const std::function<void()>& poll) const;
 
     const Context& context_;

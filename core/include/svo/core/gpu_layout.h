@@ -107,7 +107,7 @@ SVO_CONST(uint) kBitmapBlockShift = 9u; /* 512 bits a block */
     uint entryCount;       /* input entries to read */                         \
     uint nodeCount;        /* node allocation counter (may pass capacity) */   \
     uint brickCount;       /* brick allocation counter (may pass capacity) */  \
-    uint groupsDone;       /* bitmap build: mark workgroups done */            \
+    uint pad;                                                                  \
     uint levelStart[SVO_BUILD_LEVEL_SLOTS]; /* first node of each level */
 
 /* ---- Binding slots -----------------------------------------------------
