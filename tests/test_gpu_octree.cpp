@@ -187,8 +187,10 @@ TEST_F(GpuOctree, ABudgetTheMeshAloneExceedsIsAClearError)
 
 TEST_F(GpuOctree, FromBricksMatchesReference)
 {
-    // The last grid is wider than the bitmap build's levels: built by descent.
-    for (auto dims : {std::array<uint32_t, 3>{8, 8, 8}, {33, 70, 9}, {300, 300, 300}, {8200, 40, 9}}) {
+    // 2048 and 4096 wide: bitmaps of many blocks per scan thread, up to the
+    // bitmap build's last level; the last grid is wider: built by descent.
+    for (auto dims : {std::array<uint32_t, 3>{8, 8, 8}, {33, 70, 9}, {300, 300, 300}, {2048, 16, 1030},
+                      {4096, 9, 8}, {8200, 40, 9}}) {
         const GridSpec g = test::gridOf(dims[0], dims[1], dims[2]);
         const auto keys = test::randomVoxels(g, 20000, dims[1]);
         std::vector<std::pair<uint64_t, Brick>> bricks; // one voxel each: many duplicate bricks

@@ -7,6 +7,7 @@ layout(local_size_x = 1024) in;
 #include "octree_bitmap.glsl"
 
 shared uint partial[1024];
+shared uint before[SVO_BUILD_BITMAP_MAX_LEVEL + 2]; // occupied nodes before each level's first block
 
 void main()
 {
@@ -24,26 +25,18 @@ void main()
         partial[t] += v;
         barrier();
     }
+    // Each level's first block lies in one thread's range: that thread records the prefix there.
+    uint level = 0u;
+    while (level <= uBrickLevel && uLevelBlock[level] < begin) ++level;
     uint run = partial[t] - sum;
     for (uint i = begin; i < end; ++i) {
+        if (level <= uBrickLevel && uLevelBlock[level] == i) before[level++] = run;
         blocks[n + i] = run;
         run += blocks[i];
     }
+    barrier();
     if (t != 0u) return;
-    // The prefix at a level's first block, from the counts (other threads' writes are not visible here).
-    uint total = partial[1023];
-    uint before[SVO_BUILD_BITMAP_MAX_LEVEL + 2];
-    for (uint l = 0u; l <= uBrickLevel + 1u; ++l) {
-        uint b = uLevelBlock[l];
-        if (b >= n) {
-            before[l] = total;
-            continue;
-        }
-        uint owner = b / per;
-        uint p = owner == 0u ? 0u : partial[owner - 1u];
-        for (uint i = owner * per; i < b; ++i) p += blocks[i];
-        before[l] = p;
-    }
+    before[uBrickLevel + 1u] = partial[1023];
     state.levelStart[0] = 0u;
     state.levelStart[1] = 1u;
     for (uint l = 1u; l <= uBrickLevel; ++l)
