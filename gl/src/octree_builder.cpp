@@ -91,6 +91,7 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
         passBarrier();
     }
     const bool bitmap = bitmapBuild(L);
+    b.exactCounts = bitmap;
     if (bitmap) recordBitmap(b, L, poll);
     else recordDescent(b, L, poll);
 

@@ -38,6 +38,7 @@ public:
         const Buffer *state = nullptr, *nodes = nullptr, *bricks = nullptr;
         const Buffer *bitmap = nullptr, *blocks = nullptr; ///< the bitmap build's, else null
         uint64_t nodeCapacity = 0, brickCapacity = 0;
+        bool exactCounts = false; ///< the bitmap build counts every node and brick even past its capacity
         BuildState counts{};
         bool overflowed() const { return counts.nodeCount > nodeCapacity || counts.brickCount > brickCapacity; }
         uint64_t bytes() const

@@ -260,7 +260,10 @@ public:
                 size.nodes = std::max(size.nodes, nodesFor(L_, size.bricks));
             } else if (build.overflowed()) {
                 drawn = true; // the list is complete; only the octree needs room
-                if (build.counts.nodeCount <= build.nodeCapacity) {
+                if (build.exactCounts) {
+                    size.bricks = build.counts.brickCount;
+                    size.nodes = build.counts.nodeCount;
+                } else if (build.counts.nodeCount <= build.nodeCapacity) {
                     size.bricks = build.counts.brickCount; // every brick node was reached: exact
                 } else {
                     size.bricks = std::max<uint64_t>(build.counts.brickCount, size.bricks) * 2;
