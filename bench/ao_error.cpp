@@ -68,7 +68,7 @@ int main(int argc, char** argv)
     app.add_option("--time-size", timeWidth, "Timed frame width (height 9/16 of it)")->check(CLI::PositiveNumber);
     app.add_option("--frames", frames, "Timed frames per point")->check(CLI::PositiveNumber);
     app.add_option("--md", mdPath, "Markdown table to write");
-    app.add_option("--dump", dumpDir, "Write the reference and each image here as PGM");
+    app.add_option("--dump", dumpDir, "Write the reference and each image here as PGM (the compared pixels; 0 elsewhere)");
     app.add_option("--render", render, "ao, direct or gi")->check(CLI::IsMember({"ao", "direct", "gi"}));
     double offset = -1, step = 0.5;
     app.add_option("--step", step, "Cone steps, share of the cone's width (svo's default 0.5)");
@@ -174,9 +174,14 @@ int main(int argc, char** argv)
                         if (!dumpDir.empty()) {
                             std::string pgm = fmt::format("P5 {} {} 255\n", width, height), ref = pgm;
                             for (int y = 0; y < height; ++y)
-                                for (int x = 0; x < width; ++x) {
-                                    pgm += char(image.pixel(x, y)[1]);
-                                    ref += char(std::lround(255 * std::clamp(reference.at(x, y, 1), 0.0f, 1.0f)));
+                                for (int x = 0; x < width; ++x) { // as compared below; 0 where not compared
+                                    const uint8_t* p = image.pixel(x, y);
+                                    const bool compared = p[0] == p[1] && p[1] == p[2] &&
+                                                          reference.covered[size_t(y) * size_t(width) + size_t(x)];
+                                    pgm += char(compared ? p[1] : 0);
+                                    ref += char(compared ? std::lround(255 * std::clamp(reference.at(x, y, ao ? 0 : 1),
+                                                                                        0.0f, 1.0f))
+                                                         : 0);
                                 }
                             const std::string stem = std::filesystem::path(name).stem().string();
                             svo::writeFileAtomically(fmt::format("{}/{}_reference.pgm", dumpDir, stem), ref);

@@ -95,6 +95,27 @@ private:
     uint64_t bytes_ = 0;
 };
 
+/// Immutable-storage 2D texture of one level, read by texelFetch and written
+/// as an image (the viewer's pixels). Allocation failure throws.
+class Texture2D {
+public:
+    Texture2D() = default;
+    /// `what` names the texture in out-of-memory errors.
+    Texture2D(const char* what, GLenum internalFormat, int width, int height);
+    int width() const { return width_; }
+    int height() const { return height_; }
+    void bindTexture(GLuint unit) const { glBindTextureUnit(unit, h_.get()); }
+    /// Binds the texture as an image (imageLoad / imageStore); `format` is the image's layout qualifier format.
+    void bindImage(GLuint unit, GLenum access, GLenum format) const
+    {
+        glBindImageTexture(unit, h_.get(), 0, GL_FALSE, 0, access, format);
+    }
+
+private:
+    Handle<detail::deleteTexture> h_;
+    int width_ = 0, height_ = 0;
+};
+
 /// Immutable-storage 3D texture with a full mip chain of `levels` levels
 /// (glTextureStorage3D), trilinearly filtered between levels, clamped to
 /// a transparent black border (outside the volume is empty). Allocation failure throws.

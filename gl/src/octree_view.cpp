@@ -258,6 +258,17 @@ struct OctreeView::Impl {
     /// first needs it and kept while the lights stay (drawing is const; the
     /// cache is not). AO reads any volume of its resolution, lit or not.
     mutable std::optional<LightVolumeTextures> light;
+    /// The voxel pass's pixels (view_voxels.comp), kept while the picture's size stays.
+    mutable std::optional<Texture2D> pixels;
+
+    const Texture2D& pixelImage(int width, int height) const
+    {
+        if (!pixels || pixels->width() != width || pixels->height() != height) {
+            pixels.reset();
+            pixels.emplace("view's pixels", GL_RGBA32F, width, height);
+        }
+        return *pixels;
+    }
 
     ViewBuffers buffers() const
     {
@@ -465,7 +476,7 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         const AmbientOcclusion& ao = layers.ao;
         checkAmbientOcclusion(ao);
         v.opacity.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_OPACITY);
-        const Program& p = context.program({"view_fullscreen.vert", "view_voxels.frag"});
+        const Program& p = context.program({"view_voxels.comp"});
         const Illumination& light = layers.light;
         const bool aoVolume = ao.source == AmbientOcclusion::Source::Volume;
         if (light.mode != Illumination::Mode::Off) {
@@ -505,7 +516,16 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         p.set("uDims", int(v.grid.dims[0]), int(v.grid.dims[1]), int(v.grid.dims[2]));
         const auto& c = ViewColors::voxel;
         p.set("uColor", c[0], c[1], c[2]);
-        p.use();
+        // The rays in a compute pass, then their pixels and depths into the
+        // framebuffer by a full-screen triangle (view_pixels.frag).
+        const Texture2D& pixels = v.pixelImage(width, height);
+        pixels.bindImage(SVO_IMAGE_VIEW_PIXELS, GL_WRITE_ONLY, GL_RGBA32F);
+        p.dispatch((uint32_t(width) + 7) / 8, (uint32_t(height) + 7) / 8);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        checkGl("casting the voxels' rays");
+        const Program& copy = context.program({"view_fullscreen.vert", "view_pixels.frag"});
+        pixels.bindTexture(SVO_UNIT_VIEW_PIXELS);
+        copy.use();
         v.empty.bind();
         glDrawArrays(GL_TRIANGLES, 0, 3);
         checkGl("drawing the voxels");

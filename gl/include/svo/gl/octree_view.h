@@ -4,9 +4,10 @@
 /// renderer behind `svo view`.
 ///
 /// What is drawn, and from where:
-///   - voxels (green, lit by their face normal): a full-screen pass whose
-///     fragment shader casts one ray per pixel and marches the octree's node
-///     and brick buffers (view_voxels.frag): at each step it descends from the
+///   - voxels (green, lit by their face normal): a compute pass casts one
+///     ray per pixel and marches the octree's node and brick buffers
+///     (view_voxels.comp), and a full-screen triangle writes its pixels and
+///     depths into the framebuffer: at each step it descends from the
 ///     root to the deepest node holding the current voxel, skips empty nodes
 ///     whole, tests brick bits at the bottom and skips empty 4³ and 2³
 ///     blocks of a brick whole. No voxel is expanded into

@@ -3,8 +3,17 @@
 // one ray per pixel, shaded by a head light, by a voxel attribute, by cone-
 // traced ambient occlusion, or lit: direct light with shadows and one diffuse
 // bounce gathered by cones through the lighting volume.
+//
+// A compute pass, not a full-screen fragment pass, because chips built for
+// compute (the H100) run fragment shaders on a few of their cores only; the
+// pixels go to an image that view_pixels.frag then writes, with their depth,
+// into the framebuffer.
 #include "gpu_layout.h"
 #include "view_octree.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+// rgb = the pixel's colour; a = its window depth, or -1 where the ray hits no voxel.
+layout(rgba32f, binding = SVO_IMAGE_VIEW_PIXELS) uniform writeonly restrict image2D uPixels;
 
 layout(std430, binding = SVO_BIND_VIEW_ATTRIBUTE) readonly restrict buffer Attribute { uint channel[]; };
 
@@ -41,21 +50,25 @@ uniform float uGamma;    // ... to the power 1 / gamma
 uniform vec3 uSpecular;         // glossy reflectance (Illumination::specular)
 uniform float uSpecularTanHalf; // tan of half the glossy cone's aperture
 
-out vec4 fragColor;
-
 void main()
 {
-    vec2 ndc = gl_FragCoord.xy / uViewport * 2.0 - 1.0;
+    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(vec2(pixel), uViewport))) return;
+    vec2 ndc = (vec2(pixel) + 0.5) / uViewport * 2.0 - 1.0;
     vec4 a = uInverseViewProjection * vec4(ndc, -1.0, 1.0);
     vec4 b = uInverseViewProjection * vec4(ndc, 1.0, 1.0);
     vec3 o = a.xyz / a.w;
     vec3 d = b.xyz / b.w - o; // t in [0, 1] spans the near to the far plane
     VoxelHit hit;
-    if (!marchOctree(o, d, 0.0, 1.0, hit)) discard;
+    if (!marchOctree(o, d, 0.0, 1.0, hit)) {
+        imageStore(uPixels, pixel, vec4(0.0, 0.0, 0.0, -1.0));
+        return;
+    }
 
     vec3 face = vec3(0.0);
     face[hit.axis] = -sign(d[hit.axis]);
     vec3 p = o + d * hit.t;
+    vec4 color;
     if (uLightMode != 0) {
         // Lit: the surface's normal (its channel, turned to the viewer; the
         // face's where the normals cancel), direct light at the voxel's
@@ -80,7 +93,7 @@ void main()
                 radiance += uSpecular * coneGather(c + uConeOffset * n, reflect(normalize(d), n), n, uConeOffset,
                                                    true, uSpecularTanHalf).rgb;
         }
-        fragColor = vec4(pow(clamp(radiance * uExposure, 0.0, 1.0), vec3(1.0 / uGamma)), 1.0);
+        color = vec4(pow(clamp(radiance * uExposure, 0.0, 1.0), vec3(1.0 / uGamma)), 1.0);
     } else {
         // Lit by the face normal: a head light plus a little ambient.
         float light = 0.45 + 0.55 * abs(dot(face, normalize(d)));
@@ -97,8 +110,8 @@ void main()
             }
             ao = 1.0 - hemisphereGather(vec3(hit.cell) + 0.5, n, false).a;
         }
-        fragColor = uAoOnly != 0u ? vec4(vec3(ao), 1.0) : vec4(voxelColor(hit.brick, hit.bit) * light * ao, 1.0);
+        color = uAoOnly != 0u ? vec4(vec3(ao), 1.0) : vec4(voxelColor(hit.brick, hit.bit) * light * ao, 1.0);
     }
     vec4 clip = uViewProjection * vec4(p, 1.0);
-    gl_FragDepth = clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0);
+    imageStore(uPixels, pixel, vec4(color.rgb, clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0)));
 }
