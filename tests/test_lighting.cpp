@@ -173,9 +173,11 @@ TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
                     const int y = x >= 8 && x < 16 && z >= 8 && z < 16 ? 20 : 4;
                     const size_t i = texel(l0, x, y, z);
                     const bool facesLight = y == 4 || light == &sun;
+                    // 1/255: GL converts a colour to 8 bits as either of the two
+                    // nearest values (GL 4.5, 2.3.5.2): on the H100, 0.54 of a step came out as 0.
                     for (int c = 0; c < 3; ++c)
                         ASSERT_NEAR(px[c] / 255.0, facesLight ? std::min(1.0, double(l0.radiance[i + size_t(c)])) : 0.0,
-                                    0.5 / 255 + halfTolerance(l0.radiance[i + size_t(c)]))
+                                    1.0 / 255 + halfTolerance(l0.radiance[i + size_t(c)]))
                             << "from above " << col << "," << row << " channel " << c;
                 }
         }
