@@ -70,7 +70,8 @@ int main(int argc, char** argv)
     app.add_option("--md", mdPath, "Markdown table to write");
     app.add_option("--dump", dumpDir, "Write the reference and each image here as PGM (the compared pixels; 0 elsewhere)");
     app.add_option("--render", render, "ao, direct or gi")->check(CLI::IsMember({"ao", "direct", "gi"}));
-    double offset = -1, step = 0.5;
+    double offset = -1, step = 0.5, aperture = -1;
+    app.add_option("--aperture", aperture, "Cone aperture, full angle in degrees (default: the option's)");
     app.add_option("--step", step, "Cone steps, share of the cone's width (svo's default 0.5)");
     app.add_option("--offset", offset, "Cones start this far out of the surface, voxels (default: the option's)");
     std::string aoSource = "volume";
@@ -156,6 +157,7 @@ int main(int argc, char** argv)
                             layers.ao.source = source;
                             layers.ao.filter = filter;
                             if (offset >= 0) layers.ao.offset = offset;
+                            if (aperture > 0) layers.ao.apertureDegrees = aperture;
                             layers.ao.step = step;
                             layers.ao.only = true;
                             layers.ao.distance = distance / octree.grid.voxelSize;
@@ -166,6 +168,7 @@ int main(int argc, char** argv)
                             layers.light.albedo = {albedo, albedo, albedo};
                             layers.light.cones = cones;
                             if (offset >= 0) layers.light.offset = offset;
+                            if (aperture > 0) layers.light.apertureDegrees = aperture;
                             layers.light.step = step;
                             layers.light.directional = directional;
                             layers.light.gamma = 1.0;
