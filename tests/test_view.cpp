@@ -471,6 +471,57 @@ TEST(View, SameCameraGivesTheSameBytesAndEveryLayerDraws)
     EXPECT_EQ(coloured, 0u);
 }
 
+/// The voxels' depth is the mesh's: a patch of voxels hides a mesh square
+/// behind it and is hidden by it from the other side (the rays write their
+/// depth through the copy into the framebuffer, view_pixels.frag).
+TEST(View, VoxelsAndMeshShareOneDepth)
+{
+    const GridSpec g = unitGrid(16);
+    std::vector<Voxel> patch; // x, y in [0, 8), z = 8
+    for (uint32_t x = 0; x < 8; ++x)
+        for (uint32_t y = 0; y < 8; ++y) patch.push_back({x, y, 8});
+    const svo::Octree octree = octreeOf(g, patch);
+    svo::TriangleMesh square; // x, y in [3.5, 11.5], at z = 2, inside the grid's box below the patch
+    square.positions = {{3.5, 3.5, 2.0}, {11.5, 3.5, 2.0}, {11.5, 11.5, 2.0}, {3.5, 11.5, 2.0}};
+    square.triangles = {{0, 1, 2}, {0, 2, 3}};
+    svo::gl::OctreeView view(context(), octree, &square);
+    ViewLayers layers;
+    layers.outlines = false;
+    layers.mesh = true;
+    const auto grey = [](const uint8_t* p) { return p[0] > 60 && std::abs(int(p[0]) - int(p[1])) < 8; };
+    // Pixels of 1 world unit centred on the grid's middle; the image's x runs
+    // along +x (from +z) or -x (from -z), its y along -y.
+    for (const double side : {1.0, -1.0}) {
+        AxisView v(2, {7.5, 7.5, 5.0}, 1.0, 16, 16);
+        if (side < 0) {
+            v.camera.eye = v.camera.target - Vec3d{0, 0, 100.0};
+            v.right = -1.0 * v.right;
+        }
+        const Image img = view.render(v.camera, 16, 16, layers);
+        int greens = 0, greys = 0;
+        for (int row = 0; row < 16; ++row)
+            for (int col = 0; col < 16; ++col) {
+                // The world point under this pixel's centre.
+                const double x = 7.5 + (col + 0.5 - 8.0) * (side > 0 ? 1.0 : -1.0), y = 7.5 - (row + 0.5 - 8.0);
+                const bool inPatch = x > -0.5 && x < 7.5 && y > -0.5 && y < 7.5;
+                const bool inSquare = x > 3.5 && x < 11.5 && y > 3.5 && y < 11.5;
+                const uint8_t* p = img.pixel(col, row);
+                const bool voxelInFront = side > 0 ? inPatch : inPatch && !inSquare;
+                const bool meshInFront = side > 0 ? inSquare && !inPatch : inSquare;
+                if (voxelInFront) {
+                    EXPECT_TRUE(isGreen(p)) << side << ": " << col << "," << row;
+                }
+                if (meshInFront) {
+                    EXPECT_TRUE(grey(p)) << side << ": " << col << "," << row;
+                }
+                greens += isGreen(p);
+                greys += grey(p);
+            }
+        EXPECT_EQ(greens, side > 0 ? 64 : 64 - 16) << side; // 4 x 4 of the patch behind the square from below
+        EXPECT_EQ(greys, side > 0 ? 64 - 16 : 64) << side;
+    }
+}
+
 /// A Context that adopts the context current on the thread (as svo view's
 /// window does with its own) draws what a Context of its own draws, makes
 /// the adopted context current again wherever it is used, and leaves it alive.
