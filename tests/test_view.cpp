@@ -2,8 +2,8 @@
 // computed on the CPU from the voxel set alone: orthographic axis views of a
 // single voxel, a tilted plane and a GPU-voxelized box must cover exactly the
 // pixels of the voxels' projection (up to a one-pixel border), node outlines
-// must lie on the boxes of the chosen level's occupied nodes, and one camera
-// must give the same bytes twice.
+// must lie on the boxes of the chosen level's occupied nodes, voxels and mesh
+// must hide each other by depth, and one camera must give the same bytes twice.
 #include <algorithm>
 #include <array>
 #include <cmath>
