@@ -136,7 +136,7 @@ void addSignOptions(CLI::App& cmd, FieldArgs& a, const std::string& appliesTo)
         ->check(CLI::IsMember({"auto", "parity", "winding"}));
     cmd.add_option("--winding-accuracy", a.windingAccuracy,
                    "Winding numbers: tree nodes farther than this many radii use their dipole (larger is slower and "
-                   "more exact; inf evaluates every triangle)")
+                   "more exact; 1e300 evaluates every triangle)")
         ->check(CLI::PositiveNumber);
 }
 

@@ -153,6 +153,50 @@ TEST(LevelSet, WindingSignsMatchCgalOnClosedMeshes)
 #endif
 }
 
+// Mesa's llvmpipe ends a shader's loops silently after 65,535 iterations in
+// all (ContextInfo::loopLimit). The distance pass's workgroups loop over work
+// items: a 327,680-triangle icosphere gives each of llvmpipe's 256 groups
+// thousands, and before the dispatches were cut to fit, the band kept 34,542
+// of its 77,540 voxels at 64³. The same level set must match CGAL exactly.
+TEST(LevelSet, ManyWorkItemsPerWorkgroupLoseNoBandVoxel)
+{
+    Voxelizer v;
+    expectLevelSetMatchesCgal(v, icosphere({0.1, -0.2, 0.3}, 1.0, 7), 40, 3, 3);
+}
+
+// Winding-number walks diverge, so they cannot be cut to fit that limit: a
+// walk that would pass it stops and the call fails in one line, instead of
+// signs silently wrong (13,255 of them in this case before). With every
+// triangle evaluated (accuracy 1e30) a 20,480-triangle icosphere's walks need
+// about 25,000 iterations a voxel: on llvmpipe it is refused, on a GPU
+// without the limit its signs are CGAL's.
+TEST(Winding, WalksPastTheDriversLoopLimitAreRefusedNotTruncated)
+{
+    Voxelizer v;
+    const TriangleMesh ico = icosphere({0.1, -0.2, 0.3}, 1.0, 5);
+    const GridSpec grid = makeGrid(ico, GridRequest{24, 0});
+    LevelSetOptions ls;
+    ls.sign = SignOptions(SignMethod::Winding, 1e30);
+    if (v.deviceDescription().find("llvmpipe") != std::string::npos) {
+        try {
+            levelSetOf(v, ico, grid, ls);
+            FAIL() << "expected the loop limit to be reported";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("ends a shader's loops after 65535 iterations"), std::string::npos)
+                << e.what();
+        }
+        return;
+    }
+    const auto sdf = levelSetOf(v, ico, grid, ls);
+    const CgalReference ref(ico, grid, true);
+    uint64_t wrong = 0;
+    const auto acc = sdf->getConstAccessor();
+    forEachVoxel(ico, grid, 5, [&](const openvdb::Coord& c) {
+        if (ref.distance(c) > 1e-6 && std::signbit(acc.getValue(c)) != ref.inside(c)) ++wrong;
+    });
+    EXPECT_EQ(wrong, 0u);
+}
+
 TEST(Winding, SolidAnglesAndWindingNumbersAreTheAnalyticOnes)
 {
     // The octant triangle seen from the origin subtends 1/8 of the sphere.

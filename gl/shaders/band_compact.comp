@@ -16,6 +16,7 @@ layout(std430, binding = SVO_BIND_COMPACT_OFFSETS) writeonly restrict buffer Off
 layout(std430, binding = SVO_BIND_COMPACT_DISTANCES) writeonly restrict buffer Packed { float packedDistances[]; };
 layout(std430, binding = SVO_BIND_COMPACT_CLOSEST) writeonly restrict buffer PackedClosest { uint packedClosest[]; };
 
+uniform uint uBrickFirst; // this dispatch's bricks: [uBrickFirst, uBricks)
 uniform uint uBricks;
 uniform float uBand;     // a voxel is kept when its distance is less
 uniform uint uClosest;   // 1: closest triangles were computed
@@ -27,7 +28,7 @@ shared uint sBase;
 void main()
 {
     uint t = gl_LocalInvocationID.x;
-    for (uint brick = gl_WorkGroupID.x; brick < uBricks; brick += gl_NumWorkGroups.x) {
+    for (uint brick = uBrickFirst + gl_WorkGroupID.x; brick < uBricks; brick += gl_NumWorkGroups.x) {
         if (t < 16u) sMask[t] = 0u;
         uint first = 512u * brick + 8u * t;
         uint bits = 0u;

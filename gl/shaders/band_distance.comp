@@ -42,7 +42,7 @@ double triangleDistance2(dvec3 p, dvec3 a, dvec3 b, dvec3 c)
 void main()
 {
     uint x = gl_LocalInvocationID.x >> 3u, y = gl_LocalInvocationID.x & 7u;
-    for (uint item = workgroupIndex(); item < uItems; item += workgroupCount()) {
+    for (uint item = uItemFirst + workgroupIndex(); item < uItems; item += workgroupCount()) {
         uint t;
         uvec3 b = brickOfItem(item, t);
         uint brick = lookupBrick(b);

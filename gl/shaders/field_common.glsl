@@ -16,7 +16,8 @@ layout(std430, binding = SVO_BIND_FIELD_ITEMS) readonly restrict buffer Items { 
 layout(std430, binding = SVO_BIND_FIELD_TABLE) readonly restrict buffer Table { uint table[]; };
 
 uniform uint uTriangles; // triangles, and so entries of items[] less one
-uniform uint uItems;     // work items in all
+uniform uint uItemFirst; // this dispatch's items: [uItemFirst, uItems)
+uniform uint uItems;     // one past this dispatch's last item
 uniform uint uTableMask; // table slots - 1 (a power of two less one)
 
 dvec3 position(uint i) { return dvec3(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]); }

@@ -36,7 +36,7 @@ int edgeSide(dvec2 p0, dvec2 p1, dvec2 q)
 void main()
 {
     uint x = gl_LocalInvocationID.x >> 3u, y = gl_LocalInvocationID.x & 7u;
-    for (uint item = workgroupIndex(); item < uItems; item += workgroupCount()) {
+    for (uint item = uItemFirst + workgroupIndex(); item < uItems; item += workgroupCount()) {
         uint t;
         uvec3 b = brickOfItem(item, t); // b.z unused: a column box
         dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);

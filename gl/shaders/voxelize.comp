@@ -21,6 +21,8 @@ layout(std430, binding = SVO_BIND_COMPUTE_WORK) restrict buffer Work { uint work
 uniform uint uPass;
 uniform uint uTriangles;
 uniform uint uWorkCapacity;
+uniform uint uItemFirst; // pass 1: this dispatch's queue items, [uItemFirst, uItemEnd)
+uniform uint uItemEnd;
 const uint kSmall = 64u; // columns a pass-0 thread walks itself
 const uint kChunk = 64u; // columns of one work item: one per thread of a pass-1 workgroup
 
@@ -78,9 +80,9 @@ void main()
         for (uint k = 0u; k < items; ++k)
             if (base + k < uWorkCapacity) work[base + k] = uvec2(t, k);
     } else {
-        uint count = min(workCount, uWorkCapacity);
+        uint count = min(min(workCount, uWorkCapacity), uItemEnd);
         uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
-        for (uint item = workgroupIndex(); item < count; item += groups) {
+        for (uint item = uItemFirst + workgroupIndex(); item < count; item += groups) {
             uvec2 w = work[item];
             Triangle T = load(w.x);
             uint width = uint(T.last.x - T.first.x) + 1u;

@@ -24,6 +24,21 @@ uniform uint uFirst;   // the first brick of this dispatch
 uniform uint uCount;   // one past the last brick of this dispatch (of the list, or of the grid's box)
 uniform uvec3 uBricks; // the grid's box in bricks (per brick)
 uniform float uBeta2;  // beta^2; nodes nearer than beta radii are opened
+// Loop iterations an invocation may run before the driver would end its loops
+// silently (ContextInfo::loopLimit, less the loops around the walks); past it
+// the invocation stops and sets word uFlagWord of the output, which the host
+// reports. No limit: 0xFFFFFFFF.
+uniform uint uStepBudget;
+uniform uint uFlagWord;
+
+uint gSteps = 0u;
+bool gStopped = false;
+bool overBudget()
+{
+    if (++gSteps <= uStepBudget) return false;
+    gStopped = true;
+    return true;
+}
 
 const float kInvFourPi = 0.0795774715459476679;
 const float kPi = 3.14159265358979324;
@@ -58,6 +73,7 @@ float windingNumber(dvec3 q)
     stack[0] = 0u;
     float sum = 0.0;
     while (top > 0u) {
+        if (overBudget()) break;
         uint n = stack[--top];
         vec4 cr = nodes[2u * n];
         vec3 d = cr.xyz - qf;
@@ -69,7 +85,10 @@ float windingNumber(dvec3 q)
         uvec2 l = links[n];
         if ((l.y & kWindingLeaf) != 0u) {
             uint last = l.x + (l.y & ~kWindingLeaf);
-            for (uint i = l.x; i < last; ++i) sum += solidAngle(q, order[i]);
+            for (uint i = l.x; i < last; ++i) {
+                if (overBudget()) break;
+                sum += solidAngle(q, order[i]);
+            }
         } else {
             stack[top++] = l.x;
             stack[top++] = l.y;
@@ -87,6 +106,7 @@ void main()
             uvec3 b = uvec3(g % uBricks.x, (g / uBricks.x) % uBricks.y, g / (uBricks.x * uBricks.y));
             outWords[g] = floatBitsToUint(windingNumber(dvec3(b << kBrickLog2) + 3.5LF));
         }
+        if (gStopped) atomicOr(outWords[uFlagWord], 1u);
         return;
     }
     uint x = gl_LocalInvocationID.x >> 3u, y = gl_LocalInvocationID.x & 7u;
@@ -99,4 +119,5 @@ void main()
         // are one byte of one word.
         if (bits != 0u) atomicOr(outWords[16u * brick + (x << 1u) + (y >> 2u)], bits << ((y & 3u) << 3u));
     }
+    if (gStopped) atomicOr(outWords[uFlagWord], 1u);
 }

@@ -66,7 +66,7 @@ class ComputeWriter final : public ListWriter {
 public:
     ComputeWriter(const Context& context, const TriangleMesh& mesh, const GridSpec& grid, const RasterOptions& options)
         : ListWriter(context, mesh, grid, options), program_(context.program({"voxelize.comp"})),
-          queueGroups_(queueGroups(context))
+          queueGroups_(queueGroups(context)), loopLimit_(context.info().loopLimit)
     {
         if (triangles_ > uint64_t(kMaxGroups) * kMaxGroups * 64)
             throw Error(fmt::format("{} triangles are more than one compute dispatch can cover", triangles_));
@@ -120,7 +120,11 @@ public:
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
         checkpoint_(0.5, "compute voxelization");
         program_.set("uPass", 1u);
-        if (bound_) program_.dispatch(uint32_t(std::min<uint64_t>(bound_, queueGroups_)), 1);
+        // An item loops at most 1 + its column's voxels (a few: the dominant
+        // axis keeps the triangle's slope at most 1) times the overlap test's
+        // 3-step loops: 64 iterations an item are allowed for the driver's limit.
+        dispatchLooping(program_, bound_, uint32_t(std::min<uint64_t>(bound_, queueGroups_)), loopLimit_, 64,
+                        "uItemFirst", "uItemEnd");
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
         checkGl("compute voxelization");
     }
@@ -147,6 +151,7 @@ private:
 
     const Program& program_;
     uint32_t queueGroups_;
+    uint64_t loopLimit_; ///< ContextInfo::loopLimit
     const Buffer* work_ = nullptr;
     uint64_t bound_ = 0;
 };

@@ -242,6 +242,16 @@ struct Context::Impl {
         info.version = str(GL_VERSION);
         info.software = info.renderer.find("llvmpipe") != std::string::npos ||
                         info.renderer.find("softpipe") != std::string::npos;
+        if (info.software) {
+            info.loopLimit = 65535; // gallivm's LP_MAX_TGSI_LOOP_ITERATIONS
+            // llvmpipe names its vector width: "llvmpipe (LLVM 15.0.6, 256 bits)"; assume the widest otherwise.
+            const size_t bits = info.renderer.find(" bits)");
+            const size_t comma = info.renderer.rfind(", ", bits);
+            int width = 512;
+            if (bits != std::string::npos && comma != std::string::npos)
+                width = std::atoi(info.renderer.c_str() + comma + 2);
+            info.loopLanes = uint32_t(std::clamp(width, 32, 512) / 32);
+        }
         GLint major = 0, minor = 0;
         glGetIntegerv(GL_MAJOR_VERSION, &major);
         glGetIntegerv(GL_MINOR_VERSION, &minor);

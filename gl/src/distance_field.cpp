@@ -89,12 +89,16 @@ uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, co
     return total;
 }
 
-void dispatchItems(const Program& program, uint64_t items, bool software)
+/// Runs `program` over items [0, items): workgroups loop over them, enough
+/// to fill a large GPU, few on a CPU rasterizer, where each group costs. An
+/// item loops at most 1 + 32 times (triangleOfItem's search) + 8 (a thread's
+/// column) + the brick table's probes, which stay short at half load: 128
+/// iterations an item are allowed for the driver's loop limit.
+void dispatchItems(const Context& context, const Program& program, uint64_t items)
 {
-    // Workgroups loop over the items: enough to fill a large GPU, few on
-    // llvmpipe where each group costs.
-    const uint64_t groups = std::min<uint64_t>(items, software ? 256 : 65535);
-    if (groups) program.dispatch(uint32_t(groups));
+    const ContextInfo& info = context.info();
+    const auto groups = uint32_t(std::min<uint64_t>(items, info.software ? 256 : 65535));
+    dispatchLooping(program, items, groups, info.loopLimit, 128, "uItemFirst", "uItems");
 }
 
 } // namespace
@@ -180,9 +184,8 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         timer.begin();
         itemBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_ITEMS);
         program.set("uTriangles", uint32_t(mesh.triangles.size()));
-        program.set("uItems", uint32_t(n));
         program.set("uTableMask", tableMask);
-        dispatchItems(program, n, software);
+        dispatchItems(context, program, n);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         timer.end();
         checkGl(name);
@@ -219,10 +222,11 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         TimerQuery timer;
         timer.begin();
         const Program& program = context.program({"band_compact.comp"});
-        program.set("uBricks", uint32_t(nb));
         program.set("uBand", float(band));
         program.set("uClosest", closestBuffer ? 1u : 0u);
-        if (nb) program.dispatch(uint32_t(std::min<uint64_t>(nb, software ? 256 : 65535)));
+        // A brick loops at most 1 + 8 + 64 + 8 times (band_compact.comp).
+        dispatchLooping(program, nb, uint32_t(std::min<uint64_t>(nb, software ? 256 : 65535)),
+                        context.info().loopLimit, 96, "uBrickFirst", "uBricks");
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         timer.end();
         checkGl("band packing");

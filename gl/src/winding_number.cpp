@@ -61,7 +61,9 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
     const Buffer links("winding links", tree.links.size() * 4, tree.links.data());
     const Buffer order("winding order", tree.order.size() * 4, tree.order.data());
     const Buffer bricks("winding bricks", brickWords.size() * 4, brickWords.data());
-    const uint64_t outBytes = std::max<uint64_t>(std::max(nb * sizeof(Brick), request.perBrick ? boxBricks * 4 : 0), 4);
+    // The results, then one word a walk sets when it stopped at the driver's loop limit.
+    const uint64_t resultBytes = std::max<uint64_t>(std::max(nb * sizeof(Brick), request.perBrick ? boxBricks * 4 : 0), 4);
+    const uint64_t outBytes = resultBytes + 4;
     // One shader buffer holds each array (Context::shaderBufferLimit): refused, never cut short.
     const uint64_t block = context.shaderBufferLimit();
     if (block && std::max(outBytes, brickWords.size() * 4) > block)
@@ -87,6 +89,14 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
     // distance exceeds.
     const double beta2 = request.beta * request.beta;
     program.set("uBeta2", beta2 < 3.0e38 ? float(beta2) : 3.0e38f);
+    // Where the driver ends loops silently, a walk stops short of it and says
+    // so. The walks of one SIMD vector's lanes diverge, so each lane gets its
+    // share of the limit; 64 iterations are the loops around the walks.
+    const uint64_t loopLimit = context.info().loopLimit;
+    program.set("uStepBudget", loopLimit ? uint32_t((loopLimit - 64) / context.info().loopLanes) : 0xFFFFFFFFu);
+    program.set("uFlagWord", uint32_t(resultBytes / 4));
+    const uint32_t zero = 0;
+    out.write(resultBytes, 4, &zero);
     // Dispatches of a bounded size: the checkpoint runs between them.
     auto run = [&](const char* name, uint32_t mode, uint64_t count, uint64_t perDispatch, uint64_t threadsPerUnit,
                    double from, double to) {
@@ -113,6 +123,13 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
         timer.end();
         checkGl(name);
         waitForGpu([] {});
+        uint32_t stopped = 0;
+        out.read(resultBytes, 4, &stopped);
+        if (stopped)
+            throw Error(fmt::format("winding numbers: {} ends a shader's loops after {} iterations, and walking this "
+                                    "mesh's winding tree at accuracy {} takes more; use a smaller winding accuracy "
+                                    "(2 by default) or a hardware GPU",
+                                    context.info().renderer, loopLimit, request.beta));
         result.stages.push_back({name, timer.milliseconds(), msSince(w0)});
     };
     if (request.perBrick) {

@@ -61,6 +61,15 @@ struct ContextInfo {
     bool conservativeRasterNV = false; ///< GL_NV_conservative_raster present
     bool memoryInfoNVX = false;        ///< GL_NVX_gpu_memory_info present (free video memory can be asked)
     bool software = false;             ///< a CPU rasterizer (llvmpipe, softpipe, lavapipe-like)
+    /// Loop iterations a shader may run in all, over all its loops, before the
+    /// driver ends them silently: Mesa's gallivm (llvmpipe, softpipe) stops
+    /// at 65,535. 0: no such limit. Passes whose invocations loop over work
+    /// cut their dispatches to stay under it, or stop and report it.
+    uint64_t loopLimit = 0;
+    /// The invocations that share one loopLimit: gallivm runs loopLanes of them
+    /// as one SIMD vector, whose loops iterate while any lane does, so lanes
+    /// whose loops diverge spend the limit together (llvmpipe's "N bits" / 32).
+    uint32_t loopLanes = 1;
     int maxViewport = 0;               ///< largest framebuffer width/height usable
     /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the most bytes of one buffer a shader
     /// can address; work whose buffers would pass it is tiled or refused.
