@@ -33,11 +33,9 @@ uniform uint uFlagWord;
 
 uint gSteps = 0u;
 bool gStopped = false;
-/// Counts `n` more iterations; true (and the invocation stopped) past the budget.
-bool overBudget(uint n)
+bool overBudget()
 {
-    gSteps += n;
-    if (gSteps <= uStepBudget) return false;
+    if (++gSteps <= uStepBudget) return false;
     gStopped = true;
     return true;
 }
@@ -75,7 +73,7 @@ float windingNumber(dvec3 q)
     stack[0] = 0u;
     float sum = 0.0;
     while (top > 0u) {
-        if (overBudget(1u)) break;
+        if (overBudget()) break;
         uint n = stack[--top];
         vec4 cr = nodes[2u * n];
         vec3 d = cr.xyz - qf;
@@ -87,8 +85,10 @@ float windingNumber(dvec3 q)
         uvec2 l = links[n];
         if ((l.y & kWindingLeaf) != 0u) {
             uint last = l.x + (l.y & ~kWindingLeaf);
-            if (overBudget(last - l.x)) break; // the leaf's loop, counted before it runs
-            for (uint i = l.x; i < last; ++i) sum += solidAngle(q, order[i]);
+            for (uint i = l.x; i < last; ++i) {
+                if (overBudget()) break;
+                sum += solidAngle(q, order[i]);
+            }
         } else {
             stack[top++] = l.x;
             stack[top++] = l.y;
