@@ -12,7 +12,29 @@ layout(std430, binding = SVO_BIND_FIELD_DISTANCES) restrict buffer Distances { u
 layout(std430, binding = SVO_BIND_FIELD_CLOSEST) restrict buffer Closest { uint closest[]; };
 
 uniform uint uPass;
-uniform float uBand; // distances beyond it are not kept
+uniform float uBand;       // distances beyond it are not kept
+uniform uint uWhole;       // 1: a thread a whole-box triangle; 0: a workgroup an item
+uniform uint uWholeStart;  // where the whole-box triangles' list starts in items[]
+
+// A triangle, with what the distance to it needs of each voxel centre
+// computed once: its normal, and per edge the normal of the edge in the
+// triangle's plane and the edge's squared length.
+struct Triangle {
+    dvec3 a, b, c;
+    dvec3 n;
+    double n2;
+    dvec3 nab, nbc, nca; // n x edge: a centre is on the inner side of every edge where each dot is >= 0
+};
+
+Triangle triangleOf(dvec3 a, dvec3 b, dvec3 c)
+{
+    Triangle T;
+    T.a = a, T.b = b, T.c = c;
+    T.n = cross(b - a, c - a);
+    T.n2 = dot(T.n, T.n);
+    T.nab = cross(T.n, b - a), T.nbc = cross(T.n, c - b), T.nca = cross(T.n, a - c);
+    return T;
+}
 
 // Squared distance from p to the segment [a, b]; a point when a == b.
 double segmentDistance2(dvec3 p, dvec3 a, dvec3 b)
@@ -24,47 +46,81 @@ double segmentDistance2(dvec3 p, dvec3 a, dvec3 b)
     return dot(d, d);
 }
 
-// Squared distance from p to the closed triangle abc: the distance to its
-// plane where p projects inside it, else the least of the edges'. Needles and
+// Squared distance from p to the closed triangle: the distance to its plane
+// where p projects inside it, else the least of the edges'. Needles and
 // points are their edges, so nothing degenerate divides by zero.
-double triangleDistance2(dvec3 p, dvec3 a, dvec3 b, dvec3 c)
+double triangleDistance2(dvec3 p, Triangle T)
 {
-    dvec3 n = cross(b - a, c - a);
-    double n2 = dot(n, n);
-    if (n2 > 0.0LF && dot(cross(b - a, p - a), n) >= 0.0LF && dot(cross(c - b, p - b), n) >= 0.0LF &&
-        dot(cross(a - c, p - c), n) >= 0.0LF) {
-        double h = dot(p - a, n);
-        return h * h / n2;
+    if (T.n2 > 0.0LF && dot(p - T.a, T.nab) >= 0.0LF && dot(p - T.b, T.nbc) >= 0.0LF &&
+        dot(p - T.c, T.nca) >= 0.0LF) {
+        double h = dot(p - T.a, T.n);
+        return h * h / T.n2;
     }
-    return min(segmentDistance2(p, a, b), min(segmentDistance2(p, b, c), segmentDistance2(p, c, a)));
+    return min(segmentDistance2(p, T.a, T.b), min(segmentDistance2(p, T.b, T.c), segmentDistance2(p, T.c, T.a)));
+}
+
+// The band distances of one column of an item's box to triangle t.
+void columnDistances(uint t, Triangle T, dvec3 boxLo, dvec3 boxHi, uvec2 column, uvec3 lo, uvec3 size)
+{
+    double band2 = double(uBand) * double(uBand);
+    // Most centres of the box are beyond the band from the triangle's box:
+    // the column's run of centres within it, found from the gap across the
+    // column (widened for rounding), then each centre's exact test, which
+    // is cheaper than the distance.
+    dvec2 gxy = max(max(boxLo.xy - dvec2(column), dvec2(column) - boxHi.xy), dvec2(0.0LF));
+    double rest = band2 - dot(gxy, gxy);
+    if (rest < 0.0LF) return;
+    double r = sqrt(rest) * (1.0LF + 1e-9LF) + 1e-9LF;
+    double z0 = max(double(lo.z), ceil(boxLo.z - r)), z1 = min(double(lo.z + size.z - 1u), floor(boxHi.z + r));
+    uvec2 l = column & kBrickMask;
+    uint leaf = (l.x << kKeyLeafXShift) | (l.y << kKeyLeafYShift);
+    uint brickZ = 0xFFFFFFFFu, brick = kNoChild; // the run may cross into the next brick up
+    for (double zd = z0; zd <= z1; zd += 1.0LF) {
+        uint z = uint(zd);
+        dvec3 p = dvec3(column, zd);
+        dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));
+        if (dot(g, g) > band2) continue;
+        if (z >> kBrickLog2 != brickZ) {
+            brickZ = z >> kBrickLog2;
+            brick = lookupBrick(uvec3(column >> kBrickLog2, brickZ));
+        }
+        if (brick == kNoChild) continue; // no voxel of this brick is in the band
+        float d = float(sqrt(triangleDistance2(p, T)));
+        if (d > uBand) continue;
+        uint i = 512u * brick + leaf + (z & kBrickMask);
+        if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));
+        else if (distances[i] == floatBitsToUint(d)) atomicMin(closest[i], t);
+    }
 }
 
 void main()
 {
-    uint x = gl_LocalInvocationID.x >> 3u, y = gl_LocalInvocationID.x & 7u;
+    if (uWhole != 0u) {
+        // One thread a triangle whose whole box is one item (items[uWholeStart + k]):
+        // all its columns.
+        uint threads = 64u * workgroupCount();
+        for (uint k = uItemFirst + 64u * workgroupIndex() + gl_LocalInvocationID.x; k < uItems; k += threads) {
+            uint t = items[uWholeStart + k];
+            uint base = kItemWords * t;
+            uvec3 lo = uvec3(items[base + 1u], items[base + 2u], items[base + 3u]);
+            uvec3 size = uvec3(items[base + 4u], items[base + 5u], items[base + 6u]);
+            dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
+            Triangle T = triangleOf(A, B, C);
+            dvec3 boxLo = min(A, min(B, C)), boxHi = max(A, max(B, C));
+            for (uint y = 0u; y < size.y; ++y)
+                for (uint x = 0u; x < size.x; ++x)
+                    columnDistances(t, T, boxLo, boxHi, lo.xy + uvec2(x, y), lo, size);
+        }
+        return;
+    }
+    // One workgroup an item, a column a thread.
     for (uint item = uItemFirst + workgroupIndex(); item < uItems; item += workgroupCount()) {
         uint t;
-        uvec3 b = brickOfItem(item, t);
-        uint brick = lookupBrick(b);
-        if (brick == kNoChild) continue; // no voxel of this brick is in the band
+        uvec3 lo, size;
+        voxelBoxOfItem(item, t, lo, size); // at most 8 x 8 x 8
+        if (gl_LocalInvocationID.x >= size.x * size.y) continue;
         dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
-        // The whole brick beyond the band from the triangle's box: skip it.
-        dvec3 lo = dvec3(b << kBrickLog2), hi = lo + 7.0LF;
-        dvec3 boxLo = min(A, min(B, C)), boxHi = max(A, max(B, C));
-        dvec3 gap = max(max(boxLo - hi, lo - boxHi), dvec3(0.0LF));
-        double band2 = double(uBand) * double(uBand);
-        if (dot(gap, gap) > band2) continue;
-        for (uint z = 0u; z < 8u; ++z) {
-            dvec3 p = lo + dvec3(x, y, z);
-            // Most centres of a brick are beyond the band from the box of a
-            // small triangle: that test is cheaper than the distance.
-            dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));
-            if (dot(g, g) > band2) continue;
-            float d = float(sqrt(triangleDistance2(p, A, B, C)));
-            if (d > uBand) continue;
-            uint i = 512u * brick + ((x << kKeyLeafXShift) | (y << kKeyLeafYShift) | z);
-            if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));
-            else if (distances[i] == floatBitsToUint(d)) atomicMin(closest[i], t);
-        }
+        columnDistances(t, triangleOf(A, B, C), min(A, min(B, C)), max(A, max(B, C)),
+                        lo.xy + uvec2(gl_LocalInvocationID.x % size.x, gl_LocalInvocationID.x / size.x), lo, size);
     }
 }

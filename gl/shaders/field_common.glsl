@@ -2,12 +2,17 @@
 // parity_flips.comp): the mesh in local double coordinates, the work items,
 // and the brick table (gpu_layout.h has the layouts).
 //
-// Work items. For every triangle the host gives a box of bricks (3D for
+// Work items. For every triangle the host gives a box of voxels (3D for
 // distances: the triangle's box grown by the band; 2D for signs: its columns)
 // and the number of the triangle's first item, an exclusive prefix sum over
-// the boxes' sizes. Item i is one brick of one box; one workgroup of 64
-// threads takes it, so a large triangle spreads over many workgroups.
-// Workgroups loop over the items.
+// the items per box. A box no wider than a brick is one item; a larger one
+// is an item per brick (brick column) it spans, so a large triangle spreads
+// over many workgroups while a small one costs one item, not one per brick
+// it touches (on a CPU rasterizer, items cost). One workgroup of 64 threads
+// takes an item, a column a thread; workgroups loop over the items. The
+// distance pass lists the one-item triangles apart and gives each a thread
+// (band_distance.comp), so a CPU rasterizer's SIMD lanes take eight of them
+// at once instead of the columns of one.
 #include "gpu_layout.h"
 
 layout(std430, binding = SVO_BIND_FIELD_POSITIONS) readonly restrict buffer Positions { double positions[]; };
@@ -34,16 +39,22 @@ uint triangleOfItem(uint i)
     return lo;
 }
 
-// The brick (brick coordinates) that item i stands for, and its triangle.
-uvec3 brickOfItem(uint i, out uint t)
+// The voxel box that item i stands for, and its triangle: the triangle's
+// whole box, or the part of it in one brick (for columns: one brick column);
+// at most 8 voxels along each axis.
+void voxelBoxOfItem(uint i, out uint t, out uvec3 lo, out uvec3 size)
 {
     t = triangleOfItem(i);
     uint base = kItemWords * t;
+    lo = uvec3(items[base + 1u], items[base + 2u], items[base + 3u]);
+    size = uvec3(items[base + 4u], items[base + 5u], items[base + 6u]);
+    if (items[base + 7u] != 0u) return;
     uint local = i - items[base];
-    uvec3 origin = uvec3(items[base + 1u], items[base + 2u], items[base + 3u]);
-    uvec3 size = uvec3(items[base + 4u], items[base + 5u], items[base + 6u]);
-    uvec3 b = uvec3(local % size.x, (local / size.x) % size.y, local / (size.x * size.y));
-    return origin + b;
+    uvec3 b0 = lo >> kBrickLog2, nb = ((lo + size - 1u) >> kBrickLog2) - b0 + 1u;
+    uvec3 b = b0 + uvec3(local % nb.x, (local / nb.x) % nb.y, local / (nb.x * nb.y));
+    uvec3 hi = min(lo + size, (b + 1u) << kBrickLog2);
+    lo = max(lo, b << kBrickLog2);
+    size = hi - lo;
 }
 
 // The brick's index in the field buffers, or kNoChild when it has none.

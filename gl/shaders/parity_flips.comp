@@ -35,12 +35,14 @@ int edgeSide(dvec2 p0, dvec2 p1, dvec2 q)
 
 void main()
 {
-    uint x = gl_LocalInvocationID.x >> 3u, y = gl_LocalInvocationID.x & 7u;
     for (uint item = uItemFirst + workgroupIndex(); item < uItems; item += workgroupCount()) {
         uint t;
-        uvec3 b = brickOfItem(item, t); // b.z unused: a column box
+        uvec3 lo, size;
+        voxelBoxOfItem(item, t, lo, size); // at most 64 columns (size.z is 1): one a thread
+        if (gl_LocalInvocationID.x >= size.x * size.y) continue;
+        uvec2 column = lo.xy + uvec2(gl_LocalInvocationID.x % size.x, gl_LocalInvocationID.x / size.x);
         dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
-        dvec2 q = dvec2((b.xy << kBrickLog2) + uvec2(x, y));
+        dvec2 q = dvec2(column);
         int sa = edgeSide(B.xy, C.xy, q), sb = edgeSide(C.xy, A.xy, q), sc = edgeSide(A.xy, B.xy, q);
         if (sa == 0 || sa != sb || sb != sc) continue; // the column misses the triangle
         // Where it crosses: barycentric weights from the same edge functions.
@@ -53,12 +55,13 @@ void main()
         double k = ceil(zc); // the first centre above the crossing (a centre on it counts as above)
         if (k >= double(uDimZ)) continue; // nothing above it in the grid
         uint kz = uint(max(k, 0.0LF));
-        uint brick = lookupBrick(uvec3(b.xy, kz >> kBrickLog2));
+        uint brick = lookupBrick(uvec3(column >> kBrickLog2, kz >> kBrickLog2));
         if (brick == kNoChild) {
             atomicAdd(missing, 1u);
             continue;
         }
-        uint bit = (x << kKeyLeafXShift) | (y << kKeyLeafYShift) | (kz & kBrickMask);
+        uvec2 l = column & kBrickMask;
+        uint bit = (l.x << kKeyLeafXShift) | (l.y << kKeyLeafYShift) | (kz & kBrickMask);
         atomicXor(flips[kBrickWords * brick + (bit >> 5u)], 1u << (bit & 31u));
     }
 }

@@ -44,11 +44,16 @@ std::vector<uint32_t> brickTable(const std::vector<std::array<uint32_t, 3>>& bri
     return table;
 }
 
-/// Per triangle the box of bricks its items cover (field_common.glsl): voxels
+/// Per triangle the voxel box its items cover (field_common.glsl): voxels
 /// within `grow` of its bounding box, or with grow < 0 its columns only (a
-/// one-brick-deep box). Fills the exclusive prefix sum; returns the total.
+/// box one voxel deep at z = 0). A box no wider than a brick on every axis
+/// is one item; a larger one is an item per brick (or brick column) it spans,
+/// so an item's box always fits in 8 x 8 x 8 voxels: a column a thread. Fills
+/// the exclusive prefix sum of the items; returns the total. With `whole`,
+/// the one-item triangles are listed after the records instead (a thread
+/// each, band_distance.comp) and count no item.
 uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid, double grow,
-                   std::vector<uint32_t>& items)
+                   std::vector<uint32_t>& items, std::vector<uint32_t>* whole = nullptr)
 {
     const size_t n = mesh.triangles.size();
     items.assign(n * gpu::kItemWords, 0);
@@ -57,7 +62,8 @@ uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, co
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t t = r.begin(); t != r.end(); ++t) {
             const auto& f = mesh.triangles[t];
-            uint64_t count = 1;
+            uint64_t bricks = 1;
+            bool small = true;
             uint32_t* w = &items[t * gpu::kItemWords];
             for (int a = 0; a < 3; ++a) {
                 if (columns && a == 2) {
@@ -70,21 +76,25 @@ uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, co
                 const double first = std::max(std::ceil(lo - g), 0.0);
                 const double last = std::min(std::floor(hi + g), double(grid.dims[a]) - 1);
                 if (last < first) {
-                    count = 0;
+                    bricks = 0;
                     break;
                 }
-                const uint32_t b0 = uint32_t(first) >> gpu::kBrickLog2, b1 = uint32_t(last) >> gpu::kBrickLog2;
-                w[1 + a] = b0;
-                w[4 + a] = b1 - b0 + 1;
-                count *= b1 - b0 + 1;
+                const auto v0 = uint32_t(first), v1 = uint32_t(last);
+                w[1 + a] = v0;
+                w[4 + a] = v1 - v0 + 1;
+                small = small && v1 - v0 < (1u << gpu::kBrickLog2);
+                bricks *= (v1 >> gpu::kBrickLog2) - (v0 >> gpu::kBrickLog2) + 1;
             }
-            counts[t] = count;
+            w[7] = small ? 1 : 0;
+            counts[t] = bricks == 0 ? 0 : small ? 1 : bricks;
         }
     });
     uint64_t total = 0;
+    if (whole) whole->clear();
     for (size_t t = 0; t < n; ++t) {
         items[t * gpu::kItemWords] = uint32_t(std::min<uint64_t>(total, 0xFFFFFFFFu));
-        total += counts[t];
+        if (whole && items[t * gpu::kItemWords + 7] && counts[t]) whole->push_back(uint32_t(t));
+        else total += counts[t];
     }
     return total;
 }
@@ -92,13 +102,13 @@ uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, co
 /// Runs `program` over items [0, items): workgroups loop over them, enough
 /// to fill a large GPU, few on a CPU rasterizer, where each group costs. An
 /// item loops at most 1 + 32 times (triangleOfItem's search) + 8 (a thread's
-/// column) + the brick table's probes, which stay short at half load: 128
-/// iterations an item are allowed for the driver's loop limit.
+/// column) + the brick table's probes for up to 8 bricks, which stay short at
+/// half load: 256 iterations an item are allowed for the driver's loop limit.
 void dispatchItems(const Context& context, const Program& program, uint64_t items)
 {
     const ContextInfo& info = context.info();
     const auto groups = uint32_t(std::min<uint64_t>(items, info.software ? 256 : 65535));
-    dispatchLooping(program, items, groups, info.loopLimit, 128, "uItemFirst", "uItems");
+    dispatchLooping(program, items, groups, info.loopLimit, 256, "uItemFirst", "uItems");
 }
 
 } // namespace
@@ -118,8 +128,8 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     tbb::parallel_for(tbb::blocked_range<size_t>(0, local.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) local[i] = grid.toLocal(mesh.positions[i]);
     });
-    std::vector<uint32_t> distanceItems, crossingItems;
-    const uint64_t nDistance = distances ? workItems(local, mesh, grid, band, distanceItems) : 0;
+    std::vector<uint32_t> distanceItems, crossingItems, wholeBoxes;
+    const uint64_t nDistance = distances ? workItems(local, mesh, grid, band, distanceItems, &wholeBoxes) : 0;
     const uint64_t nCrossing = request.crossings ? workItems(local, mesh, grid, -1.0, crossingItems) : 0;
     for (uint64_t n : {nDistance, nCrossing})
         if (n > 0xFFFFFFFFu)
@@ -176,16 +186,35 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     const bool software = context.info().software;
     const auto poll = [&] { request.checkpoint(0.5, "distance field"); };
 
-    // One pass over a set of items, timed.
-    auto pass = [&](const char* name, const Program& program, const std::vector<uint32_t>& items, uint64_t n) {
+    // One pass over a set of items, timed; with `whole`, the whole-box
+    // triangles listed after the items' records too, a thread each.
+    auto pass = [&](const char* name, const Program& program, std::vector<uint32_t>& items, uint64_t n,
+                    const std::vector<uint32_t>* whole = nullptr) {
         const auto w0 = Clock::now();
         TimerQuery timer;
+        const size_t records = items.size();
+        if (whole) items.insert(items.end(), whole->begin(), whole->end());
         const Buffer itemBuffer("field work items", std::max<size_t>(items.size(), 1) * 4, items.data());
+        if (whole) items.resize(records);
         timer.begin();
         itemBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_ITEMS);
         program.set("uTriangles", uint32_t(mesh.triangles.size()));
         program.set("uTableMask", tableMask);
+        if (whole) {
+            program.set("uWhole", 0u);
+            program.set("uWholeStart", uint32_t(records));
+        }
         dispatchItems(context, program, n);
+        if (whole && !whole->empty()) {
+            // A thread loops at most over 64 columns, 512 centres and two
+            // brick lookups a column, each with its probes: 1024 iterations
+            // a triangle allowed, 1024 / 64 a triangle of a workgroup, with
+            // a margin for the loop around them.
+            program.set("uWhole", 1u);
+            const ContextInfo& info = context.info();
+            const auto groups = uint32_t(std::min<uint64_t>((whole->size() + 63) / 64, info.software ? 256 : 65535));
+            dispatchLooping(program, whole->size(), groups, info.loopLimit, 20, "uItemFirst", "uItems");
+        }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         timer.end();
         checkGl(name);
@@ -196,10 +225,10 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         const Program& program = context.program({"band_distance.comp"});
         program.set("uBand", float(band));
         program.set("uPass", 0u);
-        pass("band distance", program, distanceItems, nDistance);
+        pass("band distance", program, distanceItems, nDistance, &wholeBoxes);
         if (closestBuffer) {
             program.set("uPass", 1u);
-            pass("closest triangle", program, distanceItems, nDistance);
+            pass("closest triangle", program, distanceItems, nDistance, &wholeBoxes);
         }
     }
     const Buffer* maskBuffer = nullptr;
@@ -247,7 +276,7 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
                       (distanceBuffer ? nb * (2048 + 2048 + sizeof(Brick) + 4) : 0) +
                       (closestBuffer ? nb * 2048 * 2 : 0) +
                       (flipBuffer ? nb * sizeof(Brick) : 0) +
-                      std::max(distanceItems.size(), crossingItems.size()) * 4;
+                      std::max(distanceItems.size() + wholeBoxes.size(), crossingItems.size()) * 4;
     request.checkpoint(0.8, "field readback");
 
     t0 = Clock::now();

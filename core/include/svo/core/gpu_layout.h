@@ -173,7 +173,7 @@ SVO_CONST(uint) kTableWords = 4u;
 /* Distance and sign passes (band_distance.comp, parity_flips.comp). */
 #define SVO_BIND_FIELD_POSITIONS 0 /* local double positions, 3 per vertex */
 #define SVO_BIND_FIELD_INDICES 1   /* 3 vertex indices per triangle */
-#define SVO_BIND_FIELD_ITEMS 2     /* kItemWords uints per triangle: first item, brick box origin, box size */
+#define SVO_BIND_FIELD_ITEMS 2     /* kItemWords uints per triangle: first item, voxel box origin, box size, whole */
 #define SVO_BIND_FIELD_TABLE 3     /* the brick table */
 #define SVO_BIND_FIELD_DISTANCES 4 /* 512 per brick: float bits of the distance in voxels (+inf: beyond the band) */
 #define SVO_BIND_FIELD_CLOSEST 5   /* 512 per brick: the closest triangle (0xFFFFFFFF: none) */
@@ -186,7 +186,8 @@ SVO_CONST(uint) kTableWords = 4u;
 #define SVO_BIND_COMPACT_OFFSETS 1   /* per brick: where its values start in the packed arrays */
 #define SVO_BIND_COMPACT_DISTANCES 2 /* packed: the distances of the masked voxels, brick by brick in bit order */
 #define SVO_BIND_COMPACT_CLOSEST 3   /* packed alike: their closest triangles */
-SVO_CONST(uint) kItemWords = 8u; /* first item, box origin x y z, box size x y z, unused */
+/* first item, voxel box origin x y z, box size x y z, 1 when the box is one item (else one per brick it spans) */
+SVO_CONST(uint) kItemWords = 8u;
 
 /* Winding numbers (winding_number.comp, svo/core/winding_tree.h); positions
    and indices as for the distance passes. */
