@@ -12,9 +12,7 @@ layout(std430, binding = SVO_BIND_FIELD_DISTANCES) restrict buffer Distances { u
 layout(std430, binding = SVO_BIND_FIELD_CLOSEST) restrict buffer Closest { uint closest[]; };
 
 uniform uint uPass;
-uniform float uBand;       // distances beyond it are not kept
-uniform uint uWhole;       // 1: a thread a whole-box triangle; 0: a workgroup an item
-uniform uint uWholeStart;  // where the whole-box triangles' list starts in items[]
+uniform float uBand; // distances beyond it are not kept
 
 // A triangle, with what the distance to it needs of each voxel centre
 // computed once: its normal, and per edge the normal of the edge in the
@@ -95,15 +93,11 @@ void columnDistances(uint t, Triangle T, dvec3 boxLo, dvec3 boxHi, uvec2 column,
 
 void main()
 {
-    if (uWhole != 0u) {
-        // One thread a triangle whose whole box is one item (items[uWholeStart + k]):
-        // all its columns.
-        uint threads = 64u * workgroupCount();
-        for (uint k = uItemFirst + 64u * workgroupIndex() + gl_LocalInvocationID.x; k < uItems; k += threads) {
-            uint t = items[uWholeStart + k];
-            uint base = kItemWords * t;
-            uvec3 lo = uvec3(items[base + 1u], items[base + 2u], items[base + 3u]);
-            uvec3 size = uvec3(items[base + 4u], items[base + 5u], items[base + 6u]);
+    if (uWhole != 0u) { // a thread a one-item triangle: all its columns
+        for (uint k = uItemFirst + threadIndex(); k < uItems; k += threadCount()) {
+            uint t;
+            uvec3 lo, size;
+            wholeBox(k, t, lo, size);
             dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
             Triangle T = triangleOf(A, B, C);
             dvec3 boxLo = min(A, min(B, C)), boxHi = max(A, max(B, C));

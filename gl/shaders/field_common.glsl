@@ -24,6 +24,8 @@ uniform uint uTriangles; // triangles, and so entries of items[] less one
 uniform uint uItemFirst; // this dispatch's items: [uItemFirst, uItems)
 uniform uint uItems;     // one past this dispatch's last item
 uniform uint uTableMask; // table slots - 1 (a power of two less one)
+uniform uint uWhole;      // 1: a thread a one-item triangle of the list at uWholeStart; 0: a workgroup an item
+uniform uint uWholeStart; // where the list of one-item triangles starts in items[]
 
 dvec3 position(uint i) { return dvec3(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]); }
 
@@ -57,6 +59,15 @@ void voxelBoxOfItem(uint i, out uint t, out uvec3 lo, out uvec3 size)
     size = hi - lo;
 }
 
+// The box of the k-th one-item triangle (uWhole), and the triangle.
+void wholeBox(uint k, out uint t, out uvec3 lo, out uvec3 size)
+{
+    t = items[uWholeStart + k];
+    uint base = kItemWords * t;
+    lo = uvec3(items[base + 1u], items[base + 2u], items[base + 3u]);
+    size = uvec3(items[base + 4u], items[base + 5u], items[base + 6u]);
+}
+
 // The brick's index in the field buffers, or kNoChild when it has none.
 uint lookupBrick(uvec3 b)
 {
@@ -72,3 +83,5 @@ uint lookupBrick(uvec3 b)
 
 uint workgroupIndex() { return gl_WorkGroupID.x + gl_NumWorkGroups.x * gl_WorkGroupID.y; }
 uint workgroupCount() { return gl_NumWorkGroups.x * gl_NumWorkGroups.y; }
+uint threadIndex() { return 64u * workgroupIndex() + gl_LocalInvocationID.x; }
+uint threadCount() { return 64u * workgroupCount(); }

@@ -33,35 +33,52 @@ int edgeSide(dvec2 p0, dvec2 p1, dvec2 q)
     return swapped ? -s : s;
 }
 
+// Marks where triangle t crosses one column, if it does.
+void columnCrossing(uint t, dvec3 A, dvec3 B, dvec3 C, uvec2 column)
+{
+    dvec2 q = dvec2(column);
+    int sa = edgeSide(B.xy, C.xy, q), sb = edgeSide(C.xy, A.xy, q), sc = edgeSide(A.xy, B.xy, q);
+    if (sa == 0 || sa != sb || sb != sc) return; // the column misses the triangle
+    // Where it crosses: barycentric weights from the same edge functions.
+    double wa = (C.x - B.x) * (q.y - B.y) - (C.y - B.y) * (q.x - B.x);
+    double wb = (A.x - C.x) * (q.y - C.y) - (A.y - C.y) * (q.x - C.x);
+    double wc = (B.x - A.x) * (q.y - A.y) - (B.y - A.y) * (q.x - A.x);
+    double sum = wa + wb + wc;
+    if (sum == 0.0LF) return; // zero area in projection after rounding: no crossing to place
+    double zc = (wa * A.z + wb * B.z + wc * C.z) / sum;
+    double k = ceil(zc); // the first centre above the crossing (a centre on it counts as above)
+    if (k >= double(uDimZ)) return; // nothing above it in the grid
+    uint kz = uint(max(k, 0.0LF));
+    uint brick = lookupBrick(uvec3(column >> kBrickLog2, kz >> kBrickLog2));
+    if (brick == kNoChild) {
+        atomicAdd(missing, 1u);
+        return;
+    }
+    uvec2 l = column & kBrickMask;
+    uint bit = (l.x << kKeyLeafXShift) | (l.y << kKeyLeafYShift) | (kz & kBrickMask);
+    atomicXor(flips[kBrickWords * brick + (bit >> 5u)], 1u << (bit & 31u));
+}
+
 void main()
 {
+    if (uWhole != 0u) { // a thread a one-item triangle: all its columns
+        for (uint k = uItemFirst + threadIndex(); k < uItems; k += threadCount()) {
+            uint t;
+            uvec3 lo, size;
+            wholeBox(k, t, lo, size);
+            dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
+            for (uint y = 0u; y < size.y; ++y)
+                for (uint x = 0u; x < size.x; ++x) columnCrossing(t, A, B, C, lo.xy + uvec2(x, y));
+        }
+        return;
+    }
+    // One workgroup an item, a column a thread.
     for (uint item = uItemFirst + workgroupIndex(); item < uItems; item += workgroupCount()) {
         uint t;
         uvec3 lo, size;
-        voxelBoxOfItem(item, t, lo, size); // at most 64 columns (size.z is 1): one a thread
+        voxelBoxOfItem(item, t, lo, size); // at most 64 columns (size.z is 1)
         if (gl_LocalInvocationID.x >= size.x * size.y) continue;
-        uvec2 column = lo.xy + uvec2(gl_LocalInvocationID.x % size.x, gl_LocalInvocationID.x / size.x);
         dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
-        dvec2 q = dvec2(column);
-        int sa = edgeSide(B.xy, C.xy, q), sb = edgeSide(C.xy, A.xy, q), sc = edgeSide(A.xy, B.xy, q);
-        if (sa == 0 || sa != sb || sb != sc) continue; // the column misses the triangle
-        // Where it crosses: barycentric weights from the same edge functions.
-        double wa = (C.x - B.x) * (q.y - B.y) - (C.y - B.y) * (q.x - B.x);
-        double wb = (A.x - C.x) * (q.y - C.y) - (A.y - C.y) * (q.x - C.x);
-        double wc = (B.x - A.x) * (q.y - A.y) - (B.y - A.y) * (q.x - A.x);
-        double sum = wa + wb + wc;
-        if (sum == 0.0LF) continue; // zero area in projection after rounding: no crossing to place
-        double zc = (wa * A.z + wb * B.z + wc * C.z) / sum;
-        double k = ceil(zc); // the first centre above the crossing (a centre on it counts as above)
-        if (k >= double(uDimZ)) continue; // nothing above it in the grid
-        uint kz = uint(max(k, 0.0LF));
-        uint brick = lookupBrick(uvec3(column >> kBrickLog2, kz >> kBrickLog2));
-        if (brick == kNoChild) {
-            atomicAdd(missing, 1u);
-            continue;
-        }
-        uvec2 l = column & kBrickMask;
-        uint bit = (l.x << kKeyLeafXShift) | (l.y << kKeyLeafYShift) | (kz & kBrickMask);
-        atomicXor(flips[kBrickWords * brick + (bit >> 5u)], 1u << (bit & 31u));
+        columnCrossing(t, A, B, C, lo.xy + uvec2(gl_LocalInvocationID.x % size.x, gl_LocalInvocationID.x / size.x));
     }
 }

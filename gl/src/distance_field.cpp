@@ -49,11 +49,11 @@ std::vector<uint32_t> brickTable(const std::vector<std::array<uint32_t, 3>>& bri
 /// box one voxel deep at z = 0). A box no wider than a brick on every axis
 /// is one item; a larger one is an item per brick (or brick column) it spans,
 /// so an item's box always fits in 8 x 8 x 8 voxels: a column a thread. Fills
-/// the exclusive prefix sum of the items; returns the total. With `whole`,
-/// the one-item triangles are listed after the records instead (a thread
-/// each, band_distance.comp) and count no item.
+/// the exclusive prefix sum of the items and returns their total; the
+/// one-item triangles count no item but are listed in `whole` (a thread
+/// each).
 uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid, double grow,
-                   std::vector<uint32_t>& items, std::vector<uint32_t>* whole = nullptr)
+                   std::vector<uint32_t>& items, std::vector<uint32_t>& whole)
 {
     const size_t n = mesh.triangles.size();
     items.assign(n * gpu::kItemWords, 0);
@@ -90,10 +90,10 @@ uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, co
         }
     });
     uint64_t total = 0;
-    if (whole) whole->clear();
+    whole.clear();
     for (size_t t = 0; t < n; ++t) {
         items[t * gpu::kItemWords] = uint32_t(std::min<uint64_t>(total, 0xFFFFFFFFu));
-        if (whole && items[t * gpu::kItemWords + 7] && counts[t]) whole->push_back(uint32_t(t));
+        if (items[t * gpu::kItemWords + 7] && counts[t]) whole.push_back(uint32_t(t));
         else total += counts[t];
     }
     return total;
@@ -128,9 +128,9 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     tbb::parallel_for(tbb::blocked_range<size_t>(0, local.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) local[i] = grid.toLocal(mesh.positions[i]);
     });
-    std::vector<uint32_t> distanceItems, crossingItems, wholeBoxes;
-    const uint64_t nDistance = distances ? workItems(local, mesh, grid, band, distanceItems, &wholeBoxes) : 0;
-    const uint64_t nCrossing = request.crossings ? workItems(local, mesh, grid, -1.0, crossingItems) : 0;
+    std::vector<uint32_t> distanceItems, crossingItems, distanceWhole, crossingWhole;
+    const uint64_t nDistance = distances ? workItems(local, mesh, grid, band, distanceItems, distanceWhole) : 0;
+    const uint64_t nCrossing = request.crossings ? workItems(local, mesh, grid, -1.0, crossingItems, crossingWhole) : 0;
     for (uint64_t n : {nDistance, nCrossing})
         if (n > 0xFFFFFFFFu)
             throw Error(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); "
@@ -186,34 +186,31 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     const bool software = context.info().software;
     const auto poll = [&] { request.checkpoint(0.5, "distance field"); };
 
-    // One pass over a set of items, timed; with `whole`, the whole-box
-    // triangles listed after the items' records too, a thread each.
+    // One pass over a set of items and one-item triangles, timed. A thread
+    // of a one-item triangle loops at most `wholeIterations` times (its
+    // columns, their centres and brick probes); a workgroup's 64 share the
+    // driver's loop limit, with a margin for the loop around them.
     auto pass = [&](const char* name, const Program& program, std::vector<uint32_t>& items, uint64_t n,
-                    const std::vector<uint32_t>* whole = nullptr) {
+                    const std::vector<uint32_t>& whole, uint64_t wholeIterations) {
         const auto w0 = Clock::now();
         TimerQuery timer;
         const size_t records = items.size();
-        if (whole) items.insert(items.end(), whole->begin(), whole->end());
+        items.insert(items.end(), whole.begin(), whole.end());
         const Buffer itemBuffer("field work items", std::max<size_t>(items.size(), 1) * 4, items.data());
-        if (whole) items.resize(records);
+        items.resize(records);
         timer.begin();
         itemBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_ITEMS);
         program.set("uTriangles", uint32_t(mesh.triangles.size()));
         program.set("uTableMask", tableMask);
-        if (whole) {
-            program.set("uWhole", 0u);
-            program.set("uWholeStart", uint32_t(records));
-        }
+        program.set("uWhole", 0u);
+        program.set("uWholeStart", uint32_t(records));
         dispatchItems(context, program, n);
-        if (whole && !whole->empty()) {
-            // A thread loops at most over 64 columns, 512 centres and two
-            // brick lookups a column, each with its probes: 1024 iterations
-            // a triangle allowed, 1024 / 64 a triangle of a workgroup, with
-            // a margin for the loop around them.
+        if (!whole.empty()) {
             program.set("uWhole", 1u);
             const ContextInfo& info = context.info();
-            const auto groups = uint32_t(std::min<uint64_t>((whole->size() + 63) / 64, info.software ? 256 : 65535));
-            dispatchLooping(program, whole->size(), groups, info.loopLimit, 20, "uItemFirst", "uItems");
+            const auto groups = uint32_t(std::min<uint64_t>((whole.size() + 63) / 64, info.software ? 256 : 65535));
+            dispatchLooping(program, whole.size(), groups, info.loopLimit, wholeIterations / 64 + 4, "uItemFirst",
+                            "uItems");
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         timer.end();
@@ -225,10 +222,12 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         const Program& program = context.program({"band_distance.comp"});
         program.set("uBand", float(band));
         program.set("uPass", 0u);
-        pass("band distance", program, distanceItems, nDistance, &wholeBoxes);
+        // A one-item triangle: 64 columns, 512 centres, two brick lookups a column.
+        const uint64_t iterations = 1024;
+        pass("band distance", program, distanceItems, nDistance, distanceWhole, iterations);
         if (closestBuffer) {
             program.set("uPass", 1u);
-            pass("closest triangle", program, distanceItems, nDistance, &wholeBoxes);
+            pass("closest triangle", program, distanceItems, nDistance, distanceWhole, iterations);
         }
     }
     const Buffer* maskBuffer = nullptr;
@@ -269,14 +268,14 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     if (request.crossings) {
         const Program& program = context.program({"parity_flips.comp"});
         program.set("uDimZ", grid.dims[2]);
-        pass("parity crossings", program, crossingItems, nCrossing);
+        pass("parity crossings", program, crossingItems, nCrossing, crossingWhole, 256); // 64 columns, a lookup each
     }
     result.stages.front().gpuMs = uploadTimer.milliseconds();
     result.gpuBytes = positions.bytes() + indices.bytes() + tableBuffer.bytes() + counters.bytes() +
                       (distanceBuffer ? nb * (2048 + 2048 + sizeof(Brick) + 4) : 0) +
                       (closestBuffer ? nb * 2048 * 2 : 0) +
                       (flipBuffer ? nb * sizeof(Brick) : 0) +
-                      std::max(distanceItems.size() + wholeBoxes.size(), crossingItems.size()) * 4;
+                      std::max(distanceItems.size() + distanceWhole.size(), crossingItems.size() + crossingWhole.size()) * 4;
     request.checkpoint(0.8, "field readback");
 
     t0 = Clock::now();
