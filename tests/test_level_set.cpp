@@ -17,6 +17,8 @@
 #include "svo/core/mesh_io.h"
 #include "svo/core/mesh_topology.h"
 #include "svo/core/winding_tree.h"
+#include "svo/gl/context.h"
+#include "svo/gl/distance_field.h"
 #include "svo/svo.h"
 
 namespace svo::test {
@@ -162,6 +164,48 @@ TEST(LevelSet, ManyWorkItemsPerWorkgroupLoseNoBandVoxel)
 {
     Voxelizer v;
     expectLevelSetMatchesCgal(v, icosphere({0.1, -0.2, 0.3}, 1.0, 7), 40, 3, 3);
+}
+
+// The distance pass cuts its work two ways, a workgroup per brick of each
+// triangle's grown box (GPUs) or a thread per small triangle (CPU
+// rasterizers; FieldWork). The renderer picks one, so CI's llvmpipe would
+// never run the GPUs' cut: both run here, on a mesh of small triangles (an
+// icosphere) joined with one of large ones (a box), and must give the same
+// field bit for bit: distances, closest triangles, band masks and parity
+// crossings. The cut the renderer picks is the one checked against CGAL above.
+TEST(LevelSet, BothCutsOfTheDistanceWorkGiveTheSameField)
+{
+    TriangleMesh mesh = icosphere({0.1, -0.2, 0.3}, 1.0, 4);
+    const TriangleMesh cube = box({-1.3, -1.1, -0.9}, {0.4, 0.2, 1.1});
+    const auto base = uint32_t(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), cube.positions.begin(), cube.positions.end());
+    for (auto t : cube.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    const GridSpec grid = makeGrid(mesh, GridRequest{48, 0});
+    gl::FieldRequest request;
+    for (uint32_t z = 0; z * 8 < grid.dims[2]; ++z)
+        for (uint32_t y = 0; y * 8 < grid.dims[1]; ++y)
+            for (uint32_t x = 0; x * 8 < grid.dims[0]; ++x) request.bricks.push_back({x, y, z});
+    request.band = 3;
+    request.closestTriangle = true;
+    gl::Context context;
+    request.work = gl::FieldWork::Bricks;
+    const gl::FieldResult bricks = gl::computeField(context, mesh, grid, request);
+    request.work = gl::FieldWork::SmallTriangles;
+    const gl::FieldResult small = gl::computeField(context, mesh, grid, request);
+    ASSERT_GT(bricks.distances.size(), 10000u);
+    ASSERT_EQ(bricks.distances.size(), small.distances.size());
+    ASSERT_EQ(bricks.bandMasks.size(), small.bandMasks.size());
+    // Bricks are packed in the order they finish (an atomic counter): compare brick by brick.
+    for (size_t i = 0; i < bricks.bandMasks.size(); ++i) {
+        EXPECT_EQ(bricks.crossings[i], small.crossings[i]) << "crossings of brick " << i;
+        ASSERT_EQ(bricks.bandMasks[i], small.bandMasks[i]) << "band mask of brick " << i;
+        for (uint32_t k = 0, n = bricks.bandMasks[i].count(); k < n; ++k) {
+            const size_t a = bricks.bandOffsets[i] + k, b = small.bandOffsets[i] + k;
+            EXPECT_EQ(bricks.distances[a], small.distances[b]) << "brick " << i << ", value " << k;
+            EXPECT_EQ(bricks.closest[a], small.closest[b]) << "brick " << i << ", value " << k;
+        }
+    }
+    EXPECT_EQ(bricks.lostCrossings, 0u);
 }
 
 // Winding-number walks diverge, so they cannot be cut to fit that limit: a

@@ -46,14 +46,14 @@ std::vector<uint32_t> brickTable(const std::vector<std::array<uint32_t, 3>>& bri
 
 /// Per triangle the voxel box its items cover (field_common.glsl): voxels
 /// within `grow` of its bounding box, or with grow < 0 its columns only (a
-/// box one voxel deep at z = 0). A box no wider than a brick on every axis
-/// is one item; a larger one is an item per brick (or brick column) it spans,
+/// box one voxel deep at z = 0). With `oneItemBoxes`, a box no wider than a
+/// brick on every axis is one item; any other is an item per brick (or brick column) it spans,
 /// so an item's box always fits in 8 x 8 x 8 voxels: a column a thread. Fills
-/// the exclusive prefix sum of the items and returns their total; the
-/// one-item triangles count no item but are listed in `whole` (a thread
-/// each).
+/// the exclusive prefix sum of the items and returns their total. With
+/// `whole`, the one-item triangles count no item but are listed there
+/// instead (a thread each).
 uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid, double grow,
-                   std::vector<uint32_t>& items, std::vector<uint32_t>& whole)
+                   bool oneItemBoxes, std::vector<uint32_t>& items, std::vector<uint32_t>* whole)
 {
     const size_t n = mesh.triangles.size();
     items.assign(n * gpu::kItemWords, 0);
@@ -63,7 +63,7 @@ uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, co
         for (size_t t = r.begin(); t != r.end(); ++t) {
             const auto& f = mesh.triangles[t];
             uint64_t bricks = 1;
-            bool small = true;
+            bool small = oneItemBoxes;
             uint32_t* w = &items[t * gpu::kItemWords];
             for (int a = 0; a < 3; ++a) {
                 if (columns && a == 2) {
@@ -90,10 +90,9 @@ uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, co
         }
     });
     uint64_t total = 0;
-    whole.clear();
     for (size_t t = 0; t < n; ++t) {
         items[t * gpu::kItemWords] = uint32_t(std::min<uint64_t>(total, 0xFFFFFFFFu));
-        if (items[t * gpu::kItemWords + 7] && counts[t]) whole.push_back(uint32_t(t));
+        if (whole && items[t * gpu::kItemWords + 7] && counts[t]) whole->push_back(uint32_t(t));
         else total += counts[t];
     }
     return total;
@@ -128,9 +127,19 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     tbb::parallel_for(tbb::blocked_range<size_t>(0, local.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) local[i] = grid.toLocal(mesh.positions[i]);
     });
+    // A thread per small triangle: for crossings everywhere (a few columns
+    // each); for distances as FieldWork says. On an H100 a workgroup per
+    // brick ran faster than a thread per small triangle (whose up to 512
+    // centres run one after another) from 1024³ up
+    // (bench/results/nvidia-h100/band_ab.md).
+    const bool software = context.info().software;
+    const bool smallTriangles = request.work == FieldWork::SmallTriangles || (request.work == FieldWork::Auto && software);
     std::vector<uint32_t> distanceItems, crossingItems, distanceWhole, crossingWhole;
-    const uint64_t nDistance = distances ? workItems(local, mesh, grid, band, distanceItems, distanceWhole) : 0;
-    const uint64_t nCrossing = request.crossings ? workItems(local, mesh, grid, -1.0, crossingItems, crossingWhole) : 0;
+    const uint64_t nDistance = distances ? workItems(local, mesh, grid, band, smallTriangles, distanceItems,
+                                                     smallTriangles ? &distanceWhole : nullptr)
+                                         : 0;
+    const uint64_t nCrossing =
+        request.crossings ? workItems(local, mesh, grid, -1.0, true, crossingItems, &crossingWhole) : 0;
     for (uint64_t n : {nDistance, nCrossing})
         if (n > 0xFFFFFFFFu)
             throw Error(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); "
@@ -183,34 +192,34 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     if (distanceBuffer) distanceBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_DISTANCES);
     if (closestBuffer) closestBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_CLOSEST);
     if (flipBuffer) flipBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_FLIPS);
-    const bool software = context.info().software;
     const auto poll = [&] { request.checkpoint(0.5, "distance field"); };
 
     // One pass over a set of items and one-item triangles, timed. A thread
     // of a one-item triangle loops at most `wholeIterations` times (its
     // columns, their centres and brick probes); a workgroup's 64 share the
     // driver's loop limit, with a margin for the loop around them.
-    auto pass = [&](const char* name, const Program& program, std::vector<uint32_t>& items, uint64_t n,
-                    const std::vector<uint32_t>& whole, uint64_t wholeIterations) {
+    auto pass = [&](const char* name, const Program& program, const std::vector<uint32_t>& items, uint64_t n,
+                    const std::vector<uint32_t>* whole, uint64_t wholeIterations) {
         const auto w0 = Clock::now();
         TimerQuery timer;
-        const size_t records = items.size();
-        items.insert(items.end(), whole.begin(), whole.end());
-        const Buffer itemBuffer("field work items", std::max<size_t>(items.size(), 1) * 4, items.data());
-        items.resize(records);
+        const size_t records = items.size(), listed = whole ? whole->size() : 0;
+        const Buffer itemBuffer("field work items", std::max<size_t>(records + listed, 1) * 4);
+        if (records) itemBuffer.write(0, records * 4, items.data());
+        if (listed) itemBuffer.write(records * 4, listed * 4, whole->data());
         timer.begin();
         itemBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_ITEMS);
         program.set("uTriangles", uint32_t(mesh.triangles.size()));
         program.set("uTableMask", tableMask);
-        program.set("uWhole", 0u);
-        program.set("uWholeStart", uint32_t(records));
+        if (whole) {
+            program.set("uWhole", 0u);
+            program.set("uWholeStart", uint32_t(records));
+        }
         dispatchItems(context, program, n);
-        if (!whole.empty()) {
+        if (listed) {
             program.set("uWhole", 1u);
             const ContextInfo& info = context.info();
-            const auto groups = uint32_t(std::min<uint64_t>((whole.size() + 63) / 64, info.software ? 256 : 65535));
-            dispatchLooping(program, whole.size(), groups, info.loopLimit, wholeIterations / 64 + 4, "uItemFirst",
-                            "uItems");
+            const auto groups = uint32_t(std::min<uint64_t>((listed + 63) / 64, info.software ? 256 : 65535));
+            dispatchLooping(program, listed, groups, info.loopLimit, wholeIterations / 64 + 4, "uItemFirst", "uItems");
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         timer.end();
@@ -219,15 +228,17 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         result.stages.push_back({name, timer.milliseconds(), msSince(w0)});
     };
     if (distances) {
-        const Program& program = context.program({"band_distance.comp"});
+        const Program& program =
+            context.program({smallTriangles ? "band_distance_columns.comp" : "band_distance.comp"});
         program.set("uBand", float(band));
         program.set("uPass", 0u);
         // A one-item triangle: 64 columns, 512 centres, two brick lookups a column.
         const uint64_t iterations = 1024;
-        pass("band distance", program, distanceItems, nDistance, distanceWhole, iterations);
+        const std::vector<uint32_t>* whole = smallTriangles ? &distanceWhole : nullptr;
+        pass("band distance", program, distanceItems, nDistance, whole, iterations);
         if (closestBuffer) {
             program.set("uPass", 1u);
-            pass("closest triangle", program, distanceItems, nDistance, distanceWhole, iterations);
+            pass("closest triangle", program, distanceItems, nDistance, whole, iterations);
         }
     }
     const Buffer* maskBuffer = nullptr;
@@ -268,7 +279,7 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     if (request.crossings) {
         const Program& program = context.program({"parity_flips.comp"});
         program.set("uDimZ", grid.dims[2]);
-        pass("parity crossings", program, crossingItems, nCrossing, crossingWhole, 256); // 64 columns, a lookup each
+        pass("parity crossings", program, crossingItems, nCrossing, &crossingWhole, 256); // 64 columns, a lookup each
     }
     result.stages.front().gpuMs = uploadTimer.milliseconds();
     result.gpuBytes = positions.bytes() + indices.bytes() + tableBuffer.bytes() + counters.bytes() +

@@ -39,6 +39,17 @@
 
 namespace svo::gl {
 
+/// How the distance pass cuts its work (both give the same field). A GPU
+/// runs fastest with a workgroup per brick of each triangle's box grown by
+/// the band; a CPU rasterizer, whose SIMD lanes are a workgroup's threads,
+/// with a thread per triangle whose grown box fits in a brick (most of a
+/// dense mesh's) and a workgroup per brick for the rest.
+enum class FieldWork {
+    Auto,          ///< by the renderer: SmallTriangles on a CPU rasterizer, else Bricks
+    Bricks,        ///< a workgroup per brick of every triangle's grown box
+    SmallTriangles ///< a thread per triangle whose grown box fits a brick, a workgroup per brick for the others
+};
+
 struct FieldRequest {
     /// The bricks to compute (brick coordinates: local voxel coordinate / 8),
     /// unique. Every voxel a result needs must lie in one of them: each voxel
@@ -48,6 +59,7 @@ struct FieldRequest {
     double band = 0;             ///< distances up to this many voxels; 0: no distances
     bool closestTriangle = false; ///< also the closest triangle of each voxel in the band
     bool crossings = true;       ///< the parity crossings
+    FieldWork work = FieldWork::Auto;
     Checkpoint checkpoint;
 };
 

@@ -1,0 +1,40 @@
+// What the two band distance passes share (band_distance.comp for GPUs,
+// band_distance_columns.comp for CPU rasterizers): the output, and the
+// distance from a voxel centre to a triangle in double precision. Pass 0
+// keeps the least distance of each voxel with atomicMin on its float bits
+// (non-negative floats order as their bits do); pass 1, when asked for,
+// records the smallest index of the triangles at that distance, so the
+// result does not depend on the order of the threads.
+#include "field_common.glsl"
+
+layout(std430, binding = SVO_BIND_FIELD_DISTANCES) restrict buffer Distances { uint distances[]; };
+layout(std430, binding = SVO_BIND_FIELD_CLOSEST) restrict buffer Closest { uint closest[]; };
+
+uniform uint uPass;
+uniform float uBand; // distances beyond it are not kept
+
+// Squared distance from p to the segment [a, b]; a point when a == b.
+double segmentDistance2(dvec3 p, dvec3 a, dvec3 b)
+{
+    dvec3 ab = b - a;
+    double len2 = dot(ab, ab);
+    double t = len2 > 0.0LF ? clamp(dot(p - a, ab) / len2, 0.0LF, 1.0LF) : 0.0LF;
+    dvec3 d = p - (a + t * ab);
+    return dot(d, d);
+}
+
+// Squared distance from p to the closed triangle abc: the distance to its
+// plane where p projects inside it, else the least of the edges'. Needles and
+// points are their edges, so nothing degenerate divides by zero.
+double triangleDistance2(dvec3 p, dvec3 a, dvec3 b, dvec3 c)
+{
+    dvec3 n = cross(b - a, c - a);
+    double n2 = dot(n, n);
+    if (n2 > 0.0LF && dot(cross(b - a, p - a), n) >= 0.0LF && dot(cross(c - b, p - b), n) >= 0.0LF &&
+        dot(cross(a - c, p - c), n) >= 0.0LF) {
+        double h = dot(p - a, n);
+        return h * h / n2;
+    }
+    return min(segmentDistance2(p, a, b), min(segmentDistance2(p, b, c), segmentDistance2(p, c, a)));
+}
+

@@ -1,0 +1,75 @@
+#version 450 core
+// Unsigned distance, in voxels, from every voxel centre of the band's bricks
+// to the closest triangle (band_distance.glsl), on a CPU rasterizer, whose
+// SIMD lanes are the threads of a workgroup: a triangle whose box grown by
+// the band fits a brick takes one thread (uWhole; its list after the items'
+// records), so eight small triangles fill eight lanes; a larger one takes a
+// workgroup per brick it spans, a column of the brick's part of the box a
+// thread.
+layout(local_size_x = 64) in;
+#include "band_distance.glsl"
+
+// The band distances of one column of an item's box to triangle t, at the
+// centres from zLo to zHi (at most 8, so in at most two bricks). With
+// `run`, first narrowed to the run of centres whose distance to the
+// triangle's box is within the band, found from the gap across the column
+// (widened for rounding): what a thread that takes all the columns of a
+// small triangle saves. Then each centre's exact test against the box,
+// which is cheaper than the distance.
+void columnDistances(uint t, dvec3 A, dvec3 B, dvec3 C, uvec2 column, uint zLo, uint zHi, bool run)
+{
+    dvec3 boxLo = min(A, min(B, C)), boxHi = max(A, max(B, C));
+    double band2 = double(uBand) * double(uBand);
+    if (run) {
+        dvec2 gxy = max(max(boxLo.xy - dvec2(column), dvec2(column) - boxHi.xy), dvec2(0.0LF));
+        double rest = band2 - dot(gxy, gxy);
+        if (rest < 0.0LF) return;
+        double r = sqrt(rest) * (1.0LF + 1e-9LF) + 1e-9LF;
+        double z0 = max(double(zLo), ceil(boxLo.z - r)), z1 = min(double(zHi), floor(boxHi.z + r));
+        if (z1 < z0) return;
+        zLo = uint(z0), zHi = uint(z1);
+    }
+    uvec2 l = column & kBrickMask;
+    uint leaf = (l.x << kKeyLeafXShift) | (l.y << kKeyLeafYShift);
+    uint lowZ = zLo >> kBrickLog2;
+    uint low = lookupBrick(uvec3(column >> kBrickLog2, lowZ));
+    uint high = zHi >> kBrickLog2 == lowZ ? low : lookupBrick(uvec3(column >> kBrickLog2, lowZ + 1u));
+    for (uint z = zLo; z <= zHi; ++z) {
+        uint brick = z >> kBrickLog2 == lowZ ? low : high;
+        if (brick == kNoChild) continue; // no voxel of this brick is in the band
+        dvec3 p = dvec3(column, z);
+        dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));
+        if (dot(g, g) > band2) continue;
+        float d = float(sqrt(triangleDistance2(p, A, B, C)));
+        if (d > uBand) continue;
+        uint i = 512u * brick + leaf + (z & kBrickMask);
+        if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));
+        else if (distances[i] == floatBitsToUint(d)) atomicMin(closest[i], t);
+    }
+}
+
+void main()
+{
+    if (uWhole != 0u) { // a thread a one-item triangle: all its columns
+        for (uint k = uItemFirst + threadIndex(); k < uItems; k += threadCount()) {
+            uint t;
+            uvec3 lo, size;
+            wholeBox(k, t, lo, size);
+            dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
+            for (uint y = 0u; y < size.y; ++y)
+                for (uint x = 0u; x < size.x; ++x)
+                    columnDistances(t, A, B, C, lo.xy + uvec2(x, y), lo.z, lo.z + size.z - 1u, true);
+        }
+        return;
+    }
+    // One workgroup an item, a column a thread.
+    for (uint item = uItemFirst + workgroupIndex(); item < uItems; item += workgroupCount()) {
+        uint t;
+        uvec3 lo, size;
+        voxelBoxOfItem(item, t, lo, size); // at most 8 x 8 x 8
+        if (gl_LocalInvocationID.x >= size.x * size.y) continue;
+        dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
+        uvec2 column = lo.xy + uvec2(gl_LocalInvocationID.x % size.x, gl_LocalInvocationID.x / size.x);
+        columnDistances(t, A, B, C, column, lo.z, lo.z + size.z - 1u, false);
+    }
+}
