@@ -10,9 +10,11 @@
 // over many workgroups while a small one costs one item, not one per brick
 // it touches (on a CPU rasterizer, items cost). One workgroup of 64 threads
 // takes an item, a column a thread; workgroups loop over the items. The
-// distance pass lists the one-item triangles apart and gives each a thread
-// (band_distance.comp), so a CPU rasterizer's SIMD lanes take eight of them
-// at once instead of the columns of one.
+// crossing pass, and the distance pass on CPU rasterizers
+// (band_distance_columns.comp), list the one-item triangles apart (uWhole)
+// and give each a thread, so a CPU rasterizer's SIMD lanes take eight of
+// them at once instead of the columns of one. The distance pass on GPUs
+// (band_distance.comp) cuts every box into bricks.
 #include "gpu_layout.h"
 
 layout(std430, binding = SVO_BIND_FIELD_POSITIONS) readonly restrict buffer Positions { double positions[]; };

@@ -47,8 +47,8 @@ std::vector<uint32_t> brickTable(const std::vector<std::array<uint32_t, 3>>& bri
 /// Per triangle the voxel box its items cover (field_common.glsl): voxels
 /// within `grow` of its bounding box, or with grow < 0 its columns only (a
 /// box one voxel deep at z = 0). With `oneItemBoxes`, a box no wider than a
-/// brick on every axis is one item; any other is an item per brick (or brick column) it spans,
-/// so an item's box always fits in 8 x 8 x 8 voxels: a column a thread. Fills
+/// brick on every axis is one item; any other is an item per brick (or brick
+/// column) it spans, so an item's box always fits in 8 x 8 x 8 voxels. Fills
 /// the exclusive prefix sum of the items and returns their total. With
 /// `whole`, the one-item triangles count no item but are listed there
 /// instead (a thread each).
@@ -101,8 +101,8 @@ uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, co
 /// Runs `program` over items [0, items): workgroups loop over them, enough
 /// to fill a large GPU, few on a CPU rasterizer, where each group costs. An
 /// item loops at most 1 + 32 times (triangleOfItem's search) + 8 (a thread's
-/// column) + the brick table's probes for up to 8 bricks, which stay short at
-/// half load: 256 iterations an item are allowed for the driver's loop limit.
+/// column) + the brick table's probes for up to two bricks, which stay short
+/// at half load: 256 iterations an item are allowed for the driver's loop limit.
 void dispatchItems(const Context& context, const Program& program, uint64_t items)
 {
     const ContextInfo& info = context.info();
@@ -133,7 +133,8 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     // centres run one after another) from 1024³ up
     // (bench/results/nvidia-h100/band_ab.md).
     const bool software = context.info().software;
-    const bool smallTriangles = request.work == FieldWork::SmallTriangles || (request.work == FieldWork::Auto && software);
+    const bool smallTriangles =
+        request.work == FieldWork::SmallTriangles || (request.work == FieldWork::Auto && software);
     std::vector<uint32_t> distanceItems, crossingItems, distanceWhole, crossingWhole;
     const uint64_t nDistance = distances ? workItems(local, mesh, grid, band, smallTriangles, distanceItems,
                                                      smallTriangles ? &distanceWhole : nullptr)
@@ -286,7 +287,8 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
                       (distanceBuffer ? nb * (2048 + 2048 + sizeof(Brick) + 4) : 0) +
                       (closestBuffer ? nb * 2048 * 2 : 0) +
                       (flipBuffer ? nb * sizeof(Brick) : 0) +
-                      std::max(distanceItems.size() + distanceWhole.size(), crossingItems.size() + crossingWhole.size()) * 4;
+                      std::max(distanceItems.size() + distanceWhole.size(),
+                               crossingItems.size() + crossingWhole.size()) * 4;
     request.checkpoint(0.8, "field readback");
 
     t0 = Clock::now();
