@@ -19,6 +19,7 @@
 #include "svo/core/winding_tree.h"
 #include "svo/gl/context.h"
 #include "svo/gl/distance_field.h"
+#include "svo/gl/winding_number.h"
 #include "svo/svo.h"
 
 namespace svo::test {
@@ -206,6 +207,54 @@ TEST(LevelSet, BothCutsOfTheDistanceWorkGiveTheSameField)
         }
     }
     EXPECT_EQ(bricks.lostCrossings, 0u);
+}
+
+// The per-voxel winding pass walks the tree once per voxel centre (GPUs) or
+// once per column of 8 centres, treating each as its own walk would (CPU
+// rasterizers; WindingWork). The renderer picks one, so both run here and
+// must give the same bits, on a mesh whose winding numbers take every value:
+// a sphere with a hole, a second sphere overlapping it and every seventh
+// face flipped, at two accuracies. The cut the renderer picks is the one
+// the CGAL and agreement tests check.
+TEST(Winding, BothWalksGiveTheSameBits)
+{
+    TriangleMesh mesh = icosphere({0.1, -0.2, 0.3}, 1.0, 4);
+    const TriangleMesh other = icosphere({0.9, -0.2, 0.3}, 0.7, 3);
+    const auto base = uint32_t(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), other.positions.begin(), other.positions.end());
+    for (auto t : other.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    std::vector<std::array<uint32_t, 3>> kept;
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+        auto t = mesh.triangles[i];
+        if (mesh.positions[t[0]].z > 1.15) continue; // the hole
+        if (i % 7 == 0) std::swap(t[1], t[2]);
+        kept.push_back(t);
+    }
+    mesh.triangles = kept;
+    const GridSpec grid = makeGrid(mesh, GridRequest{40, 0});
+    const WindingTree tree = buildWindingTree(gl::localPositions(mesh, grid), mesh.triangles);
+    gl::WindingRequest request;
+    for (uint32_t z = 0; z * 8 < grid.dims[2]; ++z)
+        for (uint32_t y = 0; y * 8 < grid.dims[1]; ++y)
+            for (uint32_t x = 0; x * 8 < grid.dims[0]; ++x) request.bricks.push_back({x, y, z});
+    gl::Context context;
+    for (double beta : {2.0, 1.3}) {
+        SCOPED_TRACE(beta);
+        request.beta = beta;
+        request.work = gl::WindingWork::Points;
+        const gl::WindingResult points = gl::computeWinding(context, mesh, grid, tree, request);
+        request.work = gl::WindingWork::Columns;
+        const gl::WindingResult columns = gl::computeWinding(context, mesh, grid, tree, request);
+        ASSERT_EQ(points.inside.size(), request.bricks.size());
+        ASSERT_EQ(columns.inside.size(), request.bricks.size());
+        uint64_t inside = 0;
+        for (size_t i = 0; i < request.bricks.size(); ++i) {
+            EXPECT_EQ(points.inside[i], columns.inside[i]) << "brick " << i;
+            inside += points.inside[i].count();
+        }
+        EXPECT_GT(inside, 10000u);
+        EXPECT_LT(inside, uint64_t(request.bricks.size()) * 256);
+    }
 }
 
 // Winding-number walks diverge, so they cannot be cut to fit that limit: a

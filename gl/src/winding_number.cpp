@@ -84,27 +84,39 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
     result.gpuBytes = positions.bytes() + indices.bytes() + nodes.bytes() + links.bytes() + order.bytes() +
                       bricks.bytes() + outBytes;
 
-    const Program& program = context.program({"winding_number.comp"});
+    // The per-brick mode is winding_number.comp's; the per-voxel mode is
+    // cut as WindingWork says. On an H100 the column walk was 1.5-1.9x
+    // slower (bench/results/nvidia-h100/winding_column.md), on llvmpipe
+    // 2.4x faster.
+    const bool columns =
+        request.work == WindingWork::Columns || (request.work == WindingWork::Auto && context.info().software);
+    const Program& pointProgram = context.program({"winding_number.comp"});
+    const Program& voxelProgram = columns ? context.program({"winding_columns.comp"}) : pointProgram;
     // beta^2 in float; +infinity as the largest float, which no squared
     // distance exceeds.
     const double beta2 = request.beta * request.beta;
-    program.set("uBeta2", beta2 < 3.0e38 ? float(beta2) : 3.0e38f);
     // Where the driver ends loops silently, a walk stops short of it and says
     // so. The walks of one SIMD vector's lanes diverge, so each lane gets its
     // share of the limit; 64 iterations are the loops around the walks.
     const uint64_t loopLimit = context.info().loopLimit;
-    program.set("uStepBudget", loopLimit ? uint32_t((loopLimit - 64) / context.info().loopLanes) : 0xFFFFFFFFu);
-    program.set("uFlagWord", uint32_t(resultBytes / 4));
+    for (const Program* program : {&pointProgram, &voxelProgram}) {
+        program->set("uBeta2", beta2 < 3.0e38 ? float(beta2) : 3.0e38f);
+        program->set("uStepBudget",
+                      loopLimit ? uint32_t((loopLimit - 64) / context.info().loopLanes) : 0xFFFFFFFFu);
+        program->set("uFlagWord", uint32_t(resultBytes / 4));
+    }
     const uint32_t zero = 0;
     out.write(resultBytes, 4, &zero);
     // Dispatches of a bounded size: the checkpoint runs between them.
-    auto run = [&](const char* name, uint32_t mode, uint64_t count, uint64_t perDispatch, uint64_t threadsPerUnit,
-                   double from, double to) {
+    auto run = [&](const char* name, const Program& program, uint32_t mode, uint64_t count, uint64_t perDispatch,
+                   uint64_t threadsPerUnit, double from, double to) {
         const auto w0 = Clock::now();
         TimerQuery timer;
         timer.begin();
-        program.set("uMode", mode);
-        program.set("uBricks", result.brickDims[0], result.brickDims[1], result.brickDims[2]);
+        if (&program == &pointProgram) { // winding_columns.comp has the per-voxel mode only
+            program.set("uMode", mode);
+            program.set("uBricks", result.brickDims[0], result.brickDims[1], result.brickDims[2]);
+        }
         for (uint64_t first = 0; first < count; first += perDispatch) {
             const uint64_t last = std::min(count, first + perDispatch);
             program.set("uFirst", uint32_t(first));
@@ -133,13 +145,13 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
         result.stages.push_back({name, timer.milliseconds(), msSince(w0)});
     };
     if (request.perBrick) {
-        run("winding per brick", 1, boxBricks, uint64_t(1) << 20, 1, 0.05, 0.45);
+        run("winding per brick", pointProgram, 1, boxBricks, uint64_t(1) << 20, 1, 0.05, 0.45);
         result.perBrick.resize(boxBricks);
         out.readBulk(0, boxBricks * 4, result.perBrick.data());
     }
     if (nb) {
         out.clearUint(0, nb * sizeof(Brick));
-        run("winding per voxel", 0, nb, uint64_t(1) << 14, 64, 0.5, 0.95);
+        run("winding per voxel", voxelProgram, 0, nb, uint64_t(1) << 14, 64, 0.5, 0.95);
         result.inside.resize(nb);
         out.readBulk(0, nb * sizeof(Brick), result.inside.data());
     }

@@ -28,11 +28,22 @@
 
 namespace svo::gl {
 
+/// How the per-voxel evaluation walks the tree (both give the same bits). A
+/// GPU runs fastest with a walk per voxel centre; a CPU rasterizer, whose
+/// SIMD lanes are a workgroup's threads, with one walk per column of 8
+/// centres that treats each centre as its own walk would.
+enum class WindingWork {
+    Auto,   ///< by the renderer: Columns on a CPU rasterizer, else Points
+    Points, ///< a walk per voxel centre
+    Columns ///< a walk per column of 8 voxel centres
+};
+
 struct WindingRequest {
     /// Bricks (local voxel coordinate / 8) whose voxels to classify.
     std::vector<std::array<uint32_t, 3>> bricks;
     bool perBrick = false; ///< also the winding number at every brick centre of the grid's box
     double beta = 2.0;     ///< far-field threshold; +infinity: every triangle exactly
+    WindingWork work = WindingWork::Auto;
     Checkpoint checkpoint;
 };
 
