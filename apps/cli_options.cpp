@@ -135,8 +135,8 @@ void addSignOptions(CLI::App& cmd, FieldArgs& a, const std::string& appliesTo)
                        "parity or winding (as asked)")
         ->check(CLI::IsMember({"auto", "parity", "winding"}));
     cmd.add_option("--winding-accuracy", a.windingAccuracy,
-                   "Winding numbers: tree nodes farther than this many radii use their dipole (larger is slower and "
-                   "more exact; 1e300 evaluates every triangle)")
+                   "Winding numbers: tree nodes farther than this many radii use their far-field expansion (default "
+                   "1.5; larger is slower and more exact; 1e300 evaluates every triangle)")
         ->check(CLI::PositiveNumber);
 }
 

@@ -55,7 +55,7 @@ uint64_t parseByteSize(const std::string& text, const std::string& option);
 /// the level-set arguments `svo voxelize` and `svo validate --sdf` share.
 struct FieldArgs {
     std::string sign = "auto"; ///< auto | parity | winding
-    double windingAccuracy = 2.0;
+    double windingAccuracy = 1.5;
     double band = 0, exteriorBand = 0, interiorBand = 0; ///< 0: not given
     /// The library's defaults with the bands and sign asked for.
     LevelSetOptions levelSetOptions() const;

@@ -257,6 +257,51 @@ TEST(Winding, BothWalksGiveTheSameBits)
     }
 }
 
+// The far field's accuracy, against every triangle's exact solid angle: the
+// winding number at the brick centres of an open mesh (a sphere with a hole
+// and flipped faces, so that numbers take every value), at beta and 2 beta.
+// A node's expansion to second order (dipole and its first moments) leaves
+// an error of the third order in radius / distance, so doubling beta divides
+// the error by about 8; to first order (the dipole alone) by about 4.
+TEST(Winding, FarFieldErrorIsOfTheThirdOrder)
+{
+    TriangleMesh mesh = icosphere({0.1, -0.2, 0.3}, 1.0, 4);
+    std::vector<std::array<uint32_t, 3>> kept;
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+        auto t = mesh.triangles[i];
+        if (mesh.positions[t[0]].z > 1.0) continue; // the hole
+        if (i % 7 == 0) std::swap(t[1], t[2]);
+        kept.push_back(t);
+    }
+    mesh.triangles = kept;
+    const GridSpec grid = makeGrid(mesh, GridRequest{120, 0});
+    const std::vector<Vec3d> local = gl::localPositions(mesh, grid);
+    const WindingTree tree = buildWindingTree(local, mesh.triangles);
+    gl::Context context;
+    gl::WindingRequest request;
+    request.perBrick = true;
+    auto rms = [&](double beta) {
+        request.beta = beta;
+        const gl::WindingResult r = gl::computeWinding(context, mesh, grid, tree, request);
+        const auto& d = r.brickDims;
+        double sum = 0;
+        for (uint32_t z = 0; z < d[2]; ++z)
+            for (uint32_t y = 0; y < d[1]; ++y)
+                for (uint32_t x = 0; x < d[0]; ++x) {
+                    const Vec3d q{8.0 * x + 3.5, 8.0 * y + 3.5, 8.0 * z + 3.5};
+                    const double e = r.perBrick[x + size_t(d[0]) * (y + size_t(d[1]) * z)] -
+                                     windingNumber(local, mesh.triangles, q);
+                    sum += e * e;
+                }
+        return std::sqrt(sum / (double(d[0]) * d[1] * d[2]));
+    };
+    const double e1 = rms(1.5), e2 = rms(3.0), e4 = rms(6.0);
+    std::cout << "[ winding  ] rms far-field error at beta 1.5, 3, 6: " << e1 << ", " << e2 << ", " << e4 << "\n";
+    EXPECT_GT(e1 / e2, 6.0);
+    EXPECT_GT(e2 / e4, 6.0);
+    EXPECT_LT(e1, 1e-2);
+}
+
 // Winding-number walks diverge, so they cannot be cut to fit that limit: a
 // walk that would pass it stops and the call fails in one line, instead of
 // signs silently wrong (13,255 of them in this case before). With every

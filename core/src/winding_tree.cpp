@@ -8,6 +8,9 @@
 #include <numeric>
 
 #include "svo/core/error.h"
+#include "svo/core/gpu_layout.h"
+
+static_assert(svo::kWindingNodeFloats == 4 * svo::gpu::kWindingNodeVec4s);
 
 namespace svo {
 namespace {
@@ -25,7 +28,7 @@ struct Builder {
         tree.depth = std::max(tree.depth, level);
         const uint32_t node = uint32_t(tree.links.size() / 2);
         tree.links.resize(tree.links.size() + 2);
-        tree.nodes.resize(tree.nodes.size() + 8);
+        tree.nodes.resize(tree.nodes.size() + kWindingNodeFloats);
         // Dipole: area vectors summed, centred at the area-weighted centroid
         // (the plain mean when every triangle is degenerate).
         Vec3d n{0, 0, 0}, weighted{0, 0, 0}, mean{0, 0, 0};
@@ -49,11 +52,39 @@ struct Builder {
                 const Vec3d d = p[v] - c;
                 r2 = std::max(r2, dot(d, d));
             }
-        float* w = &tree.nodes[8 * size_t(node)];
+        // Moments of the area vectors about c, over each triangle's points x
+        // (the normal is constant on a triangle): first C_ij = sum a_i o_j,
+        // o = x - c, which is a_i times the centroid's offset; second
+        // M_ijk = sum a_i o_j o_k, which is a_i times the offset's outer
+        // product plus the triangle's covariance, sum over corners of
+        // e e^T / 12 with e = corner - centroid. M is kept for j <= k.
+        double m1[3][3] = {}, m2[3][6] = {};
+        constexpr int kPair[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+        for (uint32_t i = first; i < first + count; ++i) {
+            const auto& f = t[tree.order[i]];
+            const Vec3d a = 0.5 * cross(p[f[1]] - p[f[0]], p[f[2]] - p[f[0]]);
+            const Vec3d& x = centroid[tree.order[i]];
+            const Vec3d o = x - c;
+            double cov[6];
+            for (int q = 0; q < 6; ++q) {
+                const int j = kPair[q][0], k = kPair[q][1];
+                cov[q] = o[j] * o[k];
+                for (uint32_t v : f) cov[q] += (p[v][j] - x[j]) * (p[v][k] - x[k]) / 12.0;
+            }
+            for (int row = 0; row < 3; ++row) {
+                for (int col = 0; col < 3; ++col) m1[row][col] += a[row] * o[col];
+                for (int q = 0; q < 6; ++q) m2[row][q] += a[row] * cov[q];
+            }
+        }
+        float* w = &tree.nodes[kWindingNodeFloats * size_t(node)];
         // Rounded up, so the float ball still holds every corner.
         const float r = std::nextafter(float(std::sqrt(r2)), INFINITY);
-        const float values[8] = {float(c.x), float(c.y), float(c.z), r, float(n.x), float(n.y), float(n.z), 0.0f};
-        std::copy(values, values + 8, w);
+        const double values[kWindingNodeFloats] = {
+            c.x,       c.y,       c.z,       r,         n.x,       n.y,       n.z,       m1[0][0], m1[0][1],
+            m1[0][2],  m1[1][0],  m1[1][1],  m1[1][2],  m1[2][0],  m1[2][1],  m1[2][2],  m2[0][0], m2[0][1],
+            m2[0][2],  m2[0][3],  m2[0][4],  m2[0][5],  m2[1][0],  m2[1][1],  m2[1][2],  m2[1][3], m2[1][4],
+            m2[1][5],  m2[2][0],  m2[2][1],  m2[2][2],  m2[2][3],  m2[2][4],  m2[2][5],  0,        0};
+        for (uint32_t k = 0; k < kWindingNodeFloats; ++k) w[k] = float(values[k]);
         if (count <= kWindingLeafSize) {
             tree.links[2 * size_t(node)] = first;
             tree.links[2 * size_t(node) + 1] = count | 0x80000000u;
@@ -93,7 +124,7 @@ WindingTree buildWindingTree(const std::vector<Vec3d>& positions, const std::vec
     std::iota(b.tree.order.begin(), b.tree.order.end(), 0u);
     // About two nodes for every leaf's worth of triangles.
     b.tree.links.reserve(4 * (triangles.size() / kWindingLeafSize + 1));
-    b.tree.nodes.reserve(16 * (triangles.size() / kWindingLeafSize + 1));
+    b.tree.nodes.reserve(2 * kWindingNodeFloats * (triangles.size() / kWindingLeafSize + 1));
     b.build(0, uint32_t(triangles.size()), 0);
     return std::move(b.tree);
 }

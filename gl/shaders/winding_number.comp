@@ -17,18 +17,18 @@ float windingNumber(dvec3 q)
     stack[0] = 0u;
     float sum = 0.0;
     while (top > 0u) {
-        if (overBudget()) break;
+        if (overBudget(1u)) break;
         uint n = stack[--top];
-        float dipole;
-        if (farNode(n, nodes[2u * n], qf, dipole)) {
-            sum += dipole;
+        float term;
+        if (farNode(n, nodes[kWindingNodeVec4s * n], qf, term)) {
+            sum += term;
             continue;
         }
         uvec2 l = links[n];
         if ((l.y & kWindingLeaf) != 0u) {
             uint last = l.x + (l.y & ~kWindingLeaf);
             for (uint i = l.x; i < last; ++i) {
-                if (overBudget()) break;
+                if (overBudget(1u)) break;
                 sum += solidAngle(q, order[i]);
             }
         } else {

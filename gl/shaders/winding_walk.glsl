@@ -21,15 +21,18 @@ uniform float uBeta2;  // beta^2; nodes nearer than beta radii are opened
 // Loop iterations an invocation may run before the driver would end its loops
 // silently (ContextInfo::loopLimit, less the loops around the walks); past it
 // the invocation stops and sets word uFlagWord of the output, which the host
-// reports. No limit: 0xFFFFFFFF.
+// reports. No limit: 0xFFFFFFFF. Each walk charges its steps with overBudget.
 uniform uint uStepBudget;
 uniform uint uFlagWord;
 
 uint gSteps = 0u;
 bool gStopped = false;
-bool overBudget()
+// Charges `steps` loop iterations: llvmpipe counts every iteration of every
+// loop of an invocation against one limit, inner loops included.
+bool overBudget(uint steps)
 {
-    if (++gSteps <= uStepBudget) return false;
+    gSteps += steps;
+    if (gSteps <= uStepBudget) return false;
     gStopped = true;
     return true;
 }
@@ -67,23 +70,71 @@ float solidAngle(dvec3 q, uint t)
                       position(indices[3u * t + 2u]) - q);
 }
 
-// A node's dipole term N . d / |d|^3 (times 4 pi), d = c - q, d2 = |d|^2.
-float dipoleTerm(vec3 d, float d2, vec3 area)
+// A node's expansion (winding_tree.h): vec4s 1 to 8 of its kWindingNodeVec4s.
+struct Expansion {
+    vec4 b;  // N, C_00
+    vec4 c1; // C_01 C_02 C_10 C_11
+    vec4 c2; // C_12 C_20 C_21 C_22
+    vec4 m0; // M_000 M_001 M_002 M_011
+    vec4 m1; // M_012 M_022 M_100 M_101
+    vec4 m2; // M_102 M_111 M_112 M_122
+    vec4 m3; // M_200 M_201 M_202 M_211
+    vec4 m4; // M_212 M_222 0 0
+};
+
+Expansion expansionOf(uint n)
 {
-    precise float term = dot(d, area) / (d2 * sqrt(d2));
+    uint i = kWindingNodeVec4s * n;
+    return Expansion(nodes[i + 1u], nodes[i + 2u], nodes[i + 3u], nodes[i + 4u], nodes[i + 5u], nodes[i + 6u],
+                     nodes[i + 7u], nodes[i + 8u]);
+}
+
+// One row i of the second moments, S = M_i.. (symmetric: 00 01 02 11 12 22),
+// added to the sums of the second-order term: a = sum_i (S d)_i,
+// b = sum_i d_i tr(S), c = sum_i d_i d^T S d.
+void addSecondMoments(float s00, float s01, float s02, float s11, float s12, float s22, vec3 d, float di,
+                      float sdi, inout float a, inout float b, inout float c)
+{
+    precise vec3 sd = vec3(s00 * d.x + s01 * d.y + s02 * d.z, s01 * d.x + s11 * d.y + s12 * d.z,
+                           s02 * d.x + s12 * d.y + s22 * d.z);
+    precise float na = a + sdi, nb = b + di * (s00 + s11 + s22), nc = c + di * dot(d, sd);
+    a = na;
+    b = nb;
+    c = nc;
+}
+
+// A far node's term (times 4 pi) at d = c - q, d2 = |d|^2: the Taylor series
+// of winding_tree.h to second order.
+float farTerm(vec3 d, float d2, Expansion e)
+{
+    precise vec3 cd = vec3(e.b.w * d.x + e.c1.x * d.y + e.c1.y * d.z, e.c1.z * d.x + e.c1.w * d.y + e.c2.x * d.z,
+                           e.c2.y * d.x + e.c2.z * d.y + e.c2.w * d.z);
+    precise float inv3 = 1.0 / (d2 * sqrt(d2));
+    precise float inv5 = inv3 / d2;
+    float a = 0.0, b = 0.0, c = 0.0;
+    // (S d)_i needs row i of S d: the i-th component of each row's product.
+    addSecondMoments(e.m0.x, e.m0.y, e.m0.z, e.m0.w, e.m1.x, e.m1.y, d, d.x,
+                     e.m0.x * d.x + e.m0.y * d.y + e.m0.z * d.z, a, b, c);
+    addSecondMoments(e.m1.z, e.m1.w, e.m2.x, e.m2.y, e.m2.z, e.m2.w, d, d.y,
+                     e.m1.w * d.x + e.m2.y * d.y + e.m2.z * d.z, a, b, c);
+    addSecondMoments(e.m3.x, e.m3.y, e.m3.z, e.m3.w, e.m4.x, e.m4.y, d, d.z,
+                     e.m3.z * d.x + e.m4.x * d.y + e.m4.y * d.z, a, b, c);
+    precise float first = (dot(d, e.b.xyz) + (e.b.w + e.c1.w + e.c2.w)) * inv3 - 3.0 * dot(d, cd) * inv5;
+    precise float second = 0.5 * (15.0 * c * inv5 / d2 - 3.0 * (2.0 * a + b) * inv5);
+    precise float term = first + second;
     return term;
 }
 
 // Whether node n, of centre and radius cr, is farther than beta radii from
-// q; if so, `dipole` is its term.
-bool farNode(uint n, vec4 cr, vec3 q, out float dipole)
+// q; if so, `term` is its far-field term.
+bool farNode(uint n, vec4 cr, vec3 q, out float term)
 {
     precise vec3 d = cr.xyz - q;
     precise float d2 = dot(d, d);
     precise float reach2 = uBeta2 * cr.w * cr.w;
-    dipole = 0.0;
+    term = 0.0;
     if (!(d2 > reach2)) return false;
-    dipole = dipoleTerm(d, d2, nodes[2u * n + 1u].xyz);
+    term = farTerm(d, d2, expansionOf(n));
     return true;
 }
 

@@ -140,7 +140,7 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
         if (stopped)
             throw Error(fmt::format("winding numbers: {} ends a shader's loops after {} iterations, and walking this "
                                     "mesh's winding tree at accuracy {} takes more; use a smaller winding accuracy "
-                                    "(2 by default) or a hardware GPU",
+                                    "(1.5 by default) or a hardware GPU",
                                     context.info().renderer, loopLimit, request.beta));
         result.stages.push_back({name, timer.milliseconds(), msSince(w0)});
     };

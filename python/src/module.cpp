@@ -725,17 +725,17 @@ PYBIND11_MODULE(_svo, m)
         .def("level_set", &levelSetWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
              py::arg("transform") = py::none(), py::arg("exterior_band") = 3.0, py::arg("interior_band") = 3.0,
-             py::arg("unsigned") = false, py::arg("sign") = "auto", py::arg("winding_accuracy") = 2.0,
+             py::arg("unsigned") = false, py::arg("sign") = "auto", py::arg("winding_accuracy") = 1.5,
              py::arg("backend") = "auto",
              "A narrow-band signed distance field on the GPU, as OpenVDB's meshToLevelSet: a FloatGrid\n"
              "'surface' of class GRID_LEVEL_SET, world-unit distances, negative inside, exact to float\n"
              "rounding. Bands are in voxels (>= 1). unsigned=True gives unsigned distances (grid 'distance')\n"
              "for any mesh. sign: 'auto' (parity for closed, consistently oriented meshes, else the winding\n"
              "number), 'parity' or 'winding'; winding_accuracy: tree nodes farther than this many radii\n"
-             "use their dipole. Grid arguments as voxelize(); a transform must have uniform scale.")
+             "use their far-field expansion (default 1.5). Grid arguments as voxelize(); a transform must have uniform scale.")
         .def("solid", &solidWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
-             py::arg("transform") = py::none(), py::arg("sign") = "auto", py::arg("winding_accuracy") = 2.0,
+             py::arg("transform") = py::none(), py::arg("sign") = "auto", py::arg("winding_accuracy") = 1.5,
              py::arg("backend") = "auto",
              "The solid a mesh bounds, as a BoolGrid 'solid': the surface voxels and every voxel\n"
              "whose centre is inside; regions wholly inside are active tiles. Arguments as level_set().")
@@ -838,7 +838,7 @@ PYBIND11_MODULE(_svo, m)
     m.def("validate_level_set", &validateLevelSetWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
           py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(), py::arg("transform") = py::none(),
           py::arg("exterior_band") = 3.0, py::arg("interior_band") = 3.0, py::arg("sign") = "auto",
-          py::arg("winding_accuracy") = 2.0, py::arg("backend") = "auto", py::arg("worst") = 5,
+          py::arg("winding_accuracy") = 1.5, py::arg("backend") = "auto", py::arg("worst") = 5,
           py::arg("openvdb") = true,
           "Make the level set (as Voxelizer.level_set) and check it as `svo validate --sdf` does: CGAL's exact "
           "distance at every active voxel, CGAL's side on closed meshes, and the band both ways, with a "

@@ -106,10 +106,11 @@ enum class SignMethod {
 struct SignOptions {
     SignMethod method = SignMethod::Auto;
     /// Winding numbers: tree nodes farther than this many times their radius
-    /// add their dipole instead of their triangles (Barill et al. 2018's beta;
-    /// larger is slower and more exact, infinity evaluates every triangle).
-    double windingAccuracy = 2.0;
-    SignOptions(SignMethod m = SignMethod::Auto, double accuracy = 2.0) : method(m), windingAccuracy(accuracy) {}
+    /// add their far field, expanded to second order, instead of their
+    /// triangles (Barill et al. 2018's beta; larger is slower and more exact,
+    /// infinity evaluates every triangle).
+    double windingAccuracy = 1.5;
+    SignOptions(SignMethod m = SignMethod::Auto, double accuracy = 1.5) : method(m), windingAccuracy(accuracy) {}
 };
 
 /// What a level set (or unsigned distance field) holds.

@@ -191,12 +191,13 @@ SVO_CONST(uint) kItemWords = 8u;
 
 /* Winding numbers (winding_number.comp, svo/core/winding_tree.h); positions
    and indices as for the distance passes. */
-#define SVO_BIND_WINDING_NODES 2  /* 8 floats per tree node: centre, radius, area vector, 0 */
+#define SVO_BIND_WINDING_NODES 2  /* 9 vec4s per tree node: centre, radius, area vector, moments (winding_tree.h) */
 #define SVO_BIND_WINDING_LINKS 3  /* 2 uints per tree node: children, or first and count | kWindingLeaf */
 #define SVO_BIND_WINDING_ORDER 4  /* triangle indices in leaf order */
 #define SVO_BIND_WINDING_BRICKS 5 /* 3 uints per brick: brick coordinates (per-voxel pass) */
 #define SVO_BIND_WINDING_OUT 6    /* per-voxel: 16 uints per brick, inside bits; per-brick: a float per brick */
 SVO_CONST(uint) kWindingLeaf = 0x80000000u;
+SVO_CONST(uint) kWindingNodeVec4s = 9u; /* winding_tree.h: kWindingNodeFloats / 4 */
 SVO_CONST(uint) kWindingStack = 64u; /* tree depth + 1 at most (the host checks) */
 
 #ifndef __cplusplus

@@ -13,14 +13,23 @@
 ///
 /// The tree is a bounding-volume hierarchy split at the median along the
 /// longest axis of the triangles' centroids, with at most kWindingLeafSize
-/// triangles a leaf. Every node keeps the dipole of its triangles: the sum of
-/// their area vectors N (half the cross product, pointing out), placed at
-/// their area-weighted centroid c, and the radius r of the ball about c that
-/// holds all their corners. A node whose ball is far from q (|q - c| > beta r)
-/// adds N . (c - q) / |c - q|^3 / (4 pi) instead of its triangles: the first
-/// term of the far-field expansion, whose relative error falls as
-/// 1 / beta^2. Nearer nodes are opened, and leaf triangles add their exact
-/// solid angle. With beta = infinity every triangle is exact.
+/// triangles a leaf. Every node keeps its triangles' far field expanded to
+/// second order about c, their area-weighted centroid (Barill et al. 2018):
+/// the sum N of their area vectors (half the cross product, pointing out),
+/// the first moments C_ij = sum of a_i o_j and the second moments
+/// M_ijk = sum of a_i o_j o_k of each triangle's area vector a over its
+/// points, o = point - c, and the radius r of the ball about c that holds
+/// all their corners. A node whose ball is far from q (|q - c| > beta r)
+/// adds the three terms of the Taylor series of the solid angle at d = c - q
+/// instead of its triangles:
+///   N . d / |d|^3 + tr(C) / |d|^3 - 3 d^T C d / |d|^5
+///   + [15 sum M_ijk d_i d_j d_k / |d|^7 - 3 (2 sum M_iik d_k + sum M_ijj d_i) / |d|^5] / 2,
+/// over 4 pi. The error is of the third order in r / |d| (with c the
+/// area-weighted centroid C vanishes on flat patches, so the dipole alone
+/// is of the second): doubling beta divides the error by about 8 or more,
+/// and beta = 1.5 is twice as accurate as the dipole alone at beta = 2.
+/// Nearer nodes are opened, and leaf triangles add their exact solid angle.
+/// With beta = infinity every triangle is exact.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -31,10 +40,14 @@ namespace svo {
 
 /// Triangles in one leaf of the winding tree, at most.
 inline constexpr uint32_t kWindingLeafSize = 8;
+/// Floats per node of WindingTree::nodes.
+inline constexpr uint32_t kWindingNodeFloats = 36;
 
 struct WindingTree {
-    /// 8 floats per node: dipole centre c (x, y, z), radius r, area vector N
-    /// (x, y, z), 0. Node 0 is the root.
+    /// kWindingNodeFloats per node: centre c (x, y, z), radius r, area vector
+    /// N (x, y, z), the first moments C_00, C_01, C_02, C_10, ..., C_22, the
+    /// second moments M_i00, M_i01, M_i02, M_i11, M_i12, M_i22 for i = 0, 1,
+    /// 2, then 2 zeros (9 vec4s). Node 0 is the root.
     std::vector<float> nodes;
     /// 2 uints per node. Inner node: the two children. Leaf: the first entry
     /// of `order`, and the count with the top bit set.

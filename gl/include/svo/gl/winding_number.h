@@ -42,7 +42,7 @@ struct WindingRequest {
     /// Bricks (local voxel coordinate / 8) whose voxels to classify.
     std::vector<std::array<uint32_t, 3>> bricks;
     bool perBrick = false; ///< also the winding number at every brick centre of the grid's box
-    double beta = 2.0;     ///< far-field threshold; +infinity: every triangle exactly
+    double beta = 1.5;     ///< far-field threshold; +infinity: every triangle exactly
     WindingWork work = WindingWork::Auto;
     Checkpoint checkpoint;
 };
