@@ -1,8 +1,9 @@
 // Generalized winding numbers from the winding tree (svo/core/winding_tree.h
 // has the method): the buffers, the triangles' exact solid angles and the
 // loop budget that winding_number.comp and winding_columns.comp share. Far
-// nodes add their dipole (float); leaf triangles add their exact solid
-// angle, the orientation decided in double from the local double positions.
+// nodes add their far field to second order (float); leaf triangles add
+// their exact solid angle, the orientation decided in double from the local
+// double positions.
 #include "gpu_layout.h"
 
 layout(std430, binding = SVO_BIND_FIELD_POSITIONS) readonly restrict buffer Positions { double positions[]; };

@@ -10,10 +10,11 @@
 ///              grid's box (brick coordinates up to ceil(dims / 8)), for the
 ///              caller to classify whole bricks far from the surface.
 ///
-/// Accuracy. A tree node farther than `beta` times its radius adds its dipole
-/// in float instead of its triangles; nearer triangles add their exact solid
-/// angle. The error of a dipole falls as (1 / beta)^2 relative to the node's
-/// own contribution; beta = infinity evaluates every triangle.
+/// Accuracy. A tree node farther than `beta` times its radius adds its far
+/// field, expanded to second order, in float instead of its triangles;
+/// nearer triangles add their exact solid angle. The error falls as
+/// (1 / beta)^3 or faster relative to the node's own contribution;
+/// beta = infinity evaluates every triangle.
 #include <array>
 #include <cstdint>
 #include <vector>
