@@ -358,13 +358,93 @@ TEST(Winding, SolidAnglesAndWindingNumbersAreTheAnalyticOnes)
     const double w = windingNumber(half.positions, half.triangles, {0.1, -0.2, 0.3});
     EXPECT_GT(w, 0.3);
     EXPECT_LT(w, 0.7);
-    // The tree: every node's ball holds its triangles, leaves hold each triangle once.
-    const WindingTree tree = buildWindingTree(ico.positions, ico.triangles);
-    std::vector<int> seen(ico.triangles.size(), 0);
-    for (size_t n = 0; n < tree.links.size() / 2; ++n)
-        if (tree.links[2 * n + 1] & 0x80000000u)
-            for (uint32_t i = 0; i < (tree.links[2 * n + 1] & 0x7FFFFFFFu); ++i) ++seen[tree.order[tree.links[2 * n] + i]];
-    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(ico.triangles.size()));
+}
+
+/// The triangles under node n of `tree`, from its leaves.
+void trianglesUnder(const WindingTree& tree, uint32_t n, std::vector<uint32_t>& out)
+{
+    const uint32_t a = tree.links[2 * size_t(n)], b = tree.links[2 * size_t(n) + 1];
+    if (b & 0x80000000u)
+        out.insert(out.end(), tree.order.begin() + a, tree.order.begin() + a + (b & 0x7FFFFFFFu));
+    else
+        trianglesUnder(tree, a, out), trianglesUnder(tree, b, out);
+}
+
+// The tree (built from children's moments moved to each parent's centre, on
+// several tasks): every node's moments are those summed directly over its
+// triangles' points as winding_tree.h defines them, its ball holds every
+// corner, and the leaves hold each triangle once. The mesh is large enough
+// to be built in parallel, and holed and partly flipped.
+TEST(Winding, TreeNodesHoldTheFarFieldOfTheirTriangles)
+{
+    const TriangleMesh mesh = holedAndFlipped(icosphere({0.1, -0.2, 0.3}, 1.0, 5), 1.15);
+    const WindingTree tree = buildWindingTree(mesh.positions, mesh.triangles);
+    const auto& p = mesh.positions;
+    const uint32_t nodes = uint32_t(tree.links.size() / 2);
+    ASSERT_EQ(tree.nodes.size(), size_t(kWindingNodeFloats) * nodes);
+    std::vector<int> seen(mesh.triangles.size(), 0);
+    uint32_t maxDepth = 0;
+    // Depth of each node from its parent's (node 0 the root).
+    std::vector<uint32_t> depth(nodes, 0);
+    for (uint32_t n = 0; n < nodes; ++n) {
+        const float* w = &tree.nodes[kWindingNodeFloats * size_t(n)];
+        std::vector<uint32_t> under;
+        trianglesUnder(tree, n, under);
+        if (tree.links[2 * n + 1] & 0x80000000u) {
+            for (uint32_t t : under) ++seen[t];
+            ASSERT_LE(under.size(), kWindingLeafSize);
+        } else {
+            depth[tree.links[2 * n]] = depth[tree.links[2 * n + 1]] = depth[n] + 1;
+        }
+        maxDepth = std::max(maxDepth, depth[n]);
+        // Direct sums: c the area-weighted centroid, then over each
+        // triangle's points (its centroid x plus the corners' covariance).
+        double area = 0;
+        Vec3d weighted{0, 0, 0};
+        for (uint32_t t : under) {
+            const auto& f = mesh.triangles[t];
+            const Vec3d x = (1.0 / 3) * (p[f[0]] + p[f[1]] + p[f[2]]);
+            const Vec3d a = 0.5 * cross(p[f[1]] - p[f[0]], p[f[2]] - p[f[0]]);
+            area += std::sqrt(dot(a, a));
+            weighted = weighted + std::sqrt(dot(a, a)) * x;
+        }
+        const Vec3d c = (1.0 / area) * weighted;
+        double expect[kWindingNodeFloats] = {c.x, c.y, c.z, 0};
+        double scale = 0;
+        for (uint32_t t : under) {
+            const auto& f = mesh.triangles[t];
+            const Vec3d x = (1.0 / 3) * (p[f[0]] + p[f[1]] + p[f[2]]);
+            const Vec3d a = 0.5 * cross(p[f[1]] - p[f[0]], p[f[2]] - p[f[0]]);
+            for (uint32_t v : f) expect[3] = std::max(expect[3], std::sqrt(dot(p[v] - c, p[v] - c)));
+            for (int i = 0; i < 3; ++i) {
+                expect[4 + i] += a[i];
+                for (int j = 0; j < 3; ++j) expect[7 + 3 * i + j] += a[i] * (x[j] - c[j]);
+                int q = 0;
+                for (int j = 0; j < 3; ++j)
+                    for (int k = j; k < 3; ++k, ++q) {
+                        double second = (x[j] - c[j]) * (x[k] - c[k]);
+                        for (uint32_t v : f) second += (p[v][j] - x[j]) * (p[v][k] - x[k]) / 12;
+                        expect[16 + 6 * i + q] += a[i] * second;
+                    }
+            }
+            scale += std::sqrt(dot(a, a));
+        }
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(w[k], expect[k], 1e-6) << "node " << n;
+        EXPECT_GE(w[3], expect[3]) << "node " << n;
+        EXPECT_NEAR(w[3], expect[3], 1e-6) << "node " << n;
+        // N, C, M are sums of area times up to two lengths of at most r.
+        for (int k = 4; k < 34; ++k)
+            EXPECT_NEAR(w[k], expect[k], 1e-6 * scale * std::max(1.0, expect[3] * expect[3])) << "node " << n << " float " << k;
+        EXPECT_EQ(w[34], 0.0f);
+        EXPECT_EQ(w[35], 0.0f);
+    }
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(mesh.triangles.size()));
+    EXPECT_EQ(tree.depth, maxDepth);
+    // The same tree again: the tasks do not change it.
+    const WindingTree again = buildWindingTree(mesh.positions, mesh.triangles);
+    EXPECT_EQ(again.nodes, tree.nodes);
+    EXPECT_EQ(again.links, tree.links);
+    EXPECT_EQ(again.order, tree.order);
 }
 
 /// Voxels (over the mesh's box grown by 3) where the solid's inside differs
