@@ -26,6 +26,9 @@ void main()
         dvec3 gap = max(max(boxLo - brickHi, brickLo - boxHi), dvec3(0.0LF));
         double band2 = double(uBand) * double(uBand);
         if (dot(gap, gap) > band2) continue; // the whole brick is beyond the band from the triangle's box
+        // ... or from its plane, over the centres the box test can pass.
+        dvec3 w = dvec3(uBand);
+        if (boxBeyondSlab(slabOf(A, B, C), max(brickLo, boxLo - w), min(brickHi, boxHi + w))) continue;
         for (uint z = 0u; z < 8u; ++z) {
             dvec3 p = brickLo + dvec3(x, y, z);
             dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));

@@ -38,3 +38,43 @@ double triangleDistance2(dvec3 p, dvec3 a, dvec3 b, dvec3 c)
     return min(segmentDistance2(p, a, b), min(segmentDistance2(p, b, c), segmentDistance2(p, c, a)));
 }
 
+
+// The plane slab of triangle abc: a centre farther than the band from the
+// triangle's plane is farther from the triangle, so work can skip it. Its
+// unnormalized normal n and the band measured along n, widened by 1e-6
+// (far above the double arithmetic's error, and above float's half ulp, so
+// no centre whose rounded distance could be kept is ever skipped).
+// Degenerate triangles have n = 0 and a slab of everything.
+struct Slab {
+    dvec3 a, n;
+    double limit;
+};
+
+Slab slabOf(dvec3 a, dvec3 b, dvec3 c)
+{
+    Slab s;
+    s.a = a;
+    s.n = cross(b - a, c - a);
+    s.limit = double(uBand) * sqrt(dot(s.n, s.n)) * (1.0LF + 1e-6LF);
+    return s;
+}
+
+// Whether every point of the box [lo, hi] lies beyond the slab on one side.
+bool boxBeyondSlab(Slab s, dvec3 lo, dvec3 hi)
+{
+    double h = dot(s.n, 0.5LF * (lo + hi) - s.a), r = dot(abs(s.n), 0.5LF * (hi - lo));
+    return h - r > s.limit || h + r < -s.limit;
+}
+
+// Narrows [zLo, zHi] to the centres of column (x, y) inside the slab;
+// false when none is.
+bool slabRun(Slab s, uvec2 column, inout uint zLo, inout uint zHi)
+{
+    double h0 = s.n.x * (double(column.x) - s.a.x) + s.n.y * (double(column.y) - s.a.y) - s.n.z * s.a.z;
+    if (s.n.z == 0.0LF) return abs(h0) <= s.limit;
+    double z0 = (-s.limit - h0) / s.n.z, z1 = (s.limit - h0) / s.n.z;
+    double lo = max(double(zLo), ceil(min(z0, z1) - 1e-6LF)), hi = min(double(zHi), floor(max(z0, z1) + 1e-6LF));
+    if (hi < lo) return false;
+    zLo = uint(lo), zHi = uint(hi);
+    return true;
+}

@@ -3,10 +3,12 @@
 // to the closest triangle (band_distance.glsl), on a CPU rasterizer, whose
 // SIMD lanes are the threads of a workgroup: a triangle whose box grown by
 // the band fits a brick takes one thread (uWhole; its list after the items'
-// records), so eight small triangles fill eight lanes; a larger one takes a
-// workgroup per brick it spans, a column of the brick's part of the box a
-// thread.
-layout(local_size_x = 64) in;
+// records), so eight small triangles fill eight lanes; a larger one takes an
+// item per brick it spans. A workgroup is 8 threads, llvmpipe's one vector
+// (it runs a workgroup's vectors one after another, each through the whole
+// shader, so with 64 threads every item was found and read 8 times), and
+// takes a run of items, a thread a row of the columns of each.
+layout(local_size_x = 8) in;
 #include "band_distance.glsl"
 
 // The band distances of one column of an item's box to triangle t, at the
@@ -14,8 +16,10 @@ layout(local_size_x = 64) in;
 // `run`, first narrowed to the run of centres whose distance to the
 // triangle's box is within the band, found from the gap across the column
 // (widened for rounding): what a thread that takes all the columns of a
-// small triangle saves. Then each centre's exact test against the box,
-// which is cheaper than the distance.
+// small triangle saves. Then to the run within the band of the triangle's
+// plane, which a large slanted triangle's box holds a small part of. Then
+// each centre's exact test against the box, which is cheaper than the
+// distance.
 void columnDistances(uint t, dvec3 A, dvec3 B, dvec3 C, uvec2 column, uint zLo, uint zHi, bool run)
 {
     dvec3 boxLo = min(A, min(B, C)), boxHi = max(A, max(B, C));
@@ -29,6 +33,7 @@ void columnDistances(uint t, dvec3 A, dvec3 B, dvec3 C, uvec2 column, uint zLo, 
         if (z1 < z0) return;
         zLo = uint(z0), zHi = uint(z1);
     }
+    if (!slabRun(slabOf(A, B, C), column, zLo, zHi)) return;
     uvec2 l = column & kBrickMask;
     uint leaf = (l.x << kKeyLeafXShift) | (l.y << kKeyLeafYShift);
     uint lowZ = zLo >> kBrickLog2;
@@ -62,14 +67,19 @@ void main()
         }
         return;
     }
-    // One workgroup an item, a column a thread.
-    for (uint item = uItemFirst + workgroupIndex(); item < uItems; item += workgroupCount()) {
-        uint t;
+    // One workgroup (one SIMD vector) a run of items, one after another; a
+    // thread a row of an item's columns.
+    uint first, end;
+    itemRun(first, end);
+    uint t = first < end ? triangleOfItem(first) : 0u;
+    for (uint item = first; item < end; ++item) {
+        t = triangleOfItemFrom(item, t);
         uvec3 lo, size;
-        voxelBoxOfItem(item, t, lo, size); // at most 8 x 8 x 8
-        if (gl_LocalInvocationID.x >= size.x * size.y) continue;
+        voxelBoxOfTriangleItem(item, t, lo, size); // at most 8 x 8 x 8
+        uint x = gl_LocalInvocationID.x;
+        if (x >= size.x) continue;
         dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
-        uvec2 column = lo.xy + uvec2(gl_LocalInvocationID.x % size.x, gl_LocalInvocationID.x / size.x);
-        columnDistances(t, A, B, C, column, lo.z, lo.z + size.z - 1u, false);
+        for (uint y = 0u; y < size.y; ++y)
+            columnDistances(t, A, B, C, lo.xy + uvec2(x, y), lo.z, lo.z + size.z - 1u, false);
     }
 }

@@ -29,6 +29,11 @@ uniform uint uTableMask; // table slots - 1 (a power of two less one)
 uniform uint uWhole;      // 1: a thread a one-item triangle of the list at uWholeStart; 0: a workgroup an item
 uniform uint uWholeStart; // where the list of one-item triangles starts in items[]
 
+uint workgroupIndex() { return gl_WorkGroupID.x + gl_NumWorkGroups.x * gl_WorkGroupID.y; }
+uint workgroupCount() { return gl_NumWorkGroups.x * gl_NumWorkGroups.y; }
+uint threadIndex() { return gl_WorkGroupSize.x * workgroupIndex() + gl_LocalInvocationID.x; }
+uint threadCount() { return gl_WorkGroupSize.x * workgroupCount(); }
+
 dvec3 position(uint i) { return dvec3(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]); }
 
 // The triangle whose items hold item i: the last t with first(t) <= i.
@@ -43,12 +48,31 @@ uint triangleOfItem(uint i)
     return lo;
 }
 
-// The voxel box that item i stands for, and its triangle: the triangle's
+// The same when the triangle of an earlier item was `from`: a gallop from
+// it, then a binary search, so consecutive items cost a step or two, not a
+// search of all triangles (on a CPU rasterizer, whose lanes load one by one,
+// that search was most of a pass).
+uint triangleOfItemFrom(uint i, uint from)
+{
+    uint lo = from, hi = from + 1u, step = 1u; // first(lo) <= i
+    while (hi < uTriangles && items[kItemWords * hi] <= i) {
+        lo = hi;
+        step <<= 1u;
+        hi = uTriangles - lo > step ? lo + step : uTriangles;
+    }
+    while (hi - lo > 1u) { // first(lo) <= i < first(hi)
+        uint mid = (lo + hi) >> 1u;
+        if (items[kItemWords * mid] <= i) lo = mid;
+        else hi = mid;
+    }
+    return lo;
+}
+
+// The voxel box that item i of triangle t stands for: the triangle's
 // whole box, or the part of it in one brick (for columns: one brick column);
 // at most 8 voxels along each axis.
-void voxelBoxOfItem(uint i, out uint t, out uvec3 lo, out uvec3 size)
+void voxelBoxOfTriangleItem(uint i, uint t, out uvec3 lo, out uvec3 size)
 {
-    t = triangleOfItem(i);
     uint base = kItemWords * t;
     lo = uvec3(items[base + 1u], items[base + 2u], items[base + 3u]);
     size = uvec3(items[base + 4u], items[base + 5u], items[base + 6u]);
@@ -59,6 +83,23 @@ void voxelBoxOfItem(uint i, out uint t, out uvec3 lo, out uvec3 size)
     uvec3 hi = min(lo + size, (b + 1u) << kBrickLog2);
     lo = max(lo, b << kBrickLog2);
     size = hi - lo;
+}
+
+// The voxel box that item i stands for, and its triangle.
+void voxelBoxOfItem(uint i, out uint t, out uvec3 lo, out uvec3 size)
+{
+    t = triangleOfItem(i);
+    voxelBoxOfTriangleItem(i, t, lo, size);
+}
+
+// A CPU rasterizer's workgroup takes a run of consecutive items of this
+// dispatch, [first, end), so that each item's triangle is found from the
+// one before (triangleOfItemFrom).
+void itemRun(out uint first, out uint end)
+{
+    uint per = (uItems - uItemFirst + workgroupCount() - 1u) / workgroupCount();
+    first = min(uItemFirst + workgroupIndex() * per, uItems);
+    end = min(first + per, uItems);
 }
 
 // The box of the k-th one-item triangle (uWhole), and the triangle.
@@ -82,8 +123,3 @@ uint lookupBrick(uvec3 b)
         slot = (slot + 1u) & uTableMask;
     }
 }
-
-uint workgroupIndex() { return gl_WorkGroupID.x + gl_NumWorkGroups.x * gl_WorkGroupID.y; }
-uint workgroupCount() { return gl_NumWorkGroups.x * gl_NumWorkGroups.y; }
-uint threadIndex() { return 64u * workgroupIndex() + gl_LocalInvocationID.x; }
-uint threadCount() { return 64u * workgroupCount(); }

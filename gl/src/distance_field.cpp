@@ -99,15 +99,14 @@ uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, co
 }
 
 /// Runs `program` over items [0, items): workgroups loop over them, enough
-/// to fill a large GPU, few on a CPU rasterizer, where each group costs. An
-/// item loops at most 1 + 32 times (triangleOfItem's search) + 8 (a thread's
-/// column) + the brick table's probes for up to two bricks, which stay short
-/// at half load: 256 iterations an item are allowed for the driver's loop limit.
-void dispatchItems(const Context& context, const Program& program, uint64_t items)
+/// to fill a large GPU, few on a CPU rasterizer, where each group costs. A
+/// thread of an item loops at most `iterations` times, for the driver's loop
+/// limit.
+void dispatchItems(const Context& context, const Program& program, uint64_t items, uint64_t iterations)
 {
     const ContextInfo& info = context.info();
     const auto groups = uint32_t(std::min<uint64_t>(items, info.software ? 256 : 65535));
-    dispatchLooping(program, items, groups, info.loopLimit, 256, "uItemFirst", "uItems");
+    dispatchLooping(program, items, groups, info.loopLimit, iterations, "uItemFirst", "uItems");
 }
 
 } // namespace
@@ -195,12 +194,14 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     if (flipBuffer) flipBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_FLIPS);
     const auto poll = [&] { request.checkpoint(0.5, "distance field"); };
 
-    // One pass over a set of items and one-item triangles, timed. A thread
-    // of a one-item triangle loops at most `wholeIterations` times (its
-    // columns, their centres and brick probes); a workgroup's 64 share the
-    // driver's loop limit, with a margin for the loop around them.
-    auto pass = [&](const char* name, const Program& program, const std::vector<uint32_t>& items, uint64_t n,
-                    const std::vector<uint32_t>* whole, uint64_t wholeIterations) {
+    // One pass over a set of items and one-item triangles, timed, by a
+    // program of `groupSize` threads a workgroup. A thread of an item loops
+    // at most `itemIterations` times, one of a one-item triangle at most
+    // `wholeIterations` (its columns, their centres and brick probes); a
+    // workgroup's threads share the units of its dispatch, with a margin
+    // for the loop around them.
+    auto pass = [&](const char* name, const Program& program, uint32_t groupSize, const std::vector<uint32_t>& items,
+                    uint64_t n, uint64_t itemIterations, const std::vector<uint32_t>* whole, uint64_t wholeIterations) {
         const auto w0 = Clock::now();
         TimerQuery timer;
         const size_t records = items.size(), listed = whole ? whole->size() : 0;
@@ -215,12 +216,14 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
             program.set("uWhole", 0u);
             program.set("uWholeStart", uint32_t(records));
         }
-        dispatchItems(context, program, n);
+        dispatchItems(context, program, n, itemIterations);
         if (listed) {
             program.set("uWhole", 1u);
             const ContextInfo& info = context.info();
-            const auto groups = uint32_t(std::min<uint64_t>((listed + 63) / 64, info.software ? 256 : 65535));
-            dispatchLooping(program, listed, groups, info.loopLimit, wholeIterations / 64 + 4, "uItemFirst", "uItems");
+            const auto groups =
+                uint32_t(std::min<uint64_t>((listed + groupSize - 1) / groupSize, info.software ? 256 : 65535));
+            dispatchLooping(program, listed, groups, info.loopLimit, wholeIterations / groupSize + 4, "uItemFirst",
+                            "uItems");
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         timer.end();
@@ -233,13 +236,22 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
             context.program({smallTriangles ? "band_distance_columns.comp" : "band_distance.comp"});
         program.set("uBand", float(band));
         program.set("uPass", 0u);
-        // A one-item triangle: 64 columns, 512 centres, two brick lookups a column.
-        const uint64_t iterations = 1024;
+        // band_distance.comp: 64 threads, an item's thread loops 1 + 32
+        // (triangleOfItem's search) + 8 (its column) times and probes the
+        // brick table once, a short probe at half load. The columns: 8
+        // threads (one SIMD vector of llvmpipe, which runs a workgroup's
+        // vectors one after another, each through the whole loop), an item's
+        // thread 1 + 64 (triangleOfItemFrom) + 8 columns of 8 centres and two
+        // probes; a one-item triangle's 64 columns, 512 centres and two
+        // probes a column.
+        const uint32_t groupSize = smallTriangles ? 8 : 64;
+        const uint64_t itemIterations = smallTriangles ? 512 : 256, wholeIterations = 1024;
         const std::vector<uint32_t>* whole = smallTriangles ? &distanceWhole : nullptr;
-        pass("band distance", program, distanceItems, nDistance, whole, iterations);
+        pass("band distance", program, groupSize, distanceItems, nDistance, itemIterations, whole, wholeIterations);
         if (closestBuffer) {
             program.set("uPass", 1u);
-            pass("closest triangle", program, distanceItems, nDistance, whole, iterations);
+            pass("closest triangle", program, groupSize, distanceItems, nDistance, itemIterations, whole,
+                 wholeIterations);
         }
     }
     const Buffer* maskBuffer = nullptr;
@@ -280,7 +292,9 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     if (request.crossings) {
         const Program& program = context.program({"parity_flips.comp"});
         program.set("uDimZ", grid.dims[2]);
-        pass("parity crossings", program, crossingItems, nCrossing, &crossingWhole, 256); // 64 columns, a lookup each
+        // 64 threads; an item's thread loops 1 + 32 times and probes once,
+        // a one-item triangle's thread takes 64 columns, a probe each.
+        pass("parity crossings", program, 64, crossingItems, nCrossing, 256, &crossingWhole, 256);
     }
     result.stages.front().gpuMs = uploadTimer.milliseconds();
     result.gpuBytes = positions.bytes() + indices.bytes() + tableBuffer.bytes() + counters.bytes() +
