@@ -273,12 +273,19 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         const auto w0 = Clock::now();
         TimerQuery timer;
         timer.begin();
-        const Program& program = context.program({"band_compact.comp"});
+        // With the CPU rasterizers' cut, a thread a brick, looping 1 + 16 *
+        // 33 + 16 + 512 times at most (band_compact_bricks.comp), 8 threads
+        // a workgroup sharing its bricks (so the limit a brick is an eighth
+        // of that, with a margin); else a workgroup a brick, whose threads
+        // loop 1 + 8 + 64 + 8 times (band_compact.comp).
+        const Program& program =
+            context.program({smallTriangles ? "band_compact_bricks.comp" : "band_compact.comp"});
         program.set("uBand", float(band));
         program.set("uClosest", closestBuffer ? 1u : 0u);
-        // A brick loops at most 1 + 8 + 64 + 8 times (band_compact.comp).
-        dispatchLooping(program, nb, uint32_t(std::min<uint64_t>(nb, software ? 256 : 65535)),
-                        context.info().loopLimit, 96, "uBrickFirst", "uBricks");
+        const uint64_t groupSize = smallTriangles ? 8 : 1;
+        dispatchLooping(program, nb,
+                        uint32_t(std::min<uint64_t>((nb + groupSize - 1) / groupSize, software ? 256 : 65535)),
+                        context.info().loopLimit, smallTriangles ? 1058 / 8 + 8 : 96, "uBrickFirst", "uBricks");
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         timer.end();
         checkGl("band packing");
