@@ -58,6 +58,8 @@ void checkSdfArgs(const ValidateArgs& a, const CLI::App& cmd)
     if (cmd.count("--errors")) throw Error("--errors writes missed and extra surface voxels; it does not apply to --sdf");
     if (cmd.count("--no-holes") || cmd.count("--strict"))
         throw Error("--no-holes and --strict apply to surface voxels, not to --sdf");
+    if (cmd.count("--conservative") || a.backend.backend == "raster")
+        throw Error("--sdf runs compute passes only: --backend raster and --conservative do not apply");
 }
 
 

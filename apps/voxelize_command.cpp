@@ -105,6 +105,9 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
         throw Error("--fog and --topology apply to surface voxels, not to --sdf, --udf or --fill solid");
     if (!a.output.empty() && outputFormat(a.output) != OutputFormat::Vdb)
         throw Error(fmt::format("{}: --sdf, --udf and --fill solid write OpenVDB grids; name a .vdb file", a.output));
+    // A level set's band comes from the triangles, not from rasterized voxels.
+    if ((a.sdf || a.udf) && (cmd.count("--conservative") || a.backend.backend == "raster"))
+        throw Error("--sdf and --udf run compute passes only: --backend raster and --conservative do not apply");
 }
 
 /// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb.

@@ -601,7 +601,8 @@ TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)
 
     for (const char* bad : {"--sdf -o x.svo", "--band 2", "--sdf --udf", "--udf --interior-band 2", "--sdf --band 2 "
                             "--exterior-band 3", "--fill solid --attributes normal", "--closest-triangle",
-                            "--sdf --band 0.5", "--winding-accuracy 3"}) {
+                            "--sdf --band 0.5", "--winding-accuracy 3", "--sdf --backend raster",
+                            "--udf --conservative hardware"}) {
         const auto r = runSvo("voxelize " + path("ico.off") + " " + bad + (std::string(bad).find(" -o ") == std::string::npos ? " -o " + path("bad.vdb") : std::string()));
         EXPECT_EQ(r.code, 1) << bad << ": " << r.out;
         EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << bad << ": " << r.out; // one line
@@ -652,7 +653,9 @@ TEST_F(Cli, ValidateSdfPassesOnClosedAndOpenMeshesAndRefusesMisuse)
         {"--sdf --mode thin", "--mode applies to surface voxels"},
         {"--sdf --errors e.vdb", "does not apply to --sdf"},
         {"--sdf --no-holes", "not to --sdf"},
-        {"--sdf --strict", "not to --sdf"}};
+        {"--sdf --strict", "not to --sdf"},
+        {"--sdf --backend raster", "compute passes only"},
+        {"--sdf --conservative shader", "compute passes only"}};
     for (const auto& [bad, message] : misuses) {
         const auto m = runSvo("validate " + path("ico.off") + " -r 16 " + bad);
         EXPECT_EQ(m.code, 1) << bad << ": " << m.out;

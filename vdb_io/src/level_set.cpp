@@ -1,5 +1,6 @@
 // Level sets, unsigned distance fields and solids (svo/voxelizer.h): the
-// surface voxels give the band's bricks, the GPU gives distances there
+// triangles give a level set's band bricks (a solid's come from its surface
+// voxels), the GPU gives distances there
 // (svo/gl/distance_field.h) and signs, by parity crossings or by winding
 // numbers (svo/gl/winding_number.h), and OpenVDB holds the result.
 #include <algorithm>
@@ -178,29 +179,10 @@ std::array<uint32_t, 6> occupiedBox(const Brick& m)
     return {x0, y0, z0, x1, y1, z1};
 }
 
-/// The bricks holding every voxel within `reach` voxels (Chebyshev) of an
-/// occupied voxel of the octree: each brick's occupied box grown by reach.
-std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
+/// The bricks of `parts` (lists of bricks of a grid `limit` + 1 bricks
+/// wide), sorted in x-major order and unique.
+std::vector<BrickCoord> sortedUnique(std::vector<std::vector<BrickCoord>>& parts, const std::array<uint32_t, 3>& limit)
 {
-    const auto refs = occupiedBricks(octree);
-    std::array<uint32_t, 3> limit{};
-    for (int a = 0; a < 3; ++a) limit[a] = (octree.grid.dims[a] + 7) / 8 - 1;
-    std::vector<std::vector<BrickCoord>> parts(refs.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, refs.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t n = r.begin(); n != r.end(); ++n) {
-            const std::array<uint32_t, 6> box = occupiedBox(octree.bricks[refs[n].index]);
-            const std::array<uint32_t, 3> lo{box[0], box[1], box[2]}, hi{box[3], box[4], box[5]};
-            std::array<uint32_t, 3> b0{}, b1{};
-            for (int a = 0; a < 3; ++a) {
-                const int64_t o = refs[n].origin[a];
-                b0[a] = uint32_t(std::max<int64_t>(o + lo[a] - reach, 0) / 8);
-                b1[a] = std::min(uint32_t((o + hi[a] + reach) / 8), limit[a]);
-            }
-            for (uint32_t x = b0[0]; x <= b1[0]; ++x)
-                for (uint32_t y = b0[1]; y <= b1[1]; ++y)
-                    for (uint32_t z = b0[2]; z <= b1[2]; ++z) parts[n].push_back({x, y, z});
-        }
-    });
     std::vector<BrickCoord> all;
     const uint64_t cells = uint64_t(limit[0] + 1) * (limit[1] + 1) * (limit[2] + 1);
     if (cells > (uint64_t(1) << 33)) { // a bitmap of more than 1 GiB: sort instead
@@ -226,6 +208,93 @@ std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
             all.push_back({uint32_t(i / (ny * nz)), uint32_t(i / nz % ny), uint32_t(i % nz)});
         }
     return all;
+}
+
+/// The bricks holding every voxel within `reach` voxels (Chebyshev) of an
+/// occupied voxel of the octree: each brick's occupied box grown by reach.
+std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
+{
+    const auto refs = occupiedBricks(octree);
+    std::array<uint32_t, 3> limit{};
+    for (int a = 0; a < 3; ++a) limit[a] = (octree.grid.dims[a] + 7) / 8 - 1;
+    std::vector<std::vector<BrickCoord>> parts(refs.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, refs.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t n = r.begin(); n != r.end(); ++n) {
+            const std::array<uint32_t, 6> box = occupiedBox(octree.bricks[refs[n].index]);
+            const std::array<uint32_t, 3> lo{box[0], box[1], box[2]}, hi{box[3], box[4], box[5]};
+            std::array<uint32_t, 3> b0{}, b1{};
+            for (int a = 0; a < 3; ++a) {
+                const int64_t o = refs[n].origin[a];
+                b0[a] = uint32_t(std::max<int64_t>(o + lo[a] - reach, 0) / 8);
+                b1[a] = std::min(uint32_t((o + hi[a] + reach) / 8), limit[a]);
+            }
+            for (uint32_t x = b0[0]; x <= b1[0]; ++x)
+                for (uint32_t y = b0[1]; y <= b1[1]; ++y)
+                    for (uint32_t z = b0[2]; z <= b1[2]; ++z) parts[n].push_back({x, y, z});
+        }
+    });
+    return sortedUnique(parts, limit);
+}
+
+/// The bricks holding every voxel centre within `grow` voxels of a
+/// triangle (local coordinates: centres at integers): per triangle, the
+/// bricks its box grown by `grow` spans that also meet the slab of centres
+/// within `grow` of its plane, found a column of bricks at a time. Both
+/// tests hold every centre whose distance to the triangle is at most `grow`,
+/// widened by 1e-6 relative and absolute against rounding, so the set is
+/// exact where it matters and a thin triangle's box costs only its slab.
+std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, const TriangleMesh& mesh,
+                                            const GridSpec& g, double grow)
+{
+    std::array<uint32_t, 3> limit{};
+    for (int a = 0; a < 3; ++a) limit[a] = (g.dims[a] + 7) / 8 - 1;
+    const double reach = grow * (1 + 1e-6) + 1e-6;
+    const size_t n = mesh.triangles.size(), chunk = 1024;
+    std::vector<std::vector<BrickCoord>> parts((n + chunk - 1) / chunk);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, parts.size()), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t part = r.begin(); part != r.end(); ++part)
+            for (size_t t = part * chunk; t < std::min(n, (part + 1) * chunk); ++t) {
+                const auto& f = mesh.triangles[t];
+                const Vec3d& a = local[f[0]];
+                const Vec3d& b = local[f[1]];
+                const Vec3d& c = local[f[2]];
+                // Centres within reach of the box, clamped to the grid.
+                std::array<int64_t, 3> lo{}, hi{};
+                bool empty = false;
+                for (int k = 0; k < 3; ++k) {
+                    lo[k] = std::max<int64_t>(0, int64_t(std::ceil(std::min({a[k], b[k], c[k]}) - reach)));
+                    hi[k] = std::min<int64_t>(int64_t(g.dims[k]) - 1,
+                                              int64_t(std::floor(std::max({a[k], b[k], c[k]}) + reach)));
+                    empty |= lo[k] > hi[k];
+                }
+                if (empty) continue;
+                // The plane: h(p) = n . (p - a), within the slab when |h| <= limit.
+                const Vec3d nrm = cross(b - a, c - a);
+                const double slab = reach * std::sqrt(dot(nrm, nrm));
+                for (int64_t bx = lo[0] / 8; bx <= hi[0] / 8; ++bx)
+                    for (int64_t by = lo[1] / 8; by <= hi[1] / 8; ++by) {
+                        // This brick column's centres in x and y, and h over them at z = 0.
+                        const double x0 = double(std::max(lo[0], 8 * bx)), x1 = double(std::min(hi[0], 8 * bx + 7));
+                        const double y0 = double(std::max(lo[1], 8 * by)), y1 = double(std::min(hi[1], 8 * by + 7));
+                        const double h0 = nrm.x * (0.5 * (x0 + x1) - a.x) + nrm.y * (0.5 * (y0 + y1) - a.y) -
+                                          nrm.z * a.z;
+                        const double spread = std::abs(nrm.x) * 0.5 * (x1 - x0) + std::abs(nrm.y) * 0.5 * (y1 - y0);
+                        double z0 = double(lo[2]), z1 = double(hi[2]);
+                        if (nrm.z != 0) {
+                            // n.z z + h0 within [-slab - spread, slab + spread].
+                            const double e0 = (-slab - spread - h0) / nrm.z, e1 = (slab + spread - h0) / nrm.z;
+                            z0 = std::max(z0, std::ceil(std::min(e0, e1) - 1e-6));
+                            z1 = std::min(z1, std::floor(std::max(e0, e1) + 1e-6));
+                        } else if (std::abs(h0) > slab + spread) {
+                            continue;
+                        }
+                        if (z1 < z0) continue;
+                        for (int64_t bz = int64_t(z0) / 8; bz <= int64_t(z1) / 8; ++bz)
+                            parts[part].push_back({uint32_t(bx), uint32_t(by), uint32_t(bz)});
+                    }
+            }
+    });
+    return sortedUnique(parts, limit);
 }
 
 /// grownBricks, counted and timed in `stats`.
@@ -332,16 +401,22 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
     const bool winding = signedField && sign.method == SignMethod::Winding;
     const double band = signedField ? std::max(ls.exteriorBand, ls.interiorBand) : ls.exteriorBand;
     // Every voxel within `band` of a triangle is within reach (Chebyshev) of
-    // a surface voxel; the first centre above a crossing is within 1.
+    // the triangle's box; the first centre above a crossing is within 1.
     const uint32_t reach = std::max<uint32_t>(1, uint32_t(std::floor(band + 0.5)));
     const GridSpec g = padded(grid, reach + 1, mesh.source);
-    checkpoint(0.0, "surface voxels");
-    const Octree surface = surfaceVoxels(mesh, g, options, stats);
+    stats.grid = g;
+    stats.epsilon = g.epsilon();
+    impl_->describeBackend(stats, Backend::Compute); // compute passes only, whatever the backend asked
     stats.sign = sign.why;
-    checkpoint(0.25, "band bricks");
+    checkpoint(0.0, "band bricks");
 
     gl::FieldRequest request;
-    request.bricks = bandBricks(surface, reach, stats);
+    {
+        const auto t0 = Clock::now();
+        request.bricks = bricksNearTriangles(gl::localPositions(mesh, g), mesh, g, std::max(band, 1.0));
+        stats.bandBricks = request.bricks.size();
+        stats.stages.push_back({"band bricks", -1, msSince(t0)});
+    }
     request.band = band;
     request.closestTriangle = ls.closestTriangle;
     request.crossings = signedField && !winding;
@@ -429,6 +504,7 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
         closest->setName("closest_triangle");
         out.push_back(closest);
     }
+    stats.startup = impl_->takeStartup(stats.warnings);
     finishStats(stats, "level set grid", t0, *distance, checkpoint, options);
     return out;
 }

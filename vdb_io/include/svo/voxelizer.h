@@ -291,8 +291,9 @@ public:
 
     /// @brief A narrow-band signed distance field of a mesh: OpenVDB's
     /// meshToLevelSet, on the GPU.
-    /// @details Method: the surface voxels (as meshToMask) grown by the band
-    /// give the band's bricks; the GPU computes, for every voxel centre in
+    /// @details Method: each triangle's box grown by the band, cut to the
+    /// slab about its plane, gives the band's bricks (no voxelization: the
+    /// options' backend only refuses Backend::Cpu); the GPU computes, for every voxel centre in
     /// them, the exact distance to the closest triangle in double precision
     /// (rounded once to float), and its side: by parity along voxel columns
     /// for closed meshes (svo/gl/distance_field.h), by the winding number for
@@ -365,8 +366,8 @@ private:
                                         double worldPerVoxel);
     openvdb::MaskGrid::Ptr solidChecked(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                                         const SignOptions& sign, openvdb::math::Transform::Ptr xform);
-    /// The conservative surface voxels a level set or solid starts from; the
-    /// call's statistics begin as theirs.
+    /// The conservative surface voxels a solid starts from; the call's
+    /// statistics begin as theirs.
     Octree surfaceVoxels(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                          VoxelizeStats& stats);
     std::unique_ptr<Impl> impl_;
