@@ -42,9 +42,12 @@ double triangleDistance2(dvec3 p, dvec3 a, dvec3 b, dvec3 c)
 // The plane slab of triangle abc: a centre farther than the band from the
 // triangle's plane is farther from the triangle, so work can skip it. Its
 // unnormalized normal n and the band measured along n, widened by 1e-6
-// (far above the double arithmetic's error, and above float's half ulp, so
-// no centre whose rounded distance could be kept is ever skipped).
-// Degenerate triangles have n = 0 and a slab of everything.
+// (above float's half ulp, so no centre whose rounded distance could be
+// kept is skipped) and by 1e-10 |b - a| |c - a| (|b - a| + |c - a| + band),
+// far above the rounding of n (each component off by up to about
+// 2^-52 |b - a| |c - a|) times any distance from a within the grown box: a
+// needle whose corners lie on a line has a normal of pure rounding noise,
+// and its slab then holds the whole box.
 struct Slab {
     dvec3 a, n;
     double limit;
@@ -55,7 +58,8 @@ Slab slabOf(dvec3 a, dvec3 b, dvec3 c)
     Slab s;
     s.a = a;
     s.n = cross(b - a, c - a);
-    s.limit = double(uBand) * sqrt(dot(s.n, s.n)) * (1.0LF + 1e-6LF);
+    double e1 = length(b - a), e2 = length(c - a), w = double(uBand);
+    s.limit = w * sqrt(dot(s.n, s.n)) * (1.0LF + 1e-6LF) + 1e-10LF * e1 * e2 * (e1 + e2 + w);
     return s;
 }
 

@@ -241,8 +241,9 @@ std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
 /// bricks its box grown by `grow` spans that also meet the slab of centres
 /// within `grow` of its plane, found a column of bricks at a time. Both
 /// tests hold every centre whose distance to the triangle is at most `grow`,
-/// widened by 1e-6 relative and absolute against rounding, so the set is
-/// exact where it matters and a thin triangle's box costs only its slab.
+/// widened by 1e-6 relative and absolute against rounding (and the slab as
+/// band_distance.glsl's for needles), so no centre the distance pass keeps
+/// is left out, and a slanted triangle's box costs only its slab.
 std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, const TriangleMesh& mesh,
                                             const GridSpec& g, double grow)
 {
@@ -268,9 +269,12 @@ std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, con
                     empty |= lo[k] > hi[k];
                 }
                 if (empty) continue;
-                // The plane: h(p) = n . (p - a), within the slab when |h| <= limit.
+                // The plane: h(p) = n . (p - a), within the slab when |h| <= slab,
+                // widened as band_distance.glsl's slabOf for needles, whose
+                // normal is rounding noise.
                 const Vec3d nrm = cross(b - a, c - a);
-                const double slab = reach * std::sqrt(dot(nrm, nrm));
+                const double e1 = std::sqrt(dot(b - a, b - a)), e2 = std::sqrt(dot(c - a, c - a));
+                const double slab = reach * std::sqrt(dot(nrm, nrm)) + 1e-10 * e1 * e2 * (e1 + e2 + reach);
                 for (int64_t bx = lo[0] / 8; bx <= hi[0] / 8; ++bx)
                     for (int64_t by = lo[1] / 8; by <= hi[1] / 8; ++by) {
                         // This brick column's centres in x and y, and h over them at z = 0.
