@@ -263,9 +263,10 @@ std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, con
                 std::array<int64_t, 3> lo{}, hi{};
                 bool empty = false;
                 for (int k = 0; k < 3; ++k) {
-                    lo[k] = std::max<int64_t>(0, int64_t(std::ceil(std::min({a[k], b[k], c[k]}) - reach)));
-                    hi[k] = std::min<int64_t>(int64_t(g.dims[k]) - 1,
-                                              int64_t(std::floor(std::max({a[k], b[k], c[k]}) + reach)));
+                    // Clamped to the grid (and one past it) before converting.
+                    const double top = double(g.dims[k]);
+                    lo[k] = int64_t(std::clamp(std::ceil(std::min({a[k], b[k], c[k]}) - reach), 0.0, top));
+                    hi[k] = int64_t(std::clamp(std::floor(std::max({a[k], b[k], c[k]}) + reach), -1.0, top - 1));
                     empty |= lo[k] > hi[k];
                 }
                 if (empty) continue;
