@@ -775,6 +775,18 @@ TEST(LevelSet, BadBandsAndTheCpuBackendAreRefused)
     cpu.backend = Backend::Cpu;
     EXPECT_THROW(v.levelSet(b, grid, {}, cpu), Error);
     EXPECT_THROW(v.solid(b, grid, cpu), Error);
+    // A band far wider than the triangles: 20,480 boxes of about 75^3 bricks
+    // each, more work than a pass holds, refused before anything is listed.
+    const TriangleMesh ico = icosphere({0, 0, 0}, 1.0, 5);
+    LevelSetOptions wide;
+    wide.exteriorBand = wide.interiorBand = 300;
+    try {
+        v.levelSet(ico, makeGrid(ico, GridRequest{64, 0}), wide);
+        ADD_FAILURE() << "a band of 300 voxels around 20,480 triangles was not refused";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("brick work items, more than one pass holds"), std::string::npos)
+            << e.what();
+    }
 }
 
 /// Solid = surface voxels plus the voxels whose centres CGAL puts inside.

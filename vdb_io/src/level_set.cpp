@@ -11,7 +11,9 @@
 #include <openvdb/tools/SignedFloodFill.h>
 #include <unordered_map>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
 
 #include "svo/core/error.h"
@@ -244,62 +246,109 @@ std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
 /// widened by 1e-6 relative and absolute against rounding (and the slab as
 /// band_distance.glsl's for needles), so no centre the distance pass keeps
 /// is left out, and a slanted triangle's box costs only its slab.
+/// @throw svo::Error when the boxes span more than 2^32 bricks in all, what
+///        the distance pass refuses too (a band far wider than the mesh's features).
 std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, const TriangleMesh& mesh,
                                             const GridSpec& g, double grow)
 {
     std::array<uint32_t, 3> limit{};
     for (int a = 0; a < 3; ++a) limit[a] = (g.dims[a] + 7) / 8 - 1;
     const double reach = grow * (1 + 1e-6) + 1e-6;
-    const size_t n = mesh.triangles.size(), chunk = 1024;
-    std::vector<std::vector<BrickCoord>> parts((n + chunk - 1) / chunk);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, parts.size()), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t part = r.begin(); part != r.end(); ++part)
-            for (size_t t = part * chunk; t < std::min(n, (part + 1) * chunk); ++t) {
-                const auto& f = mesh.triangles[t];
-                const Vec3d& a = local[f[0]];
-                const Vec3d& b = local[f[1]];
-                const Vec3d& c = local[f[2]];
-                // Centres within reach of the box, clamped to the grid.
-                std::array<int64_t, 3> lo{}, hi{};
-                bool empty = false;
-                for (int k = 0; k < 3; ++k) {
-                    // Clamped to the grid (and one past it) before converting.
-                    const double top = double(g.dims[k]);
-                    lo[k] = int64_t(std::clamp(std::ceil(std::min({a[k], b[k], c[k]}) - reach), 0.0, top));
-                    hi[k] = int64_t(std::clamp(std::floor(std::max({a[k], b[k], c[k]}) + reach), -1.0, top - 1));
-                    empty |= lo[k] > hi[k];
+    // Triangle t's centres within reach of its box, clamped to the grid
+    // (and one past it) before converting; false when none is in the grid.
+    const auto boxOf = [&](size_t t, std::array<int64_t, 3>& lo, std::array<int64_t, 3>& hi) {
+        const auto& f = mesh.triangles[t];
+        bool any = true;
+        for (int k = 0; k < 3; ++k) {
+            const double top = double(g.dims[k]);
+            const double a = local[f[0]][k], b = local[f[1]][k], c = local[f[2]][k];
+            lo[k] = int64_t(std::clamp(std::ceil(std::min({a, b, c}) - reach), 0.0, top));
+            hi[k] = int64_t(std::clamp(std::floor(std::max({a, b, c}) + reach), -1.0, top - 1));
+            any &= lo[k] <= hi[k];
+        }
+        return any;
+    };
+    const size_t n = mesh.triangles.size();
+    const uint64_t spanned = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, n, 4096), uint64_t(0),
+        [&](const tbb::blocked_range<size_t>& r, uint64_t sum) {
+            std::array<int64_t, 3> lo{}, hi{};
+            for (size_t t = r.begin(); t != r.end(); ++t)
+                if (boxOf(t, lo, hi))
+                    sum += uint64_t(hi[0] / 8 - lo[0] / 8 + 1) * uint64_t(hi[1] / 8 - lo[1] / 8 + 1) *
+                           uint64_t(hi[2] / 8 - lo[2] / 8 + 1);
+            return sum;
+        },
+        std::plus<uint64_t>());
+    if (spanned > (uint64_t(1) << 32))
+        throw Error(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); use "
+                                "a coarser grid or a narrower band",
+                                spanned));
+    // Calls emit(part, brick) for every brick near triangle t.
+    const auto forEachBrick = [&](size_t t, auto&& emit) {
+        std::array<int64_t, 3> lo{}, hi{};
+        if (!boxOf(t, lo, hi)) return;
+        const auto& f = mesh.triangles[t];
+        const Vec3d& a = local[f[0]];
+        const Vec3d& b = local[f[1]];
+        const Vec3d& c = local[f[2]];
+        // The plane: h(p) = n . (p - a), within the slab when |h| <= slab,
+        // widened as band_distance.glsl's slabOf for needles, whose normal
+        // is rounding noise.
+        const Vec3d nrm = cross(b - a, c - a);
+        const double e1 = std::sqrt(dot(b - a, b - a)), e2 = std::sqrt(dot(c - a, c - a));
+        const double slab = reach * std::sqrt(dot(nrm, nrm)) + 1e-10 * e1 * e2 * (e1 + e2 + reach);
+        for (int64_t bx = lo[0] / 8; bx <= hi[0] / 8; ++bx)
+            for (int64_t by = lo[1] / 8; by <= hi[1] / 8; ++by) {
+                // This brick column's centres in x and y, and h over them at z = 0.
+                const double x0 = double(std::max(lo[0], 8 * bx)), x1 = double(std::min(hi[0], 8 * bx + 7));
+                const double y0 = double(std::max(lo[1], 8 * by)), y1 = double(std::min(hi[1], 8 * by + 7));
+                const double h0 = nrm.x * (0.5 * (x0 + x1) - a.x) + nrm.y * (0.5 * (y0 + y1) - a.y) - nrm.z * a.z;
+                const double spread = std::abs(nrm.x) * 0.5 * (x1 - x0) + std::abs(nrm.y) * 0.5 * (y1 - y0);
+                double z0 = double(lo[2]), z1 = double(hi[2]);
+                if (nrm.z != 0) {
+                    // n.z z + h0 within [-slab - spread, slab + spread].
+                    const double below = (-slab - spread - h0) / nrm.z, above = (slab + spread - h0) / nrm.z;
+                    z0 = std::max(z0, std::ceil(std::min(below, above) - 1e-6));
+                    z1 = std::min(z1, std::floor(std::max(below, above) + 1e-6));
+                } else if (std::abs(h0) > slab + spread) {
+                    continue;
                 }
-                if (empty) continue;
-                // The plane: h(p) = n . (p - a), within the slab when |h| <= slab,
-                // widened as band_distance.glsl's slabOf for needles, whose
-                // normal is rounding noise.
-                const Vec3d nrm = cross(b - a, c - a);
-                const double e1 = std::sqrt(dot(b - a, b - a)), e2 = std::sqrt(dot(c - a, c - a));
-                const double slab = reach * std::sqrt(dot(nrm, nrm)) + 1e-10 * e1 * e2 * (e1 + e2 + reach);
-                for (int64_t bx = lo[0] / 8; bx <= hi[0] / 8; ++bx)
-                    for (int64_t by = lo[1] / 8; by <= hi[1] / 8; ++by) {
-                        // This brick column's centres in x and y, and h over them at z = 0.
-                        const double x0 = double(std::max(lo[0], 8 * bx)), x1 = double(std::min(hi[0], 8 * bx + 7));
-                        const double y0 = double(std::max(lo[1], 8 * by)), y1 = double(std::min(hi[1], 8 * by + 7));
-                        const double h0 = nrm.x * (0.5 * (x0 + x1) - a.x) + nrm.y * (0.5 * (y0 + y1) - a.y) -
-                                          nrm.z * a.z;
-                        const double spread = std::abs(nrm.x) * 0.5 * (x1 - x0) + std::abs(nrm.y) * 0.5 * (y1 - y0);
-                        double z0 = double(lo[2]), z1 = double(hi[2]);
-                        if (nrm.z != 0) {
-                            // n.z z + h0 within [-slab - spread, slab + spread].
-                            const double e0 = (-slab - spread - h0) / nrm.z, e1 = (slab + spread - h0) / nrm.z;
-                            z0 = std::max(z0, std::ceil(std::min(e0, e1) - 1e-6));
-                            z1 = std::min(z1, std::floor(std::max(e0, e1) + 1e-6));
-                        } else if (std::abs(h0) > slab + spread) {
-                            continue;
-                        }
-                        if (z1 < z0) continue;
-                        for (int64_t bz = int64_t(z0) / 8; bz <= int64_t(z1) / 8; ++bz)
-                            parts[part].push_back({uint32_t(bx), uint32_t(by), uint32_t(bz)});
-                    }
+                for (int64_t bz = int64_t(z0) / 8; z0 <= z1 && bz <= int64_t(z1) / 8; ++bz)
+                    emit(BrickCoord{uint32_t(bx), uint32_t(by), uint32_t(bz)});
             }
+    };
+    const uint64_t ny = limit[1] + 1, nz = limit[2] + 1, cells = uint64_t(limit[0] + 1) * ny * nz;
+    std::vector<BrickCoord> all;
+    if (cells <= (uint64_t(1) << 33)) {
+        // A bit per brick of the grid (at most 1 GiB), in x-major order: read
+        // in order, the set bits are the bricks sorted and unique.
+        std::vector<std::atomic<uint64_t>> bits((cells + 63) / 64);
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t t = r.begin(); t != r.end(); ++t)
+                forEachBrick(t, [&](const BrickCoord& brick) {
+                    const uint64_t i = (brick[0] * ny + brick[1]) * nz + brick[2];
+                    bits[i >> 6].fetch_or(uint64_t(1) << (i & 63), std::memory_order_relaxed);
+                });
+        });
+        for (uint64_t w = 0; w < bits.size(); ++w)
+            for (uint64_t m = bits[w].load(std::memory_order_relaxed); m; m &= m - 1) {
+                const uint64_t i = 64 * w + uint64_t(__builtin_ctzll(m));
+                all.push_back({uint32_t(i / (ny * nz)), uint32_t(i / nz % ny), uint32_t(i % nz)});
+            }
+        return all;
+    }
+    // A grid of more bricks: lists, sorted and made unique.
+    tbb::enumerable_thread_specific<std::vector<BrickCoord>> lists;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& r) {
+        auto& list = lists.local();
+        for (size_t t = r.begin(); t != r.end(); ++t)
+            forEachBrick(t, [&](const BrickCoord& brick) { list.push_back(brick); });
     });
-    return sortedUnique(parts, limit);
+    for (auto& list : lists) all.insert(all.end(), list.begin(), list.end());
+    tbb::parallel_sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    return all;
 }
 
 /// grownBricks, counted and timed in `stats`.
