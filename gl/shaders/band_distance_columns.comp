@@ -20,9 +20,12 @@ layout(local_size_x = 8) in;
 // plane, which a large slanted triangle's box holds a small part of. Then
 // each centre's exact test against the box, which is cheaper than the
 // distance.
-void columnDistances(uint t, dvec3 A, dvec3 B, dvec3 C, uvec2 column, uint zLo, uint zHi, bool run)
+// The triangle, its slab and its box come prepared, once for all its
+// columns, and so do the brick table's answers: the column's brick at brick
+// height `lowZ` and the one above it.
+void columnDistances(uint t, Triangle tri, Slab slab, dvec3 boxLo, dvec3 boxHi, uvec2 column, uint zLo, uint zHi,
+                     bool run, uint lowZ, uint low, uint high)
 {
-    dvec3 boxLo = min(A, min(B, C)), boxHi = max(A, max(B, C));
     double band2 = double(uBand) * double(uBand);
     if (run) {
         dvec2 gxy = max(max(boxLo.xy - dvec2(column), dvec2(column) - boxHi.xy), dvec2(0.0LF));
@@ -33,19 +36,16 @@ void columnDistances(uint t, dvec3 A, dvec3 B, dvec3 C, uvec2 column, uint zLo, 
         if (z1 < z0) return;
         zLo = uint(z0), zHi = uint(z1);
     }
-    if (!slabRun(slabOf(A, B, C), column, zLo, zHi)) return;
+    if (!slabRun(slab, column, zLo, zHi)) return;
     uvec2 l = column & kBrickMask;
     uint leaf = (l.x << kKeyLeafXShift) | (l.y << kKeyLeafYShift);
-    uint lowZ = zLo >> kBrickLog2;
-    uint low = lookupBrick(uvec3(column >> kBrickLog2, lowZ));
-    uint high = zHi >> kBrickLog2 == lowZ ? low : lookupBrick(uvec3(column >> kBrickLog2, lowZ + 1u));
     for (uint z = zLo; z <= zHi; ++z) {
         uint brick = z >> kBrickLog2 == lowZ ? low : high;
         if (brick == kNoChild) continue; // no voxel of this brick is in the band
         dvec3 p = dvec3(column, z);
         dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));
         if (dot(g, g) > band2) continue;
-        float d = float(sqrt(triangleDistance2(p, A, B, C)));
+        float d = float(sqrt(triangleDistance2(p, tri)));
         if (d > uBand) continue;
         uint i = 512u * brick + leaf + (z & kBrickMask);
         if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));
@@ -61,9 +61,25 @@ void main()
             uvec3 lo, size;
             wholeBox(k, t, lo, size);
             dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
+            Triangle tri = triangleOf(A, B, C);
+            Slab slab = slabOf(A, B, C);
+            dvec3 boxLo = min(A, min(B, C)), boxHi = max(A, max(B, C));
+            // The box spans at most 2 bricks a side: their table entries,
+            // looked up once instead of twice a column.
+            uvec3 b0 = lo >> kBrickLog2, b1 = (lo + size - 1u) >> kBrickLog2;
+            uint bricks[8];
+            for (uint k = 0u; k < 8u; ++k) {
+                uvec3 b = b0 + uvec3(k & 1u, (k >> 1u) & 1u, k >> 2u);
+                bricks[k] = all(lessThanEqual(b, b1)) ? lookupBrick(b) : kNoChild;
+            }
             for (uint y = 0u; y < size.y; ++y)
-                for (uint x = 0u; x < size.x; ++x)
-                    columnDistances(t, A, B, C, lo.xy + uvec2(x, y), lo.z, lo.z + size.z - 1u, true);
+                for (uint x = 0u; x < size.x; ++x) {
+                    uvec2 column = lo.xy + uvec2(x, y);
+                    uvec2 o = (column >> kBrickLog2) - b0.xy;
+                    uint k = o.x + 2u * o.y;
+                    columnDistances(t, tri, slab, boxLo, boxHi, column, lo.z, lo.z + size.z - 1u, true, b0.z,
+                                    bricks[k], bricks[k + 4u]);
+                }
         }
         return;
     }
@@ -79,7 +95,13 @@ void main()
         uint x = gl_LocalInvocationID.x;
         if (x >= size.x) continue;
         dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
+        Triangle tri = triangleOf(A, B, C);
+        Slab slab = slabOf(A, B, C);
+        dvec3 boxLo = min(A, min(B, C)), boxHi = max(A, max(B, C));
+        uint brick = lookupBrick(lo >> kBrickLog2); // an item lies in one brick
+        if (brick == kNoChild) continue;
         for (uint y = 0u; y < size.y; ++y)
-            columnDistances(t, A, B, C, lo.xy + uvec2(x, y), lo.z, lo.z + size.z - 1u, false);
+            columnDistances(t, tri, slab, boxLo, boxHi, lo.xy + uvec2(x, y), lo.z, lo.z + size.z - 1u, false,
+                            lo.z >> kBrickLog2, brick, kNoChild);
     }
 }

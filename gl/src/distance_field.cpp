@@ -241,9 +241,9 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         // brick table once, a short probe at half load. The columns: 8
         // threads (one SIMD vector of llvmpipe, which runs a workgroup's
         // vectors one after another, each through the whole loop), an item's
-        // thread 1 + 64 (triangleOfItemFrom) + 8 columns of 8 centres and two
-        // probes; a one-item triangle's 64 columns, 512 centres and two
-        // probes a column.
+        // thread 1 + 64 (triangleOfItemFrom) + one probe + 8 columns of 8
+        // centres; a one-item triangle's 8 probes, 64 columns and 512
+        // centres.
         const uint32_t groupSize = smallTriangles ? 8 : 64;
         const uint64_t itemIterations = smallTriangles ? 512 : 256, wholeIterations = 1024;
         const std::vector<uint32_t>* whole = smallTriangles ? &distanceWhole : nullptr;
