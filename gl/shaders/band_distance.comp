@@ -29,12 +29,11 @@ void main()
         // ... or from its plane, over the centres the box test can pass.
         dvec3 w = dvec3(uBand);
         if (boxBeyondSlab(slabOf(A, B, C), max(brickLo, boxLo - w), min(brickHi, boxHi + w))) continue;
-        Triangle tri = triangleOf(A, B, C);
         for (uint z = 0u; z < 8u; ++z) {
             dvec3 p = brickLo + dvec3(x, y, z);
             dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));
             if (dot(g, g) > band2) continue;
-            float d = float(sqrt(triangleDistance2(p, tri)));
+            float d = float(sqrt(triangleDistance2(p, A, B, C)));
             if (d > uBand) continue;
             uint i = 512u * brick + ((x << kKeyLeafXShift) | (y << kKeyLeafYShift) | z);
             if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));

@@ -13,13 +13,39 @@ layout(std430, binding = SVO_BIND_FIELD_CLOSEST) restrict buffer Closest { uint 
 uniform uint uPass;
 uniform float uBand; // distances beyond it are not kept
 
-// A triangle abc ready for distance queries: what every query of it would
-// compute again, computed once (a thread queries one triangle at up to 512
-// centres). Its normal n = (b - a) x (c - a) and n.n, each edge e with the
-// inward normal n x e of its side and 1 / e.e (0 for a point).
+// Squared distance from p to the segment [a, b]; a point when a == b.
+double segmentDistance2(dvec3 p, dvec3 a, dvec3 b)
+{
+    dvec3 ab = b - a;
+    double len2 = dot(ab, ab);
+    double t = len2 > 0.0LF ? clamp(dot(p - a, ab) / len2, 0.0LF, 1.0LF) : 0.0LF;
+    dvec3 d = p - (a + t * ab);
+    return dot(d, d);
+}
+
+// Squared distance from p to the closed triangle abc: the distance to its
+// plane where p projects inside it, else the least of the edges'. Needles and
+// points are their edges, so nothing degenerate divides by zero.
+double triangleDistance2(dvec3 p, dvec3 a, dvec3 b, dvec3 c)
+{
+    dvec3 n = cross(b - a, c - a);
+    double n2 = dot(n, n);
+    if (n2 > 0.0LF && dot(cross(b - a, p - a), n) >= 0.0LF && dot(cross(c - b, p - b), n) >= 0.0LF &&
+        dot(cross(a - c, p - c), n) >= 0.0LF) {
+        double h = dot(p - a, n);
+        return h * h / n2;
+    }
+    return min(segmentDistance2(p, a, b), min(segmentDistance2(p, b, c), segmentDistance2(p, c, a)));
+}
+
+// The same, for a thread that queries one triangle at many centres (the CPU
+// rasterizers' cut): what does not depend on p computed once, the rest by
+// the same operations in the same order, so both cuts' distances are the
+// same bits. (On an H100, holding these values across the loop made the
+// GPUs' cut 1.5-2 times slower: bench/results/nvidia-h100/level_set_peers.md.)
 struct Triangle {
-    dvec3 a, b, c, ab, bc, ca, n, inAB, inBC, inCA;
-    double n2, invAB, invBC, invCA;
+    dvec3 a, b, c, ab, bc, ca, n;
+    double n2, lab, lbc, lca;
 };
 
 Triangle triangleOf(dvec3 a, dvec3 b, dvec3 c)
@@ -29,37 +55,26 @@ Triangle triangleOf(dvec3 a, dvec3 b, dvec3 c)
     t.ab = b - a, t.bc = c - b, t.ca = a - c;
     t.n = cross(t.ab, c - a);
     t.n2 = dot(t.n, t.n);
-    t.inAB = cross(t.n, t.ab), t.inBC = cross(t.n, t.bc), t.inCA = cross(t.n, t.ca);
-    double lab = dot(t.ab, t.ab), lbc = dot(t.bc, t.bc), lca = dot(t.ca, t.ca);
-    t.invAB = lab > 0.0LF ? 1.0LF / lab : 0.0LF;
-    t.invBC = lbc > 0.0LF ? 1.0LF / lbc : 0.0LF;
-    t.invCA = lca > 0.0LF ? 1.0LF / lca : 0.0LF;
+    t.lab = dot(t.ab, t.ab), t.lbc = dot(t.bc, t.bc), t.lca = dot(t.ca, t.ca);
     return t;
 }
 
-// Squared distance from p to the segment from a along e (1 / e.e given,
-// 0 for a point).
-double segmentDistance2(dvec3 p, dvec3 a, dvec3 e, double invLength2)
+double segmentDistance2(dvec3 p, dvec3 a, dvec3 ab, double len2)
 {
-    double s = clamp(dot(p - a, e) * invLength2, 0.0LF, 1.0LF);
-    dvec3 d = p - (a + s * e);
+    double t = len2 > 0.0LF ? clamp(dot(p - a, ab) / len2, 0.0LF, 1.0LF) : 0.0LF;
+    dvec3 d = p - (a + t * ab);
     return dot(d, d);
 }
 
-// Squared distance from p to the closed triangle: the distance to its
-// plane where p projects inside it (on the inner side of all three edges:
-// (p - a) . (n x ab) = ((b - a) x (p - a)) . n), else the least of the
-// edges'. Needles and points are their edges, so nothing degenerate divides
-// by zero.
 double triangleDistance2(dvec3 p, Triangle t)
 {
-    if (t.n2 > 0.0LF && dot(p - t.a, t.inAB) >= 0.0LF && dot(p - t.b, t.inBC) >= 0.0LF &&
-        dot(p - t.c, t.inCA) >= 0.0LF) {
+    if (t.n2 > 0.0LF && dot(cross(t.ab, p - t.a), t.n) >= 0.0LF && dot(cross(t.bc, p - t.b), t.n) >= 0.0LF &&
+        dot(cross(t.ca, p - t.c), t.n) >= 0.0LF) {
         double h = dot(p - t.a, t.n);
         return h * h / t.n2;
     }
-    return min(segmentDistance2(p, t.a, t.ab, t.invAB),
-               min(segmentDistance2(p, t.b, t.bc, t.invBC), segmentDistance2(p, t.c, t.ca, t.invCA)));
+    return min(segmentDistance2(p, t.a, t.ab, t.lab),
+               min(segmentDistance2(p, t.b, t.bc, t.lbc), segmentDistance2(p, t.c, t.ca, t.lca)));
 }
 
 // The plane slab of triangle abc: a centre farther than the band from the
