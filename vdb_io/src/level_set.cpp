@@ -181,34 +181,44 @@ std::array<uint32_t, 6> occupiedBox(const Brick& m)
     return {x0, y0, z0, x1, y1, z1};
 }
 
-/// The bricks of `parts` (lists of bricks of a grid `limit` + 1 bricks
-/// wide), sorted in x-major order and unique.
-std::vector<BrickCoord> sortedUnique(std::vector<std::vector<BrickCoord>>& parts, const std::array<uint32_t, 3>& limit)
-{
-    std::vector<BrickCoord> all;
-    const uint64_t cells = uint64_t(limit[0] + 1) * (limit[1] + 1) * (limit[2] + 1);
-    if (cells > (uint64_t(1) << 33)) { // a bitmap of more than 1 GiB: sort instead
-        for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
-        tbb::parallel_sort(all.begin(), all.end());
-        all.erase(std::unique(all.begin(), all.end()), all.end());
+/// A bit per brick of a grid `limit` + 1 bricks wide, in x-major order:
+/// set from many threads, then read in order, the set bits are the bricks
+/// sorted and unique, without a sort. Used up to 2^33 bricks (1 GiB).
+struct BrickBitmap {
+    uint64_t ny, nz;
+    std::vector<std::atomic<uint64_t>> bits;
+
+    static uint64_t cells(const std::array<uint32_t, 3>& limit)
+    {
+        return uint64_t(limit[0] + 1) * (limit[1] + 1) * (limit[2] + 1);
+    }
+    static bool fits(const std::array<uint32_t, 3>& limit) { return cells(limit) <= (uint64_t(1) << 33); }
+    explicit BrickBitmap(const std::array<uint32_t, 3>& limit)
+        : ny(limit[1] + 1), nz(limit[2] + 1), bits((cells(limit) + 63) / 64)
+    {
+    }
+    void set(const BrickCoord& b)
+    {
+        const uint64_t i = (b[0] * ny + b[1]) * nz + b[2];
+        bits[i >> 6].fetch_or(uint64_t(1) << (i & 63), std::memory_order_relaxed);
+    }
+    std::vector<BrickCoord> sorted() const
+    {
+        std::vector<BrickCoord> all;
+        for (uint64_t w = 0; w < bits.size(); ++w)
+            for (uint64_t m = bits[w].load(std::memory_order_relaxed); m; m &= m - 1) {
+                const uint64_t i = 64 * w + uint64_t(__builtin_ctzll(m));
+                all.push_back({uint32_t(i / (ny * nz)), uint32_t(i / nz % ny), uint32_t(i % nz)});
+            }
         return all;
     }
-    // A bit per brick of the grid, in x-major order: read in order, the set
-    // bits are the bricks sorted and unique, without a sort.
-    const uint64_t ny = limit[1] + 1, nz = limit[2] + 1;
-    std::vector<std::atomic<uint64_t>> bits((cells + 63) / 64);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, parts.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t n = r.begin(); n != r.end(); ++n)
-            for (const BrickCoord& b : parts[n]) {
-                const uint64_t i = (b[0] * ny + b[1]) * nz + b[2];
-                bits[i >> 6].fetch_or(uint64_t(1) << (i & 63), std::memory_order_relaxed);
-            }
-    });
-    for (uint64_t w = 0; w < bits.size(); ++w)
-        for (uint64_t m = bits[w].load(std::memory_order_relaxed); m; m &= m - 1) {
-            const uint64_t i = 64 * w + uint64_t(__builtin_ctzll(m));
-            all.push_back({uint32_t(i / (ny * nz)), uint32_t(i / nz % ny), uint32_t(i % nz)});
-        }
+};
+
+/// `all` sorted in x-major order and unique: for grids too large for a BrickBitmap.
+std::vector<BrickCoord> sortedUnique(std::vector<BrickCoord> all)
+{
+    tbb::parallel_sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
     return all;
 }
 
@@ -235,7 +245,17 @@ std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
                     for (uint32_t z = b0[2]; z <= b1[2]; ++z) parts[n].push_back({x, y, z});
         }
     });
-    return sortedUnique(parts, limit);
+    if (!BrickBitmap::fits(limit)) {
+        std::vector<BrickCoord> all;
+        for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+        return sortedUnique(std::move(all));
+    }
+    BrickBitmap bitmap(limit);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, parts.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t n = r.begin(); n != r.end(); ++n)
+            for (const BrickCoord& b : parts[n]) bitmap.set(b);
+    });
+    return bitmap.sorted();
 }
 
 /// The bricks holding every voxel centre within `grow` voxels of a
@@ -284,7 +304,7 @@ std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, con
         throw Error(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); use "
                                 "a coarser grid or a narrower band",
                                 spanned));
-    // Calls emit(part, brick) for every brick near triangle t.
+    // Calls emit(brick) for every brick near triangle t.
     const auto forEachBrick = [&](size_t t, auto&& emit) {
         std::array<int64_t, 3> lo{}, hi{};
         if (!boxOf(t, lo, hi)) return;
@@ -314,41 +334,26 @@ std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, con
                 } else if (std::abs(h0) > slab + spread) {
                     continue;
                 }
-                for (int64_t bz = int64_t(z0) / 8; z0 <= z1 && bz <= int64_t(z1) / 8; ++bz)
+                if (!(z0 <= z1)) continue;
+                for (int64_t bz = int64_t(z0) / 8; bz <= int64_t(z1) / 8; ++bz)
                     emit(BrickCoord{uint32_t(bx), uint32_t(by), uint32_t(bz)});
             }
     };
-    const uint64_t ny = limit[1] + 1, nz = limit[2] + 1, cells = uint64_t(limit[0] + 1) * ny * nz;
-    std::vector<BrickCoord> all;
-    if (cells <= (uint64_t(1) << 33)) {
-        // A bit per brick of the grid (at most 1 GiB), in x-major order: read
-        // in order, the set bits are the bricks sorted and unique.
-        std::vector<std::atomic<uint64_t>> bits((cells + 63) / 64);
+    if (BrickBitmap::fits(limit)) {
+        BrickBitmap bitmap(limit);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t t = r.begin(); t != r.end(); ++t)
-                forEachBrick(t, [&](const BrickCoord& brick) {
-                    const uint64_t i = (brick[0] * ny + brick[1]) * nz + brick[2];
-                    bits[i >> 6].fetch_or(uint64_t(1) << (i & 63), std::memory_order_relaxed);
-                });
+            for (size_t t = r.begin(); t != r.end(); ++t) forEachBrick(t, [&](const BrickCoord& b) { bitmap.set(b); });
         });
-        for (uint64_t w = 0; w < bits.size(); ++w)
-            for (uint64_t m = bits[w].load(std::memory_order_relaxed); m; m &= m - 1) {
-                const uint64_t i = 64 * w + uint64_t(__builtin_ctzll(m));
-                all.push_back({uint32_t(i / (ny * nz)), uint32_t(i / nz % ny), uint32_t(i % nz)});
-            }
-        return all;
+        return bitmap.sorted();
     }
-    // A grid of more bricks: lists, sorted and made unique.
     tbb::enumerable_thread_specific<std::vector<BrickCoord>> lists;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& r) {
         auto& list = lists.local();
-        for (size_t t = r.begin(); t != r.end(); ++t)
-            forEachBrick(t, [&](const BrickCoord& brick) { list.push_back(brick); });
+        for (size_t t = r.begin(); t != r.end(); ++t) forEachBrick(t, [&](const BrickCoord& b) { list.push_back(b); });
     });
+    std::vector<BrickCoord> all;
     for (auto& list : lists) all.insert(all.end(), list.begin(), list.end());
-    tbb::parallel_sort(all.begin(), all.end());
-    all.erase(std::unique(all.begin(), all.end()), all.end());
-    return all;
+    return sortedUnique(std::move(all));
 }
 
 /// grownBricks, counted and timed in `stats`.
