@@ -13,6 +13,7 @@
 #include "objects.h"
 #include "svo/core/error.h"
 #include "svo/core/gpu_layout.h"
+#include "svo/gl/winding_number.h"
 
 namespace svo::gl {
 namespace {
@@ -122,10 +123,7 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
 
     // Upload: local double positions, indices, items, the brick table.
     auto t0 = Clock::now();
-    std::vector<Vec3d> local(mesh.positions.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, local.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) local[i] = grid.toLocal(mesh.positions[i]);
-    });
+    const std::vector<Vec3d> local = localPositions(mesh, grid);
     // A thread per small triangle: for crossings everywhere (a few columns
     // each); for distances as FieldWork says. On an H100 a workgroup per
     // brick ran faster than a thread per small triangle (whose up to 512
