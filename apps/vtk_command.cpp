@@ -66,6 +66,7 @@ void runVtk(const VtkArgs& a, const CLI::App& cmd)
         checkWritable(a.png);
         requireDisplay(); // before loading and voxelizing
     }
+    const VtkExport& vtk = vtkExport(); // before any work: a missing module is an error up front
     LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo =
         loadOctree(call.voxelizer, a.input, a.gridName, gridRequest(cmd, a.resolution, a.voxelSize), call.options);
@@ -83,14 +84,14 @@ void runVtk(const VtkArgs& a, const CLI::App& cmd)
         po.height = a.width * 3 / 4;
         po.mesh = lo.mesh ? &*lo.mesh : nullptr;
         po.outlineLevels = levels;
-        renderPicture(a.png, lo.octree, po);
+        vtk.renderPicture(a.png, lo.octree, po);
         fmt::print("  {:<8} {} ({} x {})\n", "picture", a.png, po.width, po.height);
     }
     if (!a.output.empty()) {
         Progress p("writing " + a.output);
-        if (ext == ".htg") writeHyperTreeGrid(a.output, lo.octree, levels);
-        if (ext == ".vtu") writeVoxelCells(a.output, lo.octree);
-        if (ext == ".vtp") writeNodeOutlines(a.output, lo.octree, levels);
+        if (ext == ".htg") vtk.writeHyperTreeGrid(a.output, lo.octree, levels);
+        if (ext == ".vtu") vtk.writeVoxelCells(a.output, lo.octree);
+        if (ext == ".vtp") vtk.writeNodeOutlines(a.output, lo.octree, levels);
         fmt::print("  {:<8} {}\n", "output", a.output);
     }
 }

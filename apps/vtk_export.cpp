@@ -435,3 +435,10 @@ void renderPicture(const std::string& path, const Octree& o, const PictureOption
 }
 
 } // namespace svo::app
+
+extern "C" __attribute__((visibility("default"))) const svo::app::VtkExport* SVO_VTK_MODULE_ENTRY()
+{
+    static const svo::app::VtkExport functions{&svo::app::writeHyperTreeGrid, &svo::app::writeVoxelCells,
+                                               &svo::app::writeNodeOutlines, &svo::app::renderPicture};
+    return &functions;
+}

@@ -2,6 +2,13 @@
 /// @file vtk_export.h
 /// Octrees as VTK data, without VTK in the interface.
 ///
+/// The functions live in a module of their own (libsvo_vtk.so, built from
+/// vtk_export.cpp) that `svo vtk` loads when it runs: linked into svo, VTK's
+/// 60-odd shared libraries cost every other command about 20 ms of start-up
+/// on the 2-core machine (a fifth of a small `svo voxelize`). The module uses
+/// the executable's svo symbols (exported by module_exports.list), so it shares
+/// its error types, temporary files and interrupt clean-up.
+///
 /// Levels: 0 is the root, `brickLevel` the 8^3 bricks, and brickLevel + 1, + 2,
 /// + 3 split a brick into 4^3, 2^3 and single voxels, so every file can reach
 /// down to voxels with branch factor 2 throughout.
@@ -45,5 +52,21 @@ struct PictureOptions {
 /// rendered offscreen through VTK. VTK 9.1 from Debian renders through X: with
 /// no DISPLAY, svo starts Xvfb for the duration (xvfb.h).
 void renderPicture(const std::string& path, const Octree& octree, const PictureOptions& options);
+
+/// The functions above, as the module hands them over.
+struct VtkExport {
+    void (*writeHyperTreeGrid)(const std::string&, const Octree&, const LevelRange&);
+    void (*writeVoxelCells)(const std::string&, const Octree&);
+    void (*writeNodeOutlines)(const std::string&, const Octree&, const LevelRange&);
+    void (*renderPicture)(const std::string&, const Octree&, const PictureOptions&);
+};
+
+/// The module's entry point, extern "C"; its name carries the layout's version.
+#define SVO_VTK_MODULE_ENTRY svo_vtk_export_v1
+
+/// Loads the module once, from SVO_VTK_MODULE_FROM_BIN next to the running
+/// executable (vtk_module.cpp). Throws svo::Error naming the module's path and
+/// the loader's reason when it cannot be loaded.
+const VtkExport& vtkExport();
 
 } // namespace svo::app

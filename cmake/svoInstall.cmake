@@ -5,6 +5,7 @@
 #   lib/cmake/svo/               svoConfig.cmake, svoConfigVersion.cmake, svoTargets*.cmake,
 #                                svoOpenVDBModulePath.cmake
 #   bin/svo                      with SVO_BUILD_CLI
+#   lib/svo/libsvo_vtk.so        with SVO_WITH_VTK: the module `svo vtk` loads
 # The shaders are compiled into libsvo_gl.a, so nothing else is needed at run time.
 include(CMakePackageConfigHelpers)
 set(SVO_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/svo" CACHE STRING
@@ -28,4 +29,8 @@ install(FILES "${PROJECT_BINARY_DIR}/svoConfig.cmake" "${PROJECT_BINARY_DIR}/svo
 
 if(TARGET svo)
   install(TARGETS svo RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
+if(TARGET svo_vtk)
+  # Where `svo vtk` looks for it: SVO_VTK_MODULE_FROM_BIN from bin (apps/CMakeLists.txt).
+  install(TARGETS svo_vtk LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/svo)
 endif()

@@ -3,6 +3,7 @@
 # x86-64 Linux with a GPU driver but no OpenVDB/TBB/Boost:
 #   bin/   the executables, rpath $ORIGIN/../lib
 #   lib/   every non-system shared library they load
+#   lib/svo/libsvo_vtk.so  the module `svo vtk` loads, when the build has it
 # GL and EGL (GLVND and the vendor driver) and glibc come from the host.
 #   bash scripts/bundle.sh [build-dir] [out.tar.gz] [extra executables...]
 set -euo pipefail
@@ -28,7 +29,19 @@ for exe in "$stage"/svo/bin/*; do
   done
   patchelf --set-rpath '$ORIGIN/../lib' "$exe"
 done
-for lib in "$stage"/svo/lib/*; do patchelf --set-rpath '$ORIGIN' "$lib"; done
+# svo vtk's module (libsvo_vtk.so), where svo looks for it: the same path from bin as in the build.
+module=$(find "$build" -name libsvo_vtk.so -print -quit)
+if [ -n "$module" ]; then
+  place="$stage/svo/bin/$(realpath -m --relative-to="$build/bin" "$module")"
+  mkdir -p "$(dirname "$place")"
+  cp "$module" "$place"
+  ldd "$place" | awk '/=> \// {print $1, $3}' | while read -r name path; do
+    [[ "$name" =~ $system ]] && continue
+    [ -e "$stage/svo/lib/$name" ] || cp -L "$path" "$stage/svo/lib/$name"
+  done
+  patchelf --set-rpath "\$ORIGIN/$(realpath -m --relative-to="$(dirname "$place")" "$stage/svo/lib")" "$place"
+fi
+for lib in "$stage"/svo/lib/*; do [ -f "$lib" ] && patchelf --set-rpath '$ORIGIN' "$lib"; done
 mkdir -p "$(dirname "$out")"
 tar -C "$stage" -czf "$out" svo
 echo "bundle: $out ($(du -h "$out" | cut -f1)), $(ls "$stage/svo/lib" | wc -l) libraries"

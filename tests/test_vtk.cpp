@@ -11,6 +11,7 @@
 #include <set>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <utility>
 
 #include <vtkBitArray.h>
 #include <vtkCellData.h>
@@ -340,4 +341,37 @@ TEST_F(Vtk, AttributeChannelsBecomeCellArrays)
     uint64_t voxelCells = 0;
     for (vtkIdType i = 0; i < htgTri->GetNumberOfTuples(); ++i) voxelCells += htgTri->GetTuple1(i) >= 0;
     EXPECT_EQ(voxelCells, o.voxelCount());
+}
+
+/// Output (stdout and stderr) and exit status of a shell command.
+static std::pair<int, std::string> runCapture(const std::string& cmd)
+{
+    FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+    std::string out;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+    const int status = pclose(p);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+// VTK is a module that only `svo vtk` loads: svo itself needs none of VTK's
+// libraries, and a copy of svo away from its module says so in one line
+// when asked for VTK output, writing nothing.
+TEST_F(Vtk, OnlyTheVtkCommandLoadsVtk)
+{
+    const auto ldd = runCapture(std::string("ldd ") + SVO_EXE);
+    ASSERT_EQ(ldd.first, 0) << ldd.second;
+    EXPECT_EQ(ldd.second.find("libvtk"), std::string::npos) << ldd.second;
+
+    const fs::path lone = fs::path(path("lone")) / "bin" / "svo";
+    fs::create_directories(lone.parent_path());
+    fs::copy_file(SVO_EXE, lone);
+    const auto r = runCapture(lone.string() + " vtk " + path("box.svo") + " -o " + path("lone.htg"));
+    EXPECT_EQ(r.first, 1) << r.second;
+    EXPECT_EQ(std::count(r.second.begin(), r.second.end(), '\n'), 1) << r.second;
+    EXPECT_NE(r.second.find("libsvo_vtk.so: cannot load svo's VTK module"), std::string::npos) << r.second;
+    EXPECT_FALSE(fs::exists(path("lone.htg")));
+    // The same copy still does everything else.
+    EXPECT_EQ(runCapture(lone.string() + " info " + path("box.svo")).first, 0);
 }
