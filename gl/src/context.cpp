@@ -78,20 +78,30 @@ struct Glx {
     GetDrawable getDrawable = nullptr, getReadDrawable = nullptr;
     MakeContextCurrent makeContextCurrent = nullptr;
 
+    /// GLX's entry points when GLX is loaded: linked in, or loaded by a
+    /// windowing library such as GLFW, which dlopens it privately (so
+    /// RTLD_DEFAULT misses it). Looked up again until found, since the
+    /// window may be opened after svo's first GL call.
     static const Glx& get()
     {
-        static const Glx glx = [] {
-            Glx g;
-            g.getContext = reinterpret_cast<GetContext>(dlsym(RTLD_DEFAULT, "glXGetCurrentContext"));
-            g.getDisplay = reinterpret_cast<GetDisplay>(dlsym(RTLD_DEFAULT, "glXGetCurrentDisplay"));
-            g.getDrawable = reinterpret_cast<GetDrawable>(dlsym(RTLD_DEFAULT, "glXGetCurrentDrawable"));
-            g.getReadDrawable = reinterpret_cast<GetDrawable>(dlsym(RTLD_DEFAULT, "glXGetCurrentReadDrawable"));
-            g.makeContextCurrent =
-                reinterpret_cast<MakeContextCurrent>(dlsym(RTLD_DEFAULT, "glXMakeContextCurrent"));
-            if (!g.getDisplay || !g.getDrawable || !g.getReadDrawable || !g.makeContextCurrent) g.getContext = nullptr;
-            return g;
-        }();
-        return glx;
+        static Glx found;
+        if (found.getContext) return found;
+        static const Glx none;
+        Glx g;
+        void* from = RTLD_DEFAULT;
+        if (!dlsym(from, "glXGetCurrentContext"))
+            for (const char* name : {"libGLX.so.0", "libGL.so.1", "libGL.so"})
+                if ((from = dlopen(name, RTLD_LAZY | RTLD_NOLOAD))) break; // a reference only if already loaded
+        if (!from) return none;
+        g.getContext = reinterpret_cast<GetContext>(dlsym(from, "glXGetCurrentContext"));
+        g.getDisplay = reinterpret_cast<GetDisplay>(dlsym(from, "glXGetCurrentDisplay"));
+        g.getDrawable = reinterpret_cast<GetDrawable>(dlsym(from, "glXGetCurrentDrawable"));
+        g.getReadDrawable = reinterpret_cast<GetDrawable>(dlsym(from, "glXGetCurrentReadDrawable"));
+        g.makeContextCurrent = reinterpret_cast<MakeContextCurrent>(dlsym(from, "glXMakeContextCurrent"));
+        if (!g.getContext || !g.getDisplay || !g.getDrawable || !g.getReadDrawable || !g.makeContextCurrent)
+            return none;
+        found = g;
+        return found;
     }
 };
 
