@@ -4,6 +4,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
+#include <future>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -121,17 +122,15 @@ nlohmann::json startupJson(const StartupStats& s)
 }
 
 /// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb.
-void runField(const VoxelizeArgs& a, const CLI::App& cmd, const TriangleMesh& mesh, const std::string& scene,
+void runField(const VoxelizeArgs& a, LibraryCall& call, const TriangleMesh& mesh, const std::string& scene,
               const GridSpec& grid, const GridRequest& request, const std::string& output, bool timingOnly,
               std::chrono::steady_clock::time_point start)
 {
-    (void)cmd;
     LevelSetOptions ls = a.levelSet.levelSetOptions();
     ls.unsignedDistance = a.udf;
     ls.closestTriangle = a.closestTriangle;
     const bool solid = a.fill == "solid";
 
-    LibraryCall call(a.backend, solid ? "filling the solid" : "computing the distance field");
     std::vector<VoxelizeStats> runs(size_t(a.repeat));
     openvdb::GridPtrVec grids;
     auto once = [&] {
@@ -226,6 +225,13 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
 
     // No output may be the input or another output: refused before any work.
     checkOutputs({a.mesh}, {a.output, a.json});
+    LibraryCall call(a.backend, a.fill == "solid" ? "filling the solid"
+                                : a.field()       ? "computing the distance field"
+                                                  : "voxelizing");
+    // EGL set-up beside loading the mesh; joined (a device error rethrown) before the first call.
+    std::future<void> device;
+    if (call.options.backend != Backend::Cpu)
+        device = std::async(std::launch::async, [&voxelizer = call.voxelizer] { voxelizer.startDevice(); });
     // Then load: a bad mesh must fail before any output is considered.
     TriangleMesh mesh;
     {
@@ -251,13 +257,13 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     const GridSpec grid = makeGrid(mesh, request);
     // An OpenVDB output must be able to hold the voxel size: refused before the GPU works.
     if (!timingOnly && outputFormat(output) != OutputFormat::Svo) vdb::checkVdbVoxelSize(grid.voxelSize, output);
-    if (a.field()) return runField(a, cmd, mesh, scene, grid, request, output, timingOnly, start);
+    if (device.valid()) device.get();
+    if (a.field()) return runField(a, call, mesh, scene, grid, request, output, timingOnly, start);
     const GridOptions grids = a.out.gridOptions();
     if (!timingOnly && outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
 
     // Voxelize: with --repeat, one warm-up on the GPU, then per-stage medians.
-    LibraryCall call(a.backend, "voxelizing");
     std::vector<VoxelizeStats> runs(size_t(a.repeat));
     Octree octree;
     std::optional<StartupStats> startup; // the first call's: later calls on this Voxelizer start warm

@@ -75,6 +75,8 @@ XDisplay::XDisplay()
         throw Error("Xvfb did not start within 10 s; set DISPLAY to an X server instead");
     }
     name_ = ":" + number;
+    // Removed after the server exits if it left them (see setChildFiles).
+    setChildFiles(cleanupSlot_, ("/tmp/.X" + number + "-lock").c_str(), ("/tmp/.X11-unix/X" + number).c_str());
     ::setenv("DISPLAY", name_.c_str(), 1);
 }
 

@@ -321,6 +321,8 @@ openvdb::MaskGrid::Ptr Voxelizer::meshToMask(const std::vector<openvdb::Vec3d>& 
 
 std::string Voxelizer::deviceDescription() { return impl_->describe(); }
 
+void Voxelizer::startDevice() { impl_->gl(); }
+
 void Voxelizer::releaseScratch()
 {
     if (impl_->context) impl_->context->releaseScratch();

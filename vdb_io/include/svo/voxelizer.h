@@ -350,6 +350,14 @@ public:
 
     /// The GPU's vendor, renderer and version (creates the context if needed).
     std::string deviceDescription();
+    /// @brief Creates the GL context now, rather than in the first GPU call.
+    /// @details EGL set-up takes 20-75 ms (more on a cold machine), so a caller
+    /// may run it on another thread while it reads its mesh: the context is
+    /// left current nowhere, and later calls may come from any one thread.
+    /// No other call on this Voxelizer may run meanwhile. The first call's
+    /// statistics still report the set-up (StartupStats::eglMs).
+    /// @throw svo::Error as the first GPU call would: no usable GPU or driver.
+    void startDevice();
     /// Frees the scratch buffers kept for the next call.
     void releaseScratch();
 

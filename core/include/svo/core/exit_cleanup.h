@@ -8,8 +8,8 @@
 /// SIGINT and SIGTERM to leave nothing behind either calls
 /// installInterruptCleanup() (the CLI does) or, from its own signal handler,
 /// cleanUpForExit(). Both are safe inside a signal handler: the registry is a
-/// fixed array of atomics and the clean-up uses only unlink, kill, waitpid and
-/// nanosleep.
+/// fixed array of atomics and the clean-up uses only unlink, kill, waitpid,
+/// nanosleep, and open, read and close.
 ///
 /// Library callers that cancel through an interrupter need none of this: a
 /// cancelled call unwinds by exception, and writeAtomically removes its
@@ -26,6 +26,12 @@ void releaseTemporary(int slot) noexcept;
 
 /// Registers a child process to be sent SIGTERM on an interrupt.
 int registerChild(pid_t pid) noexcept;
+/// Files a registered child should remove when it exits (an X server's lock
+/// and socket): once it is reaped, by the clean-up or before releaseChild(),
+/// both are removed if `lock` still exists and holds the child's pid as text.
+/// Paths are copied; over-long ones are ignored.
+void setChildFiles(int slot, const char* lock, const char* leftover) noexcept;
+/// Call after reaping the child: removes its files as setChildFiles says.
 void releaseChild(int slot) noexcept;
 
 /// Removes every registered temporary and terminates every registered child
