@@ -122,7 +122,8 @@ nlohmann::json startupJson(const StartupStats& s)
 }
 
 /// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb.
-void runField(const VoxelizeArgs& a, LibraryCall& call, const TriangleMesh& mesh, const std::string& scene,
+void runField(const VoxelizeArgs& a, LibraryCall& call, const TriangleMesh& mesh, const StageTime& load,
+              const std::string& scene,
               const GridSpec& grid, const GridRequest& request, const std::string& output, bool timingOnly,
               std::chrono::steady_clock::time_point start)
 {
@@ -148,6 +149,7 @@ void runField(const VoxelizeArgs& a, LibraryCall& call, const TriangleMesh& mesh
         if (!startup) startup = run.startup;
     }
     VoxelizeStats stats = medianStats(runs);
+    stats.stages.insert(stats.stages.begin(), load);
     stats.startup = *startup;
     printWarnings(stats.warnings);
     vdb::WriteStats written;
@@ -230,14 +232,16 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
                                                   : "voxelizing");
     // EGL set-up beside loading the mesh; joined (a device error rethrown) before the first call.
     std::future<void> device;
-    if (call.options.backend != Backend::Cpu)
+    if (a.field() || call.voxelizer.backendFor(call.options) != Backend::Cpu)
         device = std::async(std::launch::async, [&voxelizer = call.voxelizer] { voxelizer.startDevice(); });
     // Then load: a bad mesh must fail before any output is considered.
     TriangleMesh mesh;
+    const auto loadStart = Clock::now();
     {
         Progress p("loading " + (a.mesh.empty() ? std::string("built-in scene") : a.mesh));
         mesh = a.mesh.empty() ? cornellBox() : loadMesh(a.mesh);
     }
+    const StageTime load{"mesh load (cpu)", -1, std::chrono::duration<double, std::milli>(Clock::now() - loadStart).count()};
     printWarnings(mesh.warnings);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
     // --repeat without -o is a timing run and writes nothing; otherwise the
@@ -258,7 +262,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     // An OpenVDB output must be able to hold the voxel size: refused before the GPU works.
     if (!timingOnly && outputFormat(output) != OutputFormat::Svo) vdb::checkVdbVoxelSize(grid.voxelSize, output);
     if (device.valid()) device.get();
-    if (a.field()) return runField(a, call, mesh, scene, grid, request, output, timingOnly, start);
+    if (a.field()) return runField(a, call, mesh, load, scene, grid, request, output, timingOnly, start);
     const GridOptions grids = a.out.gridOptions();
     if (!timingOnly && outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
@@ -267,7 +271,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     std::vector<VoxelizeStats> runs(size_t(a.repeat));
     Octree octree;
     std::optional<StartupStats> startup; // the first call's: later calls on this Voxelizer start warm
-    if (a.repeat > 1 && call.options.backend != Backend::Cpu) {
+    if (a.repeat > 1 && call.voxelizer.backendFor(call.options) != Backend::Cpu) {
         call.voxelizer.voxelize(mesh, grid, call.options);
         startup = call.stats.startup;
     }
@@ -277,6 +281,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         if (!startup) startup = run.startup;
     }
     VoxelizeStats stats = medianStats(runs);
+    stats.stages.insert(stats.stages.begin(), load);
     stats.startup = *startup;
     printWarnings(stats.warnings);
 

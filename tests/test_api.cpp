@@ -321,6 +321,47 @@ TEST_F(Api, InterrupterStopsTheCallAndIsToldTheShareDone)
     EXPECT_EQ(never.seen.back(), 100);
 }
 
+// The CPU reference polls between batches of columns, so a long CPU call is
+// cancelled while it voxelizes, not only between stages (0 % and 60 %).
+TEST_F(Api, TheCpuBackendIsInterruptedWhileItVoxelizes)
+{
+    // A unit square at 1/2000: two triangles of about 2 M columns each.
+    const std::vector<openvdb::Vec3d> points{{0, 0, 0}, {1, 0, 0.01}, {1, 1, 0.02}, {0, 1, 0.01}};
+    const std::vector<openvdb::Vec3I> triangles{{0, 1, 2}, {0, 2, 3}};
+    const auto xform = openvdb::math::Transform::createLinearTransform(1.0 / 2000);
+    CancelAt stop(5);
+    VoxelizeOptions o;
+    o.backend = Backend::Cpu;
+    o.interrupter = &stop;
+    EXPECT_THROW(voxelizer().meshToMask(points, triangles, *xform, o), svo::Interrupted);
+    ASSERT_FALSE(stop.seen.empty());
+    EXPECT_GT(stop.seen.back(), 0);
+    EXPECT_LT(stop.seen.back(), 60) << "cancelled only after the CPU voxelization";
+    EXPECT_EQ(stop.ends, 1);
+}
+
+// backendFor tells what Auto runs on without creating a context, and the call agrees.
+TEST_F(Api, BackendForSaysWhatAutoRunsOn)
+{
+    Voxelizer v;
+    const Backend expected = v.backendFor({});
+    EXPECT_NE(expected, Backend::Auto);
+    EXPECT_NE(expected, Backend::Cpu);
+    VoxelizeOptions shader;
+    shader.dilation = Dilation::Shader;
+    EXPECT_EQ(v.backendFor(shader), Backend::Raster);
+    VoxelizeOptions cpu;
+    cpu.backend = Backend::Cpu;
+    EXPECT_EQ(v.backendFor(cpu), Backend::Cpu);
+    const VdbMesh mesh = toVdb(sphere({0, 0, 0}, 1.0, 8, 6));
+    VoxelizeStats stats;
+    VoxelizeOptions o;
+    o.stats = &stats;
+    v.meshToMask(mesh.points, mesh.triangles, *openvdb::math::Transform::createLinearTransform(0.1), o);
+    EXPECT_EQ(stats.backend, expected == Backend::Compute ? "compute" : "raster");
+    EXPECT_EQ(v.backendFor({}), expected) << "the same with a context";
+}
+
 TEST_F(Api, CallerContextIsCurrentAgainOnEveryPathOut)
 {
     // The "host": another GL context, current on this thread as an application's would be.

@@ -10,21 +10,63 @@
 #include "triangle_voxels.h"
 
 namespace svo {
-Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, double guard, VoxelMode mode)
+namespace {
+
+/// A triangle, or a slab of its rows: at most kColumnsPerItem columns.
+struct WorkItem {
+    uint32_t triangle;
+    int64_t rowFirst, rowLast;
+};
+constexpr int64_t kColumnsPerItem = 4096;
+constexpr int64_t kColumnsPerBatch = int64_t(1) << 20; // between polls
+
+} // namespace
+
+Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, double guard, VoxelMode mode,
+                         const std::function<void(double)>& poll)
 {
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<Vec3d> local(mesh.positions.size());
     for (size_t i = 0; i < local.size(); ++i) local[i] = grid.toLocal(mesh.positions[i]);
 
-    tbb::enumerable_thread_specific<std::vector<uint64_t>> perThread;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangles.size(), 256), [&](const auto& r) {
-        auto& out = perThread.local();
-        for (size_t t = r.begin(); t != r.end(); ++t) {
-            const auto& f = mesh.triangles[t];
-            detail::voxelizeTriangle(local[f[0]], local[f[1]], local[f[2]], grid, guard, mode,
-                                     [&](uint64_t key) { out.push_back(key); });
+    // Work items and their columns, in triangle order.
+    std::vector<WorkItem> items;
+    std::vector<int64_t> columns;
+    items.reserve(mesh.triangles.size());
+    columns.reserve(mesh.triangles.size());
+    int64_t total = 0;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto& f = mesh.triangles[t];
+        const detail::ColumnBounds b = detail::columnBounds(local[f[0]], local[f[1]], local[f[2]], grid, guard);
+        if (b.u1 < b.u0 || b.v1 < b.v0) continue;
+        const int64_t width = b.v1 - b.v0 + 1;
+        const int64_t rows = std::max<int64_t>(1, kColumnsPerItem / width);
+        for (int64_t r = b.u0; r <= b.u1; r += rows) {
+            items.push_back({uint32_t(t), r, std::min(b.u1, r + rows - 1)});
+            columns.push_back((items.back().rowLast - r + 1) * width);
+            total += columns.back();
         }
-    });
+    }
+
+    tbb::enumerable_thread_specific<std::vector<uint64_t>> perThread;
+    int64_t done = 0;
+    for (size_t first = 0; first < items.size();) {
+        if (poll) poll(total ? double(done) / double(total) : 0.0);
+        size_t last = first;
+        int64_t batch = 0;
+        while (last < items.size() && batch < kColumnsPerBatch) batch += columns[last++];
+        tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 16), [&](const auto& r) {
+            auto& out = perThread.local();
+            for (size_t i = r.begin(); i != r.end(); ++i) {
+                const WorkItem& item = items[i];
+                const auto& f = mesh.triangles[item.triangle];
+                detail::voxelizeTriangle(local[f[0]], local[f[1]], local[f[2]], grid, guard, mode,
+                                         [&](uint64_t key) { out.push_back(key); }, item.rowFirst, item.rowLast);
+            }
+        });
+        done += batch;
+        first = last;
+    }
     Voxelization result;
     result.grid = grid;
     for (auto& part : perThread) {

@@ -4,6 +4,7 @@
 /// attribute reference.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "svo/core/grid.h"
 #include "svo/core/overlap.h"
@@ -12,15 +13,39 @@
 
 namespace svo::detail {
 
+/// The triangle's column rectangle along its dominant axis w: rows along
+/// u = (w + 1) % 3 and columns along v = (w + 2) % 3, clamped to the grid
+/// (empty when hi < lo). The same bounds voxelizeTriangle walks.
+struct ColumnBounds {
+    int64_t u0, u1, v0, v1;
+};
+inline ColumnBounds columnBounds(const Vec3d& a, const Vec3d& b, const Vec3d& c, const GridSpec& grid, double guard)
+{
+    using namespace overlap_double;
+    const double half = 0.5 + guard;
+    const int w = svo_dominant_axis(cross(b - a, c - a));
+    ColumnBounds r{};
+    auto range = [&](int axis, int64_t& lo, int64_t& hi) {
+        const double mn = std::min({a[axis], b[axis], c[axis]}), mx = std::max({a[axis], b[axis], c[axis]});
+        lo = std::max<int64_t>(0, int64_t(std::ceil(mn - half)));
+        hi = std::min<int64_t>(int64_t(grid.dims[axis]) - 1, int64_t(std::floor(mx + half)));
+    };
+    range((w + 1) % 3, r.u0, r.u1);
+    range((w + 2) % 3, r.v0, r.v1);
+    return r;
+}
+
 /// Calls emit(key) for every voxel whose cube, grown by `guard`, meets the
 /// triangle (a, b, c) in local coordinates: along the dominant axis, the
 /// guarded column range of each column of the 2D bounds, then the overlap
 /// test. Thin mode tests the voxel's centre segments instead (half length
 /// 0.5 + guard, thickness max(guard, 0)); they lie inside the cube, so the
 /// cube's candidates hold every voxel they can keep.
+/// Rows (the first of the two column axes) outside [rowFirst, rowLast] are
+/// skipped, so that one large triangle can be shared out in slabs of rows.
 template <typename Emit>
 inline void voxelizeTriangle(const Vec3d& a, const Vec3d& b, const Vec3d& c, const GridSpec& grid, double guard,
-                             VoxelMode mode, Emit&& emit)
+                             VoxelMode mode, Emit&& emit, int64_t rowFirst = 0, int64_t rowLast = INT64_MAX)
 {
     using namespace overlap_double;
     const double half = 0.5 + guard;
@@ -36,6 +61,8 @@ inline void voxelizeTriangle(const Vec3d& a, const Vec3d& b, const Vec3d& c, con
     };
     int64_t u0, u1, v0, v1, w0, w1;
     range(u, u0, u1);
+    u0 = std::max(u0, rowFirst);
+    u1 = std::min(u1, rowLast);
     range(v, v0, v1);
     range(w, w0, w1);
     for (int64_t i = u0; i <= u1; ++i)

@@ -37,6 +37,51 @@ struct Candidate {
     bool software;
 };
 
+/// The device option, or SVO_EGL_DEVICE, or "auto".
+std::string deviceWanted(const std::string& option)
+{
+    if (!option.empty()) return option;
+    const char* env = std::getenv("SVO_EGL_DEVICE");
+    return env && *env ? env : "auto";
+}
+
+/// The displays to try for a device option, in order: EGL's devices
+/// (hardware before software for "auto"), then Mesa's surfaceless platform
+/// and the default display. Creates no context.
+std::vector<Candidate> candidatesFor(const std::string& want)
+{
+    std::vector<Candidate> candidates;
+    auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    auto queryDeviceString =
+        reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+    if (queryDevices && queryDeviceString) {
+        EGLDeviceEXT devices[32];
+        EGLint n = 0;
+        if (queryDevices(32, devices, &n)) {
+            std::vector<Candidate> hardware, software;
+            for (EGLint i = 0; i < n; ++i) {
+                const char* ext = queryDeviceString(devices[i], EGL_EXTENSIONS);
+                const bool sw = ext && std::strstr(ext, "EGL_MESA_device_software");
+                const char* drm = ext && std::strstr(ext, "EGL_EXT_device_drm")
+                                      ? queryDeviceString(devices[i], EGL_DRM_DEVICE_FILE_EXT)
+                                      : nullptr;
+                Candidate c{EGL_PLATFORM_DEVICE_EXT, devices[i],
+                            fmt::format("EGL device {}{}", i, sw ? " (software)" : drm ? fmt::format(" ({})", drm) : ""),
+                            sw};
+                if (want == std::to_string(i)) candidates.push_back(c);
+                (sw ? software : hardware).push_back(c);
+            }
+            if (want == "auto" || want == "hardware") candidates.insert(candidates.end(), hardware.begin(), hardware.end());
+            if (want == "auto" || want == "software") candidates.insert(candidates.end(), software.begin(), software.end());
+        }
+    }
+    if (want == "auto" || want == "software") {
+        candidates.push_back({EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, "Mesa surfaceless platform", true});
+        candidates.push_back({0, nullptr, "default EGL display", false});
+    }
+    return candidates;
+}
+
 std::string eglErrorName(EGLint e) { return fmt::format("EGL error 0x{:04x}", unsigned(e)); }
 
 /// EGL displays are per device and per process: every Context on a device
@@ -326,40 +371,8 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
         ~Restore() { saved.restore(); }
     } restore{previous};
 
-    std::string want = options.device;
-    if (want.empty()) {
-        const char* env = std::getenv("SVO_EGL_DEVICE");
-        want = env && *env ? env : "auto";
-    }
-    std::vector<Candidate> candidates;
-    auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-    auto queryDeviceString =
-        reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
-    if (queryDevices && queryDeviceString) {
-        EGLDeviceEXT devices[32];
-        EGLint n = 0;
-        if (queryDevices(32, devices, &n)) {
-            std::vector<Candidate> hardware, software;
-            for (EGLint i = 0; i < n; ++i) {
-                const char* ext = queryDeviceString(devices[i], EGL_EXTENSIONS);
-                const bool sw = ext && std::strstr(ext, "EGL_MESA_device_software");
-                const char* drm = ext && std::strstr(ext, "EGL_EXT_device_drm")
-                                      ? queryDeviceString(devices[i], EGL_DRM_DEVICE_FILE_EXT)
-                                      : nullptr;
-                Candidate c{EGL_PLATFORM_DEVICE_EXT, devices[i],
-                            fmt::format("EGL device {}{}", i, sw ? " (software)" : drm ? fmt::format(" ({})", drm) : ""),
-                            sw};
-                if (want == std::to_string(i)) candidates.push_back(c);
-                (sw ? software : hardware).push_back(c);
-            }
-            if (want == "auto" || want == "hardware") candidates.insert(candidates.end(), hardware.begin(), hardware.end());
-            if (want == "auto" || want == "software") candidates.insert(candidates.end(), software.begin(), software.end());
-        }
-    }
-    if (want == "auto" || want == "software") {
-        candidates.push_back({EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, "Mesa surfaceless platform", true});
-        candidates.push_back({0, nullptr, "default EGL display", false});
-    }
+    const std::string want = deviceWanted(options.device);
+    const std::vector<Candidate> candidates = candidatesFor(want);
     if (candidates.empty())
         throw Error(fmt::format("no EGL device matches '{}' (use auto, hardware, software or a device index)", want));
 
@@ -389,6 +402,14 @@ Context::~Context()
 }
 
 const ContextInfo& Context::info() const { return impl_->info; }
+
+bool softwareDevice(const std::string& device)
+{
+    const std::vector<Candidate> candidates = candidatesFor(deviceWanted(device));
+    // Only an EGL device says what it is; the fallbacks are known once tried.
+    return !candidates.empty() && candidates.front().platform == EGL_PLATFORM_DEVICE_EXT &&
+           candidates.front().software;
+}
 
 Context::Scope::Scope(const Context& c)
 {

@@ -221,7 +221,8 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
     stats.mode = voxelModeName(options.mode);
     if (backend == Backend::Cpu) {
         auto t0 = Clock::now();
-        Voxelization v = voxelizeCpu(mesh, grid, 0.0, options.mode);
+        const Checkpoint part = checkpoint.part(0.0, 0.6);
+        Voxelization v = voxelizeCpu(mesh, grid, 0.0, options.mode, [&](double f) { part(f, "voxelize (cpu)"); });
         stats.stages.push_back({"voxelize (cpu)", -1, msSince(t0)});
         checkpoint(0.6, "octree build");
         t0 = Clock::now();
@@ -317,6 +318,13 @@ openvdb::MaskGrid::Ptr Voxelizer::meshToMask(const std::vector<openvdb::Vec3d>& 
                                              const openvdb::math::Transform& xform, const VoxelizeOptions& options)
 {
     return toMask(*this, points, triangles, quads, xform, options);
+}
+
+Backend Voxelizer::backendFor(const VoxelizeOptions& options)
+{
+    if (options.backend != Backend::Auto) return options.backend;
+    if (options.dilation != Dilation::Auto) return Backend::Raster;
+    return impl_->autoBackend(false);
 }
 
 std::string Voxelizer::deviceDescription() { return impl_->describe(); }

@@ -84,8 +84,15 @@ struct Voxelizer::Impl {
     /// Backend::Auto's choice, measured (bench/results/nvidia-h100/compute.md):
     /// on an H100 the compute backend's voxelize stage is 7-70 times faster
     /// than rasterization; on llvmpipe the two are within a factor of 2 either
-    /// way, and the raster backend, validated longest, stays.
-    Backend autoBackend() { return gl().info().software ? Backend::Raster : Backend::Compute; }
+    /// way, and the raster backend, validated longest, stays. With `create`
+    /// false and no context yet, EGL tells a software device without creating
+    /// one (its first device; a context may still fall back to another).
+    Backend autoBackend(bool create = true)
+    {
+        const bool software =
+            context || create ? gl().info().software : gl::softwareDevice(device.device);
+        return software ? Backend::Raster : Backend::Compute;
+    }
 
     /// Where a call runs, in the statistics: the GPU's names, or the CPU reference.
     void describeBackend(VoxelizeStats& stats, Backend backend)

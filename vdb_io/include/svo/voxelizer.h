@@ -348,6 +348,12 @@ public:
     openvdb::MaskGrid::Ptr solid(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
                                  const SignOptions& sign = {}, openvdb::math::Transform::Ptr xform = nullptr);
 
+    /// @brief The backend a voxelize call with @a options runs on: Backend::Auto
+    /// resolved (a dilation mode's raster backend when one is asked for; else
+    /// compute on a hardware GPU, raster on a software rasterizer such as
+    /// llvmpipe). Creates no GL context: before one exists, EGL is asked
+    /// whether the device is software (about 1 ms).
+    Backend backendFor(const VoxelizeOptions& options);
     /// The GPU's vendor, renderer and version (creates the context if needed).
     std::string deviceDescription();
     /// @brief Creates the GL context now, rather than in the first GPU call.

@@ -5,8 +5,10 @@
 /// Method: for each triangle, along its dominant normal axis, walk the columns
 /// of its 2D bounding box; in each column take the range of the triangle's
 /// plane over the column (clamped to the triangle's extent along the axis) and
-/// run the shared overlap test (overlap.glsl) on every voxel in it. Triangles
-/// are processed in parallel with TBB.
+/// run the shared overlap test (overlap.glsl) on every voxel in it. Work runs
+/// in parallel with TBB, in items of at most a few thousand columns: a
+/// triangle with more is cut into slabs of rows, so one large triangle does
+/// not hold up the rest on one core.
 ///
 /// Guarantee: the result is every voxel whose closed cube, grown by `guard`
 /// voxels (shrunk when negative), meets a triangle, up to double rounding.
@@ -16,6 +18,8 @@
 /// its cube: the result is every voxel one of whose segments, lengthened by
 /// `guard` at each end and thickened by max(guard, 0) across (shortened when
 /// guard is negative), meets a triangle. guard = 0 is the thin voxelization.
+#include <functional>
+
 #include "svo/core/mesh.h"
 #include "svo/core/voxel_mode.h"
 #include "svo/core/voxelization.h"
@@ -24,8 +28,12 @@ namespace svo {
 
 /// @param guard voxels to grow (> 0) or shrink (< 0) what is tested by
 /// @param mode  the cube (Conservative) or the centre segments (Thin)
-/// @throw nothing beyond std::bad_alloc; the mesh's indices must be valid.
+/// @param poll  when set, called on the calling thread between batches of
+///        work (about 2^20 columns each) with the fraction done; it may
+///        throw (svo::Interrupted) to cancel, which leaves nothing behind
+/// @throw what @a poll throws, and std::bad_alloc; the mesh's indices must be valid.
 Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, double guard = 0.0,
-                         VoxelMode mode = VoxelMode::Conservative);
+                         VoxelMode mode = VoxelMode::Conservative,
+                         const std::function<void(double)>& poll = nullptr);
 
 } // namespace svo
