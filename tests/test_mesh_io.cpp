@@ -7,6 +7,8 @@
 #include <fstream>
 #include <gtest/gtest.h>
 
+#include "obj_reader.h"
+#include "off_reader.h"
 #include "openmesh_reader.h"
 #include "svo/core/error.h"
 #include "svo/core/mesh_io.h"
@@ -453,3 +455,145 @@ TEST_F(MeshIo, RealMeshesReadAsOpenMeshReadsThemWithinFloatRounding)
     }
 }
 #endif
+
+namespace {
+
+/// The mesh (or the error message) a reader gives.
+template <typename Read>
+std::string outcome(Read&& read, TriangleMesh& mesh)
+{
+    try {
+        mesh = read();
+        return "";
+    } catch (const Error& e) {
+        return e.what();
+    }
+}
+
+void expectSameMesh(const TriangleMesh& a, const TriangleMesh& b)
+{
+    ASSERT_EQ(a.positions.size(), b.positions.size());
+    for (size_t i = 0; i < a.positions.size(); ++i)
+        for (int k = 0; k < 3; ++k) ASSERT_EQ(a.positions[i][k], b.positions[i][k]) << "vertex " << i; // bit for bit
+    EXPECT_EQ(a.triangles, b.triangles);
+    ASSERT_EQ(a.colors.size(), b.colors.size());
+    for (size_t i = 0; i < a.colors.size(); ++i)
+        for (int k = 0; k < 3; ++k) ASSERT_EQ(a.colors[i][k], b.colors[i][k]) << "colour " << i;
+    EXPECT_EQ(a.warnings, b.warnings);
+}
+
+/// An OBJ with everything the reader accepts, in `lines` statements: comments,
+/// blank lines, CRLF, `\` continuations, polygons, v/vt/vn corners, and
+/// colours on every vertex or on some.
+std::string variedObj(int lines, bool allColoured, bool relative)
+{
+    std::string s = "# varied\nmtllib x.mtl\n";
+    int vertices = 0;
+    for (int i = 0; i < lines; ++i) {
+        const double x = 0.1 * i, y = std::sin(i * 0.7), z = 1.0 / (i + 3);
+        switch (i % 7) {
+        case 0: s += fmt::format(allColoured ? "v {} {} {} 1 0 0\r\n" : "v {} {} {}\r\n", x, y, z); ++vertices; break;
+        case 1:
+            s += allColoured || i % 3 ? fmt::format("v {} {} {} 0.5 0.25 1\n", x, y, z) : fmt::format("v {} {} {}\n", x, y, z);
+            ++vertices;
+            break;
+        case 2:
+            s += fmt::format(allColoured ? "v {} \\\n {} \\\n{} 0 1 0  # continued\n" : "v {} \\\n {} \\\n{}  # continued\n", x, y,
+                             z);
+            ++vertices;
+            break;
+        case 3: s += "\n# a comment line\nvt 0.5 0.5\n"; break;
+        default:
+            if (vertices < 4) break;
+            if (relative && i % 5 == 0) s += "f -1 -2 -3\n";
+            else if (i % 2) s += fmt::format("f {}/1 {}//2 {}/3/4 {}\n", vertices, vertices - 1, vertices - 2, vertices - 3);
+            else s += fmt::format("f {} \\\n{} {}\n", vertices - 3, vertices - 1, vertices);
+        }
+    }
+    return s;
+}
+
+} // namespace
+
+// The readers parse large files in pieces in parallel: the same mesh, colours,
+// warnings and errors as reading the file as one piece, for pieces down to a
+// few lines (so that every statement meets a piece's edge somewhere).
+TEST_F(MeshIo, ObjInPiecesGivesWhatOnePieceGives)
+{
+    const size_t whole = size_t(1) << 40;
+    for (const bool allColoured : {true, false})
+        for (const bool relative : {false, true}) {
+            const std::string text = variedObj(3000, allColoured, relative);
+            TriangleMesh one, pieces;
+            ASSERT_EQ(outcome([&] { return detail::readObj("a.obj", text, whole); }, one), "");
+            EXPECT_GT(one.triangles.size(), 1000u);
+            EXPECT_EQ(one.colors.empty(), !allColoured);
+            for (const size_t chunk : {size_t(1), size_t(37), size_t(4096)}) {
+                SCOPED_TRACE(fmt::format("pieces of {} bytes, colours on all {}, relative {}", chunk, allColoured,
+                                         relative));
+                size_t used = 0;
+                ASSERT_EQ(outcome([&] { return detail::readObj("a.obj", text, chunk, &used); }, pieces), "");
+                expectSameMesh(pieces, one);
+                // Relative indices need the vertices before their piece: one piece then.
+                if (relative) EXPECT_EQ(used, 0u);
+                else EXPECT_GT(used, chunk == 1 ? 3000u : 10u);
+            }
+        }
+    // Errors name the same line: a bad number near the end, an index past the
+    // vertices (checked at the end), a relative index before any vertex.
+    const std::string good = variedObj(3000, true, false);
+    const size_t middle = good.find("vt 0.5 0.5\n", good.size() / 2) + 11; // after a whole statement
+    for (const std::string& bad : {good + "v 1 2 x\nf 1 2 3\n", good + "f 1 2 999999\n" + good,
+                                   "f -1 -2 -3\n" + good, good.substr(0, middle) + "f 0 1 2\n" + good.substr(middle)}) {
+        TriangleMesh mesh;
+        const std::string one = outcome([&] { return detail::readObj("a.obj", bad, whole); }, mesh);
+        EXPECT_NE(one, "");
+        EXPECT_NE(one.find("line "), std::string::npos) << one;
+        for (const size_t chunk : {size_t(1), size_t(4096)})
+            EXPECT_EQ(outcome([&] { return detail::readObj("a.obj", bad, chunk); }, mesh), one);
+    }
+}
+
+TEST_F(MeshIo, OffInPiecesGivesWhatOnePieceGives)
+{
+    const size_t whole = size_t(1) << 40;
+    for (const std::string keyword : {"OFF", "COFF"}) {
+        std::string body;
+        const int nv = 2000, nf = 1500;
+        for (int v = 0; v < nv; ++v) {
+            if (v % 97 == 0) body += "# a comment\n\n";
+            body += fmt::format("{} {} {}{}\n", 0.01 * v, std::cos(v * 0.3), 1.0 / (v + 7),
+                                keyword == "COFF" ? (v % 2 ? " 255 128 0 255" : " 0.5 0.25 1 1") : "");
+        }
+        for (int f = 0; f < nf; ++f) {
+            const int n = 3 + f % 4;
+            body += std::to_string(n);
+            for (int i = 0; i < n; ++i) body += " " + std::to_string((f * 7 + i * 13) % nv);
+            body += f % 50 == 0 ? "  # trailing comment\n" : "\n";
+        }
+        const std::string text = keyword + "\n# counts follow\n" + fmt::format("{} {} 0\n", nv, nf) + body + "trailing text\n";
+        SCOPED_TRACE(keyword);
+        TriangleMesh one, pieces;
+        ASSERT_EQ(outcome([&] { return *detail::readAsciiOff("a.off", text, whole); }, one), "");
+        EXPECT_EQ(one.positions.size(), size_t(nv));
+        EXPECT_EQ(one.colors.size(), keyword == "COFF" ? size_t(nv) : 0u);
+        for (const size_t chunk : {size_t(1), size_t(53), size_t(8192)}) {
+            SCOPED_TRACE(chunk);
+            size_t used = 0;
+            ASSERT_EQ(outcome([&] { return *detail::readAsciiOff("a.off", text, chunk, &used); }, pieces), "");
+            expectSameMesh(pieces, one);
+            EXPECT_GT(used, chunk == 1 ? 3000u : 10u);
+        }
+        // Errors: a bad coordinate, a face index out of range, a truncated file.
+        const size_t mid = text.find('\n', text.size() / 3);
+        for (const std::string& bad : {text.substr(0, mid + 1) + "1 2 nan\n" + text.substr(mid + 1),
+                                       text.substr(0, text.size() - 30) + "\n3 0 1 2000000\n",
+                                       text.substr(0, text.size() / 2)}) {
+            TriangleMesh mesh;
+            const std::string msg = outcome([&] { return *detail::readAsciiOff("a.off", bad, whole); }, mesh);
+            EXPECT_NE(msg, "");
+            for (const size_t chunk : {size_t(1), size_t(8192)})
+                EXPECT_EQ(outcome([&] { return *detail::readAsciiOff("a.off", bad, chunk); }, mesh), msg);
+        }
+    }
+}

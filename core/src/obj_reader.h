@@ -3,6 +3,7 @@
 /// ASCII OBJ, read directly so that coordinates are correctly rounded doubles
 /// (OpenMesh reads them as float) and faces that repeat a vertex are kept
 /// (OpenMesh drops them).
+#include <cstddef>
 #include <string>
 
 #include "svo/core/mesh.h"
@@ -14,7 +15,12 @@ namespace svo::detail {
 /// negative (relative) indices, polygons fan-triangulated. Comments, blank
 /// lines, CRLF and `\` continuations are accepted; other statements (vt, vn,
 /// o, g, s, usemtl, mtllib, l, p, ...) are ignored. Throws svo::Error naming
-/// the file and line for anything malformed or out of range.
-TriangleMesh readObj(const std::string& path, const std::string& bytes);
+/// the file and line for anything malformed or out of range. Files of more
+/// than one `chunkBytes` piece are parsed in pieces in parallel and give the
+/// same mesh, warnings and errors (an error, or a relative index, which needs
+/// the vertices before its piece, sends the file to the one-piece path).
+/// `inPieces`, when set, gets how many pieces gave the mesh (0: read as one).
+TriangleMesh readObj(const std::string& path, const std::string& bytes, size_t chunkBytes = size_t(1) << 20,
+                     size_t* inPieces = nullptr);
 
 } // namespace svo::detail

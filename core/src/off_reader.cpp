@@ -1,14 +1,18 @@
 #include "off_reader.h"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fmt/format.h>
 #include <string_view>
+#include <tbb/parallel_for.h>
 #include <vector>
 
 #include "svo/core/error.h"
+#include "text_chunks.h"
 #include "text_scan.h"
 
 namespace svo::detail {
@@ -18,7 +22,10 @@ namespace {
 /// views into the bytes, so that a large file costs no string per line.
 class Lines {
 public:
-    explicit Lines(const std::string& bytes) : p_(bytes.data()), end_(p_ + bytes.size()) {}
+    explicit Lines(std::string_view bytes, size_t before = 0)
+        : p_(bytes.data()), end_(p_ + bytes.size()), number_(before)
+    {
+    }
     bool next(std::string_view& line)
     {
         while (p_ < end_) {
@@ -32,6 +39,7 @@ public:
         return false;
     }
     size_t number() const { return number_; }
+    const char* position() const { return p_; }
 
 private:
     const char* p_;
@@ -47,10 +55,125 @@ void words(std::string_view line, std::vector<std::string_view>& w)
     for (std::string_view t = s.next(); !t.empty(); t = s.next()) w.push_back(t);
 }
 
+/// The body's records (vertex and face lines) as the header declares them.
+struct OffLayout {
+    int64_t nv = 0, nf = 0;
+    bool hasColors = false;
+    size_t colorAt = 3;
+};
+
+/// Vertex `v` from its words into mesh (and its colour); throws fail(...).
+template <typename Fail>
+void parseVertex(const std::vector<std::string_view>& w, int64_t v, const OffLayout& l, Vec3d& position, Vec3f* color,
+                 Fail&& fail)
+{
+    if (w.size() < 3) throw fail(fmt::format("vertex {} has {} coordinates", v, w.size()));
+    double c[3];
+    for (int k = 0; k < 3; ++k) {
+        if (!parseDouble(w[size_t(k)], c[k]) || !std::isfinite(c[k]))
+            throw fail(fmt::format("vertex {} has a non-finite or malformed coordinate {}", v, quoted(w[size_t(k)])));
+    }
+    position = {c[0], c[1], c[2]};
+    if (l.hasColors) {
+        if (w.size() < l.colorAt + 3) throw fail(fmt::format("vertex {} has no colour", v));
+        // Integers are 0..255; numbers with a point are 0..1.
+        float rgb[3];
+        bool integers = true;
+        for (int k = 0; k < 3; ++k) {
+            const std::string_view t = w[l.colorAt + size_t(k)];
+            double x = 0;
+            rgb[k] = parseDouble(t, x) ? float(x) : NAN;
+            if (!std::isfinite(rgb[k])) throw fail(fmt::format("vertex {} has a malformed colour {}", v, quoted(t)));
+            integers &= t.find_first_of(".eE") == std::string_view::npos;
+        }
+        const float scale = integers ? 1.0f / 255.0f : 1.0f;
+        *color = {rgb[0] * scale, rgb[1] * scale, rgb[2] * scale};
+    }
+}
+
+/// Face `f` from its words, fan-triangulated onto `triangles`; throws fail(...).
+template <typename Fail>
+void parseFace(const std::vector<std::string_view>& w, int64_t f, const OffLayout& l, std::vector<uint32_t>& idx,
+               std::vector<std::array<uint32_t, 3>>& triangles, Fail&& fail)
+{
+    int64_t n = -1;
+    if (w.empty() || !parseInt(w[0], n) || n < 1 || uint64_t(n) >= w.size())
+        throw fail(fmt::format("face {} is malformed", f));
+    idx.clear();
+    for (int64_t i = 1; i <= n; ++i) {
+        int64_t k = -1;
+        if (!parseInt(w[size_t(i)], k) || k < 0 || k >= l.nv)
+            throw fail(fmt::format("face {} uses vertex index {}, but the file has {} vertices", f,
+                                   quoted(w[size_t(i)]), l.nv));
+        idx.push_back(uint32_t(k));
+    }
+    // Fan triangulation; a face with fewer than 3 corners still covers its points.
+    auto u = [&](size_t i) { return idx[std::min(i, idx.size() - 1)]; };
+    const size_t fans = idx.size() < 3 ? 1 : idx.size() - 2;
+    for (size_t i = 0; i < fans; ++i) triangles.push_back({u(0), u(i + 1), u(i + 2)});
+}
+
+/// The body parsed in pieces at once: records counted per piece, then each
+/// piece parses its records knowing their place; returns how many pieces. 0 (and nothing kept)
+/// where a piece finds anything the one-piece reader would name: it reads the
+/// file again to say it in the same words.
+size_t readBodyInParallel(std::string_view body, const OffLayout& l, size_t chunkBytes, TriangleMesh& mesh)
+{
+    const std::vector<std::string_view> pieces = cutAtLines(body, chunkBytes, [](size_t) { return true; });
+    if (pieces.size() < 2) return 0;
+    std::vector<int64_t> records(pieces.size() + 1, 0);
+    tbb::parallel_for(size_t(0), pieces.size(), [&](size_t i) {
+        Lines lines(pieces[i]);
+        std::string_view line;
+        int64_t n = 0;
+        while (lines.next(line)) ++n;
+        records[i + 1] = n;
+    });
+    for (size_t i = 0; i < pieces.size(); ++i) records[i + 1] += records[i];
+    if (records.back() < l.nv + l.nf) return 0; // truncated: named by the one-piece reader
+    mesh.positions.resize(size_t(l.nv));
+    if (l.hasColors) mesh.colors.resize(size_t(l.nv));
+    std::vector<std::vector<std::array<uint32_t, 3>>> triangles(pieces.size());
+    std::atomic<bool> failed{false};
+    struct Failed {};
+    tbb::parallel_for(size_t(0), pieces.size(), [&](size_t i) {
+        if (records[i] >= l.nv + l.nf) return;
+        Lines lines(pieces[i]);
+        std::string_view line;
+        std::vector<std::string_view> w;
+        std::vector<uint32_t> idx;
+        auto fail = [](const std::string&) { return Failed{}; };
+        try {
+            for (int64_t r = records[i]; r < l.nv + l.nf && lines.next(line); ++r) {
+                words(line, w);
+                if (r < l.nv)
+                    parseVertex(w, r, l, mesh.positions[size_t(r)], l.hasColors ? &mesh.colors[size_t(r)] : nullptr,
+                                fail);
+                else
+                    parseFace(w, r - l.nv, l, idx, triangles[i], fail);
+            }
+        } catch (const Failed&) {
+            failed = true;
+        }
+    });
+    if (failed) {
+        mesh.positions.clear();
+        mesh.colors.clear();
+        return 0;
+    }
+    size_t total = 0;
+    for (const auto& t : triangles) total += t.size();
+    mesh.triangles.reserve(total);
+    for (const auto& t : triangles) mesh.triangles.insert(mesh.triangles.end(), t.begin(), t.end());
+    return pieces.size();
+}
+
 } // namespace
 
-std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::string& bytes)
+std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::string& bytes, size_t chunkBytes,
+                                         size_t* inPieces)
 {
+    if (inPieces) *inPieces = 0;
     Lines lines(bytes);
     std::string_view line;
     std::vector<std::string_view> w;
@@ -78,36 +201,30 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
     const size_t prefix = keyword.size() - 3;
     const bool hasNormals = keyword.find('N') < prefix, hasColors = keyword.find('C') < prefix;
     const size_t colorAt = hasNormals ? 6 : 3;
+    OffLayout layout;
+    layout.nv = nv;
+    layout.nf = nf;
+    layout.hasColors = hasColors;
+    layout.colorAt = colorAt;
     TriangleMesh mesh;
     mesh.source = path;
+    const std::string_view body(lines.position(), size_t(bytes.data() + bytes.size() - lines.position()));
+    if (const size_t pieces = readBodyInParallel(body, layout, chunkBytes, mesh)) {
+        if (inPieces) *inPieces = pieces;
+        return mesh;
+    }
+
     mesh.positions.reserve(std::min<size_t>(size_t(nv), bytes.size() / 6)); // a vertex takes 6 bytes or more
     for (int64_t v = 0; v < nv; ++v) {
         if (!lines.next(line))
             throw Error(fmt::format("{}: the header declares {} vertices but the file ends after {} (truncated file?)",
                                     path, nv, v));
         words(line, w);
-        if (w.size() < 3) throw fail(fmt::format("vertex {} has {} coordinates", v, w.size()));
-        double c[3];
-        for (int k = 0; k < 3; ++k) {
-            if (!parseDouble(w[size_t(k)], c[k]) || !std::isfinite(c[k]))
-                throw fail(fmt::format("vertex {} has a non-finite or malformed coordinate {}", v, quoted(w[size_t(k)])));
-        }
-        mesh.positions.push_back({c[0], c[1], c[2]});
-        if (hasColors) {
-            if (w.size() < colorAt + 3) throw fail(fmt::format("vertex {} has no colour", v));
-            // Integers are 0..255; numbers with a point are 0..1.
-            float rgb[3];
-            bool integers = true;
-            for (int k = 0; k < 3; ++k) {
-                const std::string_view t = w[colorAt + size_t(k)];
-                double x = 0;
-                rgb[k] = parseDouble(t, x) ? float(x) : NAN;
-                if (!std::isfinite(rgb[k])) throw fail(fmt::format("vertex {} has a malformed colour {}", v, quoted(t)));
-                integers &= t.find_first_of(".eE") == std::string_view::npos;
-            }
-            const float scale = integers ? 1.0f / 255.0f : 1.0f;
-            mesh.colors.push_back({rgb[0] * scale, rgb[1] * scale, rgb[2] * scale});
-        }
+        Vec3d position;
+        Vec3f color;
+        parseVertex(w, v, layout, position, &color, fail);
+        mesh.positions.push_back(position);
+        if (hasColors) mesh.colors.push_back(color);
     }
     std::vector<uint32_t> idx;
     for (int64_t f = 0; f < nf; ++f) {
@@ -115,21 +232,7 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
             throw Error(fmt::format("{}: the header declares {} faces but the file ends after {} (truncated file?)",
                                     path, nf, f));
         words(line, w);
-        int64_t n = -1;
-        if (w.empty() || !parseInt(w[0], n) || n < 1 || uint64_t(n) >= w.size())
-            throw fail(fmt::format("face {} is malformed", f));
-        idx.clear();
-        for (int64_t i = 1; i <= n; ++i) {
-            int64_t k = -1;
-            if (!parseInt(w[size_t(i)], k) || k < 0 || k >= nv)
-                throw fail(fmt::format("face {} uses vertex index {}, but the file has {} vertices", f,
-                                       quoted(w[size_t(i)]), nv));
-            idx.push_back(uint32_t(k));
-        }
-        // Fan triangulation; a face with fewer than 3 corners still covers its points.
-        auto u = [&](size_t i) { return idx[std::min(i, idx.size() - 1)]; };
-        const size_t fans = idx.size() < 3 ? 1 : idx.size() - 2;
-        for (size_t i = 0; i < fans; ++i) mesh.triangles.push_back({u(0), u(i + 1), u(i + 2)});
+        parseFace(w, f, layout, idx, mesh.triangles, fail);
     }
     return mesh;
 }

@@ -4,5 +4,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
+    sameInPieces(
+        data, size, [](const std::string& b) { return svo::detail::readObj("fuzz.obj", b, size_t(1) << 40); },
+        [](const std::string& b) { return svo::detail::readObj("fuzz.obj", b, 7); });
     return fuzzMeshReader(data, size, [](const std::string& bytes) { return svo::detail::readObj("fuzz.obj", bytes); });
 }
