@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <limits>
+#include <map>
 
 #include "obj_reader.h"
 #include "off_reader.h"
@@ -596,4 +598,60 @@ TEST_F(MeshIo, OffInPiecesGivesWhatOnePieceGives)
                 EXPECT_EQ(outcome([&] { return *detail::readAsciiOff("a.off", bad, chunk); }, mesh), msg);
         }
     }
+}
+
+// STL corners are welded in parallel (buckets by hash, then a running count):
+// the vertices must be the distinct corners in order of first appearance, as
+// one pass with a map gives them, with -0 and +0 kept apart.
+TEST_F(MeshIo, StlCornersWeldInOrderOfFirstAppearance)
+{
+    // A 300 x 300 grid of quads (two triangles each), corners shared by up to
+    // six triangles, in a shuffled triangle order; a few corners at -0.
+    std::vector<std::array<Vec3f, 3>> tris;
+    const int n = 300;
+    auto corner = [&](int i, int j) { return Vec3f{float(i) * 0.25f, float(j) == 7 ? -0.0f : float(j) * 0.5f, 1.0f}; };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            tris.push_back({corner(i, j), corner(i + 1, j), corner(i + 1, j + 1)});
+            tris.push_back({corner(i, j), corner(i + 1, j + 1), corner(i, j + 1)});
+        }
+    for (size_t k = 0; k < tris.size(); ++k) std::swap(tris[k], tris[(k * 7919) % tris.size()]);
+    tris.push_back({Vec3f{0, 0, 0}, Vec3f{-0.0f, 0, 0}, Vec3f{0, 0, 0}}); // -0 is another vertex
+    std::string stl(80, ' ');
+    put<uint32_t>(stl, uint32_t(tris.size()));
+    for (const auto& t : tris) {
+        for (int a = 0; a < 3; ++a) put<float>(stl, 0);
+        for (const Vec3f& c : t) put(stl, c.x), put(stl, c.y), put(stl, c.z);
+        put<uint16_t>(stl, 0);
+    }
+    // The reference: one pass with a map from the coordinates' bits.
+    std::map<std::array<uint32_t, 3>, uint32_t> ids;
+    std::vector<Vec3f> positions;
+    std::vector<std::array<uint32_t, 3>> triangles;
+    for (const auto& t : tris) {
+        std::array<uint32_t, 3> tri;
+        for (int c = 0; c < 3; ++c) {
+            std::array<uint32_t, 3> bits;
+            std::memcpy(bits.data(), &t[size_t(c)], 12);
+            const auto [it, added] = ids.try_emplace(bits, uint32_t(positions.size()));
+            if (added) positions.push_back(t[size_t(c)]);
+            tri[size_t(c)] = it->second;
+        }
+        triangles.push_back(tri);
+    }
+    const TriangleMesh m = loadMesh(write("grid.stl", stl));
+    ASSERT_EQ(m.positions.size(), positions.size());
+    EXPECT_EQ(m.triangles, triangles);
+    for (size_t i = 0; i < positions.size(); ++i) {
+        EXPECT_EQ(std::signbit(m.positions[i].x), std::signbit(positions[i].x)) << i;
+        EXPECT_EQ(m.positions[i].x, double(positions[i].x)) << i;
+        EXPECT_EQ(m.positions[i].y, double(positions[i].y)) << i;
+        EXPECT_EQ(m.positions[i].z, double(positions[i].z)) << i;
+    }
+    // A bad coordinate deep in the file names the first bad triangle.
+    std::string bad = stl;
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    std::memcpy(&bad[84 + 50 * 100000 + 12 + 20], &inf, 4);
+    std::memcpy(&bad[84 + 50 * 150000 + 12], &nan, 4);
+    expectError(write("bad.stl", bad), "triangle 100000 has a non-finite coordinate (inf)");
 }
