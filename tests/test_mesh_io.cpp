@@ -10,6 +10,7 @@
 #include <map>
 
 #include "obj_reader.h"
+#include "ply_reader.h"
 #include "off_reader.h"
 #include "openmesh_reader.h"
 #include "svo/core/error.h"
@@ -654,4 +655,65 @@ TEST_F(MeshIo, StlCornersWeldInOrderOfFirstAppearance)
     std::memcpy(&bad[84 + 50 * 100000 + 12 + 20], &inf, 4);
     std::memcpy(&bad[84 + 50 * 150000 + 12], &nan, 4);
     expectError(write("bad.stl", bad), "triangle 100000 has a non-finite coordinate (inf)");
+}
+
+// ASCII PLY bodies of `parallelFrom` bytes or more are read record by record
+// in parallel: the same mesh and the same errors as the one-piece reader,
+// with extra properties, lists and elements, faces before vertices, and
+// polygons (binary bodies, read in one piece, give the same mesh too).
+TEST_F(MeshIo, PlyInParallelGivesWhatOnePieceGives)
+{
+    for (const PlyBody::Kind kind : {PlyBody::Ascii, PlyBody::Little, PlyBody::Big}) {
+        SCOPED_TRACE(int(kind));
+        const int nv = 3000, nf = 2500;
+        PlyBody faces(kind), vertices(kind), extra(kind);
+        for (int f = 0; f < nf; ++f) {
+            const int n = 1 + f % 5;
+            faces(uint8_t(n));
+            for (int i = 0; i < n; ++i) faces(int32_t((f * 31 + i * 7) % nv));
+            faces(uint8_t(2))(int16_t(f))(int16_t(-f))(float(f) * 0.5f).endl(); // a list and a scalar to skip
+        }
+        for (int v = 0; v < nv; ++v) vertices(float(v) * 0.25f)(int16_t(v))(double(v) / 3.0)(uint8_t(v)).endl();
+        for (int k = 0; k < 10; ++k) extra(int32_t(k)).endl();
+        const std::string header = fmt::format(
+            "ply\nformat {} 1.0\ncomment faces first\nelement face {}\nproperty list uchar int vertex_indices\n"
+            "property list uchar short texcoord\nproperty float quality\nelement vertex {}\nproperty float x\n"
+            "property short y\nproperty double z\nproperty uchar red\nelement other 10\nproperty int tag\n"
+            "element empty 5\nend_header\n",
+            faces.format(), nf, nv);
+        const std::string text = header + faces.text + vertices.text + extra.text;
+        TriangleMesh one, both;
+        bool parallel = true;
+        ASSERT_EQ(outcome([&] { return detail::readPly("a.ply", text, size_t(1) << 40, &parallel); }, one), "");
+        EXPECT_FALSE(parallel);
+        EXPECT_EQ(one.positions.size(), size_t(nv));
+        ASSERT_EQ(outcome([&] { return detail::readPly("a.ply", text, 1, &parallel); }, both), "");
+        EXPECT_EQ(parallel, kind == PlyBody::Ascii) << "ASCII bodies are read in parallel, binary ones in one piece";
+        expectSameMesh(both, one);
+        // Errors read in one piece and named as it names them.
+        const size_t vertexStart = header.size() + faces.text.size();
+        std::string nanVertex = text, badIndex = text;
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        if (kind == PlyBody::Ascii) {
+            const size_t line = text.find('\n', vertexStart + vertices.text.size() / 2) + 1;
+            nanVertex.insert(line, "1 2 nan 4\n"); // and one line too many at the end
+            badIndex.replace(header.size(), 2, "3 0 1 9999 ");
+        } else {
+            // Vertex 1500's z, and face 0's first index, in the body's byte order.
+            auto put = [&](std::string& s, size_t at, const auto value) {
+                char b[sizeof value];
+                std::memcpy(b, &value, sizeof value);
+                if (kind == PlyBody::Big) std::reverse(b, b + sizeof value);
+                std::memcpy(&s[at], b, sizeof value);
+            };
+            put(nanVertex, vertexStart + 15 * 1500 + 6, nan);
+            put(badIndex, header.size() + 1, int32_t(9999));
+        }
+        for (const std::string& bad : {nanVertex, badIndex, text.substr(0, text.size() - 40)}) {
+            TriangleMesh mesh;
+            const std::string msg = outcome([&] { return detail::readPly("a.ply", bad, size_t(1) << 40); }, mesh);
+            EXPECT_NE(msg, "");
+            EXPECT_EQ(outcome([&] { return detail::readPly("a.ply", bad, 1); }, mesh), msg);
+        }
+    }
 }

@@ -2,6 +2,7 @@
 /// @file ply_reader.h (internal)
 /// PLY, ASCII and binary of either byte order, read directly: OpenMesh reads
 /// coordinates as float, even `double` properties.
+#include <cstddef>
 #include <string>
 
 #include "svo/core/mesh.h"
@@ -14,6 +15,11 @@ namespace svo::detail {
 /// properties and elements, lists included, are skipped. Throws svo::Error
 /// naming the file and the problem for a malformed header, a count the file
 /// cannot hold, a truncated body, a non-finite coordinate or a bad index.
-TriangleMesh readPly(const std::string& path, const std::string& bytes);
+/// An ASCII body of `parallelFrom` bytes or more is cut into records, one a
+/// line, read in parallel, with the same mesh and errors (anything that
+/// reading refuses, or a record that is not one line, sends the body to the
+/// one-piece path, which names it); `inParallel` says whether it was.
+TriangleMesh readPly(const std::string& path, const std::string& bytes, size_t parallelFrom = size_t(1) << 20,
+                     bool* inParallel = nullptr);
 
 } // namespace svo::detail

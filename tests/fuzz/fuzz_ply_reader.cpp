@@ -4,5 +4,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
+    sameInPieces(
+        data, size, [](const std::string& b) { return svo::detail::readPly("fuzz.ply", b, size_t(1) << 40); },
+        [](const std::string& b) { return svo::detail::readPly("fuzz.ply", b, 1); });
     return fuzzMeshReader(data, size, [](const std::string& bytes) { return svo::detail::readPly("fuzz.ply", bytes); });
 }
