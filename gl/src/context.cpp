@@ -127,24 +127,27 @@ struct Glx {
     /// windowing library such as GLFW, which dlopens it privately (so
     /// RTLD_DEFAULT misses it). Looked up again until found, since the
     /// window may be opened after svo's first GL call.
-    static const Glx& get()
+    static Glx get()
     {
+        static std::mutex mutex;
         static Glx found;
+        const std::lock_guard<std::mutex> lock(mutex);
         if (found.getContext) return found;
-        static const Glx none;
-        Glx g;
-        void* from = RTLD_DEFAULT;
-        if (!dlsym(from, "glXGetCurrentContext"))
+        void* from = RTLD_DEFAULT; // a null handle in glibc: the global scope
+        if (!dlsym(RTLD_DEFAULT, "glXGetCurrentContext")) {
+            from = nullptr;
             for (const char* name : {"libGLX.so.0", "libGL.so.1", "libGL.so"})
                 if ((from = dlopen(name, RTLD_LAZY | RTLD_NOLOAD))) break; // a reference only if already loaded
-        if (!from) return none;
+            if (!from) return {};
+        }
+        Glx g;
         g.getContext = reinterpret_cast<GetContext>(dlsym(from, "glXGetCurrentContext"));
         g.getDisplay = reinterpret_cast<GetDisplay>(dlsym(from, "glXGetCurrentDisplay"));
         g.getDrawable = reinterpret_cast<GetDrawable>(dlsym(from, "glXGetCurrentDrawable"));
         g.getReadDrawable = reinterpret_cast<GetDrawable>(dlsym(from, "glXGetCurrentReadDrawable"));
         g.makeContextCurrent = reinterpret_cast<MakeContextCurrent>(dlsym(from, "glXMakeContextCurrent"));
         if (!g.getContext || !g.getDisplay || !g.getDrawable || !g.getReadDrawable || !g.makeContextCurrent)
-            return none;
+            return {};
         found = g;
         return found;
     }
