@@ -50,6 +50,8 @@ struct CornerHash {
 void weld(const std::vector<Vec3d>& corners, TriangleMesh& mesh)
 {
     const size_t n = corners.size();
+    if (n >= UINT32_MAX) // corners are numbered in 32 bits below
+        throw Error(fmt::format("{}: {} triangles are more than svo reads from one STL file", mesh.source, n / 3));
     constexpr size_t kBuckets = 256;
     std::vector<uint64_t> hashes(n);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const auto& r) {
