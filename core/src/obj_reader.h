@@ -7,6 +7,7 @@
 #include <string>
 
 #include "svo/core/mesh.h"
+#include "text_chunks.h"
 
 namespace svo::detail {
 
@@ -20,7 +21,7 @@ namespace svo::detail {
 /// same mesh, warnings and errors (an error, or a relative index, which needs
 /// the vertices before its piece, sends the file to the one-piece path).
 /// `inPieces`, when set, gets how many pieces gave the mesh (0: read as one).
-TriangleMesh readObj(const std::string& path, const std::string& bytes, size_t chunkBytes = size_t(1) << 20,
+TriangleMesh readObj(const std::string& path, const std::string& bytes, size_t chunkBytes = kTextChunkBytes,
                      size_t* inPieces = nullptr);
 
 } // namespace svo::detail

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "svo/core/mesh.h"
+#include "text_chunks.h"
 
 namespace svo::detail {
 
@@ -19,6 +20,6 @@ namespace svo::detail {
 /// one-piece path, which names it).
 /// `inPieces`, when set, gets how many pieces gave the body (0: read as one).
 std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::string& bytes,
-                                         size_t chunkBytes = size_t(1) << 20, size_t* inPieces = nullptr);
+                                         size_t chunkBytes = kTextChunkBytes, size_t* inPieces = nullptr);
 
 } // namespace svo::detail

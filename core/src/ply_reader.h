@@ -6,6 +6,7 @@
 #include <string>
 
 #include "svo/core/mesh.h"
+#include "text_chunks.h"
 
 namespace svo::detail {
 
@@ -19,7 +20,7 @@ namespace svo::detail {
 /// line, read in parallel, with the same mesh and errors (anything that
 /// reading refuses, or a record that is not one line, sends the body to the
 /// one-piece path, which names it); `inParallel` says whether it was.
-TriangleMesh readPly(const std::string& path, const std::string& bytes, size_t parallelFrom = size_t(1) << 20,
+TriangleMesh readPly(const std::string& path, const std::string& bytes, size_t parallelFrom = kTextChunkBytes,
                      bool* inParallel = nullptr);
 
 } // namespace svo::detail

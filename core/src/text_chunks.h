@@ -8,8 +8,9 @@
 
 namespace svo::detail {
 
-/// Pieces of about `bytes` each that the readers parse in parallel; a file of
-/// fewer than two pieces is read by one thread (their serial path).
+/// Pieces of about this many bytes are what the readers parse in parallel
+/// (their default `chunkBytes`); a file of fewer than two pieces is read by
+/// one thread, on their one-piece path.
 constexpr size_t kTextChunkBytes = size_t(1) << 20;
 
 /// `text` cut into consecutive pieces of at least `bytes` bytes, each ending
