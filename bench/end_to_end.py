@@ -125,7 +125,7 @@ def table(results):
         head += ["cuda_voxelizer kernel / total / process ms", "its total / svo", "its process / svo"]
     head += ["svo: longest stages (wall ms)", "svo: process start / exit ms"]
     lines = [f"End to end (mesh file to .vdb, new processes, median of {results['runs']}) on {results['device']}; "
-             f"svo {results['svo_version']}. Ratios: peer / svo's best; above 1, svo is faster.", "",
+             f"{results['svo_version']}. Ratios: peer / svo's best; above 1, svo is faster.", "",
              "| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in results["rows"]:
         cells = [r["scene"], f"{r['res']}³"]
