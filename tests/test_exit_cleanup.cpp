@@ -16,37 +16,49 @@ namespace fs = std::filesystem;
 
 namespace {
 
-pid_t startSleeper()
-{
-    const pid_t pid = fork();
-    if (pid == 0) {
-        execlp("sleep", "sleep", "30", static_cast<char*>(nullptr));
-        _exit(127);
-    }
-    return pid;
-}
-
 void writeFile(const std::string& path, const std::string& text)
 {
     std::ofstream(path) << text;
 }
+
+/// A child (`sleep 30`) registered for the clean-up, with a lock file and a
+/// socket file in `tmp` set as its files. The lock names `lockOwner`, or the
+/// child itself when 0, as an X server writes it: the pid right-aligned in
+/// 10 columns.
+struct RegisteredChild {
+    RegisteredChild(const svo::test::TempDir& tmp, pid_t lockOwner = 0)
+    {
+        pid = fork();
+        if (pid == 0) {
+            execlp("sleep", "sleep", "30", static_cast<char*>(nullptr));
+            _exit(127);
+        }
+        slot = pid > 0 ? svo::registerChild(pid) : -1;
+        const std::string owner = std::to_string(lockOwner ? lockOwner : pid);
+        writeFile(tmp.path("lock"), std::string(10 - owner.size(), ' ') + owner + "\n");
+        writeFile(tmp.path("socket"), "");
+        svo::setChildFiles(slot, tmp.path("lock").c_str(), tmp.path("socket").c_str());
+    }
+    /// Killed outright, with no chance to remove anything itself, and reaped.
+    void kill() const
+    {
+        ::kill(pid, SIGKILL);
+        waitpid(pid, nullptr, 0);
+    }
+    pid_t pid = -1;
+    int slot = -1;
+};
 
 } // namespace
 
 TEST(ExitCleanup, AChildKilledBeforeItsCleanUpHasItsFilesRemoved)
 {
     svo::test::TempDir tmp("exit-cleanup");
-    const pid_t pid = startSleeper();
-    ASSERT_GT(pid, 0);
-    const int slot = svo::registerChild(pid);
-    ASSERT_GE(slot, 0);
-    // As an X server writes it: the pid right-aligned in 10 columns.
-    writeFile(tmp.path("lock"), std::string(10 - std::to_string(pid).size(), ' ') + std::to_string(pid) + "\n");
-    writeFile(tmp.path("socket"), "");
-    svo::setChildFiles(slot, tmp.path("lock").c_str(), tmp.path("socket").c_str());
-    kill(pid, SIGKILL); // no chance to remove anything itself
-    waitpid(pid, nullptr, 0);
-    svo::releaseChild(slot);
+    const RegisteredChild child(tmp);
+    ASSERT_GT(child.pid, 0);
+    ASSERT_GE(child.slot, 0);
+    child.kill();
+    svo::releaseChild(child.slot);
     EXPECT_FALSE(fs::exists(tmp.path("lock")));
     EXPECT_FALSE(fs::exists(tmp.path("socket")));
 }
@@ -54,17 +66,12 @@ TEST(ExitCleanup, AChildKilledBeforeItsCleanUpHasItsFilesRemoved)
 TEST(ExitCleanup, FilesOfAnotherProcessAreKept)
 {
     svo::test::TempDir tmp("exit-cleanup");
-    const pid_t pid = startSleeper();
-    ASSERT_GT(pid, 0);
-    const int slot = svo::registerChild(pid);
-    ASSERT_GE(slot, 0);
     // The lock of another server (this process's pid), e.g. one that took the display first.
-    writeFile(tmp.path("lock"), "      " + std::to_string(getpid()) + "\n");
-    writeFile(tmp.path("socket"), "");
-    svo::setChildFiles(slot, tmp.path("lock").c_str(), tmp.path("socket").c_str());
-    kill(pid, SIGKILL);
-    waitpid(pid, nullptr, 0);
-    svo::releaseChild(slot);
+    const RegisteredChild child(tmp, getpid());
+    ASSERT_GT(child.pid, 0);
+    ASSERT_GE(child.slot, 0);
+    child.kill();
+    svo::releaseChild(child.slot);
     EXPECT_TRUE(fs::exists(tmp.path("lock")));
     EXPECT_TRUE(fs::exists(tmp.path("socket")));
 }
@@ -72,21 +79,17 @@ TEST(ExitCleanup, FilesOfAnotherProcessAreKept)
 TEST(ExitCleanup, TheInterruptCleanUpStopsTheChildAndRemovesWhatItLeft)
 {
     svo::test::TempDir tmp("exit-cleanup");
-    const pid_t pid = startSleeper();
-    ASSERT_GT(pid, 0);
-    const int slot = svo::registerChild(pid);
-    ASSERT_GE(slot, 0);
-    writeFile(tmp.path("lock"), std::to_string(pid) + "\n");
-    writeFile(tmp.path("socket"), "");
-    svo::setChildFiles(slot, tmp.path("lock").c_str(), tmp.path("socket").c_str());
+    const RegisteredChild child(tmp);
+    ASSERT_GT(child.pid, 0);
+    ASSERT_GE(child.slot, 0);
     writeFile(tmp.path("out.tmp"), "partial");
     const int temporary = svo::registerTemporary(tmp.path("out.tmp").c_str());
     ASSERT_GE(temporary, 0);
     svo::cleanUpForExit(); // what the signal handler runs: SIGTERM, wait, reap
-    EXPECT_EQ(waitpid(pid, nullptr, WNOHANG), -1); // already reaped by the clean-up
+    EXPECT_EQ(waitpid(child.pid, nullptr, WNOHANG), -1); // already reaped by the clean-up
     EXPECT_FALSE(fs::exists(tmp.path("lock")));
     EXPECT_FALSE(fs::exists(tmp.path("socket")));
     EXPECT_FALSE(fs::exists(tmp.path("out.tmp")));
     svo::releaseTemporary(temporary);
-    svo::releaseChild(slot);
+    svo::releaseChild(child.slot);
 }
