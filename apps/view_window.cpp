@@ -505,6 +505,12 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
             st.in.layers.light.mode = gl::Illumination::Mode::Off;
             st.view->draw(st.orbit.camera, st.width, st.height, st.in.layers);
         }
+        // A CPU rasterizer's loop limit cut some rays short: the frame is
+        // drawn as it came out, and the panel says so.
+        if (const uint32_t cut = st.view->cutPixels())
+            st.message = fmt::format("{} pixels' rays were cut short by the driver's loop limit; "
+                                     "fewer cones, a wider step or a coarser grid avoid it",
+                                     cut);
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         glfwSwapBuffers(ws.window);
 

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <random>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "svo/core/default_scene.h"
@@ -473,4 +474,60 @@ TEST(Lighting, BadLightingIsAClearError)
     Illumination small = ok;
     small.volumeResolution = 64;
     EXPECT_NE(message(wide, small).find("at least 128"), std::string::npos) << message(wide, small);
+}
+
+/// llvmpipe ends every loop of an invocation, silently, once they have run
+/// 65,535 iterations in all (ContextInfo::loopLimit). A picture whose rays or
+/// light injection passed that budget is refused, not drawn with voxels,
+/// occlusion or light missing. Two cases that pass it on llvmpipe: cones of
+/// 1° stepping a hundredth of their width for 2000 voxels, and a lighting
+/// volume of 64 texels over the Cornell box at 256³ (4³ voxels a texel, each
+/// marching its shadow ray). On a GPU there is no limit and both draw; the
+/// defaults draw everywhere.
+TEST(Lighting, LoopsACpuRasterizerCutShortAreRefused)
+{
+    const bool limited = context().info().loopLimit != 0;
+    const svo::TriangleMesh mesh = svo::cornellBox();
+    svo::Voxelizer voxelizer;
+    svo::VoxelizeOptions options;
+    options.attributes = svo::kNormals;
+    svo::gl::ViewCamera camera;
+    camera.eye = {0, 1, 3.2};
+    camera.target = {0, 1, 0};
+    camera.fovYDegrees = 36;
+    auto refusedOrDrawn = [&](const svo::gl::OctreeView& view, const svo::gl::ViewLayers& layers,
+                              const char* expected) {
+        try {
+            const svo::gl::Image image = view.render(camera, 48, 48, layers);
+            EXPECT_FALSE(limited) << "drawn on " << context().info().renderer;
+            EXPECT_EQ(view.cutPixels(), 0u);
+        } catch (const svo::Error& e) {
+            EXPECT_TRUE(limited) << e.what();
+            EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+        }
+    };
+
+    const svo::Octree coarse = voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{64, 0}), options);
+    svo::gl::OctreeView view(context(), coarse);
+    svo::gl::ViewLayers layers;
+    layers.outlines = false;
+    layers.ao.cones = 7;
+    layers.ao.only = true;
+    (void)view.render(camera, 48, 48, layers);
+    EXPECT_EQ(view.cutPixels(), 0u);
+    layers.ao.apertureDegrees = 1;
+    layers.ao.step = 0.01;
+    layers.ao.distance = 2000;
+    refusedOrDrawn(view, layers, "ended the rays of");
+    if (limited) EXPECT_GT(view.cutPixels(), 0u);
+
+    const svo::Octree fine = voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{256, 0}), options);
+    view.setOctree(fine);
+    svo::gl::ViewLayers lit;
+    lit.outlines = false;
+    lit.light.mode = Illumination::Mode::Direct;
+    lit.light.lights = svo::gl::defaultLights(svo::gl::gridWorldBox(fine.grid), true);
+    (void)view.render(camera, 48, 48, lit);
+    lit.light.volumeResolution = 64;
+    refusedOrDrawn(view, lit, "ended the light injection of");
 }

@@ -13,6 +13,7 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 #include "gpu_layout.h"
 #include "view_octree.glsl"
 #include "view_lights.glsl"
+#include "loop_cut.glsl"
 
 layout(binding = 0, rgba8) writeonly restrict uniform image3D uOpacityOut;
 layout(binding = 1, rgba16f) writeonly restrict uniform image3D uRadianceOut;
@@ -23,10 +24,9 @@ uniform int uTexelCells;  // voxels per texel edge: 1, 2, 4 or 8
 uniform uint uDirectional; // 1: write the lit side
 uniform uint uLit;         // 0: opacity only
 
-void main()
+/// One texel of level 0, into the images.
+void injectTexel(ivec3 texel)
 {
-    ivec3 texel = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(texel, uBaseSize))) return;
     ivec3 first = texel * uTexelCells;
     vec4 opacity = vec4(0.0), radiance = vec4(0.0);
     vec3 litSide = vec3(0.0);
@@ -65,4 +65,12 @@ void main()
     if (uLit == 0u) return;
     imageStore(uRadianceOut, texel, radiance);
     if (uDirectional != 0u) imageStore(uLitSideOut, texel, vec4(litSide, 0.0));
+}
+
+void main()
+{
+    ivec3 texel = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(texel, uBaseSize))) return;
+    injectTexel(texel);
+    countIfLoopsWereCut();
 }

@@ -10,6 +10,7 @@
 // into the framebuffer.
 #include "gpu_layout.h"
 #include "view_octree.glsl"
+#include "loop_cut.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 // rgb = the pixel's colour; a = its window depth, or -1 where the ray hits no voxel.
@@ -50,10 +51,9 @@ uniform float uGamma;    // ... to the power 1 / gamma
 uniform vec3 uSpecular;         // glossy reflectance (Illumination::specular)
 uniform float uSpecularTanHalf; // tan of half the glossy cone's aperture
 
-void main()
+/// One pixel's ray, shaded, into uPixels.
+void castRay(ivec2 pixel)
 {
-    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(vec2(pixel), uViewport))) return;
     vec2 ndc = (vec2(pixel) + 0.5) / uViewport * 2.0 - 1.0;
     vec4 a = uInverseViewProjection * vec4(ndc, -1.0, 1.0);
     vec4 b = uInverseViewProjection * vec4(ndc, 1.0, 1.0);
@@ -114,4 +114,12 @@ void main()
     }
     vec4 clip = uViewProjection * vec4(p, 1.0);
     imageStore(uPixels, pixel, vec4(color.rgb, clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0)));
+}
+
+void main()
+{
+    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(vec2(pixel), uViewport))) return;
+    castRay(pixel);
+    countIfLoopsWereCut();
 }

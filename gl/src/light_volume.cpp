@@ -249,10 +249,19 @@ void fillVolume(const Context& context, const ViewBuffers& o, const Illumination
     const bool sixWay = l && l->directional && levels > 1;
     if (sixWay) v.litSide.bindImage(2, 0, GL_WRITE_ONLY, GL_RGBA8_SNORM);
     inject.set("uDirectional", sixWay ? 1u : 0u);
+    const LoopCutCounter loopCut;
+    loopCut.arm(inject, SVO_BIND_VIEW_LOOP_CUT, context.info().loopLimit);
     inject.use();
     glDispatchCompute(GLuint((v.size[0] + 3) / 4), GLuint((v.size[1] + 3) / 4), GLuint((v.size[2] + 3) / 4));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     checkGl(l ? "injecting light into the lighting volume" : "filling the opacity volume");
+    // A texel marches a shadow ray per voxel and light: on a CPU rasterizer
+    // a coarse texel of a large grid can spend the loop budget.
+    if (const uint32_t cut = loopCut.count())
+        throw Error(fmt::format("lighting volume: {} ended the light injection of {} texels early (its limit of {} "
+                                "loop iterations an invocation), so their light would be wrong; light on a GPU, or "
+                                "a coarser grid or a finer lighting volume (fewer voxels a texel)",
+                                context.info().renderer, cut, context.info().loopLimit));
 
     // The mip-map, level by level; with six-way radiance, each direction's
     // level from the level below (level 1 from level 0's isotropic radiance).

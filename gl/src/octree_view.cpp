@@ -260,6 +260,9 @@ struct OctreeView::Impl {
     mutable std::optional<LightVolumeTextures> light;
     /// The voxel pass's pixels (view_voxels.comp), kept while the picture's size stays.
     mutable std::optional<Texture2D> pixels;
+    /// The voxel pass's pixels whose loops the driver cut short, last frame.
+    LoopCutCounter loopCut;
+    mutable uint32_t cutPixels = 0;
 
     const Texture2D& pixelImage(int width, int height) const
     {
@@ -439,6 +442,7 @@ void checkSize(int width, int height)
 void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCamera& camera, int width, int height,
                 const ViewLayers& layers)
 {
+    v.cutPixels = 0;
     const CellCamera cam = cellCamera(v.grid, camera, width, height);
     const auto viewProjection = toFloat(cam.viewProjection);
     const auto inverseViewProjection = toFloat(cam.inverseViewProjection);
@@ -520,9 +524,11 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         // framebuffer by a full-screen triangle (view_pixels.frag).
         const Texture2D& pixels = v.pixelImage(width, height);
         pixels.bindImage(SVO_IMAGE_VIEW_PIXELS, GL_WRITE_ONLY, GL_RGBA32F);
+        v.loopCut.arm(p, SVO_BIND_VIEW_LOOP_CUT, context.info().loopLimit);
         p.dispatch((uint32_t(width) + 7) / 8, (uint32_t(height) + 7) / 8);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
         checkGl("casting the voxels' rays");
+        v.cutPixels = v.loopCut.count();
         const Program& copy = context.program({"view_fullscreen.vert", "view_pixels.frag"});
         pixels.bindTexture(SVO_UNIT_VIEW_PIXELS);
         copy.use();
@@ -576,7 +582,20 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
     finish();
 }
 
+/// Refuses a frame whose rays the driver cut short (loop_cut.glsl): its
+/// picture would be missing voxels or occlusion without a sign of it.
+void checkLoopCut(const Context& context, const OctreeView::Impl& v)
+{
+    if (v.cutPixels == 0) return;
+    throw Error(fmt::format("octree view: {} ended the rays of {} pixels early (its limit of {} loop iterations an "
+                            "invocation), so the picture would be incomplete; draw on a GPU, or with fewer cones, "
+                            "a wider cone step or a coarser grid",
+                            context.info().renderer, v.cutPixels, context.info().loopLimit));
+}
+
 } // namespace
+
+uint32_t OctreeView::cutPixels() const { return impl_->cutPixels; }
 
 void OctreeView::draw(const ViewCamera& camera, int width, int height, const ViewLayers& layers) const
 {
@@ -597,6 +616,7 @@ std::vector<OctreeView::FrameTime> OctreeView::timeFrames(const ViewCamera& came
     Target target(width, height);
     glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.get());
     drawLayers(context_, *impl_, camera, width, height, layers); // programs made, caches warm: not timed
+    checkLoopCut(context_, *impl_);
     glFinish();
     std::vector<TimerQuery> queries(static_cast<size_t>(frames));
     std::vector<FrameTime> times(queries.size());
@@ -631,6 +651,7 @@ Image OctreeView::render(const ViewCamera& camera, int width, int height, const 
     Target target(width, height);
     glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.get());
     drawLayers(context_, *impl_, camera, width, height, layers);
+    checkLoopCut(context_, *impl_);
 
     Image image;
     image.width = width;

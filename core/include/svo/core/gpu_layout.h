@@ -146,6 +146,7 @@ SVO_CONST(uint) kBitmapBlockShift = 9u; /* 512 bits a block */
 #define SVO_BIND_VIEW_NORMALS 7     /* lighting: the normal channel, 3 floats per voxel, voxel order */
 #define SVO_BIND_VIEW_ALBEDO 8      /* lighting: the colour channel, 3 floats per voxel (or unused) */
 #define SVO_BIND_VIEW_DIRECT 9      /* lighting: per voxel, the irradiance on its normal's side and on the other, packed halves (view_lights.glsl) */
+#define SVO_BIND_VIEW_LOOP_CUT 10   /* uint: invocations whose loops a CPU rasterizer cut short (loop_cut.glsl) */
 /* Lighting volume (gl/src/light_volume.cpp): texture and image units. */
 #define SVO_UNIT_LIGHT_OPACITY 0  /* texture: rgb = opacity seen along x, y, z */
 #define SVO_UNIT_LIGHT_RADIANCE 1 /* texture: rgb = radiance x coverage, a = coverage */
@@ -267,7 +268,7 @@ static_assert(distinctSlots({SVO_UNIT_LIGHT_OPACITY, SVO_UNIT_LIGHT_RADIANCE, SV
 static_assert(distinctSlots({SVO_BIND_VIEW_NODES, SVO_BIND_VIEW_BRICKS, SVO_BIND_VIEW_ORIGINS,
                              SVO_BIND_VIEW_VOXEL_START, SVO_BIND_VIEW_ATTRIBUTE, SVO_BIND_VIEW_OPACITY,
                              SVO_BIND_VIEW_LIGHTS, SVO_BIND_VIEW_NORMALS, SVO_BIND_VIEW_ALBEDO,
-                             SVO_BIND_VIEW_DIRECT}));
+                             SVO_BIND_VIEW_DIRECT, SVO_BIND_VIEW_LOOP_CUT}));
 static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_FIELD_ITEMS,
                              SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
                              SVO_BIND_FIELD_FLIPS, SVO_BIND_FIELD_COUNTERS}));

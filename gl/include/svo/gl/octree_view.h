@@ -261,13 +261,15 @@ public:
     /// camera (eye at target, up along the view, height or fov not positive),
     /// a voxel colour whose channel the octree lacks, AO or lighting options
     /// outside their ranges, lighting on an octree without a normal channel,
-    /// or a GL error.
+    /// a GL error, or rays or light injection that a CPU rasterizer's loop
+    /// limit cut short (ContextInfo::loopLimit; see cutPixels()).
     Image render(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
 
     /// Draws one frame into the framebuffer bound now (a window's, when the
     /// Context adopted the window's context), over the viewport (0, 0, width,
     /// height), clearing it first. Leaves depth testing off and no program or
-    /// vertex array bound. Throws as render() does.
+    /// vertex array bound. Throws as render() does, except that rays cut
+    /// short are drawn as they are and counted in cutPixels().
     void draw(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
 
     /// Times `frames` frames drawn offscreen one after another, after one
@@ -289,6 +291,13 @@ public:
     /// render() does for lighting options out of range or a missing normal
     /// channel, and when the GPU cannot hold the volume.
     LightVolume readLightVolume(const Illumination& light) const;
+
+    /// The pixels of the last frame whose rays (march, cones) a CPU
+    /// rasterizer's loop limit cut short (ContextInfo::loopLimit: llvmpipe
+    /// ends all loops of an invocation after 65,535 iterations in all,
+    /// silently); always 0 on GPUs. render() and timeFrames() refuse such a
+    /// frame; a window drawn with draw() should say so.
+    uint32_t cutPixels() const;
 
     const GridSpec& grid() const;
     uint32_t brickLevel() const;
