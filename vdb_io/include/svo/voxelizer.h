@@ -311,7 +311,10 @@ public:
     /// @param exteriorBand, interiorBand  band half widths in voxels, each >= 1
     /// @throw svo::Error as meshToMask, and for a band under 1 voxel or not
     ///        finite, a transform without uniform scale, the CPU backend (this
-    ///        is GPU work), or a winding accuracy that is not positive.
+    ///        is GPU work), a winding accuracy that is not positive, or parity
+    ///        signs asked for a mesh with holes (boundary edges: a column
+    ///        through a hole would flip every sign beyond it; winding and Auto
+    ///        sign such meshes).
     template <typename PointT>
     openvdb::FloatGrid::Ptr meshToLevelSet(const std::vector<PointT>& points,
                                            const std::vector<openvdb::Vec3I>& triangles,
