@@ -338,20 +338,47 @@ auto runField(const std::string& backend, F call)
     }
 }
 
+/// The sign method a call used, and why, as the CLI writes it to a file:
+/// grid metadata "svo:sign" (empty for unsigned fields).
+void tagSign(openvdb::GridBase& grid, const svo::VoxelizeStats& stats)
+{
+    if (!stats.sign.empty()) grid.insertMeta("svo:sign", openvdb::StringMetadata(stats.sign));
+}
+
 py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                         std::optional<double> resolution, std::optional<double> voxelSize,
                         const py::object& transform, double exteriorBand, double interiorBand, bool unsignedDistance,
-                        const std::string& sign, double windingAccuracy, const std::string& backend)
+                        bool closestTriangle, const std::string& sign, double windingAccuracy,
+                        const std::string& backend)
 {
     svo::LevelSetOptions ls;
     ls.exteriorBand = exteriorBand;
     ls.interiorBand = interiorBand;
     ls.unsignedDistance = unsignedDistance;
+    ls.closestTriangle = closestTriangle;
     ls.sign = toSign(sign, windingAccuracy);
     const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
-    const openvdb::GridPtrVec grids =
-        runField(backend, [&](const svo::VoxelizeOptions& o) { return v.levelSet(r.mesh, r.grid, ls, o, r.xform); });
-    return toPython(grids.front());
+    svo::VoxelizeStats stats;
+    const openvdb::GridPtrVec grids = runField(backend, [&](svo::VoxelizeOptions o) {
+        o.stats = &stats;
+        return v.levelSet(r.mesh, r.grid, ls, o, r.xform);
+    });
+    tagSign(*grids.front(), stats);
+    if (!closestTriangle) return toPython(grids.front());
+    // pyopenvdb has no Int32Grid: the band's voxels and their triangles as arrays.
+    const auto closest = openvdb::gridPtrCast<openvdb::Int32Grid>(grids.at(1));
+    const auto n = py::ssize_t(closest->activeVoxelCount());
+    py::array_t<int32_t> ijk({n, py::ssize_t(3)});
+    py::array_t<int32_t> ids(n);
+    auto c = ijk.mutable_unchecked<2>();
+    auto id = ids.mutable_unchecked<1>();
+    py::ssize_t i = 0;
+    for (auto it = closest->cbeginValueOn(); it; ++it, ++i) {
+        const openvdb::Coord xyz = it.getCoord();
+        c(i, 0) = xyz.x(), c(i, 1) = xyz.y(), c(i, 2) = xyz.z();
+        id(i) = *it;
+    }
+    return py::make_tuple(toPython(grids.front()), ijk, ids);
 }
 
 py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
@@ -359,13 +386,16 @@ py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::ha
                      const std::string& sign, double windingAccuracy, const std::string& backend)
 {
     const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
-    const auto mask = runField(backend, [&](const svo::VoxelizeOptions& o) {
+    svo::VoxelizeStats stats;
+    const auto mask = runField(backend, [&](svo::VoxelizeOptions o) {
+        o.stats = &stats;
         return v.solid(r.mesh, r.grid, o, toSign(sign, windingAccuracy), r.xform);
     });
     // pyopenvdb has no MaskGrid: the same topology as a BoolGrid, true on it.
     auto out = openvdb::BoolGrid::create(openvdb::BoolTree::Ptr(new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
     out->setTransform(mask->transform().copy());
     out->setName(mask->getName());
+    tagSign(*out, stats);
     return toPython(out);
 }
 
@@ -725,20 +755,23 @@ PYBIND11_MODULE(_svo, m)
         .def("level_set", &levelSetWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
              py::arg("transform") = py::none(), py::arg("exterior_band") = 3.0, py::arg("interior_band") = 3.0,
-             py::arg("unsigned") = false, py::arg("sign") = "auto", py::arg("winding_accuracy") = 1.5,
-             py::arg("backend") = "auto",
+             py::arg("unsigned") = false, py::arg("closest_triangle") = false, py::arg("sign") = "auto",
+             py::arg("winding_accuracy") = 1.5, py::arg("backend") = "auto",
              "A narrow-band signed distance field on the GPU, as OpenVDB's meshToLevelSet: a FloatGrid\n"
              "'surface' of class GRID_LEVEL_SET, world-unit distances, negative inside, exact to float\n"
              "rounding. Bands are in voxels (>= 1). unsigned=True gives unsigned distances (grid 'distance')\n"
-             "for any mesh. sign: 'auto' (parity for closed, consistently oriented meshes, else the winding\n"
-             "number), 'parity' or 'winding'; winding_accuracy: tree nodes farther than this many radii\n"
+             "for any mesh. closest_triangle=True returns (grid, ijk, triangle): the band's voxels, an (N, 3)\n"
+             "int32 array of index coordinates, and each one's nearest triangle, (N,) int32. sign: 'auto' (parity for closed, consistently oriented meshes, else the\n"
+             "winding number), 'parity' (refused for a mesh with holes) or 'winding'; the grid's metadata\n"
+             "'svo:sign' says which ran and why. winding_accuracy: tree nodes farther than this many radii\n"
              "use their far-field expansion (default 1.5). Grid arguments as voxelize(); a transform must have uniform scale.")
         .def("solid", &solidWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
              py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
              py::arg("transform") = py::none(), py::arg("sign") = "auto", py::arg("winding_accuracy") = 1.5,
              py::arg("backend") = "auto",
              "The solid a mesh bounds, as a BoolGrid 'solid': the surface voxels and every voxel\n"
-             "whose centre is inside; regions wholly inside are active tiles. Arguments as level_set().")
+             "whose centre is inside; regions wholly inside are active tiles; metadata 'svo:sign' as level_set().\n"
+             "Arguments as level_set().")
         .def("device", &svo::Voxelizer::deviceDescription, "The GPU's vendor, renderer and version.");
 
     py::class_<PyOctree>(m, "Octree",

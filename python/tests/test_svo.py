@@ -404,6 +404,31 @@ def test_level_set_of_a_tetrahedron_matches_the_analytic_distance(voxelizer):
     assert unsigned.name == "distance" and unsigned.activeVoxelCount() > 0
 
 
+def test_level_set_says_its_sign_and_gives_closest_triangles(voxelizer):
+    # Two squares, one at z = 0 (triangles 0, 1) and one at z = 1 (2, 3): a
+    # band of 2 voxels of 0.05 around each, so every band voxel's closest
+    # triangle is on its own square, and its distance is its height above it.
+    v = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+    t = [(0, 1, 2), (0, 2, 3), (4, 5, 6), (4, 6, 7)]
+    h = 0.05
+    grid, ijk, ids = voxelizer.level_set(v, t, voxel_size=h, exterior_band=2, unsigned=True, closest_triangle=True)
+    assert ijk.shape == (grid.activeVoxelCount(), 3) and ids.shape == (len(ijk),)
+    assert as_set(ijk) == as_set(svo.active_voxels(grid))
+    z = ijk[:, 2] * h
+    assert np.all(np.isin(ids[z < 0.5], [0, 1])) and np.all(np.isin(ids[z > 0.5], [2, 3]))
+    over = (ijk[:, 0] * h > 0.01) & (ijk[:, 0] * h < 0.99) & (ijk[:, 1] * h > 0.01) & (ijk[:, 1] * h < 0.99)
+    values = np.array([grid.getConstAccessor().getValue(tuple(int(c) for c in p)) for p in ijk[over]])
+    assert over.sum() > 1000
+    assert np.allclose(values, np.minimum(np.abs(z[over]), np.abs(z[over] - 1)), atol=1e-6)
+    # Which sign method ran, and why, is the grid's metadata.
+    tv, tt = tetrahedron()
+    assert voxelizer.level_set(tv, tt, resolution=24)["svo:sign"].startswith("parity: the mesh is closed")
+    assert voxelizer.level_set(tv, tt[:3], resolution=24)["svo:sign"] == \
+        "winding: the mesh is not closed (3 boundary edges)"
+    with pytest.raises(RuntimeError, match="parity signs need a mesh without holes"):
+        voxelizer.level_set(tv, tt[:3], resolution=24, sign="parity")
+
+
 def test_solid_of_a_tetrahedron_is_its_inside_and_surface(voxelizer):
     v, t = tetrahedron()
     solid = voxelizer.solid(v, t, resolution=40)
@@ -411,9 +436,13 @@ def test_solid_of_a_tetrahedron_is_its_inside_and_surface(voxelizer):
     filled, shell = as_set(svo.active_voxels(solid)), as_set(svo.active_voxels(surface))
     assert shell < filled and len(filled) > 1.5 * len(shell)
     # Three faces of four: the winding number (auto, for an open mesh) still
-    # finds the inside, away from the missing face; parity is only warned about.
-    opened = as_set(svo.active_voxels(voxelizer.solid(v, t[:3], resolution=40)))
+    # finds the inside, away from the missing face; parity is refused.
+    opened_grid = voxelizer.solid(v, t[:3], resolution=40)
+    assert opened_grid["svo:sign"] == "winding: the mesh is not closed (3 boundary edges)"
+    opened = as_set(svo.active_voxels(opened_grid))
     assert opened <= filled and len(opened) > 0.8 * len(filled)
+    with pytest.raises(RuntimeError, match="parity signs need a mesh without holes"):
+        voxelizer.solid(v, t[:3], resolution=40, sign="parity")
     with pytest.raises(RuntimeError, match="winding accuracy"):
         voxelizer.solid(v, t[:3], resolution=40, sign="winding", winding_accuracy=0)
     with pytest.raises(ValueError, match="sign"):
