@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <string_view>
+#include <utility>
 #include <fmt/format.h>
 
 #include "svo/core/atomic_file.h"
@@ -241,9 +243,22 @@ std::string printable(const std::string& text)
     return out;
 }
 
+std::string inFlags(std::string message)
+{
+    static const std::pair<std::string_view, std::string_view> names[] = {
+        {"AmbientOcclusion::volumeResolution", "--light-volume"},
+        {"AmbientOcclusion::Source::Octree", "--ao-source octree"},
+        {"the normal attribute channel, svo::kNormals", "--attributes normal"},
+    };
+    for (const auto& [library, flag] : names)
+        for (size_t at = message.find(library); at != std::string::npos; at = message.find(library, at + flag.size()))
+            message.replace(at, library.size(), flag);
+    return message;
+}
+
 void printWarnings(const std::vector<std::string>& warnings)
 {
-    for (const auto& w : warnings) fmt::print(stderr, "svo: warning: {}\n", printable(w));
+    for (const auto& w : warnings) fmt::print(stderr, "svo: warning: {}\n", printable(inFlags(w)));
 }
 
 void printStages(const std::vector<StageTime>& stages)

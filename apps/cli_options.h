@@ -106,6 +106,10 @@ void printStartup(const StartupStats& startup);
 /// that a message quoting a damaged file stays one line and cannot drive the
 /// terminal. UTF-8 passes unchanged.
 std::string printable(const std::string& text);
+/// A library message with the library's option names (which it uses, never
+/// flags) turned into the command line's flags, e.g.
+/// AmbientOcclusion::volumeResolution -> --light-volume.
+std::string inFlags(std::string message);
 
 /// 1234567 -> "1,234,567"
 std::string thousands(uint64_t n);

@@ -144,7 +144,7 @@ struct ViewerState {
             resolution = r;
             message.clear();
         } catch (const std::exception& e) {
-            message = fmt::format("kept the previous octree: {}", e.what());
+            message = fmt::format("kept the previous octree: {}", inFlags(e.what()));
             result.errors.push_back(message);
         }
     }
@@ -165,7 +165,7 @@ struct ViewerState {
             result.screenshots.push_back(path);
             message = "wrote " + path;
         } catch (const std::exception& e) {
-            message = e.what();
+            message = inFlags(e.what());
             result.errors.push_back(message);
         }
     }
@@ -498,7 +498,7 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
             // What the panel turned on cannot be drawn (a grid too wide for
             // the lighting volume, the GPU out of memory): say so in the
             // panel, turn AO and lighting off, and draw again without them.
-            st.message = e.what();
+            st.message = inFlags(e.what());
             st.result.errors.push_back(st.message);
             st.in.layers.ao.cones = 0;
             st.in.layers.ao.only = false;

@@ -730,7 +730,8 @@ TEST(View, AmbientOcclusionOfAnOpenPlaneAndInsideAClosedBox)
         wideView.render(above.camera, 8, 8, l);
         ADD_FAILURE() << "a 4096-wide grid with a 256 volume drew AO";
     } catch (const svo::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("--ao-source octree"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("AmbientOcclusion::Source::Octree"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("AmbientOcclusion::volumeResolution"), std::string::npos) << e.what();
     }
     l.ao.volumeResolution = 512;
     EXPECT_NO_THROW(wideView.render(above.camera, 8, 8, l));

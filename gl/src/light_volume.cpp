@@ -122,7 +122,7 @@ void checkIllumination(const Illumination& l, const ViewBuffers& octree)
     checkIllumination(l);
     auto bad = [](const std::string& what) { throw Error("octree view: lighting: " + what); };
     if (!octree.normals)
-        bad("the octree has no normal channel (voxelize the mesh with --attributes normal, or normal,color)");
+        bad("the octree has no normal channel (voxelize the mesh with the normal attribute channel, svo::kNormals)");
     checkVolumeResolution(octree.grid, l.volumeResolution, "lighting: volume resolution");
 }
 

@@ -296,8 +296,8 @@ struct OctreeView::Impl {
     {
         if (texelVoxels(grid, resolution) > 8) // a texel holds at most 8³ voxels
             throw Error(fmt::format("octree view: ambient occlusion: a grid {} voxels wide needs a volume of more "
-                                    "than {} texels a side (--light-volume), or the octree's opacity "
-                                    "(AmbientOcclusion::Source::Octree, --ao-source octree)",
+                                    "than {} texels a side (AmbientOcclusion::volumeResolution), or the octree's "
+                                    "opacity (AmbientOcclusion::Source::Octree)",
                                     *std::max_element(grid.dims.begin(), grid.dims.end()), resolution));
         checkVolumeResolution(grid, resolution, "ambient occlusion: volume resolution");
         if (light && light->texelVoxels == texelVoxels(grid, resolution)) return *light;
