@@ -980,3 +980,59 @@ TEST(Solid, MatchesCgalsInsideTestAndUsesTiles)
 } // namespace
 } // namespace svo::test
 
+
+namespace svo::test {
+namespace {
+
+/// Every value and active state of two float grids' leaves and tiles agree, bit for bit.
+void expectSameGrid(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b)
+{
+    EXPECT_EQ(a.activeVoxelCount(), b.activeVoxelCount());
+    EXPECT_EQ(a.tree().leafCount(), b.tree().leafCount());
+    EXPECT_EQ(a.tree().activeTileCount(), b.tree().activeTileCount());
+    const auto at = b.getConstAccessor();
+    uint64_t differ = 0;
+    for (auto it = a.cbeginValueAll(); it; ++it) {
+        if (!it.isVoxelValue()) continue;
+        const openvdb::Coord c = it.getCoord();
+        differ += at.getValue(c) != *it || at.isValueOn(c) != it.isValueOn();
+    }
+    EXPECT_EQ(differ, 0u);
+}
+
+} // namespace
+
+// On a CPU rasterizer the passes whose workgroups loop over work cut it into
+// dispatches that keep each invocation under the driver's loop budget
+// (dispatchLooping: the distance and parity passes, band packing, and the
+// compute backend's queue). Real scenes reach more than one dispatch only
+// when large, so SVO_LOOP_LIMIT lowers the budget until a small scene does;
+// the level set must stay the same bit for bit and the compute backend's
+// voxels the same. On a GPU there is no budget and the variable is ignored.
+TEST(LoopLimit, SplitDispatchesGiveTheSameResults)
+{
+    const TriangleMesh mesh = icosphere({0.1, -0.2, 0.3}, 1.0, 5); // 20,480 triangles
+    const GridSpec grid = makeGrid(mesh, GridRequest{64, 0});
+    VoxelizeOptions compute;
+    compute.backend = Backend::Compute;
+    Voxelizer whole;
+    const auto wholeSet = levelSetOf(whole, mesh, grid, {});
+    const TriangleMesh room = cornellBox(); // large triangles: the compute backend queues their rows
+    const GridSpec roomGrid = makeGrid(room, GridRequest{128, 0});
+    const auto wholeKeys = octreeKeys(whole.voxelize(room, roomGrid, compute));
+
+    ASSERT_EQ(setenv("SVO_LOOP_LIMIT", "150", 1), 0);
+    const bool software = gl::Context().info().software;
+    if (software) EXPECT_EQ(gl::Context().info().loopLimit, 150u);
+    Voxelizer split;
+    const auto splitSet = levelSetOf(split, mesh, grid, {});
+    const auto splitKeys = octreeKeys(split.voxelize(room, roomGrid, compute));
+    unsetenv("SVO_LOOP_LIMIT");
+
+    ASSERT_GT(wholeSet->activeVoxelCount(), 50000u);
+    expectSameGrid(*wholeSet, *splitSet);
+    EXPECT_EQ(wholeKeys, splitKeys);
+    ASSERT_GT(wholeKeys.size(), 10000u);
+}
+
+} // namespace svo::test

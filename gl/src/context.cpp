@@ -309,6 +309,12 @@ struct Context::Impl {
             if (bits != std::string::npos && comma != std::string::npos)
                 width = std::atoi(info.renderer.c_str() + comma + 2);
             info.loopLanes = uint32_t(std::clamp(width, 32, 512) / 32);
+            // SVO_LOOP_LIMIT, a smaller budget than the driver's, makes the
+            // passes split their work into many dispatches on small scenes:
+            // the tests use it to check that the split gives the same result.
+            if (const char* env = std::getenv("SVO_LOOP_LIMIT"))
+                if (const long long n = std::atoll(env); n > 64 && uint64_t(n) < info.loopLimit)
+                    info.loopLimit = uint64_t(n);
         }
         GLint major = 0, minor = 0;
         glGetIntegerv(GL_MAJOR_VERSION, &major);

@@ -64,7 +64,9 @@ struct ContextInfo {
     /// Loop iterations a shader may run in all, over all its loops, before the
     /// driver ends them silently: Mesa's gallivm (llvmpipe, softpipe) stops
     /// at 65,535. 0: no such limit. Passes whose invocations loop over work
-    /// cut their dispatches to stay under it, or stop and report it.
+    /// cut their dispatches to stay under it, or stop and report it. On such
+    /// a driver the environment variable SVO_LOOP_LIMIT may lower it (not
+    /// raise it), so that tests reach the split dispatches with small scenes.
     uint64_t loopLimit = 0;
     /// The invocations that share one loopLimit: gallivm runs loopLanes of them
     /// as one SIMD vector, whose loops iterate while any lane does, so lanes
