@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <iterator>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/LevelSetSphere.h>
 #include <set>
@@ -123,6 +124,55 @@ TEST(VdbIo, UnwritableFolderIsAnErrorAndLeavesNothing)
     const auto mesh = test::box({0, 0, 0}, {1, 1, 1});
     const auto v = voxelizeCpu(mesh, makeGrid(mesh, {8, 0}));
     EXPECT_THROW(vdb::writeVdb("/nonexistent-folder/out.vdb", buildOctree(v.grid, v.keys), {}), svo::Error);
+}
+
+// svo writes a grid's leaf buffers on all cores (parallel_buffers.h) and
+// must give OpenVDB's own bytes: a level set sphere of thousands of leaves
+// (many chunks), and a bool, a mask, an int and a vector grid, written by svo
+// and by openvdb::io::File, differ only in the header's random UUID (bytes
+// 21-56: magic, versions and the offsets flag come before it).
+TEST(VdbIo, ParallelLeafBuffersWriteOpenVdbsOwnBytes)
+{
+    openvdb::initialize();
+    auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(40.0f, openvdb::Vec3f(1.5f, -2.f, 0.5f),
+                                                                         0.5f, 3.0f);
+    sphere->setName("surface");
+    ASSERT_GT(sphere->tree().leafCount(), 2000u);
+    auto flags = openvdb::BoolGrid::create(false);
+    auto mask = openvdb::MaskGrid::create();
+    auto ids = openvdb::Int32Grid::create(-1);
+    auto normals = openvdb::Vec3SGrid::create();
+    uint32_t seed = 7;
+    for (int i = 0; i < 20000; ++i) {
+        seed = seed * 1664525u + 1013904223u;
+        const openvdb::Coord c(int(seed % 300) - 150, int((seed >> 9) % 300), int((seed >> 18) % 64));
+        flags->tree().setValue(c, (seed >> 3) & 1);
+        mask->tree().setValueOn(c);
+        ids->tree().setValue(c, int(seed >> 4));
+        normals->tree().setValue(c, openvdb::Vec3s(float(seed % 7), -1.0f, float(i)));
+    }
+    flags->setName("flags"), mask->setName("mask"), ids->setName("ids"), normals->setName("normals");
+    const openvdb::GridPtrVec grids{sphere, flags, mask, ids, normals};
+    test::TempDir dir("parallel_buffers");
+    vdb::writeVdbGrids(dir.path("svo.vdb"), grids, {{"svo:test", "1"}});
+    {
+        openvdb::io::File reference(dir.path("openvdb.vdb"));
+        reference.write(grids);
+        reference.close();
+    }
+    auto bytes = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    const std::string ours = bytes(dir.path("svo.vdb")), theirs = bytes(dir.path("openvdb.vdb"));
+    ASSERT_EQ(ours.size(), theirs.size());
+    ASSERT_GT(ours.size(), 100000u);
+    // The first byte that differs outside the UUID (none: the file's size).
+    size_t differs = ours.size();
+    for (size_t i = 0; i < ours.size() && differs == ours.size(); ++i)
+        if ((i < 21 || i >= 57) && ours[i] != theirs[i]) differs = i;
+    EXPECT_EQ(differs, ours.size()) << "the files differ at byte " << differs;
+    EXPECT_EQ(readAll(dir.path("svo.vdb"))->size(), 5u);
 }
 
 // --- damaged files (issue 17, item 5) ------------------------------------

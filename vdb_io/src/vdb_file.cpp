@@ -12,6 +12,7 @@
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 #include "svo/vdb_io/grid_builder.h"
+#include "parallel_buffers.h"
 
 namespace svo::vdb {
 namespace fs = std::filesystem;
@@ -513,8 +514,10 @@ void writeGrids(const std::string& path, const openvdb::GridPtrVec& grids)
 {
     writeAtomically(path, [&](const std::string& tmp) {
         try {
+            openvdb::GridPtrVec parallel;
+            for (const auto& g : grids) parallel.push_back(withParallelBuffers(g));
             openvdb::io::File file(tmp);
-            file.write(grids);
+            file.write(parallel);
             file.close();
         } catch (const std::exception& e) {
             throw Error(fmt::format("{}: cannot write the VDB file: {}", path, e.what()));
