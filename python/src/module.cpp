@@ -761,8 +761,9 @@ PYBIND11_MODULE(_svo, m)
              "'surface' of class GRID_LEVEL_SET, world-unit distances, negative inside, exact to float\n"
              "rounding. Bands are in voxels (>= 1). unsigned=True gives unsigned distances (grid 'distance')\n"
              "for any mesh. closest_triangle=True returns (grid, ijk, triangle): the band's voxels, an (N, 3)\n"
-             "int32 array of index coordinates, and each one's nearest triangle, (N,) int32. sign: 'auto' (parity for closed, consistently oriented meshes, else the\n"
-             "winding number), 'parity' (refused for a mesh with holes) or 'winding'; the grid's metadata\n"
+             "int32 array of index coordinates, and each one's nearest triangle, (N,) int32.\n"
+             "sign: 'auto' (parity for closed, consistently oriented meshes, else the winding number),\n"
+             "'parity' (refused for a mesh with holes) or 'winding'; the grid's metadata\n"
              "'svo:sign' says which ran and why. winding_accuracy: tree nodes farther than this many radii\n"
              "use their far-field expansion (default 1.5). Grid arguments as voxelize(); a transform must have uniform scale.")
         .def("solid", &solidWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
