@@ -14,6 +14,7 @@ Progress::~Progress()
     {
         std::lock_guard<std::mutex> lock(mutex_);
         done_ = true;
+        failed_ = std::uncaught_exceptions() > exceptions_;
     }
     cv_.notify_all();
     thread_.join();
@@ -40,7 +41,8 @@ void Progress::run()
             fmt::print(stderr, "\r{} ... {:.1f} s", label_, s);
     }
     const double s = duration<double>(steady_clock::now() - start).count();
-    fmt::print(stderr, "{}{} done in {:.1f} s{}\n", tty ? "\r" : "", label_, s, tty ? "                    " : "");
+    fmt::print(stderr, "{}{} {} {:.1f} s{}\n", tty ? "\r" : "", label_, failed_ ? "stopped after" : "done in", s,
+               tty ? "                    " : "");
 }
 
 } // namespace svo::app

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <memory>
+#include <exception>
 #include <mutex>
 #include <openvdb/util/NullInterrupter.h>
 #include <string>
@@ -33,6 +34,8 @@ private:
     std::mutex mutex_;
     std::condition_variable cv_;
     bool done_ = false;
+    bool failed_ = false; ///< the step ended by an exception: "stopped", not "done"
+    int exceptions_ = std::uncaught_exceptions();
     std::thread thread_;
 };
 

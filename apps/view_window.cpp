@@ -94,6 +94,7 @@ struct ViewerState {
     int width = 0, height = 0;               // framebuffer pixels
     std::string perLevel;                    // occupied nodes per level, for the panel
     std::string message;                     // the last error or note, shown in the panel
+    bool loopCutReported = false;            // rays cut by the driver's loop limit: warned once on exit
     bool quit = false;
     int screenshotCount = 0;
     ViewWindowResult result;
@@ -507,10 +508,13 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
         }
         // A CPU rasterizer's loop limit cut some rays short: the frame is
         // drawn as it came out, and the panel says so.
-        if (const uint32_t cut = st.view->cutPixels())
+        if (const uint32_t cut = st.view->cutPixels()) {
             st.message = fmt::format("{} pixels' rays were cut short by the driver's loop limit; "
                                      "fewer cones, a wider step or a coarser grid avoid it",
                                      cut);
+            if (!st.loopCutReported) st.result.errors.push_back(st.message);
+            st.loopCutReported = true;
+        }
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         glfwSwapBuffers(ws.window);
 

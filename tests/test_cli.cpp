@@ -823,6 +823,28 @@ TEST_F(Cli, ViewWindowRevoxelizesLiveToTheVoxelsOfVoxelize)
         << wide.out;
     EXPECT_NE(wide.out.find("--ao-source octree"), std::string::npos) << wide.out;
 
+    // Rays past llvmpipe's loop budget (1° cones stepping a hundredth of their
+    // width for 2000 voxels): the window draws on and warns once on exit; a
+    // screenshot is refused in one line and writes nothing. A GPU has no budget.
+    const std::string past = "view -r 64 --size 64x48 --render ao --ao-aperture 1 --ao-step 0.01 --ao-distance 2000";
+    const auto cut = runSvo(past + " --frames 3", xvfb);
+    ASSERT_EQ(cut.code, 0) << cut.out;
+    if (cut.out.find("on llvmpipe") != std::string::npos) {
+        const std::string warning = "rays were cut short by the driver's loop limit";
+        const size_t first = cut.out.find(warning);
+        EXPECT_NE(first, std::string::npos) << cut.out;
+        EXPECT_EQ(cut.out.find(warning, first + 1), std::string::npos) << "warned more than once: " << cut.out;
+        const auto shot = runSvo(past + " --screenshot " + path("cut.png"));
+        EXPECT_EQ(shot.code, 1) << shot.out;
+        // One error line; the progress of the 1 s render says it stopped, not that it is done.
+        const size_t error = shot.out.find("svo: error: octree view: llvmpipe");
+        EXPECT_NE(error, std::string::npos) << shot.out;
+        EXPECT_EQ(shot.out.find('\n', error), shot.out.size() - 1) << shot.out;
+        EXPECT_NE(shot.out.find("ended the rays of"), std::string::npos) << shot.out;
+        EXPECT_EQ(shot.out.find("done in"), std::string::npos) << shot.out;
+        EXPECT_FALSE(fs::exists(path("cut.png")));
+    }
+
     for (const char* args : {"--frames 3 --screenshot x.png", "--keys + --screenshot x.png", "--frames -1",
                              "--save x.svo --screenshot x.png"}) {
         const auto bad = runSvo(std::string("view -r 8 ") + args, xvfb);
