@@ -398,49 +398,19 @@ bool bitOf(const Brick& b, uint32_t bit) { return (b.words[bit >> 6] >> (bit & 6
 /// where all 16³ leaves of a level-1 node (128³ voxels) are bricks of the
 /// list, one tile for the node, else one leaf-sized tile per brick, so that
 /// a solid's interior costs time and memory in proportion to its surface.
-/// The bricks are counted per node in a dense array over the nodes' box
-/// (millions of bricks at 2048³ made a hash map the longest part of a level
-/// set's grid), or in a hash map where that box would be mostly empty.
 template <typename TreeT>
 void addBrickTiles(TreeT& tree, const GridSpec& grid, const std::vector<BrickCoord>& bricks,
                    const typename TreeT::ValueType& value, bool active)
 {
     using Level1 = typename TreeT::RootNodeType::ChildNodeType::ChildNodeType;
     constexpr uint32_t kFull = (Level1::DIM / 8) * (Level1::DIM / 8) * (Level1::DIM / 8);
-    if (bricks.empty()) return;
-    constexpr int32_t kDim = int32_t(Level1::DIM);
-    auto nodeOf = [&](const BrickCoord& b) { return leafOrigin(grid, b) & ~(kDim - 1); }; // the node's origin
-    openvdb::Coord lo = nodeOf(bricks.front()), hi = lo;
-    for (const BrickCoord& b : bricks) {
-        const openvdb::Coord n = nodeOf(b);
-        lo.minComponent(n);
-        hi.maxComponent(n);
-    }
-    const uint64_t ny = uint64_t(hi.y() - lo.y()) / kDim + 1, nz = uint64_t(hi.z() - lo.z()) / kDim + 1;
-    const uint64_t cells = (uint64_t(hi.x() - lo.x()) / kDim + 1) * ny * nz;
-    const bool dense = cells <= 4 * uint64_t(bricks.size()) + 4096;
-    std::vector<uint32_t> counts(dense ? cells : 0, 0);
-    std::unordered_map<openvdb::Coord, uint32_t> sparse;
-    auto count = [&](const openvdb::Coord& n) -> uint32_t& {
-        if (!dense) return sparse[n];
-        return counts[(uint64_t(n.x() - lo.x()) / kDim * ny + uint64_t(n.y() - lo.y()) / kDim) * nz +
-                      uint64_t(n.z() - lo.z()) / kDim];
-    };
-    for (const BrickCoord& b : bricks) ++count(nodeOf(b));
-    // A tile of the level-2 node: 128³ voxels.
-    if (dense) {
-        for (uint64_t i = 0; i < cells; ++i)
-            if (counts[i] == kFull)
-                tree.addTile(2,
-                             lo.offsetBy(int32_t(i / (ny * nz)) * kDim, int32_t(i / nz % ny) * kDim,
-                                         int32_t(i % nz) * kDim),
-                             value, active);
-    } else {
-        for (const auto& [n, c] : sparse)
-            if (c == kFull) tree.addTile(2, n, value, active);
-    }
+    auto nodeOf = [&](const BrickCoord& b) { return leafOrigin(grid, b) & ~(int32_t(Level1::DIM) - 1); };
+    std::unordered_map<openvdb::Coord, uint32_t> count; // the list's bricks per level-1 node
+    for (const BrickCoord& b : bricks) ++count[nodeOf(b)];
+    for (const auto& [origin, n] : count)
+        if (n == kFull) tree.addTile(2, origin, value, active); // a tile of the level-2 node: 128³ voxels
     for (const BrickCoord& b : bricks)
-        if (count(nodeOf(b)) != kFull) tree.addTile(1, leafOrigin(grid, b), value, active);
+        if (count[nodeOf(b)] != kFull) tree.addTile(1, leafOrigin(grid, b), value, active);
 }
 
 /// Adds leaves made in parallel (null: none) to a tree, in order.
