@@ -14,8 +14,9 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 #include "view_octree.glsl"
 #include "view_lights.glsl"
 #include "loop_cut.glsl"
+#include "opacity_depth.glsl"
 
-layout(binding = 0, rgba8) writeonly restrict uniform image3D uOpacityOut;
+layout(binding = 0, rgba16f) writeonly restrict uniform image3D uOpacityOut;
 layout(binding = 1, rgba16f) writeonly restrict uniform image3D uRadianceOut;
 layout(binding = 2, rgba8_snorm) writeonly restrict uniform image3D uLitSideOut;
 
@@ -56,7 +57,7 @@ void injectTexel(ivec3 texel)
                 }
         float k = float(uTexelCells);
         float cover = min(1.0, float(count) / (k * k));
-        opacity = vec4(vec3(cover), cover);
+        opacity = vec4(storedOpacity(vec3(cover)), cover);
         if (count > 0u) radiance = vec4(sum / float(count) * cover, cover);
         float total = dot(sum, vec3(1.0));
         if (total > 0.0) litSide /= total;

@@ -9,14 +9,16 @@
 // alone.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
-layout(binding = 0, rgba8) readonly restrict uniform image3D uOpacityIn;
+layout(binding = 0, rgba16f) readonly restrict uniform image3D uOpacityIn;
 layout(binding = 1, rgba16f) readonly restrict uniform image3D uRadianceIn;
-layout(binding = 2, rgba8) writeonly restrict uniform image3D uOpacityOut;
+layout(binding = 2, rgba16f) writeonly restrict uniform image3D uOpacityOut;
 layout(binding = 3, rgba16f) writeonly restrict uniform image3D uRadianceOut;
 
 uniform ivec3 uInSize;
 uniform ivec3 uOutSize;
 uniform uint uLit; // 0: no radiance images
+
+#include "opacity_depth.glsl"
 
 void main()
 {
@@ -31,6 +33,7 @@ void main()
         ivec3 c = ivec3(i & 1, (i >> 1) & 1, i >> 2);
         bool used = all(lessThan(c, n));
         children[i] = used ? imageLoad(uOpacityIn, base + c) : vec4(0.0);
+        children[i].rgb = opacityFromStored(children[i].rgb);
         if (used && uLit != 0u) radiance += imageLoad(uRadianceIn, base + c);
         coverage += children[i].a;
     }
@@ -56,6 +59,6 @@ void main()
             through.z += t;
         }
     vec3 columns = vec3(n.y * n.z, n.x * n.z, n.x * n.y);
-    imageStore(uOpacityOut, p, vec4(vec3(1.0) - through / columns, coverage / count));
+    imageStore(uOpacityOut, p, vec4(storedOpacity(vec3(1.0) - through / columns), coverage / count));
     if (uLit != 0u) imageStore(uRadianceOut, p, radiance / count);
 }

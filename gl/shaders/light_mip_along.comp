@@ -11,7 +11,7 @@
 // along it.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
-layout(binding = 0, rgba8) readonly restrict uniform image3D uOpacityIn;
+layout(binding = 0, rgba16f) readonly restrict uniform image3D uOpacityIn;
 layout(binding = 1, rgba16f) readonly restrict uniform image3D uRadianceIn;
 layout(binding = 2, rgba16f) writeonly restrict uniform image3D uRadianceOut;
 layout(binding = 3, rgba8_snorm) readonly restrict uniform image3D uLitSideIn; // level 0's lit side
@@ -23,6 +23,7 @@ uniform int uPositive; // 1: the ray travels towards +axis (meets the low child 
 uniform uint uFromBase; // 1: the level below is level 0
 
 #include "lit_side.glsl"
+#include "opacity_depth.glsl"
 
 void main()
 {
@@ -42,7 +43,7 @@ void main()
                 child[u] = i;
                 child[v] = j;
                 child[uAxis] = uPositive != 0 ? k : n[uAxis] - 1 - k;
-                float a = imageLoad(uOpacityIn, base + child)[uAxis];
+                float a = opacityFromStored(imageLoad(uOpacityIn, base + child).rgb)[uAxis];
                 vec3 r = imageLoad(uRadianceIn, base + child).rgb;
                 if (uFromBase != 0u) { // the light leaving back towards the ray: along -axis for +axis
                     vec3 back = vec3(0.0);

@@ -10,6 +10,7 @@
 // (AmbientOcclusion::Source::Volume) takes the opacity alone.
 
 #include "lit_side.glsl"
+#include "opacity_depth.glsl"
 
 layout(binding = SVO_UNIT_LIGHT_OPACITY) uniform sampler3D uOpacityVolume;
 layout(binding = SVO_UNIT_LIGHT_RADIANCE) uniform sampler3D uRadianceVolume;
@@ -68,10 +69,9 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit, float tanHalf)
         float stride = uConeStep * min(cone, 2.0 * width);
         float lod = log2(width / uTexelCells);
         vec3 tc = (o + t * dir) * uVolumeScale;
-        float a = dot(share, textureLod(uOpacityVolume, tc, lod).rgb);
         // The sample stands for a slab as deep as the texel is wide; its
         // opacity is corrected to the path the step covers.
-        a = 1.0 - pow(max(1.0 - a, 0.0), stride / width);
+        float a = pathOpacity(dot(share, textureLod(uOpacityVolume, tc, lod).rgb), stride / width);
         if (!lit) {
             occlusion += (1.0 - occlusion) * a;
             t += stride;

@@ -26,7 +26,9 @@ struct ViewBuffers {
 };
 
 struct LightVolumeTextures {
-    Texture3D opacity;  ///< rgba8: opacity seen along x, y, z; coverage
+    /// rgba16f: opacity seen along x, y, z (as opacity_depth.glsl says:
+    /// optical depth when `opticalDepth`); coverage
+    Texture3D opacity;
     Texture3D radiance; ///< rgba16f: radiance x coverage; coverage (lit volumes only)
     /// rgba16f, with Illumination::directional only: the premultiplied
     /// radiance (a: opacity) a ray travelling along +x, -x, +y, -y, +z, -z
@@ -41,6 +43,7 @@ struct LightVolumeTextures {
     uint32_t texelVoxels = 1;
     int size[3] = {0, 0, 0}; ///< level 0, texels
     bool lit = false;        ///< false: opacity only (buildOpacityVolume)
+    bool opticalDepth = false; ///< the opacity texture holds -ln(1 - a) (six-way volumes)
     Illumination built;      ///< what it was injected with, when lit
 };
 

@@ -300,7 +300,7 @@ struct OctreeView::Impl {
                                     "opacity (AmbientOcclusion::Source::Octree)",
                                     *std::max_element(grid.dims.begin(), grid.dims.end()), resolution));
         checkVolumeResolution(grid, resolution, "ambient occlusion: volume resolution");
-        if (light && light->texelVoxels == texelVoxels(grid, resolution)) return *light;
+        if (light && light->texelVoxels == texelVoxels(grid, resolution) && !light->opticalDepth) return *light;
         light.reset();
         light.emplace(buildOpacityVolume(context, buffers(), resolution));
         return *light;
