@@ -138,10 +138,13 @@ struct Illumination {
     /// radiance a ray along each of the six axis directions sees, composited
     /// front to back, so that a wall hides what lies behind it at every
     /// level; and at level 0 each texel's lit side, so that a one-voxel wall
-    /// lit on one side sends no light out of the other. Six textures at half
-    /// resolution and one at level 0 (about 11 bytes a texel of level 0) and
-    /// up to four fetches a sample instead of one; bench/results gives the
-    /// error and time of both.
+    /// lit on one side sends no light out of the other (a texel's light
+    /// leaves its lit side by the cosine); the opacity is kept as optical
+    /// depth, so that samples between a wall's texels still see it opaque.
+    /// Six textures at half resolution and one at level 0 (about 11 bytes a
+    /// texel of level 0) and up to four fetches a sample instead of one;
+    /// bench/results gives the error and time of both. Leaks through thin
+    /// walls: docs/design.md §7d.
     bool directional = false;
     /// Glossy reflection (Global only): one cone along the view direction
     /// mirrored about the normal, `specularApertureDegrees` wide, through the
