@@ -56,6 +56,15 @@ svo::Octree octreeOf(const svo::GridSpec& grid, const std::vector<Voxel>& voxels
     return o;
 }
 
+/// `mesh` voxelized on the GPU at `resolution` with its normal channel, as
+/// `svo view` does (lit modes need the normals).
+svo::Octree voxelizedWithNormals(const svo::TriangleMesh& mesh, int resolution)
+{
+    svo::VoxelizeOptions options;
+    options.attributes = svo::kNormals;
+    return svo::Voxelizer().voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{resolution, 0}), options);
+}
+
 size_t texel(const LightVolumeLevel& l, int x, int y, int z)
 {
     return 4 * ((size_t(z) * size_t(l.size[1]) + size_t(y)) * size_t(l.size[0]) + size_t(x));
@@ -137,9 +146,10 @@ TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
                     const double want[3] = {expected.x, expected.y, expected.z};
                     for (int c = 0; c < 3; ++c)
                         ASSERT_NEAR(got[c], want[c], halfTolerance(want[c])) << x << "," << y << "," << z;
-                    if (light == &sun) // lit from above: the lit side is +y; unlit: none
+                    if (light == &sun) { // lit from above: the lit side is +y; unlit: none
                         for (int c = 0; c < 3; ++c)
                             ASSERT_NEAR(l0.litSide[i + size_t(c)], c == 1 && expected.x > 0 ? 1.0 : 0.0, 1.0 / 127);
+                    }
                     if (plane) (expected.x > 0 ? lit : dark) += 1;
                 }
         if (light == &sun) {
@@ -320,11 +330,7 @@ TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
 
 TEST(Lighting, LitPicturesAreDeterministicAndOneBounceOnlyAddsLight)
 {
-    const svo::TriangleMesh mesh = svo::cornellBox();
-    svo::Voxelizer voxelizer;
-    svo::VoxelizeOptions options;
-    options.attributes = svo::kNormals;
-    const svo::Octree octree = voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{64, 0}), options);
+    const svo::Octree octree = voxelizedWithNormals(svo::cornellBox(), 64);
     svo::gl::OctreeView view(context(), octree);
     const auto box = svo::gl::gridWorldBox(octree.grid);
     // Looking in through the open front, so that every surface seen is inside
@@ -391,11 +397,7 @@ TEST(Lighting, LitPicturesAreDeterministicAndOneBounceOnlyAddsLight)
 /// light sent out of its lit side by the cosine, keeps nearly all of it out.
 TEST(Lighting, SixWayRadianceKeepsALitRoomsLightOutOfTheNextRoom)
 {
-    const svo::TriangleMesh mesh = svo::twoRooms();
-    svo::Voxelizer voxelizer;
-    svo::VoxelizeOptions options;
-    options.attributes = svo::kNormals;
-    const svo::Octree octree = voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{64, 0}), options);
+    const svo::Octree octree = voxelizedWithNormals(svo::twoRooms(), 64);
     svo::gl::OctreeView view(context(), octree);
     svo::gl::ViewCamera camera; // inside the dark room, looking at the wall
     camera.eye = {0.9, 0.7, 0.9};
@@ -536,9 +538,6 @@ TEST(Lighting, LoopsACpuRasterizerCutShortAreRefused)
 {
     const bool limited = context().info().loopLimit != 0;
     const svo::TriangleMesh mesh = svo::cornellBox();
-    svo::Voxelizer voxelizer;
-    svo::VoxelizeOptions options;
-    options.attributes = svo::kNormals;
     svo::gl::ViewCamera camera;
     camera.eye = {0, 1, 3.2};
     camera.target = {0, 1, 0};
@@ -555,7 +554,7 @@ TEST(Lighting, LoopsACpuRasterizerCutShortAreRefused)
         }
     };
 
-    const svo::Octree coarse = voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{64, 0}), options);
+    const svo::Octree coarse = voxelizedWithNormals(mesh, 64);
     svo::gl::OctreeView view(context(), coarse);
     svo::gl::ViewLayers layers;
     layers.outlines = false;
@@ -567,9 +566,11 @@ TEST(Lighting, LoopsACpuRasterizerCutShortAreRefused)
     layers.ao.step = 0.01;
     layers.ao.distance = 2000;
     refusedOrDrawn(view, layers, "ended the rays of");
-    if (limited) EXPECT_GT(view.cutPixels(), 0u);
+    if (limited) {
+        EXPECT_GT(view.cutPixels(), 0u);
+    }
 
-    const svo::Octree fine = voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{256, 0}), options);
+    const svo::Octree fine = voxelizedWithNormals(mesh, 256);
     view.setOctree(fine);
     svo::gl::ViewLayers lit;
     lit.outlines = false;
