@@ -1,6 +1,7 @@
 // The interrupt clean-up's children (exit_cleanup.h): a child that dies
 // without removing its files (an X server's lock and socket) has them removed
 // once reaped, and only when the lock names that child.
+#include <array>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -49,31 +50,31 @@ struct RegisteredChild {
     int slot = -1;
 };
 
+/// A registered child whose lock names `lockOwner` (0: itself), killed and
+/// then released as svo releases a child that died: whether its lock and
+/// its socket file are still there afterwards.
+std::array<bool, 2> filesLeftByAKilledChild(pid_t lockOwner)
+{
+    svo::test::TempDir tmp("exit-cleanup");
+    const RegisteredChild child(tmp, lockOwner);
+    EXPECT_GT(child.pid, 0);
+    EXPECT_GE(child.slot, 0);
+    child.kill();
+    svo::releaseChild(child.slot);
+    return {fs::exists(tmp.path("lock")), fs::exists(tmp.path("socket"))};
+}
+
 } // namespace
 
 TEST(ExitCleanup, AChildKilledBeforeItsCleanUpHasItsFilesRemoved)
 {
-    svo::test::TempDir tmp("exit-cleanup");
-    const RegisteredChild child(tmp);
-    ASSERT_GT(child.pid, 0);
-    ASSERT_GE(child.slot, 0);
-    child.kill();
-    svo::releaseChild(child.slot);
-    EXPECT_FALSE(fs::exists(tmp.path("lock")));
-    EXPECT_FALSE(fs::exists(tmp.path("socket")));
+    EXPECT_EQ(filesLeftByAKilledChild(0), (std::array<bool, 2>{false, false}));
 }
 
 TEST(ExitCleanup, FilesOfAnotherProcessAreKept)
 {
-    svo::test::TempDir tmp("exit-cleanup");
     // The lock of another server (this process's pid), e.g. one that took the display first.
-    const RegisteredChild child(tmp, getpid());
-    ASSERT_GT(child.pid, 0);
-    ASSERT_GE(child.slot, 0);
-    child.kill();
-    svo::releaseChild(child.slot);
-    EXPECT_TRUE(fs::exists(tmp.path("lock")));
-    EXPECT_TRUE(fs::exists(tmp.path("socket")));
+    EXPECT_EQ(filesLeftByAKilledChild(getpid()), (std::array<bool, 2>{true, true}));
 }
 
 TEST(ExitCleanup, TheInterruptCleanUpStopsTheChildAndRemovesWhatItLeft)
