@@ -27,7 +27,7 @@ namespace {
 struct ViewArgs {
     std::string input, screenshot, size = "1280x960", camera, view = "front", layers = "voxels,outlines", levels,
                                      gridName, keys, save, color = "flat", render = "debug", aoFilter = "max",
-                                     aoSource = "volume";
+                                     aoSource = "volume", surface = "voxels";
     int frames = 0;
     gl::AmbientOcclusion ao;
     gl::Illumination light;
@@ -181,6 +181,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     } else if (!a.lights.empty() || !a.albedo.empty() || !a.specular.empty()) {
         throw Error("--light, --albedo and --specular light the voxels of --render direct or gi");
     }
+    layers.surface = a.surface == "mesh" ? gl::Surface::Mesh : gl::Surface::Voxels;
     layers.voxelColor = a.color == "normal" ? gl::VoxelColor::Normal
                         : a.color == "color" ? gl::VoxelColor::Color
                         : a.color == "triangle" ? gl::VoxelColor::Triangle
@@ -229,6 +230,10 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     if (lo.mesh) printWarnings(lo.mesh->warnings);
     printWarnings(call.stats.warnings);
     if (layers.mesh && !lo.mesh) fmt::print(stderr, "svo: warning: the input has no mesh to draw (--layers mesh)\n");
+    if (layers.surface == gl::Surface::Mesh && !lo.mesh)
+        throw Error(fmt::format("{}: --surface mesh shades the input mesh, and this input holds voxels only (give the "
+                                "mesh file, or --surface voxels)",
+                                a.input));
     const VoxelAttributes& at = lo.octree.attributes;
     if ((a.color == "normal" && at.normals.empty()) || (a.color == "color" && at.colors.empty()) ||
         (a.color == "triangle" && at.triangles.empty()))
@@ -353,6 +358,12 @@ void addViewCommand(CLI::App& app)
     cmd->add_option("--ao-filter", args->aoFilter, "--ao-source octree: opacity up the octree: max (a node as opaque as its most opaque "
                                                    "child: fewer leaks through walls) or average (its face share)")
         ->check(CLI::IsMember({"max", "average"}))
+        ->capture_default_str();
+    cmd->add_option("--surface", args->surface,
+                    "What the voxel layer shades: voxels (those the camera's rays hit: the octree as it is) or mesh "
+                    "(the input mesh's triangles, lit, occluded and coloured through the octree: no blocks; needs a "
+                    "mesh input)")
+        ->check(CLI::IsMember({"voxels", "mesh"}))
         ->capture_default_str();
     cmd->add_option("--render", args->render,
                     "debug: the layers; ao: the voxels as their ambient occlusion, grey (7 cones unless --ao says); "

@@ -308,6 +308,10 @@ struct ViewerState {
         if (in.loaded.mesh) {
             ImGui::SameLine();
             ImGui::Checkbox("mesh (M)", &l.mesh);
+            // Light, AO and colours on the triangles instead of the voxels (--surface).
+            bool shadeMesh = l.surface == gl::Surface::Mesh;
+            if (ImGui::Checkbox("shade the mesh, not the voxels", &shadeMesh))
+                l.surface = shadeMesh ? gl::Surface::Mesh : gl::Surface::Voxels;
         }
         static constexpr const char* kColors[] = {"flat", "normal", "colour", "triangle id"};
         ImGui::Text("voxel colour (A): %s", kColors[int(l.voxelColor)]);

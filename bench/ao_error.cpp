@@ -79,6 +79,9 @@ int main(int argc, char** argv)
         ->check(CLI::IsMember({"volume", "octree", "both"}));
     bool directional = false;
     app.add_flag("--directional", directional, "gi: emission by direction (Illumination::directional)");
+    std::string surface = "voxels";
+    app.add_option("--surface", surface, "Shade the voxels camera rays hit, or the mesh's triangles (ViewLayers::surface)")
+        ->check(CLI::IsMember({"voxels", "mesh"}));
     CLI11_PARSE(app, argc, argv);
     timeHeight = timeWidth * 9 / 16;
     try {
@@ -141,7 +144,7 @@ int main(int argc, char** argv)
                 vo.attributes = svo::kNormals; // lit modes need them; AO from the volume leaves along them
                 const svo::Octree octree =
                     voxelizer.voxelize(mesh, svo::makeGrid(mesh, svo::GridRequest{r, 0}), vo);
-                svo::gl::OctreeView view(context, octree);
+                svo::gl::OctreeView view(context, octree, &mesh);
                 using Filter = svo::gl::AmbientOcclusion::Filter;
                 using Source = svo::gl::AmbientOcclusion::Source;
                 std::vector<std::pair<Source, Filter>> opacities;
@@ -152,6 +155,7 @@ int main(int argc, char** argv)
                     for (int cones : coneCounts) {
                         svo::gl::ViewLayers layers;
                         layers.outlines = false;
+                        layers.surface = surface == "mesh" ? svo::gl::Surface::Mesh : svo::gl::Surface::Voxels;
                         if (ao) {
                             layers.ao.cones = cones;
                             layers.ao.source = source;

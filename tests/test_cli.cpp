@@ -725,12 +725,20 @@ TEST_F(Cli, ViewLightsTheVoxelsAndRefusesBadLighting)
     EXPECT_EQ(plain.code, 1);
     EXPECT_EQ(lineCount(plain.out), 1u) << plain.out;
     EXPECT_NE(plain.out.find("plain.svo: --render gi needs the octree's normal channel"), std::string::npos) << plain.out;
+    // The mesh's own triangles lit instead of the voxels (--surface mesh): a
+    // mesh input only..
+    const auto meshShot = runSvo("view -r 16 --size 64x48 --render gi --surface mesh --screenshot " + path("lit.png"));
+    ASSERT_EQ(meshShot.code, 0) << meshShot.out;
+    const auto noMesh = runSvo("view " + path("plain.svo") + " --render ao --surface mesh --screenshot " + path("x.png"));
+    EXPECT_EQ(noMesh.code, 1);
+    EXPECT_EQ(lineCount(noMesh.out), 1u) << noMesh.out;
+    EXPECT_NE(noMesh.out.find("plain.svo: --surface mesh shades the input mesh"), std::string::npos) << noMesh.out;
     for (const char* args : {"--render gi --light lamp:1,2,3", "--render gi --light sun:0,0,0", "--render gi --light point:1,2",
                              "--render direct --albedo 2", "--render gi --light-volume 100", "--render gi --gi-cones 0",
                              "--render gi --gi-emission sideways", "--light sun:0,-1,0", "--render gi --specular 1.5",
                              "--render direct --specular 0.5", "--render gi --specular 0.5 --specular-aperture 0",
                              "--render ao --ao-source mesh", "--render ao --light-volume 100", "--render gi --gi-step 0",
-                             "--render ao --ao-step 1.5"}) {
+                             "--render ao --ao-step 1.5", "--render ao --surface triangles"}) {
         const auto r = runSvo(std::string("view -r 8 --screenshot ") + path("x.png") + " " + args);
         EXPECT_EQ(r.code, 1) << args;
         EXPECT_EQ(lineCount(r.out), 1u) << args << ": " << r.out;

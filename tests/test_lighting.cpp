@@ -379,16 +379,6 @@ TEST(Lighting, LitPicturesAreDeterministicAndOneBounceOnlyAddsLight)
     EXPECT_FALSE(v.levels[0].radiance.empty());
 }
 
-/// The glossy cone (Illumination::specular) reflects a lit wall. A floor at
-/// y = 8 and a wall at x = 16, both across the grid, lit by a sun travelling
-/// along (-1, -1/4, 0): the wall's lit face (+x) has radiance
-/// L = ρ/π E cos θ = 0.75 · 0.970. Seen from above at 45° (looking along
-/// (-1, -1, 0)), the floor's mirror direction (-1, 1, 0) meets the wall
-/// about 20 voxels away, so with reflectance k the floor gains up to k L.
-/// The cone model's bias: a cone at 45° to a one-voxel wall sees it through
-/// the anisotropic opacity (opaque along x, a quarter along y at the cone's
-/// level), so the composite reaches L only in part; at least half, by the
-/// filter's numbers. The gain is linear in k.
 /// Two rooms sealed from each other by a one-voxel wall, a point light in
 /// one: no light reaches the other, directly or after a bounce, so its
 /// pixels are exactly black in the path tracer. Isotropic radiance lets the
@@ -428,6 +418,16 @@ TEST(Lighting, SixWayRadianceKeepsALitRoomsLightOutOfTheNextRoom)
     EXPECT_LT(sixWay, 0.1 * isotropic);
 }
 
+/// The glossy cone (Illumination::specular) reflects a lit wall. A floor at
+/// y = 8 and a wall at x = 16, both across the grid, lit by a sun travelling
+/// along (-1, -1/4, 0): the wall's lit face (+x) has radiance
+/// L = ρ/π E cos θ = 0.75 · 0.970. Seen from above at 45° (looking along
+/// (-1, -1, 0)), the floor's mirror direction (-1, 1, 0) meets the wall
+/// about 20 voxels away, so with reflectance k the floor gains up to k L.
+/// The cone model's bias: a cone at 45° to a one-voxel wall sees it through
+/// the anisotropic opacity (opaque along x, a quarter along y at the cone's
+/// level), so the composite reaches L only in part; at least half, by the
+/// filter's numbers. The gain is linear in k.
 TEST(Lighting, SpecularConeReflectsTheLitWall)
 {
     const svo::GridSpec grid = unitGrid(64, 64, 64);
@@ -481,6 +481,114 @@ TEST(Lighting, SpecularConeReflectsTheLitWall)
     EXPECT_GT(half, 0.5 * 0.5 * wall);
     EXPECT_LT(half, 0.5 * wall);
     EXPECT_NEAR(full, 2 * half, 1.5 / 255); // 8-bit rounding of each pixel
+}
+
+/// A square of `size` at height y over [x0, x0 + size] x [z0, z0 + size], two triangles.
+void addSquare(svo::TriangleMesh& m, double x0, double y, double z0, double size)
+{
+    const auto first = uint32_t(m.positions.size());
+    m.positions.insert(m.positions.end(), {{x0, y, z0}, {x0 + size, y, z0}, {x0 + size, y, z0 + size}, {x0, y, z0 + size}});
+    m.triangles.push_back({first, first + 1, first + 2});
+    m.triangles.push_back({first, first + 2, first + 3});
+}
+
+/// ViewLayers::surface = Mesh shades the mesh's own triangles. Seen from
+/// straight above (orthographic, a pixel per voxel): a floor [0, 1]² and a
+/// square occluder over [0.4, 0.6]² at height 0.5, voxelized at 64, lit by a
+/// sun travelling along (-0.6, -0.8, 0) with irradiance π:
+///   - the picture covers exactly the floor's pixels (its edges lie on pixel
+///     edges), not the voxels' wider squares;
+///   - lit floor and occluder reflect ρ/π E cos θ = 0.75 · 0.8 = 0.6; the
+///     occluder's shadow, [0.025, 0.225] x [0.4, 0.6] on the floor, is 0:
+///     each pixel marches its own shadow ray from its point on the floor.
+/// With a wall along x = 0 added, the floor's AO beside the wall (the concave
+/// edge) stays above 0.35 (a wall half the hemisphere blocks gives 0.5 for a
+/// wall of any height): cones starting among the wall's texels composited it
+/// again and again, and such pixels came out at 0.1.
+TEST(Lighting, MeshSurfaceIsShadedOnItsTriangles)
+{
+    svo::TriangleMesh mesh;
+    addSquare(mesh, 0, 0, 0, 1);
+    addSquare(mesh, 0.4, 0.5, 0.4, 0.2);
+    const svo::Octree octree = voxelizedWithNormals(mesh, 64);
+    ASSERT_NEAR(octree.grid.voxelSize, 1.0 / 64, 1e-12);
+    svo::gl::OctreeView view(context(), octree, &mesh);
+    svo::gl::ViewCamera above;
+    above.orthographic = true;
+    above.target = {0.5, 0, 0.5};
+    above.eye = {0.5, 5, 0.5};
+    above.up = {0, 0, -1}; // image right = +x, image down = +z
+    above.height = 1.5;    // 96 pixels of 1/64: the floor is pixels [16, 80)²
+    svo::gl::ViewLayers layers;
+    layers.outlines = false;
+    layers.surface = svo::gl::Surface::Mesh;
+    layers.light.mode = Illumination::Mode::Direct;
+    layers.light.lights.directional.push_back({{-0.6, -0.8, 0}, {M_PI, M_PI, M_PI}});
+    layers.light.gamma = 1.0;
+    const svo::gl::Image image = view.render(above, 96, 96, layers);
+    EXPECT_EQ(image.rgba, view.render(above, 96, 96, layers).rgba);
+    auto world = [](int pixel) { return (pixel + 0.5 - 16) / 64.0; }; // pixel centre -> x or z
+    auto near = [](double v, double lo, double hi) { return v > lo - 2.5 / 64 && v < hi + 2.5 / 64; };
+    int lit = 0, shadowed = 0;
+    for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 96; ++x) {
+            const uint8_t* p = image.pixel(x, y);
+            const bool surface = p[0] == p[1] && p[1] == p[2]; // grey: the background is bluish
+            const double wx = world(x), wz = world(y);
+            ASSERT_EQ(surface, wx > 0 && wx < 1 && wz > 0 && wz < 1) << x << "," << y;
+            if (!surface || near(wx, 0, 0) || near(wx, 1, 1) || near(wz, 0, 0) || near(wz, 1, 1)) continue;
+            const bool occluder = wx > 0.4 && wx < 0.6 && wz > 0.4 && wz < 0.6;
+            const bool shadow = !occluder && wx > 0.025 && wx < 0.225 && wz > 0.4 && wz < 0.6;
+            if (near(wx, 0.4, 0.6) && near(wz, 0.4, 0.6) && !occluder) continue; // the occluder's rim
+            if (near(wx, 0.025, 0.225) && near(wz, 0.4, 0.6) && !shadow) continue; // the shadow's rim
+            if (shadow && (wx < 0.025 + 2.5 / 64 || wx > 0.225 - 2.5 / 64 || wz < 0.4 + 2.5 / 64 || wz > 0.6 - 2.5 / 64))
+                continue;
+            if (shadow) {
+                EXPECT_LE(p[1], 1) << x << "," << y;
+                ++shadowed;
+            } else {
+                EXPECT_NEAR(p[1], 0.6 * 255, 1.01) << x << "," << y;
+                ++lit;
+            }
+        }
+    EXPECT_GT(lit, 2000);
+    EXPECT_GT(shadowed, 50);
+
+    // The concave edge: a wall along x = 0 on the floor; AO alone, 7 cones.
+    svo::TriangleMesh corner;
+    addSquare(corner, 0, 0, 0, 1);
+    const auto first = uint32_t(corner.positions.size());
+    corner.positions.insert(corner.positions.end(), {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}});
+    corner.triangles.push_back({first, first + 1, first + 2});
+    corner.triangles.push_back({first, first + 2, first + 3});
+    const svo::Octree cornerOctree = voxelizedWithNormals(corner, 64);
+    svo::gl::OctreeView cornerView(context(), cornerOctree, &corner);
+    svo::gl::ViewLayers ao;
+    ao.outlines = false;
+    ao.surface = svo::gl::Surface::Mesh;
+    ao.ao.cones = 7;
+    ao.ao.only = true;
+    ao.ao.distance = 16;
+    const svo::gl::Image occlusion = cornerView.render(above, 96, 96, ao);
+    double lowest = 1;
+    for (int y = 40; y < 56; ++y)       // the middle of the edge, away from its ends
+        for (int x = 16; x < 19; ++x) { // floor points within 3 voxels of the wall
+            const uint8_t* p = occlusion.pixel(x, y);
+            ASSERT_TRUE(p[0] == p[1] && p[1] == p[2]) << x << "," << y;
+            lowest = std::min(lowest, p[1] / 255.0);
+        }
+    EXPECT_GT(lowest, 0.35);
+    // Away from the wall the floor is open: AO 1.
+    EXPECT_GT(occlusion.pixel(70, 48)[1], 250);
+
+    // Without the mesh there is nothing to shade.
+    svo::gl::OctreeView voxelsOnly(context(), octree);
+    try {
+        voxelsOnly.render(above, 8, 8, layers);
+        ADD_FAILURE() << "Surface::Mesh drew without a mesh";
+    } catch (const svo::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("needs the mesh"), std::string::npos) << e.what();
+    }
 }
 
 TEST(Lighting, BadLightingIsAClearError)

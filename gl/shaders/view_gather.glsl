@@ -100,6 +100,31 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit, float tanHalf)
     return vec4(radiance, occlusion);
 }
 
+/// Level 0's opacity at cell-space point q, the mean of x, y and z.
+float opacityNear(vec3 q)
+{
+    return dot(opacityFromStored(textureLod(uOpacityVolume, q * uVolumeScale, 0.0).rgb), vec3(1.0 / 3.0));
+}
+
+/// Where the cones of a point p with unit normal n start: uConeOffset out
+/// along n, and away from any other surface there. Beside a concave edge
+/// that start lies among the other surface's texels, and every cone would
+/// composite that surface again and again (the pixels along the edge came
+/// out nearly black). Level 0's opacity gradient across n points to it; the
+/// start moves up to 2 texels away, in proportion to the opacity it starts
+/// in (all 2 from a third), and stays at its height above p's surface.
+vec3 coneStart(vec3 p, vec3 n)
+{
+    vec3 o = p + uConeOffset * n;
+    float h = uTexelCells;
+    vec3 g = vec3(opacityNear(o + vec3(h, 0.0, 0.0)) - opacityNear(o - vec3(h, 0.0, 0.0)),
+                  opacityNear(o + vec3(0.0, h, 0.0)) - opacityNear(o - vec3(0.0, h, 0.0)),
+                  opacityNear(o + vec3(0.0, 0.0, h)) - opacityNear(o - vec3(0.0, 0.0, h)));
+    g -= dot(g, n) * n;
+    if (length(g) < 1e-4) return o;
+    return o - 2.0 * h * min(1.0, 3.0 * opacityNear(o)) * normalize(g);
+}
+
 /// Cosine-weighted gather over the hemisphere of unit normal n at p: the
 /// normal's cone (up to 30 degrees) weighs a quarter, a ring of cones tilted
 /// 60 degrees three quarters. rgb: the mean incoming radiance (times albedo,
@@ -107,7 +132,7 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit, float tanHalf)
 /// occlusion.
 vec4 hemisphereGather(vec3 p, vec3 n, bool lit)
 {
-    vec3 o = p + uConeOffset * n;
+    vec3 o = coneStart(p, n);
     if (uCones <= 1) return coneGather(o, n, n, uConeOffset, lit, uConeTanHalf);
     vec3 t1 = normalize(abs(n.x) < 0.6 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
     vec3 t2 = cross(n, t1);

@@ -51,6 +51,23 @@ uniform float uGamma;    // ... to the power 1 / gamma
 uniform vec3 uSpecular;         // glossy reflectance (Illumination::specular)
 uniform float uSpecularTanHalf; // tan of half the glossy cone's aperture
 
+uniform uint uSurface;    // 1: shade the mesh's surface (ViewLayers::surface = Mesh), not the voxels rays hit
+layout(binding = SVO_UNIT_VIEW_SURFACE_POINT) uniform sampler2D uSurfacePoint;
+layout(binding = SVO_UNIT_VIEW_SURFACE_NORMAL) uniform sampler2D uSurfaceNormal;
+
+/// The voxel holding cell-space point p, if the octree has it (a point of
+/// the mesh lies in a voxel of its conservative set, up to rounding).
+bool voxelAt(vec3 p, out uint brick, out uint bit)
+{
+    ivec3 cell = ivec3(floor(p));
+    bit = 0u;
+    int emptyLog2;
+    if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, uDims)) || !findBrick(cell, brick, emptyLog2))
+        return false;
+    bit = brickBit(cell);
+    return brickHas(brick, bit);
+}
+
 /// One pixel's ray, shaded, into uPixels.
 void castRay(ivec2 pixel)
 {
@@ -59,32 +76,64 @@ void castRay(ivec2 pixel)
     vec4 b = uInverseViewProjection * vec4(ndc, 1.0, 1.0);
     vec3 o = a.xyz / a.w;
     vec3 d = b.xyz / b.w - o; // t in [0, 1] spans the near to the far plane
-    VoxelHit hit;
-    if (!marchOctree(o, d, 0.0, 1.0, hit)) {
-        imageStore(uPixels, pixel, vec4(0.0, 0.0, 0.0, -1.0));
-        return;
-    }
 
-    vec3 face = vec3(0.0);
-    face[hit.axis] = -sign(d[hit.axis]);
-    vec3 p = o + d * hit.t;
+    // What the pixel sees: a voxel of the octree (its centre shaded along
+    // its normal channel, or the face the ray entered), or a point of the
+    // mesh with its triangle's normal, in the voxel holding it where the
+    // octree has that voxel (for its attributes).
+    vec3 p, c, face, surfaceNormal = vec3(0.0);
+    uint brick = 0u, bit = 0u;
+    bool inVoxel = true;
+    if (uSurface != 0u) {
+        vec4 g = texelFetch(uSurfacePoint, pixel, 0);
+        if (g.w == 0.0) {
+            imageStore(uPixels, pixel, vec4(0.0, 0.0, 0.0, -1.0));
+            return;
+        }
+        p = c = g.xyz;
+        surfaceNormal = texelFetch(uSurfaceNormal, pixel, 0).xyz;
+        if (dot(surfaceNormal, d) > 0.0) surfaceNormal = -surfaceNormal;
+        int axis = abs(surfaceNormal.x) >= max(abs(surfaceNormal.y), abs(surfaceNormal.z)) ? 0
+                   : (abs(surfaceNormal.y) >= abs(surfaceNormal.z) ? 1 : 2);
+        face = vec3(0.0);
+        face[axis] = sign(surfaceNormal[axis]);
+        inVoxel = voxelAt(p, brick, bit);
+    } else {
+        VoxelHit hit;
+        if (!marchOctree(o, d, 0.0, 1.0, hit)) {
+            imageStore(uPixels, pixel, vec4(0.0, 0.0, 0.0, -1.0));
+            return;
+        }
+        face = vec3(0.0);
+        face[hit.axis] = -sign(d[hit.axis]);
+        p = o + d * hit.t;
+        c = vec3(hit.cell) + 0.5;
+        brick = hit.brick;
+        bit = hit.bit;
+    }
+    bool mesh = uSurface != 0u;
     vec4 color;
     if (uLightMode != 0) {
-        // Lit: the surface's normal (its channel, turned to the viewer; the
-        // face's where the normals cancel), direct light at the voxel's
-        // centre, and for GI the albedo times the light the cones gather.
-        // The direct light on the side the camera sees was computed once per
-        // voxel by the injection; a voxel without a normal takes the face's,
-        // which depends on the ray, and marches its own shadow rays.
-        uint v = voxelIndex(hit.brick, hit.bit);
-        vec3 m = voxelNormal(v);
-        bool hasNormal = length(m) > 1e-6;
-        vec3 n = hasNormal ? normalize(m) : face;
-        bool front = dot(n, d) <= 0.0;
-        if (!front) n = -n;
-        vec3 c = vec3(hit.cell) + 0.5;
-        vec3 albedo = voxelAlbedo(v);
-        vec3 e = hasNormal ? storedIrradiance(v, front) : irradiance(c, n);
+        // Lit: the surface's normal (the triangle's; or the voxel's channel,
+        // or the face's where the normals cancel), turned to the viewer,
+        // direct light there, and for GI the albedo times the light the
+        // cones gather. A voxel's direct light on the side the camera sees
+        // was computed once by the injection; a mesh's point, and a voxel
+        // without a normal (whose face depends on the ray), march their own
+        // shadow rays.
+        vec3 n = surfaceNormal;
+        bool stored = false, front = true;
+        uint v = 0u;
+        if (inVoxel) v = voxelIndex(brick, bit);
+        if (!mesh) {
+            vec3 m = voxelNormal(v);
+            stored = length(m) > 1e-6;
+            n = stored ? normalize(m) : face;
+            front = dot(n, d) <= 0.0;
+            if (!front) n = -n;
+        }
+        vec3 albedo = inVoxel ? voxelAlbedo(v) : uAlbedo;
+        vec3 e = stored ? storedIrradiance(v, front) : irradiance(c, n);
         vec3 radiance = albedo * (1.0 / 3.14159265) * e;
         if (uLightMode == 2) {
             radiance += albedo * hemisphereGather(c, n, true).rgb;
@@ -95,22 +144,25 @@ void castRay(ivec2 pixel)
         }
         color = vec4(pow(clamp(radiance * uExposure, 0.0, 1.0), vec3(1.0 / uGamma)), 1.0);
     } else {
-        // Lit by the face normal: a head light plus a little ambient.
-        float light = 0.45 + 0.55 * abs(dot(face, normalize(d)));
+        // Lit by the surface's normal: a head light plus a little ambient.
+        vec3 lightNormal = mesh ? surfaceNormal : face;
+        float light = 0.45 + 0.55 * abs(dot(lightNormal, normalize(d)));
         float ao = 1.0;
         if (uAoVolume == 0u) {
             ao = ambientOcclusion(p, face);
         } else if (uCones > 0) {
-            // From the voxel's centre along its normal (the face's where it
-            // has none, or its normals cancel), turned to the viewer.
-            vec3 n = face;
-            if (uAoNormals != 0u) {
-                vec3 m = voxelNormal(voxelIndex(hit.brick, hit.bit));
+            // From the mesh's point along its normal, or from the voxel's
+            // centre along its normal (the face's where it has none, or its
+            // normals cancel), turned to the viewer.
+            vec3 n = mesh ? surfaceNormal : face;
+            if (!mesh && uAoNormals != 0u) {
+                vec3 m = voxelNormal(voxelIndex(brick, bit));
                 if (length(m) > 1e-6) n = normalize(dot(m, d) > 0.0 ? -m : m);
             }
-            ao = 1.0 - hemisphereGather(vec3(hit.cell) + 0.5, n, false).a;
+            ao = 1.0 - hemisphereGather(c, n, false).a;
         }
-        color = uAoOnly != 0u ? vec4(vec3(ao), 1.0) : vec4(voxelColor(hit.brick, hit.bit) * light * ao, 1.0);
+        vec3 base = inVoxel ? voxelColor(brick, bit) : uColor;
+        color = uAoOnly != 0u ? vec4(vec3(ao), 1.0) : vec4(base * light * ao, 1.0);
     }
     vec4 clip = uViewProjection * vec4(p, 1.0);
     imageStore(uPixels, pixel, vec4(color.rgb, clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0)));

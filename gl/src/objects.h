@@ -105,6 +105,7 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
     void bindTexture(GLuint unit) const { glBindTextureUnit(unit, h_.get()); }
+    GLuint get() const { return h_.get(); } ///< the GL name, e.g. to attach it to a framebuffer
     /// Binds the texture as an image (imageLoad / imageStore); `format` is the image's layout qualifier format.
     void bindImage(GLuint unit, GLenum access, GLenum format) const
     {

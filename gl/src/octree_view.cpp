@@ -165,6 +165,37 @@ struct Target {
     Handle<detail::deleteFramebuffer> fbo;
 };
 
+/// The mesh's surface per pixel (ViewLayers::surface = Mesh): its point and
+/// normal as textures the voxel pass reads, and a depth buffer to keep the
+/// nearest triangle.
+struct SurfaceTarget {
+    SurfaceTarget(int width, int height)
+        : point("mesh surface points (view)", GL_RGBA32F, width, height),
+          normal("mesh surface normals (view)", GL_RGBA16F, width, height)
+    {
+        GLuint d = 0;
+        glCreateRenderbuffers(1, &d);
+        depth = Handle<deleteRenderbuffer>(d);
+        glNamedRenderbufferStorage(d, GL_DEPTH_COMPONENT32F, width, height);
+        GLuint f = 0;
+        glCreateFramebuffers(1, &f);
+        fbo = Handle<detail::deleteFramebuffer>(f);
+        glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT0, point.get(), 0);
+        glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT1, normal.get(), 0);
+        glNamedFramebufferRenderbuffer(f, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, d);
+        const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        glNamedFramebufferDrawBuffers(f, 2, attachments);
+        checkGl(fmt::format("allocating the mesh's {} x {} surface buffers", width, height).c_str());
+        const GLenum status = glCheckNamedFramebufferStatus(f, GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE)
+            throw Error(fmt::format("octree view: the mesh's {} x {} surface framebuffer is incomplete (0x{:04x})",
+                                    width, height, status));
+    }
+    Texture2D point, normal;
+    Handle<deleteRenderbuffer> depth;
+    Handle<detail::deleteFramebuffer> fbo;
+};
+
 } // namespace
 
 std::array<Vec3d, 2> gridWorldBox(const GridSpec& grid)
@@ -260,6 +291,8 @@ struct OctreeView::Impl {
     mutable std::optional<LightVolumeTextures> light;
     /// The voxel pass's pixels (view_voxels.comp), kept while the picture's size stays.
     mutable std::optional<Texture2D> pixels;
+    /// The mesh's points and normals per pixel (Surface::Mesh), kept likewise.
+    mutable std::optional<SurfaceTarget> surface;
     /// The voxel pass's pixels whose loops the driver cut short, last frame.
     LoopCutCounter loopCut;
     mutable uint32_t cutPixels = 0;
@@ -271,6 +304,15 @@ struct OctreeView::Impl {
             pixels.emplace("view's pixels", GL_RGBA32F, width, height);
         }
         return *pixels;
+    }
+
+    const SurfaceTarget& surfaceTarget(int width, int height) const
+    {
+        if (!surface || surface->point.width() != width || surface->point.height() != height) {
+            surface.reset();
+            surface.emplace(width, height);
+        }
+        return *surface;
     }
 
     ViewBuffers buffers() const
@@ -463,6 +505,28 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
     v.bricks.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_BRICKS);
     v.origins.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ORIGINS);
 
+    const bool shadeMesh = layers.voxels && layers.surface == Surface::Mesh;
+    if (shadeMesh) {
+        if (!v.meshArray) throw Error("octree view: shading the mesh's surface needs the mesh, and the view has none");
+        // The mesh into its own framebuffer: each pixel's nearest point and
+        // normal, for the voxel pass to shade.
+        GLint drawn = 0;
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawn);
+        const SurfaceTarget& target = v.surfaceTarget(width, height);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.fbo.get());
+        const float none[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(target.fbo.get(), GL_COLOR, 0, none);
+        glClearNamedFramebufferfv(target.fbo.get(), GL_COLOR, 1, none);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        const Program& p = context.program({"view_mesh.vert", "view_surface.frag"});
+        p.setMatrix("uViewProjection", viewProjection.data());
+        p.use();
+        v.meshArray->bind();
+        glDrawElements(GL_TRIANGLES, GLsizei(v.meshIndexCount), GL_UNSIGNED_INT, nullptr);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(drawn));
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        checkGl("drawing the mesh's surface");
+    }
     if (layers.voxels) {
         const std::optional<Buffer>* channel = nullptr;
         int mode = SVO_VIEW_COLOR_FLAT;
@@ -500,6 +564,11 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
                 v.voxelStart->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_VOXEL_START);
             }
         }
+        p.set("uSurface", shadeMesh ? 1u : 0u);
+        if (shadeMesh) {
+            v.surface->point.bindTexture(SVO_UNIT_VIEW_SURFACE_POINT);
+            v.surface->normal.bindTexture(SVO_UNIT_VIEW_SURFACE_NORMAL);
+        }
         p.set("uAoVolume", aoVolume ? 1u : 0u);
         p.set("uAoNormals", v.normals ? 1u : 0u);
         p.set("uLightMode", light.mode == Illumination::Mode::Off      ? 0
@@ -518,7 +587,7 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         p.set("uViewport", float(width), float(height));
         p.set("uBrickLevel", v.brickLevel);
         p.set("uDims", int(v.grid.dims[0]), int(v.grid.dims[1]), int(v.grid.dims[2]));
-        const auto& c = ViewColors::voxel;
+        const auto& c = shadeMesh ? ViewColors::mesh : ViewColors::voxel;
         p.set("uColor", c[0], c[1], c[2]);
         // The rays in a compute pass, then their pixels and depths into the
         // framebuffer by a full-screen triangle (view_pixels.frag).
@@ -536,7 +605,7 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         glDrawArrays(GL_TRIANGLES, 0, 3);
         checkGl("drawing the voxels");
     }
-    if (layers.mesh && v.meshArray) {
+    if (layers.mesh && v.meshArray && !shadeMesh) {
         const Program& p = context.program({"view_mesh.vert", "view_mesh.frag"});
         p.setMatrix("uViewProjection", viewProjection.data());
         const auto& c = ViewColors::mesh;

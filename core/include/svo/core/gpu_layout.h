@@ -156,6 +156,11 @@ SVO_CONST(uint) kBitmapBlockShift = 9u; /* 512 bits a block */
    and read as a texture by view_pixels.frag. GL promises 8 image units. */
 #define SVO_IMAGE_VIEW_PIXELS 0
 #define SVO_UNIT_VIEW_PIXELS 9
+/* Viewer, ViewLayers::surface = Mesh: the mesh rasterized into the point
+   (xyz, cell space; w = 1 where a triangle covers the pixel, else 0) and the
+   unit normal (xyz) each pixel sees, read by view_voxels.comp. */
+#define SVO_UNIT_VIEW_SURFACE_POINT 10
+#define SVO_UNIT_VIEW_SURFACE_NORMAL 11
 /* ViewLayers::voxelColor as the shader reads it. */
 #define SVO_VIEW_COLOR_FLAT 0
 #define SVO_VIEW_COLOR_NORMAL 1
@@ -264,7 +269,8 @@ static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRIC
                              SVO_BIND_ATTRIBUTE_SUMS}));
 static_assert(distinctSlots({SVO_UNIT_LIGHT_OPACITY, SVO_UNIT_LIGHT_RADIANCE, SVO_UNIT_LIGHT_ALONG,
                              SVO_UNIT_LIGHT_ALONG + 1, SVO_UNIT_LIGHT_ALONG + 2, SVO_UNIT_LIGHT_ALONG + 3,
-                             SVO_UNIT_LIGHT_ALONG + 4, SVO_UNIT_LIGHT_ALONG + 5, SVO_UNIT_LIGHT_LIT_SIDE, SVO_UNIT_VIEW_PIXELS}));
+                             SVO_UNIT_LIGHT_ALONG + 4, SVO_UNIT_LIGHT_ALONG + 5, SVO_UNIT_LIGHT_LIT_SIDE, SVO_UNIT_VIEW_PIXELS,
+                             SVO_UNIT_VIEW_SURFACE_POINT, SVO_UNIT_VIEW_SURFACE_NORMAL}));
 static_assert(distinctSlots({SVO_BIND_VIEW_NODES, SVO_BIND_VIEW_BRICKS, SVO_BIND_VIEW_ORIGINS,
                              SVO_BIND_VIEW_VOXEL_START, SVO_BIND_VIEW_ATTRIBUTE, SVO_BIND_VIEW_OPACITY,
                              SVO_BIND_VIEW_LIGHTS, SVO_BIND_VIEW_NORMALS, SVO_BIND_VIEW_ALBEDO,

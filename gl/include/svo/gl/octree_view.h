@@ -187,12 +187,27 @@ struct LightVolume {
     std::vector<LightVolumeLevel> levels;
 };
 
+/// The surface the voxel layer shades (ViewLayers::surface):
+///   - Voxels: the voxels camera rays hit in the octree, each shaded at its
+///     centre along its normal channel (or the face the ray hit): what the
+///     octree holds, blocky at its resolution;
+///   - Mesh: the mesh's triangles (OctreeView needs the mesh), rasterized
+///     into each pixel's point and triangle normal and shaded there by the
+///     same light, AO and cones through the octree's volume (deferred
+///     shading, as in Crassin et al. 2011): silhouettes and edges are the
+///     triangles', and the octree only lights them. Direct light marches its
+///     shadow ray from the pixel's point (the Voxels surface reads each
+///     voxel's from the injection). Colours by attribute, and the albedo,
+///     are the channel's value at the voxel holding the point.
+enum class Surface { Voxels, Mesh };
+
 /// What to draw.
 struct ViewLayers {
-    bool voxels = true;
+    bool voxels = true; ///< the voxel layer: the `surface`, shaded
+    Surface surface = Surface::Voxels;
     bool outlines = true;
     bool bricks = false; ///< the brick-level nodes' boxes, in their own colour, whatever the level range
-    bool mesh = false; ///< needs a mesh (ignored without one)
+    bool mesh = false; ///< the mesh, flat grey, when the voxel layer does not shade it (needs a mesh; ignored without one)
     VoxelColor voxelColor = VoxelColor::Flat; ///< a channel the octree lacks is an error
     AmbientOcclusion ao;                      ///< on the voxels; off by default
     Illumination light;                       ///< lit voxels instead of colours and AO; off by default
