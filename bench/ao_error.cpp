@@ -94,15 +94,16 @@ int main(int argc, char** argv)
                      "Cone-traced AO (svo view --render ao) against path-traced AO ({} rays per pixel, Embree), {} x "
                      "{} pixels compared where both see a surface; AO distance {} of the scene's diagonal; GPU ms per "
                      "frame at {} x {} on {}.\n\n",
-                     samples, width, height, distanceShare, timeWidth, timeHeight, context.info().renderer)
+                     samples, width, height, distanceShare, timeWidth, timeHeight, context.info().renderer) +
+                     fmt::format("Shading the {} (ViewLayers::surface).\n\n", surface)
                : fmt::format("Cone-traced {} light (svo view --render {}) against the path-traced reference's {} "
                              "({} paths per pixel, Embree), linear radiance (albedo {}, svo's default lights), {} x {} "
                              "pixels compared where both see a surface, values clamped to [0, 1]; GPU ms per frame at "
                              "{} x {} on {}, and with the light injected and the volume mip-mapped again in each "
-                             "frame (light moved); emission {}.\n\n",
+                             "frame (light moved); emission {}; shading the {}.\n\n",
                              render == "gi" ? "one-bounce" : "direct", render,
                              render == "gi" ? "OneBounce" : "Direct", samples, albedo, width, height, timeWidth,
-                             timeHeight, context.info().renderer, directional ? "by direction" : "isotropic");
+                             timeHeight, context.info().renderer, directional ? "by direction" : "isotropic", surface);
         md += fmt::format("| scene | grid | opacity | cones | RMSE | p99 error | mean {} (svo) | mean {} (reference) | "
                           "pixels | GPU ms | GPU ms, light moved | wall ms |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                           ao ? "AO" : "radiance", ao ? "AO" : "radiance");

@@ -726,7 +726,7 @@ TEST_F(Cli, ViewLightsTheVoxelsAndRefusesBadLighting)
     EXPECT_EQ(lineCount(plain.out), 1u) << plain.out;
     EXPECT_NE(plain.out.find("plain.svo: --render gi needs the octree's normal channel"), std::string::npos) << plain.out;
     // The mesh's own triangles lit instead of the voxels (--surface mesh): a
-    // mesh input only..
+    // mesh input only.
     const auto meshShot = runSvo("view -r 16 --size 64x48 --render gi --surface mesh --screenshot " + path("lit.png"));
     ASSERT_EQ(meshShot.code, 0) << meshShot.out;
     const auto noMesh = runSvo("view " + path("plain.svo") + " --render ao --surface mesh --screenshot " + path("x.png"));

@@ -69,7 +69,10 @@ enum class VoxelColor { Flat, Normal, Color, Triangle };
 ///     face the ray hit is the normal. No extra memory; slower (each sample
 ///     descends from the root) and further from the reference.
 /// A sample whose cell would reach behind the surface's tangent plane takes
-/// a finer one (what lies behind cannot occlude).
+/// a finer one (what lies behind cannot occlude). Volume cones start away
+/// from a neighbouring surface (up to 2 texels down level 0's opacity
+/// gradient across the normal), so that a concave edge's cones do not start
+/// inside the other wall (design §7c).
 ///
 /// The cone model is biased, and bench/results measures both sources against
 /// a path-traced reference (svo/reference/path_trace.h). With the Octree
