@@ -59,9 +59,12 @@ enum class VoxelColor { Flat, Normal, Color, Triangle };
 ///   - Volume (the default): the lighting volume's opacity alone (see
 ///     Illumination; no lights, no normals needed), a mip-mapped 3D texture
 ///     sampled trilinearly, opacity seen along x, y and z (Crassin's
-///     anisotropic filter). The cones leave the voxel's centre along the
-///     octree's normal channel when it has one, else along the face the ray
-///     hit. Allocated while AO is on, `volumeResolution` texels at most.
+///     anisotropic filter). Each cone keeps its occlusion per sector of its
+///     cross-section, so that an occluder it sees at several depths (a
+///     sphere's near and far sides) is counted once (design §7c). The cones
+///     leave the voxel's centre along the octree's normal channel when it
+///     has one, else along the face the ray hit. Allocated while AO is on,
+///     `volumeResolution` texels at most.
 ///   - Octree: the octree itself as the mip-map: a node's opacity is its
 ///     voxels over the voxels of one face of its box, at most 1 (a surface
 ///     crossing the box covers it); inside bricks, 4³ and 2³ blocks and
