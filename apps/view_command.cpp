@@ -27,7 +27,8 @@ namespace {
 struct ViewArgs {
     std::string input, screenshot, size = "1280x960", camera, view = "front", layers = "voxels,outlines", levels,
                                      gridName, keys, save, color = "flat", render = "debug", aoFilter = "max",
-                                     aoSource = "volume", surface = "voxels";
+                                     aoSource = "volume", surface = "voxels",
+                                     conePattern = "interleaved";
     int frames = 0;
     gl::AmbientOcclusion ao;
     gl::Illumination light;
@@ -182,6 +183,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         throw Error("--light, --albedo and --specular light the voxels of --render direct or gi");
     }
     layers.surface = a.surface == "mesh" ? gl::Surface::Mesh : gl::Surface::Voxels;
+    layers.ao.interleave = layers.light.interleave = a.conePattern == "interleaved";
     layers.voxelColor = a.color == "normal" ? gl::VoxelColor::Normal
                         : a.color == "color" ? gl::VoxelColor::Color
                         : a.color == "triangle" ? gl::VoxelColor::Triangle
@@ -364,6 +366,12 @@ void addViewCommand(CLI::App& app)
                     "(the input mesh's triangles, lit, occluded and coloured through the octree: no blocks; needs a "
                     "mesh input)")
         ->check(CLI::IsMember({"voxels", "mesh"}))
+        ->capture_default_str();
+    cmd->add_option("--cone-pattern", args->conePattern,
+                    "AO from the volume, and gi's bounce: interleaved (each pixel of a 4x4 tile turns its cones and "
+                    "shifts their steps its own way, and the tile's pixels on one surface are averaged: smoother, "
+                    "closer to a path tracer) or fixed (every pixel the same cones)")
+        ->check(CLI::IsMember({"interleaved", "fixed"}))
         ->capture_default_str();
     cmd->add_option("--render", args->render,
                     "debug: the layers; ao: the voxels as their ambient occlusion, grey (7 cones unless --ao says); "

@@ -285,6 +285,7 @@ struct ViewerState {
         float step = float(li.step);
         if (ImGui::SliderFloat("GI step", &step, 0.05f, 1.0f, "%.2f of the cone")) li.step = step;
         ImGui::Checkbox("six-way radiance", &li.directional);
+        ImGui::Checkbox("GI cones interleaved over 4x4 pixels", &li.interleave);
         if (ImGui::SliderFloat("specular", &specular, 0.0f, 1.0f, "%.2f")) li.specular = {specular, specular, specular};
         if (li.specular.x > 0 && ImGui::SliderFloat("specular aperture", &glossy, 2.0f, 90.0f, "%.0f deg"))
             li.specularApertureDegrees = glossy;
@@ -337,6 +338,7 @@ struct ViewerState {
                 l.ao.distance = distance;
             float step = float(l.ao.step);
             if (ImGui::SliderFloat("AO step", &step, 0.05f, 1.0f, "%.2f of the cone")) l.ao.step = step;
+            if (volume) ImGui::Checkbox("AO cones interleaved over 4x4 pixels", &l.ao.interleave);
             int filter = int(l.ao.filter);
             static constexpr const char* kFilters[] = {"average", "max"};
             if (!volume && ImGui::Combo("AO filter", &filter, kFilters, IM_ARRAYSIZE(kFilters)))

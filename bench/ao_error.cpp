@@ -79,6 +79,10 @@ int main(int argc, char** argv)
         ->check(CLI::IsMember({"volume", "octree", "both"}));
     bool directional = false;
     app.add_flag("--directional", directional, "gi: emission by direction (Illumination::directional)");
+    std::string conePattern = "interleaved";
+    app.add_option("--cone-pattern", conePattern,
+                   "interleaved (each pixel of a 4x4 tile its own cones, averaged) or fixed (every pixel the same)")
+        ->check(CLI::IsMember({"interleaved", "fixed"}));
     std::string surface = "voxels";
     app.add_option("--surface", surface, "Shade the voxels camera rays hit, or the mesh's triangles (ViewLayers::surface)")
         ->check(CLI::IsMember({"voxels", "mesh"}));
@@ -95,15 +99,16 @@ int main(int argc, char** argv)
                      "{} pixels compared where both see a surface; AO distance {} of the scene's diagonal; GPU ms per "
                      "frame at {} x {} on {}.\n\n",
                      samples, width, height, distanceShare, timeWidth, timeHeight, context.info().renderer) +
-                     fmt::format("Shading the {} (ViewLayers::surface).\n\n", surface)
+                     fmt::format("Shading the {} (ViewLayers::surface); cones {}.\n\n", surface, conePattern)
                : fmt::format("Cone-traced {} light (svo view --render {}) against the path-traced reference's {} "
                              "({} paths per pixel, Embree), linear radiance (albedo {}, svo's default lights), {} x {} "
                              "pixels compared where both see a surface, values clamped to [0, 1]; GPU ms per frame at "
                              "{} x {} on {}, and with the light injected and the volume mip-mapped again in each "
-                             "frame (light moved); emission {}; shading the {}.\n\n",
+                             "frame (light moved); emission {}; shading the {}; cones {}.\n\n",
                              render == "gi" ? "one-bounce" : "direct", render,
                              render == "gi" ? "OneBounce" : "Direct", samples, albedo, width, height, timeWidth,
-                             timeHeight, context.info().renderer, directional ? "by direction" : "isotropic", surface);
+                             timeHeight, context.info().renderer, directional ? "by direction" : "isotropic", surface,
+                             conePattern);
         md += fmt::format("| scene | grid | opacity | cones | RMSE | p99 error | mean {} (svo) | mean {} (reference) | "
                           "pixels | GPU ms | GPU ms, light moved | wall ms |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                           ao ? "AO" : "radiance", ao ? "AO" : "radiance");
@@ -165,6 +170,7 @@ int main(int argc, char** argv)
                             if (aperture > 0) layers.ao.apertureDegrees = aperture;
                             layers.ao.step = step;
                             layers.ao.only = true;
+                            layers.ao.interleave = conePattern == "interleaved";
                             layers.ao.distance = distance / octree.grid.voxelSize;
                         } else {
                             layers.light.mode = render == "gi" ? svo::gl::Illumination::Mode::Global
@@ -176,6 +182,7 @@ int main(int argc, char** argv)
                             if (aperture > 0) layers.light.apertureDegrees = aperture;
                             layers.light.step = step;
                             layers.light.directional = directional;
+                            layers.light.interleave = conePattern == "interleaved";
                             layers.light.gamma = 1.0;
                         }
                         const svo::gl::Image image = view.render(camera, width, height, layers);

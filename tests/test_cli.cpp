@@ -714,7 +714,8 @@ TEST_F(Cli, ViewBadInputFailsAsVoxelizeDoes)
 TEST_F(Cli, ViewLightsTheVoxelsAndRefusesBadLighting)
 {
     // A lit picture of the built-in Cornell box (its mesh is voxelized with normals).
-    for (const char* render : {"direct", "gi --gi-emission directional --gi-cones 3", "gi --specular 0.3,0.3,0.2"}) {
+    for (const char* render : {"direct", "gi --gi-emission directional --gi-cones 3", "gi --specular 0.3,0.3,0.2",
+                               "gi --cone-pattern fixed"}) {
         const auto lit = runSvo(std::string("view -r 16 --size 64x48 --render ") + render +
                                 " --light point:0,1.8,0:5 --light sun:0.3,-1,0.2:1,1,0.5 --screenshot " + path("lit.png"));
         ASSERT_EQ(lit.code, 0) << lit.out;
@@ -738,7 +739,8 @@ TEST_F(Cli, ViewLightsTheVoxelsAndRefusesBadLighting)
                              "--render gi --gi-emission sideways", "--light sun:0,-1,0", "--render gi --specular 1.5",
                              "--render direct --specular 0.5", "--render gi --specular 0.5 --specular-aperture 0",
                              "--render ao --ao-source mesh", "--render ao --light-volume 100", "--render gi --gi-step 0",
-                             "--render ao --ao-step 1.5", "--render ao --surface triangles"}) {
+                             "--render ao --ao-step 1.5", "--render ao --surface triangles",
+                             "--render ao --cone-pattern random"}) {
         const auto r = runSvo(std::string("view -r 8 --screenshot ") + path("x.png") + " " + args);
         EXPECT_EQ(r.code, 1) << args;
         EXPECT_EQ(lineCount(r.out), 1u) << args << ": " << r.out;

@@ -762,6 +762,50 @@ TEST(View, AmbientOcclusionOfAnOpenPlaneAndInsideAClosedBox)
     EXPECT_THROW(boxView.render(inside, 8, 8, l), svo::Error);
 }
 
+/// Interleaved cones (AmbientOcclusion::interleave) average a pixel's AO
+/// over the 4x4 window around it, on its own surface only. A plate one voxel
+/// thick, 10 voxels over a floor, seen from above: the plate's top is an
+/// open plane (AO exactly 1 at every pixel, the analytic answer), although
+/// the windows of its border pixels hold floor pixels that the plate
+/// occludes; a blur across the depth step would darken them. Without
+/// interleaving the plate is 1 as well, and the floor beside it is dark in
+/// both.
+TEST(View, InterleavedAoIsNotAveragedAcrossADepthStep)
+{
+    const GridSpec g = unitGrid(64);
+    std::vector<Voxel> voxels;
+    for (uint32_t x = 4; x < 60; ++x)
+        for (uint32_t y = 4; y < 60; ++y) voxels.push_back({x, y, 10});
+    for (uint32_t x = 20; x < 44; ++x)
+        for (uint32_t y = 20; y < 44; ++y) voxels.push_back({x, y, 20});
+    svo::gl::OctreeView view(context(), octreeOf(g, voxels));
+    const AxisView above(2, Vec3d{32, 32, 20}, 0.5, 128, 128); // 2 pixels a voxel, looking down -z
+    ViewLayers l;
+    l.outlines = false;
+    l.ao.cones = 7;
+    l.ao.distance = 32;
+    for (const bool interleave : {true, false}) {
+        l.ao.interleave = interleave;
+        const Image image = view.render(above.camera, 128, 128, l);
+        // The plate covers [19.5, 43.5) in x and y (a voxel's box is its index
+        // +- 1/2); at 2 pixels a voxel, the picture's centre at 32, pixel
+        // centres from the left x + 1/2 and from the top y + 1/2: columns 39
+        // to 86 and rows 41 to 88. Its border pixels, 4 deep, and the floor's
+        // 4 pixels beside its left and right borders.
+        double plateLowest = 1, floorHighest = 0;
+        for (int a = 0; a < 4; ++a)
+            for (int b = 50; b < 80; ++b)
+                for (const auto& [x, y] : {std::pair{39 + a, b}, std::pair{86 - a, b}, std::pair{b, 41 + a},
+                                           std::pair{b, 88 - a}})
+                    plateLowest = std::min(plateLowest, aoAt(image, x, y));
+        for (int a = 1; a <= 4; ++a)
+            for (int y = 56; y < 72; ++y)
+                floorHighest = std::max({floorHighest, aoAt(image, 39 - a, y), aoAt(image, 86 + a, y)});
+        EXPECT_GT(plateLowest, 0.99) << (interleave ? "interleaved" : "fixed");
+        EXPECT_LT(floorHighest, 0.85) << (interleave ? "interleaved" : "fixed");
+    }
+}
+
 TEST(View, BadCamerasAndSizesThrow)
 {
     const GridSpec g = unitGrid(16);

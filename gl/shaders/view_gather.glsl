@@ -8,7 +8,9 @@
 // finer one near the surface), steps by a share of that width, and
 // composites front to back. Ambient occlusion
 // (AmbientOcclusion::Source::Volume) takes the opacity alone, and keeps it
-// per sector of the cone's cross-section (coneOcclusion).
+// per sector of the cone's cross-section (coneOcclusion). With uInterleave
+// each pixel of a 4x4 tile turns its ring of cones and shifts its steps its
+// own way (conePattern); view_resolve.comp then averages the tile.
 
 #include "lit_side.glsl"
 #include "opacity_depth.glsl"
@@ -34,6 +36,44 @@ uniform float uConeOffset;    // cones start this far out along the normal, voxe
 uniform float uConeStep;      // steps: this share of the cone's width (of twice the sample's near the surface)
 uniform int uCones;           // 1: the normal; n: the normal and a ring of n - 1
 uniform uint uDirectional;    // 1: the volume has six-way radiance from level 1 up
+uniform uint uInterleave;     // 1: each pixel of a 4x4 tile its own cone pattern (conePattern)
+
+/// Where a cone samples at distance t, for a cone from `height` voxels out of
+/// the surface of normal n, along dir, of half-angle tangent tanHalf: the
+/// sample's width (the cone's, but near the surface no wider than a third
+/// of its height above it: design §7c), the step to the next sample, and the
+/// mip level. Every cone of the volume follows it.
+struct ConeSample {
+    float width;
+    float stride;
+    float lod;
+};
+ConeSample coneSampleAt(float t, float height, vec3 dir, vec3 n, float tanHalf)
+{
+    float above = height + t * dot(dir, n);
+    float cone = max(uTexelCells, 2.0 * t * tanHalf);
+    ConeSample k;
+    k.width = max(uTexelCells, min(cone, above / 3.0));
+    k.stride = uConeStep * min(cone, 2.0 * k.width);
+    k.lod = log2(k.width / uTexelCells);
+    return k;
+}
+
+/// The pixel's cone pattern: x, the ring's turn, a share of the spacing of
+/// its cones in (-1/2, 1/2); y, the first step's share of a step, (0, 1]
+/// (the later samples move with it). A cone set samples the coarse texels at
+/// fixed places, and its error has the texel grid's pattern (stripes on the
+/// Cornell box's walls) and the ring's (bands where its cones reach a wall);
+/// with uInterleave the 16 pixels of a 4x4 tile take 16 different sets (any
+/// 2x2 block all four turns and all four shifts), and view_resolve.comp
+/// averages them, so that a pixel sees 16 sets for the time of one. Without,
+/// every pixel the same set: no turn, whole steps.
+vec2 conePattern(ivec2 pixel)
+{
+    if (uInterleave == 0u) return vec2(0.0, 1.0);
+    int turn = (pixel.x + 2 * pixel.y) & 3, shift = (2 * pixel.x + pixel.y) & 3; // a bijection of the tile
+    return vec2((float(turn) + 0.5) / 4.0 - 0.5, float(shift + 1) / 4.0);
+}
 
 /// Radiance (premultiplied; a: opacity) a ray along `dir` sees at level
 /// `lod` >= 1, the three axes it travels along weighted by `share`.
@@ -74,7 +114,7 @@ const vec2 kSectorCentres[kConeSectors] = vec2[](
 /// gradient, every sector s). Each sector composites its own samples; the
 /// cone's occlusion is the sectors' mean. A wall across the whole cone
 /// still composites as before.
-float coneOcclusion(vec3 o, vec3 dir, vec3 n, float height, float tanHalf)
+float coneOcclusion(vec3 o, vec3 dir, vec3 n, float height, float tanHalf, float firstStep)
 {
     vec3 share = dir * dir;
     vec3 e1 = normalize(abs(dir.x) < 0.6 ? cross(dir, vec3(1.0, 0.0, 0.0)) : cross(dir, vec3(0.0, 1.0, 0.0)));
@@ -84,11 +124,9 @@ float coneOcclusion(vec3 o, vec3 dir, vec3 n, float height, float tanHalf)
     float occlusion = 0.0;
     float t = 0.0;
     while (t < uConeDistance && occlusion < 0.99) {
-        float above = height + t * dot(dir, n);
-        float cone = max(uTexelCells, 2.0 * t * tanHalf);
-        float width = max(uTexelCells, min(cone, above / 3.0));
-        float stride = uConeStep * min(cone, 2.0 * width);
-        float lod = log2(width / uTexelCells);
+        ConeSample k = coneSampleAt(t, height, dir, n, tanHalf);
+        float width = k.width, lod = k.lod;
+        float stride = t == 0.0 ? firstStep * k.stride : k.stride;
         vec3 q = o + t * dir;
         float s = sampleOpacity(share, q, lod);
         vec2 g = 2.0 * vec2(sampleOpacity(share, q + 0.5 * width * e1, lod) - s,
@@ -128,20 +166,19 @@ float coneOcclusion(vec3 o, vec3 dir, vec3 n, float height, float tanHalf)
 /// open plane is unoccluded), and the cone steps by uConeStep of its width
 /// but (at the default of a half) by at most the sample's width, so that it
 /// cannot step over a thin wall; each sample's opacity is corrected to the
-/// path its step covers. Unlit (AO), the occlusion is coneOcclusion's.
-vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit, float tanHalf)
+/// path its step covers. Unlit (AO), the occlusion is coneOcclusion's. The
+/// first step is `firstStep` of a step (conePattern).
+vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit, float tanHalf, float firstStep)
 {
-    if (!lit) return vec4(vec3(0.0), coneOcclusion(o, dir, n, height, tanHalf));
+    if (!lit) return vec4(vec3(0.0), coneOcclusion(o, dir, n, height, tanHalf, firstStep));
     vec3 share = dir * dir; // directional opacity, weighted by the direction's squares (they sum to 1)
     float occlusion = 0.0;
     vec3 radiance = vec3(0.0);
     float t = 0.0;
     while (t < uConeDistance && occlusion < 0.99) {
-        float above = height + t * dot(dir, n);
-        float cone = max(uTexelCells, 2.0 * t * tanHalf);
-        float width = max(uTexelCells, min(cone, above / 3.0));
-        float stride = uConeStep * min(cone, 2.0 * width);
-        float lod = log2(width / uTexelCells);
+        ConeSample k = coneSampleAt(t, height, dir, n, tanHalf);
+        float width = k.width, lod = k.lod;
+        float stride = t == 0.0 ? firstStep * k.stride : k.stride;
         vec3 tc = (o + t * dir) * uVolumeScale;
         // The sample stands for a slab as deep as the texel is wide; its
         // opacity is corrected to the path the step covers.
@@ -198,19 +235,19 @@ vec3 coneStart(vec3 p, vec3 n)
 /// normal's cone (up to 30 degrees) weighs a quarter, a ring of cones tilted
 /// 60 degrees three quarters. rgb: the mean incoming radiance (times albedo,
 /// the light one diffuse bounce reflects; 0 unless `lit`); a: the mean
-/// occlusion.
-vec4 hemisphereGather(vec3 p, vec3 n, bool lit)
+/// occlusion. `pattern` turns the ring and shifts the steps (conePattern).
+vec4 hemisphereGather(vec3 p, vec3 n, bool lit, vec2 pattern)
 {
     vec3 o = coneStart(p, n);
-    if (uCones <= 1) return coneGather(o, n, n, uConeOffset, lit, uConeTanHalf);
+    if (uCones <= 1) return coneGather(o, n, n, uConeOffset, lit, uConeTanHalf, pattern.y);
     vec3 t1 = normalize(abs(n.x) < 0.6 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
     vec3 t2 = cross(n, t1);
-    vec4 sum = 0.25 * coneGather(o, n, n, uConeOffset, lit, uConeTanHalf);
+    vec4 sum = 0.25 * coneGather(o, n, n, uConeOffset, lit, uConeTanHalf, pattern.y);
     int ring = uCones - 1;
     for (int i = 0; i < ring; ++i) {
-        float phi = 6.2831853 * (float(i) + 0.5) / float(ring);
+        float phi = 6.2831853 * (float(i) + 0.5 + pattern.x) / float(ring);
         vec3 dir = normalize(0.5 * n + 0.8660254 * (cos(phi) * t1 + sin(phi) * t2));
-        sum += 0.75 / float(ring) * coneGather(o, dir, n, uConeOffset, lit, uConeTanHalf);
+        sum += 0.75 / float(ring) * coneGather(o, dir, n, uConeOffset, lit, uConeTanHalf, pattern.y);
     }
     return sum;
 }

@@ -15,6 +15,11 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 // rgb = the pixel's colour; a = its window depth, or -1 where the ray hits no voxel.
 layout(rgba32f, binding = SVO_IMAGE_VIEW_PIXELS) uniform writeonly restrict image2D uPixels;
+// With uInterleave, the pixel's parts for view_resolve.comp: uPixels gets
+// its own part (rgb; view_compose.glsl), these the light its cones gathered
+// and where they left from.
+layout(rgba32ui, binding = SVO_IMAGE_VIEW_GATHER) uniform writeonly restrict uimage2D uGathered;
+layout(rgba32f, binding = SVO_IMAGE_VIEW_POINTS) uniform writeonly restrict image2D uPoints;
 
 layout(std430, binding = SVO_BIND_VIEW_ATTRIBUTE) readonly restrict buffer Attribute { uint channel[]; };
 
@@ -41,13 +46,10 @@ vec3 voxelColor(uint brick, uint bit)
 #include "view_cones.glsl"
 #include "view_lights.glsl"
 #include "view_gather.glsl"
+#include "view_compose.glsl"
 
-uniform uint uAoOnly;    // 1: the voxels are their AO, grey
 uniform uint uAoVolume;  // 1: AO from cones through the opacity volume (view_gather.glsl); 0: through the octree
 uniform uint uAoNormals; // 1: the octree has a normal channel (Volume AO leaves along it)
-uniform int uLightMode;  // 0: head light; 1: direct light; 2: direct and one diffuse bounce
-uniform float uExposure; // lit modes: radiance x exposure ...
-uniform float uGamma;    // ... to the power 1 / gamma
 uniform vec3 uSpecular;         // glossy reflectance (Illumination::specular)
 uniform float uSpecularTanHalf; // tan of half the glossy cone's aperture
 
@@ -68,7 +70,14 @@ bool voxelAt(vec3 p, out uint brick, out uint bit)
     return brickHas(brick, bit);
 }
 
-/// One pixel's ray, shaded, into uPixels.
+/// A pixel whose ray hit nothing: depth -1, and for the resolve pass no point.
+void missed(ivec2 pixel)
+{
+    imageStore(uPixels, pixel, vec4(0.0, 0.0, 0.0, -1.0));
+    if (uInterleave != 0u) imageStore(uPoints, pixel, vec4(0.0));
+}
+
+/// One pixel's ray, shaded, into uPixels (with uInterleave, its parts).
 void castRay(ivec2 pixel)
 {
     vec2 ndc = (vec2(pixel) + 0.5) / uViewport * 2.0 - 1.0;
@@ -87,7 +96,7 @@ void castRay(ivec2 pixel)
     if (uSurface != 0u) {
         vec4 g = texelFetch(uSurfacePoint, pixel, 0);
         if (g.w == 0.0) {
-            imageStore(uPixels, pixel, vec4(0.0, 0.0, 0.0, -1.0));
+            missed(pixel);
             return;
         }
         p = c = g.xyz;
@@ -101,7 +110,7 @@ void castRay(ivec2 pixel)
     } else {
         VoxelHit hit;
         if (!marchOctree(o, d, 0.0, 1.0, hit)) {
-            imageStore(uPixels, pixel, vec4(0.0, 0.0, 0.0, -1.0));
+            missed(pixel);
             return;
         }
         face = vec3(0.0);
@@ -112,7 +121,9 @@ void castRay(ivec2 pixel)
         bit = hit.bit;
     }
     bool mesh = uSurface != 0u;
-    vec4 color;
+    // The colour's parts (view_compose.glsl), and the normal the cones leave along.
+    vec3 own, albedo = vec3(0.0), gathered = vec3(1.0), coneNormal = vec3(0.0);
+    vec2 pattern = conePattern(pixel);
     if (uLightMode != 0) {
         // Lit: the surface's normal (the triangle's; or the voxel's channel,
         // or the face's where the normals cancel), turned to the viewer,
@@ -132,17 +143,17 @@ void castRay(ivec2 pixel)
             front = dot(n, d) <= 0.0;
             if (!front) n = -n;
         }
-        vec3 albedo = inVoxel ? voxelAlbedo(v) : uAlbedo;
+        albedo = inVoxel ? voxelAlbedo(v) : uAlbedo;
         vec3 e = stored ? storedIrradiance(v, front) : irradiance(c, n);
-        vec3 radiance = albedo * (1.0 / 3.14159265) * e;
+        own = albedo * (1.0 / 3.14159265) * e;
         if (uLightMode == 2) {
-            radiance += albedo * hemisphereGather(c, n, true).rgb;
+            gathered = hemisphereGather(c, n, true, pattern).rgb;
+            coneNormal = n;
             // Glossy: one cone along the view ray mirrored about the normal.
             if (any(greaterThan(uSpecular, vec3(0.0))))
-                radiance += uSpecular * coneGather(c + uConeOffset * n, reflect(normalize(d), n), n, uConeOffset,
-                                                   true, uSpecularTanHalf).rgb;
+                own += uSpecular * coneGather(c + uConeOffset * n, reflect(normalize(d), n), n, uConeOffset, true,
+                                              uSpecularTanHalf, 1.0).rgb;
         }
-        color = vec4(pow(clamp(radiance * uExposure, 0.0, 1.0), vec3(1.0 / uGamma)), 1.0);
     } else {
         // Lit by the surface's normal: a head light plus a little ambient.
         vec3 lightNormal = mesh ? surfaceNormal : face;
@@ -159,13 +170,22 @@ void castRay(ivec2 pixel)
                 vec3 m = voxelNormal(voxelIndex(brick, bit));
                 if (length(m) > 1e-6) n = normalize(dot(m, d) > 0.0 ? -m : m);
             }
-            ao = 1.0 - hemisphereGather(c, n, false).a;
+            ao = 1.0 - hemisphereGather(c, n, false, pattern).a;
+            coneNormal = n;
         }
         vec3 base = inVoxel ? voxelColor(brick, bit) : uColor;
-        color = uAoOnly != 0u ? vec4(vec3(ao), 1.0) : vec4(base * light * ao, 1.0);
+        own = base * light;
+        gathered = vec3(ao);
     }
     vec4 clip = uViewProjection * vec4(p, 1.0);
-    imageStore(uPixels, pixel, vec4(color.rgb, clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0)));
+    float depth = clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0);
+    if (uInterleave != 0u) { // the resolve pass averages the gathered light, then composes
+        imageStore(uPixels, pixel, vec4(own, depth));
+        imageStore(uGathered, pixel, packGathered(gathered, albedo, coneNormal));
+        imageStore(uPoints, pixel, vec4(c, 1.0));
+    } else {
+        imageStore(uPixels, pixel, vec4(composePixel(own, albedo, gathered), depth));
+    }
 }
 
 void main()

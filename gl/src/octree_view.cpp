@@ -293,6 +293,9 @@ struct OctreeView::Impl {
     mutable std::optional<Texture2D> pixels;
     /// The mesh's points and normals per pixel (Surface::Mesh), kept likewise.
     mutable std::optional<SurfaceTarget> surface;
+    /// Interleaved cones: each pixel's gathered light and its cones' start
+    /// (view_resolve.comp), kept likewise.
+    mutable std::optional<Texture2D> gathered, points;
     /// The voxel pass's pixels whose loops the driver cut short, last frame.
     LoopCutCounter loopCut;
     mutable uint32_t cutPixels = 0;
@@ -304,6 +307,19 @@ struct OctreeView::Impl {
             pixels.emplace("view's pixels", GL_RGBA32F, width, height);
         }
         return *pixels;
+    }
+
+    /// Binds the interleaved cones' images, made at this size if need be.
+    void bindInterleaveImages(int width, int height) const
+    {
+        if (!gathered || gathered->width() != width || gathered->height() != height) {
+            gathered.reset();
+            points.reset();
+            gathered.emplace("view's gathered light", GL_RGBA32UI, width, height);
+            points.emplace("view's cone starts", GL_RGBA32F, width, height);
+        }
+        gathered->bindImage(SVO_IMAGE_VIEW_GATHER, GL_READ_WRITE, GL_RGBA32UI);
+        points->bindImage(SVO_IMAGE_VIEW_POINTS, GL_READ_WRITE, GL_RGBA32F);
     }
 
     const SurfaceTarget& surfaceTarget(int width, int height) const
@@ -591,12 +607,31 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         p.set("uColor", c[0], c[1], c[2]);
         // The rays in a compute pass, then their pixels and depths into the
         // framebuffer by a full-screen triangle (view_pixels.frag).
+        // Interleaved cones: the gathered light apart, averaged over 4x4
+        // pixels by a second pass (view_resolve.comp), which also composes.
+        const bool interleave = light.mode == Illumination::Mode::Global
+                                    ? light.interleave
+                                    : light.mode == Illumination::Mode::Off && aoVolume && ao.cones > 0 && ao.interleave;
+        p.set("uInterleave", interleave ? 1u : 0u);
         const Texture2D& pixels = v.pixelImage(width, height);
-        pixels.bindImage(SVO_IMAGE_VIEW_PIXELS, GL_WRITE_ONLY, GL_RGBA32F);
+        pixels.bindImage(SVO_IMAGE_VIEW_PIXELS, interleave ? GL_READ_WRITE : GL_WRITE_ONLY, GL_RGBA32F);
+        if (interleave) v.bindInterleaveImages(width, height);
         v.loopCut.arm(p, SVO_BIND_VIEW_LOOP_CUT, context.info().loopLimit);
         p.dispatch((uint32_t(width) + 7) / 8, (uint32_t(height) + 7) / 8);
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
         checkGl("casting the voxels' rays");
+        if (interleave) {
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            const Program& r = context.program({"view_resolve.comp"});
+            r.set("uLightMode", light.mode == Illumination::Mode::Global ? 2 : 0);
+            r.set("uAoOnly", ao.only ? 1u : 0u);
+            r.set("uExposure", float(light.exposure));
+            r.set("uGamma", float(light.gamma));
+            r.set("uViewport", float(width), float(height));
+            r.set("uPlaneTolerance", 1.0f);
+            r.dispatch((uint32_t(width) + 7) / 8, (uint32_t(height) + 7) / 8);
+            checkGl("averaging the interleaved cones");
+        }
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
         v.cutPixels = v.loopCut.count();
         const Program& copy = context.program({"view_fullscreen.vert", "view_pixels.frag"});
         pixels.bindTexture(SVO_UNIT_VIEW_PIXELS);

@@ -156,6 +156,11 @@ SVO_CONST(uint) kBitmapBlockShift = 9u; /* 512 bits a block */
    and read as a texture by view_pixels.frag. GL promises 8 image units. */
 #define SVO_IMAGE_VIEW_PIXELS 0
 #define SVO_UNIT_VIEW_PIXELS 9
+/* Viewer, interleaved cones: each pixel's gathered light, albedo and normal
+   (rgba32ui) and the point its cones left from (rgba32f), written by
+   view_voxels.comp and averaged by view_resolve.comp. */
+#define SVO_IMAGE_VIEW_GATHER 1
+#define SVO_IMAGE_VIEW_POINTS 2
 /* Viewer, ViewLayers::surface = Mesh: the mesh rasterized into the point
    (xyz, cell space; w = 1 where a triangle covers the pixel, else 0) and the
    unit normal (xyz) each pixel sees, read by view_voxels.comp. */
@@ -267,6 +272,7 @@ static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRIC
 static_assert(distinctSlots({SVO_BIND_BUILD_STATE, SVO_BIND_NODES, SVO_BIND_BRICKS, SVO_BIND_ENTRIES,
                              SVO_BIND_ENTRY_TRIANGLES, SVO_BIND_BRICK_VOXEL_OFFSETS, SVO_BIND_TRIANGLE_VALUES,
                              SVO_BIND_ATTRIBUTE_SUMS}));
+static_assert(distinctSlots({SVO_IMAGE_VIEW_PIXELS, SVO_IMAGE_VIEW_GATHER, SVO_IMAGE_VIEW_POINTS}));
 static_assert(distinctSlots({SVO_UNIT_LIGHT_OPACITY, SVO_UNIT_LIGHT_RADIANCE, SVO_UNIT_LIGHT_ALONG,
                              SVO_UNIT_LIGHT_ALONG + 1, SVO_UNIT_LIGHT_ALONG + 2, SVO_UNIT_LIGHT_ALONG + 3,
                              SVO_UNIT_LIGHT_ALONG + 4, SVO_UNIT_LIGHT_ALONG + 5, SVO_UNIT_LIGHT_LIT_SIDE, SVO_UNIT_VIEW_PIXELS,

@@ -104,6 +104,15 @@ struct AmbientOcclusion {
     /// voxels: 256 serves grids up to 2048 wide); wider grids are an error
     /// that names both ways out (a larger volume, or the Octree source).
     uint32_t volumeResolution = 256;
+    /// Volume: interleaved cones. Each pixel of a 4x4 tile turns its ring of
+    /// cones and shifts its steps its own way, and each pixel's AO is the
+    /// mean over the 4x4 window around it of the pixels on its own surface
+    /// (a normal within 25 degrees, a point within a voxel of its tangent
+    /// plane: no blur across edges or depth steps). One cone set samples the
+    /// coarse texels at fixed places and its error has their pattern; 16
+    /// sets average most of it out, for one extra full-screen pass (design
+    /// §7c). False: every pixel the same cone set, nothing averaged.
+    bool interleave = true;
     Filter filter = Filter::Max;  ///< Octree: how node opacities are filtered up the octree
     bool only = false;            ///< draw the voxels as grey AO alone (no colour or face light), to measure it
 };
@@ -140,6 +149,7 @@ struct Illumination {
     double offset = 1.5;                  ///< cones start this far out along the normal, texels of level 0 (voxels while a texel is one voxel)
     double distance = 0;                  ///< cones stop here, voxels; 0: the grid's diagonal
     double step = 0.5;                    ///< cone steps, share of the cone's width, (0, 1] (AmbientOcclusion::step)
+    bool interleave = true;               ///< the bounce's cones interleaved over 4x4 pixels (AmbientOcclusion::interleave)
     /// Six-way radiance (Crassin's anisotropic mip-map): from level 1 up, the
     /// radiance a ray along each of the six axis directions sees, composited
     /// front to back, so that a wall hides what lies behind it at every
