@@ -54,8 +54,27 @@ uniform vec3 uSpecular;         // glossy reflectance (Illumination::specular)
 uniform float uSpecularTanHalf; // tan of half the glossy cone's aperture
 
 uniform uint uSurface;    // 1: shade the mesh's surface (ViewLayers::surface = Mesh), not the voxels rays hit
-layout(binding = SVO_UNIT_VIEW_SURFACE_POINT) uniform sampler2D uSurfacePoint;
-layout(binding = SVO_UNIT_VIEW_SURFACE_NORMAL) uniform sampler2D uSurfaceNormal;
+layout(binding = SVO_UNIT_VIEW_SURFACE_TRIANGLE) uniform usampler2D uSurfaceTriangle; // view_surface.frag
+layout(std430, binding = SVO_BIND_VIEW_MESH_POSITIONS) readonly restrict buffer MeshPositions { float meshPosition[]; };
+layout(std430, binding = SVO_BIND_VIEW_MESH_TRIANGLES) readonly restrict buffer MeshTriangles { uint meshCorner[]; };
+
+vec3 meshVertex(uint corner)
+{
+    uint v = meshCorner[corner];
+    return vec3(meshPosition[3u * v], meshPosition[3u * v + 1u], meshPosition[3u * v + 2u]);
+}
+
+/// Where the ray o + t d meets triangle `triangle`'s plane, and its unit
+/// normal (either side). The rasterizer found the triangle; the point is
+/// computed here, exactly as far as floats go.
+vec3 meshHit(uint triangle, vec3 o, vec3 d, out vec3 normal)
+{
+    vec3 a = meshVertex(3u * triangle), b = meshVertex(3u * triangle + 1u), c = meshVertex(3u * triangle + 2u);
+    vec3 m = cross(b - a, c - a);
+    normal = normalize(m);
+    float t = dot(m, a - o) / dot(m, d);
+    return o + t * d;
+}
 
 /// The voxel holding cell-space point p, if the octree has it (a point of
 /// the mesh lies in a voxel of its conservative set, up to rounding).
@@ -94,13 +113,12 @@ void castRay(ivec2 pixel)
     uint brick = 0u, bit = 0u;
     bool inVoxel = true;
     if (uSurface != 0u) {
-        vec4 g = texelFetch(uSurfacePoint, pixel, 0);
-        if (g.w == 0.0) {
+        uint triangle = texelFetch(uSurfaceTriangle, pixel, 0).r;
+        if (triangle == 0u) {
             missed(pixel);
             return;
         }
-        p = c = g.xyz;
-        surfaceNormal = texelFetch(uSurfaceNormal, pixel, 0).xyz;
+        p = c = meshHit(triangle - 1u, o, d, surfaceNormal);
         if (dot(surfaceNormal, d) > 0.0) surfaceNormal = -surfaceNormal;
         int axis = abs(surfaceNormal.x) >= max(abs(surfaceNormal.y), abs(surfaceNormal.z)) ? 0
                    : (abs(surfaceNormal.y) >= abs(surfaceNormal.z) ? 1 : 2);

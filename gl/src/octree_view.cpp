@@ -169,9 +169,7 @@ struct Target {
 /// normal as textures the voxel pass reads, and a depth buffer to keep the
 /// nearest triangle.
 struct SurfaceTarget {
-    SurfaceTarget(int width, int height)
-        : point("mesh surface points (view)", GL_RGBA32F, width, height),
-          normal("mesh surface normals (view)", GL_RGBA16F, width, height)
+    SurfaceTarget(int width, int height) : triangle("mesh surface triangles (view)", GL_R32UI, width, height)
     {
         GLuint d = 0;
         glCreateRenderbuffers(1, &d);
@@ -180,18 +178,16 @@ struct SurfaceTarget {
         GLuint f = 0;
         glCreateFramebuffers(1, &f);
         fbo = Handle<detail::deleteFramebuffer>(f);
-        glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT0, point.get(), 0);
-        glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT1, normal.get(), 0);
+        glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT0, triangle.get(), 0);
         glNamedFramebufferRenderbuffer(f, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, d);
-        const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-        glNamedFramebufferDrawBuffers(f, 2, attachments);
+        glNamedFramebufferDrawBuffer(f, GL_COLOR_ATTACHMENT0);
         checkGl(fmt::format("allocating the mesh's {} x {} surface buffers", width, height).c_str());
         const GLenum status = glCheckNamedFramebufferStatus(f, GL_FRAMEBUFFER);
         if (status != GL_FRAMEBUFFER_COMPLETE)
             throw Error(fmt::format("octree view: the mesh's {} x {} surface framebuffer is incomplete (0x{:04x})",
                                     width, height, status));
     }
-    Texture2D point, normal;
+    Texture2D triangle; ///< each pixel's triangle + 1, 0 where none (view_surface.frag)
     Handle<deleteRenderbuffer> depth;
     Handle<detail::deleteFramebuffer> fbo;
 };
@@ -324,7 +320,7 @@ struct OctreeView::Impl {
 
     const SurfaceTarget& surfaceTarget(int width, int height) const
     {
-        if (!surface || surface->point.width() != width || surface->point.height() != height) {
+        if (!surface || surface->triangle.width() != width || surface->triangle.height() != height) {
             surface.reset();
             surface.emplace(width, height);
         }
@@ -524,15 +520,14 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
     const bool shadeMesh = layers.voxels && layers.surface == Surface::Mesh;
     if (shadeMesh) {
         if (!v.meshArray) throw Error("octree view: shading the mesh's surface needs the mesh, and the view has none");
-        // The mesh into its own framebuffer: each pixel's nearest point and
-        // normal, for the voxel pass to shade.
+        // The mesh into its own framebuffer: the triangle each pixel sees,
+        // where the voxel pass meets it with the pixel's ray and shades.
         GLint drawn = 0;
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawn);
         const SurfaceTarget& target = v.surfaceTarget(width, height);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.fbo.get());
-        const float none[4] = {0, 0, 0, 0};
-        glClearNamedFramebufferfv(target.fbo.get(), GL_COLOR, 0, none);
-        glClearNamedFramebufferfv(target.fbo.get(), GL_COLOR, 1, none);
+        const GLuint none[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferuiv(target.fbo.get(), GL_COLOR, 0, none);
         glClear(GL_DEPTH_BUFFER_BIT);
         const Program& p = context.program({"view_mesh.vert", "view_surface.frag"});
         p.setMatrix("uViewProjection", viewProjection.data());
@@ -582,8 +577,9 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         }
         p.set("uSurface", shadeMesh ? 1u : 0u);
         if (shadeMesh) {
-            v.surface->point.bindTexture(SVO_UNIT_VIEW_SURFACE_POINT);
-            v.surface->normal.bindTexture(SVO_UNIT_VIEW_SURFACE_NORMAL);
+            v.surface->triangle.bindTexture(SVO_UNIT_VIEW_SURFACE_TRIANGLE);
+            v.meshVertices->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_MESH_POSITIONS);
+            v.meshIndices->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_MESH_TRIANGLES);
         }
         p.set("uAoVolume", aoVolume ? 1u : 0u);
         p.set("uAoNormals", v.normals ? 1u : 0u);

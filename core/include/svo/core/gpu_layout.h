@@ -161,11 +161,13 @@ SVO_CONST(uint) kBitmapBlockShift = 9u; /* 512 bits a block */
    view_voxels.comp and averaged by view_resolve.comp. */
 #define SVO_IMAGE_VIEW_GATHER 1
 #define SVO_IMAGE_VIEW_POINTS 2
-/* Viewer, ViewLayers::surface = Mesh: the mesh rasterized into the point
-   (xyz, cell space; w = 1 where a triangle covers the pixel, else 0) and the
-   unit normal (xyz) each pixel sees, read by view_voxels.comp. */
-#define SVO_UNIT_VIEW_SURFACE_POINT 10
-#define SVO_UNIT_VIEW_SURFACE_NORMAL 11
+/* Viewer, ViewLayers::surface = Mesh: the mesh rasterized into the triangle
+   each pixel sees (its index + 1; 0 where none covers the pixel), read by
+   view_voxels.comp with the mesh's positions (3 floats a vertex, cell
+   space) and triangles (3 uints), where each pixel's ray meets it. */
+#define SVO_UNIT_VIEW_SURFACE_TRIANGLE 10
+#define SVO_BIND_VIEW_MESH_POSITIONS 11
+#define SVO_BIND_VIEW_MESH_TRIANGLES 12
 /* ViewLayers::voxelColor as the shader reads it. */
 #define SVO_VIEW_COLOR_FLAT 0
 #define SVO_VIEW_COLOR_NORMAL 1
@@ -276,11 +278,12 @@ static_assert(distinctSlots({SVO_IMAGE_VIEW_PIXELS, SVO_IMAGE_VIEW_GATHER, SVO_I
 static_assert(distinctSlots({SVO_UNIT_LIGHT_OPACITY, SVO_UNIT_LIGHT_RADIANCE, SVO_UNIT_LIGHT_ALONG,
                              SVO_UNIT_LIGHT_ALONG + 1, SVO_UNIT_LIGHT_ALONG + 2, SVO_UNIT_LIGHT_ALONG + 3,
                              SVO_UNIT_LIGHT_ALONG + 4, SVO_UNIT_LIGHT_ALONG + 5, SVO_UNIT_LIGHT_LIT_SIDE, SVO_UNIT_VIEW_PIXELS,
-                             SVO_UNIT_VIEW_SURFACE_POINT, SVO_UNIT_VIEW_SURFACE_NORMAL}));
+                             SVO_UNIT_VIEW_SURFACE_TRIANGLE}));
 static_assert(distinctSlots({SVO_BIND_VIEW_NODES, SVO_BIND_VIEW_BRICKS, SVO_BIND_VIEW_ORIGINS,
                              SVO_BIND_VIEW_VOXEL_START, SVO_BIND_VIEW_ATTRIBUTE, SVO_BIND_VIEW_OPACITY,
                              SVO_BIND_VIEW_LIGHTS, SVO_BIND_VIEW_NORMALS, SVO_BIND_VIEW_ALBEDO,
-                             SVO_BIND_VIEW_DIRECT, SVO_BIND_VIEW_LOOP_CUT}));
+                             SVO_BIND_VIEW_DIRECT, SVO_BIND_VIEW_LOOP_CUT, SVO_BIND_VIEW_MESH_POSITIONS,
+                             SVO_BIND_VIEW_MESH_TRIANGLES}));
 static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_FIELD_ITEMS,
                              SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
                              SVO_BIND_FIELD_FLIPS, SVO_BIND_FIELD_COUNTERS}));
