@@ -27,7 +27,7 @@ namespace {
 struct ViewArgs {
     std::string input, screenshot, size = "1280x960", camera, view = "front", layers = "voxels,outlines", levels,
                                      gridName, keys, save, color = "flat", render = "debug", aoFilter = "max",
-                                     aoSource = "volume", surface = "voxels",
+                                     aoSource = "volume", surface = "auto",
                                      conePattern = "interleaved";
     int frames = 0;
     gl::AmbientOcclusion ao;
@@ -165,7 +165,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     layers.ao.volumeResolution = a.light.volumeResolution;
     if (a.render == "ao") {
         layers.ao.only = true;
-        if (layers.ao.cones == 0) layers.ao.cones = 7;
+        if (layers.ao.cones == 0) layers.ao.cones = gl::AmbientOcclusion::kDefaultCones;
         layers.outlines = layers.bricks = false;
     }
     const bool lit = a.render == "direct" || a.render == "gi";
@@ -182,7 +182,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     } else if (!a.lights.empty() || !a.albedo.empty() || !a.specular.empty()) {
         throw Error("--light, --albedo and --specular light the voxels of --render direct or gi");
     }
-    layers.surface = a.surface == "mesh" ? gl::Surface::Mesh : gl::Surface::Voxels;
+    layers.surface = a.surface == "mesh" ? gl::Surface::Mesh : gl::Surface::Voxels; // auto: below, once loaded
     layers.ao.interleave = layers.light.interleave = a.conePattern == "interleaved";
     layers.voxelColor = a.color == "normal" ? gl::VoxelColor::Normal
                         : a.color == "color" ? gl::VoxelColor::Color
@@ -232,6 +232,11 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     if (lo.mesh) printWarnings(lo.mesh->warnings);
     printWarnings(call.stats.warnings);
     if (layers.mesh && !lo.mesh) fmt::print(stderr, "svo: warning: the input has no mesh to draw (--layers mesh)\n");
+    // Lit and AO pictures of a mesh shade its triangles (the octree lights
+    // them: no blocks, and the path tracer's surface); other pictures, and
+    // inputs without a mesh, the voxels.
+    if (a.surface == "auto")
+        layers.surface = lo.mesh && (lit || a.render == "ao") ? gl::Surface::Mesh : gl::Surface::Voxels;
     if (layers.surface == gl::Surface::Mesh && !lo.mesh)
         throw Error(fmt::format("{}: --surface mesh shades the input mesh, and this input holds voxels only (give the "
                                 "mesh file, or --surface voxels)",
@@ -278,6 +283,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         in.backend = backend;
         in.camera = camera;
         in.layers = layers;
+        in.autoSurface = a.surface == "auto";
         in.width = width;
         in.height = height;
         in.frames = a.frames;
@@ -362,10 +368,10 @@ void addViewCommand(CLI::App& app)
         ->check(CLI::IsMember({"max", "average"}))
         ->capture_default_str();
     cmd->add_option("--surface", args->surface,
-                    "What the voxel layer shades: voxels (those the camera's rays hit: the octree as it is) or mesh "
+                    "What the voxel layer shades: voxels (those the camera's rays hit: the octree as it is), mesh "
                     "(the input mesh's triangles, lit, occluded and coloured through the octree: no blocks; needs a "
-                    "mesh input)")
-        ->check(CLI::IsMember({"voxels", "mesh"}))
+                    "mesh input) or auto (mesh for --render ao, direct and gi of a mesh, else voxels)")
+        ->check(CLI::IsMember({"voxels", "mesh", "auto"}))
         ->capture_default_str();
     cmd->add_option("--cone-pattern", args->conePattern,
                     "AO from the volume, and gi's bounce: interleaved (each pixel of a 4x4 tile turns its cones and "
@@ -374,7 +380,7 @@ void addViewCommand(CLI::App& app)
         ->check(CLI::IsMember({"interleaved", "fixed"}))
         ->capture_default_str();
     cmd->add_option("--render", args->render,
-                    "debug: the layers; ao: the voxels as their ambient occlusion, grey (7 cones unless --ao says); "
+                    "debug: the layers; ao: the surface as its ambient occlusion, grey (5 cones unless --ao says); "
                     "direct: lit by --light with shadows; gi: direct and one diffuse bounce cone-traced through the "
                     "lighting volume")
         ->check(CLI::IsMember({"debug", "ao", "direct", "gi"}))

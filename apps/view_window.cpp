@@ -213,6 +213,16 @@ struct ViewerState {
         if (m != gl::Illumination::Mode::Off && l.light.mode == gl::Illumination::Mode::Off)
             l.outlines = l.bricks = false;
         l.light.mode = m;
+        followSurface();
+    }
+
+    /// --surface auto: the mesh's surface for AO alone and lit pictures, as
+    /// svo view --render ao|direct|gi --screenshot shades them.
+    void followSurface()
+    {
+        gl::ViewLayers& l = in.layers;
+        if (in.autoSurface && in.loaded.mesh)
+            l.surface = l.ao.only || l.light.mode != gl::Illumination::Mode::Off ? gl::Surface::Mesh : gl::Surface::Voxels;
     }
 
     /// One key, from the keyboard or the --keys script.
@@ -226,10 +236,11 @@ struct ViewerState {
         case 'k': l.bricks = !l.bricks; break;
         case 'a': nextColor(); break;
         case 'l': setLighting(gl::Illumination::Mode((int(l.light.mode) + 1) % 3)); break;
-        case 'g': l.ao.cones = l.ao.cones ? 0 : 7; if (!l.ao.cones) l.ao.only = false; break;
+        case 'g': l.ao.cones = l.ao.cones ? 0 : gl::AmbientOcclusion::kDefaultCones; if (!l.ao.cones) l.ao.only = false; break;
         case 'r':
             l.ao.only = !l.ao.only;
-            if (l.ao.only) l.ao.cones = std::max(l.ao.cones, 7), l.outlines = l.bricks = false;
+            if (l.ao.only) l.ao.cones = std::max(l.ao.cones, gl::AmbientOcclusion::kDefaultCones), l.outlines = l.bricks = false;
+            followSurface();
             break;
         case '+': case '=': revoxelize(resolution * 2); break;
         case '-': revoxelize(std::max<int64_t>(resolution / 2, 1)); break;
@@ -311,8 +322,10 @@ struct ViewerState {
             ImGui::Checkbox("mesh (M)", &l.mesh);
             // Light, AO and colours on the triangles instead of the voxels (--surface).
             bool shadeMesh = l.surface == gl::Surface::Mesh;
-            if (ImGui::Checkbox("shade the mesh, not the voxels", &shadeMesh))
+            if (ImGui::Checkbox("shade the mesh, not the voxels", &shadeMesh)) {
                 l.surface = shadeMesh ? gl::Surface::Mesh : gl::Surface::Voxels;
+                in.autoSurface = false;
+            }
         }
         static constexpr const char* kColors[] = {"flat", "normal", "colour", "triangle id"};
         ImGui::Text("voxel colour (A): %s", kColors[int(l.voxelColor)]);
@@ -324,7 +337,7 @@ struct ViewerState {
         ImGui::SliderInt("AO cones (G)", &l.ao.cones, 0, 16);
         if (l.ao.cones > 0) {
             ImGui::SameLine();
-            ImGui::Checkbox("AO alone (R)", &l.ao.only);
+            if (ImGui::Checkbox("AO alone (R)", &l.ao.only)) followSurface();
             float aperture = float(l.ao.apertureDegrees), offset = float(l.ao.offset), distance = float(l.ao.distance);
             if (ImGui::SliderFloat("AO aperture", &aperture, 10.0f, 120.0f, "%.0f deg")) l.ao.apertureDegrees = aperture;
             const bool volume = l.ao.source == gl::AmbientOcclusion::Source::Volume;

@@ -20,6 +20,9 @@ struct ViewWindowInput {
     BackendArgs backend;      ///< backend, dilation and mode for re-voxelization
     gl::ViewCamera camera;    ///< the first camera
     gl::ViewLayers layers;
+    /// --surface auto: the mesh's surface while AO alone or lighting is on
+    /// (when the input is a mesh), else the voxels; the panel's checkbox ends it.
+    bool autoSurface = false;
     int width = 1280, height = 960; ///< the window's first size
     int frames = 0;           ///< close after this many frames; 0: when the user closes it
     std::string keys;         ///< pressed one per frame from the second frame on (scripted demos, tests)

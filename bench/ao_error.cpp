@@ -54,7 +54,7 @@ int main(int argc, char** argv)
 {
     CLI::App app{"svo AO benchmark: cone-traced ambient occlusion against a path-traced reference"};
     std::vector<std::string> scenes;
-    std::vector<int> resolutions{64, 128, 256, 512}, coneCounts{1, 3, 7, 16};
+    std::vector<int> resolutions{64, 128, 256, 512}, coneCounts{1, 3, 5, 7, 16};
     int width = 320, height = 240, samples = 256, timeWidth = 1920, timeHeight = 1080, frames = 10;
     double distanceShare = 0.25;
     std::string mdPath, dumpDir, render = "ao";
@@ -83,8 +83,9 @@ int main(int argc, char** argv)
     app.add_option("--cone-pattern", conePattern,
                    "interleaved (each pixel of a 4x4 tile its own cones, averaged) or fixed (every pixel the same)")
         ->check(CLI::IsMember({"interleaved", "fixed"}));
-    std::string surface = "voxels";
-    app.add_option("--surface", surface, "Shade the voxels camera rays hit, or the mesh's triangles (ViewLayers::surface)")
+    std::string surface = "mesh"; // as svo view --render ao|gi shades a mesh input
+    app.add_option("--surface", surface, "Shade the mesh's triangles (svo view's default for a mesh) or the voxels camera "
+                                         "rays hit (ViewLayers::surface)")
         ->check(CLI::IsMember({"voxels", "mesh"}));
     CLI11_PARSE(app, argc, argv);
     timeHeight = timeWidth * 9 / 16;

@@ -730,6 +730,19 @@ TEST_F(Cli, ViewLightsTheVoxelsAndRefusesBadLighting)
     // mesh input only.
     const auto meshShot = runSvo("view -r 16 --size 64x48 --render gi --surface mesh --screenshot " + path("lit.png"));
     ASSERT_EQ(meshShot.code, 0) << meshShot.out;
+    // --surface auto (the default) shades a mesh input's triangles in lit and
+    // AO pictures: the same bytes as --surface mesh, not as --surface voxels.
+    auto bytes = [](const std::string& file) {
+        std::ifstream f(file, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(f), {});
+    };
+    for (const char* surface : {"auto", "mesh", "voxels"})
+        ASSERT_EQ(runSvo(std::string("view -r 16 --size 64x48 --render ao --surface ") + surface + " --screenshot " +
+                         path(std::string("ao_") + surface + ".png"))
+                      .code,
+                  0);
+    EXPECT_EQ(bytes(path("ao_auto.png")), bytes(path("ao_mesh.png")));
+    EXPECT_NE(bytes(path("ao_auto.png")), bytes(path("ao_voxels.png")));
     const auto noMesh = runSvo("view " + path("plain.svo") + " --render ao --surface mesh --screenshot " + path("x.png"));
     EXPECT_EQ(noMesh.code, 1);
     EXPECT_EQ(lineCount(noMesh.out), 1u) << noMesh.out;
@@ -750,7 +763,7 @@ TEST_F(Cli, ViewLightsTheVoxelsAndRefusesBadLighting)
     const auto early = runSvo("view -r 3000000 --render gi --light sun:0,0,0 --screenshot " + path("x.png"));
     EXPECT_EQ(early.code, 1);
     EXPECT_NE(early.out.find("direction 0,0,0 is zero"), std::string::npos) << early.out;
-    expectOnly({"lit.png", "plain.svo"});
+    expectOnly({"lit.png", "plain.svo", "ao_auto.png", "ao_mesh.png", "ao_voxels.png"});
 }
 
 /// The window under Xvfb (xvfb-run): it opens, follows scripted keys, and

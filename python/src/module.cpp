@@ -526,7 +526,7 @@ py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, c
         badValue("ao_source: expected 'volume' or 'octree', got '" + aoSource + "'");
     l.ao.source = aoSource == "octree" ? svo::gl::AmbientOcclusion::Source::Octree
                                        : svo::gl::AmbientOcclusion::Source::Volume;
-    if (aoOnly && ao == 0) ao = 7;
+    if (aoOnly && ao == 0) ao = svo::gl::AmbientOcclusion::kDefaultCones;
     l.ao.cones = ao;
     l.ao.only = aoOnly;
     l.voxels = l.outlines = false;
@@ -815,7 +815,7 @@ PYBIND11_MODULE(_svo, m)
              "rows from the top. view: 'front' or an axis view '+x', '-x', '+y', '-y', '+z', '-z';\n"
              "layers: 'voxels', 'outlines', 'bricks'; levels: (first, last) outline levels; color: 'flat'\n"
              "or an attribute channel the octree has ('normal', 'color', 'triangle'); ao: cones of ambient\n"
-             "occlusion (0: none, up to 16); ao_only: the voxels as their AO, grey (7 cones unless ao says;\n"
+             "occlusion (0: none, up to 16); ao_only: the voxels as their AO, grey (5 cones unless ao says;\n"
              "as svo view --render ao); ao_source: 'volume' (cones through the lighting volume's opacity)\n"
              "or 'octree' (through the octree's nodes), as svo view --ao-source. lighting: 'direct' (direct\n"
              "light with shadows) or 'gi' (and one diffuse bounce), as svo view --render direct|gi: needs the\n"
