@@ -64,16 +64,22 @@ vec3 meshVertex(uint corner)
     return vec3(meshPosition[3u * v], meshPosition[3u * v + 1u], meshPosition[3u * v + 2u]);
 }
 
-/// Where the ray o + t d meets triangle `triangle`'s plane, and its unit
+/// Where the ray o + t d meets triangle `triangle`'s plane (p), and its unit
 /// normal (either side). The rasterizer found the triangle; the point is
-/// computed here, exactly as far as floats go.
-vec3 meshHit(uint triangle, vec3 o, vec3 d, out vec3 normal)
+/// computed here, exactly as far as floats go. False for a triangle seen
+/// exactly edge-on or of no area, which the rasterizer should not have
+/// drawn: the pixel then sees nothing rather than a point at infinity.
+bool meshHit(uint triangle, vec3 o, vec3 d, out vec3 p, out vec3 normal)
 {
     vec3 a = meshVertex(3u * triangle), b = meshVertex(3u * triangle + 1u), c = meshVertex(3u * triangle + 2u);
     vec3 m = cross(b - a, c - a);
+    float along = dot(m, d);
+    p = o;
+    normal = vec3(0.0, 0.0, 1.0);
+    if (along == 0.0 || dot(m, m) == 0.0) return false;
     normal = normalize(m);
-    float t = dot(m, a - o) / dot(m, d);
-    return o + t * d;
+    p = o + (dot(m, a - o) / along) * d;
+    return true;
 }
 
 /// The voxel holding cell-space point p, if the octree has it (a point of
@@ -114,11 +120,11 @@ void castRay(ivec2 pixel)
     bool inVoxel = true;
     if (uSurface != 0u) {
         uint triangle = texelFetch(uSurfaceTriangle, pixel, 0).r;
-        if (triangle == 0u) {
+        if (triangle == 0u || !meshHit(triangle - 1u, o, d, p, surfaceNormal)) {
             missed(pixel);
             return;
         }
-        p = c = meshHit(triangle - 1u, o, d, surfaceNormal);
+        c = p;
         if (dot(surfaceNormal, d) > 0.0) surfaceNormal = -surfaceNormal;
         int axis = abs(surfaceNormal.x) >= max(abs(surfaceNormal.y), abs(surfaceNormal.z)) ? 0
                    : (abs(surfaceNormal.y) >= abs(surfaceNormal.z) ? 1 : 2);
