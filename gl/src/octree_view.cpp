@@ -165,9 +165,9 @@ struct Target {
     Handle<detail::deleteFramebuffer> fbo;
 };
 
-/// The mesh's surface per pixel (ViewLayers::surface = Mesh): its point and
-/// normal as textures the voxel pass reads, and a depth buffer to keep the
-/// nearest triangle.
+/// The mesh's surface per pixel (ViewLayers::surface = Mesh): the index + 1
+/// of the triangle it sees, a texture the voxel pass reads, and a depth
+/// buffer to keep the nearest triangle.
 struct SurfaceTarget {
     SurfaceTarget(int width, int height) : triangle("mesh surface triangles (view)", GL_R32UI, width, height)
     {
@@ -287,7 +287,7 @@ struct OctreeView::Impl {
     mutable std::optional<LightVolumeTextures> light;
     /// The voxel pass's pixels (view_voxels.comp), kept while the picture's size stays.
     mutable std::optional<Texture2D> pixels;
-    /// The mesh's points and normals per pixel (Surface::Mesh), kept likewise.
+    /// The mesh's triangle per pixel (Surface::Mesh), kept likewise.
     mutable std::optional<SurfaceTarget> surface;
     /// Interleaved cones: each pixel's gathered light and its cones' start
     /// (view_resolve.comp), kept likewise.
