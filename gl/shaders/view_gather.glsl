@@ -212,16 +212,16 @@ float opacityNear(vec3 q)
     return dot(opacityFromStored(textureLod(uOpacityVolume, q * uVolumeScale, 0.0).rgb), vec3(1.0 / 3.0));
 }
 
-/// Where the cones of a point p with unit normal n start: uConeOffset out
-/// along n, and away from any other surface there. Beside a concave edge
-/// that start lies among the other surface's texels, and every cone would
-/// composite that surface again and again (the pixels along the edge came
-/// out nearly black). Level 0's opacity gradient across n points to it; the
-/// start moves up to 2 texels away, in proportion to the opacity it starts
-/// in (all 2 from a third), and stays at its height above p's surface.
-vec3 coneStart(vec3 p, vec3 n)
+/// Point o, out of its surface along that surface's unit normal n, moved
+/// away from any other surface beside it. Beside a concave edge o lies among
+/// the other surface's texels: every cone from there would composite that
+/// surface again and again (the pixels along the edge came out nearly
+/// black), and a shadow ray from there starts inside it. Level 0's opacity
+/// gradient across n points to it; o moves up to 2 texels away, in
+/// proportion to the opacity it lies in (all 2 from a third), at the same
+/// height above its own surface.
+vec3 awayFromBeside(vec3 o, vec3 n)
 {
-    vec3 o = p + uConeOffset * n;
     float h = uTexelCells;
     vec3 g = vec3(opacityNear(o + vec3(h, 0.0, 0.0)) - opacityNear(o - vec3(h, 0.0, 0.0)),
                   opacityNear(o + vec3(0.0, h, 0.0)) - opacityNear(o - vec3(0.0, h, 0.0)),
@@ -230,6 +230,10 @@ vec3 coneStart(vec3 p, vec3 n)
     if (length(g) < 1e-4) return o;
     return o - 2.0 * h * min(1.0, 3.0 * opacityNear(o)) * normalize(g);
 }
+
+/// Where the cones of a point p with unit normal n start: uConeOffset out
+/// along n, away from any other surface there (awayFromBeside).
+vec3 coneStart(vec3 p, vec3 n) { return awayFromBeside(p + uConeOffset * n, n); }
 
 /// Cosine-weighted gather over the hemisphere of unit normal n at p: the
 /// normal's cone (up to 30 degrees) weighs a quarter, a ring of cones tilted

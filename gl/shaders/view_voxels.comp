@@ -168,7 +168,12 @@ void castRay(ivec2 pixel)
             if (!front) n = -n;
         }
         albedo = inVoxel ? voxelAlbedo(v) : uAlbedo;
-        vec3 e = stored ? storedIrradiance(v, front) : irradiance(c, n);
+        // A mesh's point beside another surface (a room's corner) moves its
+        // shadow ray's start away from it, as its cones' (awayFromBeside):
+        // pushed out along n alone, it starts among the other surface's
+        // voxels, and the corner's pixels came out in shadow.
+        vec3 shadowFrom = mesh ? awayFromBeside(c + uShadowOffset * n, n) - uShadowOffset * n : c;
+        vec3 e = stored ? storedIrradiance(v, front) : irradiance(shadowFrom, n);
         own = albedo * (1.0 / 3.14159265) * e;
         if (uLightMode == 2) {
             gathered = hemisphereGather(c, n, true, pattern).rgb;
