@@ -215,10 +215,13 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     }
 
     BackendArgs backend = a.backend;
-    // Lighting shades by the surface's normal; AO from the volume leaves along
-    // it. (The window voxelizes again with normals when either is turned on.)
+    // Lighting shades by the surface's normal, with the vertex colours as the
+    // albedo where the mesh has them (a mesh without colours gets no colour
+    // channel); AO from the volume leaves along the normal. (The window
+    // voxelizes again with them when either is turned on.)
     if (lit || (layers.ao.source == gl::AmbientOcclusion::Source::Volume && layers.ao.cones > 0))
         backend.attributes |= kNormals;
+    if (lit) backend.attributes |= kColors;
     LibraryCall call(backend, "building the octree");
     LoadedOctree lo;
     const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);

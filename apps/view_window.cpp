@@ -189,13 +189,16 @@ struct ViewerState {
         in.layers.voxelColor = gl::VoxelColor(c);
     }
 
-    /// Lighting and AO from the volume use the normal channel: a mesh input
-    /// voxelized without it is voxelized again with it (once; a failure
+    /// Lighting reads the normal channel and the colours (its albedo, when the
+    /// mesh has vertex colours), AO from the volume the normals: a mesh input
+    /// voxelized without them is voxelized again with them (once; a failure
     /// shows in the panel and keeps the octree).
-    void ensureNormals()
+    void ensureChannels(uint32_t wanted)
     {
-        if (!octree.attributes.normals.empty() || !canRevoxelize() || (in.backend.attributes & kNormals)) return;
-        in.backend.attributes |= kNormals;
+        if (!canRevoxelize()) return;
+        if (in.loaded.mesh->colors.empty()) wanted &= ~uint32_t(kColors);
+        if ((octree.channels() & wanted) == wanted || (in.backend.attributes & wanted) == wanted) return;
+        in.backend.attributes |= wanted;
         revoxelize(resolution);
     }
 
@@ -205,7 +208,7 @@ struct ViewerState {
     void setLighting(gl::Illumination::Mode m)
     {
         gl::ViewLayers& l = in.layers;
-        if (m != gl::Illumination::Mode::Off) ensureNormals();
+        if (m != gl::Illumination::Mode::Off) ensureChannels(kNormals | kColors);
         if (m != gl::Illumination::Mode::Off && octree.attributes.normals.empty()) {
             message = "lighting needs the octree's normal channel (voxelize the mesh with --attributes normal)";
             return;
@@ -500,7 +503,7 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
         if (st.quit) break;
         // AO turned on (a key or the panel) leaves along the normals.
         if (st.in.layers.ao.cones > 0 && st.in.layers.ao.source == gl::AmbientOcclusion::Source::Volume)
-            st.ensureNormals();
+            st.ensureChannels(kNormals);
         glfwGetFramebufferSize(ws.window, &st.width, &st.height);
         if (st.width < 1 || st.height < 1) { // minimized
             glfwWaitEventsTimeout(0.1);

@@ -46,13 +46,21 @@ TriangleMesh cornellBox()
     TriangleMesh m;
     m.source = "cornell_box";
     const int wall = 14, block = 7;
+    // The classic room's reflectances as vertex colours: white, a red left
+    // wall and a green right one (a lit picture shows the bounce's colour).
+    const Vec3f white{0.73f, 0.71f, 0.68f}, red{0.63f, 0.065f, 0.05f}, green{0.14f, 0.45f, 0.091f};
+    auto paint = [&m](Vec3f c) { m.colors.resize(m.positions.size(), c); }; // the vertices added since
     addQuad(m, {-1, 0, -1}, {2, 0, 0}, {0, 0, 2}, wall);  // floor
     addQuad(m, {-1, 2, -1}, {0, 0, 2}, {2, 0, 0}, wall);  // ceiling
     addQuad(m, {-1, 0, -1}, {0, 2, 0}, {2, 0, 0}, wall);  // back
+    paint(white);
     addQuad(m, {-1, 0, -1}, {0, 0, 2}, {0, 2, 0}, wall);  // left
+    paint(red);
     addQuad(m, {1, 0, -1}, {0, 2, 0}, {0, 0, 2}, wall);   // right
+    paint(green);
     addBlock(m, {0.35, 0, 0.3}, {0.6, 0.6, 0.6}, -0.29, block); // short block
     addBlock(m, {-0.35, 0, -0.3}, {0.6, 1.2, 0.6}, 0.30, block); // tall block
+    paint(white);
     return m;
 }
 

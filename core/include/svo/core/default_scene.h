@@ -10,6 +10,9 @@ namespace svo {
 /// A 2 x 2 x 2 room open at the front (floor, ceiling, back, left and right
 /// walls, each tessellated 14 x 14) with a short and a tall block (every face
 /// tessellated 7 x 7): 5*392 + 12*98 = 3,136 triangles, the seed's count.
+/// Vertex colours are the classic room's reflectances: the left wall red
+/// (0.63, 0.065, 0.05), the right wall green (0.14, 0.45, 0.091), the rest
+/// white (0.73, 0.71, 0.68); each wall has vertices of its own.
 TriangleMesh cornellBox();
 
 /// A 6 x 6 grid of UV spheres (40 slices, 19 stacks) on a floor-less stage,
