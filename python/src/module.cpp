@@ -504,9 +504,39 @@ py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, c
                                   const std::vector<std::string>& layers, std::optional<std::pair<int, int>> levels,
                                   const std::string& color, int ao, bool aoOnly, const std::string& aoSource,
                                   const std::string& lighting, const std::optional<py::iterable>& lights,
-                                  const py::object& albedo, const py::object& specular)
+                                  const py::object& albedo, const py::object& specular, const py::object& mesh,
+                                  const std::string& surface)
 {
     svo::gl::ViewLayers l;
+    // The mesh's own triangles, shaded through the octree (svo view --surface).
+    if (surface != "auto" && surface != "voxels" && surface != "mesh")
+        badValue("surface: expected 'auto', 'voxels' or 'mesh', got '" + surface + "'");
+    std::optional<svo::TriangleMesh> triangles;
+    if (!mesh.is_none()) {
+        if (!py::isinstance<py::sequence>(mesh) || py::len(mesh) != 2)
+            badValue("mesh: expected (vertices, triangles), the arrays the octree was voxelized from");
+        const auto parts = mesh.cast<py::sequence>();
+        if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
+            badValue("mesh: the octree's transform is not a uniform voxel size and a whole-voxel translation, so "
+                     "its triangles cannot be placed in it (voxelize it with resolution or voxel_size)");
+        const std::vector<openvdb::Vec3d> points = toPoints(parts[0]);
+        std::vector<openvdb::Vec3I> tris;
+        std::vector<openvdb::Vec4I> quads;
+        toFaces(parts[1], points.size(), tris, quads);
+        svo::TriangleMesh m;
+        m.source = "mesh";
+        for (const auto& q : points) m.positions.push_back({q.x(), q.y(), q.z()});
+        for (const auto& t : tris) m.triangles.push_back({uint32_t(t.x()), uint32_t(t.y()), uint32_t(t.z())});
+        for (const auto& q : quads) {
+            m.triangles.push_back({uint32_t(q[0]), uint32_t(q[1]), uint32_t(q[2])});
+            m.triangles.push_back({uint32_t(q[0]), uint32_t(q[2]), uint32_t(q[3])});
+        }
+        triangles = std::move(m);
+    }
+    if (surface == "mesh" && !triangles) badValue("surface='mesh' shades the mesh: give mesh=(vertices, triangles)");
+    l.surface = surface == "mesh" || (surface == "auto" && triangles && (aoOnly || lighting != "off"))
+                    ? svo::gl::Surface::Mesh
+                    : svo::gl::Surface::Voxels;
     if (lighting != "off" && lighting != "direct" && lighting != "gi")
         badValue("lighting: expected 'off', 'direct' or 'gi', got '" + lighting + "'");
     if (lighting != "off") {
@@ -566,7 +596,7 @@ py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, c
     svo::gl::Image image;
     {
         py::gil_scoped_release release;
-        const svo::gl::OctreeView v(pictureContext(), p.octree);
+        const svo::gl::OctreeView v(pictureContext(), p.octree, triangles ? &*triangles : nullptr);
         image = v.render(camera, width, height, l);
     }
     py::array_t<uint8_t> out({py::ssize_t(height), py::ssize_t(width), py::ssize_t(4)});
@@ -810,7 +840,8 @@ PYBIND11_MODULE(_svo, m)
              py::arg("view") = "front", py::arg("layers") = std::vector<std::string>{"voxels", "outlines"},
              py::arg("levels") = py::none(), py::arg("color") = "flat", py::arg("ao") = 0, py::arg("ao_only") = false,
              py::arg("ao_source") = "volume", py::arg("lighting") = "off", py::arg("lights") = py::none(),
-             py::arg("albedo") = py::none(), py::arg("specular") = py::none(),
+             py::arg("albedo") = py::none(), py::arg("specular") = py::none(), py::arg("mesh") = py::none(),
+             py::arg("surface") = "auto",
              "A picture of the octree drawn on the GPU, as svo view --screenshot draws it: (H, W, 4) uint8,\n"
              "rows from the top. view: 'front' or an axis view '+x', '-x', '+y', '-y', '+z', '-z';\n"
              "layers: 'voxels', 'outlines', 'bricks'; levels: (first, last) outline levels; color: 'flat'\n"
@@ -821,7 +852,10 @@ PYBIND11_MODULE(_svo, m)
              "light with shadows) or 'gi' (and one diffuse bounce), as svo view --render direct|gi: needs the\n"
              "normal channel; lights: [('sun', (dx, dy, dz)[, E]), ('point', (x, y, z)[, I]), ...] in world\n"
              "units, E and I a number or (r, g, b), pi by default (none: a sun from above); albedo and\n"
-             "specular: a number or (r, g, b) in [0, 1].")
+             "specular: a number or (r, g, b) in [0, 1]. mesh: (vertices, triangles) the octree was voxelized\n"
+             "from (with resolution or voxel_size); surface: 'voxels', 'mesh' (its triangles lit and occluded\n"
+             "through the octree) or 'auto' (the mesh for ao_only and lighting when it is given), as svo view\n"
+             "--surface.")
         .def("save", [](const PyOctree& p, const std::string& path) {
             if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
                 badValue("save: a .svo file holds a uniform voxel size and a whole-voxel translation; this octree's "

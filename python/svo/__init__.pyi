@@ -91,6 +91,13 @@ class Octree:
         color: str = "flat",
         ao: int = 0,
         ao_only: bool = False,
+        ao_source: str = "volume",
+        lighting: str = "off",
+        lights: Optional[Sequence[Tuple[Any, ...]]] = None,
+        albedo: Optional[Union[float, Tuple[float, float, float]]] = None,
+        specular: Optional[Union[float, Tuple[float, float, float]]] = None,
+        mesh: Optional[Tuple[ArrayLike, ArrayLike]] = None,
+        surface: str = "auto",
     ) -> npt.NDArray[np.uint8]: ...
     def save(self, path: str) -> None: ...
 

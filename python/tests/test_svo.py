@@ -530,6 +530,25 @@ def test_octree_render_draws_what_svo_view_draws(voxelizer, tmp_path):
                        + (["--specular", "0.2"] if lighting == "gi" else []), check=True, capture_output=True)
         assert np.array_equal(image[:, :, :3], read_png_rgb(png))
         assert image[:, :, 1].max() > 0
+    # The mesh's own triangles (surface "auto" with a mesh, as svo view --render ao
+    # of the mesh file shades them): the same picture as svo view draws.
+    obj = tmp_path / "t.obj"
+    obj.write_text("".join(f"v {a} {b} {c}\n" for a, b, c in v) + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in t))
+    smooth = octree.render(size=(64, 48), view="front", layers=["voxels"], ao_only=True, mesh=(v, t))
+    png = str(tmp_path / "smooth.png")
+    subprocess.run([SVO_EXE, "view", str(obj), "-r", "24", "--screenshot", png, "--size", "64x48", "--view", "front",
+                    "--layers", "voxels", "--render", "ao"], check=True, capture_output=True)
+    assert np.array_equal(smooth[:, :, :3], read_png_rgb(png))
+    blocks = octree.render(size=(64, 48), view="front", layers=["voxels"], ao_only=True)
+    assert not np.array_equal(smooth, blocks)  # triangles, not voxels
+    assert np.array_equal(octree.render(size=(64, 48), view="front", layers=["voxels"], ao_only=True, mesh=(v, t),
+                                        surface="voxels"), blocks)
+    with pytest.raises(ValueError, match="mesh"):
+        octree.render(ao_only=True, surface="mesh")  # no mesh given
+    with pytest.raises(ValueError, match="mesh"):
+        octree.render(ao_only=True, mesh=(v,))
+    with pytest.raises(ValueError, match="surface"):
+        octree.render(ao_only=True, mesh=(v, t), surface="smooth")
     with pytest.raises(ValueError, match="lighting"):
         octree.render(lighting="bright")
     with pytest.raises(ValueError, match="lights"):
