@@ -581,22 +581,16 @@ TEST(Lighting, MeshSurfaceIsShadedOnItsTriangles)
     EXPECT_GT(lowest, 0.35);
     // Away from the wall the floor is open: AO 1.
     EXPECT_GT(occlusion.pixel(70, 48)[1], 250);
-    // A sun from above and beyond the floor's far side lights the whole
+    // The first picture's sun, from above and beyond the floor's far side, lights the whole
     // floor, the wall casts no shadow: ρ/π E cos θ = 0.75 · 0.8 = 0.6 at every
     // floor pixel, those beside the wall too. Their shadow rays, pushed out
     // along the normal alone, started among the wall's voxels, and the edge
     // came out black (awayFromBeside).
-    svo::gl::ViewLayers sun;
-    sun.outlines = false;
-    sun.surface = svo::gl::Surface::Mesh;
-    sun.light.mode = Illumination::Mode::Direct;
-    sun.light.lights.directional.push_back({{-0.6, -0.8, 0}, {M_PI, M_PI, M_PI}});
-    sun.light.gamma = 1.0;
     svo::gl::ViewCamera edge = above; // 4 pixels a voxel; the wall at pixel column 9.6
     edge.target = {0.15, 0, 0.5};
     edge.eye = {0.15, 5, 0.5};
     edge.height = 0.375;
-    const svo::gl::Image sunlit = cornerView.render(edge, 96, 96, sun);
+    const svo::gl::Image sunlit = cornerView.render(edge, 96, 96, layers); // the sun above
     for (int y = 40; y < 56; ++y)
         for (int x = 10; x < 21; ++x) // floor points 0.1 to 2.6 voxels from the wall
             EXPECT_NEAR(sunlit.pixel(x, y)[1], 0.6 * 255, 1.01) << x << "," << y;
