@@ -227,7 +227,7 @@ int main(int argc, char** argv)
                             for (const auto& t : view.timeFrames(camera, timeWidth, timeHeight, layers, frames, true))
                                 moved.push_back(t.gpuMs);
                         const std::string line = fmt::format(
-                            "| {} | {}³ | {} | {} | {:.4f} | {:.3f} | {:.3f} | {:.3f} | {} | {:.2f} | {} | {:.2f} |\n",
+                            "| {} | {}³ | {} | {} | {:.4f} | {:.3f} | {:.4f} | {:.4f} | {} | {:.2f} | {} | {:.2f} |\n",
                             std::filesystem::path(name).stem().string(), r,
                             !ao                        ? "–"
                             : source == Source::Volume ? "volume"

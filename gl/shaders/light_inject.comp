@@ -15,10 +15,11 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 #include "view_lights.glsl"
 #include "loop_cut.glsl"
 #include "opacity_depth.glsl"
+#include "lit_side.glsl"
 
 layout(binding = 0, rgba16f) writeonly restrict uniform image3D uOpacityOut;
 layout(binding = 1, rgba16f) writeonly restrict uniform image3D uRadianceOut;
-layout(binding = 2, rgba8_snorm) writeonly restrict uniform image3D uLitSideOut;
+layout(binding = 2, rgba16f) writeonly restrict uniform image3D uLitSideOut;
 
 uniform ivec3 uBaseSize;  // level 0's texels
 uniform int uTexelCells;  // voxels per texel edge: 1, 2, 4 or 8
@@ -34,7 +35,7 @@ void injectTexel(ivec3 texel)
     uint brick;
     int emptyLog2;
     if (all(lessThan(first, uDims)) && findBrick(first, brick, emptyLog2)) {
-        uint count = 0u;
+        uint count = 0u, shown = 0u; // voxels; those not hidden behind their own surface
         vec3 sum = vec3(0.0);
         for (int x = 0; x < uTexelCells; ++x)
             for (int y = 0; y < uTexelCells; ++y)
@@ -48,24 +49,31 @@ void injectTexel(ivec3 texel)
                     vec3 n = voxelNormal(v);
                     float len = length(n);
                     n = len > 1e-6 ? n / len : vec3(0.0);
-                    vec3 front, back, side;
-                    irradianceBySide(vec3(cell) + 0.5, n, front, back, side);
+                    vec3 front, back, seen, side;
+                    bool hidden;
+                    irradianceBySide(vec3(cell) + 0.5, n, true, front, back, seen, side, hidden);
                     storeIrradiance(v, front, back); // the picture's direct light
-                    vec3 l = voxelAlbedo(v) * (1.0 / 3.14159265) * (front + back);
+                    if (hidden) continue;             // the back of its surface: no light, no coverage
+                    ++shown;
+                    vec3 l = voxelAlbedo(v) * (1.0 / 3.14159265) * seen;
                     sum += l;
                     litSide += dot(l, vec3(1.0)) * side;
                 }
         float k = float(uTexelCells);
         float cover = min(1.0, float(count) / (k * k));
         opacity = vec4(storedOpacity(vec3(cover)), cover);
-        if (count > 0u) radiance = vec4(sum / float(count) * cover, cover);
+        // Radiance over the voxels that show a side (hidden ones occlude,
+        // above, but neither light nor darken it).
+        if (shown > 0u) radiance = vec4(sum / float(shown) * cover, cover);
         float total = dot(sum, vec3(1.0));
         if (total > 0.0) litSide /= total;
     }
     imageStore(uOpacityOut, texel, opacity);
     if (uLit == 0u) return;
     imageStore(uRadianceOut, texel, radiance);
-    if (uDirectional != 0u) imageStore(uLitSideOut, texel, vec4(litSide, 0.0));
+    // Times the texel's light, so that a trilinear sample's lit side is
+    // that of the light it holds (lit_side.glsl).
+    if (uDirectional != 0u) imageStore(uLitSideOut, texel, vec4(litSide * lightOf(radiance.rgb), 0.0));
 }
 
 void main()

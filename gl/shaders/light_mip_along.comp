@@ -14,7 +14,7 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0, rgba16f) readonly restrict uniform image3D uOpacityIn;
 layout(binding = 1, rgba16f) readonly restrict uniform image3D uRadianceIn;
 layout(binding = 2, rgba16f) writeonly restrict uniform image3D uRadianceOut;
-layout(binding = 3, rgba8_snorm) readonly restrict uniform image3D uLitSideIn; // level 0's lit side
+layout(binding = 3, rgba16f) readonly restrict uniform image3D uLitSideIn; // level 0's lit side times its light
 
 uniform ivec3 uInSize;
 uniform ivec3 uOutSize;
@@ -48,7 +48,7 @@ void main()
                 if (uFromBase != 0u) { // the light leaving back towards the ray: along -axis for +axis
                     vec3 back = vec3(0.0);
                     back[uAxis] = uPositive != 0 ? -1.0 : 1.0;
-                    r *= towardsLitSide(imageLoad(uLitSideIn, base + child).xyz, back);
+                    r *= towardsLitSide(litSideOf(imageLoad(uLitSideIn, base + child).xyz, r), back);
                 }
                 c += through * r;
                 through *= 1.0 - a;

@@ -26,7 +26,7 @@ layout(binding = SVO_UNIT_LIGHT_ALONG + 2) uniform sampler3D uAlongPositiveY;
 layout(binding = SVO_UNIT_LIGHT_ALONG + 3) uniform sampler3D uAlongNegativeY;
 layout(binding = SVO_UNIT_LIGHT_ALONG + 4) uniform sampler3D uAlongPositiveZ;
 layout(binding = SVO_UNIT_LIGHT_ALONG + 5) uniform sampler3D uAlongNegativeZ;
-layout(binding = SVO_UNIT_LIGHT_LIT_SIDE) uniform sampler3D uLitSide; // level 0's lit side (uDirectional)
+layout(binding = SVO_UNIT_LIGHT_LIT_SIDE) uniform sampler3D uLitSide; // level 0's lit side times its light (uDirectional)
 
 uniform vec3 uVolumeScale;    // cell space -> texture coordinates
 uniform float uTexelCells;    // voxels per texel edge at level 0
@@ -191,7 +191,7 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit, float tanHalf,
             vec4 base = vec4(0.0);
             if (lod < 1.0) {
                 base = textureLod(uRadianceVolume, tc, 0.0);
-                base.rgb *= towardsLitSide(textureLod(uLitSide, tc, 0.0).xyz, -dir);
+                base.rgb *= towardsLitSide(litSideOf(textureLod(uLitSide, tc, 0.0).xyz, base.rgb), -dir);
             }
             r = lod <= 0.0 ? base : (lod >= 1.0 ? radianceAlong(dir, share, tc, lod)
                                                 : mix(base, radianceAlong(dir, share, tc, 1.0), lod));
@@ -219,8 +219,12 @@ float opacityNear(vec3 q)
 /// black), and a shadow ray from there starts inside it. Level 0's opacity
 /// gradient across n points to it; o moves up to 2 texels away, in
 /// proportion to the opacity it lies in (all 2 from a third), at the same
-/// height above its own surface.
-vec3 awayFromBeside(vec3 o, vec3 n)
+/// height above its own surface, and never away from the viewer (unit
+/// toViewer): the camera sees the edge from the open side of the other
+/// surface. Where that surface is one voxel thick and o lies in its voxel,
+/// the gradient points across it (to the voxel's centre), and o would move
+/// through it into the room behind.
+vec3 awayFromBeside(vec3 o, vec3 n, vec3 toViewer)
 {
     float h = uTexelCells;
     vec3 g = vec3(opacityNear(o + vec3(h, 0.0, 0.0)) - opacityNear(o - vec3(h, 0.0, 0.0)),
@@ -228,21 +232,24 @@ vec3 awayFromBeside(vec3 o, vec3 n)
                   opacityNear(o + vec3(0.0, 0.0, h)) - opacityNear(o - vec3(0.0, 0.0, h)));
     g -= dot(g, n) * n;
     if (length(g) < 1e-4) return o;
-    return o - 2.0 * h * min(1.0, 3.0 * opacityNear(o)) * normalize(g);
+    vec3 away = -normalize(g);
+    if (dot(away, toViewer) < 0.0) away = -away;
+    return o + 2.0 * h * min(1.0, 3.0 * opacityNear(o)) * away;
 }
 
 /// Where the cones of a point p with unit normal n start: uConeOffset out
 /// along n, away from any other surface there (awayFromBeside).
-vec3 coneStart(vec3 p, vec3 n) { return awayFromBeside(p + uConeOffset * n, n); }
+vec3 coneStart(vec3 p, vec3 n, vec3 toViewer) { return awayFromBeside(p + uConeOffset * n, n, toViewer); }
 
 /// Cosine-weighted gather over the hemisphere of unit normal n at p: the
 /// normal's cone (up to 30 degrees) weighs a quarter, a ring of cones tilted
 /// 60 degrees three quarters. rgb: the mean incoming radiance (times albedo,
 /// the light one diffuse bounce reflects; 0 unless `lit`); a: the mean
-/// occlusion. `pattern` turns the ring and shifts the steps (conePattern).
-vec4 hemisphereGather(vec3 p, vec3 n, bool lit, vec2 pattern)
+/// occlusion. `pattern` turns the ring and shifts the steps (conePattern);
+/// toViewer (unit) keeps the start on the camera's side (awayFromBeside).
+vec4 hemisphereGather(vec3 p, vec3 n, vec3 toViewer, bool lit, vec2 pattern)
 {
-    vec3 o = coneStart(p, n);
+    vec3 o = coneStart(p, n, toViewer);
     if (uCones <= 1) return coneGather(o, n, n, uConeOffset, lit, uConeTanHalf, pattern.y);
     vec3 t1 = normalize(abs(n.x) < 0.6 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
     vec3 t2 = cross(n, t1);

@@ -37,15 +37,31 @@ vec3 voxelAlbedo(uint v)
 /// centre c of a voxel with unit normal n, from the lights on n's side
 /// (`front`) and from those on the other side (`back`): a voxel stands for
 /// a thin surface seen from both sides. n = 0 (a voxel whose normals cancel)
-/// takes every light as if facing it, in front. `litSide` gets the normal
-/// turned to each light's side, averaged by the light each gives (0 when
-/// none arrives; short when lights reach both sides).
-void irradianceBySide(vec3 c, vec3 n, out vec3 front, out vec3 back, out vec3 litSide)
+/// takes every light as if facing it, in front.
+///
+/// With `centre` (c is the voxel's centre: the injection), also what the
+/// lighting volume takes: `seen`, the irradiance from the lights whose push
+/// out of the voxel enters no other voxel on its way. A surface's
+/// conservative voxels lie two or three deep, and only those on the light's
+/// side of it show the lit side: the wall between two rooms has a voxel
+/// column on each side of its plane, both pushed out into the lit room, and
+/// the dark room's column sent the lit room's light into the dark room (its
+/// creases the most, where the averaged normal leans into the dark room).
+/// `hidden`: every light that reaches one of the voxel's sides was pushed
+/// into another voxel (it is the back of its surface; not set for a voxel no
+/// light faces). `litSide` gets the normal turned to each seen light's side,
+/// averaged by the light each gives (0 when none arrives; short when lights
+/// reach both sides). Without `centre`, `seen` is front + back and nothing
+/// is hidden.
+void irradianceBySide(vec3 c, vec3 n, bool centre, out vec3 front, out vec3 back, out vec3 seen, out vec3 litSide,
+                      out bool hidden)
 {
     front = vec3(0.0);
     back = vec3(0.0);
+    seen = vec3(0.0);
     litSide = vec3(0.0);
     float power = 0.0;
+    int facing = 0, blocked = 0;
     for (int i = 0; i < uLightCount; ++i) {
         vec4 a = lights[2 * i], b = lights[2 * i + 1];
         vec3 l, e;
@@ -68,23 +84,38 @@ void irradianceBySide(vec3 c, vec3 n, out vec3 front, out vec3 back, out vec3 li
         if (cosTheta == 0.0) continue;
         vec3 side = isotropic ? l : (cosTheta > 0.0 ? n : -n);
         vec3 o = c + uShadowOffset * side;
+        // The push, from just past the voxel's own faces (the centre's
+        // nearest exit along `side`) to o.
+        bool pushedIn = false;
+        if (centre) {
+            vec3 ad = abs(side);
+            float leave = 0.5 / max(ad.x, max(ad.y, ad.z)) + 1e-3;
+            VoxelHit p;
+            pushedIn = leave < uShadowOffset && marchOctree(c, side, leave, uShadowOffset, p);
+            ++facing;
+            if (pushedIn) ++blocked;
+        }
         if (a.w != 0.0) reach = dot(a.xyz - o, l);
         VoxelHit h;
         if (reach > 0.0 && marchOctree(o, l, 0.0, reach, h)) continue;
         if (cosTheta > 0.0) front += e * cosTheta;
         else back -= e * cosTheta;
+        if (pushedIn) continue;
+        seen += e * abs(cosTheta);
         float p = dot(e, vec3(1.0)) * abs(cosTheta);
         litSide += p * side;
         power += p;
     }
     if (power > 0.0) litSide /= power;
+    hidden = facing > 0 && blocked == facing;
 }
 
 /// One-sided: the lights on n's side (n not 0).
 vec3 irradiance(vec3 c, vec3 n)
 {
-    vec3 front, back, litSide;
-    irradianceBySide(c, n, front, back, litSide);
+    vec3 front, back, seen, litSide;
+    bool hidden;
+    irradianceBySide(c, n, false, front, back, seen, litSide, hidden);
     return front;
 }
 

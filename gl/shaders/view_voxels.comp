@@ -110,6 +110,7 @@ void castRay(ivec2 pixel)
     vec4 b = uInverseViewProjection * vec4(ndc, 1.0, 1.0);
     vec3 o = a.xyz / a.w;
     vec3 d = b.xyz / b.w - o; // t in [0, 1] spans the near to the far plane
+    vec3 toViewer = -normalize(d);
 
     // What the pixel sees: a voxel of the octree (its centre shaded along
     // its normal channel, or the face the ray entered), or a point of the
@@ -172,11 +173,11 @@ void castRay(ivec2 pixel)
         // shadow ray's start away from it, as its cones' (awayFromBeside):
         // pushed out along n alone, it starts among the other surface's
         // voxels, and the corner's pixels came out in shadow.
-        vec3 shadowFrom = mesh ? awayFromBeside(c + uShadowOffset * n, n) - uShadowOffset * n : c;
+        vec3 shadowFrom = mesh ? awayFromBeside(c + uShadowOffset * n, n, toViewer) - uShadowOffset * n : c;
         vec3 e = stored ? storedIrradiance(v, front) : irradiance(shadowFrom, n);
         own = albedo * (1.0 / 3.14159265) * e;
         if (uLightMode == 2) {
-            gathered = hemisphereGather(c, n, true, pattern).rgb;
+            gathered = hemisphereGather(c, n, toViewer, true, pattern).rgb;
             coneNormal = n;
             // Glossy: one cone along the view ray mirrored about the normal.
             if (any(greaterThan(uSpecular, vec3(0.0))))
@@ -199,7 +200,7 @@ void castRay(ivec2 pixel)
                 vec3 m = voxelNormal(voxelIndex(brick, bit));
                 if (length(m) > 1e-6) n = normalize(dot(m, d) > 0.0 ? -m : m);
             }
-            ao = 1.0 - hemisphereGather(c, n, false, pattern).a;
+            ao = 1.0 - hemisphereGather(c, n, toViewer, false, pattern).a;
             coneNormal = n;
         }
         vec3 base = inVoxel ? voxelColor(brick, bit) : uColor;

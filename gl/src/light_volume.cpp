@@ -49,7 +49,7 @@ LightVolumeTextures allocateVolume(const GridSpec& grid, uint32_t resolution, bo
         static const char* names[6] = {"lighting volume's radiance along +x", "lighting volume's radiance along -x",
                                        "lighting volume's radiance along +y", "lighting volume's radiance along -y",
                                        "lighting volume's radiance along +z", "lighting volume's radiance along -z"};
-        v.litSide = Texture3D("lighting volume's lit sides", GL_RGBA8_SNORM, 1, v.size[0], v.size[1], v.size[2]);
+        v.litSide = Texture3D("lighting volume's lit sides", GL_RGBA16F, 1, v.size[0], v.size[1], v.size[2]);
         for (int d = 0; d < 6; ++d)
             v.along[size_t(d)] = Texture3D(names[d], GL_RGBA16F, levels - 1, std::max(1, v.size[0] / 2),
                                            std::max(1, v.size[1] / 2), std::max(1, v.size[2] / 2));
@@ -254,7 +254,7 @@ void fillVolume(const Context& context, const ViewBuffers& o, const Illumination
     v.opacity.bindImage(0, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (l) v.radiance.bindImage(1, 0, GL_WRITE_ONLY, GL_RGBA16F);
     const bool sixWay = l && l->directional && levels > 1;
-    if (sixWay) v.litSide.bindImage(2, 0, GL_WRITE_ONLY, GL_RGBA8_SNORM);
+    if (sixWay) v.litSide.bindImage(2, 0, GL_WRITE_ONLY, GL_RGBA16F);
     inject.set("uDirectional", sixWay ? 1u : 0u);
     const LoopCutCounter loopCut;
     loopCut.arm(inject, SVO_BIND_VIEW_LOOP_CUT, context.info().loopLimit);
@@ -300,7 +300,7 @@ void fillVolume(const Context& context, const ViewBuffers& o, const Illumination
                 if (level == 1) v.radiance.bindImage(1, 0, GL_READ_ONLY, GL_RGBA16F);
                 else t.bindImage(1, level - 2, GL_READ_ONLY, GL_RGBA16F);
                 t.bindImage(2, level - 1, GL_WRITE_ONLY, GL_RGBA16F);
-                v.litSide.bindImage(3, 0, GL_READ_ONLY, GL_RGBA8_SNORM);
+                v.litSide.bindImage(3, 0, GL_READ_ONLY, GL_RGBA16F);
                 along->set("uFromBase", level == 1 ? 1u : 0u);
                 along->set("uAxis", d / 2);
                 along->set("uPositive", d % 2 == 0 ? 1 : 0);

@@ -199,7 +199,10 @@ struct LightVolumeLevel {
     /// along +x, -x, +y, -y, +z, -z sees. Empty otherwise.
     std::array<std::vector<float>, 6> along;
     /// With Illumination::directional, level 0 only, 4 per texel: its lit
-    /// side (the normal turned to its lights, averaged by light; 0 unlit).
+    /// side (the normal turned to its lights, averaged by light; 0 unlit)
+    /// times its light, the mean of its premultiplied radiance's rgb, so
+    /// that a trilinear sample divided by the sampled light is the lit side
+    /// of the light it holds.
     std::vector<float> litSide;
 };
 struct LightVolume {
