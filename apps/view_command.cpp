@@ -415,6 +415,9 @@ void addViewCommand(CLI::App& app)
            "seen along each of six directions, composited front to back: thin walls leak less)")
         ->check(CLI::IsMember({"isotropic", "directional"}))
         ->default_str("isotropic");
+    cmd->add_flag("--gi-clearance", args->light.clearance,
+                  "gi: cones read coarse texels only clear of voxels (no light averaged across a thin wall; slower, "
+                  "noisier)");
     cmd->add_option("--shadow-offset", args->light.shadowOffset,
                     "direct/gi: shadow rays start this far out of the surface, voxels (less: light through thinner "
                     "gaps, more self-shadowing)")

@@ -299,6 +299,7 @@ struct ViewerState {
         float step = float(li.step);
         if (ImGui::SliderFloat("GI step", &step, 0.05f, 1.0f, "%.2f of the cone")) li.step = step;
         ImGui::Checkbox("six-way radiance", &li.directional);
+        ImGui::Checkbox("GI cones clear of voxels (thin walls)", &li.clearance);
         ImGui::Checkbox("GI cones interleaved over 4x4 pixels", &li.interleave);
         if (ImGui::SliderFloat("specular", &specular, 0.0f, 1.0f, "%.2f")) li.specular = {specular, specular, specular};
         if (li.specular.x > 0 && ImGui::SliderFloat("specular aperture", &glossy, 2.0f, 90.0f, "%.0f deg"))

@@ -79,6 +79,8 @@ int main(int argc, char** argv)
         ->check(CLI::IsMember({"volume", "octree", "both"}));
     bool directional = false;
     app.add_flag("--directional", directional, "gi: emission by direction (Illumination::directional)");
+    bool clearance = false;
+    app.add_flag("--clearance", clearance, "gi: coarse levels only clear of voxels (Illumination::clearance)");
     std::string conePattern = "interleaved";
     app.add_option("--cone-pattern", conePattern,
                    "interleaved (each pixel of a 4x4 tile its own cones, averaged) or fixed (every pixel the same)")
@@ -105,11 +107,11 @@ int main(int argc, char** argv)
                              "({} paths per pixel, Embree), linear radiance (albedo {}, svo's default lights), {} x {} "
                              "pixels compared where both see a surface, values clamped to [0, 1]; GPU ms per frame at "
                              "{} x {} on {}, and with the light injected and the volume mip-mapped again in each "
-                             "frame (light moved); emission {}; shading the {}; cones {}.\n\n",
+                             "frame (light moved); emission {}; shading the {}; cones {}{}.\n\n",
                              render == "gi" ? "one-bounce" : "direct", render,
                              render == "gi" ? "OneBounce" : "Direct", samples, albedo, width, height, timeWidth,
                              timeHeight, context.info().renderer, directional ? "by direction" : "isotropic", surface,
-                             conePattern);
+                             conePattern, clearance ? ", reading coarse texels only clear of voxels" : "");
         md += fmt::format("| scene | grid | opacity | cones | RMSE | p99 error | mean {} (svo) | mean {} (reference) | "
                           "pixels | GPU ms | GPU ms, light moved | wall ms |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                           ao ? "AO" : "radiance", ao ? "AO" : "radiance");
@@ -183,6 +185,7 @@ int main(int argc, char** argv)
                             if (aperture > 0) layers.light.apertureDegrees = aperture;
                             layers.light.step = step;
                             layers.light.directional = directional;
+                            layers.light.clearance = clearance;
                             layers.light.interleave = conePattern == "interleaved";
                             layers.light.gamma = 1.0;
                         }

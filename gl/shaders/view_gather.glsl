@@ -37,6 +37,7 @@ uniform float uConeStep;      // steps: this share of the cone's width (of twice
 uniform int uCones;           // 1: the normal; n: the normal and a ring of n - 1
 uniform uint uDirectional;    // 1: the volume has six-way radiance from level 1 up
 uniform uint uInterleave;     // 1: each pixel of a 4x4 tile its own cone pattern (conePattern)
+uniform uint uConeClearance;  // 1: lit cones read coarse texels only clear of voxels (clearOfVoxels)
 
 /// Where a cone samples at distance t, for a cone from `height` voxels out of
 /// the surface of normal n, along dir, of half-angle tangent tanHalf: the
@@ -56,6 +57,33 @@ ConeSample coneSampleAt(float t, float height, vec3 dir, vec3 n, float tanHalf)
     k.width = max(uTexelCells, min(cone, above / 3.0));
     k.stride = uConeStep * min(cone, 2.0 * k.width);
     k.lod = log2(k.width / uTexelCells);
+    return k;
+}
+
+/// Sample k of a lit cone at cell-space point q, made no coarser than the
+/// coarsest level whose texels around q hold no voxel, down to level 0
+/// (Illumination::clearance). A coarse texel that straddles a one-voxel wall
+/// holds the light of both its sides, and a cone beside the wall sees the
+/// far room's; cones held at level 0 leak 0.05 % of what isotropic cones do
+/// (design §7d). Level m's trilinear opacity is 0 at q only if its 8 texels
+/// around q are empty: no voxel within half a texel of level m, 2^(m-1)
+/// texels of level 0. A sample at level L reads texels reaching 1.5 · 2^L
+/// texels from q, so it reads no voxel where level L + 2 is 0. Up to
+/// ceil(lod) + 1 more fetches a sample; the steps shrink with the width.
+ConeSample clearOfVoxels(ConeSample k, vec3 q)
+{
+    if (uConeClearance == 0u || k.lod <= 0.0) return k;
+    vec3 tc = q * uVolumeScale;
+    float clear = 0.0;
+    for (float m = ceil(k.lod) + 2.0; m >= 2.0; m -= 1.0)
+        if (dot(textureLod(uOpacityVolume, tc, m), vec4(1.0)) == 0.0) {
+            clear = m - 2.0;
+            break;
+        }
+    if (clear >= k.lod) return k;
+    k.lod = clear;
+    k.width = uTexelCells * exp2(clear);
+    k.stride = min(k.stride, uConeStep * 2.0 * k.width);
     return k;
 }
 
@@ -176,7 +204,7 @@ vec4 coneGather(vec3 o, vec3 dir, vec3 n, float height, bool lit, float tanHalf,
     vec3 radiance = vec3(0.0);
     float t = 0.0;
     while (t < uConeDistance && occlusion < 0.99) {
-        ConeSample k = coneSampleAt(t, height, dir, n, tanHalf);
+        ConeSample k = clearOfVoxels(coneSampleAt(t, height, dir, n, tanHalf), o + t * dir);
         float width = k.width, lod = k.lod;
         float stride = t == 0.0 ? firstStep * k.stride : k.stride;
         vec3 tc = (o + t * dir) * uVolumeScale;

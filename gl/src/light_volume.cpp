@@ -169,6 +169,7 @@ void bindOpacityVolume(const Program& p, const LightVolumeTextures& v, const Gri
     p.set("uOpticalDepth", v.opticalDepth ? 1u : 0u);
     v.opacity.bindTexture(SVO_UNIT_LIGHT_OPACITY);
     p.set("uDirectional", 0u);
+    p.set("uConeClearance", 0u);
     const double k = v.texelVoxels;
     p.set("uVolumeScale", float(1.0 / (k * v.size[0])), float(1.0 / (k * v.size[1])), float(1.0 / (k * v.size[2])));
     p.set("uTexelCells", float(k));
@@ -191,6 +192,7 @@ void bindLightVolume(const Program& p, const LightVolumeTextures& v, const ViewB
         v.litSide.bindTexture(SVO_UNIT_LIGHT_LIT_SIDE);
     }
     p.set("uDirectional", sixWay ? 1u : 0u);
+    p.set("uConeClearance", l.clearance ? 1u : 0u);
     p.set("uSpecular", float(l.specular.x), float(l.specular.y), float(l.specular.z));
     p.set("uSpecularTanHalf", float(std::tan(l.specularApertureDegrees * M_PI / 360.0)));
 }

@@ -161,11 +161,20 @@ struct Illumination {
     /// lit on one side sends no light out of the other (a texel's light
     /// leaves its lit side by the cosine); the opacity is kept as optical
     /// depth, so that samples between a wall's texels still see it opaque.
-    /// Six textures at half resolution and one at level 0 (about 11 bytes a
+    /// Six textures at half resolution and one at level 0 (about 15 bytes a
     /// texel of level 0) and up to four fetches a sample instead of one;
     /// bench/results gives the error and time of both. Leaks through thin
     /// walls: docs/design.md §7d.
     bool directional = false;
+    /// Cones read a coarse level only where its texels hold no voxel: beside
+    /// a surface a cone narrows to the level whose texels stay clear of it,
+    /// down to level 0, so that no sample averages light across a wall. A
+    /// coarse texel that straddles a one-voxel wall holds the light of both
+    /// its sides; with six-way radiance this is what remains of the thin-wall
+    /// leak (design §7d; bench/results give the leak, the error and the time
+    /// with and without). Near surfaces a cone then samples like a ray: more,
+    /// shorter steps and noisier light.
+    bool clearance = false;
     /// Glossy reflection (Global only): one cone along the view direction
     /// mirrored about the normal, `specularApertureDegrees` wide, through the
     /// same volume; the radiance it gathers times `specular` (each in [0, 1])
