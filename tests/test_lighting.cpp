@@ -197,6 +197,54 @@ TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
     }
 }
 
+/// A surface two voxels deep (a slab at x = 16 and 17, normal +x, as a
+/// tilted surface's conservative voxels lie) lit by a sun travelling along
+/// -x: only the layer on the light's side shows it. The layer behind (x =
+/// 16) reaches the sun only through its push along the normal, which enters
+/// the lit layer, so it is left out of the volume's radiance (its texels
+/// dark) but still occludes; the picture's direct light of both layers'
+/// front is the sun's.
+TEST(Lighting, VoxelsBehindTheirOwnSurfaceAreNotLit)
+{
+    const svo::GridSpec grid = unitGrid(32, 32, 32);
+    std::vector<Voxel> voxels;
+    for (uint32_t x = 16; x < 18; ++x)
+        for (uint32_t y = 0; y < 32; ++y)
+            for (uint32_t z = 0; z < 32; ++z) voxels.push_back({x, y, z});
+    const svo::Octree octree = octreeOf(grid, voxels, {{1, 0, 0}});
+    svo::gl::OctreeView view(context(), octree);
+    Illumination sun;
+    sun.mode = Illumination::Mode::Direct;
+    sun.albedo = {0.5, 0.6, 0.7};
+    sun.lights.directional.push_back({{-1, 0, 0}, {2.0, 1.0, 0.5}});
+    const LightVolume volume = view.readLightVolume(sun);
+    ASSERT_EQ(volume.texelVoxels, 1u);
+    const LightVolumeLevel& l0 = volume.levels[0];
+    const double lit[3] = {0.5 / M_PI * 2.0, 0.6 / M_PI * 1.0, 0.7 / M_PI * 0.5};
+    for (int y = 0; y < 32; ++y)
+        for (int z = 0; z < 32; ++z)
+            for (int x = 16; x < 18; ++x) {
+                const size_t i = texel(l0, x, y, z);
+                ASSERT_NEAR(l0.opacity[i + 3], 1.0, 1e-3) << x << "," << y << "," << z; // both occlude
+                for (int c = 0; c < 3; ++c) {
+                    const double want = x == 17 ? lit[c] : 0.0;
+                    ASSERT_NEAR(l0.radiance[i + size_t(c)], want, halfTolerance(want)) << x << "," << y << "," << z;
+                }
+            }
+    // Texels of 2³ voxels hold both layers: the texel's radiance is the mean
+    // over the voxels that show a side (the lit layer's), not over all 8.
+    sun.volumeResolution = 16;
+    const LightVolume coarse = view.readLightVolume(sun);
+    ASSERT_EQ(coarse.texelVoxels, 2u);
+    const LightVolumeLevel& c0 = coarse.levels[0];
+    for (int y = 0; y < 16; ++y)
+        for (int z = 0; z < 16; ++z) {
+            const size_t i = texel(c0, 8, y, z);
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(c0.radiance[i + size_t(c)], lit[c], halfTolerance(lit[c])) << y << "," << z;
+        }
+}
+
 TEST(Lighting, MipMapKeepsRadianceAndOpacityAsTheFilterSays)
 {
     // Random voxels with random normals in grids of several shapes (one flat,

@@ -41,13 +41,12 @@ vec3 voxelAlbedo(uint v)
 ///
 /// With `centre` (c is the voxel's centre: the injection), also what the
 /// lighting volume takes: `seen`, the irradiance from the lights whose push
-/// out of the voxel enters no other voxel on its way. A surface's
+/// out of the voxel enters no other voxel on its way. A tilted surface's
 /// conservative voxels lie two or three deep, and only those on the light's
-/// side of it show the lit side: the wall between two rooms has a voxel
-/// column on each side of its plane, both pushed out into the lit room, and
-/// the dark room's column sent the lit room's light into the dark room (its
-/// creases the most, where the averaged normal leans into the dark room).
-/// `hidden`: every light that reaches one of the voxel's sides was pushed
+/// side of it show the lit side: a voxel on the far side, pushed along the
+/// normal through the others into the lit room, would send the lit side's
+/// light out of the dark side (a wall one voxel thick, as the axis-aligned
+/// walls of the two rooms, has no such voxel). `hidden`: every light that reaches one of the voxel's sides was pushed
 /// into another voxel (it is the back of its surface; not set for a voxel no
 /// light faces). `litSide` gets the normal turned to each seen light's side,
 /// averaged by the light each gives (0 when none arrives; short when lights
