@@ -714,7 +714,8 @@ TEST_F(Cli, ViewBadInputFailsAsVoxelizeDoes)
 TEST_F(Cli, ViewLightsTheVoxelsAndRefusesBadLighting)
 {
     // A lit picture of the built-in Cornell box (its mesh is voxelized with normals).
-    for (const char* render : {"direct", "gi --gi-emission directional --gi-cones 3", "gi --specular 0.3,0.3,0.2",
+    for (const char* render : {"direct", "gi --gi-emission directional --gi-cones 3",
+                               "gi --gi-emission directional --gi-clearance", "gi --specular 0.3,0.3,0.2",
                                "gi --cone-pattern fixed"}) {
         const auto lit = runSvo(std::string("view -r 16 --size 64x48 --render ") + render +
                                 " --light point:0,1.8,0:5 --light sun:0.3,-1,0.2:1,1,0.5 --screenshot " + path("lit.png"));
