@@ -72,6 +72,26 @@ size_t texel(const LightVolumeLevel& l, int x, int y, int z)
 
 double halfTolerance(double v) { return 2e-3 * std::abs(v) + 1e-4; } // rgba16f: 11 significant bits
 
+/// The two rooms (svo::twoRooms) as svo-bench-ao sees them: from inside the
+/// dark room, looking at the wall, with a point light in the other room.
+svo::gl::ViewCamera darkRoomCamera()
+{
+    svo::gl::ViewCamera camera;
+    camera.eye = {0.9, 0.7, 0.9};
+    camera.target = {0.0, 0.35, -0.3};
+    camera.fovYDegrees = 70;
+    return camera;
+}
+svo::gl::ViewLayers twoRoomsLit(Illumination::Mode mode)
+{
+    svo::gl::ViewLayers layers;
+    layers.outlines = false;
+    layers.light.mode = mode;
+    layers.light.lights.point.push_back({{-0.5, 0.8, 0.0}, {M_PI, M_PI, M_PI}});
+    layers.light.gamma = 1.0;
+    return layers;
+}
+
 } // namespace
 
 TEST(Lighting, InjectionIntoALitPlaneIsTheRadianceComputedOnTheCpu)
@@ -436,20 +456,14 @@ TEST(Lighting, LitPicturesAreDeterministicAndOneBounceOnlyAddsLight)
 /// pixels are exactly black in the path tracer. Isotropic radiance lets the
 /// lit room's light through the coarse texels that straddle the wall;
 /// six-way radiance, with its opacity kept as optical depth and level 0's
-/// light sent out of its lit side by the cosine, keeps nearly all of it out.
+/// light sent out of its lit side by the cosine, keeps nearly all of it out,
+/// and with cones clear of voxels (Illumination::clearance) all but 1 %.
 TEST(Lighting, SixWayRadianceKeepsALitRoomsLightOutOfTheNextRoom)
 {
     const svo::Octree octree = voxelizedWithNormals(svo::twoRooms(), 64);
     svo::gl::OctreeView view(context(), octree);
-    svo::gl::ViewCamera camera; // inside the dark room, looking at the wall
-    camera.eye = {0.9, 0.7, 0.9};
-    camera.target = {0.0, 0.35, -0.3};
-    camera.fovYDegrees = 70;
-    svo::gl::ViewLayers layers;
-    layers.outlines = false;
-    layers.light.mode = Illumination::Mode::Global;
-    layers.light.lights.point.push_back({{-0.5, 0.8, 0.0}, {M_PI, M_PI, M_PI}});
-    layers.light.gamma = 1.0;
+    const svo::gl::ViewCamera camera = darkRoomCamera();
+    svo::gl::ViewLayers layers = twoRoomsLit(Illumination::Mode::Global);
     auto darkRoomMean = [&](bool directional) {
         layers.light.directional = directional;
         const svo::gl::Image image = view.render(camera, 96, 96, layers);
@@ -489,18 +503,10 @@ TEST(Lighting, MeshCreasesByAClosedWallGetNoLightFromBehindIt)
     const svo::TriangleMesh mesh = svo::twoRooms();
     const svo::Octree octree = voxelizedWithNormals(mesh, 256);
     svo::gl::OctreeView view(context(), octree, &mesh);
-    svo::gl::ViewCamera camera; // inside the dark room, looking at the wall
-    camera.eye = {0.9, 0.7, 0.9};
-    camera.target = {0.0, 0.35, -0.3};
-    camera.fovYDegrees = 70;
-    svo::gl::ViewLayers layers;
-    layers.outlines = false;
+    svo::gl::ViewLayers layers = twoRoomsLit(Illumination::Mode::Direct);
     layers.surface = svo::gl::Surface::Mesh;
-    layers.light.mode = Illumination::Mode::Direct;
-    layers.light.lights.point.push_back({{-0.5, 0.8, 0.0}, {M_PI, M_PI, M_PI}});
-    layers.light.gamma = 1.0;
     const int w = 240, h = 180;
-    const svo::gl::Image image = view.render(camera, w, h, layers);
+    const svo::gl::Image image = view.render(darkRoomCamera(), w, h, layers);
     int room = 0, lit = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
