@@ -505,7 +505,7 @@ py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, c
                                   const std::string& color, int ao, bool aoOnly, const std::string& aoSource,
                                   const std::string& lighting, const std::optional<py::iterable>& lights,
                                   const py::object& albedo, const py::object& specular, const py::object& mesh,
-                                  const std::string& surface)
+                                  const std::string& surface, const std::string& giEmission, bool giClearance)
 {
     svo::gl::ViewLayers l;
     // The mesh's own triangles, shaded through the octree (svo view --surface).
@@ -546,10 +546,15 @@ py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, c
                                 : svo::gl::defaultLights(svo::gl::gridWorldBox(p.octree.grid), false);
         if (!albedo.is_none()) l.light.albedo = colorOf(albedo, "albedo");
         if (!specular.is_none()) l.light.specular = colorOf(specular, "specular");
+        if (giEmission != "isotropic" && giEmission != "directional")
+            badValue("gi_emission: expected 'isotropic' or 'directional', got '" + giEmission + "'");
+        l.light.directional = giEmission == "directional";
+        l.light.clearance = giClearance;
         if (p.octree.attributes.normals.empty())
             badValue("lighting: the octree has no normal channel (make it with attributes=['normal'])");
-    } else if (lights || !albedo.is_none() || !specular.is_none()) {
-        badValue("lights, albedo and specular light the voxels of lighting='direct' or 'gi'");
+    } else if (lights || !albedo.is_none() || !specular.is_none() || giEmission != "isotropic" || giClearance) {
+        badValue("lights, albedo, specular, gi_emission and gi_clearance light the voxels of lighting='direct' or "
+                 "'gi'");
     }
     if (ao < 0 || ao > 16) badValue("ao: expected 0 (none) to 16 cones");
     if (aoSource != "volume" && aoSource != "octree")
@@ -841,7 +846,7 @@ PYBIND11_MODULE(_svo, m)
              py::arg("levels") = py::none(), py::arg("color") = "flat", py::arg("ao") = 0, py::arg("ao_only") = false,
              py::arg("ao_source") = "volume", py::arg("lighting") = "off", py::arg("lights") = py::none(),
              py::arg("albedo") = py::none(), py::arg("specular") = py::none(), py::arg("mesh") = py::none(),
-             py::arg("surface") = "auto",
+             py::arg("surface") = "auto", py::arg("gi_emission") = "isotropic", py::arg("gi_clearance") = false,
              "A picture of the octree drawn on the GPU, as svo view --screenshot draws it: (H, W, 4) uint8,\n"
              "rows from the top. view: 'front' or an axis view '+x', '-x', '+y', '-y', '+z', '-z';\n"
              "layers: 'voxels', 'outlines', 'bricks'; levels: (first, last) outline levels; color: 'flat'\n"
@@ -855,7 +860,9 @@ PYBIND11_MODULE(_svo, m)
              "specular: a number or (r, g, b) in [0, 1]. mesh: (vertices, triangles) the octree was voxelized\n"
              "from (with resolution or voxel_size); surface: 'voxels', 'mesh' (its triangles lit and occluded\n"
              "through the octree) or 'auto' (the mesh for ao_only and lighting when it is given), as svo view\n"
-             "--surface.")
+             "--surface. gi_emission: 'isotropic' or 'directional' (six-way radiance: thin walls leak less)\n"
+             "and gi_clearance: cones read coarse texels only clear of voxels (no light across a thin wall;\n"
+             "slower, noisier), as svo view --gi-emission and --gi-clearance.")
         .def("save", [](const PyOctree& p, const std::string& path) {
             if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
                 badValue("save: a .svo file holds a uniform voxel size and a whole-voxel translation; this octree's "

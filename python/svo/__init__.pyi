@@ -98,6 +98,8 @@ class Octree:
         specular: Optional[Union[float, Tuple[float, float, float]]] = None,
         mesh: Optional[Tuple[ArrayLike, ArrayLike]] = None,
         surface: str = "auto",
+        gi_emission: str = "isotropic",
+        gi_clearance: bool = False,
     ) -> npt.NDArray[np.uint8]: ...
     def save(self, path: str) -> None: ...
 

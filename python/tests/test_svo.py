@@ -530,6 +530,17 @@ def test_octree_render_draws_what_svo_view_draws(voxelizer, tmp_path):
                        + (["--specular", "0.2"] if lighting == "gi" else []), check=True, capture_output=True)
         assert np.array_equal(image[:, :, :3], read_png_rgb(png))
         assert image[:, :, 1].max() > 0
+    # Six-way radiance and cones clear of voxels, as svo view --gi-emission directional --gi-clearance.
+    clear = octree.render(size=(64, 48), view="front", lighting="gi", gi_emission="directional", gi_clearance=True)
+    png = str(tmp_path / "clear.png")
+    subprocess.run([SVO_EXE, "view", path, "--screenshot", png, "--size", "64x48", "--view", "front",
+                    "--render", "gi", "--gi-emission", "directional", "--gi-clearance"], check=True, capture_output=True)
+    assert np.array_equal(clear[:, :, :3], read_png_rgb(png))
+    assert not np.array_equal(clear, octree.render(size=(64, 48), view="front", lighting="gi"))
+    with pytest.raises(ValueError, match="gi_emission"):
+        octree.render(lighting="gi", gi_emission="sideways")
+    with pytest.raises(ValueError, match="gi_clearance"):
+        octree.render(gi_clearance=True)  # without lighting
     # The mesh's own triangles (surface "auto" with a mesh, as svo view --render ao
     # of the mesh file shades them): the same picture as svo view draws.
     obj = tmp_path / "t.obj"
