@@ -587,14 +587,17 @@ TEST_F(MeshIo, OffInPiecesGivesWhatOnePieceGives)
             expectSameMesh(pieces, one);
             EXPECT_GT(used, chunk == 1 ? 3000u : 10u);
         }
-        // Errors: a bad coordinate, a face index out of range, a truncated file.
+        // Errors: a bad coordinate, a face index out of range, a truncated file,
+        // a face count whose sum with the vertex count overflows 64 bits.
         const size_t mid = text.find('\n', text.size() / 3);
+        const std::string huge = keyword + fmt::format("\n{} 9223372036854775807 0\n", nv) + body;
         for (const std::string& bad : {text.substr(0, mid + 1) + "1 2 nan\n" + text.substr(mid + 1),
                                        text.substr(0, text.size() - 30) + "\n3 0 1 2000000\n",
-                                       text.substr(0, text.size() / 2)}) {
+                                       text.substr(0, text.size() / 2), huge}) {
             TriangleMesh mesh;
             const std::string msg = outcome([&] { return *detail::readAsciiOff("a.off", bad, whole); }, mesh);
             EXPECT_NE(msg, "");
+            if (bad == huge) EXPECT_NE(msg.find("declares 9223372036854775807 faces"), std::string::npos) << msg;
             for (const size_t chunk : {size_t(1), size_t(8192)})
                 EXPECT_EQ(outcome([&] { return *detail::readAsciiOff("a.off", bad, chunk); }, mesh), msg);
         }

@@ -130,21 +130,24 @@ size_t readBodyInParallel(std::string_view body, const OffLayout& l, size_t chun
         records[i + 1] = n;
     });
     for (size_t i = 0; i < pieces.size(); ++i) records[i + 1] += records[i];
-    if (records.back() < l.nv + l.nf) return 0; // truncated: named by the one-piece reader
+    // Truncated (named by the one-piece reader). nf is checked alone first, so
+    // that nv + nf cannot overflow: nv is below 2^32 and nf below the line count.
+    if (l.nf > records.back() || records.back() < l.nv + l.nf) return 0;
+    const int64_t want = l.nv + l.nf;
     mesh.positions.resize(size_t(l.nv));
     if (l.hasColors) mesh.colors.resize(size_t(l.nv));
     std::vector<std::vector<std::array<uint32_t, 3>>> triangles(pieces.size());
     std::atomic<bool> failed{false};
     struct Failed {};
     tbb::parallel_for(size_t(0), pieces.size(), [&](size_t i) {
-        if (records[i] >= l.nv + l.nf) return;
+        if (records[i] >= want) return;
         Lines lines(pieces[i]);
         std::string_view line;
         std::vector<std::string_view> w;
         std::vector<uint32_t> idx;
         auto fail = [](const std::string&) { return Failed{}; };
         try {
-            for (int64_t r = records[i]; r < l.nv + l.nf && lines.next(line); ++r) {
+            for (int64_t r = records[i]; r < want && lines.next(line); ++r) {
                 words(line, w);
                 if (r < l.nv)
                     parseVertex(w, r, l, mesh.positions[size_t(r)], l.hasColors ? &mesh.colors[size_t(r)] : nullptr,
