@@ -499,14 +499,58 @@ svo::Lights lightsOf(const py::iterable& list)
     return out;
 }
 
+/// Octree.render's cone keywords, as svo view's --ao-* and --gi-* options;
+/// their defaults are the library's.
+struct ConeKeywords {
+    svo::gl::AmbientOcclusion ao;
+    svo::gl::Illumination gi;
+    uint32_t lightVolume = svo::gl::Illumination{}.volumeResolution;
+
+    /// Into l, checked by the library's own checks (a ValueError naming the
+    /// value); the gi keywords only where lighting is on.
+    void apply(svo::gl::ViewLayers& l, bool lit) const
+    {
+        const svo::gl::Illumination none;
+        if (!lit && (gi.cones != none.cones || gi.apertureDegrees != none.apertureDegrees ||
+                     gi.offset != none.offset || gi.step != none.step || gi.distance != none.distance))
+            badValue("gi_cones, gi_aperture, gi_offset, gi_step and gi_distance shape the bounce of lighting='gi'");
+        l.ao.apertureDegrees = ao.apertureDegrees;
+        l.ao.offset = ao.offset;
+        l.ao.distance = ao.distance;
+        l.ao.step = ao.step;
+        l.ao.volumeResolution = lightVolume;
+        l.light.cones = gi.cones;
+        l.light.apertureDegrees = gi.apertureDegrees;
+        l.light.offset = gi.offset;
+        l.light.step = gi.step;
+        l.light.distance = gi.distance;
+        l.light.volumeResolution = lightVolume;
+        try {
+            svo::gl::checkAmbientOcclusion(l.ao);
+            if (lit) svo::gl::checkIllumination(l.light);
+        } catch (const svo::Error& e) {
+            badValue(e.what());
+        }
+    }
+};
+
 /// Octree.render: one frame of the octree view, (H, W, 4) uint8, rows from the top.
 py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, const std::string& view,
                                   const std::vector<std::string>& layers, std::optional<std::pair<int, int>> levels,
                                   const std::string& color, int ao, bool aoOnly, const std::string& aoSource,
                                   const std::string& lighting, const std::optional<py::iterable>& lights,
                                   const py::object& albedo, const py::object& specular, const py::object& mesh,
-                                  const std::string& surface, const std::string& giEmission, bool giClearance)
+                                  const std::string& surface, const std::string& giEmission, bool giClearance,
+                                  double aoAperture, double aoOffset, double aoDistance, double aoStep, int giCones,
+                                  double giAperture, double giOffset, double giStep, double giDistance,
+                                  uint32_t lightVolume)
 {
+    ConeKeywords cones;
+    cones.ao.apertureDegrees = aoAperture, cones.ao.offset = aoOffset, cones.ao.distance = aoDistance;
+    cones.ao.step = aoStep;
+    cones.gi.cones = giCones, cones.gi.apertureDegrees = giAperture, cones.gi.offset = giOffset;
+    cones.gi.step = giStep, cones.gi.distance = giDistance;
+    cones.lightVolume = lightVolume;
     svo::gl::ViewLayers l;
     // The mesh's own triangles, shaded through the octree (svo view --surface).
     if (surface != "auto" && surface != "voxels" && surface != "mesh")
@@ -564,6 +608,7 @@ py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, c
     if (aoOnly && ao == 0) ao = svo::gl::AmbientOcclusion::kDefaultCones;
     l.ao.cones = ao;
     l.ao.only = aoOnly;
+    cones.apply(l, lighting != "off");
     l.voxels = l.outlines = false;
     for (const std::string& name : layers) {
         if (lighting != "off" && name != "voxels") continue; // lit: the voxels alone
@@ -847,6 +892,14 @@ PYBIND11_MODULE(_svo, m)
              py::arg("ao_source") = "volume", py::arg("lighting") = "off", py::arg("lights") = py::none(),
              py::arg("albedo") = py::none(), py::arg("specular") = py::none(), py::arg("mesh") = py::none(),
              py::arg("surface") = "auto", py::arg("gi_emission") = "isotropic", py::arg("gi_clearance") = false,
+             py::arg("ao_aperture") = svo::gl::AmbientOcclusion{}.apertureDegrees,
+             py::arg("ao_offset") = svo::gl::AmbientOcclusion{}.offset,
+             py::arg("ao_distance") = svo::gl::AmbientOcclusion{}.distance,
+             py::arg("ao_step") = svo::gl::AmbientOcclusion{}.step, py::arg("gi_cones") = svo::gl::Illumination{}.cones,
+             py::arg("gi_aperture") = svo::gl::Illumination{}.apertureDegrees,
+             py::arg("gi_offset") = svo::gl::Illumination{}.offset, py::arg("gi_step") = svo::gl::Illumination{}.step,
+             py::arg("gi_distance") = svo::gl::Illumination{}.distance,
+             py::arg("light_volume") = svo::gl::Illumination{}.volumeResolution,
              "A picture of the octree drawn on the GPU, as svo view --screenshot draws it: (H, W, 4) uint8,\n"
              "rows from the top. view: 'front' or an axis view '+x', '-x', '+y', '-y', '+z', '-z';\n"
              "layers: 'voxels', 'outlines', 'bricks'; levels: (first, last) outline levels; color: 'flat'\n"
@@ -862,7 +915,12 @@ PYBIND11_MODULE(_svo, m)
              "through the octree) or 'auto' (the mesh for ao_only and lighting when it is given), as svo view\n"
              "--surface. gi_emission: 'isotropic' or 'directional' (six-way radiance: thin walls leak less)\n"
              "and gi_clearance: cones read coarse texels only clear of voxels (no light across a thin wall;\n"
-             "slower, noisier), as svo view --gi-emission and --gi-clearance.")
+             "slower, noisier), as svo view --gi-emission and --gi-clearance. The cones, as svo view's options of\n"
+             "the same names: ao_aperture and gi_aperture (degrees), ao_offset and gi_offset (where cones start,\n"
+             "texels of the lighting volume; less: more contact shadow or light, more self-occlusion), ao_step and\n"
+             "gi_step (share of the cone's width, (0, 1]), ao_distance and gi_distance (voxels; gi 0: the grid's\n"
+             "diagonal), gi_cones (1 to 16); light_volume: the lighting volume's largest side, texels, a power of\n"
+             "two (a texel holds 1 to 8^3 voxels).")
         .def("save", [](const PyOctree& p, const std::string& path) {
             if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
                 badValue("save: a .svo file holds a uniform voxel size and a whole-voxel translation; this octree's "

@@ -100,6 +100,16 @@ class Octree:
         surface: str = "auto",
         gi_emission: str = "isotropic",
         gi_clearance: bool = False,
+        ao_aperture: float = 60.0,
+        ao_offset: float = 2.0,
+        ao_distance: float = 32.0,
+        ao_step: float = 0.5,
+        gi_cones: int = 5,
+        gi_aperture: float = 60.0,
+        gi_offset: float = 1.5,
+        gi_step: float = 0.5,
+        gi_distance: float = 0.0,
+        light_volume: int = 256,
     ) -> npt.NDArray[np.uint8]: ...
     def save(self, path: str) -> None: ...
 

@@ -537,6 +537,22 @@ def test_octree_render_draws_what_svo_view_draws(voxelizer, tmp_path):
                     "--render", "gi", "--gi-emission", "directional", "--gi-clearance"], check=True, capture_output=True)
     assert np.array_equal(clear[:, :, :3], read_png_rgb(png))
     assert not np.array_equal(clear, octree.render(size=(64, 48), view="front", lighting="gi"))
+    # The cones' shape, as svo view's options of the same names: the same bytes, and not the defaults' picture.
+    shaped = octree.render(size=(64, 48), view="front", lighting="gi", ao=3, gi_cones=9, gi_aperture=40,
+                           gi_offset=0.75, gi_step=0.3, gi_distance=12, ao_aperture=90, ao_offset=1, ao_step=0.25,
+                           ao_distance=8, light_volume=32)
+    subprocess.run([SVO_EXE, "view", path, "--screenshot", png, "--size", "64x48", "--view", "front",
+                    "--render", "gi", "--ao", "3", "--gi-cones", "9", "--gi-aperture", "40", "--gi-offset", "0.75",
+                    "--gi-step", "0.3", "--gi-distance", "12", "--ao-aperture", "90", "--ao-offset", "1",
+                    "--ao-step", "0.25", "--ao-distance", "8", "--light-volume", "32"], check=True, capture_output=True)
+    assert np.array_equal(shaped[:, :, :3], read_png_rgb(png))
+    assert not np.array_equal(shaped, octree.render(size=(64, 48), view="front", lighting="gi", ao=3))
+    for bad in (dict(gi_cones=17), dict(gi_step=0), dict(gi_aperture=180), dict(ao_step=1.5),
+                dict(ao_distance=0), dict(light_volume=48)):
+        with pytest.raises(ValueError, match="cone|ambient occlusion|volume resolution"):
+            octree.render(lighting="gi", **bad)
+    with pytest.raises(ValueError, match="gi_cones"):
+        octree.render(gi_cones=3)  # without lighting
     with pytest.raises(ValueError, match="gi_emission"):
         octree.render(lighting="gi", gi_emission="sideways")
     with pytest.raises(ValueError, match="gi_clearance"):
@@ -566,7 +582,7 @@ def test_octree_render_draws_what_svo_view_draws(voxelizer, tmp_path):
         octree.render(lighting="direct", lights=[("lamp", (1, 2, 3))])
     with pytest.raises(ValueError, match="lights"):
         octree.render(lights=[("sun", (0, -1, 0))])  # lights without lighting
-    with pytest.raises(RuntimeError, match="albedo"):
+    with pytest.raises(ValueError, match="albedo"):
         octree.render(lighting="direct", albedo=2.0)
     plain = voxelizer.octree(v, t, resolution=24)
     with pytest.raises(ValueError, match="normal channel"):
