@@ -10,6 +10,7 @@
 
 #include "svo/core/error.h"
 #include "svo/core/mesh.h"
+#include "one_thread.h"
 
 template <typename Read>
 int fuzzMeshReader(const uint8_t* data, size_t size, Read read)

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <vector>
 
+#include "one_thread.h"
 #include "svo/core/error.h"
 #include "svo/core/octree_file.h"
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "one_thread.h"
 #include "svo/core/error.h"
 #include "svo/core/voxel_key.h"
 #include "svo/vdb_io/vdb_file.h"
