@@ -491,6 +491,101 @@ TEST(Lighting, SixWayRadianceKeepsALitRoomsLightOutOfTheNextRoom)
     EXPECT_LT(clear, 0.01 * isotropic) << "isotropic " << isotropic << ", six-way " << sixWay;
 }
 
+/// Illumination::clearance's levels (LightVolume::clearLevel): a level-L
+/// sample anywhere in a texel of level 0 reads the 2³ level-L texels around
+/// it (outside the volume, the empty border); none of them may hold a texel
+/// of level 0 with a voxel. Checked at points across each texel, against
+/// level 0's opacity as read back, on sparse random voxels in volumes of
+/// several shapes and texel sizes; and the level is the one the max-norm
+/// distance to the nearest such texel gives (1.5 · 2^L <= D - 1), by brute
+/// force on the CPU.
+TEST(Lighting, ClearanceLevelsReadNoVoxel)
+{
+    std::mt19937 rng(11);
+    struct Case {
+        std::array<uint32_t, 3> dims;
+        uint32_t volume;
+        int voxels;
+    };
+    for (const Case& c : std::vector<Case>{{{32, 32, 32}, 256, 12}, {{64, 8, 32}, 256, 6}, {{96, 40, 16}, 32, 20},
+                                           {{64, 64, 64}, 64, 0}}) {
+        SCOPED_TRACE(c.dims[0]);
+        std::vector<Voxel> voxels;
+        std::uniform_int_distribution<uint32_t> x(0, c.dims[0] - 1), y(0, c.dims[1] - 1), z(0, c.dims[2] - 1);
+        for (int i = 0; i < c.voxels; ++i) voxels.push_back({x(rng), y(rng), z(rng)});
+        if (c.voxels == 0) voxels.push_back({0, 0, 0}); // one in a corner: distances up to the cap
+        const svo::Octree octree = octreeOf(unitGrid(c.dims[0], c.dims[1], c.dims[2]), voxels, {});
+        svo::gl::OctreeView view(context(), octree);
+        Illumination light;
+        light.mode = Illumination::Mode::Global;
+        light.directional = true;
+        light.clearance = true;
+        light.volumeResolution = c.volume;
+        light.lights.directional.push_back({{0.3, -1, 0.2}, {1, 1, 1}});
+        const LightVolume v = view.readLightVolume(light);
+        const LightVolumeLevel& base = v.levels[0];
+        const int* n = base.size;
+        ASSERT_EQ(v.clearLevel.size(), size_t(n[0]) * size_t(n[1]) * size_t(n[2]));
+        std::vector<std::array<int, 3>> occupied;
+        std::vector<uint8_t> full(v.clearLevel.size(), 0);
+        for (int k = 0; k < n[2]; ++k)
+            for (int j = 0; j < n[1]; ++j)
+                for (int i = 0; i < n[0]; ++i) {
+                    const float* t = &base.opacity[texel(base, i, j, k)];
+                    if (t[0] + t[1] + t[2] + t[3] > 0) {
+                        occupied.push_back({i, j, k});
+                        full[texel(base, i, j, k) / 4] = 1;
+                    }
+                }
+        ASSERT_EQ(occupied.empty(), voxels.empty());
+        // Voxel texels in a box [lo, hi), by a summed-volume table.
+        const size_t sx = size_t(n[0]) + 1, sy = size_t(n[1]) + 1;
+        std::vector<int> sum(sx * sy * (size_t(n[2]) + 1), 0);
+        auto at = [&](int i, int j, int k) -> int& { return sum[(size_t(k) * sy + size_t(j)) * sx + size_t(i)]; };
+        for (int k = 0; k < n[2]; ++k)
+            for (int j = 0; j < n[1]; ++j)
+                for (int i = 0; i < n[0]; ++i)
+                    at(i + 1, j + 1, k + 1) = full[texel(base, i, j, k) / 4] + at(i, j + 1, k + 1) + at(i + 1, j, k + 1) +
+                                              at(i + 1, j + 1, k) - at(i, j, k + 1) - at(i, j + 1, k) -
+                                              at(i + 1, j, k) + at(i, j, k);
+        auto inBox = [&](const int* lo, const int* hi) {
+            return at(hi[0], hi[1], hi[2]) - at(lo[0], hi[1], hi[2]) - at(hi[0], lo[1], hi[2]) - at(hi[0], hi[1], lo[2]) +
+                   at(lo[0], lo[1], hi[2]) + at(lo[0], hi[1], lo[2]) + at(hi[0], lo[1], lo[2]) - at(lo[0], lo[1], lo[2]);
+        };
+        int coarse = 0;
+        for (int k = 0; k < n[2]; ++k)
+            for (int j = 0; j < n[1]; ++j)
+                for (int i = 0; i < n[0]; ++i) {
+                    const int level = v.clearLevel[texel(base, i, j, k) / 4];
+                    // The brute-force level.
+                    int d = 255;
+                    for (const auto& o : occupied)
+                        d = std::min(d, std::max({std::abs(o[0] - i), std::abs(o[1] - j), std::abs(o[2] - k)}));
+                    int expected = 0;
+                    while (3 * (1 << (expected + 1)) <= 2 * (d - 1)) ++expected;
+                    ASSERT_EQ(level, expected) << "texel " << i << "," << j << "," << k << ", distance " << d;
+                    coarse += level >= 2;
+                    if (level == 0 || size_t(level) >= v.levels.size()) continue;
+                    // Points across the texel: the 2 level-L texels around each along each axis.
+                    for (int corner = 0; corner < 27; ++corner) {
+                        const double f[3] = {0.001 + 0.499 * (corner % 3), 0.001 + 0.499 * (corner / 3 % 3),
+                                             0.001 + 0.499 * (corner / 9)};
+                        int lo[3], hi[3];
+                        for (int a = 0; a < 3; ++a) {
+                            const int m = std::max(1, n[a] >> level), w = n[a] / m; // level-L texels, their width
+                            const double u = ((a == 0 ? i : a == 1 ? j : k) + f[a]) / w - 0.5;
+                            const int first = std::max(0, int(std::floor(u))), last = std::min(m - 1, int(std::floor(u)) + 1);
+                            lo[a] = first * w;
+                            hi[a] = (last + 1) * w;
+                        }
+                        ASSERT_EQ(inBox(lo, hi), 0) << "level " << level << " at texel " << i << "," << j << ","
+                                                    << k << " reads a voxel's texel";
+                    }
+                }
+        EXPECT_GT(coarse, 0); // the check above reaches coarse levels
+    }
+}
+
 /// Direct light on the mesh's triangles in the dark room of the two rooms
 /// is exactly 0, as on the path tracer's: the wall between them is closed.
 /// At 256³ the wall's plane lies on a voxel boundary and its one voxel

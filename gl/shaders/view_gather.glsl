@@ -27,6 +27,8 @@ layout(binding = SVO_UNIT_LIGHT_ALONG + 3) uniform sampler3D uAlongNegativeY;
 layout(binding = SVO_UNIT_LIGHT_ALONG + 4) uniform sampler3D uAlongPositiveZ;
 layout(binding = SVO_UNIT_LIGHT_ALONG + 5) uniform sampler3D uAlongNegativeZ;
 layout(binding = SVO_UNIT_LIGHT_LIT_SIDE) uniform sampler3D uLitSide; // level 0's lit side times its light (uDirectional)
+// Per texel of level 0, the coarsest level clear of voxels (uConeClearance; light_clear.comp).
+layout(binding = SVO_UNIT_LIGHT_CLEAR) uniform usampler3D uClearLevel;
 
 uniform vec3 uVolumeScale;    // cell space -> texture coordinates
 uniform float uTexelCells;    // voxels per texel edge at level 0
@@ -61,25 +63,19 @@ ConeSample coneSampleAt(float t, float height, vec3 dir, vec3 n, float tanHalf)
 }
 
 /// Sample k of a lit cone at cell-space point q, made no coarser than the
-/// coarsest level whose texels around q hold no voxel, down to level 0
+/// coarsest level whose sample at q reads no voxel, down to level 0
 /// (Illumination::clearance). A coarse texel that straddles a one-voxel wall
 /// holds the light of both its sides, and a cone beside the wall sees the
 /// far room's; cones held at level 0 leak 0.05 % of what isotropic cones do
-/// (design §7d). Level m's trilinear opacity is 0 at q only if its 8 texels
-/// around q are empty: no voxel within half a texel of level m, 2^(m-1)
-/// texels of level 0. A sample at level L reads texels reaching 1.5 · 2^L
-/// texels from q, so it reads no voxel where level L + 2 is 0. Up to
-/// ceil(lod) + 1 more fetches a sample; the steps shrink with the width.
+/// (design §7d). One fetch: light_clear.comp gives each texel of level 0
+/// the coarsest level that reads no voxel from anywhere in it (outside the
+/// volume, its nearest texel's: the volume's border is empty). The steps
+/// shrink with the width.
 ConeSample clearOfVoxels(ConeSample k, vec3 q)
 {
     if (uConeClearance == 0u || k.lod <= 0.0) return k;
-    vec3 tc = q * uVolumeScale;
-    float clear = 0.0;
-    for (float m = ceil(k.lod) + 2.0; m >= 2.0; m -= 1.0)
-        if (dot(textureLod(uOpacityVolume, tc, m), vec4(1.0)) == 0.0) {
-            clear = m - 2.0;
-            break;
-        }
+    ivec3 last = textureSize(uClearLevel, 0) - 1;
+    float clear = float(texelFetch(uClearLevel, clamp(ivec3(floor(q / uTexelCells)), ivec3(0), last), 0).r);
     if (clear >= k.lod) return k;
     k.lod = clear;
     k.width = uTexelCells * exp2(clear);

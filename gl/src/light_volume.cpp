@@ -192,6 +192,9 @@ void bindLightVolume(const Program& p, const LightVolumeTextures& v, const ViewB
         v.litSide.bindTexture(SVO_UNIT_LIGHT_LIT_SIDE);
     }
     p.set("uDirectional", sixWay ? 1u : 0u);
+    if (l.clearance && v.clear.levels() == 0)
+        throw Error("octree view: lighting: clearance asked for before its texture was built"); // buildClearance first
+    if (l.clearance) v.clear.bindTexture(SVO_UNIT_LIGHT_CLEAR);
     p.set("uConeClearance", l.clearance ? 1u : 0u);
     p.set("uSpecular", float(l.specular.x), float(l.specular.y), float(l.specular.z));
     p.set("uSpecularTanHalf", float(std::tan(l.specularApertureDegrees * M_PI / 360.0)));
@@ -320,6 +323,35 @@ void fillVolume(const Context& context, const ViewBuffers& o, const Illumination
 
 } // namespace
 
+void buildClearance(const Context& context, LightVolumeTextures& v)
+{
+    if (v.clear.levels() > 0) return;
+    const int* n = v.size;
+    Texture3D clear("lighting volume's clearance", GL_R8UI, 1, n[0], n[1], n[2]);
+    const Texture3D across("lighting volume's clearance (x and y)", GL_R8UI, 1, n[0], n[1], n[2]);
+    clear.nearest();
+    const Program& p = context.program({"light_clear.comp"});
+    p.set("uSize", n[0], n[1], n[2]);
+    p.set("uCap", 255);
+    v.opacity.bindImage(0, 0, GL_READ_ONLY, GL_RGBA16F);
+    p.use();
+    // x: opacity -> clear; y: clear -> across; z: across -> clear, as levels.
+    for (int axis = 0; axis < 3; ++axis) {
+        const Texture3D& in = axis == 2 ? across : clear;
+        const Texture3D& out = axis == 1 ? across : clear;
+        if (axis > 0) in.bindImage(1, 0, GL_READ_ONLY, GL_R8UI);
+        out.bindImage(2, 0, GL_WRITE_ONLY, GL_R8UI);
+        p.set("uAxis", axis);
+        glDispatchCompute(GLuint((n[0] + 3) / 4), GLuint((n[1] + 3) / 4), GLuint((n[2] + 3) / 4));
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    for (GLuint unit = 0; unit < 3; ++unit) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
+    glUseProgram(0);
+    checkGl("building the lighting volume's clearance");
+    v.clear = std::move(clear);
+}
+
 LightVolume readLightVolume(const LightVolumeTextures& v)
 {
     LightVolume out;
@@ -350,6 +382,10 @@ LightVolume readLightVolume(const LightVolumeTextures& v)
                 v.along[d].read(level - 1, GL_RGBA, GL_FLOAT, n * 4, l.along[d].data());
             }
         out.levels.push_back(std::move(l));
+    }
+    if (v.clear.levels() > 0) {
+        out.clearLevel.resize(size_t(v.size[0]) * size_t(v.size[1]) * size_t(v.size[2]));
+        v.clear.read(0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, out.clearLevel.size(), out.clearLevel.data());
     }
     checkGl("reading the lighting volume back");
     return out;

@@ -34,9 +34,15 @@ struct LightVolumeTextures {
     /// radiance (a: opacity) a ray travelling along +x, -x, +y, -y, +z, -z
     /// sees, from level 1 up (texture level j is the volume's level j + 1)
     std::array<Texture3D, 6> along;
-    /// rgba8 snorm, level 0 only, with Illumination::directional: each
-    /// texel's lit side (the normal turned to its lights, averaged by light)
+    /// rgba16f, level 0 only, with Illumination::directional: each texel's
+    /// lit side (the normal turned to its lights, averaged by light) times
+    /// its light (lit_side.glsl)
     Texture3D litSide;
+    /// r8ui, level 0 only, once Illumination::clearance asks for it
+    /// (buildClearance): per texel, the coarsest level a cone may sample
+    /// anywhere in it and read no voxel (light_clear.comp). Geometry alone:
+    /// a moved light keeps it.
+    Texture3D clear;
     Buffer lights;      ///< 2 vec4 per light, cell space (view_lights.glsl)
     Buffer direct;      ///< per voxel: irradiance on each side, packed halves (view_lights.glsl), lit volumes only
     int lightCount = 0;
@@ -83,6 +89,11 @@ LightVolumeTextures buildLightVolume(const Context& context, const ViewBuffers& 
 /// volume resolution must be the one it was built for.
 void injectLight(const Context& context, const ViewBuffers& octree, const Illumination& light,
                  LightVolumeTextures& volume);
+
+/// Builds `volume.clear` from level 0's opacity, unless built: three passes
+/// of a max-norm distance transform on the GPU. Throws svo::Error when the
+/// GPU cannot hold the textures.
+void buildClearance(const Context& context, LightVolumeTextures& volume);
 
 /// Whether a volume built for `a` can be re-injected for `b` (the same textures).
 inline bool sameVolume(const Illumination& a, const Illumination& b)

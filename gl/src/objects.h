@@ -129,6 +129,12 @@ public:
     /// Level `level`'s size along `axis` (GL's rule: halved and floored, at least 1).
     int size(int level, int axis) const { return std::max(1, size_[axis] >> level); }
     void bindTexture(GLuint unit) const { glBindTextureUnit(unit, h_.get()); }
+    /// Nearest filtering, as integer textures need to be complete.
+    void nearest() const
+    {
+        glTextureParameteri(h_.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(h_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
     /// Binds one level as an image (imageLoad / imageStore); `format` is the image's layout qualifier format.
     void bindImage(GLuint unit, int level, GLenum access, GLenum format) const
     {

@@ -336,13 +336,14 @@ struct OctreeView::Impl {
     /// changed, or a new one.
     const LightVolumeTextures& lightVolume(const Context& context, const Illumination& l) const
     {
-        if (light && light->lit && sameInjection(light->built, l)) return *light;
-        if (light && light->lit && sameVolume(light->built, l)) {
+        if (light && light->lit && sameInjection(light->built, l)) {
+        } else if (light && light->lit && sameVolume(light->built, l)) {
             injectLight(context, buffers(), l, *light);
-            return *light;
+        } else {
+            light.reset(); // the old textures go before the new ones are allocated
+            light.emplace(buildLightVolume(context, buffers(), l));
         }
-        light.reset(); // the old textures go before the new ones are allocated
-        light.emplace(buildLightVolume(context, buffers(), l));
+        if (l.clearance) buildClearance(context, *light); // once a volume: geometry alone
         return *light;
     }
     /// The opacity volume of `resolution` texels at most, for AO.

@@ -151,7 +151,8 @@ SVO_CONST(uint) kBitmapBlockShift = 9u; /* 512 bits a block */
 #define SVO_UNIT_LIGHT_OPACITY 0  /* texture: rgb = opacity seen along x, y, z */
 #define SVO_UNIT_LIGHT_RADIANCE 1 /* texture: rgb = radiance x coverage, a = coverage */
 #define SVO_UNIT_LIGHT_ALONG 2 /* textures 2..7: radiance seen along +x -x +y -y +z -z, levels 1.. */
-#define SVO_UNIT_LIGHT_LIT_SIDE 8 /* texture: level 0's lit side (xyz, snorm) */
+#define SVO_UNIT_LIGHT_LIT_SIDE 8 /* texture: level 0's lit side times its light (rgba16f) */
+#define SVO_UNIT_LIGHT_CLEAR 11   /* texture: per texel of level 0, the coarsest level clear of voxels (r8ui) */
 /* Viewer: the voxel pass's pixels, written as an image by view_voxels.comp
    and read as a texture by view_pixels.frag. GL promises 8 image units. */
 #define SVO_IMAGE_VIEW_PIXELS 0
@@ -278,7 +279,7 @@ static_assert(distinctSlots({SVO_IMAGE_VIEW_PIXELS, SVO_IMAGE_VIEW_GATHER, SVO_I
 static_assert(distinctSlots({SVO_UNIT_LIGHT_OPACITY, SVO_UNIT_LIGHT_RADIANCE, SVO_UNIT_LIGHT_ALONG,
                              SVO_UNIT_LIGHT_ALONG + 1, SVO_UNIT_LIGHT_ALONG + 2, SVO_UNIT_LIGHT_ALONG + 3,
                              SVO_UNIT_LIGHT_ALONG + 4, SVO_UNIT_LIGHT_ALONG + 5, SVO_UNIT_LIGHT_LIT_SIDE, SVO_UNIT_VIEW_PIXELS,
-                             SVO_UNIT_VIEW_SURFACE_TRIANGLE}));
+                             SVO_UNIT_VIEW_SURFACE_TRIANGLE, SVO_UNIT_LIGHT_CLEAR}));
 static_assert(distinctSlots({SVO_BIND_VIEW_NODES, SVO_BIND_VIEW_BRICKS, SVO_BIND_VIEW_ORIGINS,
                              SVO_BIND_VIEW_VOXEL_START, SVO_BIND_VIEW_ATTRIBUTE, SVO_BIND_VIEW_OPACITY,
                              SVO_BIND_VIEW_LIGHTS, SVO_BIND_VIEW_NORMALS, SVO_BIND_VIEW_ALBEDO,

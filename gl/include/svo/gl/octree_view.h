@@ -217,6 +217,11 @@ struct LightVolumeLevel {
 struct LightVolume {
     uint32_t texelVoxels = 1; ///< voxels per texel edge at level 0
     std::vector<LightVolumeLevel> levels;
+    /// With Illumination::clearance, per texel of level 0: the coarsest
+    /// level a cone may sample anywhere in that texel and read no texel of
+    /// level 0 that holds a voxel (at most 7: distances stop at 255 texels).
+    /// Empty otherwise.
+    std::vector<uint8_t> clearLevel;
 };
 
 /// The surface the voxel layer shades (ViewLayers::surface):
