@@ -116,6 +116,46 @@ TEST_F(GpuVoxelize, CornellBox)
     check(cornellBox(), res(256));
 }
 
+namespace {
+TriangleMesh oneTriangle(Vec3d a, Vec3d b, Vec3d c, const char* name)
+{
+    TriangleMesh m;
+    m.positions = {a, b, c};
+    m.triangles = {{0, 1, 2}};
+    m.source = name;
+    return m;
+}
+} // namespace
+
+// One triangle whose column box needs more than 65,535 chunks of 64 columns
+// (2047^2 / 64 = 65,473 at 2046; llvmpipe stops any loop after 65,535
+// iterations): the compute backend once queued a triangle's chunks in one
+// shader loop and lost the rest past the driver's budget.
+TEST_F(GpuVoxelize, ATriangleOfMoreChunksThanTheLoopLimitKeepsEveryVoxel)
+{
+    const auto c = check(oneTriangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "right triangle"), res(2047));
+    EXPECT_GT(c.got, 2047u * 2048 / 2);
+}
+
+// Needles and slivers across the grid: their normal is rounding, so their
+// columns run along the axis their longest edge crosses least, a few voxels
+// each, and the raster path draws them as a box along the edge, not their
+// bounding box. Before, each of the diagonal needle's 1025^2 columns walked
+// the whole grid (17.8 s on llvmpipe at 1024, and the compute backend lost
+// 4,827 of 7,169 voxels past the loop budget).
+TEST_F(GpuVoxelize, NeedlesAndSliversKeepEveryVoxel)
+{
+    check(oneTriangle({0, 0, 0}, {1, 1, 1}, {2, 2, 2}, "diagonal needle"), res(1024));
+    check(oneTriangle({0, 0, 0}, {2, 1, 0.5}, {1, 0.5, 0.25}, "needle, middle corner"), res(4096));
+    check(oneTriangle({0, 0, 0}, {2, 1, 0.5}, {1, 0.5, 0.25 + 1e-6}, "sliver"), res(4096));
+    check(oneTriangle({0, 0, 0}, {0, 0, 1}, {0, 0, 2}, "needle along z"), res(2048));
+    check(oneTriangle({0.3, 0.3, 0.3}, {0.3, 0.3, 0.3}, {0.3, 0.3, 0.3}, "point"), size(1.0));
+    gl::RasterOptions thin;
+    thin.mode = VoxelMode::Thin;
+    thin.conservative = gl::ConservativeMode::Shader;
+    check(oneTriangle({0, 0, 0}, {1, 1, 1}, {2, 2, 2}, "diagonal needle"), res(512), thin);
+}
+
 TEST_F(GpuVoxelize, ShaderAndHardwareDilationAgree)
 {
     if (!context_->info().conservativeRasterNV) GTEST_SKIP() << "no GL_NV_conservative_raster on this device";

@@ -13,7 +13,8 @@
 
 namespace svo::detail {
 
-/// The triangle's column rectangle along its dominant axis w: rows along
+/// The triangle's column rectangle along its projection axis w
+/// (svo_projection_axis): rows along
 /// u = (w + 1) % 3 and columns along v = (w + 2) % 3, clamped to the grid
 /// (empty when hi < lo). The same bounds voxelizeTriangle walks.
 struct ColumnBounds {
@@ -23,7 +24,7 @@ inline ColumnBounds columnBounds(const Vec3d& a, const Vec3d& b, const Vec3d& c,
 {
     using namespace overlap_double;
     const double half = 0.5 + guard;
-    const int w = svo_dominant_axis(cross(b - a, c - a));
+    const int w = svo_projection_axis(a, b, c, std::ldexp(1.0, -53));
     ColumnBounds r{};
     auto range = [&](int axis, int64_t& lo, int64_t& hi) {
         const double mn = std::min({a[axis], b[axis], c[axis]}), mx = std::max({a[axis], b[axis], c[axis]});
@@ -36,7 +37,7 @@ inline ColumnBounds columnBounds(const Vec3d& a, const Vec3d& b, const Vec3d& c,
 }
 
 /// Calls emit(key) for every voxel whose cube, grown by `guard`, meets the
-/// triangle (a, b, c) in local coordinates: along the dominant axis, the
+/// triangle (a, b, c) in local coordinates: along the projection axis, the
 /// guarded column range of each column of the 2D bounds, then the overlap
 /// test. Thin mode tests the voxel's centre segments instead (half length
 /// 0.5 + guard, thickness max(guard, 0)); they lie inside the cube, so the
@@ -52,7 +53,7 @@ inline void voxelizeTriangle(const Vec3d& a, const Vec3d& b, const Vec3d& c, con
     const bool thin = mode == VoxelMode::Thin;
     const double thickness = std::max(guard, 0.0);
     const double ulp = std::ldexp(1.0, -53);
-    const int w = svo_dominant_axis(cross(b - a, c - a));
+    const int w = svo_projection_axis(a, b, c, ulp);
     const int u = (w + 1) % 3, v = (w + 2) % 3;
     auto range = [&](int axis, int64_t& lo, int64_t& hi) {
         const double mn = std::min({a[axis], b[axis], c[axis]}), mx = std::max({a[axis], b[axis], c[axis]});

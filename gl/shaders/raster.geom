@@ -1,5 +1,6 @@
 #version 450 core
-// Projects each triangle along its dominant axis onto the plane of voxel
+// Projects each triangle along its projection axis (the dominant one but
+// for needles, svo_projection_axis) onto the plane of voxel
 // columns and enlarges it so that every column whose square (half side uHalf)
 // meets the triangle gets a fragment.
 //
@@ -9,7 +10,7 @@
 // the intersections of adjacent moved edges. The float error of that
 // intersection grows as the triangle gets thinner; it is bounded and added to
 // the offset, and a triangle too thin for that (or degenerate) is drawn as its
-// enlarged bounding box instead. Acute corners overshoot; the fragment shader
+// enlarged box along its longest edge instead (emitThinBox). Acute corners overshoot; the fragment shader
 // clips to the bounding box passed along.
 #include "glsl_types.glsl"
 #include "overlap.glsl"
@@ -45,12 +46,46 @@ void emitAt(vec2 p)
 
 float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 
+// A triangle too thin for moved edges (a needle, or degenerate): the box of
+// its corners in the frame of its longest edge, grown by the dilation (a
+// square's reach along a unit direction e is uDilate * (|e.x| + |e.y|)) and a
+// margin for the frame's rounding. It holds the enlarged triangle as the
+// bounding box does, but a needle across the columns gets fragments along
+// itself only, not over its whole bounding box (whose area grows as its
+// length squared).
+void emitThinBox(vec2 p0, vec2 q[3], float E)
+{
+    vec2 e = q[1];
+    if (dot(q[2], q[2]) > dot(e, e)) e = q[2];
+    if (dot(q[2] - q[1], q[2] - q[1]) > dot(e, e)) e = q[2] - q[1];
+    float len = length(e);
+    e = len > 0.0 ? e / len : vec2(1.0, 0.0);
+    vec2 n = vec2(-e.y, e.x);
+    vec2 s = vec2(0.0); // extents along e and n, from p0
+    vec2 t = vec2(0.0);
+    for (int i = 1; i < 3; ++i) {
+        float se = dot(q[i], e), sn = dot(q[i], n);
+        s = vec2(min(s.x, se), max(s.y, se));
+        t = vec2(min(t.x, sn), max(t.y, sn));
+    }
+    float m = 1.0 / 64.0 + 32.0 * kUlp * (E + max(abs(p0.x), abs(p0.y)));
+    float ge = uDilate * (abs(e.x) + abs(e.y)) + m;
+    float gn = uDilate * (abs(n.x) + abs(n.y)) + m;
+    s += vec2(-ge, ge);
+    t += vec2(-gn, gn);
+    emitAt(p0 + s.x * e + t.x * n);
+    emitAt(p0 + s.y * e + t.x * n);
+    emitAt(p0 + s.x * e + t.y * n);
+    emitAt(p0 + s.y * e + t.y * n);
+    EndPrimitive();
+}
+
 void main()
 {
     vec3 a = vPosition[0];
     vec3 b = vPosition[1];
     vec3 c = vPosition[2];
-    int w = svo_dominant_axis(cross(b - a, c - a));
+    int w = svo_projection_axis(a, b, c, kUlp);
     int u = (w + 1) % 3;
     int v = (w + 2) % 3;
     gAxis = w;
@@ -89,13 +124,7 @@ void main()
     float margin = 1.0 / 64.0 + 64.0 * kUlp * E * E * E / max(area2, 1e-30);
 
     if (margin > 0.25) {
-        // Degenerate or needle-thin: the enlarged bounding box.
-        float d = uDilate + 1.0 / 64.0;
-        emitAt(vec2(lo.x - d, lo.y - d));
-        emitAt(vec2(hi.x + d, lo.y - d));
-        emitAt(vec2(lo.x - d, hi.y + d));
-        emitAt(vec2(hi.x + d, hi.y + d));
-        EndPrimitive();
+        emitThinBox(p0, q, E);
         return;
     }
     float d = uDilate + margin;

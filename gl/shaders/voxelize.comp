@@ -2,13 +2,16 @@
 // The compute backend: triangle-parallel voxelization with the raster
 // backend's column walk (column_walk.glsl), so both keep the same voxels.
 //
-// Pass 0, one thread per triangle: project the triangle on its dominant axis
-// and take the columns whose squares can meet its bounding box. A triangle of
-// at most kSmall columns walks them itself; a larger one is cut into chunks
-// of 64 columns (its box in row-major order), queued as work items
-// (triangle, chunk). Pass 1, one workgroup of 64 threads per work item, one
-// column per thread: a large triangle is spread over many workgroups instead
-// of serializing one thread. Pass-1 workgroups loop over the queue.
+// Pass 0, one thread per triangle: project the triangle on its projection
+// axis (svo_projection_axis) and take the columns whose squares can meet its
+// bounding box. A triangle of at most kSmall columns walks them itself. A
+// larger one is cut into chunks of 64 columns (its box in row-major order):
+// pass 1 runs one workgroup of 64 threads per chunk, one column per thread,
+// so that a large triangle is spread over many workgroups instead of
+// serializing one thread. The host lays out pass 1's items (a bound on every
+// triangle's chunks, in triangle order), so no shader loops over a
+// triangle's chunks, whose count has no bound but the grid's. Pass-1
+// workgroups loop over the items of their dispatch.
 layout(local_size_x = 64) in;
 #include "glsl_types.glsl"
 #include "overlap.glsl"
@@ -16,11 +19,13 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = SVO_BIND_COMPUTE_POSITIONS) readonly restrict buffer Positions { float positions[]; };
 layout(std430, binding = SVO_BIND_COMPUTE_INDICES) readonly restrict buffer Indices { uint indices[]; };
-layout(std430, binding = SVO_BIND_COMPUTE_WORK) restrict buffer Work { uint workCount; uint workWraps; uvec2 work[]; };
+// (triangle, its first item) for every triangle the host bounds at more than
+// kSmall columns, in triangle order (so first items ascend).
+layout(std430, binding = SVO_BIND_COMPUTE_WORK) readonly restrict buffer Work { uvec2 large[]; };
 
 uniform uint uPass;
 uniform uint uTriangles;
-uniform uint uWorkCapacity;
+uniform uint uLarge; // entries of large[]
 uniform uint uItemFirst; // pass 1: this dispatch's queue items, [uItemFirst, uItemEnd)
 uniform uint uItemEnd;
 const uint kSmall = 64u; // columns a pass-0 thread walks itself
@@ -41,7 +46,7 @@ Triangle load(uint t)
     T.a = position(indices[3u * t]);
     T.b = position(indices[3u * t + 1u]);
     T.c = position(indices[3u * t + 2u]);
-    T.w = svo_dominant_axis(cross(T.b - T.a, T.c - T.a));
+    T.w = svo_projection_axis(T.a, T.b, T.c, kUlp);
     int u = (T.w + 1) % 3;
     int v = (T.w + 2) % 3;
     vec2 p0 = vec2(T.a[u], T.a[v]);
@@ -68,29 +73,30 @@ void main()
         if (T.last.x < T.first.x || T.last.y < T.first.y) return;
         uvec2 n = uvec2(T.last - T.first) + 1u;
         uint columns = n.x * n.y; // below 2^32 - 64: the host checks every triangle's box
-        if (columns <= kSmall) {
+        if (columns <= kSmall)
             for (int j = T.first.y; j <= T.last.y; ++j)
                 for (int i = T.first.x; i <= T.last.x; ++i)
                     svo_walk_column(T.a, T.b, T.c, T.w, vec2(i, j), T.box, t);
-            return;
-        }
-        uint items = (columns + kChunk - 1u) / kChunk;
-        uint base = atomicAdd(workCount, items);
-        if (base + items < base) atomicAdd(workWraps, 1u);
-        for (uint k = 0u; k < items; ++k)
-            if (base + k < uWorkCapacity) work[base + k] = uvec2(t, k);
     } else {
-        uint count = min(min(workCount, uWorkCapacity), uItemEnd);
         uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
-        for (uint item = uItemFirst + workgroupIndex(); item < count; item += groups) {
-            uvec2 w = work[item];
-            Triangle T = load(w.x);
+        for (uint item = uItemFirst + workgroupIndex(); item < uItemEnd; item += groups) {
+            // The last entry whose first item is at most this one.
+            uint lo = 0u, hi = uLarge - 1u;
+            while (lo < hi) {
+                uint mid = (lo + hi + 1u) / 2u;
+                if (large[mid].y <= item) lo = mid;
+                else hi = mid - 1u;
+            }
+            uint t = large[lo].x;
+            Triangle T = load(t);
+            if (T.last.x < T.first.x || T.last.y < T.first.y) continue;
             uint width = uint(T.last.x - T.first.x) + 1u;
             uint columns = width * (uint(T.last.y - T.first.y) + 1u);
-            uint c = w.y * kChunk + gl_LocalInvocationID.x;
+            if (columns <= kSmall) continue; // pass 0 walked it
+            uint c = (item - large[lo].y) * kChunk + gl_LocalInvocationID.x;
             if (c < columns)
                 svo_walk_column(T.a, T.b, T.c, T.w, vec2(T.first.x + int(c % width), T.first.y + int(c / width)),
-                                T.box, w.x);
+                                T.box, t);
         }
     }
 }

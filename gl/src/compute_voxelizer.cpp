@@ -5,8 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <functional>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
+#include <tbb/parallel_for.h>
 
 #include "list_writer.h"
 #include "svo/core/error.h"
@@ -21,45 +20,81 @@ constexpr uint32_t kMaxGroups = 65535;       // per dispatch dimension, the leas
 /// (the elephant at 256^3: 46 ms with 256 groups, 70-90 ms with 4096).
 uint32_t queueGroups(const Context& context) { return context.info().software ? 256 : 4096; }
 
-struct WorkBound {
-    uint64_t items = 0;      ///< work items pass 0 can queue, at most
+/// The chunks of 64 columns one triangle can need in pass 1, at most: the
+/// column box on whichever axis gives most (the GPU picks its projection axis
+/// in float, which near ties may differ from the host's), with a column of
+/// margin for rounding on each side; 0 when every axis has at most kSmall
+/// columns, which pass 0 walks itself.
+uint64_t chunkBound(const std::vector<Vec3f>& p, const std::array<uint32_t, 3>& f, float half,
+                    std::array<uint32_t, 3> dims, uint64_t& maxColumns)
+{
+    std::array<double, 3> lo, hi;
+    for (int k = 0; k < 3; ++k) {
+        const double a = (&p[f[0]].x)[k], b = (&p[f[1]].x)[k], c = (&p[f[2]].x)[k];
+        lo[k] = std::min({a, b, c});
+        hi[k] = std::max({a, b, c});
+    }
+    uint64_t most = 0;
+    for (int w = 0; w < 3; ++w) {
+        const int u = (w + 1) % 3, v = (w + 2) % 3;
+        auto span = [&](int a) -> uint64_t {
+            const double first = std::max(std::ceil(lo[a] - half) - 2, 0.0);
+            const double last = std::min(std::floor(hi[a] + half) + 2, double(dims[a]) - 1);
+            return last < first ? 0 : uint64_t(last - first) + 1;
+        };
+        const uint64_t columns = span(u) * span(v);
+        maxColumns = std::max(maxColumns, columns);
+        if (columns > kSmall) most = std::max(most, (columns + kChunk - 1) / kChunk);
+    }
+    return most;
+}
+
+/// Pass 1's work, laid out on the host so that no shader loops over a
+/// triangle's chunks: every triangle with a chunk bound, as (triangle, its
+/// first item), in triangle order; item i belongs to the last entry whose
+/// first item is at most i. Two parallel passes: count per block, then fill.
+struct WorkList {
+    std::vector<std::array<uint32_t, 2>> large;
+    uint64_t items = 0;      ///< all triangles' chunk bounds
     uint64_t maxColumns = 0; ///< the largest column box of one triangle
 };
 
-/// Upper bounds on the work pass 0 queues: for every triangle, the chunks of
-/// its column box on whichever axis gives most (the GPU picks the dominant
-/// axis in float, which near ties may differ from the host's), with a column
-/// of margin for rounding on each side.
-WorkBound workBound(const std::vector<Vec3f>& p, const TriangleMesh& mesh, float half, std::array<uint32_t, 3> dims)
+WorkList workList(const std::vector<Vec3f>& p, const TriangleMesh& mesh, float half, std::array<uint32_t, 3> dims)
 {
-    return tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<size_t>(0, mesh.triangles.size(), 4096), WorkBound{},
-        [&](const tbb::blocked_range<size_t>& r, WorkBound sum) {
-            for (size_t t = r.begin(); t != r.end(); ++t) {
-                const auto& f = mesh.triangles[t];
-                std::array<double, 3> lo, hi;
-                for (int k = 0; k < 3; ++k) {
-                    const double a = (&p[f[0]].x)[k], b = (&p[f[1]].x)[k], c = (&p[f[2]].x)[k];
-                    lo[k] = std::min({a, b, c});
-                    hi[k] = std::max({a, b, c});
-                }
-                uint64_t most = 0;
-                for (int w = 0; w < 3; ++w) {
-                    const int u = (w + 1) % 3, v = (w + 2) % 3;
-                    auto span = [&](int a) -> uint64_t {
-                        const double first = std::max(std::ceil(lo[a] - half) - 2, 0.0);
-                        const double last = std::min(std::floor(hi[a] + half) + 2, double(dims[a]) - 1);
-                        return last < first ? 0 : uint64_t(last - first) + 1;
-                    };
-                    const uint64_t columns = span(u) * span(v);
-                    sum.maxColumns = std::max(sum.maxColumns, columns);
-                    if (columns > kSmall) most = std::max(most, (columns + kChunk - 1) / kChunk);
-                }
-                sum.items += most;
+    constexpr size_t kBlock = 1 << 14;
+    const size_t n = mesh.triangles.size(), blocks = (n + kBlock - 1) / kBlock;
+    struct Block {
+        uint64_t large = 0, items = 0, maxColumns = 0;
+    };
+    std::vector<Block> block(blocks);
+    tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+        for (size_t t = b * kBlock; t < std::min(n, (b + 1) * kBlock); ++t)
+            if (const uint64_t items = chunkBound(p, mesh.triangles[t], half, dims, block[b].maxColumns)) {
+                ++block[b].large;
+                block[b].items += items;
             }
-            return sum;
-        },
-        [](WorkBound a, WorkBound b) { return WorkBound{a.items + b.items, std::max(a.maxColumns, b.maxColumns)}; });
+    });
+    WorkList list;
+    std::vector<Block> first(blocks); // exclusive prefix sums
+    uint64_t large = 0;
+    for (size_t b = 0; b < blocks; ++b) {
+        first[b] = {large, list.items, 0};
+        large += block[b].large;
+        list.items += block[b].items;
+        list.maxColumns = std::max(list.maxColumns, block[b].maxColumns);
+    }
+    // Item indices are 32 bits; refused before they could wrap (checked by the caller).
+    if (list.items >= (uint64_t(1) << 31)) return list;
+    list.large.resize(large);
+    tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+        uint64_t slot = first[b].large, item = first[b].items, unused = 0;
+        for (size_t t = b * kBlock; t < std::min(n, (b + 1) * kBlock); ++t)
+            if (const uint64_t items = chunkBound(p, mesh.triangles[t], half, dims, unused)) {
+                list.large[slot++] = {uint32_t(t), uint32_t(item)};
+                item += items;
+            }
+    });
+    return list;
 }
 
 class ComputeWriter final : public ListWriter {
@@ -68,41 +103,38 @@ public:
         : ListWriter(context, mesh, grid, options), program_(context.program({"voxelize.comp"})),
           queueGroups_(queueGroups(context)), loopLimit_(context.info().loopLimit)
     {
-        if (triangles_ > uint64_t(kMaxGroups) * kMaxGroups * 64)
-            throw Error(fmt::format("{} triangles are more than one compute dispatch can cover", triangles_));
-        const WorkBound bound = workBound(local_, mesh, half_, dims_);
-        bound_ = bound.items;
+        if (triangles_ >= (uint64_t(1) << 32))
+            throw Error(fmt::format("{} triangles are more than the compute backend indexes; use the raster backend",
+                                    triangles_));
+        const WorkList list = workList(local_, mesh, half_, dims_);
+        items_ = list.items;
         // The shader counts one triangle's columns in 32 bits.
-        if (bound.maxColumns >= (uint64_t(1) << 32) - kChunk)
+        if (list.maxColumns >= (uint64_t(1) << 32) - kChunk)
             throw Error(fmt::format("a triangle spans {} voxel columns, more than the compute backend counts; use the "
                                     "raster backend or a coarser grid",
-                                    bound.maxColumns));
-        // Each item is 8 bytes; a queue past 2^31 items (16 GB) is refused, not truncated.
-        if (bound_ >= (uint64_t(1) << 31))
-            throw Error(fmt::format("the compute backend would queue up to {} column chunks, more than one pass "
-                                    "holds; use the raster backend or a coarser grid",
-                                    bound_));
+                                    list.maxColumns));
+        if (items_ >= (uint64_t(1) << 31))
+            throw Error(fmt::format("the compute backend would need {} column chunks, more than one pass indexes; "
+                                    "use the raster backend or a coarser grid",
+                                    items_));
         const uint64_t block = context.shaderBufferLimit();
-        if (block && std::max<uint64_t>(local_.size(), triangles_) * 12 > block)
+        const uint64_t workBytes = std::max<size_t>(list.large.size(), 1) * sizeof list.large[0];
+        if (block && std::max<uint64_t>({local_.size() * 12, triangles_ * 12, workBytes}) > block)
             throw Error(fmt::format("{} vertices and {} triangles are more than one shader buffer of {} bytes holds; "
                                     "use the raster backend",
                                     local_.size(), triangles_, block));
-        if (block && 8 + bound_ * 8 > block)
-            throw Error(fmt::format("the compute backend would queue up to {} column chunks, more than one shader "
-                                    "buffer of {} bytes holds; use the raster backend or a coarser grid",
-                                    bound_, block));
-        work_ = &context.scratch("compute work queue", 8 + std::max<uint64_t>(bound_, 1) * 8);
+        work_ = &context.scratch("compute work list", workBytes);
+        work_->write(0, list.large.size() * sizeof list.large[0], list.large.data());
         program_.set("uHalf", half_);
         program_.set("uThin", thin_ ? 1u : 0u);
         program_.set("uThickness", thickness_);
         program_.set("uTriangles", uint32_t(triangles_));
-        program_.set("uWorkCapacity", uint32_t(bound_));
+        program_.set("uLarge", uint32_t(list.large.size()));
     }
 
     void write(const Buffer& list, const Buffer& counter, uint64_t capacity, const Buffer* triangles) const override
     {
         counter.clearUint(0);
-        work_->clearUint(0, 8);
         program_.set("uCapacity", uint32_t(capacity));
         program_.set("uWriteTriangles", triangles ? 1u : 0u);
         setClipUniforms(program_);
@@ -120,23 +152,14 @@ public:
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
         checkpoint_(0.5, "compute voxelization");
         program_.set("uPass", 1u);
-        // An item loops at most 1 + its column's voxels (a few: the dominant
-        // axis keeps the triangle's slope at most 1) times the overlap test's
-        // 3-step loops: 64 iterations an item are allowed for the driver's limit.
-        dispatchLooping(program_, bound_, uint32_t(std::min<uint64_t>(bound_, queueGroups_)), loopLimit_, 64,
+        // An item costs its search of the work list (32 steps at most) and a
+        // column walk of a few voxels (the projection axis keeps a column's
+        // range to a few voxels, needles included), each with the overlap
+        // test's 3-step loops: 96 iterations an item for the driver's limit.
+        dispatchLooping(program_, items_, uint32_t(std::min<uint64_t>(items_, queueGroups_)), loopLimit_, 96,
                         "uItemFirst", "uItemEnd");
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
         checkGl("compute voxelization");
-    }
-
-    void checkAfterWrite() const override
-    {
-        uint32_t header[2] = {0, 0};
-        work_->read(0, sizeof header, header);
-        if (header[1] || header[0] > bound_)
-            throw Error(fmt::format("internal error: the compute backend queued {} column chunks{}, beyond its "
-                                    "bound of {}",
-                                    header[0], header[1] ? " (wrapped)" : "", bound_));
     }
 
     uint64_t bytes() const override { return ListWriter::bytes() + work_->bytes(); }
@@ -153,7 +176,7 @@ private:
     uint32_t queueGroups_;
     uint64_t loopLimit_; ///< ContextInfo::loopLimit
     const Buffer* work_ = nullptr;
-    uint64_t bound_ = 0;
+    uint64_t items_ = 0; ///< pass 1's work items: every large triangle's chunk bound
 };
 
 } // namespace

@@ -32,9 +32,6 @@ public:
     /// when given, gets each entry's triangle. No wait.
     virtual void write(const Buffer& list, const Buffer& counter, uint64_t capacity,
                        const Buffer* triangles = nullptr) const = 0;
-    /// After the GPU finished a write(): throws if the backend's own
-    /// bookkeeping could not hold the work (never expected; see the compute backend).
-    virtual void checkAfterWrite() const {}
     /// GPU bytes held besides the list: the mesh, and any work buffers.
     virtual uint64_t bytes() const { return meshBytes_; }
 

@@ -247,7 +247,6 @@ public:
             waitForGpu([&] { checkpoint(0.6, "voxelization on the GPU"); });
             OctreeBuilder::readCounts(build);
             count = readCountOrWrap(counter_);
-            if (!drawn) writer_.checkAfterWrite();
             buildWall += msSince(t0);
             if (!drawn) voxelizeGpu += drawTimer.milliseconds();
             buildGpu += buildTimer.milliseconds();

@@ -228,7 +228,6 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
         raster.write(list, counter, capacity);
         timer.end();
         count = readCount(counter);
-        raster.checkAfterWrite();
         voxelizeGpu += timer.milliseconds();
         if (count <= capacity) break;
         result.overflowRetries = attempt + 1;

@@ -118,7 +118,7 @@ SVO_CONST(uint) kBitmapBlockShift = 9u; /* 512 bits a block */
 /* Compute backend (voxelize.comp): the column walk's buffers above, and */
 #define SVO_BIND_COMPUTE_POSITIONS 2 /* local float positions, 3 per vertex */
 #define SVO_BIND_COMPUTE_INDICES 3   /* 3 vertex indices per triangle */
-#define SVO_BIND_COMPUTE_WORK 4      /* work count, wraps, then (triangle, row segment) items */
+#define SVO_BIND_COMPUTE_WORK 4      /* (triangle, first work item) of each large triangle */
 /* Octree passes (octree_*.comp): four buffers every pass sees ... */
 #define SVO_BIND_BUILD_STATE 0
 #define SVO_BIND_NODES 1

@@ -146,6 +146,40 @@ SVO_FN bool svo_triangle_thin_overlap(svo_vec3 a, svo_vec3 b, svo_vec3 c, svo_ve
     return false;
 }
 
+// The edge of triangle (a, b, c) with the largest coordinate difference:
+// 0 for b - a, 1 for c - a, 2 for c - b.
+SVO_FN int svo_longest_edge(svo_vec3 a, svo_vec3 b, svo_vec3 c)
+{
+    svo_vec3 e0 = abs(b - a);
+    svo_vec3 e1 = abs(c - a);
+    svo_vec3 e2 = abs(c - b);
+    svo_real m0 = max(e0.x, max(e0.y, e0.z));
+    svo_real m1 = max(e1.x, max(e1.y, e1.z));
+    svo_real m2 = max(e2.x, max(e2.y, e2.z));
+    if (m0 >= m1 && m0 >= m2) return 0;
+    return m1 >= m2 ? 1 : 2;
+}
+
+// The axis along which the voxel columns of triangle (a, b, c) run: the
+// dominant axis of its normal, unless the computed normal is mostly rounding
+// (a needle or a point: dn below is its error bound, as in svo_column_range);
+// then the axis along which the longest edge is shortest, so that the
+// triangle crosses each column in a few voxels and its work follows what it
+// covers. Any axis gives the same voxels: the overlap test decides, and
+// svo_column_range is conservative for every axis.
+SVO_FN int svo_projection_axis(svo_vec3 a, svo_vec3 b, svo_vec3 c, svo_real ulp)
+{
+    int longest = svo_longest_edge(a, b, c);
+    svo_vec3 d = longest == 0 ? b - a : (longest == 1 ? c - a : c - b);
+    svo_vec3 ad = abs(d);
+    svo_real E = max(ad.x, max(ad.y, ad.z));
+    svo_vec3 n = cross(b - a, c - a);
+    int w = svo_dominant_axis(n);
+    if (abs(n[w]) > 4.0 * (8.0 * ulp * E * E)) return w;
+    if (ad.x <= ad.y && ad.x <= ad.z) return 0;
+    return ad.y <= ad.z ? 1 : 2;
+}
+
 // Heights along axis w at which triangle (a, b, c) can meet a cube of halfSide side
 // `halfSide` in the column centred at (cu, cv) on axes u = (w+1)%3, v = (w+2)%3.
 // Returns (lo, hi, 0): the voxels to test are ceil(lo) .. floor(hi).
@@ -179,6 +213,45 @@ SVO_FN svo_vec3 svo_column_range(svo_vec3 a, svo_vec3 b, svo_vec3 c, int w, svo_
         svo_real dz = halfSide * (abs(su) + abs(sv)) + err;
         lo = max(lo, h - dz - halfSide);
         hi = min(hi, h + dz + halfSide);
+    }
+    // The sliver bound, tight where the plane's is not: the triangle lies
+    // within delta of the line through its longest edge (p, d) (the distance
+    // to a line is convex, so it peaks at the third corner, |n| / |d| away),
+    // so its points in this column are near the line's points in the column
+    // grown by delta, whose heights follow from the line's parameter range.
+    // The margin g holds the rounding of that parameter range.
+    int longest = svo_longest_edge(a, b, c);
+    svo_vec3 p = longest == 2 ? b : a;
+    svo_vec3 d = longest == 0 ? e0 : (longest == 1 ? e1 : e2);
+    svo_real dmax = max(abs(d.x), max(abs(d.y), abs(d.z)));
+    if (dmax > 0.0) {
+        svo_real mag = max(max(max(abs(a.x), abs(a.y)), max(abs(a.z), abs(b.x))),
+                           max(max(abs(b.y), abs(b.z)), max(abs(c.x), max(abs(c.y), abs(c.z)))));
+        mag = max(mag, max(abs(cu), abs(cv))) + 1.0;
+        svo_real delta = (abs(n.x) + abs(n.y) + abs(n.z) + 3.0 * dn) / dmax * (1.0 + 8.0 * ulp);
+        svo_real g = halfSide + delta + 16.0 * ulp * mag;
+        svo_real t0 = -3.0e38;
+        svo_real t1 = 3.0e38;
+        if (d[u] != 0.0) {
+            svo_real s0 = (cu - g - p[u]) / d[u];
+            svo_real s1 = (cu + g - p[u]) / d[u];
+            t0 = max(t0, min(s0, s1));
+            t1 = min(t1, max(s0, s1));
+        }
+        if (d[v] != 0.0) {
+            svo_real s0 = (cv - g - p[v]) / d[v];
+            svo_real s1 = (cv + g - p[v]) / d[v];
+            t0 = max(t0, min(s0, s1));
+            t1 = min(t1, max(s0, s1));
+        }
+        if (t0 > t1) return svo_vec3(1.0, 0.0, 0.0); // the column misses the grown line: no voxel
+        if (t1 - t0 < 1.0e38) {
+            svo_real y0 = p[w] + t0 * d[w];
+            svo_real y1 = p[w] + t1 * d[w];
+            svo_real slack = delta + halfSide + 16.0 * ulp * (abs(y0) + abs(y1) + mag);
+            lo = max(lo, min(y0, y1) - slack);
+            hi = min(hi, max(y0, y1) + slack);
+        }
     }
     return svo_vec3(lo, hi, 0.0);
 }

@@ -26,5 +26,6 @@ template <typename T> constexpr Vec3<T> cross(Vec3<T> a, Vec3<T> b)
 {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
+template <typename T> inline Vec3<T> abs(Vec3<T> a) { return {std::abs(a.x), std::abs(a.y), std::abs(a.z)}; }
 
 } // namespace svo
