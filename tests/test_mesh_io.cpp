@@ -13,6 +13,7 @@
 #include "ply_reader.h"
 #include "off_reader.h"
 #include "openmesh_reader.h"
+#include "text_scan.h"
 #include "svo/core/error.h"
 #include "svo/core/mesh_io.h"
 #include "temp_dir.h"
@@ -577,13 +578,13 @@ TEST_F(MeshIo, OffInPiecesGivesWhatOnePieceGives)
         const std::string text = keyword + "\n# counts follow\n" + fmt::format("{} {} 0\n", nv, nf) + body + "trailing text\n";
         SCOPED_TRACE(keyword);
         TriangleMesh one, pieces;
-        ASSERT_EQ(outcome([&] { return *detail::readAsciiOff("a.off", text, whole); }, one), "");
+        ASSERT_EQ(outcome([&] { return detail::readOff("a.off", text, whole); }, one), "");
         EXPECT_EQ(one.positions.size(), size_t(nv));
         EXPECT_EQ(one.colors.size(), keyword == "COFF" ? size_t(nv) : 0u);
         for (const size_t chunk : {size_t(1), size_t(53), size_t(8192)}) {
             SCOPED_TRACE(chunk);
             size_t used = 0;
-            ASSERT_EQ(outcome([&] { return *detail::readAsciiOff("a.off", text, chunk, &used); }, pieces), "");
+            ASSERT_EQ(outcome([&] { return detail::readOff("a.off", text, chunk, &used); }, pieces), "");
             expectSameMesh(pieces, one);
             EXPECT_GT(used, chunk == 1 ? 3000u : 10u);
         }
@@ -595,11 +596,11 @@ TEST_F(MeshIo, OffInPiecesGivesWhatOnePieceGives)
                                        text.substr(0, text.size() - 30) + "\n3 0 1 2000000\n",
                                        text.substr(0, text.size() / 2), huge}) {
             TriangleMesh mesh;
-            const std::string msg = outcome([&] { return *detail::readAsciiOff("a.off", bad, whole); }, mesh);
+            const std::string msg = outcome([&] { return detail::readOff("a.off", bad, whole); }, mesh);
             EXPECT_NE(msg, "");
             if (bad == huge) EXPECT_NE(msg.find("declares 9223372036854775807 faces"), std::string::npos) << msg;
             for (const size_t chunk : {size_t(1), size_t(8192)})
-                EXPECT_EQ(outcome([&] { return *detail::readAsciiOff("a.off", bad, chunk); }, mesh), msg);
+                EXPECT_EQ(outcome([&] { return detail::readOff("a.off", bad, chunk); }, mesh), msg);
         }
     }
 }
@@ -719,4 +720,185 @@ TEST_F(MeshIo, PlyInParallelGivesWhatOnePieceGives)
             EXPECT_EQ(outcome([&] { return detail::readPly("a.ply", bad, 1); }, mesh), msg);
         }
     }
+}
+
+namespace {
+
+/// A binary OFF file word by word: the header line, then big-endian int32 and
+/// float32 words, as the OFF spec lays them out.
+class BinaryOff {
+public:
+    explicit BinaryOff(const std::string& header = "OFF BINARY") : bytes(header + "\n") {}
+    BinaryOff& i(int32_t v) { return word(v); }
+    BinaryOff& f(float v) { return word(v); }
+    /// Counts, then a unit right triangle's corners (no normals, colours, texture).
+    static BinaryOff triangle(int32_t faces)
+    {
+        BinaryOff b;
+        b.i(3).i(faces).i(0);
+        for (int v = 0; v < 3; ++v) b.f(float(v == 1)).f(float(v == 2)).f(0);
+        return b;
+    }
+    std::string bytes;
+
+private:
+    template <typename T> BinaryOff& word(T v)
+    {
+        char b[4];
+        std::memcpy(b, &v, 4);
+        std::reverse(b, b + 4); // the test machines are little-endian
+        bytes.append(b, 4);
+        return *this;
+    }
+};
+
+} // namespace
+
+// OpenMesh read a negative polygon size as a huge count and allocated for it
+// until memory ran out (or std::bad_alloc escaped as an internal error).
+TEST_F(MeshIo, BinaryOffNegativePolygonSizeIsAClearError)
+{
+    for (const int32_t n : {-1, -2, std::numeric_limits<int32_t>::min()}) {
+        SCOPED_TRACE(n);
+        expectError(write("neg.off", BinaryOff::triangle(1).i(n).i(0).i(1).i(2).i(0).bytes),
+                    fmt::format("face 0 has {} vertices", n));
+    }
+}
+
+// A polygon size of 2^30 in a small file kept OpenMesh busy for minutes: the
+// size is now held to the words the file has left before any is read.
+TEST_F(MeshIo, BinaryOffHugePolygonSizeIsRefusedAtOnce)
+{
+    for (const int32_t n : {1 << 30, std::numeric_limits<int32_t>::max(), 4}) {
+        SCOPED_TRACE(n);
+        expectError(write("huge.off", BinaryOff::triangle(1).i(n).i(0).i(1).i(2).i(0).bytes),
+                    fmt::format("face 0 has {} vertices, more than the rest of the file holds", n));
+    }
+}
+
+// OpenMesh took a face cut short for a segment of the indices it found (exit
+// 0). Every cut of a valid file, anywhere after the header line, is an error.
+TEST_F(MeshIo, BinaryOffTruncatedAnywhereIsAnError)
+{
+    const std::string whole = BinaryOff::triangle(2).i(3).i(0).i(1).i(2).i(0).i(3).i(2).i(1).i(0).i(3).f(1).f(0).f(0).bytes;
+    ASSERT_EQ(loadMesh(write("whole.off", whole)).triangles.size(), 2u);
+    for (size_t cut = std::string("OFF BINARY\n").size(); cut < whole.size(); ++cut) {
+        SCOPED_TRACE(cut);
+        expectError(write("cut.off", whole.substr(0, cut)), "truncated");
+    }
+    // The reported case: a triangle whose last index and colour count are missing.
+    expectError(write("segment.off", BinaryOff::triangle(1).i(3).i(0).i(1).bytes),
+                "face 0 has 3 vertices, more than the rest of the file holds (truncated file?)");
+}
+
+// `OFF BINARY` alone made OpenMesh read counts and indices it never stored:
+// a different garbage vertex index on every run.
+TEST_F(MeshIo, BinaryOffHeaderAloneIsATruncationError)
+{
+    // Also a CRLF header line, and a body of one word.
+    for (const std::string& bytes : {std::string("OFF BINARY"), std::string("OFF BINARY\n"),
+                                     std::string("OFF BINARY\r\n\0\0\0\3", 16)}) {
+        SCOPED_TRACE(detail::escaped(bytes));
+        expectError(write("alone.off", bytes),
+                    "truncated binary OFF: the counts need 12 bytes after the header line");
+    }
+}
+
+// OpenMesh read binary COFF as "no triangles". The spec gives each vertex an
+// RGBA colour of four floats, and each face a colour-component count.
+TEST_F(MeshIo, BinaryCoffReadsItsVertexColours)
+{
+    BinaryOff b("COFF BINARY");
+    b.i(4).i(1).i(0);
+    const float rgba[4][4] = {{1, 0, 0, 1}, {0, 0.5f, 0, 1}, {0, 0, 0.25f, 0.5f}, {0.75f, 0.75f, 0.75f, 0}};
+    for (int v = 0; v < 4; ++v) {
+        b.f(float(v & 1)).f(float(v >> 1)).f(2);
+        for (float c : rgba[v]) b.f(c);
+    }
+    b.i(4).i(0).i(1).i(3).i(2).i(3).f(0.1f).f(0.2f).f(0.3f); // a quad with an RGB face colour
+    const auto m = loadMesh(write("c.off", b.bytes));
+    ASSERT_EQ(m.triangles.size(), 2u);
+    EXPECT_EQ(m.triangles[0], (std::array<uint32_t, 3>{0, 1, 3}));
+    EXPECT_EQ(m.triangles[1], (std::array<uint32_t, 3>{0, 3, 2}));
+    ASSERT_EQ(m.colors.size(), 4u);
+    for (size_t v = 0; v < 4; ++v)
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(m.colors[v][k], rgba[v][k]) << v << " " << k;
+    EXPECT_EQ(m.positions[3], (Vec3d{1, 1, 2}));
+}
+
+// Every layout svo reads in binary (normals, colours, texture coordinates,
+// polygons of 1 to 5 corners, face colours of 0 to 4 components) gives the
+// mesh of the same file in text.
+TEST_F(MeshIo, BinaryOffGivesTheMeshOfTheSameTextOff)
+{
+    const int nv = 7;
+    const std::vector<std::vector<int32_t>> faces = {{0, 1, 2}, {0, 1, 3, 2}, {2, 3, 4, 5, 6}, {6}, {5, 6}};
+    for (const std::string prefix : {"", "C", "N", "ST", "CN", "STC", "STCN", "NC"}) {
+        SCOPED_TRACE(prefix);
+        const bool normals = prefix.find('N') != std::string::npos, colours = prefix.find('C') != std::string::npos,
+                   texture = prefix.find("ST") != std::string::npos;
+        BinaryOff b(prefix + "OFF BINARY");
+        std::string text = fmt::format("{}OFF\n{} {} 0\n", prefix, nv, faces.size());
+        b.i(nv).i(int32_t(faces.size())).i(0);
+        for (int v = 0; v < nv; ++v) {
+            // Values a float holds exactly, so that text and binary agree bit for bit.
+            const float p[3] = {0.25f * float(v), float(v % 3) - 1.5f, 1.0f / float(1 << v)};
+            const float c[4] = {0.5f, 0.125f * float(v), 1.0f, 0.75f};
+            b.f(p[0]).f(p[1]).f(p[2]);
+            text += fmt::format("{} {} {}", p[0], p[1], p[2]);
+            if (normals) b.f(0).f(0).f(1), text += " 0 0 1";
+            if (colours) b.f(c[0]).f(c[1]).f(c[2]).f(c[3]), text += fmt::format(" {:.4f} {:.4f} {:.4f} {:.4f}", c[0], c[1], c[2], c[3]);
+            if (texture) b.f(0.5f).f(0.25f), text += " 0.5 0.25";
+            text += '\n';
+        }
+        for (size_t f = 0; f < faces.size(); ++f) {
+            b.i(int32_t(faces[f].size()));
+            text += std::to_string(faces[f].size());
+            for (int32_t k : faces[f]) b.i(k), text += fmt::format(" {}", k);
+            b.i(int32_t(f % 5));
+            for (size_t c = 0; c < f % 5; ++c) b.f(0.5f);
+            text += '\n';
+        }
+        const auto fromText = loadMesh(write("t.off", text));
+        const auto fromBinary = loadMesh(write("b.off", b.bytes));
+        EXPECT_EQ(fromText.triangles.size(), 1u + 2u + 3u + 1u + 1u);
+        EXPECT_EQ(fromBinary.colors.size(), colours ? size_t(nv) : 0u);
+        expectSameMesh(fromBinary, fromText);
+    }
+}
+
+// The rest of what a binary file can get wrong: one line naming the file and
+// the problem, before any allocation that a count in the file would size.
+TEST_F(MeshIo, BinaryOffBadCountsIndicesAndKeywordsAreClearErrors)
+{
+    const auto face = [](BinaryOff b, int32_t k) { return b.i(3).i(0).i(k).i(2).i(0).bytes; };
+    expectError(write("nv.off", BinaryOff().i(-3).i(1).i(0).bytes), "the binary header declares -3 vertices and 1 faces");
+    expectError(write("nf.off", BinaryOff().i(3).i(-1).i(0).bytes), "the binary header declares 3 vertices and -1 faces");
+    expectError(write("many.off", BinaryOff().i(3).i(std::numeric_limits<int32_t>::max()).i(0).bytes),
+                "the header declares 3 vertices and 2147483647 faces, more than the file's 23 bytes can hold");
+    expectError(write("manyv.off", BinaryOff().i(1 << 30).i(0).i(0).bytes), "more than the file's 23 bytes can hold");
+    expectError(write("range.off", face(BinaryOff::triangle(1), 3)), "face 0 uses vertex index 3, but the file has 3 vertices");
+    expectError(write("below.off", face(BinaryOff::triangle(1), -1)), "face 0 uses vertex index -1, but the file has 3 vertices");
+    expectError(write("zero.off", BinaryOff::triangle(1).i(0).i(0).i(0).i(0).bytes), "face 0 has 0 vertices");
+    for (const int32_t c : {-1, 5, std::numeric_limits<int32_t>::max()})
+        expectError(write("colours.off", BinaryOff::triangle(1).i(3).i(0).i(1).i(2).i(c).f(0).f(0).f(0).f(0).f(0).bytes),
+                    fmt::format("face 0 has {} colour components (OFF allows 0 to 4)", c));
+    BinaryOff nan;
+    nan.i(1).i(1).i(0).f(0).f(std::numeric_limits<float>::quiet_NaN()).f(0).i(1).i(0).i(0);
+    expectError(write("nan.off", nan.bytes), "vertex 0 has a non-finite coordinate (0, nan, 0)");
+    BinaryOff inf("COFF BINARY");
+    inf.i(1).i(1).i(0).f(0).f(0).f(0).f(std::numeric_limits<float>::infinity()).f(0).f(0).f(1).i(1).i(0).i(0);
+    expectError(write("inf.off", inf.bytes), "vertex 0 has a non-finite colour (inf, 0, 0)");
+    expectError(write("x.off", "XOFF BINARY\n" + BinaryOff::triangle(0).bytes.substr(11)), "'XOFF' has fields svo cannot place");
+    expectError(write("cc.off", "CCOFF BINARY\n" + BinaryOff::triangle(0).bytes.substr(11)), "'CCOFF' has fields");
+    expectError(write("4.off", "4OFF BINARY\n" + BinaryOff::triangle(0).bytes.substr(11)), "not 3D");
+    expectError(write("after.off", "OFF BINARY 3 1 0\n"), "line 1: unexpected '3' after BINARY");
+    // OpenMesh writes the machine's byte order: such a file is named, not misread.
+    std::string little = "OFF BINARY\n";
+    for (int32_t k : {3, 1, 0}) put<int32_t>(little, k);
+    for (int k = 0; k < 9; ++k) put<float>(little, float(k == 3 || k == 7));
+    for (int32_t k : {3, 0, 1, 2, 0}) put<int32_t>(little, k);
+    expectError(write("little.off", little), "(a little-endian file? svo reads binary OFF big-endian");
+    // Valid, with bytes after the last face (ignored, as text after the last face is).
+    EXPECT_EQ(loadMesh(write("tail.off", BinaryOff::triangle(1).i(3).i(0).i(1).i(2).i(0).i(77).bytes)).triangles.size(), 1u);
 }

@@ -10,7 +10,6 @@
 
 #include "obj_reader.h"
 #include "off_reader.h"
-#include "openmesh_reader.h"
 #include "ply_reader.h"
 #include "stl_reader.h"
 #include "svo/core/atomic_file.h"
@@ -76,8 +75,7 @@ TriangleMesh loadMesh(const std::string& path)
     if (ext == "obj") mesh = detail::readObj(path, bytes);
     else if (ext == "ply") mesh = detail::readPly(path, bytes);
     else if (ext == "stl") mesh = detail::readStl(path, bytes);
-    else if (auto off = detail::readAsciiOff(path, bytes)) mesh = std::move(*off);
-    else mesh = detail::readWithOpenMesh(path); // binary OFF; validateMesh checks what it delivers
+    else mesh = detail::readOff(path, bytes);
     validateMesh(mesh);
     return mesh;
 }

@@ -91,6 +91,15 @@ void parseVertex(const std::vector<std::string_view>& w, int64_t v, const OffLay
     }
 }
 
+/// Fan triangulation of a face's corners (one or more); a face with fewer
+/// than 3 corners still covers its points.
+void addFan(const std::vector<uint32_t>& idx, std::vector<std::array<uint32_t, 3>>& triangles)
+{
+    auto u = [&](size_t i) { return idx[std::min(i, idx.size() - 1)]; };
+    const size_t fans = idx.size() < 3 ? 1 : idx.size() - 2;
+    for (size_t i = 0; i < fans; ++i) triangles.push_back({u(0), u(i + 1), u(i + 2)});
+}
+
 /// Face `f` from its words, fan-triangulated onto `triangles`; throws fail(...).
 template <typename Fail>
 void parseFace(const std::vector<std::string_view>& w, int64_t f, const OffLayout& l, std::vector<uint32_t>& idx,
@@ -107,10 +116,7 @@ void parseFace(const std::vector<std::string_view>& w, int64_t f, const OffLayou
                                    quoted(w[size_t(i)]), l.nv));
         idx.push_back(uint32_t(k));
     }
-    // Fan triangulation; a face with fewer than 3 corners still covers its points.
-    auto u = [&](size_t i) { return idx[std::min(i, idx.size() - 1)]; };
-    const size_t fans = idx.size() < 3 ? 1 : idx.size() - 2;
-    for (size_t i = 0; i < fans; ++i) triangles.push_back({u(0), u(i + 1), u(i + 2)});
+    addFan(idx, triangles);
 }
 
 /// The body parsed in pieces at once: records counted per piece, then each
@@ -171,10 +177,152 @@ size_t readBodyInParallel(std::string_view body, const OffLayout& l, size_t chun
     return pieces.size();
 }
 
+/// Big-endian 32-bit words, the OFF spec's binary encoding whatever the
+/// machine's; bounds-checked: false at the end of the data.
+class BigEndianWords {
+public:
+    explicit BigEndianWords(std::string_view body) : p_(body.data()), end_(p_ + body.size()) {}
+    bool int32(int32_t& out) { return next(out); }
+    bool float32(float& out) { return next(out); }
+    /// Whole words left.
+    uint64_t remaining() const { return uint64_t(end_ - p_) / 4; }
+
+private:
+    template <typename T> bool next(T& out)
+    {
+        static_assert(sizeof(T) == 4);
+        if (end_ - p_ < 4) return false;
+        const auto* b = reinterpret_cast<const unsigned char*>(p_);
+        const uint32_t u = uint32_t(b[0]) << 24 | uint32_t(b[1]) << 16 | uint32_t(b[2]) << 8 | uint32_t(b[3]);
+        std::memcpy(&out, &u, 4);
+        p_ += 4;
+        return true;
+    }
+    const char* p_;
+    const char* end_;
+};
+
+/// The word read in the other byte order (to recognise a little-endian file).
+uint32_t byteSwapped(uint32_t u) { return u >> 24 | (u >> 8 & 0xFF00u) | (u << 8 & 0xFF0000u) | u << 24; }
+
+/// What a binary vertex holds after x y z, from the keyword's prefix, in this
+/// order: a normal (3 floats), an RGBA colour (4), a texture coordinate (2).
+struct BinaryLayout {
+    bool normals = false, colors = false, texture = false;
+    size_t floatsPerVertex() const { return 3 + (normals ? 3 : 0) + (colors ? 4 : 0) + (texture ? 2 : 0); }
+};
+
+/// The layout a keyword's prefix gives (ST, C and N, each once at most);
+/// false for any other letter: text can skip what it does not know, but in
+/// binary an unknown field leaves every later byte unplaced.
+bool binaryLayout(std::string_view prefix, BinaryLayout& l)
+{
+    for (size_t i = 0; i < prefix.size();) {
+        if (prefix.substr(i, 2) == "ST" && !l.texture) l.texture = true, i += 2;
+        else if (prefix[i] == 'C' && !l.colors) l.colors = true, ++i;
+        else if (prefix[i] == 'N' && !l.normals) l.normals = true, ++i;
+        else return false;
+    }
+    return true;
+}
+
+/// Vertex `v` into mesh: its position, and its colour's RGB if the layout has
+/// one (alpha is not kept, as from text). The caller has checked that its
+/// floats are there.
+void readBinaryVertex(const std::string& path, BigEndianWords& in, int64_t v, const BinaryLayout& l,
+                      TriangleMesh& mesh)
+{
+    float f[12] = {}; // 3 + 3 + 4 + 2 at most
+    for (size_t k = 0; k < l.floatsPerVertex(); ++k)
+        if (!in.float32(f[k])) throw Error(fmt::format("{}: the file ends in vertex {} (truncated file?)", path, v));
+    if (!std::isfinite(f[0]) || !std::isfinite(f[1]) || !std::isfinite(f[2]))
+        throw Error(fmt::format("{}: vertex {} has a non-finite coordinate ({}, {}, {})", path, v, f[0], f[1], f[2]));
+    mesh.positions.push_back({f[0], f[1], f[2]});
+    if (!l.colors) return;
+    const float* c = f + (l.normals ? 6 : 3);
+    if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]))
+        throw Error(fmt::format("{}: vertex {} has a non-finite colour ({}, {}, {})", path, v, c[0], c[1], c[2]));
+    mesh.colors.push_back({c[0], c[1], c[2]});
+}
+
+/// Face `f` of `nf`, fan-triangulated onto mesh. Its polygon size is checked
+/// against the words left before anything is read or kept for it, so that no
+/// count in the file sets how much is allocated or how long the loop runs.
+void readBinaryFace(const std::string& path, BigEndianWords& in, int64_t f, int64_t nf, std::vector<uint32_t>& idx,
+                    TriangleMesh& mesh)
+{
+    auto truncated = [&] { return Error(fmt::format("{}: the file ends in face {} of {} (truncated file?)", path, f, nf)); };
+    int32_t n = 0;
+    if (!in.int32(n)) throw truncated();
+    if (n < 1) throw Error(fmt::format("{}: face {} has {} vertices", path, f, n));
+    if (uint64_t(n) >= in.remaining()) // its indices and its colour count
+        throw Error(fmt::format("{}: face {} has {} vertices, more than the rest of the file holds (truncated file?)",
+                                path, f, n));
+    idx.clear();
+    for (int32_t i = 0; i < n; ++i) {
+        int32_t k = -1;
+        if (!in.int32(k)) throw truncated();
+        if (k < 0 || size_t(k) >= mesh.positions.size())
+            throw Error(fmt::format("{}: face {} uses vertex index {}, but the file has {} vertices", path, f, k,
+                                    mesh.positions.size()));
+        idx.push_back(uint32_t(k));
+    }
+    // The face's colour: a count, then that many floats (a colour-map index or
+    // RGB[A]); not kept, since svo's colours are per vertex.
+    int32_t components = -1;
+    if (!in.int32(components)) throw truncated();
+    if (components < 0 || components > 4)
+        throw Error(fmt::format("{}: face {} has {} colour components (OFF allows 0 to 4)", path, f, components));
+    for (int32_t c = 0; c < components; ++c) {
+        float unused;
+        if (!in.float32(unused)) throw truncated();
+    }
+    addFan(idx, mesh.triangles);
+}
+
+/// A binary body, the bytes after the `OFF BINARY` line (at `bodyAt` in the
+/// file): int32 vertex, face and edge counts, the vertices, the faces.
+TriangleMesh readBinaryBody(const std::string& path, std::string_view body, size_t bodyAt, const BinaryLayout& l)
+{
+    BigEndianWords in(body);
+    int32_t nv = 0, nf = 0, ne = 0; // edges: not used (nor checked, as the spec says)
+    if (!in.int32(nv) || !in.int32(nf) || !in.int32(ne))
+        throw Error(fmt::format("{}: truncated binary OFF: the counts need 12 bytes after the header line, the file "
+                                "has {}",
+                                path, body.size()));
+    // A vertex takes its floats, a face at least its size, one index and its
+    // colour count: counts that the rest of the file cannot hold are refused
+    // before anything is allocated for them.
+    auto fits = [&](int64_t v, int64_t f) {
+        return v >= 0 && f >= 0 && uint64_t(v) * l.floatsPerVertex() + uint64_t(f) * 3 <= in.remaining();
+    };
+    if (!fits(nv, nf)) {
+        // OpenMesh writes binary OFF in the machine's byte order: say so where
+        // the counts read little-endian would fit.
+        const bool little = fits(int32_t(byteSwapped(uint32_t(nv))), int32_t(byteSwapped(uint32_t(nf))));
+        const std::string hint =
+            little ? " (a little-endian file? svo reads binary OFF big-endian, as the format says)" : "";
+        if (nv < 0 || nf < 0)
+            throw Error(fmt::format("{}: the binary header declares {} vertices and {} faces{}", path, nv, nf, hint));
+        throw Error(fmt::format("{}: the header declares {} vertices and {} faces, more than the file's {} bytes can "
+                                "hold{}",
+                                path, nv, nf, bodyAt + body.size(),
+                                little ? hint : std::string(" (truncated or corrupt file)")));
+    }
+    TriangleMesh mesh;
+    mesh.source = path;
+    mesh.positions.reserve(size_t(nv));
+    if (l.colors) mesh.colors.reserve(size_t(nv));
+    for (int32_t v = 0; v < nv; ++v) readBinaryVertex(path, in, v, l, mesh);
+    mesh.triangles.reserve(size_t(nf));
+    std::vector<uint32_t> idx;
+    for (int32_t f = 0; f < nf; ++f) readBinaryFace(path, in, f, nf, idx, mesh);
+    return mesh;
+}
+
 } // namespace
 
-std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::string& bytes, size_t chunkBytes,
-                                         size_t* inPieces)
+TriangleMesh readOff(const std::string& path, const std::string& bytes, size_t chunkBytes, size_t* inPieces)
 {
     if (inPieces) *inPieces = 0;
     Lines lines(bytes);
@@ -189,7 +337,18 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
         throw fail(fmt::format("expected an OFF keyword, found {}", quoted(keyword)));
     if (keyword.find('4') != std::string_view::npos || keyword.find('n') != std::string_view::npos)
         throw fail(fmt::format("{} files are not 3D; svo reads 3D OFF", quoted(keyword)));
-    if (w.size() > 1 && w[1] == "BINARY") return std::nullopt;
+    const size_t prefix = keyword.size() - 3;
+    if (w.size() > 1 && w[1] == "BINARY") {
+        BinaryLayout layout;
+        if (!binaryLayout(keyword.substr(0, prefix), layout))
+            throw fail(fmt::format("{} has fields svo cannot place in a binary file (it reads the prefixes ST, C, N)",
+                                   quoted(keyword)));
+        if (w.size() > 2)
+            throw fail(fmt::format("unexpected {} after BINARY (the binary data starts on the next line)",
+                                   quoted(w[2])));
+        const size_t at = size_t(lines.position() - bytes.data());
+        return readBinaryBody(path, std::string_view(bytes).substr(at), at, layout);
+    }
     w.erase(w.begin());
     if (w.empty()) {
         if (!lines.next(line)) throw Error(fmt::format("{}: truncated OFF header (no counts)", path));
@@ -201,7 +360,6 @@ std::optional<TriangleMesh> readAsciiOff(const std::string& path, const std::str
     if (nv > int64_t(UINT32_MAX)) throw fail(fmt::format("{} vertices are more than 32-bit indices address", nv));
 
     // Per vertex: x y z [nx ny nz if N] [r g b [a] if C] [s t if ST].
-    const size_t prefix = keyword.size() - 3;
     const bool hasNormals = keyword.find('N') < prefix, hasColors = keyword.find('C') < prefix;
     const size_t colorAt = hasNormals ? 6 : 3;
     OffLayout layout;
