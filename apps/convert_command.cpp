@@ -1,4 +1,12 @@
-// svo convert IN.vdb|IN.svo -o OUT.svo|OUT.vdb
+// svo convert IN.vdb|IN.svo -o OUT.svo|OUT.vdb|OUT.nvdb
+//
+// A .vdb input to .vdb or .nvdb output keeps its grids whole: every grid (or
+// the one --grid names) with its type, class, transform, values and metadata
+// (NanoVDB keeps type, class, name, transform and values; it has no string
+// metadata). A .svo file holds one grid's active voxels; a grid that holds
+// more (a level set's distances, normals, any value but true or 1) is refused
+// unless --topology-only asks for the active voxels alone, which also makes
+// the old octree-built grids (--topology, --fog) from a .vdb input.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <fmt/format.h>
@@ -8,6 +16,9 @@
 #include "commands.h"
 #include "library_call.h"
 #include "svo/core/error.h"
+#include "svo/vdb_io/nanovdb_output.h"
+#include "svo/vdb_io/octree_files.h"
+#include "svo/vdb_io/vdb_file.h"
 
 namespace svo::app {
 namespace {
@@ -16,20 +27,67 @@ struct ConvertArgs {
     std::string input, output, gridName;
     BackendArgs backend;
     OutputArgs out;
+    bool topologyOnly = false;
 };
+
+/// .vdb to .vdb or .nvdb, every grid as it is.
+void copyGrids(const ConvertArgs& a)
+{
+    openvdb::GridPtrVec grids;
+    {
+        Progress p("reading " + a.input);
+        grids = vdb::readVdbGrids(a.input, a.gridName);
+    }
+    WriteReport written;
+    written.format = outputFormat(a.output);
+    {
+        Progress p("writing " + a.output);
+        if (written.format == OutputFormat::NanoVdb) written.bytes = vdb::writeNanoVdb(a.output, grids);
+        else written.bytes = vdb::writeVdbGrids(a.output, grids, {}).bytes;
+    }
+    fmt::print("svo convert\n");
+    fmt::print("  {:<12} {} ({} grid{})\n", "input", a.input, grids.size(), grids.size() == 1 ? "" : "s");
+    fmt::print("  {:<12} {} ({:.2f} MB{}, the grids as they are)\n", "output", a.output, double(written.bytes) / 1e6,
+               written.format == OutputFormat::NanoVdb ? ", NanoVDB" : "");
+    for (const auto& g : grids) {
+        const auto cls = g->getGridClass();
+        fmt::print("  {:<12} '{}' {}{}, {} active voxels\n", "grid", g->getName(), g->valueType(),
+                   cls == openvdb::GRID_UNKNOWN ? "" : ", " + openvdb::GridBase::gridClassToString(cls),
+                   thousands(g->activeVoxelCount()));
+    }
+}
 
 void runConvert(const ConvertArgs& a, const CLI::App& cmd)
 {
     const std::string ext = std::filesystem::path(a.input).extension().string();
+    if (ext == ".nvdb")
+        throw Error(fmt::format("{}: svo writes NanoVDB files but does not read them; convert the .vdb it was made from",
+                                a.input));
     if (ext != ".vdb" && ext != ".svo")
         throw Error(fmt::format("{}: svo convert reads .vdb and .svo files; voxelize meshes with svo voxelize", a.input));
     checkOutputPath(a.output);
     checkOutputs({a.input}, {a.output});
     const GridOptions grids = a.out.gridOptions();
-    if (outputFormat(a.output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
+    const bool toSvo = outputFormat(a.output) == OutputFormat::Svo;
+    if (toSvo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", a.output));
+    if (ext == ".svo" && a.topologyOnly)
+        throw Error(fmt::format("{}: --topology-only applies to a .vdb input; a .svo file holds active voxels only",
+                                a.input));
+    if (ext == ".vdb" && !toSvo && !a.topologyOnly) {
+        if (cmd.count("--fog") || cmd.count("--topology"))
+            throw Error(fmt::format("{}: a .vdb input keeps its grids as they are; --fog and --topology make new "
+                                    "grids from its active voxels, which needs --topology-only",
+                                    a.input));
+        copyGrids(a);
+        return;
+    }
     LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo = loadOctree(call.voxelizer, a.input, a.gridName, {}, call.options);
+    if (!lo.valuesDropped.empty() && !a.topologyOnly)
+        throw Error(fmt::format("{}: {} would be lost: {} holds only which voxels are active; write .vdb or .nvdb to "
+                                "keep them, or give --topology-only to keep the active voxels alone",
+                                a.input, lo.valuesDropped, toSvo ? "a .svo file" : "an octree"));
     const std::map<std::string, std::string> meta = {{"svo:source", a.input}, {"svo:version", SVO_VERSION}};
     WriteReport written;
     {
@@ -57,6 +115,10 @@ void addConvertCommand(CLI::App& app)
     cmd->add_option("--grid", args->gridName, "Grid of the input .vdb (default: the first)");
     addBackendOptions(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
+    cmd->add_flag("--topology-only", args->topologyOnly,
+                  "From a .vdb input, keep only one grid's active voxels (its values and class dropped), as an "
+                  "octree written as .svo or as new grids (--topology, --fog); without it a .vdb input keeps "
+                  "every grid whole, and a .svo output refuses a grid with values");
     cmd->callback([args, cmd] { runConvert(*args, *cmd); });
 }
 

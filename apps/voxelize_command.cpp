@@ -260,7 +260,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     if (!a.json.empty()) checkWritable(a.json);
     const GridSpec grid = makeGrid(mesh, request);
     // An OpenVDB output must be able to hold the voxel size: refused before the GPU works.
-    if (!timingOnly && outputFormat(output) != OutputFormat::Svo) vdb::checkVdbVoxelSize(grid.voxelSize, output);
+    if (!timingOnly && outputFormat(output) != OutputFormat::Svo) vdb::checkVdbGrid(grid, output);
     if (device.valid()) device.get();
     if (a.field()) return runField(a, call, mesh, load, scene, grid, request, output, timingOnly, start);
     const GridOptions grids = a.out.gridOptions();

@@ -433,3 +433,81 @@ TEST(VdbDamage, RootTileOffTheLatticeIsRefused)
         expectRefused(tmp, "tiled_off.vdb", d);
     }
 }
+
+namespace {
+/// True when the bytes are well-formed UTF-8 (RFC 3629).
+bool isUtf8(const std::string& s)
+{
+    const auto* p = reinterpret_cast<const unsigned char*>(s.data());
+    for (size_t i = 0, n = s.size(); i < n;) {
+        const unsigned c = p[i];
+        size_t len = c < 0x80 ? 1 : c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+        if (!len || i + len > n) return false;
+        uint32_t cp = len == 1 ? c : len == 2 ? c & 0x1F : len == 3 ? c & 0x0F : c & 0x07;
+        for (size_t k = 1; k < len; ++k) {
+            if ((p[i + k] & 0xC0) != 0x80) return false;
+            cp = cp << 6 | (p[i + k] & 0x3F);
+        }
+        static const uint32_t least[] = {0, 0, 0x80, 0x800, 0x10000};
+        if (cp < least[len] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
+        i += len;
+    }
+    return true;
+}
+} // namespace
+
+// A mesh whose name is not UTF-8 (any bytes make a Linux file name): the
+// metadata svo stores is valid UTF-8, the bad bytes as \xNN, and
+// python3-openvdb reads it (it raised UnicodeDecodeError on the raw bytes).
+TEST(VdbIo, StringMetadataIsValidUtf8WhateverTheFileName)
+{
+    EXPECT_EQ(vdb::validUtf8("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x90\x87.obj"), "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x90\x87.obj");
+    EXPECT_EQ(vdb::validUtf8("bad\xff\xfe.obj"), "bad\\xFF\\xFE.obj");
+    EXPECT_EQ(vdb::validUtf8("\xc3"), "\\xC3");                 // cut short
+    EXPECT_EQ(vdb::validUtf8("\xc0\xaf"), "\\xC0\\xAF");        // overlong '/'
+    EXPECT_EQ(vdb::validUtf8("\xed\xa0\x80"), "\\xED\\xA0\\x80"); // a surrogate
+    EXPECT_EQ(vdb::validUtf8("\xf4\x90\x80\x80"), "\\xF4\\x90\\x80\\x80"); // above U+10FFFF
+
+    const auto mesh = test::box({0, 0, 0}, {1, 1, 1});
+    const auto v = voxelizeCpu(mesh, makeGrid(mesh, {8, 0}));
+    const test::TempDir tmp("vdb_utf8");
+    const std::string path = tmp.path("out.vdb");
+    const std::string source = "/tmp/m\xe9sh\xff.obj"; // Latin-1 é, and a byte no encoding uses
+    vdb::WriteOptions o;
+    o.topology = vdb::Topology::Bool; // python3-openvdb reads no MaskGrid
+    o.metadata["svo:source"] = source;
+    vdb::writeVdb(path, buildOctree(v.grid, v.keys), o);
+    const auto grids = readAll(path);
+    ASSERT_EQ(grids->size(), 1u);
+    const std::string stored = (*grids)[0]->metaValue<std::string>("svo:source");
+    EXPECT_TRUE(isUtf8(stored)) << stored;
+    EXPECT_EQ(stored, "/tmp/m\\xE9sh\\xFF.obj");
+
+    const std::string py = "/usr/bin/python3 -c \"import pyopenvdb; print(pyopenvdb.readAllGridMetadata('" + path +
+                           "')[0]['svo:source'])\" 2>&1";
+    FILE* p = popen(py.c_str(), "r");
+    ASSERT_NE(p, nullptr);
+    std::string out;
+    char buf[512];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+    EXPECT_EQ(pclose(p), 0) << out;
+    EXPECT_EQ(out, stored + "\n");
+}
+
+// A device named like a .vdb file is refused as what it is, not read as an
+// empty (or endless) file.
+TEST(VdbIo, ADeviceNamedVdbIsRefusedAsADevice)
+{
+    const test::TempDir tmp("vdb_device");
+    const std::string z = tmp.path("z.vdb");
+    fs::create_symlink("/dev/zero", z);
+    try {
+        vdb::readVdbBricks(z);
+        FAIL() << "read /dev/zero";
+    } catch (const svo::Error& e) {
+        EXPECT_EQ(std::string(e.what()), z + ": is a character device, not a .vdb file; svo reads .vdb files that are "
+                                             "regular files");
+    }
+    EXPECT_THROW(vdb::readVdbGrids(z), svo::Error);
+}

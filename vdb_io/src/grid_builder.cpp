@@ -67,14 +67,32 @@ void checkVdbVoxelSize(double voxelSize, const std::string& what)
                                 what, voxelSize, kMinVoxelSize));
 }
 
-openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid)
+namespace {
+openvdb::math::Transform::Ptr buildTransform(const GridSpec& grid, const std::string& what)
 {
-    checkVdbVoxelSize(grid.voxelSize, "grid");
+    checkVdbVoxelSize(grid.voxelSize, what);
     auto xform = openvdb::math::Transform::createLinearTransform(grid.voxelSize);
     const auto t = grid.translation();
-    if (t[0] != 0 || t[1] != 0 || t[2] != 0) xform->postTranslate(openvdb::Vec3d(t[0], t[1], t[2]));
+    try {
+        if (t[0] != 0 || t[1] != 0 || t[2] != 0) xform->postTranslate(openvdb::Vec3d(t[0], t[1], t[2]));
+        // Copying a grid rebuilds its transform from the map's matrix
+        // (Transform(MapBase::Ptr) simplifies it), as the writer does.
+        openvdb::math::Transform copy(xform->baseMap()->copy());
+    } catch (const openvdb::Exception& e) {
+        throw Error(fmt::format("{}: the grid lies {:.3g} from the origin, {:.3g} voxels of {:.6g}: farther than an "
+                                "OpenVDB transform holds ({}); move the mesh nearer the origin, use a coarser grid, "
+                                "or write .svo",
+                                what, std::max({std::abs(t[0]), std::abs(t[1]), std::abs(t[2])}),
+                                std::max({std::abs(t[0]), std::abs(t[1]), std::abs(t[2])}) / grid.voxelSize,
+                                grid.voxelSize, e.what()));
+    }
     return xform;
 }
+} // namespace
+
+void checkVdbGrid(const GridSpec& grid, const std::string& what) { buildTransform(grid, what); }
+
+openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid) { return buildTransform(grid, "grid"); }
 
 openvdb::MaskGrid::Ptr buildMaskGrid(const Octree& o)
 {

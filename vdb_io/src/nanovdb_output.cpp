@@ -1,6 +1,9 @@
 #include "svo/vdb_io/nanovdb_output.h"
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 #include <nanovdb/util/IO.h>
 #include <nanovdb/util/OpenToNanoVDB.h>
@@ -28,11 +31,27 @@ uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids)
     std::vector<nanovdb::GridHandle<nanovdb::HostBuffer>> handles;
     for (const auto& g : grids) handles.push_back(toNanoVdb(g));
     writeAtomically(path, [&](const std::string& tmp) {
+        // NanoVDB's writeGrids(fileName) leaves its last bytes to the stream's
+        // destructor, unchecked: svo opens, flushes and closes the stream and
+        // checks each step, so a full disk is an error naming its cause.
+        std::ofstream os(tmp, std::ios::out | std::ios::binary | std::ios::trunc);
+        if (!os) throw Error(fmt::format("{}: cannot create the file: {}", path, std::strerror(errno)));
+        errno = 0;
         try {
-            nanovdb::io::writeGrids<nanovdb::HostBuffer, std::vector>(tmp, handles);
+            nanovdb::io::writeGrids<nanovdb::HostBuffer, std::vector>(os, handles);
         } catch (const std::exception& e) {
-            throw Error(fmt::format("{}: cannot write the NanoVDB file: {}", path, e.what()));
+            if (os) throw Error(fmt::format("{}: cannot write the NanoVDB file: {}", path, e.what()));
         }
+        int err = errno;
+        if (os) {
+            os.flush();
+            err = errno;
+        }
+        if (os) {
+            os.close();
+            err = errno;
+        }
+        if (!os) throw Error(fmt::format("{}: {}", path, err ? std::strerror(err) : "the write failed"));
     });
     std::error_code ec;
     return std::filesystem::file_size(path, ec);

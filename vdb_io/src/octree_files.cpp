@@ -71,7 +71,7 @@ WriteReport writeOctree(const std::string& path, const Octree& octree, const Gri
     openvdb::initialize();
     openvdb::GridPtrVec vdbGrids = octreeToGrids(octree, grids);
     for (auto& g : vdbGrids)
-        for (const auto& [k, v] : metadata) g->insertMeta(k, openvdb::StringMetadata(v));
+        for (const auto& [k, v] : metadata) g->insertMeta(vdb::validUtf8(k), openvdb::StringMetadata(vdb::validUtf8(v)));
     report.stages.push_back({"vdb build (cpu)", -1, msSince(t0)});
     t0 = Clock::now();
     report.bytes = vdb::writeNanoVdb(path, vdbGrids);
@@ -92,6 +92,9 @@ LoadedOctree loadOctree(Voxelizer& voxelizer, const std::string& path, const std
         out.stages.push_back({"svo read", -1, msSince(t0)});
         return out;
     }
+    if (ext == ".nvdb")
+        throw Error(fmt::format("{}: svo writes NanoVDB files but does not read them; read the .vdb it was made from",
+                                path));
     VoxelizeStats stats;
     VoxelizeOptions o = options;
     o.stats = &stats;
@@ -103,6 +106,7 @@ LoadedOctree loadOctree(Voxelizer& voxelizer, const std::string& path, const std
         out.gridName = vb.gridName;
         out.gridType = vb.gridType;
         out.tilesExpanded = vb.tilesExpanded;
+        out.valuesDropped = vb.valuesDropped;
         out.octree = voxelizer.bricksToOctree(vb.grid, std::move(vb.bricks), o);
     } else {
         const auto t0 = Clock::now();

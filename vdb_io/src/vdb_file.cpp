@@ -1,11 +1,14 @@
 #include "svo/vdb_io/vdb_file.h"
 
 #include <array>
+#include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <type_traits>
 #include <sstream>
 #include <fmt/format.h>
 
@@ -241,6 +244,8 @@ private:
             openvdb::MetaMap meta;
             readMeta(meta, "the metadata of grid " + g);
             for (auto it = meta.beginMeta(); it != meta.endMeta(); ++it) grid->insertMeta(it->first, *it->second);
+            // As OpenVDB's reader: the descriptor says it; the writer adds it again.
+            grid->removeMeta(openvdb::GridBase::META_SAVE_HALF_FLOAT);
 
             // Per-grid stream state, as Archive::readGrid sets it up.
             auto gridMeta = std::make_shared<openvdb::io::StreamMetadata>(*streamMeta_);
@@ -510,15 +515,40 @@ private:
     std::vector<GridDescriptor> descriptors_;
 };
 
+/// OpenVDB's writer as io::File::write runs it, on a stream svo opens and
+/// checks: File::write never looks at its stream, so a full disk or a file
+/// size limit left a cut-short file behind an exit status of 0.
+class CheckedWriter : public openvdb::io::Archive {
+public:
+    void writeFile(const std::string& tmp, const std::string& path, const openvdb::GridPtrVec& grids) const
+    {
+        std::ofstream os;
+        os.open(tmp, std::ios_base::out | std::ios_base::binary);
+        if (!os) throw Error(fmt::format("{}: cannot create the file: {}", path, std::strerror(errno)));
+        errno = 0;
+        Archive::write(os, grids, /*seekable=*/true);
+        int err = errno;
+        if (os) {
+            os.flush();
+            err = errno;
+        }
+        if (os) {
+            os.close(); // the last bytes reach the file here
+            err = errno;
+        }
+        if (!os) throw Error(fmt::format("{}: {}", path, err ? std::strerror(err) : "the write failed"));
+    }
+};
+
 void writeGrids(const std::string& path, const openvdb::GridPtrVec& grids)
 {
     writeAtomically(path, [&](const std::string& tmp) {
         try {
             openvdb::GridPtrVec parallel;
             for (const auto& g : grids) parallel.push_back(withParallelBuffers(g));
-            openvdb::io::File file(tmp);
-            file.write(parallel);
-            file.close();
+            CheckedWriter().writeFile(tmp, path, parallel);
+        } catch (const Error&) {
+            throw;
         } catch (const std::exception& e) {
             throw Error(fmt::format("{}: cannot write the VDB file: {}", path, e.what()));
         }
@@ -526,6 +556,39 @@ void writeGrids(const std::string& path, const openvdb::GridPtrVec& grids)
 }
 
 } // namespace
+
+std::string validUtf8(const std::string& text)
+{
+    std::string out;
+    out.reserve(text.size());
+    const auto* p = reinterpret_cast<const unsigned char*>(text.data());
+    const size_t n = text.size();
+    for (size_t i = 0; i < n;) {
+        const unsigned char c = p[i];
+        // The length of a well-formed sequence starting here (RFC 3629: no
+        // overlong forms, no surrogates, nothing above U+10FFFF), 0 if none.
+        size_t len = 0;
+        auto cont = [&](size_t k, unsigned char lo = 0x80, unsigned char hi = 0xBF) {
+            return i + k < n && p[i + k] >= lo && p[i + k] <= hi;
+        };
+        if (c < 0x80) len = 1;
+        else if (c >= 0xC2 && c <= 0xDF) len = cont(1) ? 2 : 0;
+        else if (c == 0xE0) len = cont(1, 0xA0) && cont(2) ? 3 : 0;
+        else if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF) len = cont(1) && cont(2) ? 3 : 0;
+        else if (c == 0xED) len = cont(1, 0x80, 0x9F) && cont(2) ? 3 : 0;
+        else if (c == 0xF0) len = cont(1, 0x90) && cont(2) && cont(3) ? 4 : 0;
+        else if (c >= 0xF1 && c <= 0xF3) len = cont(1) && cont(2) && cont(3) ? 4 : 0;
+        else if (c == 0xF4) len = cont(1, 0x80, 0x8F) && cont(2) && cont(3) ? 4 : 0;
+        if (len) {
+            out.append(text, i, len);
+            i += len;
+        } else {
+            out += fmt::format("\\x{:02X}", c);
+            ++i;
+        }
+    }
+    return out;
+}
 
 WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOptions& options)
 {
@@ -536,7 +599,7 @@ WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOp
     openvdb::GridPtrVec grids = octreeToGrids(octree, options);
     stats.leaves = octree.bricks.size(); // one leaf per occupied brick
     for (auto& g : grids)
-        for (const auto& [k, v] : options.metadata) g->insertMeta(k, openvdb::StringMetadata(v));
+        for (const auto& [k, v] : options.metadata) g->insertMeta(validUtf8(k), openvdb::StringMetadata(validUtf8(v)));
     stats.buildMs = msSince(t0);
 
     t0 = Clock::now();
@@ -556,7 +619,7 @@ void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::str
     for (const auto& [name, octree] : named) {
         auto g = buildMaskGrid(octree);
         g->setName(name);
-        for (const auto& [k, v] : metadata) g->insertMeta(k, openvdb::StringMetadata(v));
+        for (const auto& [k, v] : metadata) g->insertMeta(validUtf8(k), openvdb::StringMetadata(validUtf8(v)));
         grids.push_back(g);
     }
     writeGrids(path, grids);
@@ -568,7 +631,7 @@ WriteStats writeVdbGrids(const std::string& path, const openvdb::GridPtrVec& gri
     checkWritable(path);
     openvdb::initialize();
     for (auto& g : grids)
-        for (const auto& [k, v] : metadata) g->insertMeta(k, openvdb::StringMetadata(v));
+        for (const auto& [k, v] : metadata) g->insertMeta(validUtf8(k), openvdb::StringMetadata(validUtf8(v)));
     WriteStats stats;
     const auto t0 = Clock::now();
     writeGrids(path, grids);
@@ -582,29 +645,98 @@ WriteStats writeVdbGrids(const std::string& path, const openvdb::GridPtrVec& gri
 namespace {
 VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName,
                       uint64_t maxTileBricks);
+openvdb::GridPtrVec readGridsChecked(std::istream& in, uint64_t size, const std::string& name,
+                                     const std::string& gridName);
+
+/// A .vdb path that can be read: it exists and is a regular file (a device
+/// such as /dev/zero reads as endless or empty bytes, a FIFO cannot seek).
+void checkReadable(const std::string& path)
+{
+    std::error_code ec;
+    const fs::file_status st = fs::status(path, ec);
+    if (!fs::exists(st)) throw Error(fmt::format("{}: no such file", path));
+    if (fs::is_directory(st)) throw Error(fmt::format("{}: is a folder, not a .vdb file", path));
+    if (!fs::is_regular_file(st)) {
+        const char* kind = fs::is_character_file(st) ? "a character device"
+                           : fs::is_block_file(st)   ? "a block device"
+                           : fs::is_fifo(st)         ? "a FIFO"
+                           : fs::is_socket(st)       ? "a socket"
+                                                     : "not a regular file";
+        throw Error(fmt::format("{}: is {}, not a .vdb file; svo reads .vdb files that are regular files", path, kind));
+    }
+}
+
+/// The size of a whole .vdb stream, rewound; refuses an empty one.
+uint64_t streamSize(std::istream& in, const std::string& name)
+{
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    in.seekg(0);
+    if (!in || size < 0) throw Error(fmt::format("{}: cannot read the file", name));
+    if (size == 0) throw Error(fmt::format("{}: the file is empty", name));
+    return uint64_t(size);
+}
 } // namespace
 
 VdbBricks readVdbBricks(const std::string& path, const std::string& gridName)
 {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw Error(fmt::format("{}: no such file", path));
-    if (fs::is_directory(path, ec)) throw Error(fmt::format("{}: is a folder, not a .vdb file", path));
+    checkReadable(path);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(fmt::format("{}: cannot open the file", path));
     return readVdbBricks(in, path, gridName);
+}
+
+openvdb::GridPtrVec readVdbGrids(const std::string& path, const std::string& gridName)
+{
+    checkReadable(path);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(fmt::format("{}: cannot open the file", path));
+    openvdb::initialize();
+    const uint64_t size = streamSize(in, path);
+    try {
+        return readGridsChecked(in, size, path, gridName);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(fmt::format("{}: truncated or damaged: {}", path, e.what()));
+    }
+}
+
+namespace {
+template <typename T> bool isOne(const T& v)
+{
+    if constexpr (std::is_same_v<T, bool>) return v;
+    else if constexpr (std::is_arithmetic_v<T>) return v == T(1);
+    else return false; // vectors: directions or colours, never a voxel set
+}
+} // namespace
+
+std::string valuesBeyondTopology(const openvdb::GridBase& grid)
+{
+    const std::string g = fmt::format("grid '{}' ({})", grid.getName(), grid.valueType());
+    if (grid.getGridClass() == openvdb::GRID_LEVEL_SET) return fmt::format("the distances of the level set {}", g);
+    std::string out;
+    const bool known = grid.apply<GridTypes>([&](const auto& typed) {
+        using GridT = std::decay_t<decltype(typed)>;
+        if constexpr (!std::is_same_v<GridT, openvdb::MaskGrid>) {
+            for (auto it = typed.cbeginValueOn(); it; ++it)
+                if (!isOne(*it)) {
+                    out = fmt::format("the values of {}", g);
+                    return;
+                }
+        }
+    });
+    if (!known) out = fmt::format("the values of {}", g);
+    return out;
 }
 
 VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::string& gridName,
                         uint64_t maxTileBricks)
 {
     openvdb::initialize();
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    in.seekg(0);
-    if (!in || size < 0) throw Error(fmt::format("{}: cannot read the file", name));
-    if (size == 0) throw Error(fmt::format("{}: the file is empty", name));
+    const uint64_t size = streamSize(in, name);
     try {
-        return readChecked(in, uint64_t(size), name, gridName, maxTileBricks);
+        return readChecked(in, size, name, gridName, maxTileBricks);
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
@@ -615,45 +747,71 @@ VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::st
 
 namespace {
 
-VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName,
-                      uint64_t maxTileBricks)
+/// Every grid of the file read and checked; the ones asked for (all when
+/// `all`, else the one named, or the first in name order) returned, an
+/// instance with its parent's tree.
+openvdb::GridPtrVec readSelected(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName,
+                                 bool all)
 {
     CheckedReader reader(in, size, name);
     reader.open();
 
-    // Every grid is read and checked, the one asked for kept (with its
-    // instance parent, whose tree it shares).
     std::vector<CheckedReader::Read> grids;
     if (reader.sequential()) grids = reader.readAll();
     else
         for (const auto& gd : reader.descriptors()) grids.push_back({gd, nullptr});
     if (grids.empty()) throw Error(fmt::format("{}: the file holds no grids", name));
-    // Without a name, the first grid in name order (as OpenVDB's File lists them).
-    const CheckedReader::Read* chosen = nullptr;
-    if (gridName.empty()) {
+    std::vector<const CheckedReader::Read*> chosen;
+    if (all) {
+        for (const auto& r : grids) chosen.push_back(&r);
+    } else if (gridName.empty()) {
+        // Without a name, the first grid in name order (as OpenVDB's File lists them).
+        const CheckedReader::Read* first = nullptr;
         for (const auto& r : grids)
-            if (!chosen || r.gd.gridName() < chosen->gd.gridName()) chosen = &r;
+            if (!first || r.gd.gridName() < first->gd.gridName()) first = &r;
+        chosen.push_back(first);
     } else {
+        const CheckedReader::Read* named = nullptr;
         for (const auto& r : grids)
-            if (!chosen && r.gd.gridName() == gridName) chosen = &r;
+            if (!named && r.gd.gridName() == gridName) named = &r;
         const std::string unique = GridDescriptor::stringAsUniqueName(gridName);
         for (const auto& r : grids)
-            if (!chosen && r.gd.uniqueName() == unique) chosen = &r; // "name[1]": the second grid of that name
+            if (!named && r.gd.uniqueName() == unique) named = &r; // "name[1]": the second grid of that name
+        if (!named) throw Error(fmt::format("{}: no grid named '{}'", name, gridName));
+        chosen.push_back(named);
     }
-    if (!chosen) throw Error(fmt::format("{}: no grid named '{}'", name, gridName));
-    const std::string parent = chosen->gd.isInstance() ? chosen->gd.instanceParentName() : std::string();
-    openvdb::GridBase::Ptr grid, parentGrid;
-    for (auto& r : grids) {
-        auto g = reader.sequential() ? r.grid : reader.read(r.gd);
-        if (&r == chosen) grid = g;
-        if (!parent.empty() && r.gd.uniqueName() == parent) parentGrid = g;
+    std::map<std::string, openvdb::GridBase::Ptr> byUniqueName;
+    std::vector<openvdb::GridBase::Ptr> read(grids.size());
+    for (size_t i = 0; i < grids.size(); ++i) {
+        read[i] = reader.sequential() ? grids[i].grid : reader.read(grids[i].gd);
+        byUniqueName[grids[i].gd.uniqueName()] = read[i];
     }
-    if (!parent.empty()) {
-        if (!parentGrid)
-            throw Error(fmt::format("{}: truncated or damaged: grid '{}' shares the tree of a grid '{}' the file lacks",
-                                    name, chosen->gd.gridName(), GridDescriptor::nameAsString(parent)));
-        grid->setTree(parentGrid->baseTreePtr());
+    openvdb::GridPtrVec out;
+    for (const auto* c : chosen) {
+        openvdb::GridBase::Ptr grid = read[size_t(c - grids.data())];
+        if (c->gd.isInstance()) {
+            const std::string parent = c->gd.instanceParentName();
+            auto it = byUniqueName.find(parent);
+            if (it == byUniqueName.end())
+                throw Error(fmt::format("{}: truncated or damaged: grid '{}' shares the tree of a grid '{}' the file lacks",
+                                        name, c->gd.gridName(), GridDescriptor::nameAsString(parent)));
+            grid->setTree(it->second->baseTreePtr());
+        }
+        out.push_back(grid);
     }
+    return out;
+}
+
+openvdb::GridPtrVec readGridsChecked(std::istream& in, uint64_t size, const std::string& name,
+                                     const std::string& gridName)
+{
+    return readSelected(in, size, name, gridName, gridName.empty());
+}
+
+VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName,
+                      uint64_t maxTileBricks)
+{
+    const openvdb::GridBase::Ptr grid = readSelected(in, size, name, gridName, false).front();
     GridBricks gb = gridToBricks(*grid, name, maxTileBricks);
     VdbBricks out;
     out.gridName = grid->getName();
@@ -661,6 +819,7 @@ VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, 
     out.grid = gb.grid;
     out.bricks = std::move(gb.bricks);
     out.tilesExpanded = gb.tilesExpanded;
+    out.valuesDropped = valuesBeyondTopology(*grid);
     return out;
 }
 

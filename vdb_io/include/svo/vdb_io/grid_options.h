@@ -6,6 +6,8 @@
 
 namespace svo {
 
+struct GridSpec;
+
 struct GridOptions {
     enum class Topology { Mask, Bool };
     Topology topology = Topology::Mask; ///< MaskGrid, or BoolGrid (true on active voxels)
@@ -27,6 +29,12 @@ inline constexpr double kMinVoxelSize = 1.4422495703074085e-05;
 /// Throws svo::Error, naming `what`, when `voxelSize` is below kMinVoxelSize:
 /// called before any work when the output is an OpenVDB grid.
 void checkVdbVoxelSize(double voxelSize, const std::string& what);
+
+/// checkVdbVoxelSize, and that OpenVDB can hold the grid's whole transform:
+/// a grid far from the origin for its voxel size (a mesh 1e15 away) gives a
+/// matrix OpenVDB refuses to copy ("Non-zero scale values required"), which
+/// every write does. Throws svo::Error naming `what`; call before any work.
+void checkVdbGrid(const GridSpec& grid, const std::string& what);
 } // namespace vdb
 
 } // namespace svo

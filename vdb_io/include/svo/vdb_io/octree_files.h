@@ -50,6 +50,7 @@ struct LoadedOctree {
     enum class Kind { Svo, Vdb, Mesh } kind = Kind::Svo;
     std::string gridName, gridType; ///< .vdb input: the grid read
     uint64_t tilesExpanded = 0;     ///< .vdb input: active tiles turned into bricks
+    std::string valuesDropped;      ///< .vdb input: what the octree does not hold of the grid (vdb::valuesBeyondTopology)
     std::optional<TriangleMesh> mesh; ///< mesh input: the mesh
     std::vector<StageTime> stages;  ///< reading, building or voxelizing
 };

@@ -16,6 +16,13 @@ namespace svo::vdb {
 /// The grid type that carries the topology.
 using Topology = GridOptions::Topology;
 
+/// The text as valid UTF-8, for string metadata (python3-openvdb decodes it
+/// and raises UnicodeDecodeError otherwise): well-formed UTF-8 passes
+/// unchanged, every other byte becomes \xNN (two upper-case hex digits), as
+/// the messages write bytes of a file name. The writers below apply it to
+/// the metadata they are given (names and values).
+std::string validUtf8(const std::string& text);
+
 /// Which grids (GridOptions), and string metadata stored on every grid
 /// (source, backend, renderer, ...).
 struct WriteOptions : GridOptions {
@@ -61,6 +68,9 @@ struct VdbBricks {
     GridSpec grid;
     std::vector<std::pair<uint64_t, Brick>> bricks;
     uint64_t tilesExpanded = 0;
+    /// What the bricks do not hold of the grid (valuesBeyondTopology), empty
+    /// when its active voxels say everything.
+    std::string valuesDropped;
 };
 VdbBricks readVdbBricks(const std::string& path, const std::string& gridName = {});
 /// The same from a stream holding a whole .vdb file (seekable, from its
@@ -68,5 +78,17 @@ VdbBricks readVdbBricks(const std::string& path, const std::string& gridName = {
 /// than `maxTileBricks` bricks are refused (see gridToBricks).
 VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::string& gridName = {},
                         uint64_t maxTileBricks = kMaxTileBricks);
+
+/// Every grid of a .vdb file, or only the one named, read and checked as
+/// readVdbBricks reads them, as stored: type, class, transform, metadata and
+/// values (a grid that shares another's tree gets that tree). Throws
+/// svo::Error naming the path.
+openvdb::GridPtrVec readVdbGrids(const std::string& path, const std::string& gridName = {});
+
+/// What a grid holds beyond which voxels are active, for a message ("the
+/// distances of the level set grid 'surface' (Tree_float_5_4_3)"); empty when
+/// nothing: a MaskGrid, or a grid that is not a level set whose active
+/// values are all true or 1 (svo's own BoolGrid and fog volume).
+std::string valuesBeyondTopology(const openvdb::GridBase& grid);
 
 } // namespace svo::vdb
