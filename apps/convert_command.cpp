@@ -7,6 +7,7 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "library_call.h"
+#include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 
 namespace svo::app {
@@ -25,6 +26,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
         throw Error(fmt::format("{}: svo convert reads .vdb and .svo files; voxelize meshes with svo voxelize", a.input));
     checkOutputPath(a.output);
     checkOutputs({a.input}, {a.output});
+    OutputBatch outputs({a.output}); // in place at the very end (atomic_file.h)
     const GridOptions grids = a.out.gridOptions();
     if (outputFormat(a.output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", a.output));
@@ -44,6 +46,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
     fmt::print("\n  {:<20} {:>10} {:>10}\n", "stage", "GPU ms", "wall ms");
     printStages(lo.stages);
     printStages(written.stages);
+    outputs.commit();
 }
 
 } // namespace

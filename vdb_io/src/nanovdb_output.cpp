@@ -34,8 +34,7 @@ uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids)
             throw Error(fmt::format("{}: cannot write the NanoVDB file: {}", path, e.what()));
         }
     });
-    std::error_code ec;
-    return std::filesystem::file_size(path, ec);
+    return outputBytes(path); // the staged temporary while an OutputBatch holds it
 }
 
 } // namespace svo::vdb
