@@ -512,6 +512,17 @@ TEST_F(Cli, TheXServerSvoStartedDiesWhenSvoIsKilled)
     const auto [servers, socket] = serverStartedBy(svo.pid, before);
     ASSERT_EQ(servers.size(), 1u) << "svo vtk --png did not start Xvfb";
     ASSERT_FALSE(socket.empty()) << "Xvfb never opened its socket";
+    // Killed only once the server has told svo its display (and closed that
+    // pipe): killed earlier, the server would die of SIGPIPE on the write anyway.
+    std::ifstream cmdline("/proc/" + std::to_string(servers[0]) + "/cmdline");
+    std::string arg, displayFd;
+    for (bool next = false; std::getline(cmdline, arg, '\0'); next = arg == "-displayfd")
+        if (next) displayFd = arg;
+    ASSERT_FALSE(displayFd.empty()) << "no -displayfd in Xvfb's command line";
+    const std::string pipeEnd = "/proc/" + std::to_string(servers[0]) + "/fd/" + displayFd;
+    for (int i = 0; i < 1000 && fs::exists(fs::symlink_status(pipeEnd)); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ASSERT_FALSE(fs::exists(fs::symlink_status(pipeEnd))) << "Xvfb never wrote its display";
     kill(svo.pid, SIGKILL);
     EXPECT_EQ(waitFor(svo.pid), -1);
     const bool gone = goneSoon(servers[0]);
