@@ -15,6 +15,7 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "library_call.h"
+#include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/vdb_io/octree_files.h"
@@ -67,6 +68,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
         throw Error(fmt::format("{}: svo convert reads .vdb and .svo files; voxelize meshes with svo voxelize", a.input));
     checkOutputPath(a.output);
     checkOutputs({a.input}, {a.output});
+    OutputBatch outputs({a.output}); // in place at the very end (atomic_file.h)
     const GridOptions grids = a.out.gridOptions();
     const bool toSvo = outputFormat(a.output) == OutputFormat::Svo;
     if (toSvo && (cmd.count("--fog") || cmd.count("--topology")))
@@ -102,6 +104,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
     fmt::print("\n  {:<20} {:>10} {:>10}\n", "stage", "GPU ms", "wall ms");
     printStages(lo.stages);
     printStages(written.stages);
+    outputs.commit();
 }
 
 } // namespace

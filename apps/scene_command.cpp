@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "cli_options.h"
+#include "svo/core/atomic_file.h"
 #include "svo/core/default_scene.h"
 #include "svo/core/mesh_io.h"
 
@@ -21,9 +22,11 @@ void runScene(const SceneArgs& a)
     const TriangleMesh mesh = a.name == "cornell"   ? cornellBox()
                               : a.name == "spheres" ? sphereGrid()
                                                     : icosphere({0, 0, 0}, 1.0, a.level);
+    OutputBatch outputs({a.output}); // in place at the very end (atomic_file.h)
     writeMesh(a.output, mesh);
     fmt::print("svo scene: {} ({} triangles, {} vertices) -> {}\n", mesh.source, thousands(mesh.triangles.size()),
                thousands(mesh.positions.size()), a.output);
+    outputs.commit();
 }
 
 } // namespace

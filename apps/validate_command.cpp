@@ -93,7 +93,8 @@ void printCases(const char* what, const std::vector<validate::LevelSetCase>& cas
 }
 
 /// svo validate --sdf: the level set against CGAL, and beside OpenVDB's.
-void runValidateSdf(const ValidateArgs& a, const TriangleMesh& mesh, const GridSpec& grid, const std::string& scene)
+void runValidateSdf(const ValidateArgs& a, const TriangleMesh& mesh, const GridSpec& grid, const std::string& scene,
+                    OutputBatch& outputs)
 {
     const LevelSetOptions ls = a.levelSet.levelSetOptions();
     LibraryCall call(a.backend, "computing the distance field");
@@ -172,6 +173,7 @@ void runValidateSdf(const ValidateArgs& a, const TriangleMesh& mesh, const GridS
 
     if (!a.json.empty())
         writeJson(a.json, validate::levelSetReportJson(report), scene, mesh, grid, stats, gpuMs);
+    outputs.commit(); // the reports are written whether it passed or not
     if (!report.passed) throw Failure("validation failed: " + report.reason);
     fmt::print("  {:<12} passed: distances within {:.3g} voxels, {}, no band voxel missing or extra\n", "verdict",
                c.tolerance, c.signChecked ? "CGAL's signs" : "signs not checked (open mesh)");
@@ -182,6 +184,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     checkSdfArgs(a, cmd);
     const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
     checkOutputs({a.mesh}, {a.json, a.errors}); // before any work
+    OutputBatch outputs({a.json, a.errors});     // both in place together, or neither
     TriangleMesh mesh;
     {
         Progress p("loading " + (a.mesh.empty() ? std::string("built-in scene") : a.mesh));
@@ -192,7 +195,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     if (!a.errors.empty()) checkWritable(a.errors);
     const GridSpec grid = makeGrid(mesh, request);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
-    if (a.sdf) return runValidateSdf(a, mesh, grid, scene);
+    if (a.sdf) return runValidateSdf(a, mesh, grid, scene, outputs);
 
     // The voxelization under test, and the voxel list it was built from (the
     // same run, read back apart), to check every level of the octree against.
@@ -286,6 +289,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
 
     if (!a.json.empty())
         writeJson(a.json, validate::reportJson(report), scene, mesh, grid, stats, gpuMs);
+    outputs.commit(); // the reports are written whether it passed or not
     if (!report.passed) throw Failure("validation failed: " + report.reason);
     fmt::print("  {:<12} passed: nothing missed{}\n", "verdict", holes.applies ? ", no leak" : "");
 }
@@ -300,7 +304,10 @@ void addValidateCommand(CLI::App& app)
                     "--mode thin): nothing missed, no holes; with --sdf, a level set against CGAL's distances and "
                     "sides and OpenVDB's meshToLevelSet (exit 0 pass, 3 fail, 1 error)");
     cmd->add_option("mesh", args->mesh,
-                    fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()));
+                    fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()))
+        ->check([](const std::string& v) { return v.empty() ? "the mesh path is empty; give a mesh file, or no mesh for "
+                                                             "the built-in Cornell box" : ""; },
+                "MESH");
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
     addModeOption(*cmd, args->backend);

@@ -40,6 +40,12 @@ struct VoxelizeArgs {
     bool field() const { return sdf || udf || fill == "solid"; }
 };
 
+/// An empty mesh path is a mistake (an unset variable, say), not the built-in scene.
+std::string nonEmptyMeshPath(const std::string& value)
+{
+    return value.empty() ? "the mesh path is empty; give a mesh file, or no mesh for the built-in Cornell box" : "";
+}
+
 double peakRssMb()
 {
     rusage ru{};
@@ -227,6 +233,9 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
 
     // No output may be the input or another output: refused before any work.
     checkOutputs({a.mesh}, {a.output, a.json});
+    // Every output is finished in a temporary and all are put in place together
+    // at the end: a failure or an interrupt before then replaces none of them.
+    OutputBatch outputs({a.output, a.json});
     LibraryCall call(a.backend, a.fill == "solid" ? "filling the solid"
                                 : a.field()       ? "computing the distance field"
                                                   : "voxelizing");
@@ -257,12 +266,16 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
                                     output, output));
     }
     if (!timingOnly) checkOutputPath(output);
+    outputs.add(output);
     if (!a.json.empty()) checkWritable(a.json);
     const GridSpec grid = makeGrid(mesh, request);
     // An OpenVDB output must be able to hold the voxel size: refused before the GPU works.
     if (!timingOnly && outputFormat(output) != OutputFormat::Svo) vdb::checkVdbGrid(grid, output);
     if (device.valid()) device.get();
-    if (a.field()) return runField(a, call, mesh, load, scene, grid, request, output, timingOnly, start);
+    if (a.field()) {
+        runField(a, call, mesh, load, scene, grid, request, output, timingOnly, start);
+        return outputs.commit();
+    }
     const GridOptions grids = a.out.gridOptions();
     if (!timingOnly && outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
@@ -355,6 +368,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
             {"total_wall_ms", wall}};
         writeFileAtomically(a.json, report.dump(2) + "\n");
     }
+    outputs.commit();
 }
 
 } // namespace
@@ -365,7 +379,8 @@ void addVoxelizeCommand(CLI::App& app)
     CLI::App* cmd = app.add_subcommand(
         "voxelize", "Voxelize a mesh (default: the built-in Cornell box) into a .vdb or .nvdb grid or a .svo octree");
     cmd->add_option("mesh", args->mesh,
-                    fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()));
+                    fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()))
+        ->check(nonEmptyMeshPath, "MESH");
     addOutputPath(*cmd, "-o,--output", args->output, "Output .vdb, .nvdb (NanoVDB) or .svo (default: <scene>.vdb)");
     addOutputPath(*cmd, "--json", args->json, "Also write the summary (counts, bytes, stage times) as JSON");
     addGridOptions(*cmd, args->resolution, args->voxelSize);

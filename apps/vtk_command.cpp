@@ -67,6 +67,7 @@ void runVtk(const VtkArgs& a, const CLI::App& cmd)
         requireDisplay(); // before loading and voxelizing
     }
     const VtkExport& vtk = vtkExport(); // before any work: a missing module is an error up front
+    OutputBatch outputs({a.output, a.png}); // both in place together at the end, or neither
     LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo =
         loadOctree(call.voxelizer, a.input, a.gridName, gridRequest(cmd, a.resolution, a.voxelSize), call.options);
@@ -94,6 +95,7 @@ void runVtk(const VtkArgs& a, const CLI::App& cmd)
         if (ext == ".vtp") vtk.writeNodeOutlines(a.output, lo.octree, levels);
         fmt::print("  {:<8} {}\n", "output", a.output);
     }
+    outputs.commit();
 }
 
 } // namespace

@@ -8,13 +8,15 @@
 namespace svo::app {
 
 /// Throws the error XDisplay would, without starting anything: for checking
-/// before long work.
+/// before long work (a DISPLAY that does not open, with no Xvfb to stand in).
 void requireDisplay();
 
 class XDisplay {
 public:
-    /// Uses $DISPLAY when set; otherwise starts Xvfb on a free display and sets
-    /// $DISPLAY. Throws svo::Error saying what to install when neither works.
+    /// Uses $DISPLAY when it opens; otherwise (unset, or no server there, with
+    /// a warning) starts Xvfb on a free display and sets $DISPLAY. Throws
+    /// svo::Error in one line saying what to do when neither works. The
+    /// server dies with svo, even with svo killed by SIGKILL.
     XDisplay();
     ~XDisplay();
     XDisplay(const XDisplay&) = delete;
@@ -26,6 +28,7 @@ private:
     std::string name_;
     pid_t pid_ = -1;
     int cleanupSlot_ = -1; ///< exit_cleanup.h: an interrupt stops the server too
+    std::string previous_; ///< a DISPLAY that did not open, restored afterwards
 };
 
 } // namespace svo::app

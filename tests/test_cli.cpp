@@ -12,6 +12,10 @@
 #include <csignal>
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -29,10 +33,10 @@ struct Run {
     std::string out;
 };
 
-/// `env`: "NAME=value ..." for the command's environment.
-Run runSvo(const std::string& args, const std::string& env = "")
+/// A shell command's exit status and output (stdout and stderr).
+Run runShell(const std::string& command)
 {
-    const std::string cmd = env + (env.empty() ? "" : " ") + std::string(SVO_EXE) + " " + args + " 2>&1";
+    const std::string cmd = command + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     std::string out;
     std::array<char, 4096> buf;
@@ -40,6 +44,12 @@ Run runSvo(const std::string& args, const std::string& env = "")
     while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
     const int status = pclose(p);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+/// `env`: "NAME=value ..." for the command's environment.
+Run runSvo(const std::string& args, const std::string& env = "")
+{
+    return runShell(env + (env.empty() ? "" : " ") + std::string(SVO_EXE) + " " + args);
 }
 
 /// Another program's output (stdout and stderr).
@@ -112,6 +122,64 @@ std::vector<pid_t> childrenNamed(pid_t pid, const std::string& name)
     }
     return out;
 }
+
+/// The X sockets there are now.
+std::set<std::string> xSockets()
+{
+    std::set<std::string> names;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator("/tmp/.X11-unix", ec)) names.insert(e.path().string());
+    return names;
+}
+
+/// Waits until the Xvfb that svo (`pid`) starts is up: its socket appears
+/// (not among `before`). The socket is the one that server listens on (other
+/// tests may start X servers at the same time): a path of /proc/net/unix
+/// whose inode is among the server's open files. Returns the Xvfb children
+/// of `pid` seen and the socket (empty if none came up).
+std::pair<std::vector<pid_t>, std::string> serverStartedBy(pid_t pid, const std::set<std::string>& before)
+{
+    auto listensOn = [](pid_t server, const std::string& socketPath) {
+        std::ifstream table("/proc/net/unix");
+        std::string line, inode;
+        while (std::getline(table, line))
+            if (line.size() > socketPath.size() && line.compare(line.size() - socketPath.size(), socketPath.size(), socketPath) == 0) {
+                std::istringstream fields(line);
+                std::string f;
+                for (int k = 0; k < 7 && fields >> f; ++k) inode = f; // the 7th field is the inode
+            }
+        if (inode.empty()) return false;
+        std::error_code ec;
+        for (const auto& fd : fs::directory_iterator("/proc/" + std::to_string(server) + "/fd", ec))
+            if (fs::read_symlink(fd.path(), ec).string() == "socket:[" + inode + "]") return true;
+        return false;
+    };
+    std::vector<pid_t> servers;
+    std::string socket;
+    for (int i = 0; i < 20000 && socket.empty(); ++i) {
+        if (servers.empty()) servers = childrenNamed(pid, "Xvfb");
+        for (const auto& s : xSockets())
+            if (!before.count(s) && servers.size() == 1 && listensOn(servers[0], s)) socket = s;
+        if (socket.empty()) std::this_thread::sleep_for(std::chrono::microseconds(500));
+        if (waitpid(pid, nullptr, WNOHANG) != 0) break;
+    }
+    return {servers, socket};
+}
+
+/// Whether process `pid` is gone (or a zombie) within two seconds.
+bool goneSoon(pid_t pid)
+{
+    for (int i = 0; i < 200; ++i) {
+        std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+        std::string line;
+        if (!std::getline(stat, line) || line.find(") Z") != std::string::npos) return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+}
+
+/// The number of lines in `text`.
+size_t lineCount(const std::string& text) { return size_t(std::count(text.begin(), text.end(), '\n')); }
 
 /// "text {} text" with the number in place of {}.
 std::string fmt(const std::string& pattern, size_t n)
@@ -418,58 +486,226 @@ TEST_F(Cli, InterruptStopsTheXServerSvoStarted)
 {
     if (system("command -v Xvfb >/dev/null 2>&1") != 0) GTEST_SKIP() << "Xvfb is not installed";
     const std::string mesh = write("m.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
-    auto sockets = [] {
-        std::set<std::string> names;
-        std::error_code ec;
-        for (const auto& e : fs::directory_iterator("/tmp/.X11-unix", ec)) names.insert(e.path().string());
-        return names;
-    };
-    const auto before = sockets();
+    const auto before = xSockets();
     Background svo = startSvo({"vtk", mesh, "-r", "256", "--png", path("m.png")}, path("log.txt"), true);
-    // Wait until the server svo started is up: its socket appears. The
-    // socket is the one that server listens on (other tests may start X
-    // servers at the same time): a path of /proc/net/unix whose inode is
-    // among the server's open files.
-    auto listensOn = [](pid_t pid, const std::string& socketPath) {
-        std::ifstream table("/proc/net/unix");
-        std::string line, inode;
-        while (std::getline(table, line))
-            if (line.size() > socketPath.size() && line.compare(line.size() - socketPath.size(), socketPath.size(), socketPath) == 0) {
-                std::istringstream fields(line);
-                std::string f;
-                for (int k = 0; k < 7 && fields >> f; ++k) inode = f; // the 7th field is the inode
-            }
-        if (inode.empty()) return false;
-        std::error_code ec;
-        for (const auto& fd : fs::directory_iterator("/proc/" + std::to_string(pid) + "/fd", ec))
-            if (fs::read_symlink(fd.path(), ec).string() == "socket:[" + inode + "]") return true;
-        return false;
-    };
-    std::vector<pid_t> servers;
-    std::string socket;
-    for (int i = 0; i < 20000 && socket.empty(); ++i) {
-        if (servers.empty()) servers = childrenNamed(svo.pid, "Xvfb");
-        for (const auto& s : sockets())
-            if (!before.count(s) && servers.size() == 1 && listensOn(servers[0], s)) socket = s;
-        if (socket.empty()) std::this_thread::sleep_for(std::chrono::microseconds(500));
-        if (waitpid(svo.pid, nullptr, WNOHANG) != 0) break;
-    }
+    const auto [servers, socket] = serverStartedBy(svo.pid, before);
     ASSERT_EQ(servers.size(), 1u) << "svo vtk --png did not start Xvfb";
     ASSERT_FALSE(socket.empty()) << "Xvfb never opened its socket";
     kill(svo.pid, SIGINT);
     EXPECT_EQ(waitFor(svo.pid), 130);
     // The server was ours: once svo has exited it must be gone, with its socket.
-    bool gone = false;
-    for (int i = 0; i < 200 && !gone; ++i) {
-        std::ifstream stat("/proc/" + std::to_string(servers[0]) + "/stat");
-        std::string line;
-        gone = !std::getline(stat, line) || line.find(") Z") != std::string::npos;
-        if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    const bool gone = goneSoon(servers[0]);
     EXPECT_TRUE(gone) << "Xvfb " << servers[0] << " outlived svo";
     if (!gone) kill(servers[0], SIGTERM);
     EXPECT_FALSE(fs::exists(socket)) << socket << " left behind";
     expectOnly({"m.off", "log.txt"});
+}
+
+/// Killed outright (SIGKILL: no clean-up runs), svo still takes its Xvfb
+/// with it: the server does not live on under init.
+TEST_F(Cli, TheXServerSvoStartedDiesWhenSvoIsKilled)
+{
+    if (system("command -v Xvfb >/dev/null 2>&1") != 0) GTEST_SKIP() << "Xvfb is not installed";
+    const std::string mesh = write("m.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    const auto before = xSockets();
+    Background svo = startSvo({"vtk", mesh, "-r", "256", "--png", path("m.png")}, path("log.txt"), true);
+    const auto [servers, socket] = serverStartedBy(svo.pid, before);
+    ASSERT_EQ(servers.size(), 1u) << "svo vtk --png did not start Xvfb";
+    ASSERT_FALSE(socket.empty()) << "Xvfb never opened its socket";
+    // Killed only once the server has told svo its display (and closed that
+    // pipe): killed earlier, the server would die of SIGPIPE on the write anyway.
+    std::ifstream cmdline("/proc/" + std::to_string(servers[0]) + "/cmdline");
+    std::string arg, displayFd;
+    for (bool next = false; std::getline(cmdline, arg, '\0'); next = arg == "-displayfd")
+        if (next) displayFd = arg;
+    ASSERT_FALSE(displayFd.empty()) << "no -displayfd in Xvfb's command line";
+    const std::string pipeEnd = "/proc/" + std::to_string(servers[0]) + "/fd/" + displayFd;
+    for (int i = 0; i < 1000 && fs::exists(fs::symlink_status(pipeEnd)); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ASSERT_FALSE(fs::exists(fs::symlink_status(pipeEnd))) << "Xvfb never wrote its display";
+    kill(svo.pid, SIGKILL);
+    EXPECT_EQ(waitFor(svo.pid), -1);
+    const bool gone = goneSoon(servers[0]);
+    EXPECT_TRUE(gone) << "Xvfb " << servers[0] << " outlived svo killed by SIGKILL";
+    if (!gone) kill(servers[0], SIGTERM);
+    for (int i = 0; i < 200 && fs::exists(socket); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    EXPECT_FALSE(fs::exists(socket)) << socket << " left behind"; // Xvfb removes it on SIGTERM
+}
+
+/// A DISPLAY with no server behind it: VTK would print a page of log and
+/// abort (exit 134). svo renders through its own Xvfb instead, with one
+/// warning, or, with no Xvfb either, fails in one line before any work.
+TEST_F(Cli, ADisplayThatDoesNotOpenFallsBackToXvfbOrFailsInOneLine)
+{
+    const std::string mesh = write("m.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    const std::string nowhere = "DISPLAY=:4093"; // -displayfd picks free displays from :0 up
+    const auto none = runSvo("vtk " + mesh + " -r 16 --png " + path("a.png"), nowhere + " PATH=/nonexistent");
+    EXPECT_EQ(none.code, 1) << none.out;
+    EXPECT_EQ(lineCount(none.out), 1u) << none.out;
+    EXPECT_NE(none.out.find("DISPLAY=:4093 cannot be opened"), std::string::npos) << none.out;
+    EXPECT_FALSE(fs::exists(path("a.png")));
+    if (system("command -v Xvfb >/dev/null 2>&1") != 0) GTEST_SKIP() << "Xvfb is not installed";
+    const auto r = runSvo("vtk " + mesh + " -r 16 --png " + path("b.png"), nowhere);
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("svo: warning: DISPLAY=:4093 cannot be opened; rendering through an Xvfb"), std::string::npos)
+        << r.out;
+    EXPECT_GT(fs::exists(path("b.png")) ? fs::file_size(path("b.png")) : 0u, 100u);
+    expectOnly({"m.off", "b.png"});
+}
+
+/// Interrupted at a fixed point (SVO_TEST_SIGNAL raises SIGTERM there) after
+/// the first of two outputs is finished: neither earlier file is replaced, and
+/// nothing is left behind. Interrupted during the commit, the run completes.
+TEST_F(Cli, AnInterruptAfterTheFirstOutputReplacesNone)
+{
+    const std::string mesh = write("m.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    const std::string vdb = path("out.vdb"), json = path("out.json");
+    const std::string args = "voxelize " + mesh + " -r 16 --backend cpu -o " + vdb + " --json " + json;
+    for (const char* point : {"staged:1", "staged:2"}) {
+        write("out.vdb", "earlier vdb");
+        write("out.json", "earlier json");
+        const auto r = runSvo(args, std::string("SVO_TEST_SIGNAL=") + point);
+        EXPECT_EQ(r.code, 143) << point << "\n" << r.out;
+        EXPECT_NE(r.out.find("svo: terminated"), std::string::npos) << r.out;
+        std::ifstream a(vdb), b(json);
+        EXPECT_EQ(std::string((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>()), "earlier vdb") << point;
+        EXPECT_EQ(std::string((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>()), "earlier json") << point;
+        expectOnly({"m.off", "out.vdb", "out.json"});
+    }
+    // A signal between the two renames: the commit goes on, and the run succeeds.
+    const auto r = runSvo(args, "SVO_TEST_SIGNAL=renamed:1");
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_GT(fs::file_size(vdb), 100u);
+    EXPECT_GT(fs::file_size(json), 100u);
+    expectOnly({"m.off", "out.vdb", "out.json"});
+
+    // svo vtk: the picture is finished first, then the .vtu.
+    if (system("command -v Xvfb >/dev/null 2>&1") != 0) GTEST_SKIP() << "Xvfb is not installed";
+    write("x.vtu", "earlier vtu");
+    write("y.png", "earlier png");
+    const auto v = runSvo("vtk " + mesh + " -r 16 -o " + path("x.vtu") + " --png " + path("y.png"),
+                          "DISPLAY= SVO_TEST_SIGNAL=staged:1");
+    EXPECT_EQ(v.code, 143) << v.out;
+    std::ifstream vtu(path("x.vtu")), png(path("y.png"));
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(vtu)), std::istreambuf_iterator<char>()), "earlier vtu");
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(png)), std::istreambuf_iterator<char>()), "earlier png");
+    expectOnly({"m.off", "out.vdb", "out.json", "x.vtu", "y.png"});
+}
+
+/// The second output fails (the file-size limit stands in for a full disk:
+/// the .svo fits under it, the JSON does not): the first, already finished,
+/// is not put in place either, and the message says nothing was written.
+TEST_F(Cli, AFailingSecondOutputLeavesTheFirstUnreplaced)
+{
+    const std::string tri = write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string args = "voxelize " + tri + " -r 4 --backend cpu";
+    // Sizes first: the .svo must fit under the limit and the JSON must not.
+    ASSERT_EQ(runSvo(args + " -o " + path("free.svo") + " --json " + path("free.json")).code, 0);
+    ASSERT_LT(fs::file_size(path("free.svo")), 1024u);
+    ASSERT_GT(fs::file_size(path("free.json")), 1024u);
+    write("out.svo", "earlier svo");
+    write("out.json", "earlier json");
+    // SIGXFSZ ignored, so that a write past the limit fails (EFBIG) as on a full disk.
+    const auto r = runShell("bash -c \"trap '' XFSZ; ulimit -f 1; exec " + std::string(SVO_EXE) + " " + args + " -o " +
+                            path("out.svo") + " --json " + path("out.json") + "\"");
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find(path("out.json")), std::string::npos) << r.out;
+    std::ifstream a(path("out.svo")), b(path("out.json"));
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>()), "earlier svo");
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>()), "earlier json");
+    expectOnly({"tri.obj", "free.svo", "free.json", "out.svo", "out.json"});
+}
+
+/// Outputs that are not regular files are never replaced by one: a link is
+/// followed (the file it names is replaced, the link stays), a FIFO or a
+/// character device is written through, /dev/stdout writes to svo's standard
+/// output wherever it goes, and a socket is refused in one line. As root, a
+/// rename would replace /dev/null itself: a private copy of the device is
+/// tried first, so that a regression fails there and never reaches /dev/null.
+TEST_F(Cli, OutputsThatAreNotFilesAreWrittenThroughOrRefusedNeverReplaced)
+{
+    const std::string mesh = write("m.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    const std::string run = "voxelize " + mesh + " -r 16 --backend cpu -o ";
+    auto text = [](const std::string& file) {
+        std::ifstream in(file);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    // A link to a file: the file is replaced, the link stays; a dangling link creates its target.
+    fs::create_directory(path("real"));
+    write("real/target.vdb", "earlier");
+    fs::create_symlink(path("real/target.vdb"), path("link.vdb"));
+    fs::create_symlink("made.json", path("dangling.json")); // relative to the link's folder
+    auto r = runSvo(run + path("link.vdb") + " --json " + path("dangling.json"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(fs::is_symlink(path("link.vdb")));
+    EXPECT_GT(fs::file_size(path("real/target.vdb")), 100u);
+    EXPECT_TRUE(fs::is_symlink(path("dangling.json")));
+    EXPECT_NE(text(path("made.json")).find("\"voxels\""), std::string::npos);
+    EXPECT_EQ(std::distance(fs::directory_iterator(path("real")), fs::directory_iterator()), 1); // no temporary
+    // A FIFO: written through to its reader.
+    ASSERT_EQ(mkfifo(path("pipe.vdb").c_str(), 0644), 0);
+    ASSERT_EQ(system(("timeout 60 cat " + path("pipe.vdb") + " > " + path("received.vdb") + " &").c_str()), 0);
+    r = runSvo(run + path("pipe.vdb"));
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(fs::is_fifo(path("pipe.vdb")));
+    for (int i = 0; i < 500 && runSvo("info " + path("received.vdb")).code != 0; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10)); // until cat has it all
+    EXPECT_EQ(runSvo("info " + path("received.vdb")).code, 0);
+    // A socket is refused, before any work.
+    const int sock = socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    std::snprintf(address.sun_path, sizeof address.sun_path, "%s", path("sock.vdb").c_str());
+    ASSERT_EQ(bind(sock, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    r = runSvo(run + path("sock.vdb"));
+    close(sock);
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(lineCount(r.out), 1u) << r.out;
+    EXPECT_NE(r.out.find("is a socket"), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::is_socket(path("sock.vdb")));
+    // Character devices: a private /dev/null first (root only may make one), then /dev/null itself.
+    const bool privateNull = mknod(path("null").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0;
+    for (const std::string& device : {path("null"), std::string("/dev/null")}) {
+        if (device != "/dev/null" && !privateNull) continue;
+        r = runSvo(run + path("a.vdb") + " --json " + device);
+        EXPECT_EQ(r.code, 0) << device << "\n" << r.out;
+        ASSERT_TRUE(fs::is_character_file(device)) << device << " was replaced";
+    }
+    // /dev/stdout, through a private link first: the JSON comes out on stdout, after the summary.
+    fs::create_symlink("/proc/self/fd/1", path("stdout"));
+    for (const std::string& out : {path("stdout"), std::string("/dev/stdout")}) {
+        r = runSvo(run + path("b.vdb") + " --json " + out);
+        EXPECT_EQ(r.code, 0) << out << "\n" << r.out;
+        ASSERT_TRUE(fs::is_symlink(out)) << out << " was replaced";
+        const auto summary = r.out.find("svo voxelize"), json = r.out.find("\"voxels\"");
+        EXPECT_TRUE(summary != std::string::npos && json != std::string::npos && summary < json) << out << "\n" << r.out;
+    }
+    // And through a link to a FIFO or a device, with -o.
+    fs::create_symlink(privateNull ? path("null") : std::string("/dev/null"), path("null.vdb"));
+    r = runSvo(run + path("null.vdb"));
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(fs::is_symlink(path("null.vdb")));
+    EXPECT_TRUE(fs::is_character_file(path("null.vdb")));
+    // /dev/stdout redirected to a file: svo writes through its own stdout, so the file holds the summary, then the JSON.
+    r = runShell(std::string(SVO_EXE) + " " + run + path("c.vdb") + " --json /dev/stdout > " + path("all.txt"));
+    EXPECT_EQ(r.code, 0) << r.out;
+    const std::string all = text(path("all.txt"));
+    const auto summary = all.find("svo voxelize"), json = all.find("\"voxels\"");
+    EXPECT_TRUE(summary != std::string::npos && json != std::string::npos && summary < json) << all;
+    EXPECT_TRUE(fs::is_symlink("/dev/stdout"));
+}
+
+/// An empty mesh path (an unset variable in a script) is an error, not the
+/// built-in Cornell box that no mesh at all gives.
+TEST_F(Cli, AnEmptyMeshPathIsAnErrorNotTheBuiltInScene)
+{
+    for (const std::string& args : {"voxelize '' -r 16 -o " + path("x.vdb"), "validate '' -r 16 --json " + path("x.json")}) {
+        const auto r = runSvo(args);
+        EXPECT_EQ(r.code, 1) << args << "\n" << r.out;
+        EXPECT_EQ(lineCount(r.out), 1u) << args << "\n" << r.out;
+        EXPECT_NE(r.out.find("the mesh path is empty"), std::string::npos) << args << "\n" << r.out;
+    }
+    expectOnly({});
 }
 
 /// The small ways to lose a file or be misled: each works as expected or is refused.
@@ -667,7 +903,6 @@ TEST_F(Cli, ValidateSdfPassesOnClosedAndOpenMeshesAndRefusesMisuse)
 
 namespace {
 
-size_t lineCount(const std::string& text) { return size_t(std::count(text.begin(), text.end(), '\n')); }
 
 TEST_F(Cli, ViewScreenshotWritesAPngOfTheAskedSize)
 {

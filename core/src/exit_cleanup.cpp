@@ -32,6 +32,11 @@ struct ChildSlot {
 TemporarySlot temporaries[kSlots];
 ChildSlot children[kSlots];
 
+// Whether an interrupt may still end the run: the first of the signal handler
+// and finishWithoutInterrupts() to leave kRunning decides.
+enum : int { kRunning = 0, kInterrupted = 1, kFinishing = 2 };
+std::atomic<int> phase{kRunning};
+
 template <typename Slot>
 int claim(Slot* slots) noexcept
 {
@@ -83,6 +88,11 @@ void removeLeftovers(ChildSlot& c) noexcept
 
 extern "C" void onInterrupt(int sig)
 {
+    int expected = kRunning;
+    if (!phase.compare_exchange_strong(expected, kInterrupted)) {
+        if (expected == kFinishing) return; // the outputs are being committed: the run ends as it is
+        for (;;) ::pause();                  // another thread's handler is cleaning up and exits
+    }
     say(sig == SIGINT ? "svo: interrupted (SIGINT)\n" : "svo: terminated (SIGTERM)\n");
     cleanUpForExit();
     ::_exit(128 + sig);
@@ -150,6 +160,19 @@ void cleanUpForExit() noexcept
             ::nanosleep(&tenMs, nullptr);
         }
     }
+}
+
+void finishWithoutInterrupts() noexcept
+{
+    int expected = kRunning;
+    if (phase.compare_exchange_strong(expected, kFinishing) || expected == kFinishing) return;
+    for (;;) ::pause(); // an interrupt came first: its handler removes the temporaries and exits
+}
+
+void allowInterrupts() noexcept
+{
+    int expected = kFinishing;
+    phase.compare_exchange_strong(expected, kRunning);
 }
 
 void installInterruptCleanup()

@@ -53,8 +53,7 @@ uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids)
         }
         if (!os) throw Error(fmt::format("{}: {}", path, err ? std::strerror(err) : "the write failed"));
     });
-    std::error_code ec;
-    return std::filesystem::file_size(path, ec);
+    return outputBytes(path); // the staged temporary while an OutputBatch holds it
 }
 
 } // namespace svo::vdb

@@ -44,7 +44,6 @@ WriteReport writeOctree(const std::string& path, const Octree& octree, const Gri
 {
     WriteReport report;
     report.format = outputFormat(path);
-    std::error_code ec;
     if (report.format == OutputFormat::Svo) {
         if (grids.fog)
             throw Error(fmt::format("{}: a .svo file holds the octree only; a fog grid needs .vdb or .nvdb output",
@@ -52,7 +51,7 @@ WriteReport writeOctree(const std::string& path, const Octree& octree, const Gri
         const auto t0 = Clock::now();
         writeOctreeFile(path, octree);
         report.stages.push_back({"svo write", -1, msSince(t0)});
-        report.bytes = fs::file_size(path, ec);
+        report.bytes = outputBytes(path); // the staged temporary while an OutputBatch holds it
         return report;
     }
     if (report.format == OutputFormat::Vdb) {

@@ -604,8 +604,7 @@ WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOp
 
     t0 = Clock::now();
     writeGrids(path, grids);
-    std::error_code ec;
-    stats.bytes = fs::file_size(path, ec);
+    stats.bytes = outputBytes(path); // the staged temporary while an OutputBatch holds it
     stats.writeMs = msSince(t0);
     return stats;
 }
@@ -635,8 +634,7 @@ WriteStats writeVdbGrids(const std::string& path, const openvdb::GridPtrVec& gri
     WriteStats stats;
     const auto t0 = Clock::now();
     writeGrids(path, grids);
-    std::error_code ec;
-    stats.bytes = fs::file_size(path, ec);
+    stats.bytes = outputBytes(path); // the staged temporary while an OutputBatch holds it
     stats.writeMs = msSince(t0);
     for (const auto& g : grids) stats.leaves += g->baseTree().leafCount();
     return stats;

@@ -1,19 +1,35 @@
 #pragma once
 /// @file atomic_file.h
-/// Output files that appear whole or not at all.
+/// Output files that appear whole or not at all, and the outputs of one
+/// command that appear all together or not at all.
+///
+/// Where an output goes (outputTarget):
+/// - a regular file, or a name that does not exist yet: replaced by a
+///   temporary written beside it and renamed over it;
+/// - a symbolic link: followed, so the file it names is replaced and the link
+///   stays (as `cp` and the shell's `>` do); a dangling link creates its target;
+/// - a character device or a FIFO (`/dev/null`, `/dev/stdout` on a terminal or
+///   a pipe, a named pipe), or the file svo's standard output or error already
+///   writes to (`/dev/stdout` redirected to a file): written through, never
+///   replaced, once the whole output is finished in a temporary;
+/// - a folder, a block device or a socket: refused (svo::Error, one line).
+#include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace svo {
 
-/// Fails early, before any heavy work, if `path` cannot be created: its folder
-/// is missing or not writable, or it names a folder. Throws svo::Error.
+/// Fails early, before any heavy work, if `path` cannot be written: it is
+/// empty, names a folder, a block device or a socket, or its folder (of the
+/// file a link names) is missing or not writable. Throws svo::Error.
 void checkWritable(const std::string& path);
 
-/// Calls `write` with a temporary path in the same folder as `path`, then
-/// renames the temporary onto `path`. If `write` throws or the rename fails,
+/// Calls `write` with a temporary path, then moves the finished temporary
+/// into place as the file comment says. If `write` throws or the move fails,
 /// the temporary is removed and any earlier file at `path` is left untouched;
-/// the error is rethrown as svo::Error naming `path`.
+/// the error is rethrown as svo::Error naming `path`. While an OutputBatch
+/// that holds `path` lives, the finished temporary waits for its commit().
 void writeAtomically(const std::string& path, const std::function<void(const std::string& tmp)>& write);
 
 /// True when the two paths name one file: the same device and inode when both
@@ -23,5 +39,43 @@ bool sameFile(const std::string& a, const std::string& b);
 
 /// writeAtomically for bytes already in memory (text or binary).
 void writeFileAtomically(const std::string& path, const std::string& bytes);
+
+/// The size in bytes of the output just written to `path`: its temporary
+/// while it waits in an OutputBatch, else the file (0 when there is none, as
+/// for an output written through a device).
+uint64_t outputBytes(const std::string& path);
+
+/// The outputs of one command, committed together: a run replaces all of
+/// them or none. While a batch lives (one at a time in a process),
+/// writeAtomically() to one of its paths finishes the temporary and leaves it
+/// (registered with exit_cleanup.h, so an interrupt removes it); commit()
+/// then moves them all into place. Destroyed without a commit (an error
+/// unwinding), it removes every temporary and no earlier file is touched.
+/// Writes to other paths (a program cache) are not held back.
+class OutputBatch {
+public:
+    explicit OutputBatch(const std::vector<std::string>& paths = {});
+    ~OutputBatch();
+    OutputBatch(const OutputBatch&) = delete;
+    OutputBatch& operator=(const OutputBatch&) = delete;
+
+    /// Holds back writes to `path` too (empty paths are ignored).
+    void add(const std::string& path);
+
+    /// Writes the outputs that go through a device first (nothing is replaced
+    /// yet, and an interrupt still removes every temporary), then blocks SIGINT
+    /// and SIGTERM and renames the others into place. The signals stay blocked:
+    /// the run has done what it was asked, and a signal that comes now no longer
+    /// turns it into a failure (it is discarded when the process exits). If a
+    /// step fails, the remaining temporaries are removed, the signal mask is
+    /// restored, and svo::Error names the output that failed and those that
+    /// were already written.
+    void commit();
+
+    struct Impl; ///< atomic_file.cpp's
+
+private:
+    Impl* impl_;
+};
 
 } // namespace svo

@@ -3,8 +3,9 @@
 /// What an interrupt must undo: temporary files that are not yet renamed into
 /// place, and child processes svo started (the Xvfb server).
 ///
-/// writeAtomically() registers its temporary here for as long as it exists,
-/// and app code registers the children it starts. A program that wants
+/// writeAtomically() registers its temporary here for as long as it exists
+/// (in an OutputBatch, until the batch's commit), and app code registers the
+/// children it starts. A program that wants
 /// SIGINT and SIGTERM to leave nothing behind either calls
 /// installInterruptCleanup() (the CLI does) or, from its own signal handler,
 /// cleanUpForExit(). Both are safe inside a signal handler: the registry is a
@@ -37,6 +38,15 @@ void releaseChild(int slot) noexcept;
 /// Removes every registered temporary and terminates every registered child
 /// (SIGTERM, then waits up to 2 s for each). Async-signal-safe.
 void cleanUpForExit() noexcept;
+
+/// From here on SIGINT and SIGTERM no longer stop the process: the handler
+/// installed below returns at once, so that a run committing its outputs
+/// (OutputBatch::commit in atomic_file.h) replaces all of them and exits as
+/// it would have. Works for every thread, unlike a signal mask. If an
+/// interrupt's clean-up has already begun, this never returns (the handler
+/// exits). allowInterrupts() undoes it (a commit that failed).
+void finishWithoutInterrupts() noexcept;
+void allowInterrupts() noexcept;
 
 /// Installs SIGINT and SIGTERM handlers that print "svo: interrupted" on
 /// stderr, call cleanUpForExit() and exit with the conventional status, 128
