@@ -443,7 +443,8 @@ def test_solid_of_a_tetrahedron_is_its_inside_and_surface(voxelizer):
     assert opened <= filled and len(opened) > 0.8 * len(filled)
     with pytest.raises(RuntimeError, match="parity signs need a mesh without holes"):
         voxelizer.solid(v, t[:3], resolution=40, sign="parity")
-    with pytest.raises(RuntimeError, match="winding accuracy"):
+    # A bad option, named by its keyword, before any work (it was a RuntimeError from the GPU call).
+    with pytest.raises(ValueError, match="winding_accuracy 0: the winding accuracy"):
         voxelizer.solid(v, t[:3], resolution=40, sign="winding", winding_accuracy=0)
     with pytest.raises(ValueError, match="sign"):
         voxelizer.solid(v, t, resolution=40, sign="nearest")
