@@ -102,7 +102,7 @@ TEST(CliOptions, ValidateAndVoxelizeAgreeThatALevelSetHasNoThinMode)
 {
     svo::test::TempDir dir("cli_options");
     const std::string mesh = tetrahedron(dir);
-    const std::string rule = "--mode thin: a voxel mode chooses surface voxels; level sets, unsigned distances and "
+    const std::string rule = "--mode thin: --mode applies to surface voxels; level sets, unsigned distances and "
                              "solids do not depend on it";
     const std::string out = " -o " + dir.path("x.vdb");
     expectRefused("voxelize " + mesh + " -r 8 --sdf --mode thin" + out, rule);

@@ -446,8 +446,8 @@ void checkLevelSetOptions(const LevelSetOptions& ls)
 void checkFieldMode(const VoxelizeOptions& options)
 {
     if (options.mode != VoxelMode::Conservative)
-        throw Error(fmt::format("VoxelizeOptions::mode {}: a voxel mode chooses surface voxels; level sets, unsigned "
-                                "distances and solids do not depend on it (leave it conservative)",
+        throw Error(fmt::format("VoxelizeOptions::mode {}: VoxelizeOptions::mode applies to surface voxels; level "
+                                "sets, unsigned distances and solids do not depend on it (leave it conservative)",
                                 voxelModeName(options.mode)));
 }
 
