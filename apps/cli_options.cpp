@@ -112,21 +112,36 @@ LevelSetOptions FieldArgs::levelSetOptions() const
     ls.sign = SignOptions(sign == "parity"    ? SignMethod::Parity
                           : sign == "winding" ? SignMethod::Winding
                                               : SignMethod::Auto,
-                          windingAccuracy);
-    if (band > 0) ls.exteriorBand = ls.interiorBand = band;
-    if (exteriorBand > 0) ls.exteriorBand = exteriorBand;
-    if (interiorBand > 0) ls.interiorBand = interiorBand;
+                          windingAccuracy.value_or(SignOptions{}.windingAccuracy));
+    if (band) ls.exteriorBand = ls.interiorBand = *band;
+    if (exteriorBand) ls.exteriorBand = *exteriorBand;
+    if (interiorBand) ls.interiorBand = *interiorBand;
     return ls;
 }
 
+namespace {
+/// A number option checked, as it is parsed, by the library's rule under the flag's name.
+CLI::Option* addCheckedNumber(CLI::App& cmd, const std::string& flag, std::optional<double>& value,
+                              void (*rule)(double, const std::string&), const std::string& help)
+{
+    return cmd.add_option_function<double>(
+        flag,
+        [&value, flag, rule](double v) {
+            rule(v, flag);
+            value = v;
+        },
+        help);
+}
+} // namespace
+
 void addBandOptions(CLI::App& cmd, FieldArgs& a, const std::string& appliesTo)
 {
-    cmd.add_option("--band", a.band, "Band half width in voxels on both sides, " + appliesTo + " (default 3)")
-        ->check(CLI::Range(1.0, 1000.0));
-    cmd.add_option("--exterior-band", a.exteriorBand, "Band width outside the surface, in voxels (default 3)")
-        ->check(CLI::Range(1.0, 1000.0));
-    cmd.add_option("--interior-band", a.interiorBand, "Band width inside the surface, in voxels (default 3)")
-        ->check(CLI::Range(1.0, 1000.0));
+    addCheckedNumber(cmd, "--band", a.band, checkBand,
+                     "Band half width in voxels on both sides, 1 to 1000, " + appliesTo + " (default 3)");
+    addCheckedNumber(cmd, "--exterior-band", a.exteriorBand, checkBand,
+                     "Band width outside the surface, in voxels, 1 to 1000 (default 3)");
+    addCheckedNumber(cmd, "--interior-band", a.interiorBand, checkBand,
+                     "Band width inside the surface, in voxels, 1 to 1000 (default 3)");
 }
 
 void addSignOptions(CLI::App& cmd, FieldArgs& a, const std::string& appliesTo)
@@ -136,10 +151,10 @@ void addSignOptions(CLI::App& cmd, FieldArgs& a, const std::string& appliesTo)
                        ": auto (parity for closed, consistently oriented meshes, the winding number otherwise), "
                        "parity or winding (as asked)")
         ->check(CLI::IsMember({"auto", "parity", "winding"}));
-    cmd.add_option("--winding-accuracy", a.windingAccuracy,
-                   "Winding numbers: tree nodes farther than this many radii use their far-field expansion (default "
-                   "1.5; larger is slower and more exact; 1e300 evaluates every triangle)")
-        ->check(CLI::PositiveNumber);
+    addCheckedNumber(cmd, "--winding-accuracy", a.windingAccuracy, checkWindingAccuracy,
+                     "Winding numbers: tree nodes farther than this many radii use their far-field expansion (a "
+                     "positive finite number, default 1.5; larger is slower and more exact; 1e300 evaluates every "
+                     "triangle)");
 }
 
 bool bandsGiven(const CLI::App& cmd)
@@ -159,9 +174,9 @@ void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize)
 GridRequest gridRequest(const CLI::App& cmd, int64_t resolution, double voxelSize)
 {
     const bool gotRes = cmd.count("--resolution") > 0, gotSize = cmd.count("--voxel-size") > 0;
-    if (gotRes && resolution < 1) throw Error(fmt::format("--resolution must be at least 1, got {}", resolution));
-    if (gotSize && !(voxelSize > 0 && std::isfinite(voxelSize)))
-        throw Error(fmt::format("--voxel-size must be a positive finite number, got {}", voxelSize));
+    // The library's rules, under the flags' names (before any work).
+    if (gotRes) checkResolution(double(resolution), "--resolution");
+    if (gotSize) checkVoxelSize(voxelSize, "--voxel-size");
     GridRequest r;
     r.resolution = gotRes ? resolution : (gotSize ? 0 : 256);
     r.voxelSize = gotSize ? voxelSize : 0;
@@ -249,6 +264,11 @@ std::string inFlags(std::string message)
         {"AmbientOcclusion::volumeResolution", "--light-volume"},
         {"AmbientOcclusion::Source::Octree", "--ao-source octree"},
         {"the normal attribute channel, svo::kNormals", "--attributes normal"},
+        // The options' rules (svo/voxelizer.h), where the library checks a field the command line set.
+        {"VoxelizeOptions::mode", "--mode"},
+        {"LevelSetOptions::exteriorBand", "--exterior-band"},
+        {"LevelSetOptions::interiorBand", "--interior-band"},
+        {"SignOptions::windingAccuracy", "--winding-accuracy"},
     };
     for (const auto& [library, flag] : names)
         for (size_t at = message.find(library); at != std::string::npos; at = message.find(library, at + flag.size()))

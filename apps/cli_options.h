@@ -3,6 +3,7 @@
 /// What the subcommands share: options that become library arguments, and
 /// the words they print. The work itself is the library's (svo/svo.h).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,10 +54,12 @@ uint64_t parseByteSize(const std::string& text, const std::string& option);
 
 /// --band, --exterior-band, --interior-band, --sign, --winding-accuracy:
 /// the level-set arguments `svo voxelize` and `svo validate --sdf` share.
+/// Each number is checked as it is parsed, by the library's rule for it
+/// (svo::checkBand, svo::checkWindingAccuracy) under its flag's name.
 struct FieldArgs {
     std::string sign = "auto"; ///< auto | parity | winding
-    double windingAccuracy = 1.5;
-    double band = 0, exteriorBand = 0, interiorBand = 0; ///< 0: not given
+    std::optional<double> windingAccuracy;                ///< none: the library's default
+    std::optional<double> band, exteriorBand, interiorBand; ///< none: not given
     /// The library's defaults with the bands and sign asked for.
     LevelSetOptions levelSetOptions() const;
 };

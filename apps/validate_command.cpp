@@ -54,7 +54,7 @@ void checkSdfArgs(const ValidateArgs& a, const CLI::App& cmd)
         throw Error("--band sets both bands; give it or --exterior-band/--interior-band, not both");
     if (cmd.count("--winding-accuracy") && a.levelSet.sign == "parity")
         throw Error("--winding-accuracy applies to winding-number signs, not to --sign parity");
-    if (cmd.count("--mode")) throw Error("--mode applies to surface voxels; --sdf checks a level set");
+    checkFieldMode(a.backend.voxelizeOptions()); // the library's rule, as svo voxelize --sdf checks it
     if (cmd.count("--errors")) throw Error("--errors writes missed and extra surface voxels; it does not apply to --sdf");
     if (cmd.count("--no-holes") || cmd.count("--strict"))
         throw Error("--no-holes and --strict apply to surface voxels, not to --sdf");
@@ -316,7 +316,14 @@ void addValidateCommand(CLI::App& app)
                   {".vdb"});
     cmd->add_flag("--no-holes", args->noHoles, "Skip the flood-fill hole check");
     cmd->add_flag("--strict", args->strict, "Fail on extra voxels too");
-    cmd->add_option("--worst", args->worst, "Worst cases to list of each kind")->capture_default_str();
+    cmd->add_option_function<int64_t>(
+           "--worst",
+           [args](int64_t n) {
+               validate::checkWorst(n, "--worst");
+               args->worst = size_t(n);
+           },
+           "Worst cases to list of each kind, 0 to 1000000")
+        ->default_str("5");
     cmd->add_flag("--sdf", args->sdf,
                   "Check the level set (voxelize --sdf) instead: distances, signs and band against CGAL, beside "
                   "OpenVDB's meshToLevelSet");

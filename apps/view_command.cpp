@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fmt/format.h>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "cli_options.h"
@@ -15,6 +16,7 @@
 #include "view_window.h"
 #endif
 #include "svo/core/atomic_file.h"
+#include "svo/core/camera.h"
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"
 #include "svo/gl/context.h"
@@ -34,7 +36,8 @@ struct ViewArgs {
     gl::Illumination light;
     std::vector<std::string> lights;
     std::string albedo, specular;
-    double fov = 40.0, ortho = 0.0;
+    double fov = 40.0;
+    std::optional<double> ortho; ///< --ortho: the height an orthographic view spans
     int64_t resolution = 0;
     double voxelSize = 0;
     BackendArgs backend;
@@ -268,9 +271,9 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         camera.orthographic = false;
     }
     camera.fovYDegrees = a.fov;
-    if (a.ortho > 0) {
+    if (a.ortho) {
         camera.orthographic = true;
-        camera.height = a.ortho;
+        camera.height = *a.ortho;
     }
     const std::string inputName = a.input.empty() ? "cornell_box" : a.input;
     const std::string inputLine = describeInput(inputName, lo, call.stats);
@@ -341,8 +344,22 @@ void addViewCommand(CLI::App& app)
     cmd->add_option("--camera", args->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z[,up_x,up_y,up_z] (world units)");
     cmd->add_option("--view", args->view, "Framed view when no --camera: front, or along an axis from +x, -x, +y, -y, +z, -z (orthographic)")
         ->capture_default_str();
-    cmd->add_option("--fov", args->fov, "Vertical field of view in degrees (perspective)")->capture_default_str();
-    cmd->add_option("--ortho", args->ortho, "Orthographic, spanning this many world units vertically");
+    // Checked as they are parsed, by the camera's rules (svo/core/camera.h).
+    cmd->add_option_function<double>(
+           "--fov",
+           [args](double v) {
+               checkFieldOfView(v, "--fov");
+               args->fov = v;
+           },
+           "Vertical field of view in degrees (perspective), between 0 and 180")
+        ->default_str("40");
+    cmd->add_option_function<double>(
+        "--ortho",
+        [args](double v) {
+            checkOrthographicHeight(v, "--ortho");
+            args->ortho = v;
+        },
+        "Orthographic, spanning this many world units vertically (a positive number)");
     cmd->add_option("--layers", args->layers, "Comma-separated: voxels, outlines, bricks, mesh")->capture_default_str();
     cmd->add_option("--color", args->color, "Voxel colours: flat, or the attribute channel normal, color or triangle")
         ->check(CLI::IsMember({"flat", "normal", "color", "triangle"}))

@@ -105,6 +105,7 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
     if (cmd.count("--gpu-memory") && a.backend.backend == "cpu")
         throw Error("--gpu-memory applies to the GPU backends, not to --backend cpu");
     if (!a.field()) return;
+    checkFieldMode(a.backend.voxelizeOptions()); // --mode thin: the library's rule, as svo validate --sdf checks it
     if (a.backend.attributes) throw Error("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
     if (cmd.count("--gpu-memory"))
         throw Error("--gpu-memory applies to surface voxels; --sdf, --udf and --fill solid do not tile yet");

@@ -28,6 +28,18 @@ uint32_t GridSpec::maxDim() const { return std::max({dims[0], dims[1], dims[2]})
 
 double GridSpec::epsilon() const { return 32.0 * std::ldexp(1.0, -24) * std::max<double>(maxDim(), 1.0); }
 
+void checkResolution(double n, const std::string& name)
+{
+    if (!(n >= 1 && n <= double(kMaxGridDim) - 16) || n != std::floor(n))
+        throw Error(fmt::format("{} must be a whole number from 1 to {}, got {}", name, kMaxGridDim - 16, n));
+}
+
+void checkVoxelSize(double h, const std::string& name)
+{
+    if (!(h > 0) || !std::isfinite(h))
+        throw Error(fmt::format("{} must be a positive finite number, got {}", name, h));
+}
+
 GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& req)
 {
     const Bounds b = mesh.bounds();
@@ -35,9 +47,7 @@ GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& req)
     GridSpec g;
     if (req.resolution > 0 && req.voxelSize > 0) throw Error("the grid request gives both a resolution and a voxel size; give one");
     if (req.resolution > 0) {
-        if (req.resolution > int64_t(kMaxGridDim) - 16)
-            throw Error(fmt::format("resolution {} is beyond the largest supported grid ({} voxels a side)",
-                                    req.resolution, kMaxGridDim - 16));
+        checkResolution(double(req.resolution), "the resolution");
         const Vec3d e = b.extent();
         const double longest = std::max({e.x, e.y, e.z});
         if (!(longest > 0))
@@ -45,7 +55,8 @@ GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& req)
                                     "give a voxel size instead",
                                     mesh.source));
         g.voxelSize = longest / double(req.resolution);
-    } else if (req.voxelSize > 0 && std::isfinite(req.voxelSize)) {
+    } else if (req.voxelSize != 0) {
+        checkVoxelSize(req.voxelSize, "the voxel size");
         g.voxelSize = req.voxelSize;
     } else {
         throw Error(fmt::format("the grid needs a resolution N >= 1 or a finite voxel size h > 0; got "

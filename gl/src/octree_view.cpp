@@ -119,14 +119,12 @@ CellCamera cellCamera(const GridSpec& grid, const ViewCamera& camera, int width,
     const double aspect = double(width) / double(height);
     Mat4 proj{};
     if (camera.orthographic) {
-        if (!(camera.height > 0) || !std::isfinite(camera.height))
-            throw Error(fmt::format("octree view: orthographic height {} is not positive", camera.height));
+        checkOrthographicHeight(camera.height, "octree view: orthographic height");
         const double h = camera.height / grid.voxelSize, w = h * aspect;
         const double n = along - radius, fa = along + radius;
         proj = {2 / w, 0, 0, 0, 0, 2 / h, 0, 0, 0, 0, -2 / (fa - n), 0, 0, 0, -(fa + n) / (fa - n), 1};
     } else {
-        if (!(camera.fovYDegrees > 0 && camera.fovYDegrees < 180))
-            throw Error(fmt::format("octree view: field of view {} is not in (0, 180) degrees", camera.fovYDegrees));
+        checkFieldOfView(camera.fovYDegrees, "octree view: field of view");
         const double n = std::max(along - radius, radius * 1e-4), fa = std::max(along + radius, 2 * n);
         const double t = 1.0 / std::tan(camera.fovYDegrees * M_PI / 360.0);
         proj = {t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (fa + n) / (n - fa), -1, 0, 0, 2 * fa * n / (n - fa), 0};

@@ -66,13 +66,19 @@ openvdb::GridBase::Ptr fromPython(const py::handle& obj)
 
 // --- arrays ----------------------------------------------------------------
 
+/// The shape of an array as Python writes it: "(1, 2)".
+std::string shapeText(const py::array& a)
+{
+    return std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim())))));
+}
+
 /// (N, 3) float64 vertices from anything numpy takes; checked for shape and finiteness.
 std::vector<openvdb::Vec3d> toPoints(const py::handle& obj)
 {
     const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
     if (!a) badValue("vertices: expected an (N, 3) array of numbers");
     if (a.ndim() != 2 || a.shape(1) != 3)
-        badValue("vertices: expected shape (N, 3), got " + std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))));
+        badValue("vertices: expected shape (N, 3), got " + shapeText(a));
     if (a.shape(0) == 0) badValue("vertices: the array is empty");
     const auto r = a.unchecked<2>();
     std::vector<openvdb::Vec3d> out(size_t(a.shape(0)));
@@ -85,25 +91,49 @@ std::vector<openvdb::Vec3d> toPoints(const py::handle& obj)
 }
 
 /// (M, 3) triangles or (M, 4) quads of non-negative indices below `vertices`.
+/// Unsigned arrays are read as unsigned, so that an index past 2^63 is named
+/// as it is, not wrapped to a negative number.
 void toFaces(const py::handle& obj, size_t vertices, std::vector<openvdb::Vec3I>& triangles,
              std::vector<openvdb::Vec4I>& quads)
 {
-    const auto a = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
-    if (!a) badValue("triangles: expected an (M, 3) or (M, 4) array of integers");
     const py::array raw = py::array::ensure(obj);
     if (raw && raw.dtype().kind() == 'f') badValue("triangles: expected integers, got a floating-point array");
-    if (a.ndim() != 2 || (a.shape(1) != 3 && a.shape(1) != 4))
-        badValue("triangles: expected shape (M, 3) or (M, 4), got " + std::to_string(a.ndim()) + " dimensions");
-    if (a.shape(0) == 0) badValue("triangles: the array is empty");
-    const auto r = a.unchecked<2>();
-    for (py::ssize_t i = 0; i < a.shape(0); ++i)
-        for (py::ssize_t c = 0; c < a.shape(1); ++c)
-            if (r(i, c) < 0 || uint64_t(r(i, c)) >= vertices)
-                badValue("triangles: row " + std::to_string(i) + " refers to vertex " + std::to_string(r(i, c)) +
-                         ", but there are " + std::to_string(vertices) + " vertices");
-    for (py::ssize_t i = 0; i < a.shape(0); ++i) {
-        if (a.shape(1) == 3) triangles.emplace_back(uint32_t(r(i, 0)), uint32_t(r(i, 1)), uint32_t(r(i, 2)));
-        else quads.emplace_back(uint32_t(r(i, 0)), uint32_t(r(i, 1)), uint32_t(r(i, 2)), uint32_t(r(i, 3)));
+    const bool isUnsigned = raw && raw.dtype().kind() == 'u';
+    const auto u = isUnsigned ? py::array_t<uint64_t, py::array::c_style | py::array::forcecast>::ensure(obj)
+                              : py::array_t<uint64_t, py::array::c_style | py::array::forcecast>();
+    const auto a = isUnsigned ? py::array_t<int64_t, py::array::c_style | py::array::forcecast>()
+                              : py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
+    const py::array& any = isUnsigned ? static_cast<const py::array&>(u) : static_cast<const py::array&>(a);
+    if (!any) badValue("triangles: expected an (M, 3) or (M, 4) array of integers");
+    if (any.ndim() != 2 || (any.shape(1) != 3 && any.shape(1) != 4))
+        badValue("triangles: expected shape (M, 3) or (M, 4), got " + shapeText(any));
+    if (any.shape(0) == 0) badValue("triangles: the array is empty");
+    const py::ssize_t rows = any.shape(0), cols = any.shape(1);
+    // Index (i, c) as written: non-negative ones as uint64, negative ones as int64.
+    auto bad = [&](py::ssize_t i, const std::string& index) {
+        badValue("triangles: row " + std::to_string(i) + " refers to vertex " + index + ", but there are " +
+                 std::to_string(vertices) + " vertices");
+    };
+    std::vector<uint32_t> flat(size_t(rows * cols));
+    if (isUnsigned) {
+        const auto r = u.unchecked<2>();
+        for (py::ssize_t i = 0; i < rows; ++i)
+            for (py::ssize_t c = 0; c < cols; ++c) {
+                if (r(i, c) >= vertices) bad(i, std::to_string(r(i, c)));
+                flat[size_t(i * cols + c)] = uint32_t(r(i, c));
+            }
+    } else {
+        const auto r = a.unchecked<2>();
+        for (py::ssize_t i = 0; i < rows; ++i)
+            for (py::ssize_t c = 0; c < cols; ++c) {
+                if (r(i, c) < 0 || uint64_t(r(i, c)) >= vertices) bad(i, std::to_string(r(i, c)));
+                flat[size_t(i * cols + c)] = uint32_t(r(i, c));
+            }
+    }
+    for (py::ssize_t i = 0; i < rows; ++i) {
+        const uint32_t* f = &flat[size_t(i * cols)];
+        if (cols == 3) triangles.emplace_back(f[0], f[1], f[2]);
+        else quads.emplace_back(f[0], f[1], f[2], f[3]);
     }
 }
 
@@ -174,6 +204,16 @@ struct KeyboardInterrupter : openvdb::util::NullInterrupter {
 
 // --- the calls ---------------------------------------------------------------
 
+/// A number checked by the library's rule for it (svo::checkBand, ...), under its keyword: a ValueError.
+void checked(void (*rule)(double, const std::string&), double value, const std::string& keyword)
+{
+    try {
+        rule(value, keyword);
+    } catch (const svo::Error& e) {
+        badValue(e.what());
+    }
+}
+
 /// Everything a voxelize() call needs, checked, before the GIL is released.
 struct Request {
     svo::TriangleMesh mesh;
@@ -199,17 +239,18 @@ Request makeRequest(const py::handle& vertices, const py::handle& triangles, std
             r.grid = m.grid;
             return r;
         }
-        // resolution or voxel size: the grid `svo voxelize` chooses, so both give the same voxels.
-        r.mesh = svo::prepareMesh(points, tris, quads, *openvdb::math::Transform::createLinearTransform(1.0)).mesh;
+        // resolution or voxel size: the mesh and the grid exactly as `svo voxelize`
+        // has them (a file's mesh, then makeGrid), so both give the same voxels.
+        r.mesh = svo::toTriangleMesh(points, tris, quads);
         r.mesh.source = "mesh";
         svo::GridRequest req;
+        // The library's rules, under the keywords' names.
         if (voxelSize) {
-            if (!(*voxelSize > 0) || !std::isfinite(*voxelSize)) badValue("voxel_size: must be positive and finite");
+            checked(svo::checkVoxelSize, *voxelSize, "voxel_size");
             req.voxelSize = *voxelSize;
         } else {
             const double n = resolution.value_or(256);
-            if (!(n >= 1) || n != std::floor(n) || n > double(svo::kMaxGridDim) - 16)
-                badValue("resolution: must be a whole number from 1 to " + std::to_string(svo::kMaxGridDim - 16));
+            checked(svo::checkResolution, n, "resolution");
             req.resolution = int64_t(n);
         }
         r.grid = svo::makeGrid(r.mesh, req);
@@ -312,6 +353,7 @@ py::object voxelizeWith(svo::Voxelizer& v, const py::handle& vertices, const py:
 
 svo::SignOptions toSign(const std::string& sign, double windingAccuracy)
 {
+    checked(svo::checkWindingAccuracy, windingAccuracy, "winding_accuracy");
     if (sign == "auto") return {svo::SignMethod::Auto, windingAccuracy};
     if (sign == "parity") return {svo::SignMethod::Parity, windingAccuracy};
     if (sign == "winding") return {svo::SignMethod::Winding, windingAccuracy};
@@ -351,6 +393,8 @@ py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py:
                         bool closestTriangle, const std::string& sign, double windingAccuracy,
                         const std::string& backend)
 {
+    checked(svo::checkBand, exteriorBand, "exterior_band");
+    checked(svo::checkBand, interiorBand, "interior_band");
     svo::LevelSetOptions ls;
     ls.exteriorBand = exteriorBand;
     ls.interiorBand = interiorBand;
@@ -385,11 +429,12 @@ py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::ha
                      std::optional<double> resolution, std::optional<double> voxelSize, const py::object& transform,
                      const std::string& sign, double windingAccuracy, const std::string& backend)
 {
+    const svo::SignOptions signOptions = toSign(sign, windingAccuracy);
     const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
     svo::VoxelizeStats stats;
     const auto mask = runField(backend, [&](svo::VoxelizeOptions o) {
         o.stats = &stats;
-        return v.solid(r.mesh, r.grid, o, toSign(sign, windingAccuracy), r.xform);
+        return v.solid(r.mesh, r.grid, o, signOptions, r.xform);
     });
     // pyopenvdb has no MaskGrid: the same topology as a BoolGrid, true on it.
     auto out = openvdb::BoolGrid::create(openvdb::BoolTree::Ptr(new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
@@ -690,12 +735,24 @@ py::array view(const void* data, size_t count, size_t cols, const py::handle& ow
 }
 
 #ifdef SVO_WITH_VALIDATE
+/// worst=: the library's rule (svo::validate::checkWorst), a ValueError naming the keyword.
+size_t toWorst(int64_t worst)
+{
+    try {
+        svo::validate::checkWorst(worst, "worst");
+    } catch (const svo::Error& e) {
+        badValue(e.what());
+    }
+    return size_t(worst);
+}
+
 /// The voxelization checked against CGAL's exact reference: the numbers of `svo validate --json`.
 py::object validateWith(const py::handle& vertices, const py::handle& triangles, std::optional<double> resolution,
                         std::optional<double> voxelSize, const py::object& transform, const std::string& backend,
-                        bool holes, bool strict, size_t worst, const std::string& mode)
+                        bool holes, bool strict, int64_t worst, const std::string& mode)
 {
     const svo::VoxelMode m = toMode(mode);
+    const size_t worstCases = toWorst(worst);
     const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
     svo::Voxelizer v;
     std::vector<uint64_t> list;
@@ -707,7 +764,7 @@ py::object validateWith(const py::handle& vertices, const py::handle& triangles,
         ro.mode = m;
         ro.holes = holes;
         ro.strict = strict;
-        ro.worst = worst;
+        ro.worst = worstCases;
         text = svo::validate::reportJson(svo::validate::validateVoxelization(r.mesh, octree, list, ro));
     }
     return py::module_::import("json").attr("loads")(text);
@@ -721,8 +778,11 @@ py::object validateLevelSetWith(const py::handle& vertices, const py::handle& tr
                                 std::optional<double> resolution, std::optional<double> voxelSize,
                                 const py::object& transform, double exteriorBand, double interiorBand,
                                 const std::string& sign, double windingAccuracy, const std::string& backend,
-                                size_t worst, bool openvdb)
+                                int64_t worst, bool openvdb)
 {
+    checked(svo::checkBand, exteriorBand, "exterior_band");
+    checked(svo::checkBand, interiorBand, "interior_band");
+    const size_t worstCases = toWorst(worst);
     svo::LevelSetOptions ls;
     ls.exteriorBand = exteriorBand;
     ls.interiorBand = interiorBand;
@@ -742,7 +802,7 @@ py::object validateLevelSetWith(const py::handle& vertices, const py::handle& tr
         ro.check.exteriorBand = exteriorBand;
         ro.check.interiorBand = interiorBand;
         ro.check.voxelSize = sdf->transform().voxelSize()[0]; // world units per voxel of the values
-        ro.check.worst = worst;
+        ro.check.worst = worstCases;
         ro.openvdb = openvdb;
         ro.sign = stats.sign;
         text = svo::validate::levelSetReportJson(

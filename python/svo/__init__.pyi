@@ -49,7 +49,7 @@ class Voxelizer:
         interior_band: float = 3.0,
         unsigned: bool = False,
         sign: str = "auto",
-        winding_accuracy: float = 2.0,
+        winding_accuracy: float = 1.5,
         backend: str = "auto",
     ) -> Grid: ...
     def solid(
@@ -61,7 +61,7 @@ class Voxelizer:
         voxel_size: Optional[float] = None,
         transform: Optional[Union[Transform, ArrayLike]] = None,
         sign: str = "auto",
-        winding_accuracy: float = 2.0,
+        winding_accuracy: float = 1.5,
         backend: str = "auto",
     ) -> Grid: ...
     def device(self) -> str: ...
@@ -153,7 +153,7 @@ def validate_level_set(
     exterior_band: float = 3.0,
     interior_band: float = 3.0,
     sign: str = "auto",
-    winding_accuracy: float = 2.0,
+    winding_accuracy: float = 1.5,
     backend: str = "auto",
     worst: int = 5,
     openvdb: bool = True,

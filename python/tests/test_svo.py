@@ -443,7 +443,8 @@ def test_solid_of_a_tetrahedron_is_its_inside_and_surface(voxelizer):
     assert opened <= filled and len(opened) > 0.8 * len(filled)
     with pytest.raises(RuntimeError, match="parity signs need a mesh without holes"):
         voxelizer.solid(v, t[:3], resolution=40, sign="parity")
-    with pytest.raises(RuntimeError, match="winding accuracy"):
+    # A bad option, named by its keyword, before any work (it was a RuntimeError from the GPU call).
+    with pytest.raises(ValueError, match="winding_accuracy 0: the winding accuracy"):
         voxelizer.solid(v, t[:3], resolution=40, sign="winding", winding_accuracy=0)
     with pytest.raises(ValueError, match="sign"):
         voxelizer.solid(v, t, resolution=40, sign="nearest")
@@ -593,3 +594,89 @@ def test_octree_render_draws_what_svo_view_draws(voxelizer, tmp_path):
         octree.render(view="sideways")
     with pytest.raises(ValueError, match="layers"):
         octree.render(layers=["mesh"])
+
+
+def write_obj(path, vertices, triangles):
+    with open(path, "w") as f:
+        for p in np.asarray(vertices, dtype=np.float64):
+            f.write("v %r %r %r\n" % tuple(float(c) for c in p))
+        for t in np.asarray(triangles):
+            f.write("f %d %d %d\n" % tuple(int(i) + 1 for i in t))
+
+
+@pytest.mark.parametrize("kwargs, cli_args", [
+    ({"resolution": 16}, ["-r", "16"]),
+    ({"voxel_size": 625000.0}, ["--voxel-size", "625000"]),
+])
+def test_a_mesh_beyond_unit_voxels_voxelizes_as_the_cli_does(voxelizer, tmp_path, kwargs, cli_args):
+    # 1e7 voxels a side at voxel size 1: the binding once prepared the mesh on
+    # that lattice and refused it; the CLI never did.
+    v, t = np.eye(3) * 1e7, [[0, 1, 2]]
+    mesh = tmp_path / "big.obj"
+    write_obj(mesh, v, t)
+    out = tmp_path / "cli.vdb"
+    subprocess.run([SVO_EXE, "voxelize", str(mesh), *cli_args, "-o", str(out)], check=True, capture_output=True)
+    cli = pyopenvdb.read(str(out), "surface")
+    grid = voxelizer.voxelize(v, t, **kwargs)
+    assert grid.activeVoxelCount() == cli.activeVoxelCount() > 16
+    assert as_set(svo.active_voxels(grid)) == as_set(svo.active_voxels(cli))
+    assert grid.transform.voxelSize() == cli.transform.voxelSize()
+    assert grid.transform.indexToWorld((3, 2, 1)) == cli.transform.indexToWorld((3, 2, 1))
+    assert svo.voxelize(v, t, **kwargs).activeVoxelCount() == grid.activeVoxelCount()
+    assert as_set(voxelizer.octree(v, t, **kwargs).voxels()) == as_set(svo.active_voxels(cli))
+    closed = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]) * 1e7
+    assert voxelizer.level_set(closed, tetrahedron()[1], **kwargs).activeVoxelCount() > 0
+
+
+def test_a_unit_triangle_1e12_away_gives_the_voxels_at_the_origin_shifted(voxelizer):
+    v, t = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=np.float64), [[0, 1, 2]]
+    offset = 1e12  # a multiple of the voxel size 1/16: the same lattice, moved
+
+    def world_centres(grid):
+        return {tuple(c) for c in (np.array([grid.transform.indexToWorld(tuple(int(x) for x in ijk))
+                                             for ijk in svo.active_voxels(grid)]))}
+
+    near = voxelizer.voxelize(v, t, resolution=16)
+    far = voxelizer.voxelize(v + offset, t, resolution=16)
+    assert far.activeVoxelCount() == near.activeVoxelCount() > 100
+    assert {tuple(c - offset for c in p) for p in world_centres(far)} == world_centres(near)
+
+
+@pytest.mark.parametrize("call, kwargs, message", [
+    ("level_set", {"exterior_band": float("nan")}, "exterior_band nan: a band is a number of voxels from 1 to 1000"),
+    ("level_set", {"interior_band": float("nan")}, "interior_band nan"),
+    ("level_set", {"exterior_band": 0.5}, "exterior_band 0.5"),
+    ("level_set", {"unsigned": True, "exterior_band": float("nan")}, "exterior_band nan"),
+    ("level_set", {"winding_accuracy": float("inf")}, "winding_accuracy inf: the winding accuracy is a positive"),
+    ("level_set", {"winding_accuracy": float("nan")}, "winding_accuracy nan"),
+    ("level_set", {"winding_accuracy": 0}, "winding_accuracy 0:"),
+    ("solid", {"winding_accuracy": float("inf")}, "winding_accuracy inf"),
+])
+def test_nan_and_inf_options_are_value_errors_naming_the_keyword(voxelizer, call, kwargs, message):
+    v, t = tetrahedron()
+    with pytest.raises(ValueError, match=message):
+        getattr(voxelizer, call)(v, t, resolution=8, **kwargs)
+
+
+def test_validate_refuses_a_negative_worst():
+    if not hasattr(svo, "validate"):
+        pytest.skip("built without SVO_WITH_VALIDATE")
+    v, t = tetrahedron()
+    with pytest.raises(ValueError, match="worst -1: the worst cases listed of each kind are 0 to 1000000"):
+        svo.validate(v, t, resolution=8, worst=-1)
+    with pytest.raises(ValueError, match="worst -1"):
+        svo.validate_level_set(v, t, resolution=8, worst=-1)
+    with pytest.raises(ValueError, match="exterior_band nan"):
+        svo.validate_level_set(v, t, resolution=8, exterior_band=float("nan"))
+
+
+def test_face_messages_name_the_shape_and_the_index_as_given(voxelizer):
+    with pytest.raises(ValueError, match=r"expected shape \(M, 3\) or \(M, 4\), got \(1, 2\)"):
+        voxelizer.voxelize(np.eye(3), np.array([[0, 1]]), resolution=8)
+    with pytest.raises(ValueError, match=r"got \(3,\)"):
+        voxelizer.voxelize(np.eye(3), np.array([0, 1, 2]), resolution=8)
+    big = np.array([[0, 1, 2 ** 63]], dtype=np.uint64)
+    with pytest.raises(ValueError, match="refers to vertex 9223372036854775808, but there are 3 vertices"):
+        voxelizer.voxelize(np.eye(3), big, resolution=8)
+    ok = np.array([[0, 1, 2]], dtype=np.uint64)
+    assert voxelizer.voxelize(np.eye(3), ok, resolution=8).activeVoxelCount() > 0

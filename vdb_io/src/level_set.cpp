@@ -56,8 +56,7 @@ struct SignChoice {
 };
 SignChoice chooseSign(const TriangleMesh& mesh, const SignOptions& asked, std::vector<std::string>& warnings)
 {
-    if (!(asked.windingAccuracy > 0))
-        throw Error(fmt::format("a winding accuracy of {}: it must be positive", asked.windingAccuracy));
+    checkWindingAccuracy(asked.windingAccuracy, "SignOptions::windingAccuracy");
     if (asked.method == SignMethod::Winding) return {SignMethod::Winding, "winding: as asked"};
     const EdgeReport edges = checkEdges(mesh);
     if (edges.closedAndOriented()) return {SignMethod::Parity, "parity: the mesh is " + edges.describe()};
@@ -423,6 +422,35 @@ void addLeaves(TreeT& tree, std::vector<typename TreeT::LeafNodeType*>& leaves)
 
 } // namespace
 
+void checkBand(double voxels, const std::string& name)
+{
+    if (!(voxels >= 1.0 && voxels <= 1000.0)) // NaN fails too
+        throw Error(fmt::format("{} {}: a band is a number of voxels from 1 to 1000", name, voxels));
+}
+
+void checkWindingAccuracy(double accuracy, const std::string& name)
+{
+    if (!(accuracy > 0) || !std::isfinite(accuracy))
+        throw Error(fmt::format("{} {}: the winding accuracy is a positive finite number (default 1.5; larger is "
+                                "slower and more exact, 1e300 evaluates every triangle)",
+                                name, accuracy));
+}
+
+void checkLevelSetOptions(const LevelSetOptions& ls)
+{
+    checkBand(ls.exteriorBand, "LevelSetOptions::exteriorBand");
+    if (!ls.unsignedDistance) checkBand(ls.interiorBand, "LevelSetOptions::interiorBand");
+    checkWindingAccuracy(ls.sign.windingAccuracy, "SignOptions::windingAccuracy");
+}
+
+void checkFieldMode(const VoxelizeOptions& options)
+{
+    if (options.mode != VoxelMode::Conservative)
+        throw Error(fmt::format("VoxelizeOptions::mode {}: VoxelizeOptions::mode applies to surface voxels; level "
+                                "sets, unsigned distances and solids do not depend on it (leave it conservative)",
+                                voxelModeName(options.mode)));
+}
+
 namespace detail {
 double uniformScale(const openvdb::math::Transform& xform)
 {
@@ -456,9 +484,8 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
                                                openvdb::math::Transform::Ptr xform, double worldPerVoxel)
 {
     const bool signedField = !ls.unsignedDistance;
-    for (double w : {ls.exteriorBand, signedField ? ls.interiorBand : 1.0})
-        if (!(w >= 1.0) || !std::isfinite(w) || w > 1000.0)
-            throw Error(fmt::format("a band of {} voxels: level set bands are 1 to 1000 voxels wide", w));
+    checkLevelSetOptions(ls);
+    checkFieldMode(options);
     if (options.backend == Backend::Cpu)
         throw Error("level sets are computed on the GPU; choose the raster or compute backend, or auto");
     const InterruptScope interrupt(options.interrupter, "svo: computing a distance field");
@@ -581,6 +608,7 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
                                                const VoxelizeOptions& options, const SignOptions& signOptions,
                                                openvdb::math::Transform::Ptr xform)
 {
+    checkFieldMode(options); // the sign options: chooseSign
     if (options.backend == Backend::Cpu)
         throw Error("solids are computed on the GPU; choose the raster or compute backend, or auto");
     const InterruptScope interrupt(options.interrupter, "svo: filling a solid");

@@ -54,16 +54,13 @@ bool wholeVoxelLattice(const openvdb::Mat4d& m, double& voxelSize, std::array<in
     return true;
 }
 
+/// The triangles (quads split along 0-2) and the positions in double, as
+/// given; indices checked, the first bad one named.
 template <typename PointT>
-IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
-                       const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform)
+TriangleMesh worldMesh(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
+                       const std::vector<openvdb::Vec4I>& quads)
 {
-    if (!xform.isLinear())
-        throw Error(fmt::format("the transform is a {} map, which is not linear; svo voxelizes in the index space "
-                                "of linear (affine) transforms only",
-                                xform.baseMap()->type()));
-    IndexSpaceMesh out;
-    TriangleMesh& m = out.mesh;
+    TriangleMesh m;
     m.source = "input mesh";
     const uint64_t n = points.size();
     auto checked = [&](uint64_t face, const char* kind, uint32_t i) {
@@ -91,18 +88,32 @@ IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<open
         m.triangles.push_back({a, b, c});
         if (f[3] != openvdb::util::INVALID_IDX) m.triangles.push_back({a, c, checked(q, "quad", f[3])});
     }
+    m.positions.resize(n);
+    tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 4096), [&](const tbb::blocked_range<uint64_t>& r) {
+        for (uint64_t i = r.begin(); i != r.end(); ++i)
+            m.positions[i] = {double(points[i][0]), double(points[i][1]), double(points[i][2])};
+    });
+    return m;
+}
+
+template <typename PointT>
+IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
+                       const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform)
+{
+    if (!xform.isLinear())
+        throw Error(fmt::format("the transform is a {} map, which is not linear; svo voxelizes in the index space "
+                                "of linear (affine) transforms only",
+                                xform.baseMap()->type()));
+    IndexSpaceMesh out;
+    out.mesh = worldMesh(points, triangles, quads);
+    TriangleMesh& m = out.mesh;
+    const uint64_t n = points.size();
 
     const openvdb::Mat4d mat = xform.baseMap()->getAffineMap()->getMat4();
     double h = 1.0;
     std::array<int64_t, 3> shift{};
-    m.positions.resize(n);
-    if (wholeVoxelLattice(mat, h, shift)) {
-        // World coordinates on the transform's lattice: GridSpec::toIndex maps them.
-        tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 4096), [&](const tbb::blocked_range<uint64_t>& r) {
-            for (uint64_t i = r.begin(); i != r.end(); ++i)
-                m.positions[i] = {double(points[i][0]), double(points[i][1]), double(points[i][2])};
-        });
-    } else {
+    // On the transform's lattice the world coordinates stay: GridSpec::toIndex maps them.
+    if (!wholeVoxelLattice(mat, h, shift)) {
         // Index space directly: subtract the translation first, where it is
         // exact for a mesh near it, then apply the inverse of the linear part.
         const openvdb::Vec3d t = mat.getTranslation();
@@ -145,6 +156,22 @@ openvdb::MaskGrid::Ptr toMask(Voxelizer& v, const std::vector<PointT>& points,
 }
 
 } // namespace
+
+TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3d>& points, const std::vector<openvdb::Vec3I>& triangles,
+                            const std::vector<openvdb::Vec4I>& quads)
+{
+    TriangleMesh m = worldMesh(points, triangles, quads);
+    validateMesh(m);
+    return m;
+}
+
+TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& triangles,
+                            const std::vector<openvdb::Vec4I>& quads)
+{
+    TriangleMesh m = worldMesh(points, triangles, quads);
+    validateMesh(m);
+    return m;
+}
 
 IndexSpaceMesh prepareMesh(const std::vector<openvdb::Vec3d>& points, const std::vector<openvdb::Vec3I>& triangles,
                            const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform)

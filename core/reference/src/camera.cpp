@@ -22,12 +22,8 @@ void checkCamera(const Camera& camera, int width, int height)
     const Vec3d r = cross(normalize(toTarget), camera.up);
     if (!(length(r) > 1e-9 * length(camera.up)))
         throw Error("reference camera: up is zero or along the view direction");
-    if (camera.orthographic) {
-        if (!(camera.height > 0) || !std::isfinite(camera.height))
-            throw Error(fmt::format("reference camera: orthographic height {} is not positive", camera.height));
-    } else if (!(camera.fovYDegrees > 0 && camera.fovYDegrees < 180)) {
-        throw Error(fmt::format("reference camera: field of view {} is not in (0, 180) degrees", camera.fovYDegrees));
-    }
+    if (camera.orthographic) checkOrthographicHeight(camera.height, "reference camera: orthographic height");
+    else checkFieldOfView(camera.fovYDegrees, "reference camera: field of view");
 }
 
 Ray cameraRay(const Camera& camera, int width, int height, int x, int y)

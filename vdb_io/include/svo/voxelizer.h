@@ -207,6 +207,25 @@ struct VoxelizeOptions {
     VoxelizeStats* stats = nullptr;
 };
 
+/// @name The rules of the options' numbers
+/// One rule per number, for every front door: the library checks its options
+/// with them (naming the field, e.g. LevelSetOptions::exteriorBand), and the
+/// command line and the Python module check what they are given with the same
+/// functions, naming their own flag or keyword (`name`). Each throws
+/// svo::Error with one line: "<name> <value>: <the rule>". NaN never passes.
+/// @{
+/// A band half width: a number of voxels from 1 to 1000.
+void checkBand(double voxels, const std::string& name);
+/// SignOptions::windingAccuracy: a positive finite number (1e300 evaluates every triangle).
+void checkWindingAccuracy(double accuracy, const std::string& name);
+/// Both bands (the interior one only for signed fields) and the winding accuracy.
+void checkLevelSetOptions(const LevelSetOptions& options);
+/// The voxel mode of a level set or solid call: only VoxelMode::Conservative
+/// (the default); a mode is a rule for surface voxels, and the distances, the
+/// band and the inside do not depend on it.
+void checkFieldMode(const VoxelizeOptions& options);
+/// @}
+
 struct IndexSpaceMesh;
 
 class Voxelizer {
@@ -309,9 +328,10 @@ public:
     /// meshes.
     /// @param xform      a linear transform with uniform scale (distances are world units)
     /// @param exteriorBand, interiorBand  band half widths in voxels, each >= 1
-    /// @throw svo::Error as meshToMask, and for a band under 1 voxel or not
-    ///        finite, a transform without uniform scale, the CPU backend (this
-    ///        is GPU work), a winding accuracy that is not positive, or parity
+    /// @throw svo::Error as meshToMask, and for a band that fails checkBand
+    ///        (NaN included), a VoxelizeOptions::mode other than Conservative
+    ///        (checkFieldMode), a transform without uniform scale, the CPU backend (this
+    ///        is GPU work), a winding accuracy that fails checkWindingAccuracy, or parity
     ///        signs asked for a mesh with holes (boundary edges: a column
     ///        through a hole would flip every sign beyond it; winding and Auto
     ///        sign such meshes).
@@ -390,6 +410,16 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+/// @brief A mesh in OpenVDB's types as svo's double-precision mesh, in world
+/// units: what loadMesh gives for a file, so that makeGrid and
+/// Voxelizer::voxelize treat it exactly as `svo voxelize` treats the file
+/// (what the Python module does with a resolution or voxel size). Quads as
+/// meshToMask splits them.
+/// @throw svo::Error for an index out of range or a NaN/Inf vertex, naming the first.
+TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3d>& points, const std::vector<openvdb::Vec3I>& triangles,
+                            const std::vector<openvdb::Vec4I>& quads);
+TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& triangles,
+                            const std::vector<openvdb::Vec4I>& quads);
 /// @brief A mesh in OpenVDB's types as svo's double-precision mesh in the index
 /// space of @a xform, with the grid it voxelizes on (see Voxelizer::meshToOctree
 /// for which lattice that is).

@@ -9,6 +9,12 @@
 /// image up u = r x f. Perspective views span fovYDegrees vertically;
 /// orthographic views span `height` world units vertically, and the width
 /// follows from the image's aspect (width / height in pixels).
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "svo/core/error.h"
 #include "svo/core/vec3.h"
 
 namespace svo {
@@ -21,5 +27,22 @@ struct Camera {
     double fovYDegrees = 40.0; ///< perspective: vertical field of view
     double height = 1.0;       ///< orthographic: world units the image spans vertically
 };
+
+/// The rules of a camera's numbers, for every front door (the GL view, the
+/// reference, `svo view --ortho/--fov`), each naming the value as its caller
+/// calls it. Throw svo::Error "<name> <value>: <the rule>"; NaN never passes.
+/// Camera::height of an orthographic view: a positive finite number of world units.
+inline void checkOrthographicHeight(double height, const std::string& name)
+{
+    if (!(height > 0) || !std::isfinite(height))
+        throw Error(fmt::format("{} {}: an orthographic view spans a positive finite number of world units", name,
+                                height));
+}
+/// Camera::fovYDegrees of a perspective view: between 0 and 180 degrees, both excluded.
+inline void checkFieldOfView(double degrees, const std::string& name)
+{
+    if (!(degrees > 0 && degrees < 180))
+        throw Error(fmt::format("{} {}: a field of view is between 0 and 180 degrees", name, degrees));
+}
 
 } // namespace svo

@@ -56,6 +56,15 @@ struct GridRequest {
 /// Largest local extent per axis: voxel keys pack 21 bits per axis.
 constexpr uint32_t kMaxGridDim = 1u << 21;
 
+/// The rules of a grid request's numbers, for every front door: makeGrid
+/// checks with them, and `svo --resolution/--voxel-size` and Python's
+/// resolution=/voxel_size= check what they are given with them under their
+/// own names. Throw svo::Error "<name> must be ..., got <value>"; NaN never passes.
+/// GridRequest::resolution: a whole number from 1 to kMaxGridDim - 16.
+void checkResolution(double resolution, const std::string& name);
+/// GridRequest::voxelSize: a positive finite number of world units.
+void checkVoxelSize(double voxelSize, const std::string& name);
+
 /// The largest multiple of 8 at or below i: brick and OpenVDB leaf origins.
 constexpr int64_t floorTo8(int64_t i) { return i >= 0 ? i / 8 * 8 : -((-i + 7) / 8) * 8; }
 
