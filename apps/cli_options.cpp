@@ -171,6 +171,11 @@ void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize)
     res->excludes(size);
 }
 
+std::string nonEmptyMeshPath(const std::string& value)
+{
+    return value.empty() ? "the mesh path is empty; give a mesh file, or no mesh for the built-in Cornell box" : "";
+}
+
 GridRequest gridRequest(const CLI::App& cmd, int64_t resolution, double voxelSize)
 {
     const bool gotRes = cmd.count("--resolution") > 0, gotSize = cmd.count("--voxel-size") > 0;

@@ -70,6 +70,10 @@ void addSignOptions(CLI::App& cmd, FieldArgs& args, const std::string& appliesTo
 /// Whether any of --band, --exterior-band, --interior-band was given.
 bool bandsGiven(const CLI::App& cmd);
 
+/// CLI11 check for an input mesh argument: an empty path is a mistake (an
+/// unset variable, say), not the built-in scene.
+std::string nonEmptyMeshPath(const std::string& value);
+
 /// -r/--resolution and --voxel-size (mutually exclusive).
 void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize);
 /// The request those options make; resolution 256 when neither is given.

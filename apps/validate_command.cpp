@@ -305,9 +305,7 @@ void addValidateCommand(CLI::App& app)
                     "sides and OpenVDB's meshToLevelSet (exit 0 pass, 3 fail, 1 error)");
     cmd->add_option("mesh", args->mesh,
                     fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()))
-        ->check([](const std::string& v) { return v.empty() ? "the mesh path is empty; give a mesh file, or no mesh for "
-                                                             "the built-in Cornell box" : ""; },
-                "MESH");
+        ->check(nonEmptyMeshPath, "MESH");
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
     addModeOption(*cmd, args->backend);

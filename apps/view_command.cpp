@@ -206,6 +206,9 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     if (!window) checkWritable(a.screenshot);
     if (!a.save.empty()) checkWritable(a.save);
     checkOutputs({a.input}, {a.screenshot, a.save});
+    // The screenshot is put in place at the very end (atomic_file.h); the
+    // window's own pictures (key p, --save) are written as they are taken.
+    OutputBatch outputs({a.screenshot});
 
     // Options out of range are refused before any voxelizing (the default
     // lights come once the octree's box is known: a stand-in meanwhile).
@@ -319,6 +322,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         image = view.render(camera, width, height, layers);
         writePng(a.screenshot, image);
     }
+    outputs.commit();
     fmt::print("svo view\n");
     fmt::print("  {:<8} {}\n", "input", inputLine);
     fmt::print("  {:<8} {} voxels, {} bricks, {} levels\n", "octree", thousands(lo.octree.voxelCount()),
@@ -338,7 +342,8 @@ void addViewCommand(CLI::App& app)
     auto args = std::make_shared<ViewArgs>();
     CLI::App* cmd = app.add_subcommand(
         "view", "Draw an octree (of a mesh, .vdb or .svo; none: the Cornell box) on the GPU: voxels, node outlines, mesh");
-    cmd->add_option("input", args->input, "A mesh (voxelized first), .vdb or .svo; none: the built-in Cornell box");
+    cmd->add_option("input", args->input, "A mesh (voxelized first), .vdb or .svo; none: the built-in Cornell box")
+        ->check(nonEmptyMeshPath, "INPUT");
     addOutputPath(*cmd, "--screenshot", args->screenshot, "Render one frame offscreen to this PNG and exit", {".png"});
     cmd->add_option("--size", args->size, "Picture size WxH in pixels")->capture_default_str();
     cmd->add_option("--camera", args->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z[,up_x,up_y,up_z] (world units)");

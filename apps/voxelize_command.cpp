@@ -40,12 +40,6 @@ struct VoxelizeArgs {
     bool field() const { return sdf || udf || fill == "solid"; }
 };
 
-/// An empty mesh path is a mistake (an unset variable, say), not the built-in scene.
-std::string nonEmptyMeshPath(const std::string& value)
-{
-    return value.empty() ? "the mesh path is empty; give a mesh file, or no mesh for the built-in Cornell box" : "";
-}
-
 double peakRssMb()
 {
     rusage ru{};

@@ -50,6 +50,9 @@ if [ ! -f /usr/share/doc/libimgui-dev/examples/backends/imgui_impl_glfw.cpp ] &&
 fi
 
 build=${SVO_BUILD_DIR:-build}
+# Paths under the checkout reach ccache as relative ones, so that a clone in
+# another folder (CI's) reuses what an earlier build compiled.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
 # Debian's own Python: the one python3-openvdb (pyopenvdb) is built for.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3
 cmake --build "$build" --parallel "$(nproc)"

@@ -261,11 +261,20 @@ bool sameFile(const std::string& a, const std::string& b)
 
 void writeFileAtomically(const std::string& path, const std::string& bytes)
 {
+    // POSIX calls rather than a stream, so that a full disk is named (errno).
     writeAtomically(path, [&](const std::string& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        out.write(bytes.data(), std::streamsize(bytes.size()));
-        out.close();
-        if (!out) throw Error(fmt::format("{}: cannot write the file", path));
+        const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+        if (fd < 0) throw Error(fmt::format("{}: cannot write the file: {}", path, std::strerror(errno)));
+        size_t done = 0;
+        int error = 0;
+        while (done < bytes.size() && !error) {
+            const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+            if (n > 0) done += size_t(n);
+            else if (n == 0) error = EIO;
+            else if (errno != EINTR) error = errno;
+        }
+        if (::close(fd) != 0 && !error) error = errno;
+        if (error) throw Error(fmt::format("{}: cannot write the file: {}", path, std::strerror(error)));
     });
 }
 

@@ -107,8 +107,8 @@ struct SignOptions {
     SignMethod method = SignMethod::Auto;
     /// Winding numbers: tree nodes farther than this many times their radius
     /// add their far field, expanded to second order, instead of their
-    /// triangles (Barill et al. 2018's beta; larger is slower and more exact,
-    /// infinity evaluates every triangle).
+    /// triangles (Barill et al. 2018's beta; larger is slower and more exact;
+    /// positive and finite, checkWindingAccuracy: 1e300 evaluates every triangle).
     double windingAccuracy = 1.5;
     SignOptions(SignMethod m = SignMethod::Auto, double accuracy = 1.5) : method(m), windingAccuracy(accuracy) {}
 };
