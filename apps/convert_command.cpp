@@ -1,9 +1,9 @@
-// svo convert IN.vdb|IN.svo -o OUT.svo|OUT.vdb|OUT.nvdb
+// svo convert IN.vdb|IN.nvdb|IN.svo -o OUT.svo|OUT.vdb|OUT.nvdb
 //
-// A .vdb input to .vdb or .nvdb output keeps its grids whole: every grid (or
+// A .vdb or .nvdb input to .vdb or .nvdb output keeps its grids whole: every grid (or
 // the one --grid names) with its type, class, transform, values and metadata
 // (NanoVDB keeps type, class, name, transform and values; it has no string
-// metadata). A .svo file holds one grid's active voxels; a grid that holds
+// metadata; a .nvdb input is read and checked by vdb::readNanoVdbGrids). A .svo file holds one grid's active voxels; a grid that holds
 // more (a level set's distances, normals, any value but true or 1) is refused
 // unless --topology-only asks for the active voxels alone, which also makes
 // the old octree-built grids (--topology, --fog) from a .vdb input.
@@ -17,6 +17,7 @@
 #include "library_call.h"
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
+#include "svo/vdb_io/nanovdb_input.h"
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/vdb_io/octree_files.h"
 #include "svo/vdb_io/vdb_file.h"
@@ -31,13 +32,13 @@ struct ConvertArgs {
     bool topologyOnly = false;
 };
 
-/// .vdb to .vdb or .nvdb, every grid as it is.
-void copyGrids(const ConvertArgs& a)
+/// .vdb or .nvdb to .vdb or .nvdb, every grid as it is.
+void copyGrids(const ConvertArgs& a, bool nanoInput)
 {
     openvdb::GridPtrVec grids;
     {
         Progress p("reading " + a.input);
-        grids = vdb::readVdbGrids(a.input, a.gridName);
+        grids = nanoInput ? vdb::readNanoVdbGrids(a.input, a.gridName) : vdb::readVdbGrids(a.input, a.gridName);
     }
     WriteReport written;
     written.format = outputFormat(a.output);
@@ -61,11 +62,10 @@ void copyGrids(const ConvertArgs& a)
 void runConvert(const ConvertArgs& a, const CLI::App& cmd)
 {
     const std::string ext = std::filesystem::path(a.input).extension().string();
-    if (ext == ".nvdb")
-        throw Error(fmt::format("{}: svo writes NanoVDB files but does not read them; convert the .vdb it was made from",
+    if (ext != ".vdb" && ext != ".nvdb" && ext != ".svo")
+        throw Error(fmt::format("{}: svo convert reads .vdb, .nvdb and .svo files; voxelize meshes with svo voxelize",
                                 a.input));
-    if (ext != ".vdb" && ext != ".svo")
-        throw Error(fmt::format("{}: svo convert reads .vdb and .svo files; voxelize meshes with svo voxelize", a.input));
+    const bool gridsInput = ext == ".vdb" || ext == ".nvdb";
     checkOutputPath(a.output);
     checkOutputs({a.input}, {a.output});
     OutputBatch outputs({a.output}); // in place at the very end (atomic_file.h)
@@ -74,14 +74,15 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
     if (toSvo && (cmd.count("--fog") || cmd.count("--topology")))
         throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", a.output));
     if (ext == ".svo" && a.topologyOnly)
-        throw Error(fmt::format("{}: --topology-only applies to a .vdb input; a .svo file holds active voxels only",
+        throw Error(fmt::format("{}: --topology-only applies to a .vdb or .nvdb input; a .svo file holds active voxels only",
                                 a.input));
-    if (ext == ".vdb" && !toSvo && !a.topologyOnly) {
+    if (gridsInput && !toSvo && !a.topologyOnly) {
         if (cmd.count("--fog") || cmd.count("--topology"))
-            throw Error(fmt::format("{}: a .vdb input keeps its grids as they are; --fog and --topology make new "
+            throw Error(fmt::format("{}: a {} input keeps its grids as they are; --fog and --topology make new "
                                     "grids from its active voxels, which needs --topology-only",
-                                    a.input));
-        copyGrids(a);
+                                    a.input, ext));
+        copyGrids(a, ext == ".nvdb");
+        outputs.commit();
         return;
     }
     LibraryCall call(a.backend, "building the octree");
@@ -112,15 +113,15 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
 void addConvertCommand(CLI::App& app)
 {
     auto args = std::make_shared<ConvertArgs>();
-    CLI::App* cmd = app.add_subcommand("convert", "Convert between .vdb grids and .svo octrees");
-    cmd->add_option("input", args->input, "Input .vdb or .svo")->required();
+    CLI::App* cmd = app.add_subcommand("convert", "Convert between .vdb or .nvdb grids and .svo octrees");
+    cmd->add_option("input", args->input, "Input .vdb, .nvdb or .svo")->required();
     addOutputPath(*cmd, "-o,--output", args->output, "Output .svo, .vdb or .nvdb")->required();
-    cmd->add_option("--grid", args->gridName, "Grid of the input .vdb (default: the first)");
+    cmd->add_option("--grid", args->gridName, "Grid of the input .vdb or .nvdb (default: the first)");
     addBackendOptions(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
     cmd->add_flag("--topology-only", args->topologyOnly,
-                  "From a .vdb input, keep only one grid's active voxels (its values and class dropped), as an "
-                  "octree written as .svo or as new grids (--topology, --fog); without it a .vdb input keeps "
+                  "From a .vdb or .nvdb input, keep only one grid's active voxels (its values and class dropped), as an "
+                  "octree written as .svo or as new grids (--topology, --fog); without it a .vdb or .nvdb input keeps "
                   "every grid whole, and a .svo output refuses a grid with values");
     cmd->callback([args, cmd] { runConvert(*args, *cmd); });
 }

@@ -18,7 +18,9 @@ nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const openvdb::GridBase::Ptr&
 {
     if (!grid) throw Error("no grid to convert to NanoVDB");
     try {
-        return nanovdb::openToNanoVDB(grid);
+        // A full checksum (every node, not only the header and root) lets
+        // svo's reader (nanovdb_input.h) find a changed value.
+        return nanovdb::openToNanoVDB(grid, nanovdb::StatsMode::Default, nanovdb::ChecksumMode::Full);
     } catch (const std::exception& e) {
         throw Error(fmt::format("grid '{}' ({}) cannot become a NanoVDB grid: {}", grid->getName(), grid->type(),
                                 e.what()));

@@ -9,6 +9,7 @@
 #include "svo/core/mesh_io.h"
 #include "svo/core/octree_file.h"
 #include "svo/vdb_io/grid_builder.h"
+#include "svo/vdb_io/nanovdb_input.h"
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/vdb_io/vdb_file.h"
 #include "svo/voxelizer.h"
@@ -91,16 +92,13 @@ LoadedOctree loadOctree(Voxelizer& voxelizer, const std::string& path, const std
         out.stages.push_back({"svo read", -1, msSince(t0)});
         return out;
     }
-    if (ext == ".nvdb")
-        throw Error(fmt::format("{}: svo writes NanoVDB files but does not read them; read the .vdb it was made from",
-                                path));
     VoxelizeStats stats;
     VoxelizeOptions o = options;
     o.stats = &stats;
-    if (ext == ".vdb") {
+    if (ext == ".vdb" || ext == ".nvdb") {
         const auto t0 = Clock::now();
-        vdb::VdbBricks vb = vdb::readVdbBricks(path, gridName);
-        out.stages.push_back({"vdb read", -1, msSince(t0)});
+        vdb::VdbBricks vb = ext == ".vdb" ? vdb::readVdbBricks(path, gridName) : vdb::readNanoVdbBricks(path, gridName);
+        out.stages.push_back({ext == ".vdb" ? "vdb read" : "nvdb read", -1, msSince(t0)});
         out.kind = LoadedOctree::Kind::Vdb;
         out.gridName = vb.gridName;
         out.gridType = vb.gridType;

@@ -3,7 +3,7 @@
 /// @brief OpenVDB grids as NanoVDB grids, for GPU renderers that read NanoVDB.
 ///
 /// Method: NanoVDB's own converter (nanovdb::openToNanoVDB) with its default
-/// statistics and checksum. Supported: MaskGrid, BoolGrid, FloatGrid,
+/// statistics and a full checksum (every node, which svo's reader checks). Supported: MaskGrid, BoolGrid, FloatGrid,
 /// DoubleGrid, Int32Grid, Int64Grid, Vec3SGrid, Vec3DGrid: every grid svo writes.
 #include <nanovdb/util/GridHandle.h>
 #include <nanovdb/util/HostBuffer.h>

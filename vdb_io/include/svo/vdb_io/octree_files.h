@@ -4,8 +4,8 @@
 ///
 /// Output: .vdb (OpenVDB grids, as GridOptions asks), .svo (svo's own octree
 /// file, octree_file.h) or .nvdb (the same grids as .vdb, in NanoVDB form).
-/// Input: .svo, .vdb (one grid's active voxels, built into an octree by a
-/// Voxelizer) or a mesh file (voxelized by a Voxelizer on the requested grid).
+/// Input: .svo, .vdb or .nvdb (one grid's active voxels, built into an octree
+/// by a Voxelizer) or a mesh file (voxelized by a Voxelizer on the requested grid).
 /// Every file is written to a temporary in the same folder and renamed, so a
 /// failed write never leaves a partial file. Errors are svo::Error naming the path.
 #include <map>
@@ -48,7 +48,7 @@ WriteReport writeOctree(const std::string& path, const Octree& octree, const Gri
 struct LoadedOctree {
     Octree octree;
     enum class Kind { Svo, Vdb, Mesh } kind = Kind::Svo;
-    std::string gridName, gridType; ///< .vdb input: the grid read
+    std::string gridName, gridType; ///< .vdb or .nvdb input: the grid read
     uint64_t tilesExpanded = 0;     ///< .vdb input: active tiles turned into bricks
     std::string valuesDropped;      ///< .vdb input: what the octree does not hold of the grid (vdb::valuesBeyondTopology)
     std::optional<TriangleMesh> mesh; ///< mesh input: the mesh
