@@ -63,13 +63,14 @@ public:
     void add(const std::string& path);
 
     /// Writes the outputs that go through a device first (nothing is replaced
-    /// yet, and an interrupt still removes every temporary), then blocks SIGINT
-    /// and SIGTERM and renames the others into place. The signals stay blocked:
-    /// the run has done what it was asked, and a signal that comes now no longer
-    /// turns it into a failure (it is discarded when the process exits). If a
-    /// step fails, the remaining temporaries are removed, the signal mask is
-    /// restored, and svo::Error names the output that failed and those that
-    /// were already written.
+    /// yet, and an interrupt still removes every temporary), then renames the
+    /// others into place with interrupts deferred (finishWithoutInterrupts in
+    /// exit_cleanup.h; a flag the handler reads, since a signal mask covers
+    /// one thread only). From then on the run has done what it was asked, and
+    /// a SIGINT or SIGTERM no longer turns it into a failure. If a step fails,
+    /// the remaining temporaries are removed, interrupts are allowed again,
+    /// and svo::Error names the output that failed and those that were
+    /// already written.
     void commit();
 
     struct Impl; ///< atomic_file.cpp's
