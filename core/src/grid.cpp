@@ -30,6 +30,9 @@ double GridSpec::epsilon() const { return 32.0 * std::ldexp(1.0, -24) * std::max
 
 void checkResolution(double n, const std::string& name)
 {
+    if (n > double(kMaxGridDim) - 16 && std::isfinite(n))
+        throw Error(fmt::format("{} {} is beyond the largest supported grid: a whole number from 1 to {}", name, n,
+                                kMaxGridDim - 16));
     if (!(n >= 1 && n <= double(kMaxGridDim) - 16) || n != std::floor(n))
         throw Error(fmt::format("{} must be a whole number from 1 to {}, got {}", name, kMaxGridDim - 16, n));
 }
