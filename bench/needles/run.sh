@@ -17,7 +17,7 @@ for job in "seg 1024" "seg 4096" "seg 16384" "quad 4096"; do
       start=$(date +%s.%N)
       "$svo" voxelize "$here/$1.obj" -r "$2" --backend "$backend" --topology mask -o "$tmp/x.vdb" --json "$tmp/x.json" > "$tmp/log" 2>&1
       end=$(date +%s.%N)
-      walls+=("$(echo "$end - $start" | bc)")
+      walls+=("$(awk -v a="$start" -v b="$end" 'BEGIN{print b-a}')")
     done
     median=$(printf '%s\n' "${walls[@]}" | sort -g | sed -n 2p)
     voxels=$(python3 -c "import json;d=json.load(open('$tmp/x.json'));print(d['voxels'])" 2>/dev/null || grep -m1 voxels "$tmp/log")
