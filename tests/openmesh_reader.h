@@ -1,5 +1,5 @@
 #pragma once
-/// @file openmesh_reader.h (internal)
+/// @file openmesh_reader.h (the tests')
 /// Any format through OpenMesh's readers. svo reads every format itself; the
 /// tests use this to hold svo's readers to what OpenMesh reads.
 #include <string>
