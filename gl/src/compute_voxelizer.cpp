@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <functional>
+#include <limits>
 #include <tbb/parallel_for.h>
 
 #include "list_writer.h"
@@ -20,11 +21,30 @@ constexpr uint32_t kMaxGroups = 65535;       // per dispatch dimension, the leas
 /// (the elephant at 256^3: 46 ms with 256 groups, 70-90 ms with 4096).
 uint32_t queueGroups(const Context& context) { return context.info().software ? 256 : 4096; }
 
+/// The most columns voxelize.comp's alongLine walks in one row, over any
+/// projection axis: its reach with |slope| <= 1 (the row axis is the line's
+/// major one), delta from the exact normal plus the float normal's error
+/// bound, and margins beyond the shader's for its float arithmetic.
+double rowWidthBound(const Vec3d& a, const Vec3d& b, const Vec3d& c, float half)
+{
+    const Vec3d e[3] = {b - a, c - a, c - b};
+    double E = 0, mag = 0;
+    for (const Vec3d& d : e) E = std::max({E, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    for (const Vec3d& q : {a, b, c}) mag = std::max({mag, std::abs(q.x), std::abs(q.y), std::abs(q.z)});
+    if (!(E > 0)) return std::numeric_limits<double>::infinity();
+    const double ulp = std::ldexp(1.0, -24), dn = 8 * ulp * E * E;
+    const Vec3d n = cross(e[0], e[1]);
+    const double delta = (std::abs(n.x) + std::abs(n.y) + std::abs(n.z) + 6 * dn) / (E * (1 - 1e-6)) * (1 + 1e-5);
+    const double reach = (half + delta) * 2 + 1.0 / 64 + 64 * ulp * (mag + 1);
+    return std::floor(2 * reach) + 3;
+}
+
 /// The chunks of 64 columns one triangle can need in pass 1, at most: the
-/// column box on whichever axis gives most (the GPU picks its projection axis
-/// in float, which near ties may differ from the host's), with a column of
-/// margin for rounding on each side; 0 when every axis has at most kSmall
-/// columns, which pass 0 walks itself.
+/// columns voxelize.comp walks on whichever axis gives most (the GPU picks
+/// its projection axis in float, which near ties may differ from the
+/// host's), its box with a column of margin for rounding on each side, or
+/// fewer along a thin triangle's line; 0 when every axis has at most kSmall
+/// columns, which pass 0 walks itself. `maxColumns` gets the largest box.
 uint64_t chunkBound(const std::vector<Vec3f>& p, const std::array<uint32_t, 3>& f, float half,
                     std::array<uint32_t, 3> dims, uint64_t& maxColumns)
 {
@@ -34,6 +54,8 @@ uint64_t chunkBound(const std::vector<Vec3f>& p, const std::array<uint32_t, 3>& 
         lo[k] = std::min({a, b, c});
         hi[k] = std::max({a, b, c});
     }
+    auto corner = [&](uint32_t i) { return Vec3d{p[i].x, p[i].y, p[i].z}; };
+    const double rowWidth = rowWidthBound(corner(f[0]), corner(f[1]), corner(f[2]), half);
     uint64_t most = 0;
     for (int w = 0; w < 3; ++w) {
         const int u = (w + 1) % 3, v = (w + 2) % 3;
@@ -42,8 +64,10 @@ uint64_t chunkBound(const std::vector<Vec3f>& p, const std::array<uint32_t, 3>& 
             const double last = std::min(std::floor(hi[a] + half) + 2, double(dims[a]) - 1);
             return last < first ? 0 : uint64_t(last - first) + 1;
         };
-        const uint64_t columns = span(u) * span(v);
-        maxColumns = std::max(maxColumns, columns);
+        const uint64_t box = span(u) * span(v);
+        maxColumns = std::max(maxColumns, box);
+        const double alongLine = double(std::max(span(u), span(v))) * rowWidth;
+        const uint64_t columns = alongLine < double(box) ? uint64_t(alongLine) : box;
         if (columns > kSmall) most = std::max(most, (columns + kChunk - 1) / kChunk);
     }
     return most;
