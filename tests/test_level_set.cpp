@@ -1005,7 +1005,7 @@ void expectSameGrid(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b)
 // On a CPU rasterizer the passes whose workgroups loop over work cut it into
 // dispatches that keep each invocation under the driver's loop budget
 // (dispatchLooping: the distance and parity passes, band packing, and the
-// compute backend's queue). Real scenes reach more than one dispatch only
+// compute backend's work list). Real scenes reach more than one dispatch only
 // when large, so SVO_LOOP_LIMIT lowers the budget until a small scene does;
 // the level set must stay the same bit for bit and the compute backend's
 // voxels the same. On a GPU there is no budget and the variable is ignored.
@@ -1017,7 +1017,7 @@ TEST(LoopLimit, SplitDispatchesGiveTheSameResults)
     compute.backend = Backend::Compute;
     Voxelizer whole;
     const auto wholeSet = levelSetOf(whole, mesh, grid, {});
-    const TriangleMesh room = cornellBox(); // large triangles: the compute backend queues their rows
+    const TriangleMesh room = cornellBox(); // large triangles: the compute backend cuts them into chunks
     const GridSpec roomGrid = makeGrid(room, GridRequest{128, 0});
     const auto wholeKeys = octreeKeys(whole.voxelize(room, roomGrid, compute));
 

@@ -27,7 +27,7 @@ layout(std430, binding = SVO_BIND_COMPUTE_WORK) readonly restrict buffer Work { 
 uniform uint uPass;
 uniform uint uTriangles;
 uniform uint uLarge; // entries of large[]
-uniform uint uItemFirst; // pass 1: this dispatch's queue items, [uItemFirst, uItemEnd)
+uniform uint uItemFirst; // pass 1: this dispatch's items, [uItemFirst, uItemEnd)
 uniform uint uItemEnd;
 const uint kSmall = 64u; // columns a pass-0 thread walks itself
 const uint kChunk = 64u; // columns of one work item: one per thread of a pass-1 workgroup

@@ -16,7 +16,7 @@ namespace {
 
 constexpr uint64_t kSmall = 64, kChunk = 64; // as in voxelize.comp
 constexpr uint32_t kMaxGroups = 65535;       // per dispatch dimension, the least GL guarantees
-/// Pass-1 workgroups, each looping over the queue: on a GPU enough to fill the
+/// Pass-1 workgroups, each looping over its dispatch's items: on a GPU enough to fill the
 /// largest (132 SMs x 2048 threads); on llvmpipe few, as each group costs
 /// (the elephant at 256^3: 46 ms with 256 groups, 70-90 ms with 4096).
 uint32_t queueGroups(const Context& context) { return context.info().software ? 256 : 4096; }

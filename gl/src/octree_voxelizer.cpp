@@ -73,7 +73,7 @@ void attachAttributes(const Program& program, const TriangleMesh& mesh, uint32_t
     octree.attributes = finishAttributes(host, availableChannels(mesh, channels));
 }
 
-/// What one pass asks the GPU for, besides the writer's mesh and work queue.
+/// What one pass asks the GPU for, besides the writer's mesh and work list.
 struct PassSize {
     uint64_t list = 0, bricks = 0, nodes = 0;
 };
@@ -419,7 +419,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
     const PassSize largest = budget.largest();
     if (!largest.list)
         throw Error(fmt::format("a GPU memory budget of {} cannot hold the mesh ({}: vertices, indices, work "
-                                "queue) and the smallest pass ({} in all); raise the budget",
+                                "list) and the smallest pass ({} in all); raise the budget",
                                 byteSize(budget.limit()), byteSize(budget.fixed()), byteSize(budget.bytes(budget.sizeFor(1)))));
     OctreePasses passes(context, mesh, grid, options, *writer, builder, attributeProgram, budget);
 

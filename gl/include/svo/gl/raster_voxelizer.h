@@ -60,7 +60,7 @@ struct RasterOptions {
     /// for experiments only (docs/stability.md shows what 0 and too much do).
     double guardBand = -1.0;
     /// GPU bytes the call may allocate (voxelizeToOctree): the mesh, the work
-    /// queue, the voxel list, the octree build and the attribute pass. When a
+    /// list, the voxel list, the octree build and the attribute pass. When a
     /// grid needs more, it is cut into tiles of whole bricks that are
     /// voxelized one after another and merged on the host: the same octree,
     /// in canonical order (canonicalOrder()). 0: what the device reports free
