@@ -22,29 +22,15 @@
 
 #include "svo/core/octree.h"
 #include "svo/core/octree_file.h"
+#include "run_shell.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-    int code;
-    std::string out;
-};
-
-/// A shell command's exit status and output (stdout and stderr).
-Run runShell(const std::string& command)
-{
-    const std::string cmd = command + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
-    const int status = pclose(p);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using svo::test::Run;
+using svo::test::runShell;
 
 /// `env`: "NAME=value ..." for the command's environment.
 Run runSvo(const std::string& args, const std::string& env = "")

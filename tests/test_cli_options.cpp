@@ -8,26 +8,12 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "run_shell.h"
 #include "temp_dir.h"
 
 namespace {
 
-struct SvoRun {
-    int code;
-    std::string out;
-};
-
-SvoRun runSvo(const std::string& args)
-{
-    const std::string cmd = std::string(SVO_EXE) + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
-    const int status = pclose(p);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+svo::test::Run runSvo(const std::string& args) { return svo::test::runShell(std::string(SVO_EXE) + " " + args); }
 
 /// A closed tetrahedron, so that --sdf runs have an inside.
 std::string tetrahedron(const svo::test::TempDir& dir)
@@ -40,7 +26,7 @@ std::string tetrahedron(const svo::test::TempDir& dir)
 /// Exit 1 with exactly one line that holds `message`.
 void expectRefused(const std::string& args, const std::string& message)
 {
-    const SvoRun r = runSvo(args);
+    const auto r = runSvo(args);
     EXPECT_EQ(r.code, 1) << args << "\n" << r.out;
     EXPECT_NE(r.out.find(message), std::string::npos) << args << "\n" << r.out;
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << args << "\n" << r.out;
@@ -67,7 +53,7 @@ TEST(CliOptions, WindingAccuracyIsRefusedInOneShortLineAsPythonRefusesIt)
     const std::string rule = ": the winding accuracy is a positive finite number";
     for (const std::string v : {"0", "-1", "nan", "inf"}) {
         expectRefused(args + " --winding-accuracy " + v, "--winding-accuracy " + v + rule);
-        const SvoRun r = runSvo(args + " --winding-accuracy " + v);
+        const auto r = runSvo(args + " --winding-accuracy " + v);
         EXPECT_LT(r.out.size(), 240u) << r.out; // once a 310-digit range
     }
 }
@@ -81,7 +67,7 @@ TEST(CliOptions, OrthoThatIsNotPositiveIsRefusedNotDrawnInPerspective)
     expectRefused(args + " --fov nan", "--fov nan: a field of view is between 0 and 180 degrees");
     expectRefused(args + " --fov 180", "--fov 180: a field of view");
     EXPECT_FALSE(std::filesystem::exists(dir.path("v.png")));
-    const SvoRun ok = runSvo(args + " --ortho 2");
+    const auto ok = runSvo(args + " --ortho 2");
     EXPECT_EQ(ok.code, 0) << ok.out;
     EXPECT_NE(ok.out.find("orthographic 2"), std::string::npos) << ok.out;
 }
@@ -94,7 +80,7 @@ TEST(CliOptions, ValidateRefusesANegativeWorstAndANanBand)
                   "--band nan: a band is a number of voxels from 1 to 1000");
     expectRefused("validate " + tetrahedron(dir) + " -r 8 --worst -1",
                   "--worst -1: the worst cases listed of each kind are 0 to 1000000");
-    const SvoRun ok = runSvo("validate " + tetrahedron(dir) + " -r 8 --worst 0");
+    const auto ok = runSvo("validate " + tetrahedron(dir) + " -r 8 --worst 0");
     EXPECT_EQ(ok.code, 0) << ok.out;
 }
 
@@ -111,9 +97,9 @@ TEST(CliOptions, ValidateAndVoxelizeAgreeThatALevelSetHasNoThinMode)
     expectRefused("validate " + mesh + " -r 8 --sdf --mode thin", rule);
     EXPECT_FALSE(std::filesystem::exists(dir.path("x.vdb")));
     // The default mode, named, is the same call in both.
-    const SvoRun v = runSvo("voxelize " + mesh + " -r 8 --sdf --mode conservative" + out);
+    const auto v = runSvo("voxelize " + mesh + " -r 8 --sdf --mode conservative" + out);
     EXPECT_EQ(v.code, 0) << v.out;
-    const SvoRun c = runSvo("validate " + mesh + " -r 8 --sdf --mode conservative");
+    const auto c = runSvo("validate " + mesh + " -r 8 --sdf --mode conservative");
     EXPECT_EQ(c.code, 0) << c.out;
 }
 

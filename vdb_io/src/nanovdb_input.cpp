@@ -331,15 +331,7 @@ VdbBricks readNanoVdbBricks(const std::string& path, const std::string& gridName
     openvdb::GridBase::Ptr grid = grids.front();
     for (const auto& g : grids)
         if (g->getName() < grid->getName()) grid = g;
-    GridBricks gb = gridToBricks(*grid, path);
-    VdbBricks out;
-    out.gridName = grid->getName();
-    out.gridType = grid->type();
-    out.grid = gb.grid;
-    out.bricks = std::move(gb.bricks);
-    out.tilesExpanded = gb.tilesExpanded;
-    out.valuesDropped = valuesBeyondTopology(*grid);
-    return out;
+    return bricksOfGrid(*grid, path);
 }
 
 } // namespace svo::vdb

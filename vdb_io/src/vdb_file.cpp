@@ -709,6 +709,19 @@ template <typename T> bool isOne(const T& v)
 }
 } // namespace
 
+VdbBricks bricksOfGrid(const openvdb::GridBase& grid, const std::string& name, uint64_t maxTileBricks)
+{
+    GridBricks gb = gridToBricks(grid, name, maxTileBricks);
+    VdbBricks out;
+    out.gridName = grid.getName();
+    out.gridType = grid.type();
+    out.grid = gb.grid;
+    out.bricks = std::move(gb.bricks);
+    out.tilesExpanded = gb.tilesExpanded;
+    out.valuesDropped = valuesBeyondTopology(grid);
+    return out;
+}
+
 std::string valuesBeyondTopology(const openvdb::GridBase& grid)
 {
     const std::string g = fmt::format("grid '{}' ({})", grid.getName(), grid.valueType());
@@ -809,16 +822,7 @@ openvdb::GridPtrVec readGridsChecked(std::istream& in, uint64_t size, const std:
 VdbBricks readChecked(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName,
                       uint64_t maxTileBricks)
 {
-    const openvdb::GridBase::Ptr grid = readSelected(in, size, name, gridName, false).front();
-    GridBricks gb = gridToBricks(*grid, name, maxTileBricks);
-    VdbBricks out;
-    out.gridName = grid->getName();
-    out.gridType = grid->type();
-    out.grid = gb.grid;
-    out.bricks = std::move(gb.bricks);
-    out.tilesExpanded = gb.tilesExpanded;
-    out.valuesDropped = valuesBeyondTopology(*grid);
-    return out;
+    return bricksOfGrid(*readSelected(in, size, name, gridName, false).front(), name, maxTileBricks);
 }
 
 } // namespace

@@ -85,6 +85,11 @@ VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::st
 /// svo::Error naming the path.
 openvdb::GridPtrVec readVdbGrids(const std::string& path, const std::string& gridName = {});
 
+/// One grid's bricks (gridToBricks), named with what they drop of it: what
+/// readVdbBricks and readNanoVdbBricks give for the grid they pick.
+VdbBricks bricksOfGrid(const openvdb::GridBase& grid, const std::string& name,
+                       uint64_t maxTileBricks = kMaxTileBricks);
+
 /// What a grid holds beyond which voxels are active, for a message ("the
 /// distances of the level set grid 'surface' (Tree_float_5_4_3)"); empty when
 /// nothing: a MaskGrid, or a grid that is not a level set whose active
