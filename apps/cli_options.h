@@ -10,6 +10,7 @@
 #include "svo/core/grid.h"
 #include "svo/core/octree.h"
 #include "svo/vdb_io/grid_options.h"
+#include "svo/load_octree.h"
 #include "svo/vdb_io/octree_files.h"
 
 namespace CLI {

@@ -19,6 +19,7 @@
 #include "svo/core/error.h"
 #include "svo/vdb_io/nanovdb_input.h"
 #include "svo/vdb_io/nanovdb_output.h"
+#include "svo/load_octree.h"
 #include "svo/vdb_io/octree_files.h"
 #include "svo/vdb_io/vdb_file.h"
 

@@ -4,7 +4,7 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "svo/core/error.h"
-#include "svo/core/exit_cleanup.h"
+#include "interrupt_cleanup.h"
 
 int main(int argc, char** argv)
 {
@@ -24,7 +24,7 @@ int main(int argc, char** argv)
     svo::app::addViewCommand(app);
     svo::app::addGlInfoCommand(app);
     // Ctrl-C and SIGTERM remove temporary files and stop Xvfb, then exit 130 / 143.
-    svo::installInterruptCleanup();
+    svo::app::installInterruptCleanup();
     // Usage errors in one line, like every other error.
     app.failure_message([](const CLI::App*, const CLI::Error& e) {
         return "svo: error: " + svo::app::printable(e.what()) + " (see --help)\n";

@@ -21,6 +21,7 @@
 #include "svo/core/error.h"
 #include "svo/gl/context.h"
 #include "svo/gl/octree_view.h"
+#include "svo/load_octree.h"
 #include "svo/vdb_io/octree_files.h"
 
 namespace svo::app {

@@ -7,6 +7,7 @@
 
 #include "cli_options.h"
 #include "svo/gl/octree_view.h"
+#include "svo/load_octree.h"
 #include "svo/vdb_io/octree_files.h"
 #include "svo/voxelizer.h"
 

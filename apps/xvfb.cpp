@@ -12,7 +12,7 @@
 #include <unistd.h>
 
 #include "svo/core/error.h"
-#include "svo/core/exit_cleanup.h"
+#include "interrupt_cleanup.h"
 
 namespace svo::app {
 namespace {

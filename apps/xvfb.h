@@ -27,7 +27,7 @@ public:
 private:
     std::string name_;
     pid_t pid_ = -1;
-    int cleanupSlot_ = -1; ///< exit_cleanup.h: an interrupt stops the server too
+    int cleanupSlot_ = -1; ///< interrupt_cleanup.h: an interrupt stops the server too
     std::string previous_; ///< a DISPLAY that did not open, restored afterwards
 };
 

@@ -1,11 +1,13 @@
-# svo_embed_files(<target> <namespace> <files...>)
-# Generates a C++ source that maps each file's base name to its text, so shaders
-# live as .glsl files in the tree but ship inside the binary.
-function(svo_embed_files target ns)
+# svo_embed_files(<target> <namespace> <function> <files...>)
+# Generates a C++ source defining `const std::map<std::string, std::string>&
+# <namespace>::<function>()`, which maps each file's base name to its text, so
+# shaders live as .glsl files beside the code that runs them but ship inside
+# the binary. Each GL layer embeds its own shaders under its own function.
+function(svo_embed_files target ns fn)
   set(out "${CMAKE_CURRENT_BINARY_DIR}/${target}_embedded.cpp")
   set(script "${CMAKE_CURRENT_BINARY_DIR}/${target}_embed.cmake")
   file(WRITE "${script}" "
-set(content \"// Generated from shader files; edit those instead.\\n#include <map>\\n#include <string>\\nnamespace ${ns} {\\nconst std::map<std::string, std::string>& embeddedFiles() {\\n  static const std::map<std::string, std::string> files = {\\n\")
+set(content \"// Generated from shader files; edit those instead.\\n#include <map>\\n#include <string>\\nnamespace ${ns} {\\nconst std::map<std::string, std::string>& ${fn}() {\\n  static const std::map<std::string, std::string> files = {\\n\")
 foreach(f \${FILES})
   get_filename_component(name \"\${f}\" NAME)
   file(READ \"\${f}\" text)

@@ -1,22 +1,26 @@
 # Install layout and the svo CMake package (find_package(svo CONFIG)), with
 # GNUInstallDirs' folders (lib is lib/<multiarch> under the /usr prefix):
-#   include/svo/...              public headers of core, gl and vdb_io
-#   lib/libsvo_{core,gl,vdb_io}.a
+#   include/svo/...              public headers of every layer
+#   lib/libsvo_core.a, libsvo_gl_{device,voxelize,fields,view}.a, libsvo_vdb_io.a, libsvo_svo.a
 #   lib/cmake/svo/               svoConfig.cmake, svoConfigVersion.cmake, svoTargets*.cmake,
 #                                svoOpenVDBModulePath.cmake
 #   bin/svo                      with SVO_BUILD_CLI
 #   lib/svo/libsvo_vtk.so        with SVO_WITH_VTK: the module `svo vtk` loads
-# The shaders are compiled into libsvo_gl.a, so nothing else is needed at run time.
+# The shaders are compiled into the GL layers' libraries, so nothing else is needed at run time.
 include(CMakePackageConfigHelpers)
 set(SVO_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/svo" CACHE STRING
     "Where svoConfig.cmake goes, relative to the install prefix")
 mark_as_advanced(SVO_INSTALL_CMAKEDIR)
 
-install(TARGETS svo_core svo_gl svo_vdb_io svo_all EXPORT svoTargets
+install(TARGETS svo_core svo_gl_device svo_gl_voxelize svo_gl_fields svo_gl_view svo_gl svo_vdb_io svo_svo
+        EXPORT svoTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # Whole trees: overlap.h includes overlap.glsl, which is shared with the shaders.
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ ${PROJECT_SOURCE_DIR}/gl/include/
-                  ${PROJECT_SOURCE_DIR}/vdb_io/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/
+                  ${PROJECT_SOURCE_DIR}/gl/device/include/ ${PROJECT_SOURCE_DIR}/gl/voxelize/include/
+                  ${PROJECT_SOURCE_DIR}/gl/fields/include/ ${PROJECT_SOURCE_DIR}/gl/view/include/
+                  ${PROJECT_SOURCE_DIR}/vdb_io/convert/include/ ${PROJECT_SOURCE_DIR}/vdb_io/voxelizer/include/
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(EXPORT svoTargets NAMESPACE svo:: DESTINATION ${SVO_INSTALL_CMAKEDIR})
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/svoConfig.cmake.in "${PROJECT_BINARY_DIR}/svoConfig.cmake"

@@ -49,6 +49,10 @@ if [ ! -f /usr/share/doc/libimgui-dev/examples/backends/imgui_impl_glfw.cpp ] &&
   rm -rf "$tmp"
 fi
 
+# The layer diagram (docs/design.md) before anything is built: a dependency
+# that reaches up fails the tests at once.
+[ "$mode" = test ] && python3 scripts/check_layers.py
+
 build=${SVO_BUILD_DIR:-build}
 # Paths under the checkout reach ccache as relative ones, so that a clone in
 # another folder (CI's) reuses what an earlier build compiled.

@@ -1,4 +1,4 @@
-// The interrupt clean-up's children (exit_cleanup.h): a child that dies
+// The interrupt clean-up's children (apps/interrupt_cleanup.h): a child that dies
 // without removing its files (an X server's lock and socket) has them removed
 // once reaped, and only when the lock names that child.
 #include <array>
@@ -12,7 +12,8 @@
 
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
-#include "svo/core/exit_cleanup.h"
+#include "interrupt_cleanup.h"
+#include "svo/core/pending_files.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -43,7 +44,7 @@ int exitStatusOf(Body body)
     const pid_t pid = fork();
     if (pid == 0) {
         svo::allowInterrupts(); // whatever an earlier test in this process left
-        svo::installInterruptCleanup();
+        svo::app::installInterruptCleanup();
         body();
         _exit(0);
     }
@@ -64,11 +65,11 @@ struct RegisteredChild {
             execlp("sleep", "sleep", "30", static_cast<char*>(nullptr));
             _exit(127);
         }
-        slot = pid > 0 ? svo::registerChild(pid) : -1;
+        slot = pid > 0 ? svo::app::registerChild(pid) : -1;
         const std::string owner = std::to_string(lockOwner ? lockOwner : pid);
         writeFile(tmp.path("lock"), std::string(10 - owner.size(), ' ') + owner + "\n");
         writeFile(tmp.path("socket"), "");
-        svo::setChildFiles(slot, tmp.path("lock").c_str(), tmp.path("socket").c_str());
+        svo::app::setChildFiles(slot, tmp.path("lock").c_str(), tmp.path("socket").c_str());
     }
     /// Killed outright, with no chance to remove anything itself, and reaped.
     void kill() const
@@ -90,7 +91,7 @@ std::array<bool, 2> filesLeftByAKilledChild(pid_t lockOwner)
     EXPECT_GT(child.pid, 0);
     EXPECT_GE(child.slot, 0);
     child.kill();
-    svo::releaseChild(child.slot);
+    svo::app::releaseChild(child.slot);
     return {fs::exists(tmp.path("lock")), fs::exists(tmp.path("socket"))};
 }
 
@@ -116,13 +117,13 @@ TEST(ExitCleanup, TheInterruptCleanUpStopsTheChildAndRemovesWhatItLeft)
     writeFile(tmp.path("out.tmp"), "partial");
     const int temporary = svo::registerTemporary(tmp.path("out.tmp").c_str());
     ASSERT_GE(temporary, 0);
-    svo::cleanUpForExit(); // what the signal handler runs: SIGTERM, wait, reap
+    svo::app::cleanUpForExit(); // what the signal handler runs: SIGTERM, wait, reap
     EXPECT_EQ(waitpid(child.pid, nullptr, WNOHANG), -1); // already reaped by the clean-up
     EXPECT_FALSE(fs::exists(tmp.path("lock")));
     EXPECT_FALSE(fs::exists(tmp.path("socket")));
     EXPECT_FALSE(fs::exists(tmp.path("out.tmp")));
     svo::releaseTemporary(temporary);
-    svo::releaseChild(child.slot);
+    svo::app::releaseChild(child.slot);
 }
 
 TEST(ExitCleanup, AnInterruptEndsTheRunUntilItFinishesWithoutInterrupts)

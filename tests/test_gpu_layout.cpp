@@ -12,19 +12,28 @@
 #include <string>
 #include <vector>
 
-#include "objects.h" // internal to svo_gl (gl/src)
-#include "shaders.h"
 #include "svo/core/error.h"
 #include "svo/core/gpu_layout.h"
 #include "svo/core/octree.h"
 #include "svo/core/voxel_attributes.h"
 #include "svo/core/voxel_key.h"
 #include "svo/gl/context.h"
+#include "svo/gl/objects.h"
+#include "svo/gl/shaders.h"
+#include "voxelize_layout.h"  // the voxelize layer's slots (gl/voxelize/shaders)
+#include "voxelize_shaders.h" // and its embedded shaders (gl/voxelize/src)
 
 using namespace svo;
 using namespace svo::gl;
 
 namespace {
+
+/// A test's own shader files, then the voxelize layer's.
+ShaderFiles withVoxelize(ShaderFiles files)
+{
+    for (const auto& [name, text] : voxelizeShaders()) files.emplace(name, text);
+    return files;
+}
 
 class GpuLayout : public ::testing::Test {
 protected:
@@ -141,6 +150,7 @@ TEST_F(GpuLayout, BuildStateFieldsLandWhereCppReadsThem)
     const char* const probe = R"(#version 450 core
 layout(local_size_x = 1) in;
 #include "gpu_layout.h"
+#include "voxelize_layout.h"
 layout(std430, binding = SVO_BIND_BUILD_STATE) writeonly buffer BuildState { SVO_BUILD_STATE_FIELDS } state;
 void main()
 {
@@ -156,7 +166,7 @@ void main()
 }
 )";
     const Buffer buffer("test build state", sizeof(gpu::BuildState));
-    const Program program({{"state_probe.comp", probe}}, {"state_probe.comp"});
+    const Program program(withVoxelize({{"state_probe.comp", probe}}), {"state_probe.comp"});
     buffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_STATE);
     program.dispatch(1);
     const gpu::BuildState s = readBack<gpu::BuildState>(buffer, 1)[0];
@@ -182,7 +192,7 @@ std::regex locationOf(const std::string& file, int line)
 std::string compileError(const ShaderFiles& files, const char* stage)
 {
     try {
-        Program program(files, {stage});
+        Program program(withVoxelize(files), {stage});
     } catch (const Error& e) {
         return e.what();
     }
@@ -236,8 +246,8 @@ TEST_F(GpuLayout, EveryProjectProgramBuilds)
 {
     for (const char* stage : {"octree_prepare.comp", "octree_flag.comp", "octree_alloc.comp", "octree_fill.comp",
                               "octree_attributes.comp"})
-        EXPECT_NO_THROW(Program({stage})) << stage;
-    EXPECT_NO_THROW(Program({"raster.vert", "raster.geom", "raster.frag"}));
+        EXPECT_NO_THROW(Program(voxelizeShaders(), {stage})) << stage;
+    EXPECT_NO_THROW(Program(voxelizeShaders(), {"raster.vert", "raster.geom", "raster.frag"}));
 }
 
 // ---- Without a GL context -------------------------------------------------

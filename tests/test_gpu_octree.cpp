@@ -17,6 +17,7 @@
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"
 #include "svo/core/gpu_layout.h"
+#include "voxelize_layout.h" // SVO_BUILD_BITMAP_MAX_LEVEL (gl/voxelize/shaders)
 #include "svo/core/mesh_io.h"
 #include "svo/core/octree.h"
 #include "svo/core/voxel_attributes.h"

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "objects.h" // internal to svo_gl (gl/src)
-#include "program_cache.h"
+#include "svo/gl/objects.h"
+#include "svo/gl/program_cache.h"
 #include "scenes.h"
 #include "svo/core/octree.h"
 #include "svo/gl/context.h"

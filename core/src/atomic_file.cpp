@@ -16,7 +16,7 @@
 #include <unistd.h>
 
 #include "svo/core/error.h"
-#include "svo/core/exit_cleanup.h"
+#include "svo/core/pending_files.h"
 
 namespace svo {
 namespace fs = std::filesystem;

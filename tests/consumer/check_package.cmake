@@ -3,7 +3,9 @@
 #   2. voxelize MESH with the installed svo into WORK_DIR/cli.vdb (a MaskGrid);
 #   3. configure and build CONSUMER_DIR (this folder) against that prefix;
 #   4. run `consumer MESH WORK_DIR/cli.vdb`, which voxelizes through the
-#      package and exits 0 only when its voxels equal the CLI's.
+#      package and exits 0 only when its voxels equal the CLI's;
+#   5. check the installed targets' links: svo::vdb_io (the converter) reaches
+#      no GL library, directly or through the svo:: targets it links.
 # Also takes GENERATOR, MAKE_PROGRAM, CXX_COMPILER, LAUNCHER, BINDIR and INCLUDEDIR
 # (relative install folders) from the calling build.
 set(prefix "${WORK_DIR}/prefix")
@@ -42,3 +44,37 @@ endif()
 run("build consumer" ${CMAKE_COMMAND} --build ${consumer_build})
 
 run("consumer" ${consumer_build}/consumer ${MESH} ${WORK_DIR}/cli.vdb)
+
+# Each installed svo:: target's INTERFACE_LINK_LIBRARIES, as svoTargets.cmake declares them.
+file(GLOB_RECURSE targets_file "${prefix}/*/svoTargets.cmake")
+file(READ "${targets_file}" targets_text)
+string(REGEX MATCHALL "set_target_properties\\(svo::[a-z_]+ PROPERTIES[^)]*\\)" declarations "${targets_text}")
+foreach(d ${declarations})
+  string(REGEX MATCH "svo::[a-z_]+" name "${d}")
+  string(REGEX MATCH "INTERFACE_LINK_LIBRARIES \"[^\"]*\"" links "${d}")
+  set("links_${name}" "${links}")
+endforeach()
+if(NOT DEFINED links_svo::vdb_io)
+  message(FATAL_ERROR "svoTargets.cmake declares no svo::vdb_io")
+endif()
+# The reading itself: the front door does link the GL layers.
+if(NOT links_svo::svo MATCHES "svo::gl_voxelize" OR NOT links_svo::gl_device MATCHES "OpenGL::")
+  message(FATAL_ERROR "svoTargets.cmake read wrongly: svo::svo links '${links_svo::svo}', "
+                      "svo::gl_device links '${links_svo::gl_device}'")
+endif()
+set(pending svo::vdb_io)
+set(seen)
+while(pending)
+  list(POP_FRONT pending name)
+  list(APPEND seen ${name})
+  if(links_${name} MATCHES "OpenGL|EGL|svo::gl")
+    message(FATAL_ERROR "svo::vdb_io reaches GL through ${name}: ${links_${name}}")
+  endif()
+  string(REGEX MATCHALL "svo::[a-z_]+" next "${links_${name}}")
+  foreach(n ${next})
+    if(NOT n IN_LIST seen)
+      list(APPEND pending ${n})
+    endif()
+  endforeach()
+endwhile()
+message(STATUS "package_consumer: svo::vdb_io links no GL (through ${seen})")

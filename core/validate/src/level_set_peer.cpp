@@ -13,7 +13,6 @@
 
 #include "closed_surface.h"
 #include "local_points.h"
-#include "svo/vdb_io/grid_builder.h"
 #include "triangle_distances.h"
 
 namespace svo::validate {
@@ -61,8 +60,12 @@ OpenVdbComparison compareWithOpenVdb(const TriangleMesh& mesh, const GridSpec& g
     openvdb::FloatGrid::Ptr theirs;
     try {
         const auto t0 = std::chrono::steady_clock::now();
+        // The grid's own transform: its voxel size, then its whole-voxel translation.
+        const auto xform = openvdb::math::Transform::createLinearTransform(grid.voxelSize);
+        const auto t = grid.translation();
+        xform->postTranslate(openvdb::Vec3d(t[0], t[1], t[2]));
         theirs = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(
-            *vdb::makeTransform(grid), points, triangles, {}, float(o.exteriorBand), float(o.interiorBand));
+            *xform, points, triangles, {}, float(o.exteriorBand), float(o.interiorBand));
         c.openvdbSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     } catch (const openvdb::Exception& e) {
         throw Error(fmt::format("{}: OpenVDB's meshToSignedDistanceField failed: {}", mesh.source, e.what()));

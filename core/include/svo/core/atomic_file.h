@@ -48,7 +48,7 @@ uint64_t outputBytes(const std::string& path);
 /// The outputs of one command, committed together: a run replaces all of
 /// them or none. While a batch lives (one at a time in a process),
 /// writeAtomically() to one of its paths finishes the temporary and leaves it
-/// (registered with exit_cleanup.h, so an interrupt removes it); commit()
+/// (registered with pending_files.h, so an interrupt removes it); commit()
 /// then moves them all into place. Destroyed without a commit (an error
 /// unwinding), it removes every temporary and no earlier file is touched.
 /// Writes to other paths (a program cache) are not held back.
@@ -65,7 +65,7 @@ public:
     /// Writes the outputs that go through a device first (nothing is replaced
     /// yet, and an interrupt still removes every temporary), then renames the
     /// others into place with interrupts deferred (finishWithoutInterrupts in
-    /// exit_cleanup.h; a flag the handler reads, since a signal mask covers
+    /// pending_files.h; a flag the handler reads, since a signal mask covers
     /// one thread only). From then on the run has done what it was asked, and
     /// a SIGINT or SIGTERM no longer turns it into a failure. If a step fails,
     /// the remaining temporaries are removed, interrupts are allowed again,

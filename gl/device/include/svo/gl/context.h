@@ -1,0 +1,168 @@
+#pragma once
+/// @file context.h
+/// A headless OpenGL 4.5 core context through EGL, with no window system.
+///
+/// Device choice: EGL_EXT_platform_device devices are enumerated; hardware
+/// devices are tried before software ones (Mesa llvmpipe), then Mesa's
+/// surfaceless platform and the default display. `device` (or the environment
+/// variable SVO_EGL_DEVICE when the option is empty) narrows the choice:
+/// "auto", "hardware", "software", or a device index as listed by
+/// `svo glinfo`.
+///
+/// Adoption: with ContextOptions::adoptCurrent the Context wraps the OpenGL
+/// context that is current on the calling thread (a host's window made by
+/// GLFW, Qt, ...), through EGL or GLX. svo then draws and computes in the
+/// host's context (into its framebuffers, with its objects) and neither
+/// creates nor destroys it.
+///
+/// Currency: the context is current only inside a Scope. A Scope saves what
+/// the thread had current (an EGL context of any display, or a GLX context,
+/// such as a host application's window), makes this context current, and puts
+/// the saved one back when it ends, on every path out. So svo can be called
+/// from inside a host that renders with its own context.
+///
+/// The context also owns what repeated work reuses: linked programs (made on
+/// first use, by their files) and scratch buffers (kept at their largest size
+/// until releaseScratch()).
+///
+/// Program cache: a program is loaded from a binary that an earlier context
+/// of the same driver stored in the cache folder (ContextOptions::programCache),
+/// and compiled, then stored, only when there is none the driver takes. The
+/// cache never fails a call: a damaged or refused entry is compiled again and
+/// replaced, a folder that cannot be written gives one warning
+/// (ProgramStats::warnings). A driver with no program binary formats has no cache.
+#include <cstdint>
+#include <initializer_list>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "svo/gl/shaders.h"
+
+namespace svo::gl {
+
+class Program;
+class Buffer;
+
+struct ContextOptions {
+    std::string device;  ///< "" = $SVO_EGL_DEVICE or "auto"
+    bool debug = false;  ///< GL debug output to stderr (always on in debug builds)
+    /// Folder of cached program binaries: "" = $SVO_PROGRAM_CACHE when set
+    /// (empty or "off": no cache), else $XDG_CACHE_HOME/svo/programs, else
+    /// ~/.cache/svo/programs; "off" = no cache; or a folder.
+    std::string programCache;
+    /// Wrap the context current on the calling thread instead of creating one
+    /// (`device` is then ignored). It must be OpenGL 4.5 core.
+    bool adoptCurrent = false;
+};
+
+struct ContextInfo {
+    std::string vendor, renderer, version;
+    std::string eglDevice;             ///< the EGL device used, or "the host's GLX context" (EGL) when adopted
+    bool adopted = false;              ///< the context is the host's (ContextOptions::adoptCurrent)
+    bool conservativeRasterNV = false; ///< GL_NV_conservative_raster present
+    bool memoryInfoNVX = false;        ///< GL_NVX_gpu_memory_info present (free video memory can be asked)
+    bool software = false;             ///< a CPU rasterizer (llvmpipe, softpipe, lavapipe-like)
+    /// Loop iterations a shader may run in all, over all its loops, before the
+    /// driver ends them silently: Mesa's gallivm (llvmpipe, softpipe) stops
+    /// at 65,535. 0: no such limit. Passes whose invocations loop over work
+    /// cut their dispatches to stay under it, or stop and report it. On such
+    /// a driver the environment variable SVO_LOOP_LIMIT may lower it (not
+    /// raise it), so that tests reach the split dispatches with small scenes.
+    uint64_t loopLimit = 0;
+    /// The invocations that share one loopLimit: gallivm runs loopLanes of them
+    /// as one SIMD vector, whose loops iterate while any lane does, so lanes
+    /// whose loops diverge spend the limit together (llvmpipe's "N bits" / 32).
+    uint32_t loopLanes = 1;
+    int maxViewport = 0;               ///< largest framebuffer width/height usable
+    /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the most bytes of one buffer a shader
+    /// can address; work whose buffers would pass it is tiled or refused.
+    uint64_t maxStorageBlock = 0;
+    std::vector<std::string> extensionsUsed;
+    double setupMs = 0;                ///< wall ms the constructor took: EGL display, context, queries
+    int programBinaryFormats = 0;      ///< GL_NUM_PROGRAM_BINARY_FORMATS; 0 means no program cache
+    std::string programCache;          ///< the program cache folder in use; "" when off
+};
+
+/// What making programs has cost a Context so far (cumulative).
+struct ProgramStats {
+    int compiled = 0;  ///< programs compiled from source (refused ones included)
+    int loaded = 0;    ///< programs loaded from the program cache
+    int refused = 0;   ///< cache entries damaged or refused by the driver, compiled again and replaced
+    double ms = 0;     ///< wall ms spent making programs: expanding, compiling or loading, cache files
+    std::vector<std::string> warnings; ///< the program cache's (at most one: a folder that cannot be written)
+};
+
+/// Whether the EGL device a Context with this device option (ContextOptions::device,
+/// else SVO_EGL_DEVICE, else "auto") would try first is a software rasterizer
+/// (EGL_MESA_device_software: llvmpipe), asked without creating a context
+/// (about 1 ms against 25-80 ms for a context). False when EGL lists no devices.
+bool softwareDevice(const std::string& device);
+
+/// Owns an EGL context on a display shared with other Contexts of the same
+/// device (the display is terminated with its last Context). Not copyable.
+/// One thread at a time may use a Context; different Contexts may be used
+/// from different threads at once.
+class Context {
+public:
+    /// Throws svo::Error with a one-line reason when no GL 4.5 core context can
+    /// be had (or, adopting, when none is current or it is older than 4.5).
+    /// Leaves the calling thread's current context as it was.
+    explicit Context(const ContextOptions& options = {});
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    const ContextInfo& info() const;
+
+    /// Makes the context current for the scope's lifetime, then restores the
+    /// thread's previous context. Nested scopes of the same context are free.
+    class Scope {
+    public:
+        explicit Scope(const Context& context);
+        ~Scope();
+        Scope(const Scope&) = delete;
+        Scope& operator=(const Scope&) = delete;
+
+        struct Saved; ///< the thread's previous current context
+
+    private:
+        std::unique_ptr<Saved> saved_; ///< null when the context was already current
+    };
+
+    /// @brief The linked program of these shader files, made on first use:
+    /// loaded from the program cache, else compiled (and stored there).
+    /// @param library the calling layer's embedded shaders (its svo_embed_files
+    ///        function), looked up before the files core shares with every
+    ///        shader (gpu_layout.h, overlap.glsl)
+    /// @param files   the program's stages, by file name
+    /// @throw svo::Error when a shader does not compile or link, or on a GL error.
+    const Program& program(const ShaderFiles& library, std::initializer_list<const char*> files) const;
+    /// What program() has cost so far.
+    const ProgramStats& programStats() const;
+    /// A buffer named `what` of at least `bytes`, reused across calls; a
+    /// larger request frees the old one first. Contents are undefined.
+    const Buffer& scratch(const char* what, uint64_t bytes) const;
+    /// Frees every scratch buffer (call inside a Scope, or it makes one).
+    void releaseScratch() const;
+    /// Bytes of scratch buffers held.
+    uint64_t scratchBytes() const;
+    /// Bytes of memory the device has free now: video memory where the driver
+    /// tells (GL_NVX_gpu_memory_info), host memory for a CPU rasterizer, whose
+    /// buffers live there; 0 when unknown.
+    uint64_t availableMemory() const;
+    /// The most bytes of one buffer the shaders may address, which work must
+    /// stay within (tile or refuse): info().maxStorageBlock, or 0 (no limit
+    /// but the buffer's) on a CPU rasterizer. NVIDIA's limit (2 GiB on an
+    /// H100) is real: a 7.8 GB voxel list lost two thirds of its voxels
+    /// before it was a limit. Mesa's llvmpipe reports 128 MiB but addresses
+    /// whole buffers (a 139 MB list of the bunny at 2048^3 keeps the H100's
+    /// 14.4 M voxels, to 2 at the guard band).
+    uint64_t shaderBufferLimit() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace svo::gl

@@ -1,0 +1,46 @@
+#pragma once
+/// @file shaders.h (internal)
+/// Shader text: embedded files (each GL layer's CMakeLists.txt) with `#include "name"` lines
+/// expanded, and compiler logs mapped back to those files.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace svo::gl {
+
+/// Files by name, consulted before core's shared ones (a layer's embedded shaders; tests compile their own
+/// shaders this way).
+using ShaderFiles = std::map<std::string, std::string>;
+
+/// One stage's text, ready for glShaderSource, and where each of its lines
+/// comes from.
+///
+/// Each included file's text is preceded, and the including file's text
+/// resumed, by a `#line` directive that sets the source-string number to the
+/// file's index in `files` (0: the stage itself; GLSL takes integers only).
+/// The directives keep the line numbers those of the expanded text, though:
+/// Mesa reports most errors (all but syntax errors) as source string 0, so
+/// only the line number can be trusted, and `lines` maps it back.
+struct ShaderSource {
+    struct Origin {
+        uint32_t file; ///< index into files
+        uint32_t line; ///< 1-based, in that file
+    };
+    std::string text;
+    std::vector<std::string> files;
+    std::vector<Origin> lines; ///< lines[k - 1]: where line k of text comes from
+};
+
+/// The text of file `name` with its `#include "name"` lines (first thing on
+/// the line) replaced, recursively, by the named files' text. #line needs
+/// #version before it, so a stage's includes must come after its #version.
+/// Throws svo::Error for an unknown name or an include cycle.
+ShaderSource shaderSource(const std::string& name, const ShaderFiles& extra = {});
+
+/// A compiler log for `source` with each location at the start of a line in
+/// a known format (Mesa `0:12(3):`, NVIDIA `0(12) :`, `ERROR: 0:12:`)
+/// rewritten as file and line, e.g. `overlap.glsl:7(3):`.
+std::string nameFilesInLog(const std::string& log, const ShaderSource& source);
+
+} // namespace svo::gl

@@ -1,0 +1,343 @@
+// The GPU passes of distance_field.h: work items, the brick table, the
+// distance and crossing passes, and the readback.
+#include "svo/gl/distance_field.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "svo/gl/objects.h"
+#include "svo/core/error.h"
+#include "field_layout.h"
+#include "svo/gl/winding_number.h"
+#include "fields_shaders.h"
+
+namespace svo::gl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+/// The brick table of field_layout.h: kTableWords uints per slot, at most half full.
+std::vector<uint32_t> brickTable(const std::vector<std::array<uint32_t, 3>>& bricks, uint32_t& mask)
+{
+    uint64_t slots = 16;
+    while (slots < 2 * uint64_t(bricks.size())) slots *= 2;
+    if (slots > (uint64_t(1) << 30)) throw Error(fmt::format("{} bricks are more than the brick table holds", bricks.size()));
+    mask = uint32_t(slots - 1);
+    std::vector<uint32_t> table(slots * gpu::kTableWords, 0);
+    for (uint64_t s = 0; s < slots; ++s) table[s * gpu::kTableWords + 3] = gpu::kNoChild;
+    for (uint32_t i = 0; i < bricks.size(); ++i) {
+        const auto& b = bricks[i];
+        uint32_t s = SVO_BRICK_HASH(b[0], b[1], b[2]) & mask;
+        while (table[s * gpu::kTableWords + 3] != gpu::kNoChild) {
+            const uint32_t* w = &table[s * gpu::kTableWords];
+            if (w[0] == b[0] && w[1] == b[1] && w[2] == b[2])
+                throw Error(fmt::format("internal error: brick ({}, {}, {}) requested twice", b[0], b[1], b[2]));
+            s = (s + 1) & mask;
+        }
+        uint32_t* w = &table[s * gpu::kTableWords];
+        w[0] = b[0], w[1] = b[1], w[2] = b[2], w[3] = i;
+    }
+    return table;
+}
+
+/// Per triangle the voxel box its items cover (field_common.glsl): voxels
+/// within `grow` of its bounding box, or with grow < 0 its columns only (a
+/// box one voxel deep at z = 0). With `oneItemBoxes`, a box no wider than a
+/// brick on every axis is one item; any other is an item per brick (or brick
+/// column) it spans, so an item's box always fits in 8 x 8 x 8 voxels. Fills
+/// the exclusive prefix sum of the items and returns their total. With
+/// `whole`, the one-item triangles count no item but are listed there
+/// instead (a thread each).
+uint64_t workItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid, double grow,
+                   bool oneItemBoxes, std::vector<uint32_t>& items, std::vector<uint32_t>* whole)
+{
+    const size_t n = mesh.triangles.size();
+    items.assign(n * gpu::kItemWords, 0);
+    std::vector<uint64_t> counts(n);
+    const bool columns = grow < 0;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t t = r.begin(); t != r.end(); ++t) {
+            const auto& f = mesh.triangles[t];
+            uint64_t bricks = 1;
+            bool small = oneItemBoxes;
+            uint32_t* w = &items[t * gpu::kItemWords];
+            for (int a = 0; a < 3; ++a) {
+                if (columns && a == 2) {
+                    w[3] = 0, w[6] = 1;
+                    continue;
+                }
+                const double lo = std::min({local[f[0]][a], local[f[1]][a], local[f[2]][a]});
+                const double hi = std::max({local[f[0]][a], local[f[1]][a], local[f[2]][a]});
+                const double g = columns ? 0.0 : grow;
+                const double first = std::max(std::ceil(lo - g), 0.0);
+                const double last = std::min(std::floor(hi + g), double(grid.dims[a]) - 1);
+                if (last < first) {
+                    bricks = 0;
+                    break;
+                }
+                const auto v0 = uint32_t(first), v1 = uint32_t(last);
+                w[1 + a] = v0;
+                w[4 + a] = v1 - v0 + 1;
+                small = small && v1 - v0 < (1u << gpu::kBrickLog2);
+                bricks *= (v1 >> gpu::kBrickLog2) - (v0 >> gpu::kBrickLog2) + 1;
+            }
+            w[7] = small ? 1 : 0;
+            counts[t] = bricks == 0 ? 0 : small ? 1 : bricks;
+        }
+    });
+    uint64_t total = 0;
+    for (size_t t = 0; t < n; ++t) {
+        items[t * gpu::kItemWords] = uint32_t(std::min<uint64_t>(total, 0xFFFFFFFFu));
+        if (whole && items[t * gpu::kItemWords + 7] && counts[t]) whole->push_back(uint32_t(t));
+        else total += counts[t];
+    }
+    return total;
+}
+
+/// Runs `program` over items [0, items): workgroups loop over them, enough
+/// to fill a large GPU, few on a CPU rasterizer, where each group costs. A
+/// thread of an item loops at most `iterations` times, for the driver's loop
+/// limit.
+void dispatchItems(const Context& context, const Program& program, uint64_t items, uint64_t iterations)
+{
+    const ContextInfo& info = context.info();
+    const auto groups = uint32_t(std::min<uint64_t>(items, info.software ? 256 : 65535));
+    dispatchLooping(program, items, groups, info.loopLimit, iterations, "uItemFirst", "uItems");
+}
+
+} // namespace
+
+FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridSpec& grid, const FieldRequest& request)
+{
+    const Context::Scope scope(context);
+    FieldResult result;
+    const uint64_t nb = request.bricks.size();
+    const double band = request.band;
+    const bool distances = band > 0;
+    request.checkpoint(0.0, "field upload");
+
+    // Upload: local double positions, indices, items, the brick table.
+    auto t0 = Clock::now();
+    const std::vector<Vec3d> local = localPositions(mesh, grid);
+    // A thread per small triangle: for crossings everywhere (a few columns
+    // each); for distances as FieldWork says. On an H100 a workgroup per
+    // brick ran faster than a thread per small triangle (whose up to 512
+    // centres run one after another) from 1024³ up
+    // (bench/results/nvidia-h100/band_ab.md).
+    const bool software = context.info().software;
+    const bool smallTriangles =
+        request.work == FieldWork::SmallTriangles || (request.work == FieldWork::Auto && software);
+    std::vector<uint32_t> distanceItems, crossingItems, distanceWhole, crossingWhole;
+    const uint64_t nDistance = distances ? workItems(local, mesh, grid, band, smallTriangles, distanceItems,
+                                                     smallTriangles ? &distanceWhole : nullptr)
+                                         : 0;
+    const uint64_t nCrossing =
+        request.crossings ? workItems(local, mesh, grid, -1.0, true, crossingItems, &crossingWhole) : 0;
+    for (uint64_t n : {nDistance, nCrossing})
+        if (n > 0xFFFFFFFFu)
+            throw Error(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); "
+                                    "use a coarser grid or a narrower band",
+                                    n));
+    if (distances && nb > (uint64_t(1) << 23))
+        throw Error(fmt::format("the band has {} bricks, more than one distance pass holds (2^23); use a coarser "
+                                "grid or a narrower band",
+                                nb));
+    // One shader buffer holds each array (Context::shaderBufferLimit): refused, never cut short.
+    const uint64_t block = context.shaderBufferLimit();
+    const uint64_t largest = std::max({distances ? nb * 512 * 4 : 0, request.crossings ? nb * sizeof(Brick) : 0,
+                                       uint64_t(mesh.positions.size()) * sizeof(Vec3d)});
+    if (block && largest > block)
+        throw Error(fmt::format("the band's {} bricks need {} bytes in one GPU buffer, more than the {} a shader "
+                                "addresses; use a coarser grid or a narrower band",
+                                nb, largest, block));
+    uint32_t tableMask = 0;
+    const std::vector<uint32_t> table = brickTable(request.bricks, tableMask);
+
+    TimerQuery uploadTimer;
+    uploadTimer.begin();
+    const Buffer positions("field positions", local.size() * sizeof(Vec3d), local.data());
+    const Buffer indices("field indices", mesh.triangles.size() * 12, mesh.triangles.data());
+    const Buffer tableBuffer("brick table", table.size() * 4, table.data());
+    const Buffer counters("field counters", 16);
+    counters.clearUint(0);
+    const uint32_t none = 0xFFFFFFFFu, inf = 0x7F800000u; // float +inf
+    const Buffer* distanceBuffer = nullptr;
+    const Buffer* closestBuffer = nullptr;
+    const Buffer* flipBuffer = nullptr;
+    if (distances) {
+        distanceBuffer = &context.scratch("field distances", std::max<uint64_t>(nb, 1) * 512 * 4);
+        distanceBuffer->clearUint(inf, nb * 512 * 4);
+        if (request.closestTriangle) {
+            closestBuffer = &context.scratch("field closest triangles", std::max<uint64_t>(nb, 1) * 512 * 4);
+            closestBuffer->clearUint(none, nb * 512 * 4);
+        }
+    }
+    if (request.crossings) {
+        flipBuffer = &context.scratch("field crossings", std::max<uint64_t>(nb, 1) * sizeof(Brick));
+        flipBuffer->clearUint(0, nb * sizeof(Brick));
+    }
+    uploadTimer.end();
+    result.stages.push_back({"field upload", -1, msSince(t0)});
+    positions.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_POSITIONS);
+    indices.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_INDICES);
+    tableBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_TABLE);
+    counters.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_COUNTERS);
+    if (distanceBuffer) distanceBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_DISTANCES);
+    if (closestBuffer) closestBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_CLOSEST);
+    if (flipBuffer) flipBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_FLIPS);
+    const auto poll = [&] { request.checkpoint(0.5, "distance field"); };
+
+    // One pass over a set of items and one-item triangles, timed, by a
+    // program of `groupSize` threads a workgroup. A thread of an item loops
+    // at most `itemIterations` times, one of a one-item triangle at most
+    // `wholeIterations` (its columns, their centres and brick probes); a
+    // workgroup's threads share the units of its dispatch, with a margin
+    // for the loop around them.
+    auto pass = [&](const char* name, const Program& program, uint32_t groupSize, const std::vector<uint32_t>& items,
+                    uint64_t n, uint64_t itemIterations, const std::vector<uint32_t>* whole, uint64_t wholeIterations) {
+        const auto w0 = Clock::now();
+        TimerQuery timer;
+        const size_t records = items.size(), listed = whole ? whole->size() : 0;
+        const Buffer itemBuffer("field work items", std::max<size_t>(records + listed, 1) * 4);
+        if (records) itemBuffer.write(0, records * 4, items.data());
+        if (listed) itemBuffer.write(records * 4, listed * 4, whole->data());
+        timer.begin();
+        itemBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_ITEMS);
+        program.set("uTriangles", uint32_t(mesh.triangles.size()));
+        program.set("uTableMask", tableMask);
+        if (whole) {
+            program.set("uWhole", 0u);
+            program.set("uWholeStart", uint32_t(records));
+        }
+        dispatchItems(context, program, n, itemIterations);
+        if (listed) {
+            program.set("uWhole", 1u);
+            const ContextInfo& info = context.info();
+            const auto groups =
+                uint32_t(std::min<uint64_t>((listed + groupSize - 1) / groupSize, info.software ? 256 : 65535));
+            dispatchLooping(program, listed, groups, info.loopLimit, wholeIterations / groupSize + 4, "uItemFirst",
+                            "uItems");
+        }
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        timer.end();
+        checkGl(name);
+        waitForGpu(poll);
+        result.stages.push_back({name, timer.milliseconds(), msSince(w0)});
+    };
+    if (distances) {
+        const Program& program =
+            context.program(fieldsShaders(), {smallTriangles ? "band_distance_columns.comp" : "band_distance.comp"});
+        program.set("uBand", float(band));
+        program.set("uPass", 0u);
+        // band_distance.comp: 64 threads, an item's thread loops 1 + 32
+        // (triangleOfItem's search) + 8 (its column) times and probes the
+        // brick table once, a short probe at half load. The columns: 8
+        // threads (one SIMD vector of llvmpipe, which runs a workgroup's
+        // vectors one after another, each through the whole loop), an item's
+        // thread 1 + 64 (triangleOfItemFrom) + one probe + 8 columns of 8
+        // centres; a one-item triangle's 8 probes, 64 columns and 512
+        // centres.
+        const uint32_t groupSize = smallTriangles ? 8 : 64;
+        const uint64_t itemIterations = smallTriangles ? 512 : 256, wholeIterations = 1024;
+        const std::vector<uint32_t>* whole = smallTriangles ? &distanceWhole : nullptr;
+        pass("band distance", program, groupSize, distanceItems, nDistance, itemIterations, whole, wholeIterations);
+        if (closestBuffer) {
+            program.set("uPass", 1u);
+            pass("closest triangle", program, groupSize, distanceItems, nDistance, itemIterations, whole,
+                 wholeIterations);
+        }
+    }
+    const Buffer* maskBuffer = nullptr;
+    const Buffer* offsetBuffer = nullptr;
+    const Buffer* packedBuffer = nullptr;
+    const Buffer* packedClosestBuffer = nullptr;
+    if (distances) {
+        // Packs the band: a mask, an offset and the kept values per brick.
+        maskBuffer = &context.scratch("band masks", std::max<uint64_t>(nb, 1) * sizeof(Brick));
+        offsetBuffer = &context.scratch("band offsets", std::max<uint64_t>(nb, 1) * 4);
+        packedBuffer = &context.scratch("band packed distances", std::max<uint64_t>(nb, 1) * 2048);
+        if (closestBuffer) packedClosestBuffer = &context.scratch("band packed closest", std::max<uint64_t>(nb, 1) * 2048);
+        maskBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_MASKS);
+        offsetBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_OFFSETS);
+        packedBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_DISTANCES);
+        (packedClosestBuffer ? packedClosestBuffer : packedBuffer)
+            ->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_CLOSEST);
+        if (!closestBuffer) distanceBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_CLOSEST);
+        const auto w0 = Clock::now();
+        TimerQuery timer;
+        timer.begin();
+        // With the CPU rasterizers' cut, a thread a brick, looping 1 + 16 *
+        // 33 + 16 + 512 times at most (band_compact_bricks.comp), 8 threads
+        // a workgroup sharing its bricks (so the limit a brick is an eighth
+        // of that, with a margin); else a workgroup a brick, whose threads
+        // loop 1 + 8 + 64 + 8 times (band_compact.comp).
+        const Program& program =
+            context.program(fieldsShaders(), {smallTriangles ? "band_compact_bricks.comp" : "band_compact.comp"});
+        program.set("uBand", float(band));
+        program.set("uClosest", closestBuffer ? 1u : 0u);
+        const uint64_t groupSize = smallTriangles ? 8 : 1;
+        dispatchLooping(program, nb,
+                        uint32_t(std::min<uint64_t>((nb + groupSize - 1) / groupSize, software ? 256 : 65535)),
+                        context.info().loopLimit, smallTriangles ? 1058 / 8 + 8 : 96, "uBrickFirst", "uBricks");
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        timer.end();
+        checkGl("band packing");
+        waitForGpu(poll);
+        result.stages.push_back({"band packing", timer.milliseconds(), msSince(w0)});
+        // The mesh's slots are the field passes' again.
+        positions.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_POSITIONS);
+        indices.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_INDICES);
+        tableBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_TABLE);
+    }
+    if (request.crossings) {
+        const Program& program = context.program(fieldsShaders(), {"parity_flips.comp"});
+        program.set("uDimZ", grid.dims[2]);
+        // 64 threads; an item's thread loops 1 + 32 times and probes once,
+        // a one-item triangle's thread takes 64 columns, a probe each.
+        pass("parity crossings", program, 64, crossingItems, nCrossing, 256, &crossingWhole, 256);
+    }
+    result.stages.front().gpuMs = uploadTimer.milliseconds();
+    result.gpuBytes = positions.bytes() + indices.bytes() + tableBuffer.bytes() + counters.bytes() +
+                      (distanceBuffer ? nb * (2048 + 2048 + sizeof(Brick) + 4) : 0) +
+                      (closestBuffer ? nb * 2048 * 2 : 0) +
+                      (flipBuffer ? nb * sizeof(Brick) : 0) +
+                      std::max(distanceItems.size() + distanceWhole.size(),
+                               crossingItems.size() + crossingWhole.size()) * 4;
+    request.checkpoint(0.8, "field readback");
+
+    t0 = Clock::now();
+    TimerQuery readTimer;
+    readTimer.begin();
+    uint32_t count[2] = {0, 0}; // lost crossings, packed band values
+    counters.read(0, 8, count);
+    if (distanceBuffer) {
+        result.bandMasks.resize(nb);
+        maskBuffer->readBulk(0, nb * sizeof(Brick), result.bandMasks.data());
+        result.bandOffsets.resize(nb);
+        offsetBuffer->readBulk(0, nb * 4, result.bandOffsets.data());
+        result.distances.resize(count[1]);
+        packedBuffer->readBulk(0, uint64_t(count[1]) * 4, result.distances.data());
+    }
+    if (packedClosestBuffer) {
+        result.closest.resize(count[1]);
+        packedClosestBuffer->readBulk(0, uint64_t(count[1]) * 4, result.closest.data());
+    }
+    if (flipBuffer) {
+        result.crossings.resize(nb);
+        flipBuffer->readBulk(0, nb * sizeof(Brick), result.crossings.data());
+    }
+    const uint32_t lost = count[0];
+    readTimer.end();
+    checkGl("field readback");
+    result.lostCrossings = lost;
+    result.stages.push_back({"field readback", readTimer.milliseconds(), msSince(t0)});
+    return result;
+}
+
+} // namespace svo::gl

@@ -1,0 +1,9 @@
+#pragma once
+/// @file view_shaders.h (internal)
+/// This layer's shaders, embedded in the library by svo_embed_files
+/// (gl/view/CMakeLists.txt) and passed to Context::program.
+#include "svo/gl/shaders.h"
+
+namespace svo::gl {
+const ShaderFiles& viewShaders();
+} // namespace svo::gl

@@ -1,0 +1,9 @@
+#pragma once
+/// @file voxelize_shaders.h (internal)
+/// This layer's shaders, embedded in the library by svo_embed_files
+/// (gl/voxelize/CMakeLists.txt) and passed to Context::program.
+#include "svo/gl/shaders.h"
+
+namespace svo::gl {
+const ShaderFiles& voxelizeShaders();
+} // namespace svo::gl

@@ -1,0 +1,40 @@
+#pragma once
+/// @file octree_files.h
+/// @brief Octrees to files, the format chosen by the extension: .vdb
+/// (OpenVDB grids, as GridOptions asks), .svo (svo's own octree file,
+/// octree_file.h) or .nvdb (the same grids as .vdb, in NanoVDB form).
+/// Reading any input as an octree needs a Voxelizer: svo/load_octree.h.
+/// Every file is written to a temporary in the same folder and renamed, so a
+/// failed write never leaves a partial file. Errors are svo::Error naming the path.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "svo/core/grid.h"
+#include "svo/core/octree.h"
+#include "svo/core/voxelization.h"
+#include "svo/vdb_io/grid_options.h"
+
+namespace svo {
+
+enum class OutputFormat { Vdb, Svo, NanoVdb };
+
+/// The format an output path names. @throw svo::Error for another extension.
+OutputFormat outputFormat(const std::string& path);
+/// The format and whether the path can be written, before any heavy work.
+void checkOutputPath(const std::string& path);
+
+struct WriteReport {
+    std::vector<StageTime> stages; ///< building the grids, writing the file
+    uint64_t bytes = 0;            ///< file size
+    uint64_t leaves = 0;           ///< leaves of the topology grid (.vdb, .nvdb)
+    OutputFormat format = OutputFormat::Vdb;
+};
+
+/// Writes the octree as the extension of @a path says. GridOptions apply to
+/// .vdb and .nvdb; a .svo file holds the octree itself (its topology is not
+/// a grid type), and a fog grid asked for there is refused. @a metadata is stored as strings on every .vdb grid.
+WriteReport writeOctree(const std::string& path, const Octree& octree, const GridOptions& grids = {},
+                        const std::map<std::string, std::string>& metadata = {});
+
+} // namespace svo
