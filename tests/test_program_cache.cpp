@@ -14,6 +14,7 @@
 
 #include "svo/gl/objects.h"
 #include "svo/gl/program_cache.h"
+#include "voxelize_shaders.h" // the voxelize layer's shaders (gl/voxelize/src)
 #include "scenes.h"
 #include "svo/core/octree.h"
 #include "svo/gl/context.h"
@@ -222,7 +223,7 @@ TEST(ProgramCache, TheDriverRefusingABinaryIsNoError)
     gl::Context context(gl::ContextOptions{"", false, "off"});
     if (context.info().programBinaryFormats == 0) GTEST_SKIP() << "the driver offers no program binary formats";
     const gl::Context::Scope scope(context);
-    const gl::ProgramSource source = gl::programSource({"octree_fill.comp"});
+    const gl::ProgramSource source = gl::programSource({"octree_fill.comp"}, gl::voxelizeShaders());
     const gl::Program compiled(source, true);
     GLenum format = 0;
     const std::vector<uint8_t> good = compiled.binary(format);
