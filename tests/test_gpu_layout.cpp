@@ -18,7 +18,9 @@
 #include "svo/core/voxel_attributes.h"
 #include "svo/core/voxel_key.h"
 #include "svo/gl/context.h"
-#include "svo/gl/objects.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/gl_api.h"
+#include "svo/gl/program.h"
 #include "svo/gl/shaders.h"
 #include "voxelize_layout.h"  // the voxelize layer's slots (gl/voxelize/shaders)
 #include "voxelize_shaders.h" // and its embedded shaders (gl/voxelize/src)

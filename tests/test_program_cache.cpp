@@ -12,7 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "svo/gl/objects.h"
+#include "svo/gl/gl_api.h"
+#include "svo/gl/program.h"
 #include "svo/gl/program_cache.h"
 #include "voxelize_shaders.h" // the voxelize layer's shaders (gl/voxelize/src)
 #include "scenes.h"

@@ -15,7 +15,8 @@
 #include <EGL/eglext.h>
 
 #include "svo/gl/gl_api.h"
-#include "svo/gl/objects.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/program.h"
 #include "svo/gl/program_cache.h"
 #include "svo/core/error.h"
 #include "svo/core/host_memory.h"

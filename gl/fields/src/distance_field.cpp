@@ -10,7 +10,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "svo/gl/objects.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/dispatch_looping.h"
+#include "svo/gl/gl_api.h"
+#include "svo/gl/program.h"
+#include "svo/gl/timer_query.h"
+#include "svo/gl/wait_for_gpu.h"
 #include "svo/core/error.h"
 #include "field_layout.h"
 #include "svo/gl/winding_number.h"

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <vector>
 
+#include "svo/gl/gl_api.h"
+#include "svo/gl/loop_cut_counter.h"
 #include "svo/core/error.h"
 #include "view_layout.h"
 #include "view_shaders.h"

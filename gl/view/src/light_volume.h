@@ -7,7 +7,9 @@
 #include <array>
 #include <cstdint>
 
-#include "svo/gl/objects.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/program.h"
+#include "svo/gl/texture_3d.h"
 #include "svo/gl/context.h"
 #include "svo/gl/octree_view.h"
 

@@ -9,6 +9,10 @@
 #include <tbb/parallel_for.h>
 
 #include "list_writer.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/dispatch_looping.h"
+#include "svo/gl/gl_api.h"
+#include "svo/gl/program.h"
 #include "svo/core/error.h"
 #include "voxelize_shaders.h"
 

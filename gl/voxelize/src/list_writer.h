@@ -7,7 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "svo/gl/objects.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/program.h"
+#include "svo/gl/timer_query.h"
 #include "svo/gl/raster_voxelizer.h"
 #include "voxelize_layout.h"
 

@@ -8,6 +8,10 @@
 #include "svo/core/error.h"
 #include "svo/core/voxel_key.h"
 #include "svo/gl/octree_builder.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/gl_api.h"
+#include "svo/gl/program.h"
+#include "svo/gl/timer_query.h"
 #include "voxelize_shaders.h"
 
 namespace svo::gl {

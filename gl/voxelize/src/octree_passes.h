@@ -7,7 +7,8 @@
 #include <functional>
 #include <vector>
 
-#include "svo/gl/objects.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/program.h"
 #include "voxelize_layout.h"
 #include "svo/core/octree.h"
 #include "svo/gl/context.h"

@@ -10,7 +10,11 @@
 #include <tbb/parallel_sort.h>
 
 #include "list_writer.h"
-#include "svo/gl/objects.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/gl_api.h"
+#include "svo/gl/program.h"
+#include "svo/gl/timer_query.h"
+#include "svo/gl/wait_for_gpu.h"
 #include "octree_passes.h"
 #include "svo/core/error.h"
 #include "svo/core/host_memory.h"

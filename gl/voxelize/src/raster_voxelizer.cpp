@@ -9,7 +9,12 @@
 #include <tbb/parallel_reduce.h>
 
 #include "list_writer.h"
-#include "svo/gl/objects.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/empty_framebuffer.h"
+#include "svo/gl/gl_api.h"
+#include "svo/gl/program.h"
+#include "svo/gl/timer_query.h"
+#include "svo/gl/vertex_array.h"
 #include "svo/core/error.h"
 #include "voxelize_shaders.h"
 

@@ -19,7 +19,7 @@
 #include <optional>
 #include <string>
 
-#include "svo/gl/objects.h"
+#include "svo/gl/program.h"
 
 namespace svo::gl {
 

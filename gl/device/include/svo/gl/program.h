@@ -1,0 +1,116 @@
+#pragma once
+/// @file program.h
+/// Linked GL programs: a program's expanded stages (ProgramSource,
+/// programSource) and the program itself (Program), compiled or loaded from
+/// a driver's binary.
+#include <cstdint>
+#include <functional>
+#include <initializer_list>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "svo/gl/buffer.h"
+#include "svo/gl/gl_api.h"
+#include "svo/gl/handle.h"
+#include "svo/gl/shaders.h"
+
+namespace svo::gl {
+
+/// A program's stages with their #include lines expanded: what the driver
+/// compiles, and so what a cached binary of it is keyed by.
+struct ProgramSource {
+    std::string name;                                        ///< "a.vert, a.frag", for messages
+    std::vector<std::pair<std::string, ShaderSource>> stages; ///< file name, expanded text
+};
+
+/// The expanded stages of `files`, looked up in `extra` before the embedded
+/// files. Throws svo::Error for an unknown file or an include cycle.
+ProgramSource programSource(std::initializer_list<const char*> files, const ShaderFiles& extra = {});
+
+/// A linked program from embedded shader files (see shaders.h), compiled or
+/// loaded from a binary the driver gave earlier.
+class Program {
+public:
+    /// Stage files by name, e.g. {"raster.vert", "raster.geom", "raster.frag"}.
+    /// Throws svo::Error with the compiler log, its lines naming files, on failure.
+    Program(std::initializer_list<const char*> files);
+    /// The same, looking files up in `extra` before the embedded ones.
+    Program(const ShaderFiles& extra, std::initializer_list<const char*> files);
+    /// Compiles and links `source`. `retrievable` asks the driver to keep the
+    /// linked binary for binary(). Throws as above.
+    explicit Program(const ProgramSource& source, bool retrievable = false);
+
+    /// A program from a binary that binary() returned, or nothing when the
+    /// driver refuses it (another driver or GPU, a damaged binary, a format it
+    /// no longer offers): the caller compiles instead. Throws svo::Error for a
+    /// GL error left by earlier work, or one other than the refusal.
+    static std::optional<Program> fromBinary(const ProgramSource& source, GLenum format,
+                                             const std::vector<uint8_t>& binary);
+    /// The linked binary and its format (glGetProgramBinary); empty when the
+    /// driver keeps none. Throws svo::Error on a GL error.
+    std::vector<uint8_t> binary(GLenum& format) const;
+
+    /// set() throws svo::Error for a name that is not an active uniform:
+    /// misspelt, or unused by the shaders and so removed by the linker.
+    void use() const { glUseProgram(h_.get()); }
+    void set(const char* name, float v) const { glProgramUniform1f(h_.get(), location(name), v); }
+    void set(const char* name, int v) const { glProgramUniform1i(h_.get(), location(name), v); }
+    void set(const char* name, float x, float y) const { glProgramUniform2f(h_.get(), location(name), x, y); }
+    void set(const char* name, int x, int y, int z) const { glProgramUniform3i(h_.get(), location(name), x, y, z); }
+    void set(const char* name, uint32_t v) const { glProgramUniform1ui(h_.get(), location(name), v); }
+    void set(const char* name, const std::vector<uint32_t>& v) const
+    {
+        glProgramUniform1uiv(h_.get(), location(name), GLsizei(v.size()), v.data());
+    }
+    void set(const char* name, uint32_t x, uint32_t y, uint32_t z) const
+    {
+        glProgramUniform3ui(h_.get(), location(name), x, y, z);
+    }
+    void set(const char* name, float x, float y, float z) const
+    {
+        glProgramUniform3f(h_.get(), location(name), x, y, z);
+    }
+    void set(const char* name, float x, float y, float z, float w) const
+    {
+        glProgramUniform4f(h_.get(), location(name), x, y, z, w);
+    }
+    /// A mat4 uniform from 16 floats in column-major order (GLSL's).
+    void setMatrix(const char* name, const float* columnMajor) const
+    {
+        glProgramUniformMatrix4fv(h_.get(), location(name), 1, GL_FALSE, columnMajor);
+    }
+    /// Compute programs: `groups` work groups along x.
+    void dispatch(uint32_t groups) const
+    {
+        use();
+        glDispatchCompute(groups, 1, 1);
+    }
+    /// Compute programs: x by y work groups.
+    void dispatch(uint32_t x, uint32_t y) const
+    {
+        use();
+        glDispatchCompute(x, y, 1);
+    }
+    /// Compute programs: group counts read on the GPU from `args` at byte `offset`.
+    void dispatchIndirect(const Buffer& args, uint64_t offset) const
+    {
+        use();
+        args.bind(GL_DISPATCH_INDIRECT_BUFFER);
+        glDispatchComputeIndirect(GLintptr(offset));
+    }
+
+private:
+    Program() = default;
+    /// Fills locations_ from the linked program.
+    void findUniforms();
+    GLint location(const char* name) const;
+    Handle<detail::deleteProgram> h_;
+    std::string files_; ///< "a.vert, a.frag", for messages
+    /// Every active uniform that has a location, resolved once after linking.
+    std::map<std::string, GLint, std::less<>> locations_;
+};
+
+} // namespace svo::gl

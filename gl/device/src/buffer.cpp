@@ -1,0 +1,41 @@
+#include "svo/gl/buffer.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fmt/format.h>
+
+#include "svo/core/error.h"
+
+namespace svo::gl {
+
+Buffer::Buffer(const char* what, uint64_t bytes, const void* data, GLbitfield flags) : bytes_(bytes)
+{
+    // An error left by earlier work is reported as that work's, not dropped.
+    checkGl(fmt::format("the GL work before allocating the {}", what).c_str());
+    GLuint n = 0;
+    glCreateBuffers(1, &n);
+    h_ = Handle<detail::deleteBuffer>(n);
+    glNamedBufferStorage(n, GLsizeiptr(bytes ? bytes : 4), data, flags);
+    const GLenum err = glGetError();
+    if (err == GL_OUT_OF_MEMORY)
+        throw Error(fmt::format("the GPU cannot allocate {:.1f} MiB for the {}", double(bytes) / (1 << 20), what));
+    if (err != GL_NO_ERROR) throw Error(fmt::format("OpenGL error 0x{:04x} allocating the {}", err, what));
+}
+
+void Buffer::readBulk(uint64_t offset, uint64_t bytes, void* out) const
+{
+    if (!bytes) return;
+    const uint64_t chunk = std::min<uint64_t>(bytes, uint64_t(64) << 20);
+    const Buffer staging("readback staging buffer", chunk, nullptr, GL_MAP_READ_BIT | GL_CLIENT_STORAGE_BIT);
+    auto* dst = static_cast<unsigned char*>(out);
+    for (uint64_t done = 0; done < bytes; done += chunk) {
+        const uint64_t n = std::min(chunk, bytes - done);
+        glCopyNamedBufferSubData(h_.get(), staging.h_.get(), GLintptr(offset + done), 0, GLsizeiptr(n));
+        const void* src = glMapNamedBufferRange(staging.h_.get(), 0, GLsizeiptr(n), GL_MAP_READ_BIT);
+        if (!src) throw Error(fmt::format("cannot map the readback staging buffer ({} bytes)", n));
+        std::memcpy(dst + done, src, n);
+        glUnmapNamedBuffer(staging.h_.get());
+    }
+}
+
+} // namespace svo::gl
