@@ -41,7 +41,7 @@ ALLOWED = {
     "reference": ["core"],
     "gl_device": ["core"],
     "gl_voxelize": ["core", "gl_device"],
-    "gl_fields": ["core", "gl_device"],
+    "gl_fields": ["core", "gl_device", "gl_voxelize"],
     "gl_view": ["core", "gl_device"],
     "vdb_io": ["core"],
     "svo": ["core", "gl_device", "gl_voxelize", "gl_fields", "vdb_io"],

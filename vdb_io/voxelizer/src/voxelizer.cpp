@@ -9,13 +9,8 @@
 #include <tbb/parallel_for.h>
 #include <utility>
 
-#include "svo/core/cpu_voxelizer.h"
 #include "svo/core/error.h"
 #include "svo/core/interrupt.h"
-#include "svo/core/voxel_attributes.h"
-#include "svo/gl/context.h"
-#include "svo/gl/octree_builder.h"
-#include "svo/gl/raster_voxelizer.h"
 #include "voxelizer_state.h"
 
 namespace svo {
@@ -24,17 +19,6 @@ namespace {
 using detail::Clock;
 using detail::InterruptScope;
 using detail::msSince;
-
-gl::ConservativeMode conservativeMode(Dilation d)
-{
-    switch (d) {
-    case Dilation::Hardware: return gl::ConservativeMode::Hardware;
-    case Dilation::Shader: return gl::ConservativeMode::Shader;
-    case Dilation::CentroidPush: return gl::ConservativeMode::CentroidPush;
-    case Dilation::Auto: break;
-    }
-    return gl::ConservativeMode::Auto;
-}
 
 /// A uniform scale h with a translation of exactly h * shift (whole voxels):
 /// the lattices svo's GridSpec, .svo files and makeTransform describe.
@@ -134,12 +118,10 @@ IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<open
     return out;
 }
 
-/// The end every call shares: the last checkpoint, the counts, the statistics handed over.
+/// The end every call shares: the last checkpoint, the statistics handed over.
 Octree finish(Octree octree, VoxelizeStats& stats, const VoxelizeOptions& options, const Checkpoint& checkpoint)
 {
     checkpoint(1.0, "finish");
-    stats.voxels = octree.voxelCount();
-    stats.bricks = octree.bricks.size();
     if (options.stats) *options.stats = std::move(stats);
     return octree;
 }
@@ -185,30 +167,7 @@ IndexSpaceMesh prepareMesh(const std::vector<openvdb::Vec3s>& points, const std:
     return prepare(points, triangles, quads, xform);
 }
 
-double VoxelizeStats::gpuMs() const
-{
-    double sum = 0;
-    for (const auto& s : stages) sum += std::max(s.gpuMs, 0.0);
-    return sum;
-}
-
-VoxelizeStats medianStats(const std::vector<VoxelizeStats>& runs)
-{
-    if (runs.empty()) throw Error("medianStats needs at least one run");
-    VoxelizeStats out = runs.back();
-    for (size_t s = 0; s < out.stages.size(); ++s) {
-        std::vector<double> gpu, wall;
-        for (const auto& r : runs)
-            if (s < r.stages.size()) gpu.push_back(r.stages[s].gpuMs), wall.push_back(r.stages[s].wallMs);
-        std::sort(gpu.begin(), gpu.end());
-        std::sort(wall.begin(), wall.end());
-        out.stages[s].gpuMs = gpu[gpu.size() / 2];
-        out.stages[s].wallMs = wall[wall.size() / 2];
-    }
-    return out;
-}
-
-Voxelizer::Voxelizer(const DeviceOptions& device) : impl_(std::make_unique<Impl>()) { impl_->device = device; }
+Voxelizer::Voxelizer(const DeviceOptions& device) : device_(device) {}
 Voxelizer::~Voxelizer() = default;
 Voxelizer::Voxelizer(Voxelizer&&) noexcept = default;
 Voxelizer& Voxelizer::operator=(Voxelizer&&) noexcept = default;
@@ -221,68 +180,13 @@ Octree Voxelizer::voxelize(const TriangleMesh& mesh, const GridSpec& grid, const
     return voxelizeChecked(mesh, grid, options, voxelList);
 }
 
-Octree Voxelizer::voxelizePrepared(const IndexSpaceMesh& prepared, const VoxelizeOptions& options)
-{
-    return voxelizeChecked(prepared.mesh, prepared.grid, options, nullptr); // prepareMesh checked both
-}
-
 Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                                   std::vector<uint64_t>* voxelList)
 {
     const InterruptScope interrupt(options.interrupter, "svo: voxelizing a mesh");
     const Checkpoint checkpoint = interrupt.checkpoint();
-    checkpoint(0.0, "start");
     VoxelizeStats stats;
-    stats.grid = grid;
-    stats.epsilon = grid.epsilon();
-    if (availableChannels(mesh, options.attributes) != options.attributes)
-        stats.warnings.push_back(mesh.source + " has no vertex colours; the color channel is left out");
-    Octree octree;
-    // A dilation mode is a raster option: asking for one picks the raster backend.
-    if (options.backend == Backend::Compute && options.dilation != Dilation::Auto)
-        throw Error("a dilation mode applies to the raster backend; the compute backend needs none");
-    const Backend backend = options.backend != Backend::Auto      ? options.backend
-                            : options.dilation != Dilation::Auto ? Backend::Raster
-                                                                 : impl_->autoBackend();
-    impl_->describeBackend(stats, backend);
-    stats.mode = voxelModeName(options.mode);
-    if (backend == Backend::Cpu) {
-        auto t0 = Clock::now();
-        const Checkpoint part = checkpoint.part(0.0, 0.6);
-        Voxelization v = voxelizeCpu(mesh, grid, 0.0, options.mode, [&](double f) { part(f, "voxelize (cpu)"); });
-        stats.stages.push_back({"voxelize (cpu)", -1, msSince(t0)});
-        checkpoint(0.6, "octree build");
-        t0 = Clock::now();
-        octree = buildOctree(grid, v.keys);
-        stats.stages.push_back({"octree build (cpu)", -1, msSince(t0)});
-        if (options.attributes) {
-            checkpoint(0.8, "attribute channels");
-            t0 = Clock::now();
-            attachAttributesCpu(mesh, octree, options.attributes, 0.0, options.mode);
-            stats.stages.push_back({"attributes (cpu)", -1, msSince(t0)});
-        }
-        stats.listEntries = v.keys.size();
-        if (voxelList) *voxelList = std::move(v.keys);
-    } else {
-        gl::Context& context = impl_->gl();
-        gl::RasterOptions ro;
-        ro.pipeline = backend == Backend::Compute ? gl::Pipeline::Compute : gl::Pipeline::Raster;
-        ro.conservative = conservativeMode(options.dilation);
-        ro.mode = options.mode;
-        ro.attributes = options.attributes;
-        ro.checkpoint = checkpoint.part(0.0, 0.98);
-        ro.voxelList = voxelList;
-        ro.gpuMemory = options.gpuMemory;
-        stats.dilation = gl::conservativeModeName(context, ro);
-        gl::OctreeVoxelization r = gl::voxelizeToOctree(context, mesh, grid, ro);
-        octree = std::move(r.octree);
-        stats.stages = std::move(r.stages);
-        stats.listEntries = r.listEntries;
-        stats.overflowRetries = r.overflowRetries;
-        stats.gpuBytes = r.gpuBytes;
-        stats.tiles = r.tiles;
-    }
-    stats.startup = impl_->takeStartup(stats.warnings);
+    Octree octree = gl::voxelizeMesh(device_, mesh, grid, options, checkpoint, stats, voxelList);
     return finish(std::move(octree), stats, options, checkpoint);
 }
 
@@ -293,21 +197,7 @@ Octree Voxelizer::bricksToOctree(const GridSpec& grid, std::vector<std::pair<uin
     const InterruptScope interrupt(options.interrupter, "svo: building an octree");
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;
-    stats.grid = grid;
-    Octree octree;
-    impl_->describeBackend(stats, options.backend);
-    if (options.backend == Backend::Cpu) {
-        checkpoint(0.0, "octree build");
-        const auto t0 = Clock::now();
-        octree = buildOctreeFromBricks(grid, std::move(bricks));
-        stats.stages.push_back({"octree build (cpu)", -1, msSince(t0)});
-    } else {
-        gl::OctreeVoxelization r = gl::buildOctreeGpu(impl_->gl(), grid, bricks, checkpoint.part(0.0, 0.98));
-        octree = std::move(r.octree);
-        stats.stages = std::move(r.stages);
-        stats.gpuBytes = r.gpuBytes;
-    }
-    stats.startup = impl_->takeStartup(stats.warnings);
+    Octree octree = gl::bricksToOctree(device_, grid, std::move(bricks), options.backend, checkpoint, stats);
     return finish(std::move(octree), stats, options, checkpoint);
 }
 
@@ -351,16 +241,127 @@ Backend Voxelizer::backendFor(const VoxelizeOptions& options)
 {
     if (options.backend != Backend::Auto) return options.backend;
     if (options.dilation != Dilation::Auto) return Backend::Raster;
-    return impl_->autoBackend(false);
+    return gl::resolveBackend(device_, options, false);
 }
 
-std::string Voxelizer::deviceDescription() { return impl_->describe(); }
+std::string Voxelizer::deviceDescription() { return device_.describe(); }
 
-void Voxelizer::startDevice() { impl_->gl(); }
+void Voxelizer::startDevice() { device_.start(); }
 
-void Voxelizer::releaseScratch()
+void Voxelizer::releaseScratch() { device_.releaseScratch(); }
+
+// ---- The templates on OpenVDB point types: each maps the mesh with prepareMesh.
+
+
+template <typename PointT>
+Octree Voxelizer::meshToOctree(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
+                               const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform,
+                               const VoxelizeOptions& options)
 {
-    if (impl_->context) impl_->context->releaseScratch();
+    const IndexSpaceMesh p = prepareMesh(points, triangles, quads, xform);
+    return voxelizeChecked(p.mesh, p.grid, options, nullptr); // prepareMesh checked both
 }
+
+template <typename PointT>
+openvdb::GridPtrVec Voxelizer::meshToGrids(const std::vector<PointT>& points,
+                                           const std::vector<openvdb::Vec3I>& triangles,
+                                           const openvdb::math::Transform& xform, const VoxelizeOptions& options,
+                                           const GridOptions& grids)
+{
+    return octreeToGrids(meshToOctree(points, triangles, {}, xform, options), grids, xform.copy());
+}
+
+template <typename PointT>
+openvdb::BoolGrid::Ptr Voxelizer::meshToBool(const std::vector<PointT>& points,
+                                             const std::vector<openvdb::Vec3I>& triangles,
+                                             const openvdb::math::Transform& xform, const VoxelizeOptions& options)
+{
+    GridOptions g;
+    g.topology = GridOptions::Topology::Bool;
+    g.attributes = false;
+    return openvdb::gridPtrCast<openvdb::BoolGrid>(meshToGrids(points, triangles, xform, options, g).front());
+}
+
+template <typename PointT>
+openvdb::FloatGrid::Ptr Voxelizer::meshToFog(const std::vector<PointT>& points,
+                                             const std::vector<openvdb::Vec3I>& triangles,
+                                             const openvdb::math::Transform& xform, const VoxelizeOptions& options)
+{
+    GridOptions g;
+    g.fog = true;
+    g.attributes = false;
+    return openvdb::gridPtrCast<openvdb::FloatGrid>(meshToGrids(points, triangles, xform, options, g).at(1));
+}
+
+
+template <typename PointT>
+openvdb::FloatGrid::Ptr Voxelizer::meshToLevelSet(const std::vector<PointT>& points,
+                                                  const std::vector<openvdb::Vec3I>& triangles,
+                                                  const openvdb::math::Transform& xform, float exteriorBand,
+                                                  float interiorBand, const VoxelizeOptions& options)
+{
+    const double scale = detail::uniformScale(xform);
+    const IndexSpaceMesh p = prepareMesh(points, triangles, {}, xform);
+    LevelSetOptions ls;
+    ls.exteriorBand = exteriorBand;
+    ls.interiorBand = interiorBand;
+    return openvdb::gridPtrCast<openvdb::FloatGrid>(
+        levelSetChecked(p.mesh, p.grid, ls, options, xform.copy(), scale).front());
+}
+
+template <typename PointT>
+openvdb::FloatGrid::Ptr Voxelizer::meshToUnsignedDistanceField(const std::vector<PointT>& points,
+                                                               const std::vector<openvdb::Vec3I>& triangles,
+                                                               const openvdb::math::Transform& xform, float band,
+                                                               const VoxelizeOptions& options)
+{
+    const double scale = detail::uniformScale(xform);
+    const IndexSpaceMesh p = prepareMesh(points, triangles, {}, xform);
+    LevelSetOptions ls;
+    ls.exteriorBand = ls.interiorBand = band;
+    ls.unsignedDistance = true;
+    return openvdb::gridPtrCast<openvdb::FloatGrid>(
+        levelSetChecked(p.mesh, p.grid, ls, options, xform.copy(), scale).front());
+}
+
+template <typename PointT>
+openvdb::MaskGrid::Ptr Voxelizer::meshToSolid(const std::vector<PointT>& points,
+                                              const std::vector<openvdb::Vec3I>& triangles,
+                                              const openvdb::math::Transform& xform, const VoxelizeOptions& options,
+                                              const SignOptions& sign)
+{
+    const IndexSpaceMesh p = prepareMesh(points, triangles, {}, xform);
+    return solidChecked(p.mesh, p.grid, options, sign, xform.copy());
+}
+
+
+// The templates' two instantiations: single and double precision points.
+#define SVO_INSTANTIATE(PointT)                                                                                      \
+    template openvdb::BoolGrid::Ptr Voxelizer::meshToBool(const std::vector<PointT>&,                               \
+                                                          const std::vector<openvdb::Vec3I>&,                        \
+                                                          const openvdb::math::Transform&, const VoxelizeOptions&);  \
+    template openvdb::FloatGrid::Ptr Voxelizer::meshToFog(const std::vector<PointT>&,                               \
+                                                          const std::vector<openvdb::Vec3I>&,                        \
+                                                          const openvdb::math::Transform&, const VoxelizeOptions&);  \
+    template openvdb::GridPtrVec Voxelizer::meshToGrids(const std::vector<PointT>&, const std::vector<openvdb::Vec3I>&, \
+                                                        const openvdb::math::Transform&, const VoxelizeOptions&,     \
+                                                        const GridOptions&);                                          \
+    template Octree Voxelizer::meshToOctree(const std::vector<PointT>&, const std::vector<openvdb::Vec3I>&,         \
+                                            const std::vector<openvdb::Vec4I>&, const openvdb::math::Transform&,     \
+                                            const VoxelizeOptions&);                                                  \
+    template openvdb::FloatGrid::Ptr Voxelizer::meshToLevelSet(const std::vector<PointT>&,                          \
+                                                               const std::vector<openvdb::Vec3I>&,                   \
+                                                               const openvdb::math::Transform&, float, float,        \
+                                                               const VoxelizeOptions&);                               \
+    template openvdb::FloatGrid::Ptr Voxelizer::meshToUnsignedDistanceField(                                         \
+        const std::vector<PointT>&, const std::vector<openvdb::Vec3I>&, const openvdb::math::Transform&, float,     \
+        const VoxelizeOptions&);                                                                                      \
+    template openvdb::MaskGrid::Ptr Voxelizer::meshToSolid(const std::vector<PointT>&,                              \
+                                                           const std::vector<openvdb::Vec3I>&,                       \
+                                                           const openvdb::math::Transform&, const VoxelizeOptions&,  \
+                                                           const SignOptions&);
+SVO_INSTANTIATE(openvdb::Vec3s)
+SVO_INSTANTIATE(openvdb::Vec3d)
+#undef SVO_INSTANTIATE
 
 } // namespace svo

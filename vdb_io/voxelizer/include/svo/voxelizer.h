@@ -63,142 +63,17 @@
 #include "svo/core/octree.h"
 #include "svo/core/voxel_mode.h"
 #include "svo/core/voxelization.h"
+#include "svo/gl/device.h"            // DeviceOptions, StartupStats
+#include "svo/gl/field_pipeline.h"    // SignMethod, SignOptions, LevelSetOptions and their rules
+#include "svo/gl/voxelize_pipeline.h" // Backend, Dilation, VoxelizeSettings, VoxelizeStats
 #include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/grid_options.h"
 
 namespace svo {
 
-/// Where voxelization runs.
-enum class Backend {
-    Auto,    ///< Compute on a GPU, Raster on a software renderer (llvmpipe): the faster, as measured
-    Raster,  ///< GPU: rasterization along each triangle's dominant axis
-    Compute, ///< GPU: triangle-parallel compute shaders; the same voxels as Raster
-    Cpu,     ///< the double-precision CPU reference (tests; no GL context needed)
-};
-
-/// How the raster backend enlarges triangles so no touched column is missed.
-enum class Dilation {
-    Auto,         ///< Hardware where GL_NV_conservative_raster exists, else Shader
-    Hardware,     ///< GL_NV_conservative_raster; an error where it is missing
-    Shader,       ///< edge offsets in the geometry shader
-    CentroidPush, ///< an early vertex-push method; misses voxels; benchmarks only
-};
-
-/// How level sets and solids tell inside from outside.
-enum class SignMethod {
-    /// Parity when the mesh is closed and consistently oriented (after welding
-    /// vertices at equal positions), the winding number otherwise; the
-    /// statistics say which and why.
-    Auto,
-    /// Crossings counted along voxel columns, with exact tie rules: a voxel
-    /// centre on a face, edge or vertex never flips the result. Correct for
-    /// closed meshes, including nested shells; used as asked on others.
-    Parity,
-    /// The generalized winding number (svo/core/winding_tree.h) thresholded at
-    /// 1/2: sensible insides for holes, soups and overlapping parts. At every
-    /// voxel of the band, and of any brick beyond it whose centre's winding
-    /// number is within 1/4 of 1/2; other bricks beyond the band take the
-    /// side of their centre.
-    Winding,
-};
-
-/// The sign method and its accuracy.
-struct SignOptions {
-    SignMethod method = SignMethod::Auto;
-    /// Winding numbers: tree nodes farther than this many times their radius
-    /// add their far field, expanded to second order, instead of their
-    /// triangles (Barill et al. 2018's beta; larger is slower and more exact;
-    /// positive and finite, checkWindingAccuracy: 1e300 evaluates every triangle).
-    double windingAccuracy = 1.5;
-    SignOptions(SignMethod m = SignMethod::Auto, double accuracy = 1.5) : method(m), windingAccuracy(accuracy) {}
-};
-
-/// What a level set (or unsigned distance field) holds.
-struct LevelSetOptions {
-    double exteriorBand = 3.0;     ///< active band outside the surface, in voxels (>= 1)
-    double interiorBand = 3.0;     ///< active band inside, in voxels (>= 1); unused when unsigned
-    bool unsignedDistance = false; ///< distances without sign: no inside/outside needed
-    bool closestTriangle = false;  ///< also an Int32Grid "closest_triangle" on the band
-    SignOptions sign;
-};
-
-/// Which GPU the Voxelizer uses.
-struct DeviceOptions {
-    /// "" ($SVO_EGL_DEVICE, else "auto"), "auto" (hardware first, then
-    /// Mesa's software renderer), "hardware", "software", or an EGL device index.
-    std::string device;
-    bool glDebug = false; ///< print GL debug messages to stderr
-    /// Folder of cached GL program binaries, so that a new Voxelizer (in this
-    /// process or a later one) loads its programs instead of compiling them:
-    /// "" ($SVO_PROGRAM_CACHE when set, where empty or "off" means none; else
-    /// $XDG_CACHE_HOME/svo/programs, else ~/.cache/svo/programs), "off", or a
-    /// folder. Entries are keyed by the GL driver and the programs' full
-    /// source; one the driver refuses is compiled again and replaced. A folder
-    /// that cannot be written never fails a call (one warning in
-    /// VoxelizeStats::warnings). Drivers with no program binary formats have no cache.
-    std::string programCache;
-};
-
-/// Start-up work a call paid for: the GL context and the programs it made.
-/// All zero on a warm Voxelizer whose programs are made.
-struct StartupStats {
-    double eglMs = 0;          ///< creating the EGL display and GL context (the first GPU use)
-    double programMs = 0;      ///< making programs: loading them from the cache or compiling them
-    int programsCompiled = 0;  ///< compiled from source (those the cache refused included)
-    int programsLoaded = 0;    ///< loaded from the program cache
-    int programsRefused = 0;   ///< cache entries damaged or refused by the driver: compiled again, replaced
-    std::string programCache;  ///< the program cache folder, "" when off
-};
-
-/// What one call measured. Kept apart from the result; filled only when asked.
-struct VoxelizeStats {
-    std::vector<StageTime> stages; ///< GPU (timer queries) and wall milliseconds per stage
-    uint64_t voxels = 0, bricks = 0;
-    uint64_t listEntries = 0;      ///< voxel-list entries written, duplicates included
-    int overflowRetries = 0;       ///< passes repeated because a GPU buffer was too small
-    uint32_t tiles = 1;            ///< boxes the grid was voxelized in to stay within GPU memory (1: all at once)
-    uint64_t gpuBytes = 0;         ///< GPU buffer bytes the call used (reused scratch counts at its full size)
-    double epsilon = 0;            ///< guard band in voxels
-    std::string backend;           ///< "raster", "compute" or "cpu"
-    std::string mode;              ///< "conservative" or "thin"; empty for grids and bricks, which are not voxelized
-    std::string dilation;          ///< "hardware", "shader", "centroid-push (baseline)"; empty for cpu
-    std::string device;            ///< "vendor | renderer | version (EGL device)", or "cpu"
-    std::string renderer;          ///< GL renderer string, or "cpu"
-    GridSpec grid;                 ///< the local grid the call used
-    std::vector<std::string> warnings; ///< what was asked for but could not be given (colours without vertex colours)
-    std::string sign;              ///< level sets and solids: the sign method used and why ("parity: closed and ...")
-    uint64_t openColumns = 0;      ///< level sets and solids: voxel columns crossed an odd number of times (open mesh)
-    uint64_t bandBricks = 0;       ///< level sets and solids: bricks whose distances or signs were computed
-    uint64_t windingBricks = 0;    ///< winding signs: bricks beyond the band classified voxel by voxel
-    /// Start-up paid since the previous call returned: the context if this
-    /// call (or deviceDescription() before it) created it, and the programs
-    /// this call made. Kept apart from `stages`, whose wall times exclude it.
-    StartupStats startup;
-    double gpuMs() const;          ///< the sum of the stages' GPU times
-};
-
-/// Options of one call. Plain values; the defaults suit most uses.
-struct VoxelizeOptions {
-    Backend backend = Backend::Auto;
-    /// Which voxels a triangle covers: Conservative (every voxel whose closed
-    /// cube it meets; 26-separating) or Thin (every voxel one of whose three
-    /// axis-aligned centre segments it meets; 6-separating, fewer voxels).
-    /// Every backend and dilation computes both; the grid and guard band are
-    /// the same.
-    VoxelMode mode = VoxelMode::Conservative;
-    /// Raster backend only: any mode but Auto makes Backend::Auto pick Raster,
-    /// and is an error with Backend::Compute.
-    Dilation dilation = Dilation::Auto;
-    /// Per-voxel channels to compute: AttributeChannel bits (kNormals,
-    /// kTriangles, kColors). Colours need vertex colours and are left out otherwise.
-    uint32_t attributes = 0;
-    /// GPU bytes a voxelization may allocate. A grid whose voxel list or
-    /// octree needs more is cut into tiles of whole bricks, voxelized one
-    /// after another and merged on the host: the same voxels and channels
-    /// (VoxelizeStats::tiles says how many). 0: what the device reports free,
-    /// less a margin (unbounded where the driver does not tell). Level sets
-    /// and solids do not tile yet: they report running out of memory instead.
-    uint64_t gpuMemory = 0;
+/// Options of one call: what to compute and where (VoxelizeSettings), and
+/// how the call reports. Plain values; the defaults suit most uses.
+struct VoxelizeOptions : VoxelizeSettings {
     /// Polled between stages and between tiles with the percentage done;
     /// returning true cancels the call (svo::Interrupted). start() and end()
     /// bracket the call. Must outlive the call.
@@ -207,24 +82,6 @@ struct VoxelizeOptions {
     VoxelizeStats* stats = nullptr;
 };
 
-/// @name The rules of the options' numbers
-/// One rule per number, for every front door: the library checks its options
-/// with them (naming the field, e.g. LevelSetOptions::exteriorBand), and the
-/// command line and the Python module check what they are given with the same
-/// functions, naming their own flag or keyword (`name`). Each throws
-/// svo::Error with one line: "<name> <value>: <the rule>". NaN never passes.
-/// @{
-/// A band half width: a number of voxels from 1 to 1000.
-void checkBand(double voxels, const std::string& name);
-/// SignOptions::windingAccuracy: a positive finite number (1e300 evaluates every triangle).
-void checkWindingAccuracy(double accuracy, const std::string& name);
-/// Both bands (the interior one only for signed fields) and the winding accuracy.
-void checkLevelSetOptions(const LevelSetOptions& options);
-/// The voxel mode of a level set or solid call: only VoxelMode::Conservative
-/// (the default); a mode is a rule for surface voxels, and the distances, the
-/// band and the inside do not depend on it.
-void checkFieldMode(const VoxelizeOptions& options);
-/// @}
 
 struct IndexSpaceMesh;
 
@@ -391,9 +248,7 @@ public:
     void releaseScratch();
 
 private:
-    struct Impl;
-    /// voxelize() after the mesh and grid were checked (prepareMesh checks them).
-    Octree voxelizePrepared(const IndexSpaceMesh& prepared, const VoxelizeOptions& options);
+    /// voxelize() after the mesh and grid were checked.
     Octree voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                            std::vector<uint64_t>* voxelList);
     /// levelSet()/solid() after the mesh and grid were checked; `xform` is the
@@ -403,11 +258,7 @@ private:
                                         double worldPerVoxel);
     openvdb::MaskGrid::Ptr solidChecked(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                                         const SignOptions& sign, openvdb::math::Transform::Ptr xform);
-    /// The conservative surface voxels a solid starts from; the call's
-    /// statistics begin as theirs.
-    Octree surfaceVoxels(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
-                         VoxelizeStats& stats);
-    std::unique_ptr<Impl> impl_;
+    gl::Device device_;
 };
 
 /// @brief A mesh in OpenVDB's types as svo's double-precision mesh, in world
@@ -434,10 +285,5 @@ IndexSpaceMesh prepareMesh(const std::vector<openvdb::Vec3d>& points, const std:
 IndexSpaceMesh prepareMesh(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& triangles,
                            const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform);
 
-/// Statistics of repeated runs: each stage's median GPU and wall time; the
-/// other fields are the last run's. Throws svo::Error for an empty list.
-VoxelizeStats medianStats(const std::vector<VoxelizeStats>& runs);
-
 } // namespace svo
 
-#include "svo/detail/voxelizer_impl.h"

@@ -1,0 +1,84 @@
+#pragma once
+/// @file device.h
+/// @brief svo::gl::Device: the GL context a pipeline runs on, created on first
+/// use, and the start-up work each call paid for.
+///
+/// A CPU-only caller never creates a context; the first GPU call does (or
+/// start(), to overlap it with other work). The Device reports start-up once:
+/// takeStartup() hands over what was paid since the previous report.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "svo/gl/context.h"
+
+namespace svo {
+
+/// Which GPU a Device (and so a Voxelizer) uses.
+struct DeviceOptions {
+    /// "" ($SVO_EGL_DEVICE, else "auto"), "auto" (hardware first, then
+    /// Mesa's software renderer), "hardware", "software", or an EGL device index.
+    std::string device;
+    bool glDebug = false; ///< print GL debug messages to stderr
+    /// Folder of cached GL program binaries, so that a new Device (in this
+    /// process or a later one) loads its programs instead of compiling them:
+    /// "" ($SVO_PROGRAM_CACHE when set, where empty or "off" means none; else
+    /// $XDG_CACHE_HOME/svo/programs, else ~/.cache/svo/programs), "off", or a
+    /// folder. Entries are keyed by the GL driver and the programs' full
+    /// source; one the driver refuses is compiled again and replaced. A folder
+    /// that cannot be written never fails a call (one warning in the call's
+    /// statistics). Drivers with no program binary formats have no cache.
+    std::string programCache;
+};
+
+/// Start-up work a call paid for: the GL context and the programs it made.
+/// All zero on a warm Device whose programs are made.
+struct StartupStats {
+    double eglMs = 0;          ///< creating the EGL display and GL context (the first GPU use)
+    double programMs = 0;      ///< making programs: loading them from the cache or compiling them
+    int programsCompiled = 0;  ///< compiled from source (those the cache refused included)
+    int programsLoaded = 0;    ///< loaded from the program cache
+    int programsRefused = 0;   ///< cache entries damaged or refused by the driver: compiled again, replaced
+    std::string programCache;  ///< the program cache folder, "" when off
+};
+
+namespace gl {
+
+class Device {
+public:
+    /// @brief A Device that creates no context yet. Throws nothing.
+    explicit Device(const DeviceOptions& options = {});
+    ~Device();
+    Device(Device&&) noexcept;
+    Device& operator=(Device&&) noexcept;
+
+    /// @brief The GL context, created on first use.
+    /// @throw svo::Error when no usable GPU or driver is found.
+    Context& context();
+    /// @brief Creates the context now (see context()).
+    void start() { context(); }
+    /// Whether the context exists.
+    bool started() const { return context_ != nullptr; }
+    /// @brief Whether the device is a software rasterizer (llvmpipe).
+    /// @param create with false and no context yet, EGL is asked about its
+    ///        first device without creating one (about 1 ms)
+    bool software(bool create = true);
+    /// @brief "vendor | renderer | version (EGL device, extensions used)";
+    /// creates the context if needed.
+    std::string describe();
+    /// @brief The start-up paid since the last call to this: the context's
+    /// creation if not yet reported, and the programs made since.
+    /// @param warnings receives the program cache's new warnings
+    StartupStats takeStartup(std::vector<std::string>& warnings);
+    /// Frees the context's scratch buffers (nothing when there is no context).
+    void releaseScratch();
+
+private:
+    DeviceOptions options_;
+    std::unique_ptr<Context> context_;
+    double unreportedEglMs_ = 0; // the context's creation, until takeStartup reports it
+    ProgramStats reported_;      // the programs' statistics already reported
+};
+
+} // namespace gl
+} // namespace svo

@@ -1,0 +1,57 @@
+#include "svo/gl/device.h"
+
+#include <fmt/format.h>
+#include <utility>
+
+namespace svo::gl {
+
+Device::Device(const DeviceOptions& options) : options_(options) {}
+Device::~Device() = default;
+Device::Device(Device&&) noexcept = default;
+Device& Device::operator=(Device&&) noexcept = default;
+
+Context& Device::context()
+{
+    if (!context_) {
+        context_ = std::make_unique<Context>(ContextOptions{options_.device, options_.glDebug, options_.programCache});
+        unreportedEglMs_ = context_->info().setupMs;
+    }
+    return *context_;
+}
+
+bool Device::software(bool create)
+{
+    return context_ || create ? context().info().software : softwareDevice(options_.device);
+}
+
+std::string Device::describe()
+{
+    const auto& i = context().info();
+    std::string exts;
+    for (const auto& e : i.extensionsUsed) exts += ", " + e;
+    return fmt::format("{} | {} | {} ({}{})", i.vendor, i.renderer, i.version, i.eglDevice, exts);
+}
+
+StartupStats Device::takeStartup(std::vector<std::string>& warnings)
+{
+    StartupStats s;
+    s.eglMs = std::exchange(unreportedEglMs_, 0.0);
+    if (!context_) return s;
+    const ProgramStats& now = context_->programStats();
+    s.programMs = now.ms - reported_.ms;
+    s.programsCompiled = now.compiled - reported_.compiled;
+    s.programsLoaded = now.loaded - reported_.loaded;
+    s.programsRefused = now.refused - reported_.refused;
+    s.programCache = context_->info().programCache;
+    warnings.insert(warnings.end(), now.warnings.begin() + std::ptrdiff_t(reported_.warnings.size()),
+                    now.warnings.end());
+    reported_ = now;
+    return s;
+}
+
+void Device::releaseScratch()
+{
+    if (context_) context_->releaseScratch();
+}
+
+} // namespace svo::gl

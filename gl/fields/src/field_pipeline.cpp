@@ -1,0 +1,327 @@
+// Level sets, unsigned distance fields and solids on bricks
+// (svo/gl/field_pipeline.h): the band's bricks (band_bricks.h), distances and
+// parity crossings (distance_field.h), winding numbers (winding_number.h).
+#include "svo/gl/field_pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+#include <utility>
+
+#include "band_bricks.h"
+#include "svo/core/error.h"
+#include "svo/core/mesh_topology.h"
+#include "svo/core/parity_scan.h"
+#include "svo/core/winding_tree.h"
+#include "svo/gl/distance_field.h"
+#include "svo/gl/winding_number.h"
+
+namespace svo {
+
+void checkBand(double voxels, const std::string& name)
+{
+    if (!(voxels >= 1.0 && voxels <= 1000.0)) // NaN fails too
+        throw Error(fmt::format("{} {}: a band is a number of voxels from 1 to 1000", name, voxels));
+}
+
+void checkWindingAccuracy(double accuracy, const std::string& name)
+{
+    if (!(accuracy > 0) || !std::isfinite(accuracy))
+        throw Error(fmt::format("{} {}: the winding accuracy is a positive finite number (default 1.5; larger is "
+                                "slower and more exact, 1e300 evaluates every triangle)",
+                                name, accuracy));
+}
+
+void checkLevelSetOptions(const LevelSetOptions& ls)
+{
+    checkBand(ls.exteriorBand, "LevelSetOptions::exteriorBand");
+    if (!ls.unsignedDistance) checkBand(ls.interiorBand, "LevelSetOptions::interiorBand");
+    checkWindingAccuracy(ls.sign.windingAccuracy, "SignOptions::windingAccuracy");
+}
+
+void checkFieldMode(const VoxelizeSettings& options)
+{
+    if (options.mode != VoxelMode::Conservative)
+        throw Error(fmt::format("VoxelizeOptions::mode {}: VoxelizeOptions::mode applies to surface voxels; level "
+                                "sets, unsigned distances and solids do not depend on it (leave it conservative)",
+                                voxelModeName(options.mode)));
+}
+
+namespace gl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+/// The grid grown by `pad` voxels on every side (the anchor kept a multiple
+/// of 8), so that a band around the mesh lies inside its local range.
+GridSpec padded(const GridSpec& grid, uint32_t pad, const std::string& what)
+{
+    GridSpec g = grid;
+    for (int a = 0; a < 3; ++a) {
+        g.anchor[a] = floorTo8(grid.anchor[a] - int64_t(pad));
+        const uint64_t dims = uint64_t(grid.anchor[a] - g.anchor[a]) + grid.dims[a] + pad;
+        if (dims > kMaxGridDim)
+            throw Error(fmt::format("{}: the grid with its band is {} voxels wide, more than svo's {}", what, dims,
+                                    kMaxGridDim));
+        g.dims[a] = uint32_t(dims);
+    }
+    checkGrid(g, what);
+    return g;
+}
+
+/// The sign method a call uses, and why (for the statistics).
+struct SignChoice {
+    SignMethod method;
+    std::string why;
+};
+SignChoice chooseSign(const TriangleMesh& mesh, const SignOptions& asked, std::vector<std::string>& warnings)
+{
+    checkWindingAccuracy(asked.windingAccuracy, "SignOptions::windingAccuracy");
+    if (asked.method == SignMethod::Winding) return {SignMethod::Winding, "winding: as asked"};
+    const EdgeReport edges = checkEdges(mesh);
+    if (edges.closedAndOriented()) return {SignMethod::Parity, "parity: the mesh is " + edges.describe()};
+    if (asked.method == SignMethod::Auto)
+        return {SignMethod::Winding, "winding: the mesh is not closed (" + edges.describe() + ")"};
+    // A hole lets a column of voxel centres cross the surface an odd number
+    // of times, and parity then flips every sign beyond it: refused. Edges of
+    // three or more triangles, or two running the same way, can still give
+    // even crossings (two solids sharing an edge, a flipped face): warned.
+    if (edges.boundary)
+        throw Error(fmt::format("{}: parity signs need a mesh without holes, and this one has {}: a column of voxels "
+                                "through a hole crosses the surface an odd number of times and every sign beyond it "
+                                "would flip; use the winding sign method (or auto, which picks it for such a mesh)",
+                                mesh.source, edges.describe()));
+    warnings.push_back(fmt::format("{} is not closed ({}): parity signs may be wrong", mesh.source, edges.describe()));
+    return {SignMethod::Parity, "parity: as asked (the mesh is not closed)"};
+}
+
+/// A brick beyond the band whose centre's winding number is nearer 1/2 than
+/// this may hold both sides (the 1/2 level crosses free space only where the
+/// mesh has holes); its voxels are evaluated one by one.
+constexpr float kWindingMargin = 0.25f;
+
+/// Winding-number signs: the number at every brick centre of the grid's box,
+/// then voxel by voxel in the band's bricks and in the bricks whose centre is
+/// within kWindingMargin of 1/2.
+FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSpec& g,
+                   const std::vector<BrickCoord>& band, double beta, const Checkpoint& checkpoint,
+                   VoxelizeStats& stats)
+{
+    auto t0 = Clock::now();
+    const WindingTree tree = buildWindingTree(localPositions(mesh, g), mesh.triangles);
+    stats.stages.push_back({"winding tree", -1, msSince(t0)});
+    WindingRequest coarse;
+    coarse.perBrick = true;
+    coarse.beta = beta;
+    coarse.checkpoint = checkpoint.part(0.0, 0.3);
+    WindingResult centres = computeWinding(context, mesh, g, tree, coarse);
+    for (auto& st : centres.stages) stats.stages.push_back(std::move(st));
+
+    // `band` is sorted (grownBricks): the box's bricks in x-major order walk it once.
+    FieldSigns signs;
+    WindingRequest fine;
+    fine.bricks = band;
+    fine.beta = beta;
+    fine.checkpoint = checkpoint.part(0.3, 1.0);
+    const auto& d = centres.brickDims;
+    size_t next = 0;
+    for (uint32_t x = 0; x < d[0]; ++x)
+        for (uint32_t y = 0; y < d[1]; ++y)
+            for (uint32_t z = 0; z < d[2]; ++z) {
+                const BrickCoord b{x, y, z};
+                if (next < band.size() && band[next] == b) {
+                    ++next;
+                    continue;
+                }
+                const float w = centres.perBrick[x + size_t(d[0]) * (y + size_t(d[1]) * z)];
+                if (std::abs(w - 0.5f) < kWindingMargin) fine.bricks.push_back(b);
+                else if (w >= 0.5f) signs.insideBricks.push_back(b);
+            }
+    stats.windingBricks = fine.bricks.size() - band.size();
+    WindingResult voxels = computeWinding(context, mesh, g, tree, fine);
+    for (auto& st : voxels.stages) stats.stages.push_back(std::move(st));
+    stats.gpuBytes = std::max({stats.gpuBytes, centres.gpuBytes, voxels.gpuBytes});
+    signs.inside.assign(voxels.inside.begin(), voxels.inside.begin() + std::ptrdiff_t(band.size()));
+    for (size_t i = band.size(); i < fine.bricks.size(); ++i)
+        if (voxels.inside[i].count()) signs.partial.push_back({fine.bricks[i], voxels.inside[i]});
+    return signs;
+}
+
+/// Parity signs from the crossings the distance pass marked.
+FieldSigns paritySigns(const std::vector<BrickCoord>& band, const std::vector<Brick>& crossings)
+{
+    ParityScan scan = scanParity(band, crossings);
+    FieldSigns signs;
+    signs.inside = std::move(scan.inside);
+    signs.runs = std::move(scan.runs);
+    signs.openColumns = scan.openColumns;
+    return signs;
+}
+
+/// computeField, with its stages and buffer bytes added to `stats`.
+FieldResult fieldPass(Context& context, const TriangleMesh& mesh, const GridSpec& g,
+                          const FieldRequest& request, VoxelizeStats& stats)
+{
+    FieldResult field = computeField(context, mesh, g, request);
+    if (field.lostCrossings)
+        throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
+                                field.lostCrossings));
+    for (auto& st : field.stages) stats.stages.push_back(std::move(st));
+    stats.gpuBytes = std::max(stats.gpuBytes, field.gpuBytes);
+    return field;
+}
+
+/// Records parity's open columns, warning with what they mean for the result.
+void noteOpenColumns(VoxelizeStats& stats, uint64_t openColumns, const char* consequence)
+{
+    stats.openColumns = openColumns;
+    if (openColumns)
+        stats.warnings.push_back(fmt::format("{} voxel columns cross the surface an odd number of times: the mesh is "
+                                             "open there, and {}",
+                                             openColumns, consequence));
+}
+
+/// grownBricks, counted and timed in `stats`.
+std::vector<BrickCoord> bandBricks(const Octree& surface, uint32_t reach, VoxelizeStats& stats)
+{
+    const auto t0 = Clock::now();
+    std::vector<BrickCoord> band = grownBricks(surface, reach);
+    stats.bandBricks = band.size();
+    stats.stages.push_back({"band bricks", -1, msSince(t0)});
+    return band;
+}
+
+/// The conservative surface voxels a solid starts from, as voxelizeMesh
+/// gives them whatever the mode asked: the band is grown from, and every
+/// crossing lies in, a voxel a triangle touches. The call's statistics begin
+/// as theirs, after the warnings gathered so far.
+Octree surfaceVoxels(Device& device, const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeSettings& settings,
+                     VoxelizeStats& stats)
+{
+    VoxelizeSettings surface = settings;
+    surface.attributes = 0;
+    surface.mode = VoxelMode::Conservative;
+    VoxelizeStats surfaceStats;
+    Octree octree = voxelizeMesh(device, mesh, grid, surface, Checkpoint{}, surfaceStats);
+    surfaceStats.warnings.insert(surfaceStats.warnings.begin(), stats.warnings.begin(), stats.warnings.end());
+    stats = std::move(surfaceStats);
+    return octree;
+}
+
+/// ORs the surface's voxels into the band bricks' inside masks (every
+/// surface brick is a band brick: the band grows from them).
+void addSurface(const Octree& surface, const std::vector<BrickCoord>& band, std::vector<Brick>& inside)
+{
+    std::vector<std::pair<BrickCoord, uint32_t>> bricks;
+    for (const auto& r : occupiedBricks(surface))
+        bricks.push_back({{r.origin[0] / 8, r.origin[1] / 8, r.origin[2] / 8}, r.index});
+    tbb::parallel_sort(bricks.begin(), bricks.end());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, band.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const auto it = std::lower_bound(bricks.begin(), bricks.end(), std::make_pair(band[i], uint32_t(0)));
+            if (it != bricks.end() && it->first == band[i])
+                for (int w = 0; w < 8; ++w) inside[i].words[w] |= surface.bricks[it->second].words[w];
+        }
+    });
+}
+
+} // namespace
+
+DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
+                              const LevelSetOptions& ls, const VoxelizeSettings& settings,
+                              const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    const bool signedField = !ls.unsignedDistance;
+    checkLevelSetOptions(ls);
+    checkFieldMode(settings);
+    if (settings.backend == Backend::Cpu)
+        throw Error("level sets are computed on the GPU; choose the raster or compute backend, or auto");
+    SignChoice sign{SignMethod::Parity, {}};
+    if (signedField) sign = chooseSign(mesh, ls.sign, stats.warnings);
+    const bool winding = signedField && sign.method == SignMethod::Winding;
+    const double band = signedField ? std::max(ls.exteriorBand, ls.interiorBand) : ls.exteriorBand;
+    // Every voxel within `band` of a triangle is within reach (Chebyshev) of
+    // the triangle's box; the first centre above a crossing is within 1.
+    const uint32_t reach = std::max<uint32_t>(1, uint32_t(std::floor(band + 0.5)));
+    const GridSpec g = padded(grid, reach + 1, mesh.source);
+    stats.grid = g;
+    stats.epsilon = g.epsilon();
+    describeBackend(device, Backend::Compute, stats); // compute passes only, whatever the backend asked
+    stats.sign = sign.why;
+    checkpoint(0.0, "band bricks");
+
+    FieldRequest request;
+    {
+        const auto t0 = Clock::now();
+        request.bricks = bricksNearTriangles(localPositions(mesh, g), mesh, g, std::max(band, 1.0));
+        stats.bandBricks = request.bricks.size();
+        stats.stages.push_back({"band bricks", -1, msSince(t0)});
+    }
+    request.band = band;
+    request.closestTriangle = ls.closestTriangle;
+    request.crossings = signedField && !winding;
+    request.checkpoint = checkpoint.part(0.3, winding ? 0.55 : 0.85);
+    FieldResult field = fieldPass(device.context(), mesh, g, request, stats);
+    DistanceBricks out;
+    if (winding) {
+        out.signs = windingSigns(device.context(), mesh, g, request.bricks, ls.sign.windingAccuracy,
+                                 checkpoint.part(0.55, 0.85), stats);
+    } else if (signedField) {
+        const auto t0 = Clock::now();
+        out.signs = paritySigns(request.bricks, field.crossings);
+        stats.stages.push_back({"parity scan", -1, msSince(t0)});
+    }
+    noteOpenColumns(stats, out.signs.openColumns, "signs above its last crossing count as outside");
+    stats.startup = device.takeStartup(stats.warnings);
+    out.grid = g;
+    out.bricks = std::move(request.bricks);
+    out.near = std::move(field.bandMasks);
+    out.offsets = std::move(field.bandOffsets);
+    out.distances = std::move(field.distances);
+    out.closest = std::move(field.closest);
+    out.closestTriangle = ls.closestTriangle;
+    out.signedField = signedField;
+    out.winding = winding;
+    return out;
+}
+
+SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
+                        const VoxelizeSettings& settings, const SignOptions& signOptions,
+                        const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    checkFieldMode(settings); // the sign options: chooseSign
+    if (settings.backend == Backend::Cpu)
+        throw Error("solids are computed on the GPU; choose the raster or compute backend, or auto");
+    const SignChoice sign = chooseSign(mesh, signOptions, stats.warnings);
+    const bool winding = sign.method == SignMethod::Winding;
+    const GridSpec g = padded(grid, 2, mesh.source);
+    checkpoint(0.0, "surface voxels");
+    const Octree surface = surfaceVoxels(device, mesh, g, settings, stats);
+    stats.sign = sign.why;
+    checkpoint(0.3, "signs");
+
+    // The first centre above a crossing is within 1 voxel of it.
+    SolidBricks out;
+    out.grid = g;
+    out.bricks = bandBricks(surface, 1, stats);
+    if (winding) {
+        out.signs = windingSigns(device.context(), mesh, g, out.bricks, signOptions.windingAccuracy,
+                                 checkpoint.part(0.35, 0.8), stats);
+    } else {
+        FieldRequest request;
+        request.bricks = out.bricks;
+        request.checkpoint = checkpoint.part(0.35, 0.8);
+        out.signs = paritySigns(out.bricks, fieldPass(device.context(), mesh, g, request, stats).crossings);
+    }
+    noteOpenColumns(stats, out.signs.openColumns, "the solid stops at its last crossing");
+    addSurface(surface, out.bricks, out.signs.inside);
+    return out;
+}
+
+} // namespace gl
+} // namespace svo

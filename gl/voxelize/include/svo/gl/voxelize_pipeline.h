@@ -1,0 +1,125 @@
+#pragma once
+/// @file voxelize_pipeline.h
+/// @brief Meshes and bricks to octrees on svo's own types, backend choice
+/// included: what svo::Voxelizer runs, usable without OpenVDB.
+///
+/// The backends (raster_voxelizer.h, octree_builder.h and the CPU reference,
+/// svo/core/cpu_voxelizer.h) each do one job; this file picks one for a call
+/// and gathers what it measured. Callers check the mesh and grid first
+/// (validateMesh, checkGrid).
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "svo/core/grid.h"
+#include "svo/core/interrupt.h"
+#include "svo/core/mesh.h"
+#include "svo/core/octree.h"
+#include "svo/core/voxel_mode.h"
+#include "svo/core/voxelization.h"
+#include "svo/gl/device.h"
+
+namespace svo {
+
+/// Where voxelization runs.
+enum class Backend {
+    Auto,    ///< Compute on a GPU, Raster on a software renderer (llvmpipe): the faster, as measured
+    Raster,  ///< GPU: rasterization along each triangle's dominant axis
+    Compute, ///< GPU: triangle-parallel compute shaders; the same voxels as Raster
+    Cpu,     ///< the double-precision CPU reference (tests; no GL context needed)
+};
+
+/// How the raster backend enlarges triangles so no touched column is missed.
+enum class Dilation {
+    Auto,         ///< Hardware where GL_NV_conservative_raster exists, else Shader
+    Hardware,     ///< GL_NV_conservative_raster; an error where it is missing
+    Shader,       ///< edge offsets in the geometry shader
+    CentroidPush, ///< an early vertex-push method; misses voxels; benchmarks only
+};
+
+/// What a voxelization computes and where. Plain values; the defaults suit most uses.
+struct VoxelizeSettings {
+    Backend backend = Backend::Auto;
+    /// Which voxels a triangle covers: Conservative (every voxel whose closed
+    /// cube it meets; 26-separating) or Thin (every voxel one of whose three
+    /// axis-aligned centre segments it meets; 6-separating, fewer voxels).
+    /// Every backend and dilation computes both; the grid and guard band are
+    /// the same.
+    VoxelMode mode = VoxelMode::Conservative;
+    /// Raster backend only: any mode but Auto makes Backend::Auto pick Raster,
+    /// and is an error with Backend::Compute.
+    Dilation dilation = Dilation::Auto;
+    /// Per-voxel channels to compute: AttributeChannel bits (kNormals,
+    /// kTriangles, kColors). Colours need vertex colours and are left out otherwise.
+    uint32_t attributes = 0;
+    /// GPU bytes a voxelization may allocate. A grid whose voxel list or
+    /// octree needs more is cut into tiles of whole bricks, voxelized one
+    /// after another and merged on the host: the same voxels and channels
+    /// (VoxelizeStats::tiles says how many). 0: what the device reports free,
+    /// less a margin (unbounded where the driver does not tell). Level sets
+    /// and solids do not tile yet: they report running out of memory instead.
+    uint64_t gpuMemory = 0;
+};
+
+/// What one call measured. Kept apart from the result; filled only when asked.
+struct VoxelizeStats {
+    std::vector<StageTime> stages; ///< GPU (timer queries) and wall milliseconds per stage
+    uint64_t voxels = 0, bricks = 0;
+    uint64_t listEntries = 0;      ///< voxel-list entries written, duplicates included
+    int overflowRetries = 0;       ///< passes repeated because a GPU buffer was too small
+    uint32_t tiles = 1;            ///< boxes the grid was voxelized in to stay within GPU memory (1: all at once)
+    uint64_t gpuBytes = 0;         ///< GPU buffer bytes the call used (reused scratch counts at its full size)
+    double epsilon = 0;            ///< guard band in voxels
+    std::string backend;           ///< "raster", "compute" or "cpu"
+    std::string mode;              ///< "conservative" or "thin"; empty for grids and bricks, which are not voxelized
+    std::string dilation;          ///< "hardware", "shader", "centroid-push (baseline)"; empty for cpu
+    std::string device;            ///< "vendor | renderer | version (EGL device)", or "cpu"
+    std::string renderer;          ///< GL renderer string, or "cpu"
+    GridSpec grid;                 ///< the local grid the call used
+    std::vector<std::string> warnings; ///< what was asked for but could not be given (colours without vertex colours)
+    std::string sign;              ///< level sets and solids: the sign method used and why ("parity: closed and ...")
+    uint64_t openColumns = 0;      ///< level sets and solids: voxel columns crossed an odd number of times (open mesh)
+    uint64_t bandBricks = 0;       ///< level sets and solids: bricks whose distances or signs were computed
+    uint64_t windingBricks = 0;    ///< winding signs: bricks beyond the band classified voxel by voxel
+    /// Start-up paid since the previous call returned: the context if this
+    /// call created it, and the programs this call made. Kept apart from
+    /// `stages`, whose wall times exclude it.
+    StartupStats startup;
+    double gpuMs() const;          ///< the sum of the stages' GPU times
+};
+
+/// @brief Statistics of repeated runs: each stage's median GPU and wall time;
+/// the other fields are the last run's.
+/// @throw svo::Error for an empty list.
+VoxelizeStats medianStats(const std::vector<VoxelizeStats>& runs);
+
+namespace gl {
+
+/// @brief The backend a call with @a settings runs on: Backend::Auto resolved
+/// (a dilation mode's raster backend when one is asked for; else compute on a
+/// hardware GPU, raster on a software rasterizer such as llvmpipe).
+/// @param create with false and no context yet, none is created (Device::software)
+/// @throw svo::Error for a dilation mode with Backend::Compute.
+Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool create = true);
+
+/// @brief Where a call runs, in its statistics: backend, device and renderer
+/// names (the GPU's, or "cpu").
+void describeBackend(Device& device, Backend backend, VoxelizeStats& stats);
+
+/// @brief The voxels of a checked mesh on a checked grid, as an octree.
+/// @param checkpoint polled between stages and tiles with the fraction done
+/// @param stats      receives the stages, counts, backend and warnings
+/// @param voxelList  when set, also the backend's voxel set (sorted, unique keys)
+/// @throw svo::Error as the backends (no usable GPU, out of GPU memory, a
+///        dilation mode with the compute backend); svo::Interrupted.
+Octree voxelizeMesh(Device& device, const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeSettings& settings,
+                    const Checkpoint& checkpoint, VoxelizeStats& stats, std::vector<uint64_t>* voxelList = nullptr);
+
+/// @brief Whole bricks (brick-origin key, mask) on a checked grid, built into
+/// an octree on the GPU, or on the CPU with Backend::Cpu.
+Octree bricksToOctree(Device& device, const GridSpec& grid, std::vector<std::pair<uint64_t, Brick>> bricks,
+                      Backend backend, const Checkpoint& checkpoint, VoxelizeStats& stats);
+
+} // namespace gl
+} // namespace svo

@@ -1,0 +1,167 @@
+#include "svo/gl/voxelize_pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "svo/core/cpu_voxelizer.h"
+#include "svo/core/error.h"
+#include "svo/core/voxel_attributes.h"
+#include "svo/gl/octree_builder.h"
+#include "svo/gl/raster_voxelizer.h"
+
+namespace svo {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+gl::ConservativeMode conservativeMode(Dilation d)
+{
+    switch (d) {
+    case Dilation::Hardware: return gl::ConservativeMode::Hardware;
+    case Dilation::Shader: return gl::ConservativeMode::Shader;
+    case Dilation::CentroidPush: return gl::ConservativeMode::CentroidPush;
+    case Dilation::Auto: break;
+    }
+    return gl::ConservativeMode::Auto;
+}
+
+/// The CPU reference: voxels, octree and channels, each a stage.
+Octree voxelizeOnCpu(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeSettings& settings,
+                     const Checkpoint& checkpoint, VoxelizeStats& stats, std::vector<uint64_t>* voxelList)
+{
+    auto t0 = Clock::now();
+    const Checkpoint part = checkpoint.part(0.0, 0.6);
+    Voxelization v = voxelizeCpu(mesh, grid, 0.0, settings.mode, [&](double f) { part(f, "voxelize (cpu)"); });
+    stats.stages.push_back({"voxelize (cpu)", -1, msSince(t0)});
+    checkpoint(0.6, "octree build");
+    t0 = Clock::now();
+    Octree octree = buildOctree(grid, v.keys);
+    stats.stages.push_back({"octree build (cpu)", -1, msSince(t0)});
+    if (settings.attributes) {
+        checkpoint(0.8, "attribute channels");
+        t0 = Clock::now();
+        attachAttributesCpu(mesh, octree, settings.attributes, 0.0, settings.mode);
+        stats.stages.push_back({"attributes (cpu)", -1, msSince(t0)});
+    }
+    stats.listEntries = v.keys.size();
+    if (voxelList) *voxelList = std::move(v.keys);
+    return octree;
+}
+
+/// The raster or compute backend with the octree built on the GPU.
+Octree voxelizeOnGpu(gl::Context& context, const TriangleMesh& mesh, const GridSpec& grid, Backend backend,
+                     const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats,
+                     std::vector<uint64_t>* voxelList)
+{
+    gl::RasterOptions ro;
+    ro.pipeline = backend == Backend::Compute ? gl::Pipeline::Compute : gl::Pipeline::Raster;
+    ro.conservative = conservativeMode(settings.dilation);
+    ro.mode = settings.mode;
+    ro.attributes = settings.attributes;
+    ro.checkpoint = checkpoint.part(0.0, 0.98);
+    ro.voxelList = voxelList;
+    ro.gpuMemory = settings.gpuMemory;
+    stats.dilation = gl::conservativeModeName(context, ro);
+    gl::OctreeVoxelization r = gl::voxelizeToOctree(context, mesh, grid, ro);
+    stats.stages = std::move(r.stages);
+    stats.listEntries = r.listEntries;
+    stats.overflowRetries = r.overflowRetries;
+    stats.gpuBytes = r.gpuBytes;
+    stats.tiles = r.tiles;
+    return std::move(r.octree);
+}
+
+} // namespace
+
+double VoxelizeStats::gpuMs() const
+{
+    double sum = 0;
+    for (const auto& s : stages) sum += std::max(s.gpuMs, 0.0);
+    return sum;
+}
+
+VoxelizeStats medianStats(const std::vector<VoxelizeStats>& runs)
+{
+    if (runs.empty()) throw Error("medianStats needs at least one run");
+    VoxelizeStats out = runs.back();
+    for (size_t s = 0; s < out.stages.size(); ++s) {
+        std::vector<double> gpu, wall;
+        for (const auto& r : runs)
+            if (s < r.stages.size()) gpu.push_back(r.stages[s].gpuMs), wall.push_back(r.stages[s].wallMs);
+        std::sort(gpu.begin(), gpu.end());
+        std::sort(wall.begin(), wall.end());
+        out.stages[s].gpuMs = gpu[gpu.size() / 2];
+        out.stages[s].wallMs = wall[wall.size() / 2];
+    }
+    return out;
+}
+
+namespace gl {
+
+Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool create)
+{
+    // A dilation mode is a raster option: asking for one picks the raster backend.
+    if (settings.backend == Backend::Compute && settings.dilation != Dilation::Auto)
+        throw Error("a dilation mode applies to the raster backend; the compute backend needs none");
+    if (settings.backend != Backend::Auto) return settings.backend;
+    if (settings.dilation != Dilation::Auto) return Backend::Raster;
+    // Measured (bench/results/nvidia-h100/compute.md): compute is the faster
+    // on a hardware GPU; on llvmpipe the two are close, and raster, validated
+    // longest, stays.
+    return device.software(create) ? Backend::Raster : Backend::Compute;
+}
+
+void describeBackend(Device& device, Backend backend, VoxelizeStats& stats)
+{
+    const bool cpu = backend == Backend::Cpu;
+    stats.backend = cpu ? "cpu" : backend == Backend::Compute ? "compute" : "raster";
+    stats.device = cpu ? "cpu" : device.describe();
+    stats.renderer = cpu ? "cpu" : device.context().info().renderer;
+}
+
+Octree voxelizeMesh(Device& device, const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeSettings& settings,
+                    const Checkpoint& checkpoint, VoxelizeStats& stats, std::vector<uint64_t>* voxelList)
+{
+    checkpoint(0.0, "start");
+    stats.grid = grid;
+    stats.epsilon = grid.epsilon();
+    if (availableChannels(mesh, settings.attributes) != settings.attributes)
+        stats.warnings.push_back(mesh.source + " has no vertex colours; the color channel is left out");
+    const Backend backend = resolveBackend(device, settings);
+    describeBackend(device, backend, stats);
+    stats.mode = voxelModeName(settings.mode);
+    Octree octree = backend == Backend::Cpu
+                        ? voxelizeOnCpu(mesh, grid, settings, checkpoint, stats, voxelList)
+                        : voxelizeOnGpu(device.context(), mesh, grid, backend, settings, checkpoint, stats, voxelList);
+    stats.startup = device.takeStartup(stats.warnings);
+    stats.voxels = octree.voxelCount();
+    stats.bricks = octree.bricks.size();
+    return octree;
+}
+
+Octree bricksToOctree(Device& device, const GridSpec& grid, std::vector<std::pair<uint64_t, Brick>> bricks,
+                      Backend backend, const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    stats.grid = grid;
+    describeBackend(device, backend, stats);
+    Octree octree;
+    if (backend == Backend::Cpu) {
+        checkpoint(0.0, "octree build");
+        const auto t0 = Clock::now();
+        octree = buildOctreeFromBricks(grid, std::move(bricks));
+        stats.stages.push_back({"octree build (cpu)", -1, msSince(t0)});
+    } else {
+        OctreeVoxelization r = buildOctreeGpu(device.context(), grid, bricks, checkpoint.part(0.0, 0.98));
+        octree = std::move(r.octree);
+        stats.stages = std::move(r.stages);
+        stats.gpuBytes = r.gpuBytes;
+    }
+    stats.startup = device.takeStartup(stats.warnings);
+    stats.voxels = octree.voxelCount();
+    stats.bricks = octree.bricks.size();
+    return octree;
+}
+
+} // namespace gl
+} // namespace svo

@@ -1,0 +1,29 @@
+#pragma once
+/// @file field_grids.h
+/// @brief Distance fields and solids on bricks (svo/core/field_bricks.h) as
+/// OpenVDB grids.
+#include <openvdb/openvdb.h>
+
+#include "svo/core/field_bricks.h"
+
+namespace svo::vdb {
+
+/// @brief The grids of a distance field: the distances (world units), then
+/// "closest_triangle" (Int32Grid, -1 off the band) when it was computed.
+/// @details Voxels nearer than the band on their side are active; others hold
+/// +/- the background, the exterior band times the voxel size, signed as
+/// OpenVDB's signedFloodFill signs them (parity) or as the winding number
+/// says. A signed field has class GRID_LEVEL_SET and is named "surface"; an
+/// unsigned one GRID_UNKNOWN, named "distance".
+/// @param exteriorBand, interiorBand  the band on each side, in voxels
+/// @param worldPerVoxel the transform's uniform scale
+/// @param xform         the grids' transform
+openvdb::GridPtrVec levelSetGrids(const DistanceBricks& field, double exteriorBand, double interiorBand,
+                                  double worldPerVoxel, openvdb::math::Transform::Ptr xform);
+
+/// @brief The MaskGrid "solid": the band's inside voxels, and whole regions
+/// inside as active tiles at the largest tree level they fill (memory follows
+/// the surface).
+openvdb::MaskGrid::Ptr solidGrid(const SolidBricks& solid, openvdb::math::Transform::Ptr xform);
+
+} // namespace svo::vdb
