@@ -74,21 +74,22 @@ protected:
     void expectMatchesReference(const TriangleMesh& mesh, const GridRequest& req, const gl::RasterOptions& opt = {})
     {
         const GridSpec grid = makeGrid(mesh, req);
-        const Voxelization keys = gl::voxelizeRaster(*context_, mesh, grid);
-        const gl::OctreeVoxelization gpu = gl::voxelizeToOctree(*context_, mesh, grid, opt);
-        const auto problems = checkOctree(gpu.octree);
+        RunStats keysReport, gpuReport;
+        const Voxelization keys = gl::voxelizeRaster(*context_, mesh, grid, {}, &keysReport);
+        const Octree gpu = gl::voxelizeToOctree(*context_, mesh, grid, opt, &gpuReport);
+        const auto problems = checkOctree(gpu);
         EXPECT_TRUE(problems.empty()) << mesh.source << ": " << problems.front();
         const Octree reference = buildOctree(grid, keys.keys);
-        EXPECT_TRUE(sameOctree(canonicalOrder(gpu.octree), reference)) << mesh.source;
+        EXPECT_TRUE(sameOctree(canonicalOrder(gpu), reference)) << mesh.source;
         // Built from occupancy bitmaps, the GPU lays out the canonical order itself.
         if (brickLevelFor(grid) <= SVO_BUILD_BITMAP_MAX_LEVEL) {
-            EXPECT_TRUE(sameOctree(gpu.octree, reference)) << mesh.source;
+            EXPECT_TRUE(sameOctree(gpu, reference)) << mesh.source;
         }
-        EXPECT_EQ(gpu.octree.voxelCount(), keys.keys.size()) << mesh.source;
-        EXPECT_EQ(gpu.listEntries, keys.listEntries) << mesh.source;
+        EXPECT_EQ(gpu.voxelCount(), keys.keys.size()) << mesh.source;
+        EXPECT_EQ(gpuReport.listEntries, keysReport.listEntries) << mesh.source;
         std::printf("  %-28s voxels %9zu bricks %7zu nodes %8zu levels %u retries %d\n", mesh.source.c_str(),
-                    keys.keys.size(), gpu.octree.bricks.size(), gpu.octree.nodes.size(), gpu.octree.brickLevel + 1,
-                    gpu.overflowRetries);
+                    keys.keys.size(), gpu.bricks.size(), gpu.nodes.size(), gpu.brickLevel + 1,
+                    gpuReport.overflowRetries);
     }
 
     static std::unique_ptr<gl::Context> context_;
@@ -124,11 +125,15 @@ TEST_F(GpuOctree, OverflowingEveryBufferRetriesToTheSameResult)
     tinyList.initialCapacity = 16;     // the voxel list overflows: rasterize again
     tinyOctree.initialBrickCapacity = 1; // bricks and nodes overflow: build again
     for (const auto& opt : {tinyList, tinyOctree}) {
-        EXPECT_GE(gl::voxelizeToOctree(*context_, mesh, grid, opt).overflowRetries, 1);
+        RunStats report;
+        gl::voxelizeToOctree(*context_, mesh, grid, opt, &report);
+        EXPECT_GE(report.overflowRetries, 1);
         expectMatchesReference(mesh, {64, 0}, opt);
     }
     // The bitmap build counts nodes and bricks exactly past its capacity: one rebuild is enough.
-    EXPECT_EQ(gl::voxelizeToOctree(*context_, mesh, grid, tinyOctree).overflowRetries, 1);
+    RunStats report;
+    gl::voxelizeToOctree(*context_, mesh, grid, tinyOctree, &report);
+    EXPECT_EQ(report.overflowRetries, 1);
 }
 
 TEST_F(GpuOctree, TilesWithinAGpuBudgetGiveTheUntiledOctree)
@@ -156,22 +161,23 @@ TEST_F(GpuOctree, TilesWithinAGpuBudgetGiveTheUntiledOctree)
                 std::vector<uint64_t> wholeList, tiledList;
                 opt.voxelList = &wholeList;
                 gl::Context fresh; // scratch buffers from other tests would count against the budget
-                const gl::OctreeVoxelization whole = gl::voxelizeToOctree(fresh, mesh, grid, opt);
-                ASSERT_EQ(whole.tiles, 1u) << what;
+                RunStats wholeReport, tiledReport;
+                const Octree whole = gl::voxelizeToOctree(fresh, mesh, grid, opt, &wholeReport);
+                ASSERT_EQ(wholeReport.tiles, 1u) << what;
                 fresh.releaseScratch();
                 opt.voxelList = &tiledList;
-                opt.gpuMemory = whole.gpuBytes / 2;
-                const gl::OctreeVoxelization tiled = gl::voxelizeToOctree(fresh, mesh, grid, opt);
-                EXPECT_GT(tiled.tiles, 2u) << what;
-                EXPECT_LE(tiled.gpuBytes, opt.gpuMemory) << what;
-                EXPECT_TRUE(checkOctree(tiled.octree).empty()) << what;
-                EXPECT_TRUE(sameOctree(tiled.octree, canonicalOrder(whole.octree))) << what;
-                EXPECT_FALSE(tiled.octree.attributes.normals.empty()) << what;
+                opt.gpuMemory = wholeReport.gpuBytes / 2;
+                const Octree tiled = gl::voxelizeToOctree(fresh, mesh, grid, opt, &tiledReport);
+                EXPECT_GT(tiledReport.tiles, 2u) << what;
+                EXPECT_LE(tiledReport.gpuBytes, opt.gpuMemory) << what;
+                EXPECT_TRUE(checkOctree(tiled).empty()) << what;
+                EXPECT_TRUE(sameOctree(tiled, canonicalOrder(whole))) << what;
+                EXPECT_FALSE(tiled.attributes.normals.empty()) << what;
                 EXPECT_EQ(tiledList, wholeList) << what;
-                EXPECT_EQ(tiled.listEntries, whole.listEntries) << what;
-                std::printf("  %-40s %u tiles, GPU %.1f -> %.1f MiB, %lu voxels\n", what.c_str(), tiled.tiles,
-                            double(whole.gpuBytes) / (1 << 20), double(tiled.gpuBytes) / (1 << 20),
-                            (unsigned long)tiled.octree.voxelCount());
+                EXPECT_EQ(tiledReport.listEntries, wholeReport.listEntries) << what;
+                std::printf("  %-40s %u tiles, GPU %.1f -> %.1f MiB, %lu voxels\n", what.c_str(), tiledReport.tiles,
+                            double(wholeReport.gpuBytes) / (1 << 20), double(tiledReport.gpuBytes) / (1 << 20),
+                            (unsigned long)tiled.voxelCount());
             }
 }
 
@@ -202,12 +208,12 @@ TEST_F(GpuOctree, FromBricksMatchesReference)
             b.words[(k & 511) >> 6] = uint64_t(1) << (k & 63);
             bricks.emplace_back(brickOfKey(k), b);
         }
-        const auto gpu = gl::buildOctreeGpu(*context_, g, bricks);
-        EXPECT_TRUE(checkOctree(gpu.octree).empty());
+        const Octree gpu = gl::buildOctreeGpu(*context_, g, bricks);
+        EXPECT_TRUE(checkOctree(gpu).empty());
         const Octree reference = buildOctree(g, keys);
-        EXPECT_TRUE(sameOctree(canonicalOrder(gpu.octree), reference));
+        EXPECT_TRUE(sameOctree(canonicalOrder(gpu), reference));
         if (brickLevelFor(g) <= SVO_BUILD_BITMAP_MAX_LEVEL) {
-            EXPECT_TRUE(sameOctree(gpu.octree, reference));
+            EXPECT_TRUE(sameOctree(gpu, reference));
         }
     }
 }
@@ -216,7 +222,7 @@ TEST_F(GpuOctree, MeshToVdbToOctreeToVdbIsIdentical)
 {
     const auto mesh = test::sphere({0.1, 0.2, 0.3}, 1.0, 64, 32);
     const GridSpec grid = makeGrid(mesh, {96, 0});
-    const Octree first = gl::voxelizeToOctree(*context_, mesh, grid).octree;
+    const Octree first = gl::voxelizeToOctree(*context_, mesh, grid);
     const VoxelSet voxels = globalVoxels(first);
     for (auto [topology, name] : {std::pair{vdb::Topology::Mask, "mask"}, std::pair{vdb::Topology::Bool, "bool"}}) {
         vdb::WriteOptions wo;
@@ -227,7 +233,7 @@ TEST_F(GpuOctree, MeshToVdbToOctreeToVdbIsIdentical)
         for (const char* gridName : {"surface", "density"}) {
             EXPECT_EQ(vdbVoxels(a, gridName), voxels) << name << " " << gridName;
             const auto bricks = vdb::readVdbBricks(a, gridName);
-            const Octree second = gl::buildOctreeGpu(*context_, bricks.grid, bricks.bricks).octree;
+            const Octree second = gl::buildOctreeGpu(*context_, bricks.grid, bricks.bricks);
             EXPECT_TRUE(checkOctree(second).empty());
             EXPECT_EQ(globalVoxels(second), voxels) << name << " " << gridName;
             EXPECT_EQ(second.grid.voxelSize, first.grid.voxelSize);
@@ -236,7 +242,7 @@ TEST_F(GpuOctree, MeshToVdbToOctreeToVdbIsIdentical)
             EXPECT_EQ(vdbVoxels(b, "surface"), voxels);
             EXPECT_EQ(vdbVoxels(b, "density"), voxels);
             const auto again = vdb::readVdbBricks(b, gridName);
-            const Octree third = gl::buildOctreeGpu(*context_, again.grid, again.bricks).octree;
+            const Octree third = gl::buildOctreeGpu(*context_, again.grid, again.bricks);
             EXPECT_TRUE(sameOctree(canonicalOrder(third), canonicalOrder(second)));
         }
         // The transform survives: world positions of a voxel agree.
@@ -334,7 +340,7 @@ TEST_F(GpuOctree, AttributesEqualTheCpuReferenceOutsideTheBand)
             gl::RasterOptions opt;
             opt.attributes = all;
             opt.mode = mode;
-            const Octree gpu = gl::voxelizeToOctree(*context_, mesh, grid, opt).octree;
+            const Octree gpu = gl::voxelizeToOctree(*context_, mesh, grid, opt);
             ASSERT_TRUE(checkOctree(gpu).empty());
             ASSERT_EQ(gpu.channels(), mesh.colors.empty() ? uint32_t(kNormals | kTriangles) : all);
             // The GPU's (voxel, triangle) pairs lie between the CPU's on cubes (thin: segments)
@@ -371,7 +377,7 @@ TEST_F(GpuOctree, AttributeGridsReachTheVdbFile)
     const GridSpec grid = makeGrid(mesh, {32, 0});
     gl::RasterOptions opt;
     opt.attributes = kNormals | kTriangles | kColors;
-    const Octree o = gl::voxelizeToOctree(*context_, mesh, grid, opt).octree;
+    const Octree o = gl::voxelizeToOctree(*context_, mesh, grid, opt);
     const std::string path = tempPath("attributes.vdb");
     vdb::writeVdb(path, o, {});
     openvdb::io::File f(path);

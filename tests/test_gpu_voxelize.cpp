@@ -26,28 +26,30 @@ protected:
     test::BandCounts check(const TriangleMesh& mesh, const GridRequest& req, const gl::RasterOptions& opt = {})
     {
         const GridSpec grid = makeGrid(mesh, req);
-        const Voxelization g = gl::voxelizeRaster(*context_, mesh, grid, opt);
+        RunStats report;
+        const Voxelization g = gl::voxelizeRaster(*context_, mesh, grid, opt, &report);
         const auto c = test::compareToReference(mesh, g, opt.mode);
         if (opt.pipeline == gl::Pipeline::Raster && opt.conservative != gl::ConservativeMode::CentroidPush) {
             // The compute backend walks the same columns with the same test.
             gl::RasterOptions compute = opt;
             compute.pipeline = gl::Pipeline::Compute;
-            const Voxelization k = gl::voxelizeRaster(*context_, mesh, grid, compute);
+            RunStats computeReport;
+            const Voxelization k = gl::voxelizeRaster(*context_, mesh, grid, compute, &computeReport);
             EXPECT_EQ(k.keys, g.keys) << mesh.source << ": the compute backend differs from the raster backend";
             // Entry for entry too, where the raster path gives each column one
             // fragment: NVIDIA's hardware conservative raster repeats some
             // (690 extra entries for 20,423 voxels of random triangles on an H100).
             if (std::string(gl::conservativeModeName(*context_, opt)) == "shader")
-                EXPECT_EQ(k.listEntries, g.listEntries) << mesh.source;
+                EXPECT_EQ(computeReport.listEntries, report.listEntries) << mesh.source;
             else
-                EXPECT_LE(k.listEntries, g.listEntries) << mesh.source;
+                EXPECT_LE(computeReport.listEntries, report.listEntries) << mesh.source;
         }
         EXPECT_EQ(c.missed, 0u) << mesh.source;
         EXPECT_EQ(c.extra, 0u) << mesh.source;
         EXPECT_GT(c.got, 0u) << mesh.source;
         std::printf("  %-40s %-4s res/h %-8g voxels %9zu  band %6zu  eps %.2g  retries %d\n", mesh.source.c_str(),
                     opt.mode == VoxelMode::Thin ? "thin" : "", req.resolution ? double(req.resolution) : req.voxelSize,
-                    c.got, c.band, grid.epsilon(), g.overflowRetries);
+                    c.got, c.band, grid.epsilon(), report.overflowRetries);
         return c;
     }
 
@@ -175,10 +177,11 @@ TEST_F(GpuVoxelize, OverflowTriggersExactlyOneRetry)
     tiny.initialCapacity = 16;
     const auto mesh = test::sphere({0, 0, 0}, 1.0, 32, 16);
     const GridSpec grid = makeGrid(mesh, res(64));
-    const auto small = gl::voxelizeRaster(*context_, mesh, grid, tiny);
-    const auto normal = gl::voxelizeRaster(*context_, mesh, grid);
-    EXPECT_EQ(small.overflowRetries, 1);
-    EXPECT_EQ(normal.overflowRetries, 0);
+    RunStats smallReport, normalReport;
+    const auto small = gl::voxelizeRaster(*context_, mesh, grid, tiny, &smallReport);
+    const auto normal = gl::voxelizeRaster(*context_, mesh, grid, {}, &normalReport);
+    EXPECT_EQ(smallReport.overflowRetries, 1);
+    EXPECT_EQ(normalReport.overflowRetries, 0);
     EXPECT_EQ(small.keys, normal.keys);
 }
 

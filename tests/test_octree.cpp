@@ -261,7 +261,14 @@ TEST(OctreeAttributes, CpuChannelsFollowTheirTriangles)
     m.triangles = {{0, 1, 2}, {3, 4, 5}};
     m.colors = {{1, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
     const GridSpec g = makeGrid(m, {0, 1.0});
-    Voxelization v = voxelizeCpu(m, g);
+    RunStats report;
+    report.tiles = 7; // replaced, not added to
+    Voxelization v = voxelizeCpu(m, g, 0.0, VoxelMode::Conservative, nullptr, &report);
+    EXPECT_EQ(v.keys, voxelizeCpu(m, g).keys); // the same voxels, asked for a report or not
+    ASSERT_EQ(report.stages.size(), 1u);
+    EXPECT_EQ(report.stages[0].name, "voxelize (cpu)");
+    EXPECT_GE(report.listEntries, v.keys.size());
+    EXPECT_EQ(report.tiles, 1u);
     Octree o = buildOctree(g, v.keys);
     attachAttributesCpu(m, o, kNormals | kTriangles | kColors, 0.0);
     ASSERT_TRUE(checkOctree(o).empty());

@@ -52,18 +52,19 @@ TEST(Stability, EveryAdversarialSceneIsExact)
                                        : fmt::format("h {:g}", scene.grid.voxelSize);
         r.eps = grid.epsilon();
         const auto t0 = std::chrono::steady_clock::now();
-        const auto gpu = gl::voxelizeToOctree(context, scene.mesh, grid);
+        RunStats report;
+        const Octree gpu = gl::voxelizeToOctree(context, scene.mesh, grid, {}, &report);
         r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        ASSERT_TRUE(checkOctree(gpu.octree).empty());
-        const auto g = octreeKeys(gpu.octree);
+        ASSERT_TRUE(checkOctree(gpu).empty());
+        const auto g = octreeKeys(gpu);
         r.voxels = g.size();
         {
             gl::RasterOptions compute;
             compute.pipeline = gl::Pipeline::Compute;
-            EXPECT_EQ(octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, compute).octree), g)
+            EXPECT_EQ(octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, compute)), g)
                 << "the compute backend differs from the raster backend";
         }
-        r.retries = gpu.overflowRetries;
+        r.retries = report.overflowRetries;
 
         const auto ref = validate::exactReference(scene.mesh, grid, grid.epsilon());
         const auto c = validate::classify(scene.mesh, grid, g, ref, 3);
@@ -89,8 +90,8 @@ TEST(Stability, EveryAdversarialSceneIsExact)
             gl::RasterOptions none, wide;
             none.guardBand = 0.0;
             wide.guardBand = 0.05;
-            r.eps0MissedExact = long(countMissing(exact, octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, none).octree)));
-            r.bigEpsExtra = long(countMissing(octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, wide).octree), ref.allowed));
+            r.eps0MissedExact = long(countMissing(exact, octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, none))));
+            r.bigEpsExtra = long(countMissing(octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, wide)), ref.allowed));
         }
         const auto h = validate::checkHoles(scene.mesh, grid, g);
         r.holes = h.applies ? (h.leak ? "LEAK" : "closed, no leak") : (h.reason.find("open") != std::string::npos ? "open" : "not a manifold");
@@ -134,11 +135,11 @@ TEST(Stability, EveryAdversarialSceneIsExactInThinMode)
         gl::RasterOptions thin;
         thin.mode = VoxelMode::Thin;
         thin.conservative = gl::ConservativeMode::Shader;
-        const auto g = octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, thin).octree);
+        const auto g = octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, thin));
         gl::RasterOptions compute = thin;
         compute.pipeline = gl::Pipeline::Compute;
         compute.conservative = gl::ConservativeMode::Auto;
-        EXPECT_EQ(octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, compute).octree), g)
+        EXPECT_EQ(octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid, compute)), g)
             << "the compute backend differs from the raster backend";
         const auto ref = validate::exactReference(scene.mesh, grid, grid.epsilon(), VoxelMode::Thin);
         const auto c = validate::classify(scene.mesh, grid, g, ref, 3);
@@ -148,7 +149,7 @@ TEST(Stability, EveryAdversarialSceneIsExactInThinMode)
         const auto cpu = voxelizeCpu(scene.mesh, grid, 0.0, VoxelMode::Thin).keys;
         EXPECT_EQ(countMissing(ref.required, cpu), 0u);
         EXPECT_EQ(countMissing(cpu, ref.allowed), 0u);
-        EXPECT_EQ(countMissing(g, octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid).octree)), 0u)
+        EXPECT_EQ(countMissing(g, octreeKeys(gl::voxelizeToOctree(context, scene.mesh, grid))), 0u)
             << "a thin voxel is not a conservative one";
         const auto h = validate::checkHoles(scene.mesh, grid, g, 6);
         EXPECT_FALSE(h.leak);

@@ -33,7 +33,7 @@ protected:
     {
         gl::RasterOptions o;
         o.mode = mode;
-        return octreeKeys(gl::voxelizeToOctree(*context_, mesh, grid, o).octree);
+        return octreeKeys(gl::voxelizeToOctree(*context_, mesh, grid, o));
     }
     static std::unique_ptr<gl::Context> context_;
 };

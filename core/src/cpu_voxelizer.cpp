@@ -23,7 +23,7 @@ constexpr int64_t kColumnsPerBatch = int64_t(1) << 20; // between polls
 } // namespace
 
 Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, double guard, VoxelMode mode,
-                         const std::function<void(double)>& poll)
+                         const std::function<void(double)>& poll, RunStats* report)
 {
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<Vec3d> local(mesh.positions.size());
@@ -69,13 +69,18 @@ Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, double 
     }
     Voxelization result;
     result.grid = grid;
+    uint64_t listEntries = 0;
     for (auto& part : perThread) {
-        result.listEntries += part.size();
+        listEntries += part.size();
         result.keys.insert(result.keys.end(), part.begin(), part.end());
     }
     sortUniqueKeys(result.keys);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    result.stages.push_back({"voxelize (cpu)", -1.0, ms});
+    if (report) {
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        *report = RunStats{};
+        report->listEntries = listEntries;
+        report->stages.push_back({"voxelize (cpu)", -1.0, ms});
+    }
     return result;
 }
 

@@ -118,10 +118,12 @@ void dispatchItems(const Context& context, const Program& program, uint64_t item
 
 } // namespace
 
-FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridSpec& grid, const FieldRequest& request)
+FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridSpec& grid, const FieldRequest& request,
+                         RunStats* report)
 {
     const Context::Scope scope(context);
     FieldResult result;
+    RunStats stats;
     const uint64_t nb = request.bricks.size();
     const double band = request.band;
     const bool distances = band > 0;
@@ -188,7 +190,7 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         flipBuffer->clearUint(0, nb * sizeof(Brick));
     }
     uploadTimer.end();
-    result.stages.push_back({"field upload", -1, msSince(t0)});
+    stats.stages.push_back({"field upload", -1, msSince(t0)});
     positions.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_POSITIONS);
     indices.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_INDICES);
     tableBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_TABLE);
@@ -233,7 +235,7 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         timer.end();
         checkGl(name);
         waitForGpu(poll);
-        result.stages.push_back({name, timer.milliseconds(), msSince(w0)});
+        stats.stages.push_back({name, timer.milliseconds(), msSince(w0)});
     };
     if (distances) {
         const Program& program =
@@ -294,7 +296,7 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         timer.end();
         checkGl("band packing");
         waitForGpu(poll);
-        result.stages.push_back({"band packing", timer.milliseconds(), msSince(w0)});
+        stats.stages.push_back({"band packing", timer.milliseconds(), msSince(w0)});
         // The mesh's slots are the field passes' again.
         positions.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_POSITIONS);
         indices.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_INDICES);
@@ -307,13 +309,13 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         // a one-item triangle's thread takes 64 columns, a probe each.
         pass("parity crossings", program, 64, crossingItems, nCrossing, 256, &crossingWhole, 256);
     }
-    result.stages.front().gpuMs = uploadTimer.milliseconds();
-    result.gpuBytes = positions.bytes() + indices.bytes() + tableBuffer.bytes() + counters.bytes() +
-                      (distanceBuffer ? nb * (2048 + 2048 + sizeof(Brick) + 4) : 0) +
-                      (closestBuffer ? nb * 2048 * 2 : 0) +
-                      (flipBuffer ? nb * sizeof(Brick) : 0) +
-                      std::max(distanceItems.size() + distanceWhole.size(),
-                               crossingItems.size() + crossingWhole.size()) * 4;
+    stats.stages.front().gpuMs = uploadTimer.milliseconds();
+    stats.gpuBytes = positions.bytes() + indices.bytes() + tableBuffer.bytes() + counters.bytes() +
+                     (distanceBuffer ? nb * (2048 + 2048 + sizeof(Brick) + 4) : 0) +
+                     (closestBuffer ? nb * 2048 * 2 : 0) +
+                     (flipBuffer ? nb * sizeof(Brick) : 0) +
+                     std::max(distanceItems.size() + distanceWhole.size(),
+                              crossingItems.size() + crossingWhole.size()) * 4;
     request.checkpoint(0.8, "field readback");
 
     t0 = Clock::now();
@@ -341,7 +343,8 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     readTimer.end();
     checkGl("field readback");
     result.lostCrossings = lost;
-    result.stages.push_back({"field readback", readTimer.milliseconds(), msSince(t0)});
+    stats.stages.push_back({"field readback", readTimer.milliseconds(), msSince(t0)});
+    if (report) *report = std::move(stats);
     return result;
 }
 

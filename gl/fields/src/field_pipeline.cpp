@@ -119,8 +119,9 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     coarse.perBrick = true;
     coarse.beta = beta;
     coarse.checkpoint = checkpoint.part(0.0, 0.3);
-    WindingResult centres = computeWinding(context, mesh, g, tree, coarse);
-    for (auto& st : centres.stages) stats.stages.push_back(std::move(st));
+    RunStats centresReport;
+    WindingResult centres = computeWinding(context, mesh, g, tree, coarse, &centresReport);
+    for (auto& st : centresReport.stages) stats.stages.push_back(std::move(st));
 
     // `band` is sorted (grownBricks): the box's bricks in x-major order walk it once.
     FieldSigns signs;
@@ -143,9 +144,10 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
                 else if (w >= 0.5f) signs.insideBricks.push_back(b);
             }
     stats.windingBricks = fine.bricks.size() - band.size();
-    WindingResult voxels = computeWinding(context, mesh, g, tree, fine);
-    for (auto& st : voxels.stages) stats.stages.push_back(std::move(st));
-    stats.gpuBytes = std::max({stats.gpuBytes, centres.gpuBytes, voxels.gpuBytes});
+    RunStats voxelsReport;
+    WindingResult voxels = computeWinding(context, mesh, g, tree, fine, &voxelsReport);
+    for (auto& st : voxelsReport.stages) stats.stages.push_back(std::move(st));
+    stats.gpuBytes = std::max({stats.gpuBytes, centresReport.gpuBytes, voxelsReport.gpuBytes});
     signs.inside.assign(voxels.inside.begin(), voxels.inside.begin() + std::ptrdiff_t(band.size()));
     for (size_t i = band.size(); i < fine.bricks.size(); ++i)
         if (voxels.inside[i].count()) signs.partial.push_back({fine.bricks[i], voxels.inside[i]});
@@ -167,12 +169,13 @@ FieldSigns paritySigns(const std::vector<BrickCoord>& band, const std::vector<Br
 FieldResult fieldPass(Context& context, const TriangleMesh& mesh, const GridSpec& g,
                           const FieldRequest& request, VoxelizeStats& stats)
 {
-    FieldResult field = computeField(context, mesh, g, request);
+    RunStats report;
+    FieldResult field = computeField(context, mesh, g, request, &report);
     if (field.lostCrossings)
         throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
                                 field.lostCrossings));
-    for (auto& st : field.stages) stats.stages.push_back(std::move(st));
-    stats.gpuBytes = std::max(stats.gpuBytes, field.gpuBytes);
+    for (auto& st : report.stages) stats.stages.push_back(std::move(st));
+    stats.gpuBytes = std::max(stats.gpuBytes, report.gpuBytes);
     return field;
 }
 

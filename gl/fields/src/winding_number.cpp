@@ -36,13 +36,14 @@ std::vector<Vec3d> localPositions(const TriangleMesh& mesh, const GridSpec& grid
 }
 
 WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
-                             const WindingTree& tree, const WindingRequest& request)
+                             const WindingTree& tree, const WindingRequest& request, RunStats* report)
 {
     if (!(request.beta > 0)) throw Error(fmt::format("a winding accuracy (beta) of {}: it must be positive", request.beta));
     if (tree.depth + 1 > gpu::kWindingStack)
         throw Error(fmt::format("a winding tree {} levels deep is more than the shader's stack holds ({})",
                                 tree.depth + 1, gpu::kWindingStack));
     WindingResult result;
+    RunStats stats;
     for (int a = 0; a < 3; ++a) result.brickDims[a] = (grid.dims[a] + 7) / 8;
     const uint64_t boxBricks = uint64_t(result.brickDims[0]) * result.brickDims[1] * result.brickDims[2];
     if (request.perBrick && boxBricks > (uint64_t(1) << 31))
@@ -78,7 +79,7 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
     const Buffer& out = context.scratch("winding output", outBytes);
     uploadTimer.end();
     checkGl("winding upload");
-    result.stages.push_back({"winding upload", -1, msSince(t0)});
+    stats.stages.push_back({"winding upload", -1, msSince(t0)});
     positions.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_POSITIONS);
     indices.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_INDICES);
     nodes.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_WINDING_NODES);
@@ -86,8 +87,8 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
     order.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_WINDING_ORDER);
     bricks.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_WINDING_BRICKS);
     out.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_WINDING_OUT);
-    result.gpuBytes = positions.bytes() + indices.bytes() + nodes.bytes() + links.bytes() + order.bytes() +
-                      bricks.bytes() + outBytes;
+    stats.gpuBytes = positions.bytes() + indices.bytes() + nodes.bytes() + links.bytes() + order.bytes() +
+                     bricks.bytes() + outBytes;
 
     // The per-brick mode is winding_number.comp's; the per-voxel mode is
     // cut as WindingWork says. On an H100 the column walk was 1.5-1.9x
@@ -147,7 +148,7 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
                                     "mesh's winding tree at accuracy {} takes more; use a smaller winding accuracy "
                                     "(1.5 by default) or a hardware GPU",
                                     context.info().renderer, loopLimit, request.beta));
-        result.stages.push_back({name, timer.milliseconds(), msSince(w0)});
+        stats.stages.push_back({name, timer.milliseconds(), msSince(w0)});
     };
     if (request.perBrick) {
         run("winding per brick", pointProgram, 1, boxBricks, uint64_t(1) << 20, 1, 0.05, 0.45);
@@ -161,7 +162,8 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
         out.readBulk(0, nb * sizeof(Brick), result.inside.data());
     }
     checkGl("winding readback");
-    result.stages.front().gpuMs = uploadTimer.milliseconds();
+    stats.stages.front().gpuMs = uploadTimer.milliseconds();
+    if (report) *report = std::move(stats);
     return result;
 }
 

@@ -184,13 +184,13 @@ Octree OctreeBuilder::readOctree(const Build& b, const GridSpec& grid)
     return o;
 }
 
-OctreeVoxelization buildOctreeGpu(Context& context, const GridSpec& grid,
-                                  const std::vector<std::pair<uint64_t, Brick>>& bricks, const Checkpoint& checkpoint)
+Octree buildOctreeGpu(Context& context, const GridSpec& grid, const std::vector<std::pair<uint64_t, Brick>>& bricks,
+                      const Checkpoint& checkpoint, RunStats* report)
 {
     if (bricks.size() > 0xFFFFFFF0u) throw Error(fmt::format("{} bricks exceed one GPU build", bricks.size()));
     const Context::Scope scope(context);
     checkpoint(0.0, "brick upload");
-    OctreeVoxelization result;
+    RunStats stats;
     auto t0 = Clock::now();
     TimerQuery uploadTimer;
     uploadTimer.begin();
@@ -212,7 +212,7 @@ OctreeVoxelization buildOctreeGpu(Context& context, const GridSpec& grid,
     entries.write(0, keys.size() * 8, keys.data());
     maskBuffer.write(0, masks.size() * sizeof(Brick), masks.data());
     uploadTimer.end();
-    result.stages.push_back({"upload", -1, msSince(t0)});
+    stats.stages.push_back({"upload", -1, msSince(t0)});
     checkpoint(0.3, "octree build");
 
     const OctreeBuilder builder(context); // programs: start-up, not the build's time
@@ -227,18 +227,19 @@ OctreeVoxelization buildOctreeGpu(Context& context, const GridSpec& grid,
     timer.end();
     OctreeBuilder::readCounts(build);
     if (build.overflowed()) throw Error("internal error: the octree build overflowed its upper bound");
-    result.stages.front().gpuMs = uploadTimer.milliseconds();
-    result.stages.push_back({"octree build", timer.milliseconds(), msSince(t0)});
-    result.gpuBytes = entries.bytes() + maskBuffer.bytes() + build.bytes();
+    stats.stages.front().gpuMs = uploadTimer.milliseconds();
+    stats.stages.push_back({"octree build", timer.milliseconds(), msSince(t0)});
+    stats.gpuBytes = entries.bytes() + maskBuffer.bytes() + build.bytes();
     checkpoint(0.7, "octree readback");
 
     t0 = Clock::now();
     TimerQuery readTimer;
     readTimer.begin();
-    result.octree = OctreeBuilder::readOctree(build, grid);
+    Octree octree = OctreeBuilder::readOctree(build, grid);
     readTimer.end();
-    result.stages.push_back({"readback", readTimer.milliseconds(), msSince(t0)});
-    return result;
+    stats.stages.push_back({"readback", readTimer.milliseconds(), msSince(t0)});
+    if (report) *report = std::move(stats);
+    return octree;
 }
 
 } // namespace svo::gl

@@ -405,13 +405,13 @@ Octree mergeTiles(const GridSpec& grid, std::vector<Octree>& tiles, uint32_t att
 
 } // namespace
 
-OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
-                                    const RasterOptions& options)
+Octree voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid, const RasterOptions& options,
+                        RunStats* report)
 {
     const Context::Scope scope(context);
     const Checkpoint& checkpoint = options.checkpoint;
     checkpoint(0.0, "mesh upload");
-    OctreeVoxelization result;
+    RunStats stats;
     RasterOptions rasterOptions = options;
     rasterOptions.checkpoint = checkpoint.part(0.05, 0.6);
     const auto writer = makeWriter(context, mesh, grid, rasterOptions);
@@ -451,7 +451,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
             PassSize needed;
         };
         std::vector<Pending> stack = {{whole, first.needed}};
-        result.tiles = 0;
+        stats.tiles = 0;
         const double volume = double(whole.volume());
         double done = 0;
         while (!stack.empty()) {
@@ -474,7 +474,7 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
                     continue;
                 }
                 done += double(box.volume());
-                ++result.tiles;
+                ++stats.tiles;
                 entries += o.entries;
                 if (o.octree.bricks.empty()) continue;
                 tiles.push_back(std::move(o.octree));
@@ -483,30 +483,30 @@ OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, 
         }
     }
 
-    result.stages.push_back(writer->uploadStage());
-    result.stages.push_back({"voxelize", passes.voxelizeGpu, passes.voxelizeWall});
-    result.stages.push_back({"octree build", passes.buildGpu, passes.buildWall});
-    result.stages.push_back({"readback", passes.readGpu, passes.readWall});
-    if (options.attributes) result.stages.push_back({"attributes", passes.attrGpu, passes.attrWall});
-    result.overflowRetries = passes.retries;
-    result.gpuBytes = passes.gpuBytes;
+    stats.stages.push_back(writer->uploadStage());
+    stats.stages.push_back({"voxelize", passes.voxelizeGpu, passes.voxelizeWall});
+    stats.stages.push_back({"octree build", passes.buildGpu, passes.buildWall});
+    stats.stages.push_back({"readback", passes.readGpu, passes.readWall});
+    if (options.attributes) stats.stages.push_back({"attributes", passes.attrGpu, passes.attrWall});
+    stats.overflowRetries = passes.retries;
+    stats.gpuBytes = passes.gpuBytes;
     if (first.fits) {
-        result.listEntries = first.entries;
-        result.octree = std::move(first.octree);
+        stats.listEntries = first.entries;
         if (options.voxelList) *options.voxelList = std::move(first.list);
-        return result;
+        if (report) *report = std::move(stats);
+        return std::move(first.octree);
     }
-    result.listEntries = entries;
+    stats.listEntries = entries;
     checkpoint(0.9, "merging tiles");
     const auto t0 = Clock::now();
-    if (tiles.empty()) result.octree = buildOctreeFromBricks(grid, {});
-    else result.octree = mergeTiles(grid, tiles, options.attributes);
-    result.stages.push_back({"tile merge (cpu)", -1.0, msSince(t0)});
+    Octree octree = tiles.empty() ? buildOctreeFromBricks(grid, {}) : mergeTiles(grid, tiles, options.attributes);
+    stats.stages.push_back({"tile merge (cpu)", -1.0, msSince(t0)});
     if (options.voxelList) {
         sortUniqueKeys(lists);
         *options.voxelList = std::move(lists);
     }
-    return result;
+    if (report) *report = std::move(stats);
+    return octree;
 }
 
 } // namespace svo::gl

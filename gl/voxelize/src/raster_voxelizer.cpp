@@ -201,11 +201,12 @@ const char* conservativeModeName(const Context& context, const RasterOptions& op
 }
 
 Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
-                            const RasterOptions& options)
+                            const RasterOptions& options, RunStats* report)
 {
     const Context::Scope scope(context);
     Voxelization result;
     result.grid = grid;
+    RunStats stats;
     const auto writer = makeWriter(context, mesh, grid, options);
     const ListWriter& raster = *writer;
 
@@ -236,13 +237,13 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
         count = readCount(counter);
         voxelizeGpu += timer.milliseconds();
         if (count <= capacity) break;
-        result.overflowRetries = attempt + 1;
+        stats.overflowRetries = attempt + 1;
         capacity = count;
     }
-    result.stages.push_back(raster.uploadStage());
-    result.stages.push_back({"voxelize", voxelizeGpu, msSince(t0)});
-    result.listEntries = count;
-    result.gpuBytes = raster.bytes() + listBuffer->bytes() + counter.bytes();
+    stats.stages.push_back(raster.uploadStage());
+    stats.stages.push_back({"voxelize", voxelizeGpu, msSince(t0)});
+    stats.listEntries = count;
+    stats.gpuBytes = raster.bytes() + listBuffer->bytes() + counter.bytes();
 
     t0 = Clock::now();
     TimerQuery readTimer;
@@ -251,11 +252,12 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
     if (count) listBuffer->readBulk(0, uint64_t(count) * 8, result.keys.data());
     readTimer.end();
     checkGl("voxel list readback");
-    result.stages.push_back({"readback", readTimer.milliseconds(), msSince(t0)});
+    stats.stages.push_back({"readback", readTimer.milliseconds(), msSince(t0)});
 
     t0 = Clock::now();
     sortUniqueKeys(result.keys);
-    result.stages.push_back({"sort+unique (cpu)", -1.0, msSince(t0)});
+    stats.stages.push_back({"sort+unique (cpu)", -1.0, msSince(t0)});
+    if (report) *report = std::move(stats);
     return result;
 }
 

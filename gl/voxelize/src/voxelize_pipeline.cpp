@@ -63,13 +63,14 @@ Octree voxelizeOnGpu(gl::Context& context, const TriangleMesh& mesh, const GridS
     ro.voxelList = voxelList;
     ro.gpuMemory = settings.gpuMemory;
     stats.dilation = gl::conservativeModeName(context, ro);
-    gl::OctreeVoxelization r = gl::voxelizeToOctree(context, mesh, grid, ro);
-    stats.stages = std::move(r.stages);
-    stats.listEntries = r.listEntries;
-    stats.overflowRetries = r.overflowRetries;
-    stats.gpuBytes = r.gpuBytes;
-    stats.tiles = r.tiles;
-    return std::move(r.octree);
+    RunStats report;
+    Octree octree = gl::voxelizeToOctree(context, mesh, grid, ro, &report);
+    stats.stages = std::move(report.stages);
+    stats.listEntries = report.listEntries;
+    stats.overflowRetries = report.overflowRetries;
+    stats.gpuBytes = report.gpuBytes;
+    stats.tiles = report.tiles;
+    return octree;
 }
 
 } // namespace
@@ -152,10 +153,10 @@ Octree bricksToOctree(Device& device, const GridSpec& grid, std::vector<std::pai
         octree = buildOctreeFromBricks(grid, std::move(bricks));
         stats.stages.push_back({"octree build (cpu)", -1, msSince(t0)});
     } else {
-        OctreeVoxelization r = buildOctreeGpu(device.context(), grid, bricks, checkpoint.part(0.0, 0.98));
-        octree = std::move(r.octree);
-        stats.stages = std::move(r.stages);
-        stats.gpuBytes = r.gpuBytes;
+        RunStats report;
+        octree = buildOctreeGpu(device.context(), grid, bricks, checkpoint.part(0.0, 0.98), &report);
+        stats.stages = std::move(report.stages);
+        stats.gpuBytes = report.gpuBytes;
     }
     stats.startup = device.takeStartup(stats.warnings);
     stats.voxels = octree.voxelCount();

@@ -26,14 +26,18 @@
 
 namespace svo {
 
-/// @param guard voxels to grow (> 0) or shrink (< 0) what is tested by
-/// @param mode  the cube (Conservative) or the centre segments (Thin)
-/// @param poll  when set, called on the calling thread between batches of
+/// @brief The voxels of @a mesh on @a grid, in double precision on the CPU.
+/// @param guard  voxels to grow (> 0) or shrink (< 0) what is tested by
+/// @param mode   the cube (Conservative) or the centre segments (Thin)
+/// @param poll   when set, called on the calling thread between batches of
 ///        work (about 2^20 columns each) with the fraction done; it may
 ///        throw (svo::Interrupted) to cancel, which leaves nothing behind
+/// @param report when set, receives the run's stage ("voxelize (cpu)") and
+///        its list entries (voxels written, duplicates included)
+/// @return the grid and its voxels as sorted, unique keys
 /// @throw what @a poll throws, and std::bad_alloc; the mesh's indices must be valid.
 Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, double guard = 0.0,
                          VoxelMode mode = VoxelMode::Conservative,
-                         const std::function<void(double)>& poll = nullptr);
+                         const std::function<void(double)>& poll = nullptr, RunStats* report = nullptr);
 
 } // namespace svo

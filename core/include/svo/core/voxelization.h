@@ -1,6 +1,7 @@
 #pragma once
 /// @file voxelization.h
-/// The result every backend produces: a grid and its set of voxels.
+/// A voxel set as sorted keys, and the report of what a run measured, which
+/// a call fills only when asked (its last parameter, `RunStats* report`).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,7 +17,8 @@ struct StageTime {
     double wallMs = 0.0;
 };
 
-/// What a run measured, whatever it produced.
+/// What a run measured, whatever it produced: the report a call fills when
+/// given one, apart from its result.
 struct RunStats {
     std::vector<StageTime> stages;
     uint64_t listEntries = 0; ///< voxel-list entries written, duplicates included
@@ -27,7 +29,7 @@ struct RunStats {
 
 /// A voxel set as sorted keys: the CPU reference's output, and the GPU's when
 /// asked for keys rather than an octree.
-struct Voxelization : RunStats {
+struct Voxelization {
     GridSpec grid;
     /// Sorted, unique voxel keys (svo/core/voxel_key.h), local coordinates.
     std::vector<uint64_t> keys;

@@ -63,7 +63,8 @@ struct FieldRequest {
     Checkpoint checkpoint;
 };
 
-struct FieldResult : RunStats {
+/// What computeField gives back, for the bricks of its request in their order.
+struct FieldResult {
     /// Per brick: the voxels nearer than the band (distances < band).
     std::vector<Brick> bandMasks;
     /// Per brick: where its voxels' values start in `distances` and `closest`.
@@ -78,11 +79,18 @@ struct FieldResult : RunStats {
     uint64_t lostCrossings = 0; ///< crossings whose voxel is in no requested brick (a caller's error)
 };
 
-/// Runs the passes on `context` for a mesh on `grid` (checked by the caller).
+/// @brief Runs the passes on @a context for a mesh on @a grid (both checked
+/// by the caller).
+/// @param request the bricks, the band, and which of distances, closest
+///        triangles and crossings to compute
+/// @param report  when set, receives the stages (upload, the passes run,
+///        packing, readback) and the GPU buffer bytes they used
+/// @return per requested brick, the band's voxels with their distances (and
+///        closest triangles), and the crossings
 /// @throw svo::Error when the work exceeds 2^32 items (a band or grid too
 ///        large for one pass) or a GPU buffer cannot be allocated;
 ///        svo::Interrupted from the checkpoint.
 FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
-                         const FieldRequest& request);
+                         const FieldRequest& request, RunStats* report = nullptr);
 
 } // namespace svo::gl

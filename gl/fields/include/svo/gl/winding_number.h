@@ -48,19 +48,29 @@ struct WindingRequest {
     Checkpoint checkpoint;
 };
 
-struct WindingResult : RunStats {
+/// What computeWinding gives back.
+struct WindingResult {
     std::vector<Brick> inside;   ///< per requested brick: voxels whose winding number is >= 1/2
     std::vector<float> perBrick; ///< x-fastest over the box of bricks, when asked
     std::array<uint32_t, 3> brickDims{}; ///< that box, in bricks
 };
 
-/// Runs on `context` for a mesh on `grid` (checked by the caller), with the
-/// tree built from the mesh in the grid's local frame.
+/// @brief Runs on @a context for a mesh on @a grid (both checked by the
+/// caller).
+/// @param tree    the winding tree built from the mesh in the grid's local
+///        frame (localPositions)
+/// @param request the bricks to classify voxel by voxel, whether to evaluate
+///        every brick centre too, and the accuracy
+/// @param report  when set, receives the stages (upload, each evaluation) and
+///        the GPU buffer bytes they used
+/// @return the inside voxels of each requested brick, and the brick centres'
+///        winding numbers when asked
 /// @throw svo::Error for beta not positive, a box of more than 2^31 bricks,
-///        a tree deeper than the shader's stack, or a GPU buffer that cannot
-///        be allocated; svo::Interrupted from the checkpoint.
+///        a tree deeper than the shader's stack, a walk the driver cut short,
+///        or a GPU buffer that cannot be allocated; svo::Interrupted from the
+///        checkpoint.
 WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
-                             const WindingTree& tree, const WindingRequest& request);
+                             const WindingTree& tree, const WindingRequest& request, RunStats* report = nullptr);
 
 /// The mesh's positions in the grid's local voxel frame (double): what the
 /// tree is built from.

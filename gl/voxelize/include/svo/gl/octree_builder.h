@@ -29,15 +29,18 @@
 
 namespace svo::gl {
 
-struct OctreeVoxelization : RunStats {
-    Octree octree;
-};
-
-/// Builds the octree of whole bricks (brick-origin key, mask) on the GPU:
-/// the path by which OpenVDB grids become octrees. Keys must lie in the grid.
-/// `checkpoint` is polled between stages (it throws svo::Interrupted to stop).
-OctreeVoxelization buildOctreeGpu(Context& context, const GridSpec& grid,
-                                  const std::vector<std::pair<uint64_t, Brick>>& bricks,
-                                  const Checkpoint& checkpoint = {});
+/// @brief Builds the octree of whole bricks on the GPU: the path by which
+/// OpenVDB grids become octrees.
+/// @param bricks     (brick-origin key, mask) pairs; keys must lie in the grid,
+///        and empty masks are skipped
+/// @param checkpoint polled between stages with the fraction done
+/// @param report     when set, receives the stages (upload, octree build,
+///        readback) and the GPU buffer bytes the build used
+/// @return the octree, in canonical order
+/// @throw svo::Error for more than 2^32 - 16 bricks, a brick outside the
+///        grid, or a GPU buffer that cannot be allocated; svo::Interrupted
+///        from the checkpoint.
+Octree buildOctreeGpu(Context& context, const GridSpec& grid, const std::vector<std::pair<uint64_t, Brick>>& bricks,
+                      const Checkpoint& checkpoint = {}, RunStats* report = nullptr);
 
 } // namespace svo::gl

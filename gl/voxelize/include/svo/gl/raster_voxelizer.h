@@ -76,25 +76,42 @@ struct RasterOptions {
     std::vector<uint64_t>* voxelList = nullptr;
 };
 
-/// The voxel set as sorted keys: rasterize, read the list back, sort on the CPU.
+/// @brief The voxel set as sorted keys: rasterize, read the list back, sort
+/// on the CPU. One pass, no tiles.
+/// @param options the pipeline, dilation and mode (the octree-only fields are
+///        ignored)
+/// @param report  when set, receives the stages (upload, voxelize, readback,
+///        sort), the list entries, the retries of an overflowed list and the
+///        GPU buffer bytes
+/// @return the grid and its voxels as sorted, unique keys
+/// @throw svo::Error when the list passes one shader buffer, or a GPU buffer
+///        cannot be allocated; svo::Interrupted from options.checkpoint.
 Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
-                            const RasterOptions& options = {});
+                            const RasterOptions& options = {}, RunStats* report = nullptr);
 
-/// The voxel set as an octree: rasterize, build the octree on the GPU from the
-/// voxel list (octree_builder.h), read back only nodes and bricks. The CPU
-/// waits once, after all passes are issued (and once more for attribute channels).
-/// Out of core: when the list or octree would pass options.gpuMemory (or the
-/// 32-bit limits), the grid is cut into tiles (boxes of whole bricks, halved
-/// along their longest side until each fits) that clip the same column walk,
-/// so each keeps exactly the whole grid's voxels inside it; their bricks and
-/// attributes are merged on the host. The result's `tiles` says how many.
-/// Throws svo::Error when the mesh alone passes the budget, when one brick's
-/// list does not fit, or when the merged octree would pass the host's free
-/// memory (estimated from triangle areas before any tile runs).
+/// @brief The voxel set as an octree: rasterize, build the octree on the GPU
+/// from the voxel list (octree_builder.h), read back only nodes and bricks.
+///
+/// The CPU waits once, after all passes are issued (and once more for
+/// attribute channels). Out of core: when the list or octree would pass
+/// options.gpuMemory (or the 32-bit limits), the grid is cut into tiles
+/// (boxes of whole bricks, halved along their longest side until each fits)
+/// that clip the same column walk, so each keeps exactly the whole grid's
+/// voxels inside it; their bricks and attributes are merged on the host.
 /// Programs and buffers come from the context's caches, so a repeated call
 /// compiles nothing and allocates only when it needs more room.
-OctreeVoxelization voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
-                                    const RasterOptions& options = {});
+/// @param options the pipeline, dilation, mode, channels, GPU budget,
+///        checkpoint, and where to put the voxel list if wanted
+/// @param report  when set, receives the stages (upload, voxelize, octree
+///        build, readback, attributes, tile merge), the list entries, the
+///        retries of overflowed buffers, the GPU buffer bytes and the tiles
+/// @return the octree, in canonical order, with the channels asked for
+/// @throw svo::Error when the mesh alone passes the budget, when one brick's
+///        list does not fit, or when the merged octree would pass the host's
+///        free memory (estimated from triangle areas before any tile runs);
+///        svo::Interrupted from options.checkpoint.
+Octree voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
+                        const RasterOptions& options = {}, RunStats* report = nullptr);
 
 /// "hardware", "shader" or "centroid-push (baseline)": which dilation voxelizeRaster would use
 /// ("" for the compute pipeline, which needs none).
