@@ -36,8 +36,8 @@ VoxelizeOptions BackendArgs::voxelizeOptions() const
 uint64_t parseByteSize(const std::string& text, const std::string& option)
 {
     const auto bad = [&] {
-        return Error(fmt::format("{}: '{}' is not a size in bytes (a number, optionally with K, M, G or T)", option,
-                                 text));
+        return InvalidInput(fmt::format("{}: '{}' is not a size in bytes (a number, optionally with K, M, G or T)", option,
+                                        text));
     };
     size_t end = 0;
     double v = 0;
@@ -337,10 +337,10 @@ void checkOutputs(const std::vector<std::string>& inputs, const std::vector<std:
     for (size_t i = 0; i < outputs.size(); ++i) {
         for (const auto& in : inputs)
             if (sameFile(outputs[i], in))
-                throw Error(fmt::format("{}: is the input {}; svo never writes over an input", outputs[i], in));
+                throw InvalidInput(fmt::format("{}: is the input {}; svo never writes over an input", outputs[i], in));
         for (size_t j = i + 1; j < outputs.size(); ++j)
             if (sameFile(outputs[i], outputs[j]))
-                throw Error(fmt::format("{}: given for two outputs; each output needs its own file", outputs[i]));
+                throw InvalidInput(fmt::format("{}: given for two outputs; each output needs its own file", outputs[i]));
     }
 }
 

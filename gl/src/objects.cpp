@@ -16,8 +16,8 @@ void checkGl(const char* what)
     if (first == GL_NO_ERROR) return;
     while (glGetError() != GL_NO_ERROR) {
     }
-    if (first == GL_OUT_OF_MEMORY) throw Error(fmt::format("the GPU ran out of memory during {}", what));
-    throw Error(fmt::format("OpenGL error 0x{:04x} during {}", first, what));
+    if (first == GL_OUT_OF_MEMORY) throw OutOfMemory(fmt::format("the GPU ran out of memory during {}", what));
+    throw DeviceError(fmt::format("OpenGL error 0x{:04x} during {}", first, what));
 }
 
 Buffer::Buffer(const char* what, uint64_t bytes, const void* data, GLbitfield flags) : bytes_(bytes)
@@ -30,8 +30,8 @@ Buffer::Buffer(const char* what, uint64_t bytes, const void* data, GLbitfield fl
     glNamedBufferStorage(n, GLsizeiptr(bytes ? bytes : 4), data, flags);
     const GLenum err = glGetError();
     if (err == GL_OUT_OF_MEMORY)
-        throw Error(fmt::format("the GPU cannot allocate {:.1f} MiB for the {}", double(bytes) / (1 << 20), what));
-    if (err != GL_NO_ERROR) throw Error(fmt::format("OpenGL error 0x{:04x} allocating the {}", err, what));
+        throw OutOfMemory(fmt::format("the GPU cannot allocate {:.1f} MiB for the {}", double(bytes) / (1 << 20), what));
+    if (err != GL_NO_ERROR) throw DeviceError(fmt::format("OpenGL error 0x{:04x} allocating the {}", err, what));
 }
 
 Texture2D::Texture2D(const char* what, GLenum internalFormat, int width, int height) : width_(width), height_(height)
@@ -43,9 +43,9 @@ Texture2D::Texture2D(const char* what, GLenum internalFormat, int width, int hei
     glTextureStorage2D(n, 1, internalFormat, width, height);
     const GLenum err = glGetError();
     if (err == GL_OUT_OF_MEMORY)
-        throw Error(fmt::format("the GPU cannot allocate the {} ({} x {} texels)", what, width, height));
+        throw OutOfMemory(fmt::format("the GPU cannot allocate the {} ({} x {} texels)", what, width, height));
     if (err != GL_NO_ERROR)
-        throw Error(fmt::format("OpenGL error 0x{:04x} allocating the {} ({} x {} texels)", err, what, width, height));
+        throw DeviceError(fmt::format("OpenGL error 0x{:04x} allocating the {} ({} x {} texels)", err, what, width, height));
     glTextureParameteri(n, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(n, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     checkGl(fmt::format("setting up the {}", what).c_str());
@@ -61,10 +61,10 @@ Texture3D::Texture3D(const char* what, GLenum internalFormat, int levels, int wi
     glTextureStorage3D(n, levels, internalFormat, width, height, depth);
     const GLenum err = glGetError();
     if (err == GL_OUT_OF_MEMORY)
-        throw Error(fmt::format("the GPU cannot allocate the {} ({} x {} x {} texels)", what, width, height, depth));
+        throw OutOfMemory(fmt::format("the GPU cannot allocate the {} ({} x {} x {} texels)", what, width, height, depth));
     if (err != GL_NO_ERROR)
-        throw Error(fmt::format("OpenGL error 0x{:04x} allocating the {} ({} x {} x {} texels, {} levels)", err, what,
-                                width, height, depth, levels));
+        throw DeviceError(fmt::format("OpenGL error 0x{:04x} allocating the {} ({} x {} x {} texels, {} levels)", err, what,
+                                      width, height, depth, levels));
     glTextureParameteri(n, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(n, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     const float border[4] = {0, 0, 0, 0};
@@ -84,7 +84,7 @@ void Buffer::readBulk(uint64_t offset, uint64_t bytes, void* out) const
         const uint64_t n = std::min(chunk, bytes - done);
         glCopyNamedBufferSubData(h_.get(), staging.h_.get(), GLintptr(offset + done), 0, GLsizeiptr(n));
         const void* src = glMapNamedBufferRange(staging.h_.get(), 0, GLsizeiptr(n), GL_MAP_READ_BIT);
-        if (!src) throw Error(fmt::format("cannot map the readback staging buffer ({} bytes)", n));
+        if (!src) throw DeviceError(fmt::format("cannot map the readback staging buffer ({} bytes)", n));
         std::memcpy(dst + done, src, n);
         glUnmapNamedBuffer(staging.h_.get());
     }
@@ -93,7 +93,7 @@ void Buffer::readBulk(uint64_t offset, uint64_t bytes, void* out) const
 void waitForGpu(const std::function<void()>& poll)
 {
     GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    if (!fence) throw Error("cannot create a GL fence to wait for the GPU");
+    if (!fence) throw DeviceError("cannot create a GL fence to wait for the GPU");
     GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT; // the first wait submits the commands
     for (;;) {
         const GLenum r = glClientWaitSync(fence, flags, 20'000'000); // 20 ms
@@ -101,7 +101,7 @@ void waitForGpu(const std::function<void()>& poll)
         if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED) break;
         if (r == GL_WAIT_FAILED) {
             glDeleteSync(fence);
-            throw Error("waiting for the GPU failed (glClientWaitSync)");
+            throw DeviceError("waiting for the GPU failed (glClientWaitSync)");
         }
         try {
             poll();
@@ -139,7 +139,7 @@ EmptyFramebuffer::EmptyFramebuffer(int width, int height)
     glNamedFramebufferParameteri(n, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
     glNamedFramebufferParameteri(n, GL_FRAMEBUFFER_DEFAULT_SAMPLES, 0);
     if (glCheckNamedFramebufferStatus(n, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw Error(fmt::format("cannot create an empty {}x{} framebuffer", width, height));
+        throw DeviceError(fmt::format("cannot create an empty {}x{} framebuffer", width, height));
 }
 
 TimerQuery::TimerQuery()
@@ -165,7 +165,7 @@ GLenum stageOf(const std::string& file)
     if (file.size() > 5 && file.compare(file.size() - 5, 5, ".geom") == 0) return GL_GEOMETRY_SHADER;
     if (file.size() > 5 && file.compare(file.size() - 5, 5, ".frag") == 0) return GL_FRAGMENT_SHADER;
     if (file.size() > 5 && file.compare(file.size() - 5, 5, ".comp") == 0) return GL_COMPUTE_SHADER;
-    throw Error("unknown shader stage for " + file);
+    throw DeviceError("unknown shader stage for " + file);
 }
 } // namespace
 
@@ -202,8 +202,8 @@ Program::Program(const ProgramSource& source, bool retrievable) : files_(source.
             glGetShaderiv(s.get(), GL_INFO_LOG_LENGTH, &len);
             std::string log(size_t(std::max(len, 1)), '\0');
             glGetShaderInfoLog(s.get(), len, nullptr, log.data());
-            throw Error(fmt::format("shader {} does not compile on this driver: {}", file,
-                                    nameFilesInLog(log.c_str(), src)));
+            throw DeviceError(fmt::format("shader {} does not compile on this driver: {}", file,
+                                          nameFilesInLog(log.c_str(), src)));
         }
         glAttachShader(h_.get(), s.get());
         shaders.push_back(std::move(s));
@@ -217,7 +217,7 @@ Program::Program(const ProgramSource& source, bool retrievable) : files_(source.
         glGetProgramiv(h_.get(), GL_INFO_LOG_LENGTH, &len);
         std::string log(size_t(std::max(len, 1)), '\0');
         glGetProgramInfoLog(h_.get(), len, nullptr, log.data());
-        throw Error(fmt::format("shader program {} does not link: {}", files_, log.c_str()));
+        throw DeviceError(fmt::format("shader program {} does not link: {}", files_, log.c_str()));
     }
     for (auto& s : shaders) glDetachShader(h_.get(), s.get());
     findUniforms();
@@ -236,9 +236,9 @@ std::optional<Program> Program::fromBinary(const ProgramSource& source, GLenum f
     // binary it cannot use leaves the link status false. Both are refusals.
     const GLenum err = glGetError();
     if (err == GL_INVALID_ENUM) return std::nullopt;
-    if (err == GL_OUT_OF_MEMORY) throw Error(fmt::format("the GPU ran out of memory loading program {}", source.name));
+    if (err == GL_OUT_OF_MEMORY) throw OutOfMemory(fmt::format("the GPU ran out of memory loading program {}", source.name));
     if (err != GL_NO_ERROR)
-        throw Error(fmt::format("OpenGL error 0x{:04x} loading program {} from its binary", err, source.name));
+        throw DeviceError(fmt::format("OpenGL error 0x{:04x} loading program {} from its binary", err, source.name));
     GLint ok = 0;
     glGetProgramiv(p.h_.get(), GL_LINK_STATUS, &ok);
     if (!ok) return std::nullopt;
@@ -289,9 +289,9 @@ GLint Program::location(const char* name) const
 {
     const auto it = locations_.find(std::string_view(name));
     if (it == locations_.end())
-        throw Error(fmt::format("shader program {} has no active uniform {}: misspelt, or unused by the shaders "
-                                "and so removed by the linker",
-                                files_, name));
+        throw DeviceError(fmt::format("shader program {} has no active uniform {}: misspelt, or unused by the shaders "
+                                      "and so removed by the linker",
+                                      files_, name));
     return it->second;
 }
 

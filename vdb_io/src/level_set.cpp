@@ -41,8 +41,8 @@ GridSpec padded(const GridSpec& grid, uint32_t pad, const std::string& what)
         g.anchor[a] = floorTo8(grid.anchor[a] - int64_t(pad));
         const uint64_t dims = uint64_t(grid.anchor[a] - g.anchor[a]) + grid.dims[a] + pad;
         if (dims > kMaxGridDim)
-            throw Error(fmt::format("{}: the grid with its band is {} voxels wide, more than svo's {}", what, dims,
-                                    kMaxGridDim));
+            throw Unsupported(fmt::format("{}: the grid with its band is {} voxels wide, more than svo's {}", what, dims,
+                                          kMaxGridDim));
         g.dims[a] = uint32_t(dims);
     }
     checkGrid(g, what);
@@ -67,10 +67,10 @@ SignChoice chooseSign(const TriangleMesh& mesh, const SignOptions& asked, std::v
     // three or more triangles, or two running the same way, can still give
     // even crossings (two solids sharing an edge, a flipped face): warned.
     if (edges.boundary)
-        throw Error(fmt::format("{}: parity signs need a mesh without holes, and this one has {}: a column of voxels "
-                                "through a hole crosses the surface an odd number of times and every sign beyond it "
-                                "would flip; use the winding sign method (or auto, which picks it for such a mesh)",
-                                mesh.source, edges.describe()));
+        throw Unsupported(fmt::format("{}: parity signs need a mesh without holes, and this one has {}: a column of voxels "
+                                      "through a hole crosses the surface an odd number of times and every sign beyond it "
+                                      "would flip; use the winding sign method (or auto, which picks it for such a mesh)",
+                                      mesh.source, edges.describe()));
     warnings.push_back(fmt::format("{} is not closed ({}): parity signs may be wrong", mesh.source, edges.describe()));
     return {SignMethod::Parity, "parity: as asked (the mesh is not closed)"};
 }
@@ -156,8 +156,8 @@ gl::FieldResult fieldPass(gl::Context& context, const TriangleMesh& mesh, const 
 {
     gl::FieldResult field = gl::computeField(context, mesh, g, request);
     if (field.lostCrossings)
-        throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
-                                field.lostCrossings));
+        throw DeviceError(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
+                                      field.lostCrossings));
     for (auto& st : field.stages) stats.stages.push_back(std::move(st));
     stats.gpuBytes = std::max(stats.gpuBytes, field.gpuBytes);
     return field;
@@ -309,9 +309,9 @@ std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, con
         },
         std::plus<uint64_t>());
     if (spanned > (uint64_t(1) << 32))
-        throw Error(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); use "
-                                "a coarser grid or a narrower band",
-                                spanned));
+        throw Unsupported(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); use "
+                                      "a coarser grid or a narrower band",
+                                      spanned));
     // Calls emit(brick) for every brick near triangle t.
     const auto forEachBrick = [&](size_t t, auto&& emit) {
         std::array<int64_t, 3> lo{}, hi{};
@@ -425,15 +425,15 @@ void addLeaves(TreeT& tree, std::vector<typename TreeT::LeafNodeType*>& leaves)
 void checkBand(double voxels, const std::string& name)
 {
     if (!(voxels >= 1.0 && voxels <= 1000.0)) // NaN fails too
-        throw Error(fmt::format("{} {}: a band is a number of voxels from 1 to 1000", name, voxels));
+        throw InvalidInput(name, fmt::format("{}: a band is a number of voxels from 1 to 1000", voxels));
 }
 
 void checkWindingAccuracy(double accuracy, const std::string& name)
 {
     if (!(accuracy > 0) || !std::isfinite(accuracy))
-        throw Error(fmt::format("{} {}: the winding accuracy is a positive finite number (default 1.5; larger is "
-                                "slower and more exact, 1e300 evaluates every triangle)",
-                                name, accuracy));
+        throw InvalidInput(name, fmt::format("{}: the winding accuracy is a positive finite number (default 1.5; larger "
+                                             "is slower and more exact, 1e300 evaluates every triangle)",
+                                             accuracy));
 }
 
 void checkLevelSetOptions(const LevelSetOptions& ls)
@@ -446,17 +446,19 @@ void checkLevelSetOptions(const LevelSetOptions& ls)
 void checkFieldMode(const VoxelizeOptions& options)
 {
     if (options.mode != VoxelMode::Conservative)
-        throw Error(fmt::format("VoxelizeOptions::mode {}: VoxelizeOptions::mode applies to surface voxels; level "
-                                "sets, unsigned distances and solids do not depend on it (leave it conservative)",
-                                voxelModeName(options.mode)));
+        throw InvalidInput(std::vector<Error::Part>{
+            Error::option("VoxelizeOptions::mode"), fmt::format(" {}: ", voxelModeName(options.mode)),
+            Error::option("VoxelizeOptions::mode"),
+            " applies to surface voxels; level sets, unsigned distances and solids do not depend on it (leave it "
+            "conservative)"});
 }
 
 namespace detail {
 double uniformScale(const openvdb::math::Transform& xform)
 {
     if (!xform.isLinear() || !xform.hasUniformScale())
-        throw Error("level sets need a linear transform with uniform scale, so that index distances are world "
-                    "distances");
+        throw Unsupported("level sets need a linear transform with uniform scale, so that index distances are world "
+                          "distances");
     return xform.voxelSize()[0];
 }
 } // namespace detail
@@ -487,7 +489,7 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
     checkLevelSetOptions(ls);
     checkFieldMode(options);
     if (options.backend == Backend::Cpu)
-        throw Error("level sets are computed on the GPU; choose the raster or compute backend, or auto");
+        throw Unsupported("level sets are computed on the GPU; choose the raster or compute backend, or auto");
     const InterruptScope interrupt(options.interrupter, "svo: computing a distance field");
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;
@@ -610,7 +612,7 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
 {
     checkFieldMode(options); // the sign options: chooseSign
     if (options.backend == Backend::Cpu)
-        throw Error("solids are computed on the GPU; choose the raster or compute backend, or auto");
+        throw Unsupported("solids are computed on the GPU; choose the raster or compute backend, or auto");
     const InterruptScope interrupt(options.interrupter, "svo: filling a solid");
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;

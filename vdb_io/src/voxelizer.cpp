@@ -65,7 +65,7 @@ TriangleMesh worldMesh(const std::vector<PointT>& points, const std::vector<open
     const uint64_t n = points.size();
     auto checked = [&](uint64_t face, const char* kind, uint32_t i) {
         if (i >= n)
-            throw Error(fmt::format("{} {} refers to vertex {}, but the mesh has {} points", kind, face, i, n));
+            throw InvalidInput(fmt::format("{} {} refers to vertex {}, but the mesh has {} points", kind, face, i, n));
         return i;
     };
     // Triangles in parallel; a bad index is looked for again in order, so the message names the first.
@@ -101,9 +101,9 @@ IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<open
                        const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform)
 {
     if (!xform.isLinear())
-        throw Error(fmt::format("the transform is a {} map, which is not linear; svo voxelizes in the index space "
-                                "of linear (affine) transforms only",
-                                xform.baseMap()->type()));
+        throw InvalidInput(fmt::format("the transform is a {} map, which is not linear; svo voxelizes in the index space "
+                                       "of linear (affine) transforms only",
+                                       xform.baseMap()->type()));
     IndexSpaceMesh out;
     out.mesh = worldMesh(points, triangles, quads);
     TriangleMesh& m = out.mesh;
@@ -119,7 +119,7 @@ IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<open
         const openvdb::Vec3d t = mat.getTranslation();
         const openvdb::Mat3d inv = mat.getMat3().inverse();
         if (!std::isfinite(inv.det()) || inv.det() == 0.0)
-            throw Error("the transform's linear part is singular; it has no index space to voxelize in");
+            throw InvalidInput("the transform's linear part is singular; it has no index space to voxelize in");
         tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 4096), [&](const tbb::blocked_range<uint64_t>& r) {
             for (uint64_t i = r.begin(); i != r.end(); ++i) {
                 const openvdb::Vec3d p =
@@ -194,7 +194,7 @@ double VoxelizeStats::gpuMs() const
 
 VoxelizeStats medianStats(const std::vector<VoxelizeStats>& runs)
 {
-    if (runs.empty()) throw Error("medianStats needs at least one run");
+    if (runs.empty()) throw InvalidInput("medianStats needs at least one run");
     VoxelizeStats out = runs.back();
     for (size_t s = 0; s < out.stages.size(); ++s) {
         std::vector<double> gpu, wall;
@@ -240,7 +240,7 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
     Octree octree;
     // A dilation mode is a raster option: asking for one picks the raster backend.
     if (options.backend == Backend::Compute && options.dilation != Dilation::Auto)
-        throw Error("a dilation mode applies to the raster backend; the compute backend needs none");
+        throw InvalidInput("a dilation mode applies to the raster backend; the compute backend needs none");
     const Backend backend = options.backend != Backend::Auto      ? options.backend
                             : options.dilation != Dilation::Auto ? Backend::Raster
                                                                  : impl_->autoBackend();

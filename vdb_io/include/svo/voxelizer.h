@@ -45,11 +45,14 @@
 /// Several Voxelizers may run in parallel on different threads, on the same
 /// device or on different ones.
 ///
-/// Errors. svo::Error (svo/core/error.h) names the problem and the offending
-/// value: bad meshes (index out of range, NaN/Inf vertices), impossible grids,
-/// a non-linear transform, no usable GPU, GPU memory exhausted. An interrupted
-/// call throws svo::Interrupted (a svo::Error). After any exception the
-/// Voxelizer is usable for the next call.
+/// Errors. Every exception is an svo::Error (svo/core/error.h) naming the
+/// problem and the offending value, of a class that says what failed:
+/// svo::InvalidInput for bad meshes (index out of range, NaN/Inf vertices),
+/// impossible grids, a non-linear transform or a bad option; svo::DeviceError
+/// for no usable GPU or a GL failure; svo::OutOfMemory for GPU or host memory
+/// (or the budget) exhausted; svo::Unsupported for a request svo has no
+/// method for; svo::Interrupted for an interrupted call. After any exception
+/// the Voxelizer is usable for the next call.
 #include <openvdb/openvdb.h>
 #include <openvdb/util/NullInterrupter.h>
 #include <openvdb/util/Util.h> // INVALID_IDX
@@ -165,7 +168,12 @@ struct VoxelizeStats {
     std::string device;            ///< "vendor | renderer | version (EGL device)", or "cpu"
     std::string renderer;          ///< GL renderer string, or "cpu"
     GridSpec grid;                 ///< the local grid the call used
-    std::vector<std::string> warnings; ///< what was asked for but could not be given (colours without vertex colours)
+    /// What was asked for but could not be given (colours without vertex
+    /// colours), one sentence each. Warnings name no option by its identifier
+    /// (LevelSetOptions::exteriorBand, ...), so front ends show them as they
+    /// are; a warning about an option would need its identifier kept apart,
+    /// as svo::Error keeps it.
+    std::vector<std::string> warnings;
     std::string sign;              ///< level sets and solids: the sign method used and why ("parity: closed and ...")
     uint64_t openColumns = 0;      ///< level sets and solids: voxel columns crossed an odd number of times (open mesh)
     uint64_t bandBricks = 0;       ///< level sets and solids: bricks whose distances or signs were computed
@@ -212,7 +220,8 @@ struct VoxelizeOptions {
 /// with them (naming the field, e.g. LevelSetOptions::exteriorBand), and the
 /// command line and the Python module check what they are given with the same
 /// functions, naming their own flag or keyword (`name`). Each throws
-/// svo::Error with one line: "<name> <value>: <the rule>". NaN never passes.
+/// svo::InvalidInput with one line, "<name> <value>: <the rule>", whose
+/// argument() is `name` and detail() "<value>: <the rule>". NaN never passes.
 /// @{
 /// A band half width: a number of voxels from 1 to 1000.
 void checkBand(double voxels, const std::string& name);
@@ -242,9 +251,10 @@ public:
     /// @param triangles  vertex indices; each must be < points.size()
     /// @param xform      any linear (affine) transform; voxels are index-space cubes of it
     /// @param options    backend, channels, interrupter, statistics
-    /// @throw svo::Error for an empty mesh, an index out of range, a NaN/Inf
+    /// @throw svo::InvalidInput for an empty mesh, an index out of range, a NaN/Inf
     ///        vertex, a non-linear transform, or a grid beyond OpenVDB's 32-bit
-    ///        coordinates or svo's 2^21 voxels a side; svo::Interrupted.
+    ///        coordinates or svo's 2^21 voxels a side; svo::DeviceError,
+    ///        svo::OutOfMemory from the GPU; svo::Interrupted.
     openvdb::MaskGrid::Ptr meshToMask(const std::vector<openvdb::Vec3s>& points,
                                       const std::vector<openvdb::Vec3I>& triangles,
                                       const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
@@ -301,7 +311,7 @@ public:
     /// @brief The active voxels of any grid (bool, mask, float, double, int32,
     /// int64, vec3; active tiles expanded) as an octree, built on the GPU
     /// (or the CPU with Backend::Cpu).
-    /// @throw svo::Error for an unsupported type, a transform other than a
+    /// @throw svo::InvalidInput for an unsupported type, a transform other than a
     ///        uniform scale plus a whole-voxel translation, or an extent beyond 2^21.
     Octree gridToOctree(const openvdb::GridBase& grid, const VoxelizeOptions& options = {});
     /// Whole bricks (brick-origin key, mask) on a grid, built into an octree.
@@ -328,10 +338,11 @@ public:
     /// meshes.
     /// @param xform      a linear transform with uniform scale (distances are world units)
     /// @param exteriorBand, interiorBand  band half widths in voxels, each >= 1
-    /// @throw svo::Error as meshToMask, and for a band that fails checkBand
-    ///        (NaN included), a VoxelizeOptions::mode other than Conservative
-    ///        (checkFieldMode), a transform without uniform scale, the CPU backend (this
-    ///        is GPU work), a winding accuracy that fails checkWindingAccuracy, or parity
+    /// @throw svo::Error as meshToMask; svo::InvalidInput for a band that fails
+    ///        checkBand (NaN included), a VoxelizeOptions::mode other than
+    ///        Conservative (checkFieldMode) or a winding accuracy that fails
+    ///        checkWindingAccuracy; svo::Unsupported for a transform without
+    ///        uniform scale, the CPU backend (this is GPU work), or parity
     ///        signs asked for a mesh with holes (boundary edges: a column
     ///        through a hole would flip every sign beyond it; winding and Auto
     ///        sign such meshes).
@@ -385,7 +396,7 @@ public:
     /// left current nowhere, and later calls may come from any one thread.
     /// No other call on this Voxelizer may run meanwhile. The first call's
     /// statistics still report the set-up (StartupStats::eglMs).
-    /// @throw svo::Error as the first GPU call would: no usable GPU or driver.
+    /// @throw svo::DeviceError as the first GPU call would: no usable GPU or driver.
     void startDevice();
     /// Frees the scratch buffers kept for the next call.
     void releaseScratch();

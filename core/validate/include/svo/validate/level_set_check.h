@@ -128,7 +128,7 @@ std::vector<LevelSetVoxel> activeLevelSetVoxels(const FloatGridT& grid)
     out.reserve(size_t(grid.activeVoxelCount()));
     for (auto it = grid.cbeginValueOn(); it; ++it) {
         if (!it.isVoxelValue())
-            throw Error("grid '" + grid.getName() + "' has an active tile; a level set's band is active voxels only");
+            throw InvalidInput("grid '" + grid.getName() + "' has an active tile; a level set's band is active voxels only");
         const auto c = it.getCoord();
         out.push_back({{c.x(), c.y(), c.z()}, float(*it)});
     }
