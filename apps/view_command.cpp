@@ -191,17 +191,13 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
                         : a.color == "color" ? gl::VoxelColor::Color
                         : a.color == "triangle" ? gl::VoxelColor::Triangle
                                                 : gl::VoxelColor::Flat;
-    try { // the view's name, checked before any work
-        gl::namedView({Vec3d{0, 0, 0}, Vec3d{1, 1, 1}}, a.view, 1.0);
-    } catch (const Error& e) {
-        throw Error(std::string("--") + e.what());
-    }
+    gl::namedView({Vec3d{0, 0, 0}, Vec3d{1, 1, 1}}, a.view, 1.0); // the view's name, checked before any work (--view)
     std::vector<double> cam;
     if (!a.camera.empty()) {
         for (const std::string& part : split(a.camera, ',')) cam.push_back(number(part, "--camera"));
         if (cam.size() != 6 && cam.size() != 9)
-            throw Error(fmt::format("--camera '{}': expected eye x,y,z, target x,y,z and optionally up x,y,z",
-                                    a.camera));
+            throw InvalidInput(fmt::format("--camera '{}': expected eye x,y,z, target x,y,z and optionally up x,y,z",
+                                           a.camera));
     }
     if (!window) checkWritable(a.screenshot);
     if (!a.save.empty()) checkWritable(a.save);

@@ -145,7 +145,7 @@ struct ViewerState {
             resolution = r;
             message.clear();
         } catch (const std::exception& e) {
-            message = fmt::format("kept the previous octree: {}", inFlags(e.what()));
+            message = fmt::format("kept the previous octree: {}", errorMessage(e));
             result.errors.push_back(message);
         }
     }
@@ -166,7 +166,7 @@ struct ViewerState {
             result.screenshots.push_back(path);
             message = "wrote " + path;
         } catch (const std::exception& e) {
-            message = inFlags(e.what());
+            message = errorMessage(e);
             result.errors.push_back(message);
         }
     }
@@ -522,7 +522,7 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
             // What the panel turned on cannot be drawn (a grid too wide for
             // the lighting volume, the GPU out of memory): say so in the
             // panel, turn AO and lighting off, and draw again without them.
-            st.message = inFlags(e.what());
+            st.message = errorMessage(e);
             st.result.errors.push_back(st.message);
             st.in.layers.ao.cones = 0;
             st.in.layers.ao.only = false;
