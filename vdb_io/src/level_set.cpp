@@ -274,7 +274,7 @@ std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
 /// widened by 1e-6 relative and absolute against rounding (and the slab as
 /// band_distance.glsl's for needles), so no centre the distance pass keeps
 /// is left out, and a slanted triangle's box costs only its slab.
-/// @throw svo::Error when the boxes span more than 2^32 bricks in all, what
+/// @throw svo::Unsupported when the boxes span more than 2^32 bricks in all, what
 ///        the distance pass refuses too (a band far wider than the mesh's features).
 std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, const TriangleMesh& mesh,
                                             const GridSpec& g, double grow)

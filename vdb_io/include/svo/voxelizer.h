@@ -426,7 +426,7 @@ private:
 /// Voxelizer::voxelize treat it exactly as `svo voxelize` treats the file
 /// (what the Python module does with a resolution or voxel size). Quads as
 /// meshToMask splits them.
-/// @throw svo::Error for an index out of range or a NaN/Inf vertex, naming the first.
+/// @throw svo::InvalidInput for an index out of range or a NaN/Inf vertex, naming the first.
 TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3d>& points, const std::vector<openvdb::Vec3I>& triangles,
                             const std::vector<openvdb::Vec4I>& quads);
 TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& triangles,
@@ -434,7 +434,7 @@ TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3s>& points, const std
 /// @brief A mesh in OpenVDB's types as svo's double-precision mesh in the index
 /// space of @a xform, with the grid it voxelizes on (see Voxelizer::meshToOctree
 /// for which lattice that is).
-/// @throw svo::Error for a non-linear transform, an index out of range, or a
+/// @throw svo::InvalidInput for a non-linear transform, an index out of range, or a
 ///        grid beyond svo's limits.
 struct IndexSpaceMesh {
     TriangleMesh mesh;

@@ -79,9 +79,9 @@ struct FieldResult : RunStats {
 };
 
 /// Runs the passes on `context` for a mesh on `grid` (checked by the caller).
-/// @throw svo::Error when the work exceeds 2^32 items (a band or grid too
-///        large for one pass) or a GPU buffer cannot be allocated;
-///        svo::Interrupted from the checkpoint.
+/// @throw svo::Unsupported when the work exceeds 2^32 items (a band or grid
+///        too large for one pass); svo::DeviceError or svo::OutOfMemory when
+///        a GPU buffer cannot be allocated; svo::Interrupted from the checkpoint.
 FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                          const FieldRequest& request);
 

@@ -56,9 +56,10 @@ struct WindingResult : RunStats {
 
 /// Runs on `context` for a mesh on `grid` (checked by the caller), with the
 /// tree built from the mesh in the grid's local frame.
-/// @throw svo::Error for beta not positive, a box of more than 2^31 bricks,
-///        a tree deeper than the shader's stack, or a GPU buffer that cannot
-///        be allocated; svo::Interrupted from the checkpoint.
+/// @throw svo::InvalidInput for beta not positive; svo::Unsupported for a box
+///        of more than 2^31 bricks or a tree deeper than the shader's stack;
+///        svo::DeviceError or svo::OutOfMemory for a GPU buffer that cannot be
+///        allocated or a driver's loop limit; svo::Interrupted from the checkpoint.
 WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                              const WindingTree& tree, const WindingRequest& request);
 

@@ -45,7 +45,7 @@ openvdb::FloatGrid::Ptr Voxelizer::meshToFog(const std::vector<PointT>& points,
 
 namespace detail {
 /// The uniform scale of a transform (world units per index unit).
-/// @throw svo::Error for a transform without uniform scale.
+/// @throw svo::Unsupported for a transform without uniform scale.
 double uniformScale(const openvdb::math::Transform& xform);
 } // namespace detail
 
