@@ -1,4 +1,5 @@
 #include "cli_options.h"
+#include "option_flags.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -36,8 +37,8 @@ VoxelizeOptions BackendArgs::voxelizeOptions() const
 uint64_t parseByteSize(const std::string& text, const std::string& option)
 {
     const auto bad = [&] {
-        return Error(fmt::format("{}: '{}' is not a size in bytes (a number, optionally with K, M, G or T)", option,
-                                 text));
+        return InvalidInput(fmt::format("{}: '{}' is not a size in bytes (a number, optionally with K, M, G or T)", option,
+                                        text));
     };
     size_t end = 0;
     double v = 0;
@@ -263,27 +264,17 @@ std::string printable(const std::string& text)
     return out;
 }
 
-std::string inFlags(std::string message)
+std::string errorMessage(const std::exception& e)
 {
-    static const std::pair<std::string_view, std::string_view> names[] = {
-        {"AmbientOcclusion::volumeResolution", "--light-volume"},
-        {"AmbientOcclusion::Source::Octree", "--ao-source octree"},
-        {"the normal attribute channel, svo::kNormals", "--attributes normal"},
-        // The options' rules (svo/voxelizer.h), where the library checks a field the command line set.
-        {"VoxelizeOptions::mode", "--mode"},
-        {"LevelSetOptions::exteriorBand", "--exterior-band"},
-        {"LevelSetOptions::interiorBand", "--interior-band"},
-        {"SignOptions::windingAccuracy", "--winding-accuracy"},
-    };
-    for (const auto& [library, flag] : names)
-        for (size_t at = message.find(library); at != std::string::npos; at = message.find(library, at + flag.size()))
-            message.replace(at, library.size(), flag);
-    return message;
+    const auto* error = dynamic_cast<const Error*>(&e);
+    if (!error) return e.what();
+    return error->message([](const std::string& identifier) { return std::string(flagFor(identifier)); });
 }
 
 void printWarnings(const std::vector<std::string>& warnings)
 {
-    for (const auto& w : warnings) fmt::print(stderr, "svo: warning: {}\n", printable(inFlags(w)));
+    // The library's warnings name no options (VoxelizeStats::warnings): printed as they are.
+    for (const auto& w : warnings) fmt::print(stderr, "svo: warning: {}\n", printable(w));
 }
 
 void printStages(const std::vector<StageTime>& stages)
@@ -337,10 +328,10 @@ void checkOutputs(const std::vector<std::string>& inputs, const std::vector<std:
     for (size_t i = 0; i < outputs.size(); ++i) {
         for (const auto& in : inputs)
             if (sameFile(outputs[i], in))
-                throw Error(fmt::format("{}: is the input {}; svo never writes over an input", outputs[i], in));
+                throw InvalidInput(fmt::format("{}: is the input {}; svo never writes over an input", outputs[i], in));
         for (size_t j = i + 1; j < outputs.size(); ++j)
             if (sameFile(outputs[i], outputs[j]))
-                throw Error(fmt::format("{}: given for two outputs; each output needs its own file", outputs[i]));
+                throw InvalidInput(fmt::format("{}: given for two outputs; each output needs its own file", outputs[i]));
     }
 }
 

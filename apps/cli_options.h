@@ -3,6 +3,7 @@
 /// What the subcommands share: options that become library arguments, and
 /// the words they print. The work itself is the library's (svo/svo.h).
 #include <cstdint>
+#include <exception>
 #include <optional>
 #include <string>
 #include <vector>
@@ -114,10 +115,11 @@ void printStartup(const StartupStats& startup);
 /// that a message quoting a damaged file stays one line and cannot drive the
 /// terminal. UTF-8 passes unchanged.
 std::string printable(const std::string& text);
-/// A library message with the library's option names (which it uses, never
-/// flags) turned into the command line's flags, e.g.
-/// AmbientOcclusion::volumeResolution -> --light-volume.
-std::string inFlags(std::string message);
+/// An exception's message for the command line: an svo::Error's with each
+/// option it names written as its flag (option_flags.h: the library writes
+/// AmbientOcclusion::volumeResolution, the command line --light-volume), so
+/// "<flag> <detail>" for an error about one option; any other's what().
+std::string errorMessage(const std::exception& e);
 
 /// 1234567 -> "1,234,567"
 std::string thousands(uint64_t n);

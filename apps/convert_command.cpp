@@ -64,8 +64,8 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
 {
     const std::string ext = std::filesystem::path(a.input).extension().string();
     if (ext != ".vdb" && ext != ".nvdb" && ext != ".svo")
-        throw Error(fmt::format("{}: svo convert reads .vdb, .nvdb and .svo files; voxelize meshes with svo voxelize",
-                                a.input));
+        throw IoError(fmt::format("{}: svo convert reads .vdb, .nvdb and .svo files; voxelize meshes with svo voxelize",
+                                  a.input));
     const bool gridsInput = ext == ".vdb" || ext == ".nvdb";
     checkOutputPath(a.output);
     checkOutputs({a.input}, {a.output});
@@ -73,15 +73,15 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
     const GridOptions grids = a.out.gridOptions();
     const bool toSvo = outputFormat(a.output) == OutputFormat::Svo;
     if (toSvo && (cmd.count("--fog") || cmd.count("--topology")))
-        throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", a.output));
+        throw InvalidInput(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", a.output));
     if (ext == ".svo" && a.topologyOnly)
-        throw Error(fmt::format("{}: --topology-only applies to a .vdb or .nvdb input; a .svo file holds active voxels only",
-                                a.input));
+        throw InvalidInput(fmt::format("{}: --topology-only applies to a .vdb or .nvdb input; a .svo file holds active voxels only",
+                                       a.input));
     if (gridsInput && !toSvo && !a.topologyOnly) {
         if (cmd.count("--fog") || cmd.count("--topology"))
-            throw Error(fmt::format("{}: a {} input keeps its grids as they are; --fog and --topology make new "
-                                    "grids from its active voxels, which needs --topology-only",
-                                    a.input, ext));
+            throw InvalidInput(fmt::format("{}: a {} input keeps its grids as they are; --fog and --topology make new "
+                                           "grids from its active voxels, which needs --topology-only",
+                                           a.input, ext));
         copyGrids(a, ext == ".nvdb");
         outputs.commit();
         return;
@@ -89,9 +89,9 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
     LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo = loadOctree(call.voxelizer, a.input, a.gridName, {}, call.options);
     if (!lo.valuesDropped.empty() && !a.topologyOnly)
-        throw Error(fmt::format("{}: {} would be lost: {} holds only which voxels are active; write .vdb or .nvdb to "
-                                "keep them, or give --topology-only to keep the active voxels alone",
-                                a.input, lo.valuesDropped, toSvo ? "a .svo file" : "an octree"));
+        throw InvalidInput(fmt::format("{}: {} would be lost: {} holds only which voxels are active; write .vdb or .nvdb to "
+                                       "keep them, or give --topology-only to keep the active voxels alone",
+                                       a.input, lo.valuesDropped, toSvo ? "a .svo file" : "an octree"));
     const std::map<std::string, std::string> meta = {{"svo:source", a.input}, {"svo:version", SVO_VERSION}};
     WriteReport written;
     {

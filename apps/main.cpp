@@ -37,7 +37,7 @@ int main(int argc, char** argv)
         fmt::print(stderr, "svo: {}\n", svo::app::printable(e.what()));
         return e.code;
     } catch (const svo::Error& e) {
-        fmt::print(stderr, "svo: error: {}\n", svo::app::printable(svo::app::inFlags(e.what())));
+        fmt::print(stderr, "svo: error: {}\n", svo::app::printable(svo::app::errorMessage(e)));
         return 1;
     } catch (const std::exception& e) {
         fmt::print(stderr, "svo: internal error: {}\n", svo::app::printable(e.what()));

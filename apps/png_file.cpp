@@ -28,7 +28,7 @@ void onWarning(png_structp, png_const_charp) {}
 void writeRgb(const std::string& path, const gl::Image& image)
 {
     FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) throw Error(fmt::format("{}: cannot be created", path));
+    if (!f) throw IoError(fmt::format("{}: cannot be created", path));
     std::vector<uint8_t> rgb(size_t(image.width) * 3 * size_t(image.height));
     for (size_t i = 0, n = size_t(image.width) * size_t(image.height); i < n; ++i)
         for (int c = 0; c < 3; ++c) rgb[3 * i + size_t(c)] = image.rgba[4 * i + size_t(c)];
@@ -47,8 +47,8 @@ void writeRgb(const std::string& path, const gl::Image& image)
     }
     png_destroy_write_struct(png ? &png : nullptr, info ? &info : nullptr);
     const bool closed = std::fclose(f) == 0;
-    if (!ok) throw Error(fmt::format("{}: PNG writing failed: {}", path, error.message.empty() ? "out of memory" : error.message));
-    if (!closed) throw Error(fmt::format("{}: writing failed", path));
+    if (!ok) throw IoError(fmt::format("{}: PNG writing failed: {}", path, error.message.empty() ? "out of memory" : error.message));
+    if (!closed) throw IoError(fmt::format("{}: writing failed", path));
 }
 
 } // namespace

@@ -45,21 +45,21 @@ struct ValidateArgs {
 void checkSdfArgs(const ValidateArgs& a, const CLI::App& cmd)
 {
     if (!a.sdf) {
-        if (bandsGiven(cmd)) throw Error("--band, --exterior-band and --interior-band apply to --sdf");
-        if (cmd.count("--sign")) throw Error("--sign applies to --sdf");
-        if (cmd.count("--winding-accuracy")) throw Error("--winding-accuracy applies to --sdf");
+        if (bandsGiven(cmd)) throw InvalidInput("--band, --exterior-band and --interior-band apply to --sdf");
+        if (cmd.count("--sign")) throw InvalidInput("--sign applies to --sdf");
+        if (cmd.count("--winding-accuracy")) throw InvalidInput("--winding-accuracy applies to --sdf");
         return;
     }
     if (cmd.count("--band") && (cmd.count("--exterior-band") || cmd.count("--interior-band")))
-        throw Error("--band sets both bands; give it or --exterior-band/--interior-band, not both");
+        throw InvalidInput("--band sets both bands; give it or --exterior-band/--interior-band, not both");
     if (cmd.count("--winding-accuracy") && a.levelSet.sign == "parity")
-        throw Error("--winding-accuracy applies to winding-number signs, not to --sign parity");
+        throw InvalidInput("--winding-accuracy applies to winding-number signs, not to --sign parity");
     checkFieldMode(a.backend.voxelizeOptions()); // the library's rule, as svo voxelize --sdf checks it
-    if (cmd.count("--errors")) throw Error("--errors writes missed and extra surface voxels; it does not apply to --sdf");
+    if (cmd.count("--errors")) throw InvalidInput("--errors writes missed and extra surface voxels; it does not apply to --sdf");
     if (cmd.count("--no-holes") || cmd.count("--strict"))
-        throw Error("--no-holes and --strict apply to surface voxels, not to --sdf");
+        throw InvalidInput("--no-holes and --strict apply to surface voxels, not to --sdf");
     if (cmd.count("--conservative") || a.backend.backend == "raster")
-        throw Error("--sdf runs compute passes only: --backend raster and --conservative do not apply");
+        throw InvalidInput("--sdf runs compute passes only: --backend raster and --conservative do not apply");
 }
 
 

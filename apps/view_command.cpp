@@ -62,7 +62,7 @@ double number(const std::string& text, const std::string& option)
         if (used == text.size() && std::isfinite(v)) return v;
     } catch (const std::exception&) {
     }
-    throw Error(fmt::format("{} '{}': not a finite number", option, text));
+    throw InvalidInput(fmt::format("{} '{}': not a finite number", option, text));
 }
 
 std::pair<int, int> parseSize(const std::string& text)
@@ -72,7 +72,7 @@ std::pair<int, int> parseSize(const std::string& text)
         const double w = number(parts[0], "--size"), h = number(parts[1], "--size");
         if (w >= 1 && h >= 1 && w <= 16384 && h <= 16384 && w == int(w) && h == int(h)) return {int(w), int(h)};
     }
-    throw Error(fmt::format("--size '{}': expected WxH, 1 to 16384 pixels each", text));
+    throw InvalidInput(fmt::format("--size '{}': expected WxH, 1 to 16384 pixels each", text));
 }
 
 /// "a:b", "a:", ":b" or "a".
@@ -81,7 +81,7 @@ void parseLevels(const std::string& text, gl::ViewLayers& layers)
     if (text.empty()) return;
     auto level = [&](const std::string& s) {
         const double v = number(s, "--levels");
-        if (v < 0 || v > 63 || v != int(v)) throw Error(fmt::format("--levels '{}': expected a:b with levels from 0", text));
+        if (v < 0 || v > 63 || v != int(v)) throw InvalidInput(fmt::format("--levels '{}': expected a:b with levels from 0", text));
         return uint32_t(v);
     };
     const auto colon = text.find(':');
@@ -92,7 +92,7 @@ void parseLevels(const std::string& text, gl::ViewLayers& layers)
         if (colon + 1 < text.size()) layers.lastLevel = level(text.substr(colon + 1));
     }
     if (layers.firstLevel > layers.lastLevel)
-        throw Error(fmt::format("--levels '{}': the first level is past the last", text));
+        throw InvalidInput(fmt::format("--levels '{}': the first level is past the last", text));
 }
 
 gl::ViewLayers parseLayers(const std::string& text)
@@ -104,7 +104,7 @@ gl::ViewLayers parseLayers(const std::string& text)
         else if (name == "outlines") l.outlines = true;
         else if (name == "mesh") l.mesh = true;
         else if (name == "bricks") l.bricks = true;
-        else throw Error(fmt::format("--layers '{}': layers are voxels, outlines, bricks and mesh", text));
+        else throw InvalidInput(fmt::format("--layers '{}': layers are voxels, outlines, bricks and mesh", text));
     }
     return l;
 }
@@ -118,7 +118,7 @@ Vec3d parseColor(const std::string& text, const std::string& option)
         return {v, v, v};
     }
     if (parts.size() == 3) return {number(parts[0], option), number(parts[1], option), number(parts[2], option)};
-    throw Error(fmt::format("{} '{}': expected one value or r,g,b", option, text));
+    throw InvalidInput(fmt::format("{} '{}': expected one value or r,g,b", option, text));
 }
 
 /// "sun:dx,dy,dz[:E]" (a directional light travelling along d, irradiance E)
@@ -129,9 +129,9 @@ void parseLight(const std::string& text, Lights& lights)
     const auto parts = split(text, ':');
     const bool sun = !parts.empty() && parts[0] == "sun", point = !parts.empty() && parts[0] == "point";
     if ((!sun && !point) || parts.size() < 2 || parts.size() > 3)
-        throw Error(fmt::format("--light '{}': expected sun:dx,dy,dz[:E] or point:x,y,z[:I]", text));
+        throw InvalidInput(fmt::format("--light '{}': expected sun:dx,dy,dz[:E] or point:x,y,z[:I]", text));
     const auto xyz = split(parts[1], ',');
-    if (xyz.size() != 3) throw Error(fmt::format("--light '{}': expected three coordinates after '{}:'", text, parts[0]));
+    if (xyz.size() != 3) throw InvalidInput(fmt::format("--light '{}': expected three coordinates after '{}:'", text, parts[0]));
     const Vec3d v{number(xyz[0], "--light"), number(xyz[1], "--light"), number(xyz[2], "--light")};
     const Vec3d power = parts.size() == 3 ? parseColor(parts[2], "--light") : Vec3d{M_PI, M_PI, M_PI};
     if (sun) lights.directional.push_back({v, power});
@@ -150,16 +150,16 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     const bool window = a.screenshot.empty();
     if (window) {
 #ifndef SVO_WITH_WINDOW
-        throw Error("this svo was built without its window (SVO_WITH_WINDOW=OFF); give --screenshot PNG to render "
-                    "offscreen");
+        throw Unsupported("this svo was built without its window (SVO_WITH_WINDOW=OFF); give --screenshot PNG to render "
+                          "offscreen");
 #endif
         if (!haveDisplay())
-            throw Error("no display for svo view's window (DISPLAY and WAYLAND_DISPLAY are unset); give --screenshot PNG "
-                        "to render offscreen");
+            throw DeviceError("no display for svo view's window (DISPLAY and WAYLAND_DISPLAY are unset); give --screenshot PNG "
+                              "to render offscreen");
     } else if (!a.keys.empty() || a.frames != 0 || !a.save.empty()) {
-        throw Error("--keys, --frames and --save drive the window; --screenshot renders one frame without it");
+        throw InvalidInput("--keys, --frames and --save drive the window; --screenshot renders one frame without it");
     }
-    if (a.frames < 0) throw Error(fmt::format("--frames {}: expected 0 (until closed) or more", a.frames));
+    if (a.frames < 0) throw InvalidInput(fmt::format("--frames {}: expected 0 (until closed) or more", a.frames));
     const auto [width, height] = parseSize(a.size);
     gl::ViewLayers layers = parseLayers(a.layers);
     parseLevels(a.levels, layers);
@@ -179,12 +179,12 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         for (const std::string& l : a.lights) parseLight(l, layers.light.lights);
         if (!a.albedo.empty()) layers.light.albedo = parseColor(a.albedo, "--albedo");
         if (!a.specular.empty()) {
-            if (a.render != "gi") throw Error("--specular: the glossy cone is part of --render gi");
+            if (a.render != "gi") throw InvalidInput("--specular: the glossy cone is part of --render gi");
             layers.light.specular = parseColor(a.specular, "--specular");
         }
         layers.outlines = layers.bricks = false;
     } else if (!a.lights.empty() || !a.albedo.empty() || !a.specular.empty()) {
-        throw Error("--light, --albedo and --specular light the voxels of --render direct or gi");
+        throw InvalidInput("--light, --albedo and --specular light the voxels of --render direct or gi");
     }
     layers.surface = a.surface == "mesh" ? gl::Surface::Mesh : gl::Surface::Voxels; // auto: below, once loaded
     layers.ao.interleave = layers.light.interleave = a.conePattern == "interleaved";
@@ -192,17 +192,13 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
                         : a.color == "color" ? gl::VoxelColor::Color
                         : a.color == "triangle" ? gl::VoxelColor::Triangle
                                                 : gl::VoxelColor::Flat;
-    try { // the view's name, checked before any work
-        gl::namedView({Vec3d{0, 0, 0}, Vec3d{1, 1, 1}}, a.view, 1.0);
-    } catch (const Error& e) {
-        throw Error(std::string("--") + e.what());
-    }
+    gl::namedView({Vec3d{0, 0, 0}, Vec3d{1, 1, 1}}, a.view, 1.0); // the view's name, checked before any work (--view)
     std::vector<double> cam;
     if (!a.camera.empty()) {
         for (const std::string& part : split(a.camera, ',')) cam.push_back(number(part, "--camera"));
         if (cam.size() != 6 && cam.size() != 9)
-            throw Error(fmt::format("--camera '{}': expected eye x,y,z, target x,y,z and optionally up x,y,z",
-                                    a.camera));
+            throw InvalidInput(fmt::format("--camera '{}': expected eye x,y,z, target x,y,z and optionally up x,y,z",
+                                           a.camera));
     }
     if (!window) checkWritable(a.screenshot);
     if (!a.save.empty()) checkWritable(a.save);
@@ -248,21 +244,21 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     if (a.surface == "auto")
         layers.surface = lo.mesh && (lit || a.render == "ao") ? gl::Surface::Mesh : gl::Surface::Voxels;
     if (layers.surface == gl::Surface::Mesh && !lo.mesh)
-        throw Error(fmt::format("{}: --surface mesh shades the input mesh, and this input holds voxels only (give the "
-                                "mesh file, or --surface voxels)",
-                                a.input));
+        throw InvalidInput(fmt::format("{}: --surface mesh shades the input mesh, and this input holds voxels only (give the "
+                                       "mesh file, or --surface voxels)",
+                                       a.input));
     const VoxelAttributes& at = lo.octree.attributes;
     if ((a.color == "normal" && at.normals.empty()) || (a.color == "color" && at.colors.empty()) ||
         (a.color == "triangle" && at.triangles.empty()))
-        throw Error(fmt::format("--color {}: the octree has no {} channel (voxelize a mesh with --attributes {}{})",
-                                a.color, a.color == "color" ? "colour" : a.color,
-                                a.color,
-                                a.color == "color" ? "; colours need vertex colours" : ""));
+        throw InvalidInput(fmt::format("--color {}: the octree has no {} channel (voxelize a mesh with --attributes {}{})",
+                                       a.color, a.color == "color" ? "colour" : a.color,
+                                       a.color,
+                                       a.color == "color" ? "; colours need vertex colours" : ""));
 
     if (lit && at.normals.empty())
-        throw Error(fmt::format("{}: --render {} needs the octree's normal channel, which it lacks (voxelize the mesh "
-                                "with --attributes normal, or view the mesh itself)",
-                                a.input, a.render));
+        throw InvalidInput(fmt::format("{}: --render {} needs the octree's normal channel, which it lacks (voxelize the mesh "
+                                       "with --attributes normal, or view the mesh itself)",
+                                       a.input, a.render));
     // The window can turn lighting on at any time: it gets the lights too.
     if ((lit || window) && layers.light.lights.directional.empty() && layers.light.lights.point.empty())
         layers.light.lights = gl::defaultLights(gl::gridWorldBox(lo.octree.grid), a.input.empty());

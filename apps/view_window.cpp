@@ -145,7 +145,7 @@ struct ViewerState {
             resolution = r;
             message.clear();
         } catch (const std::exception& e) {
-            message = fmt::format("kept the previous octree: {}", inFlags(e.what()));
+            message = fmt::format("kept the previous octree: {}", errorMessage(e));
             result.errors.push_back(message);
         }
     }
@@ -166,7 +166,7 @@ struct ViewerState {
             result.screenshots.push_back(path);
             message = "wrote " + path;
         } catch (const std::exception& e) {
-            message = inFlags(e.what());
+            message = errorMessage(e);
             result.errors.push_back(message);
         }
     }
@@ -431,7 +431,7 @@ struct WindowSystem {
 ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
 {
     WindowSystem ws;
-    if (!glfwInit()) throw Error("cannot open svo view's window: " + glfwReason());
+    if (!glfwInit()) throw DeviceError("cannot open svo view's window: " + glfwReason());
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -439,7 +439,7 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
     glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, input.backend.glDebug ? GLFW_TRUE : GLFW_FALSE);
     const std::string title = "svo view: " + input.title;
     ws.window = glfwCreateWindow(input.width, input.height, title.c_str(), nullptr, nullptr);
-    if (!ws.window) throw Error("cannot open svo view's window with OpenGL 4.5 core: " + glfwReason());
+    if (!ws.window) throw DeviceError("cannot open svo view's window with OpenGL 4.5 core: " + glfwReason());
     glfwMakeContextCurrent(ws.window);
     glfwSwapInterval(input.frames > 0 ? 0 : 1); // scripted runs do not wait for the display
 
@@ -493,7 +493,7 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
     ImGui::StyleColorsDark();
     ws.glfwBackend = ImGui_ImplGlfw_InitForOpenGL(ws.window, true);
     ws.glBackend = ws.glfwBackend && ImGui_ImplOpenGL3_Init("#version 450");
-    if (!ws.glBackend) throw Error("cannot start the panel (Dear ImGui's GLFW and OpenGL 3 backends)");
+    if (!ws.glBackend) throw DeviceError("cannot start the panel (Dear ImGui's GLFW and OpenGL 3 backends)");
 
     auto last = std::chrono::steady_clock::now();
     double frameMs = 0, totalMs = 0;
@@ -522,7 +522,7 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
             // What the panel turned on cannot be drawn (a grid too wide for
             // the lighting volume, the GPU out of memory): say so in the
             // panel, turn AO and lighting off, and draw again without them.
-            st.message = inFlags(e.what());
+            st.message = errorMessage(e);
             st.result.errors.push_back(st.message);
             st.in.layers.ao.cones = 0;
             st.in.layers.ao.only = false;

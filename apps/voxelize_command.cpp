@@ -84,32 +84,32 @@ nlohmann::json stagesJson(const std::vector<StageTime>& stages)
 void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
 {
     const int modes = int(a.sdf) + int(a.udf) + int(a.fill == "solid");
-    if (modes > 1) throw Error("--sdf, --udf and --fill solid each make a different grid; give one of them");
+    if (modes > 1) throw InvalidInput("--sdf, --udf and --fill solid each make a different grid; give one of them");
     const bool bands = bandsGiven(cmd);
-    if (bands && !a.sdf && !a.udf) throw Error("--band, --exterior-band and --interior-band apply to --sdf and --udf");
+    if (bands && !a.sdf && !a.udf) throw InvalidInput("--band, --exterior-band and --interior-band apply to --sdf and --udf");
     if (cmd.count("--band") && (cmd.count("--exterior-band") || cmd.count("--interior-band")))
-        throw Error("--band sets both bands; give it or --exterior-band/--interior-band, not both");
-    if (a.udf && cmd.count("--interior-band")) throw Error("--interior-band applies to --sdf; --udf has no inside");
-    if (a.closestTriangle && !a.sdf && !a.udf) throw Error("--closest-triangle applies to --sdf and --udf");
-    if (cmd.count("--sign") && !a.sdf && a.fill != "solid") throw Error("--sign applies to --sdf and --fill solid");
+        throw InvalidInput("--band sets both bands; give it or --exterior-band/--interior-band, not both");
+    if (a.udf && cmd.count("--interior-band")) throw InvalidInput("--interior-band applies to --sdf; --udf has no inside");
+    if (a.closestTriangle && !a.sdf && !a.udf) throw InvalidInput("--closest-triangle applies to --sdf and --udf");
+    if (cmd.count("--sign") && !a.sdf && a.fill != "solid") throw InvalidInput("--sign applies to --sdf and --fill solid");
     if (cmd.count("--winding-accuracy") && !a.sdf && a.fill != "solid")
-        throw Error("--winding-accuracy applies to --sdf and --fill solid");
+        throw InvalidInput("--winding-accuracy applies to --sdf and --fill solid");
     if (cmd.count("--winding-accuracy") && a.levelSet.sign == "parity")
-        throw Error("--winding-accuracy applies to winding-number signs, not to --sign parity");
+        throw InvalidInput("--winding-accuracy applies to winding-number signs, not to --sign parity");
     if (cmd.count("--gpu-memory") && a.backend.backend == "cpu")
-        throw Error("--gpu-memory applies to the GPU backends, not to --backend cpu");
+        throw InvalidInput("--gpu-memory applies to the GPU backends, not to --backend cpu");
     if (!a.field()) return;
     checkFieldMode(a.backend.voxelizeOptions()); // --mode thin: the library's rule, as svo validate --sdf checks it
-    if (a.backend.attributes) throw Error("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
+    if (a.backend.attributes) throw InvalidInput("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
     if (cmd.count("--gpu-memory"))
-        throw Error("--gpu-memory applies to surface voxels; --sdf, --udf and --fill solid do not tile yet");
+        throw InvalidInput("--gpu-memory applies to surface voxels; --sdf, --udf and --fill solid do not tile yet");
     if (cmd.count("--fog") || cmd.count("--topology"))
-        throw Error("--fog and --topology apply to surface voxels, not to --sdf, --udf or --fill solid");
+        throw InvalidInput("--fog and --topology apply to surface voxels, not to --sdf, --udf or --fill solid");
     if (!a.output.empty() && outputFormat(a.output) != OutputFormat::Vdb)
-        throw Error(fmt::format("{}: --sdf, --udf and --fill solid write OpenVDB grids; name a .vdb file", a.output));
+        throw InvalidInput(fmt::format("{}: --sdf, --udf and --fill solid write OpenVDB grids; name a .vdb file", a.output));
     // A level set's band comes from the triangles, not from rasterized voxels.
     if ((a.sdf || a.udf) && (cmd.count("--conservative") || a.backend.backend == "raster"))
-        throw Error("--sdf and --udf run compute passes only: --backend raster and --conservative do not apply");
+        throw InvalidInput("--sdf and --udf run compute passes only: --backend raster and --conservative do not apply");
 }
 
 nlohmann::json startupJson(const StartupStats& s)
@@ -256,9 +256,9 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         checkOutputs({a.mesh}, {output, a.json}); // the default name is known only now
         std::error_code ec;
         if (std::filesystem::exists(output, ec))
-            throw Error(fmt::format("{}: exists, and svo does not replace a file it was not told to write; give "
-                                    "-o {} to replace it",
-                                    output, output));
+            throw IoError(fmt::format("{}: exists, and svo does not replace a file it was not told to write; give "
+                                      "-o {} to replace it",
+                                      output, output));
     }
     if (!timingOnly) checkOutputPath(output);
     outputs.add(output);
@@ -273,7 +273,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     }
     const GridOptions grids = a.out.gridOptions();
     if (!timingOnly && outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
-        throw Error(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
+        throw InvalidInput(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
 
     // Voxelize: with --repeat, one warm-up on the GPU, then per-stage medians.
     std::vector<VoxelizeStats> runs(size_t(a.repeat));

@@ -35,7 +35,7 @@ LevelRange parseLevels(const std::string& text)
             if (used == s.size() && v >= 0 && v < 64) return uint32_t(v);
         } catch (const std::exception&) {
         }
-        throw Error(fmt::format("--levels '{}': expected A..B with levels from 0", text));
+        throw InvalidInput(fmt::format("--levels '{}': expected A..B with levels from 0", text));
     };
     const auto dots = text.find("..");
     if (dots == std::string::npos) {
@@ -44,21 +44,21 @@ LevelRange parseLevels(const std::string& text)
         if (dots > 0) r.first = number(text.substr(0, dots));
         if (dots + 2 < text.size()) r.last = number(text.substr(dots + 2));
     }
-    if (r.first > r.last) throw Error(fmt::format("--levels '{}': the first level is past the last", text));
+    if (r.first > r.last) throw InvalidInput(fmt::format("--levels '{}': the first level is past the last", text));
     return r;
 }
 
 void runVtk(const VtkArgs& a, const CLI::App& cmd)
 {
-    if (a.output.empty() && a.png.empty()) throw Error("give -o OUT (.htg, .vtu or .vtp), --png PICTURE, or both");
+    if (a.output.empty() && a.png.empty()) throw InvalidInput("give -o OUT (.htg, .vtu or .vtp), --png PICTURE, or both");
     const LevelRange levels = parseLevels(a.levels);
     std::string ext;
     if (!a.output.empty()) {
         ext = std::filesystem::path(a.output).extension().string();
         if (ext != ".htg" && ext != ".vtu" && ext != ".vtp")
-            throw Error(fmt::format("{}: the output must end in .htg (hyper tree grid), .vtu (voxel cells) or .vtp "
-                                    "(node outlines)",
-                                    a.output));
+            throw IoError(fmt::format("{}: the output must end in .htg (hyper tree grid), .vtu (voxel cells) or .vtp "
+                                      "(node outlines)",
+                                      a.output));
         checkWritable(a.output);
     }
     checkOutputs({a.input}, {a.output, a.png});

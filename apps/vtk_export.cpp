@@ -123,7 +123,7 @@ void writeXml(const std::string& path, vtkDataObject* data, const char* what)
     writer->SetDataModeToBinary();
     writeAtomically(path, [&](const std::string& tmp) {
         writer->SetFileName(tmp.c_str());
-        if (writer->Write() != 1) throw Error(fmt::format("{}: VTK could not write the {}", path, what));
+        if (writer->Write() != 1) throw IoError(fmt::format("{}: VTK could not write the {}", path, what));
     });
 }
 
@@ -430,7 +430,7 @@ void renderPicture(const std::string& path, const Octree& o, const PictureOption
     writeAtomically(path, [&](const std::string& tmp) {
         png->SetFileName(tmp.c_str());
         png->Write();
-        if (png->GetErrorCode() != 0) throw Error(fmt::format("{}: VTK could not write the PNG", path));
+        if (png->GetErrorCode() != 0) throw IoError(fmt::format("{}: VTK could not write the PNG", path));
     });
 }
 

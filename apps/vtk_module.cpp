@@ -20,7 +20,7 @@ std::filesystem::path modulePath()
 {
     std::error_code ec;
     const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (ec) throw Error(fmt::format("svo vtk: cannot find svo's own path to load its VTK module: {}", ec.message()));
+    if (ec) throw IoError(fmt::format("svo vtk: cannot find svo's own path to load its VTK module: {}", ec.message()));
     return (exe.parent_path() / SVO_VTK_MODULE_FROM_BIN / "libsvo_vtk.so").lexically_normal();
 }
 
@@ -34,13 +34,13 @@ const VtkExport& load()
         std::string why = error ? error : "unknown reason";
         const std::string prefix = path.string() + ": ";
         if (why.rfind(prefix, 0) == 0) why.erase(0, prefix.size()); // the loader names the path too
-        throw Error(fmt::format("{}: cannot load svo's VTK module: {}", path.string(), why));
+        throw IoError(fmt::format("{}: cannot load svo's VTK module: {}", path.string(), why));
     }
     using Entry = const VtkExport* (*)();
     const auto entry = reinterpret_cast<Entry>(dlsym(handle, SVO_STRINGIFY(SVO_VTK_MODULE_ENTRY)));
     if (!entry)
-        throw Error(fmt::format("{}: not svo's VTK module of this version (no {})", path.string(),
-                                SVO_STRINGIFY(SVO_VTK_MODULE_ENTRY)));
+        throw IoError(fmt::format("{}: not svo's VTK module of this version (no {})", path.string(),
+                                  SVO_STRINGIFY(SVO_VTK_MODULE_ENTRY)));
     return *entry();
 }
 

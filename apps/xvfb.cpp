@@ -75,12 +75,12 @@ bool needXvfb()
     if (!display.empty() && displayOpens(display)) return false;
     if (onPath("Xvfb")) return true;
     if (display.empty())
-        throw Error("rendering a picture needs an X display: Debian's VTK 9.1 has no EGL or OSMesa backend. Set "
-                    "DISPLAY, or install Xvfb (apt-get install xvfb) and svo starts one itself");
-    throw Error(fmt::format("rendering a picture needs an X display, and DISPLAY={} cannot be opened (no server "
-                            "there, or it refuses svo): start it, unset DISPLAY, or install Xvfb (apt-get install "
-                            "xvfb) and svo starts one itself",
-                            display));
+        throw DeviceError("rendering a picture needs an X display: Debian's VTK 9.1 has no EGL or OSMesa backend. Set "
+                          "DISPLAY, or install Xvfb (apt-get install xvfb) and svo starts one itself");
+    throw DeviceError(fmt::format("rendering a picture needs an X display, and DISPLAY={} cannot be opened (no server "
+                                  "there, or it refuses svo): start it, unset DISPLAY, or install Xvfb (apt-get install "
+                                  "xvfb) and svo starts one itself",
+                                  display));
 }
 
 } // namespace
@@ -103,9 +103,9 @@ XDisplay::XDisplay()
     }
     const pid_t parent = ::getpid();
     int fds[2];
-    if (::pipe(fds) != 0) throw Error("cannot create a pipe to start Xvfb");
+    if (::pipe(fds) != 0) throw DeviceError("cannot create a pipe to start Xvfb");
     pid_ = ::fork();
-    if (pid_ < 0) throw Error("cannot start Xvfb (fork failed)");
+    if (pid_ < 0) throw DeviceError("cannot start Xvfb (fork failed)");
     if (pid_ == 0) {
         // The server dies with svo, even when svo is killed outright (SIGKILL)
         // and no clean-up runs: SIGTERM, on which Xvfb removes its lock and
@@ -135,7 +135,7 @@ XDisplay::XDisplay()
         ::waitpid(pid_, nullptr, 0);
         releaseChild(cleanupSlot_);
         pid_ = -1;
-        throw Error("Xvfb did not start within 10 s; set DISPLAY to an X server instead");
+        throw DeviceError("Xvfb did not start within 10 s; set DISPLAY to an X server instead");
     }
     name_ = ":" + number;
     // Removed after the server exits if it left them (see setChildFiles).

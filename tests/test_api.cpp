@@ -3,6 +3,7 @@
 // Transform::worldToIndex gives, and identities that must hold exactly.
 #include <EGL/egl.h>
 #include <atomic>
+#include <fstream>
 #include <gtest/gtest.h>
 #include <nanovdb/util/IO.h>
 #include <openvdb/math/Maps.h>
@@ -282,6 +283,72 @@ TEST_F(Api, ErrorsNameTheProblemAndTheValue)
     } catch (const svo::Error& e) {
         EXPECT_NE(std::string(e.what()).find("not linear"), std::string::npos) << e.what();
     }
+}
+
+TEST_F(Api, ErrorsAreTypedByWhatFailedAndNameTheOptionApart)
+{
+    // Bad input: InvalidInput, the option's identifier kept apart from the words.
+    LevelSetOptions ls;
+    ls.exteriorBand = 0.5;
+    try {
+        checkLevelSetOptions(ls);
+        FAIL() << "no error";
+    } catch (const InvalidInput& e) {
+        EXPECT_EQ(e.argument(), "LevelSetOptions::exteriorBand");
+        EXPECT_EQ(e.detail(), "0.5: a band is a number of voxels from 1 to 1000");
+        EXPECT_EQ(std::string(e.what()), "LevelSetOptions::exteriorBand 0.5: a band is a number of voxels from 1 to 1000");
+    }
+    // A rule checked under a caller's name names it: that name is the argument.
+    try {
+        checkWindingAccuracy(0, "winding_accuracy");
+        FAIL() << "no error";
+    } catch (const InvalidInput& e) {
+        EXPECT_EQ(e.argument(), "winding_accuracy");
+        EXPECT_EQ(std::string(e.what()).rfind("winding_accuracy 0: the winding accuracy", 0), 0u) << e.what();
+    }
+    // An option named twice is renamed twice by a front end; what() keeps the library's words.
+    VoxelizeOptions thin;
+    thin.mode = VoxelMode::Thin;
+    try {
+        checkFieldMode(thin);
+        FAIL() << "no error";
+    } catch (const InvalidInput& e) {
+        EXPECT_EQ(e.argument(), "VoxelizeOptions::mode");
+        EXPECT_EQ(std::string(e.what()).rfind("VoxelizeOptions::mode thin: VoxelizeOptions::mode applies", 0), 0u)
+            << e.what();
+        const std::string renamed = e.message([](const std::string& id) {
+            return id == "VoxelizeOptions::mode" ? std::string("mode=") : std::string();
+        });
+        EXPECT_EQ(renamed.rfind("mode= thin: mode= applies to surface voxels", 0), 0u) << renamed;
+    }
+    const VdbMesh mesh = toVdb(sphere({0, 0, 0}, 1.0, 8, 6));
+    const auto xform = openvdb::math::Transform::createLinearTransform(0.1);
+    auto bad = mesh.triangles;
+    bad[5][1] = 1234567;
+    EXPECT_THROW(voxelizer().meshToMask(mesh.points, bad, *xform), InvalidInput);
+    // Files: IoError, the missing and the damaged.
+    const TempDir dir("api_errors");
+    EXPECT_THROW(readOctreeFile(dir.path("missing.svo")), IoError);
+    std::ofstream(dir.path("damaged.svo")) << "SVOCTREE and then nothing an octree needs";
+    EXPECT_THROW(readOctreeFile(dir.path("damaged.svo")), IoError);
+    std::ofstream(dir.path("empty.obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\n"; // no faces: a file of no mesh
+    EXPECT_THROW(loadMesh(dir.path("empty.obj")), IoError);
+    // Work svo has no method for: Unsupported. GPU memory: OutOfMemory.
+    VoxelizeOptions cpu;
+    cpu.backend = Backend::Cpu;
+    EXPECT_THROW(voxelizer().meshToLevelSet(mesh.points, mesh.triangles, *xform, 3.0f, 3.0f, cpu), Unsupported);
+    VoxelizeOptions tiny;
+    tiny.gpuMemory = 1024;
+    EXPECT_THROW(voxelizer().meshToMask(mesh.points, mesh.triangles, *xform, tiny), OutOfMemory);
+    // No such GPU: DeviceError. Stopped: Interrupted.
+    Voxelizer nowhere(DeviceOptions{"no-such-device", false, "off"});
+    EXPECT_THROW(nowhere.meshToMask(mesh.points, mesh.triangles, *xform), DeviceError);
+    EXPECT_THROW(Checkpoint([](int) { return true; })(0.5, "a test"), Interrupted);
+    // Every kind is an svo::Error, and a std::runtime_error.
+    EXPECT_THROW(voxelizer().meshToMask(mesh.points, mesh.triangles, *xform, tiny), Error);
+    EXPECT_THROW(readOctreeFile(dir.path("missing.svo")), std::runtime_error);
+    // The one voxelizer is still usable.
+    EXPECT_GT(voxelizer().meshToMask(mesh.points, mesh.triangles, *xform)->activeVoxelCount(), 0u);
 }
 
 /// Cancels once the call reports `at` percent; counts the calls it gets.

@@ -8,7 +8,10 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "option_flags.h"
 #include "run_shell.h"
+#include "svo/gl/octree_view.h"
+#include "svo/voxelizer.h"
 #include "temp_dir.h"
 
 namespace {
@@ -101,6 +104,80 @@ TEST(CliOptions, ValidateAndVoxelizeAgreeThatALevelSetHasNoThinMode)
     EXPECT_EQ(v.code, 0) << v.out;
     const auto c = runSvo("validate " + mesh + " -r 8 --sdf --mode conservative");
     EXPECT_EQ(c.code, 0) << c.out;
+}
+
+/// The identifier of the option an error names first, or "" when the call throws no svo::Error.
+template <typename Call>
+std::string argumentOf(Call call)
+{
+    try {
+        call();
+    } catch (const svo::Error& e) {
+        return e.argument();
+    }
+    return {};
+}
+
+// The one table of flags (apps/option_flags.h): each flag is one its command lists.
+TEST(CliOptions, EveryFlagInTheTableIsOneItsCommandLists)
+{
+    for (const svo::app::OptionFlag& o : svo::app::kOptionFlags) {
+        const auto r = runSvo(std::string(o.command) + " --help");
+        ASSERT_EQ(r.code, 0) << o.command << "\n" << r.out;
+        // "--ao-source octree": the flag, and the value among its choices.
+        const std::string flag(o.flag.substr(0, o.flag.find(' ')));
+        EXPECT_NE(r.out.find(flag + " "), std::string::npos) << o.identifier << " -> " << flag << "\n" << r.out;
+        if (flag.size() < o.flag.size()) {
+            const std::string value(o.flag.substr(flag.size() + 1));
+            EXPECT_NE(r.out.find(value), std::string::npos) << o.identifier << " -> " << o.flag << "\n" << r.out;
+        }
+        EXPECT_EQ(svo::app::flagFor(o.identifier), o.flag);
+    }
+    EXPECT_TRUE(svo::app::flagFor("--band").empty()); // a flag already: named as it is
+    EXPECT_TRUE(svo::app::flagFor("exterior_band").empty());
+}
+
+// The options the library names in its own checks (the ones a test can reach
+// without a GPU) each have a flag in the table.
+TEST(CliOptions, TheOptionsTheLibraryNamesHaveFlags)
+{
+    std::vector<std::string> named;
+    for (const auto& field : {&svo::LevelSetOptions::exteriorBand, &svo::LevelSetOptions::interiorBand}) {
+        svo::LevelSetOptions ls;
+        ls.*field = 0.5;
+        named.push_back(argumentOf([&] { svo::checkLevelSetOptions(ls); }));
+    }
+    svo::LevelSetOptions ls;
+    ls.sign.windingAccuracy = 0;
+    named.push_back(argumentOf([&] { svo::checkLevelSetOptions(ls); }));
+    svo::VoxelizeOptions thin;
+    thin.mode = svo::VoxelMode::Thin;
+    named.push_back(argumentOf([&] { svo::checkFieldMode(thin); }));
+    named.push_back(argumentOf([] { svo::gl::namedView({svo::Vec3d{0, 0, 0}, svo::Vec3d{1, 1, 1}}, "sideways", 1.0); }));
+    const std::vector<std::string> want = {"LevelSetOptions::exteriorBand", "LevelSetOptions::interiorBand",
+                                           "SignOptions::windingAccuracy", "VoxelizeOptions::mode",
+                                           "svo::gl::namedView"};
+    EXPECT_EQ(named, want);
+    for (const auto& identifier : named) EXPECT_FALSE(svo::app::flagFor(identifier).empty()) << identifier;
+}
+
+// A bad band on the command line is refused in one line naming the flag, and
+// an option the library names is printed as the flag that sets it.
+TEST(CliOptions, ErrorsNameTheFlagNeverTheLibrarysField)
+{
+    svo::test::TempDir dir("cli_options");
+    const std::string mesh = tetrahedron(dir), out = " -o " + dir.path("x.vdb");
+    auto r = runSvo("voxelize " + mesh + " -r 8 --sdf --exterior-band 0.5" + out);
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(r.out, "svo: error: --exterior-band 0.5: a band is a number of voxels from 1 to 1000\n");
+    r = runSvo("voxelize " + mesh + " -r 8 --sdf --mode thin" + out);
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(r.out.rfind("svo: error: --mode thin: --mode applies to surface voxels;", 0), 0u) << r.out;
+    EXPECT_EQ(r.out.find("VoxelizeOptions"), std::string::npos) << r.out;
+    r = runSvo("view " + mesh + " -r 8 --screenshot " + dir.path("v.png") + " --view sideways");
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(r.out, "svo: error: --view 'sideways': expected front, +x, -x, +y, -y, +z or -z\n");
+    EXPECT_FALSE(std::filesystem::exists(dir.path("x.vdb")));
 }
 
 } // namespace

@@ -49,18 +49,18 @@ std::string followLinks(const std::string& path)
         if (ec) return p.string();
         p = to.is_absolute() ? to : p.parent_path() / to;
     }
-    throw Error(fmt::format("{}: too many levels of symbolic links", path));
+    throw IoError(fmt::format("{}: too many levels of symbolic links", path));
 }
 
 Target outputTarget(const std::string& path)
 {
-    if (path.empty()) throw Error("the output path is empty");
+    if (path.empty()) throw IoError("the output path is empty");
     struct stat st {};
     if (::stat(path.c_str(), &st) != 0) {
-        if (errno == ELOOP) throw Error(fmt::format("{}: too many levels of symbolic links", path));
+        if (errno == ELOOP) throw IoError(fmt::format("{}: too many levels of symbolic links", path));
         return {false, followLinks(path), -1}; // a new file (or a dangling link's target)
     }
-    if (S_ISDIR(st.st_mode)) throw Error(fmt::format("{}: is a folder; give a file name", path));
+    if (S_ISDIR(st.st_mode)) throw IoError(fmt::format("{}: is a folder; give a file name", path));
     struct stat link {};
     const bool named = ::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode);
     // /dev/stdout and /dev/stderr (terminal, pipe, or a file the shell opened): through the stream itself,
@@ -75,9 +75,9 @@ Target outputTarget(const std::string& path)
         return {false, file, -1};
     }
     if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) return {true, path, -1};
-    throw Error(fmt::format("{}: is {}; svo replaces regular files and writes through character devices and FIFOs, "
-                            "and leaves anything else alone",
-                            path, S_ISBLK(st.st_mode) ? "a block device" : S_ISSOCK(st.st_mode) ? "a socket" : "not a file"));
+    throw IoError(fmt::format("{}: is {}; svo replaces regular files and writes through character devices and FIFOs, "
+                              "and leaves anything else alone",
+                              path, S_ISBLK(st.st_mode) ? "a block device" : S_ISSOCK(st.st_mode) ? "a socket" : "not a file"));
 }
 
 void checkTarget(const std::string& path, const Target& t)
@@ -85,19 +85,19 @@ void checkTarget(const std::string& path, const Target& t)
     std::error_code ec;
     if (t.through) {
         if (t.fd < 0 && ::access(t.file.c_str(), W_OK) != 0)
-            throw Error(fmt::format("{}: cannot be written: {}", path, std::strerror(errno)));
+            throw IoError(fmt::format("{}: cannot be written: {}", path, std::strerror(errno)));
         const fs::path dir = fs::temp_directory_path(ec);
         if (ec || ::access(dir.c_str(), W_OK) != 0)
-            throw Error(fmt::format("{}: needs a temporary file first, and the temporary folder {} is not writable "
-                                    "(set TMPDIR)",
-                                    path, dir.string()));
+            throw IoError(fmt::format("{}: needs a temporary file first, and the temporary folder {} is not writable "
+                                      "(set TMPDIR)",
+                                      path, dir.string()));
         return;
     }
     const fs::path p(t.file);
     const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-    if (!fs::is_directory(dir, ec)) throw Error(fmt::format("{}: the folder {} does not exist", path, dir.string()));
+    if (!fs::is_directory(dir, ec)) throw IoError(fmt::format("{}: the folder {} does not exist", path, dir.string()));
     if (::access(dir.c_str(), W_OK) != 0)
-        throw Error(fmt::format("{}: the folder {} is not writable", path, dir.string()));
+        throw IoError(fmt::format("{}: the folder {} is not writable", path, dir.string()));
 }
 
 std::string temporaryFor(const Target& t)
@@ -114,7 +114,7 @@ std::string temporaryFor(const Target& t)
 void writeThrough(const std::string& path, const Target& t, const std::string& tmp)
 {
     const int in = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
-    if (in < 0) throw Error(fmt::format("{}: cannot read the finished temporary {}: {}", path, tmp, std::strerror(errno)));
+    if (in < 0) throw IoError(fmt::format("{}: cannot read the finished temporary {}: {}", path, tmp, std::strerror(errno)));
     int out = t.fd;
     if (out == STDOUT_FILENO) std::fflush(stdout);
     if (out == STDERR_FILENO) std::fflush(stderr);
@@ -144,7 +144,7 @@ void writeThrough(const std::string& path, const Target& t, const std::string& t
     ::sigaction(SIGPIPE, &previous, nullptr);
     if (out >= 0 && t.fd < 0) ::close(out);
     ::close(in);
-    if (error) throw Error(fmt::format("{}: cannot write: {}", path, std::strerror(error)));
+    if (error) throw IoError(fmt::format("{}: cannot write: {}", path, std::strerror(error)));
 }
 
 /// Puts a finished temporary in place; removes it either way.
@@ -164,7 +164,7 @@ void deliver(const std::string& path, const Target& t, const std::string& tmp)
     fs::rename(tmp, t.file, ec);
     if (ec) {
         std::remove(tmp.c_str());
-        throw Error(fmt::format("{}: cannot move the finished file into place: {}", path, ec.message()));
+        throw IoError(fmt::format("{}: cannot move the finished file into place: {}", path, ec.message()));
     }
 }
 
@@ -222,7 +222,7 @@ void writeAtomically(const std::string& path, const std::function<void(const std
     } catch (const std::exception& e) {
         std::remove(tmp.c_str());
         releaseTemporary(slot);
-        throw Error(fmt::format("{}: cannot write the file: {}", path, e.what()));
+        throw IoError(fmt::format("{}: cannot write the file: {}", path, e.what()));
     }
     {
         std::unique_lock<std::mutex> lock(batchMutex);
@@ -264,7 +264,7 @@ void writeFileAtomically(const std::string& path, const std::string& bytes)
     // POSIX calls rather than a stream, so that a full disk is named (errno).
     writeAtomically(path, [&](const std::string& tmp) {
         const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-        if (fd < 0) throw Error(fmt::format("{}: cannot write the file: {}", path, std::strerror(errno)));
+        if (fd < 0) throw IoError(fmt::format("{}: cannot write the file: {}", path, std::strerror(errno)));
         size_t done = 0;
         int error = 0;
         while (done < bytes.size() && !error) {
@@ -274,7 +274,7 @@ void writeFileAtomically(const std::string& path, const std::string& bytes)
             else if (errno != EINTR) error = errno;
         }
         if (::close(fd) != 0 && !error) error = errno;
-        if (error) throw Error(fmt::format("{}: cannot write the file: {}", path, std::strerror(error)));
+        if (error) throw IoError(fmt::format("{}: cannot write the file: {}", path, std::strerror(error)));
     });
 }
 
@@ -340,7 +340,7 @@ void OutputBatch::commit()
         for (size_t i = next; i < staged.size(); ++i) rest.push_back(staged[i].path);
         message += written.empty() ? "; no output was written" : "; written: " + list(written);
         if (!rest.empty()) message += "; not written: " + list(rest);
-        throw Error(message);
+        throw IoError(message);
     };
     // Devices and FIFOs first: nothing is replaced yet, and a reader that
     // never comes can still be interrupted.

@@ -31,56 +31,56 @@ double GridSpec::epsilon() const { return 32.0 * std::ldexp(1.0, -24) * std::max
 void checkResolution(double n, const std::string& name)
 {
     if (n > double(kMaxGridDim) - 16 && std::isfinite(n))
-        throw Error(fmt::format("{} {} is beyond the largest supported grid: a whole number from 1 to {}", name, n,
-                                kMaxGridDim - 16));
+        throw InvalidInput(name, fmt::format("{} is beyond the largest supported grid: a whole number from 1 to {}", n,
+                                             kMaxGridDim - 16));
     if (!(n >= 1 && n <= double(kMaxGridDim) - 16) || n != std::floor(n))
-        throw Error(fmt::format("{} must be a whole number from 1 to {}, got {}", name, kMaxGridDim - 16, n));
+        throw InvalidInput(name, fmt::format("must be a whole number from 1 to {}, got {}", kMaxGridDim - 16, n));
 }
 
 void checkVoxelSize(double h, const std::string& name)
 {
     if (!(h > 0) || !std::isfinite(h))
-        throw Error(fmt::format("{} must be a positive finite number, got {}", name, h));
+        throw InvalidInput(name, fmt::format("must be a positive finite number, got {}", h));
 }
 
 GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& req)
 {
     const Bounds b = mesh.bounds();
-    if (b.empty()) throw Error(fmt::format("{}: the mesh has no triangles", mesh.source));
+    if (b.empty()) throw InvalidInput(fmt::format("{}: the mesh has no triangles", mesh.source));
     GridSpec g;
-    if (req.resolution > 0 && req.voxelSize > 0) throw Error("the grid request gives both a resolution and a voxel size; give one");
+    if (req.resolution > 0 && req.voxelSize > 0) throw InvalidInput("the grid request gives both a resolution and a voxel size; give one");
     if (req.resolution > 0) {
         checkResolution(double(req.resolution), "the resolution");
         const Vec3d e = b.extent();
         const double longest = std::max({e.x, e.y, e.z});
         if (!(longest > 0))
-            throw Error(fmt::format("{}: the mesh has zero extent, so a resolution cannot define a voxel size; "
-                                    "give a voxel size instead",
-                                    mesh.source));
+            throw InvalidInput(fmt::format("{}: the mesh has zero extent, so a resolution cannot define a voxel size; "
+                                           "give a voxel size instead",
+                                           mesh.source));
         g.voxelSize = longest / double(req.resolution);
     } else if (req.voxelSize != 0) {
         checkVoxelSize(req.voxelSize, "the voxel size");
         g.voxelSize = req.voxelSize;
     } else {
-        throw Error(fmt::format("the grid needs a resolution N >= 1 or a finite voxel size h > 0; got "
-                                "resolution {} and voxel size {}",
-                                req.resolution, req.voxelSize));
+        throw InvalidInput(fmt::format("the grid needs a resolution N >= 1 or a finite voxel size h > 0; got "
+                                       "resolution {} and voxel size {}",
+                                       req.resolution, req.voxelSize));
     }
     if (!std::isfinite(g.voxelSize) || !(g.voxelSize > 0))
-        throw Error(fmt::format("{}: the voxel size {} is not usable", mesh.source, g.voxelSize));
+        throw InvalidInput(fmt::format("{}: the voxel size {} is not usable", mesh.source, g.voxelSize));
 
     // Shift the lattice by whole voxels when indices would approach int32 limits.
     const double limit = std::ldexp(1.0, 30);
     for (int a = 0; a < 3; ++a) {
         const double lo = b.min[a] / g.voxelSize, hi = b.max[a] / g.voxelSize;
         if (!std::isfinite(lo) || !std::isfinite(hi))
-            throw Error(fmt::format("{}: the voxel size {} is too small for coordinates of magnitude {}", mesh.source,
-                                    g.voxelSize, std::max(std::abs(b.min[a]), std::abs(b.max[a]))));
+            throw InvalidInput(fmt::format("{}: the voxel size {} is too small for coordinates of magnitude {}", mesh.source,
+                                           g.voxelSize, std::max(std::abs(b.min[a]), std::abs(b.max[a]))));
         if (std::abs(lo) > limit || std::abs(hi) > limit) {
             const double mid = std::round(0.5 * (lo + hi));
             if (std::abs(mid) > 9.0e18)
-                throw Error(fmt::format("{}: coordinates of magnitude {} at voxel size {} exceed 64-bit indices",
-                                        mesh.source, std::abs(b.max[a]), g.voxelSize));
+                throw InvalidInput(fmt::format("{}: coordinates of magnitude {} at voxel size {} exceed 64-bit indices",
+                                               mesh.source, std::abs(b.max[a]), g.voxelSize));
             g.shift[a] = static_cast<int64_t>(mid);
         }
     }
@@ -90,9 +90,9 @@ GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& req)
 GridSpec makeGridOnLattice(const TriangleMesh& mesh, double voxelSize, const std::array<int64_t, 3>& shift)
 {
     const Bounds b = mesh.bounds();
-    if (b.empty()) throw Error(fmt::format("{}: the mesh has no triangles", mesh.source));
+    if (b.empty()) throw InvalidInput(fmt::format("{}: the mesh has no triangles", mesh.source));
     if (!std::isfinite(voxelSize) || !(voxelSize > 0))
-        throw Error(fmt::format("{}: the voxel size {} is not usable", mesh.source, voxelSize));
+        throw InvalidInput(fmt::format("{}: the voxel size {} is not usable", mesh.source, voxelSize));
     GridSpec g;
     g.voxelSize = voxelSize;
     g.shift = shift;
@@ -102,21 +102,21 @@ GridSpec makeGridOnLattice(const TriangleMesh& mesh, double voxelSize, const std
     const Vec3d lo = g.toIndex(b.min), hi = g.toIndex(b.max);
     for (int a = 0; a < 3; ++a) {
         if (!(std::abs(lo[a]) < 9.0e18) || !(std::abs(hi[a]) < 9.0e18) || hi[a] - lo[a] > double(kMaxGridDim))
-            throw Error(fmt::format("{}: the grid would be {:.3g} voxels along axis {}, beyond the supported {}; "
-                                    "use a larger voxel size",
-                                    mesh.source, hi[a] - lo[a], "xyz"[a], kMaxGridDim));
+            throw InvalidInput(fmt::format("{}: the grid would be {:.3g} voxels along axis {}, beyond the supported {}; "
+                                           "use a larger voxel size",
+                                           mesh.source, hi[a] - lo[a], "xyz"[a], kMaxGridDim));
         g.anchor[a] = floorTo8(static_cast<int64_t>(std::floor(lo[a])) - 1);
         const double top = hi[a] - double(g.anchor[a]);
         const double dim = std::floor(top) + 3; // the last touched voxel is <= top + 1
         if (dim > double(kMaxGridDim))
-            throw Error(fmt::format("{}: the grid would be {} voxels along axis {}, beyond the supported {}; "
-                                    "use a larger voxel size",
-                                    mesh.source, dim, "xyz"[a], kMaxGridDim));
+            throw InvalidInput(fmt::format("{}: the grid would be {} voxels along axis {}, beyond the supported {}; "
+                                           "use a larger voxel size",
+                                           mesh.source, dim, "xyz"[a], kMaxGridDim));
         g.dims[a] = static_cast<uint32_t>(dim);
         const int64_t lastGlobal = g.anchor[a] + int64_t(g.dims[a]);
         if (g.anchor[a] < INT32_MIN + 8 || lastGlobal > INT32_MAX - 8)
-            throw Error(fmt::format("{}: voxel indices along {} would exceed OpenVDB's 32-bit coordinates",
-                                    mesh.source, "xyz"[a]));
+            throw InvalidInput(fmt::format("{}: voxel indices along {} would exceed OpenVDB's 32-bit coordinates",
+                                           mesh.source, "xyz"[a]));
     }
     return g;
 }
@@ -124,15 +124,15 @@ GridSpec makeGridOnLattice(const TriangleMesh& mesh, double voxelSize, const std
 void checkGrid(const GridSpec& g, const std::string& what)
 {
     if (!(g.voxelSize > 0) || !std::isfinite(g.voxelSize))
-        throw Error(fmt::format("{}: voxel size {} is not positive and finite", what, g.voxelSize));
+        throw InvalidInput(fmt::format("{}: voxel size {} is not positive and finite", what, g.voxelSize));
     for (int a = 0; a < 3; ++a) {
         if (g.dims[a] > kMaxGridDim || g.anchor[a] % 8 != 0)
-            throw Error(fmt::format("{}: grid axis {} has {} voxels from anchor {} (at most {}, anchor a multiple of 8)",
-                                    what, "xyz"[a], g.dims[a], g.anchor[a], kMaxGridDim));
+            throw InvalidInput(fmt::format("{}: grid axis {} has {} voxels from anchor {} (at most {}, anchor a multiple of 8)",
+                                           what, "xyz"[a], g.dims[a], g.anchor[a], kMaxGridDim));
         if (g.anchor[a] < INT32_MIN + 8 || g.anchor[a] + int64_t(g.dims[a]) > INT32_MAX - 8)
-            throw Error(fmt::format("{}: voxel indices along {} exceed OpenVDB's 32-bit coordinates", what, "xyz"[a]));
+            throw InvalidInput(fmt::format("{}: voxel indices along {} exceed OpenVDB's 32-bit coordinates", what, "xyz"[a]));
         if (std::abs(double(g.shift[a])) > 9.0e18)
-            throw Error(fmt::format("{}: the lattice shift along {} is out of range", what, "xyz"[a]));
+            throw InvalidInput(fmt::format("{}: the lattice shift along {} is out of range", what, "xyz"[a]));
     }
 }
 

@@ -33,10 +33,10 @@ Bounds TriangleMesh::bounds() const
 void validateMesh(const TriangleMesh& mesh)
 {
     if (mesh.triangles.empty())
-        throw Error(fmt::format("{}: the mesh has no triangles", mesh.source));
+        throw InvalidInput(fmt::format("{}: the mesh has no triangles", mesh.source));
     const size_t n = mesh.positions.size();
     if (!mesh.colors.empty() && mesh.colors.size() != n)
-        throw Error(fmt::format("{}: {} vertex colours for {} vertices", mesh.source, mesh.colors.size(), n));
+        throw InvalidInput(fmt::format("{}: {} vertex colours for {} vertices", mesh.source, mesh.colors.size(), n));
     auto bad = [&](uint32_t v) {
         if (v >= n) return true;
         const Vec3d& p = mesh.positions[v];
@@ -54,12 +54,12 @@ void validateMesh(const TriangleMesh& mesh)
     if (first == mesh.triangles.size()) return;
     for (uint32_t v : mesh.triangles[first]) {
         if (v >= n)
-            throw Error(fmt::format("{}: face {} uses vertex index {}, but the mesh has {} vertices", mesh.source,
-                                    first, v, n));
+            throw InvalidInput(fmt::format("{}: face {} uses vertex index {}, but the mesh has {} vertices", mesh.source,
+                                           first, v, n));
         const Vec3d& p = mesh.positions[v];
         if (bad(v))
-            throw Error(fmt::format("{}: vertex {} has a non-finite coordinate ({}, {}, {})", mesh.source, v, p.x,
-                                    p.y, p.z));
+            throw InvalidInput(fmt::format("{}: vertex {} has a non-finite coordinate ({}, {}, {})", mesh.source, v, p.x,
+                                           p.y, p.z));
     }
 }
 

@@ -31,7 +31,7 @@ std::string lowerExtension(const std::string& path)
 void writeMesh(const std::string& path, const TriangleMesh& mesh)
 {
     const std::string ext = lowerExtension(path);
-    if (ext != "off" && ext != "obj") throw Error(fmt::format("{}: meshes are written as .off or .obj", path));
+    if (ext != "off" && ext != "obj") throw IoError(fmt::format("{}: meshes are written as .off or .obj", path));
     const bool obj = ext == "obj", colors = !obj && !mesh.colors.empty();
     std::string text = obj ? std::string("# ") + mesh.source + "\n"
                            : fmt::format("{}\n{} {} 0\n", colors ? "COFF" : "OFF", mesh.positions.size(),
@@ -54,29 +54,33 @@ TriangleMesh loadMesh(const std::string& path)
 {
     const std::string ext = lowerExtension(path);
     if (ext.empty())
-        throw Error(fmt::format("{}: the name has no extension, which svo needs to know the format ({})", path,
-                                supportedMeshExtensions()));
+        throw IoError(fmt::format("{}: the name has no extension, which svo needs to know the format ({})", path,
+                                  supportedMeshExtensions()));
     if (ext != "obj" && ext != "ply" && ext != "stl" && ext != "off")
-        throw Error(fmt::format("{}: unknown mesh extension '.{}' (supported: {})", path, ext,
-                                supportedMeshExtensions()));
+        throw IoError(fmt::format("{}: unknown mesh extension '.{}' (supported: {})", path, ext,
+                                  supportedMeshExtensions()));
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw Error(fmt::format("{}: no such file", path));
-    if (std::filesystem::is_directory(path, ec)) throw Error(fmt::format("{}: is a directory, not a mesh file", path));
+    if (!std::filesystem::exists(path, ec)) throw IoError(fmt::format("{}: no such file", path));
+    if (std::filesystem::is_directory(path, ec)) throw IoError(fmt::format("{}: is a directory, not a mesh file", path));
     std::ifstream file(path, std::ios::binary);
-    if (!file) throw Error(fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
+    if (!file) throw IoError(fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
     const auto size = std::filesystem::file_size(path, ec);
-    if (ec) throw Error(fmt::format("{}: cannot read the file size: {}", path, ec.message()));
+    if (ec) throw IoError(fmt::format("{}: cannot read the file size: {}", path, ec.message()));
     std::string bytes(size, '\0');
     file.read(bytes.data(), std::streamsize(bytes.size()));
-    if (!file) throw Error(fmt::format("{}: read error", path));
-    if (bytes.empty()) throw Error(fmt::format("{}: the file is empty", path));
+    if (!file) throw IoError(fmt::format("{}: read error", path));
+    if (bytes.empty()) throw IoError(fmt::format("{}: the file is empty", path));
 
     TriangleMesh mesh;
     if (ext == "obj") mesh = detail::readObj(path, bytes);
     else if (ext == "ply") mesh = detail::readPly(path, bytes);
     else if (ext == "stl") mesh = detail::readStl(path, bytes);
     else mesh = detail::readOff(path, bytes);
-    validateMesh(mesh);
+    try {
+        validateMesh(mesh);
+    } catch (const InvalidInput& e) {
+        throw IoError(e.what()); // a file that holds a bad mesh is a damaged file
+    }
     return mesh;
 }
 

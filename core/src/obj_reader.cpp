@@ -58,7 +58,7 @@ void parseObjPart(const std::string& path, std::string_view text, size_t firstLi
     std::vector<uint32_t> face;
     size_t lineNo = firstLine - 1, statementLine = 0;
     auto fail = [&](const std::string& what) {
-        return Error(fmt::format("{}: line {}: {}", path, statementLine, what));
+        return IoError(fmt::format("{}: line {}: {}", path, statementLine, what));
     };
     const char* p = text.data();
     const char* const end = p + text.size();
@@ -155,9 +155,9 @@ TriangleMesh assemble(const std::string& path, std::vector<ObjPart>& parts)
     // Positive indices may name vertices listed later, so they are checked at
     // the end; the largest one and its line are enough for the message.
     if (maxIndex > vertices)
-        throw Error(fmt::format("{}: line {}: face uses vertex index {}, but the file has {} vertices", path,
-                                maxIndexLine, maxIndex, vertices));
-    if (vertices >= UINT32_MAX) throw Error(fmt::format("{}: more vertices than 32-bit indices address", path));
+        throw IoError(fmt::format("{}: line {}: face uses vertex index {}, but the file has {} vertices", path,
+                                  maxIndexLine, maxIndex, vertices));
+    if (vertices >= UINT32_MAX) throw IoError(fmt::format("{}: more vertices than 32-bit indices address", path));
     mesh.positions.reserve(vertices);
     mesh.triangles.reserve(triangles);
     if (colored == vertices && colored) mesh.colors.reserve(vertices);

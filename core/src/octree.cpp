@@ -108,8 +108,8 @@ Octree buildOctreeFromBricks(const GridSpec& grid, std::vector<std::pair<uint64_
     for (const auto& [key, brick] : input) {
         const auto b = brickCoords(key);
         if (std::max({b[0], b[1], b[2]}) >> L)
-            throw Error(fmt::format("brick at local ({}, {}, {}) lies outside the grid {} x {} x {}", b[0] * 8,
-                                    b[1] * 8, b[2] * 8, grid.dims[0], grid.dims[1], grid.dims[2]));
+            throw InvalidInput(fmt::format("brick at local ({}, {}, {}) lies outside the grid {} x {} x {}", b[0] * 8,
+                                           b[1] * 8, b[2] * 8, grid.dims[0], grid.dims[1], grid.dims[2]));
     }
     std::vector<std::pair<uint64_t, size_t>> order(input.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, input.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
@@ -135,7 +135,7 @@ Octree buildOctreeFromBricks(const GridSpec& grid, std::vector<std::pair<uint64_
     input = {};
     order = {};
     if (out.bricks.size() >= 0xFFFFFFFFull)
-        throw Error(fmt::format("{} bricks are more than an octree indexes (32-bit)", out.bricks.size()));
+        throw Unsupported(fmt::format("{} bricks are more than an octree indexes (32-bit)", out.bricks.size()));
 
     // The occupied node ids of each level are the distinct Morton prefixes,
     // found bottom-up from the bricks (each level from the one below, so the
@@ -156,7 +156,7 @@ Octree buildOctreeFromBricks(const GridSpec& grid, std::vector<std::pair<uint64_
     }
     uint64_t total = 1;
     for (uint32_t l = 0; l < L; ++l) total += 8 * ids[l].size();
-    if (total >= 0xFFFFFFFFull) throw Error(fmt::format("{} octree nodes are more than 32-bit indices hold", total));
+    if (total >= 0xFFFFFFFFull) throw Unsupported(fmt::format("{} octree nodes are more than 32-bit indices hold", total));
     out.nodes.resize(total);
     std::vector<uint32_t> parentNodes = {0}; // node index of each occupied id at the current level
     for (uint32_t l = 0; l < L; ++l) {

@@ -78,7 +78,7 @@ void writeOctreeFile(const std::string& path, const Octree& input)
 
 Octree parseOctree(const void* data, size_t size, const std::string& name)
 {
-    auto fail = [&](const std::string& what) { return Error(fmt::format("{}: not a valid .svo file: {}", name, what)); };
+    auto fail = [&](const std::string& what) { return IoError(fmt::format("{}: not a valid .svo file: {}", name, what)); };
     const auto* bytes = static_cast<const unsigned char*>(data);
     if (size < sizeof(kMagic) || std::memcmp(bytes, kMagic, sizeof kMagic) != 0)
         throw fail("bad magic number (expected \"SVOCTREE\")");
@@ -113,7 +113,11 @@ Octree parseOctree(const void* data, size_t size, const std::string& name)
     o.grid.voxelSize = h.voxelSize;
     for (int a = 0; a < 3; ++a)
         o.grid.shift[a] = h.shift[a], o.grid.anchor[a] = h.anchor[a], o.grid.dims[a] = h.dims[a];
-    checkGrid(o.grid, name + ": not a valid .svo file");
+    try {
+        checkGrid(o.grid, name + ": not a valid .svo file");
+    } catch (const InvalidInput& e) {
+        throw IoError(e.what()); // the file's grid, not the caller's
+    }
     o.brickLevel = h.brickLevel;
     const unsigned char* p = bytes + sizeof h;
     o.levelStart.resize(h.brickLevel + 2);
@@ -143,11 +147,11 @@ Octree readOctreeFile(const std::string& path)
 {
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
-    if (ec) throw Error(fmt::format("{}: cannot open the file: {}", path, ec.message()));
-    if (size == 0) throw Error(fmt::format("{}: the file is empty", path));
+    if (ec) throw IoError(fmt::format("{}: cannot open the file: {}", path, ec.message()));
+    if (size == 0) throw IoError(fmt::format("{}: the file is empty", path));
     std::ifstream in(path, std::ios::binary);
     std::vector<char> bytes(size);
-    if (!in || !in.read(bytes.data(), std::streamsize(size))) throw Error(fmt::format("{}: read error", path));
+    if (!in || !in.read(bytes.data(), std::streamsize(size))) throw IoError(fmt::format("{}: read error", path));
     return parseOctree(bytes.data(), bytes.size(), path);
 }
 

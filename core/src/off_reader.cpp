@@ -234,14 +234,14 @@ void readBinaryVertex(const std::string& path, BigEndianWords& in, int64_t v, co
 {
     float f[12] = {}; // 3 + 3 + 4 + 2 at most
     for (size_t k = 0; k < l.floatsPerVertex(); ++k)
-        if (!in.float32(f[k])) throw Error(fmt::format("{}: the file ends in vertex {} (truncated file?)", path, v));
+        if (!in.float32(f[k])) throw IoError(fmt::format("{}: the file ends in vertex {} (truncated file?)", path, v));
     if (!std::isfinite(f[0]) || !std::isfinite(f[1]) || !std::isfinite(f[2]))
-        throw Error(fmt::format("{}: vertex {} has a non-finite coordinate ({}, {}, {})", path, v, f[0], f[1], f[2]));
+        throw IoError(fmt::format("{}: vertex {} has a non-finite coordinate ({}, {}, {})", path, v, f[0], f[1], f[2]));
     mesh.positions.push_back({f[0], f[1], f[2]});
     if (!l.colors) return;
     const float* c = f + (l.normals ? 6 : 3);
     if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]))
-        throw Error(fmt::format("{}: vertex {} has a non-finite colour ({}, {}, {})", path, v, c[0], c[1], c[2]));
+        throw IoError(fmt::format("{}: vertex {} has a non-finite colour ({}, {}, {})", path, v, c[0], c[1], c[2]));
     mesh.colors.push_back({c[0], c[1], c[2]});
 }
 
@@ -251,20 +251,20 @@ void readBinaryVertex(const std::string& path, BigEndianWords& in, int64_t v, co
 void readBinaryFace(const std::string& path, BigEndianWords& in, int64_t f, int64_t nf, std::vector<uint32_t>& idx,
                     TriangleMesh& mesh)
 {
-    auto truncated = [&] { return Error(fmt::format("{}: the file ends in face {} of {} (truncated file?)", path, f, nf)); };
+    auto truncated = [&] { return IoError(fmt::format("{}: the file ends in face {} of {} (truncated file?)", path, f, nf)); };
     int32_t n = 0;
     if (!in.int32(n)) throw truncated();
-    if (n < 1) throw Error(fmt::format("{}: face {} has {} vertices", path, f, n));
+    if (n < 1) throw IoError(fmt::format("{}: face {} has {} vertices", path, f, n));
     if (uint64_t(n) >= in.remaining()) // its indices and its colour count
-        throw Error(fmt::format("{}: face {} has {} vertices, more than the rest of the file holds (truncated file?)",
-                                path, f, n));
+        throw IoError(fmt::format("{}: face {} has {} vertices, more than the rest of the file holds (truncated file?)",
+                                  path, f, n));
     idx.clear();
     for (int32_t i = 0; i < n; ++i) {
         int32_t k = -1;
         if (!in.int32(k)) throw truncated();
         if (k < 0 || size_t(k) >= mesh.positions.size())
-            throw Error(fmt::format("{}: face {} uses vertex index {}, but the file has {} vertices", path, f, k,
-                                    mesh.positions.size()));
+            throw IoError(fmt::format("{}: face {} uses vertex index {}, but the file has {} vertices", path, f, k,
+                                      mesh.positions.size()));
         idx.push_back(uint32_t(k));
     }
     // The face's colour: a count, then that many floats (a colour-map index or
@@ -272,7 +272,7 @@ void readBinaryFace(const std::string& path, BigEndianWords& in, int64_t f, int6
     int32_t components = -1;
     if (!in.int32(components)) throw truncated();
     if (components < 0 || components > 4)
-        throw Error(fmt::format("{}: face {} has {} colour components (OFF allows 0 to 4)", path, f, components));
+        throw IoError(fmt::format("{}: face {} has {} colour components (OFF allows 0 to 4)", path, f, components));
     for (int32_t c = 0; c < components; ++c) {
         float unused;
         if (!in.float32(unused)) throw truncated();
@@ -287,9 +287,9 @@ TriangleMesh readBinaryBody(const std::string& path, std::string_view body, size
     BigEndianWords in(body);
     int32_t nv = 0, nf = 0, ne = 0; // edges: not used (nor checked, as the spec says)
     if (!in.int32(nv) || !in.int32(nf) || !in.int32(ne))
-        throw Error(fmt::format("{}: truncated binary OFF: the counts need 12 bytes after the header line, the file "
-                                "has {}",
-                                path, body.size()));
+        throw IoError(fmt::format("{}: truncated binary OFF: the counts need 12 bytes after the header line, the file "
+                                  "has {}",
+                                  path, body.size()));
     // A vertex takes its floats, a face at least its size, one index and its
     // colour count: counts that the rest of the file cannot hold are refused
     // before anything is allocated for them.
@@ -303,11 +303,11 @@ TriangleMesh readBinaryBody(const std::string& path, std::string_view body, size
         const std::string hint =
             little ? " (a little-endian file? svo reads binary OFF big-endian, as the format says)" : "";
         if (nv < 0 || nf < 0)
-            throw Error(fmt::format("{}: the binary header declares {} vertices and {} faces{}", path, nv, nf, hint));
-        throw Error(fmt::format("{}: the header declares {} vertices and {} faces, more than the file's {} bytes can "
-                                "hold{}",
-                                path, nv, nf, bodyAt + body.size(),
-                                little ? hint : std::string(" (truncated or corrupt file)")));
+            throw IoError(fmt::format("{}: the binary header declares {} vertices and {} faces{}", path, nv, nf, hint));
+        throw IoError(fmt::format("{}: the header declares {} vertices and {} faces, more than the file's {} bytes can "
+                                  "hold{}",
+                                  path, nv, nf, bodyAt + body.size(),
+                                  little ? hint : std::string(" (truncated or corrupt file)")));
     }
     TriangleMesh mesh;
     mesh.source = path;
@@ -328,8 +328,8 @@ TriangleMesh readOff(const std::string& path, const std::string& bytes, size_t c
     Lines lines(bytes);
     std::string_view line;
     std::vector<std::string_view> w;
-    auto fail = [&](const std::string& what) { return Error(fmt::format("{}: line {}: {}", path, lines.number(), what)); };
-    if (!lines.next(line)) throw Error(fmt::format("{}: no OFF header", path));
+    auto fail = [&](const std::string& what) { return IoError(fmt::format("{}: line {}: {}", path, lines.number(), what)); };
+    if (!lines.next(line)) throw IoError(fmt::format("{}: no OFF header", path));
     words(line, w);
     if (w.empty()) throw fail("expected an OFF keyword");
     const std::string_view keyword = w[0];
@@ -351,7 +351,7 @@ TriangleMesh readOff(const std::string& path, const std::string& bytes, size_t c
     }
     w.erase(w.begin());
     if (w.empty()) {
-        if (!lines.next(line)) throw Error(fmt::format("{}: truncated OFF header (no counts)", path));
+        if (!lines.next(line)) throw IoError(fmt::format("{}: truncated OFF header (no counts)", path));
         words(line, w);
     }
     int64_t nv = -1, nf = -1;
@@ -378,8 +378,8 @@ TriangleMesh readOff(const std::string& path, const std::string& bytes, size_t c
     mesh.positions.reserve(std::min<size_t>(size_t(nv), bytes.size() / 6)); // a vertex takes 6 bytes or more
     for (int64_t v = 0; v < nv; ++v) {
         if (!lines.next(line))
-            throw Error(fmt::format("{}: the header declares {} vertices but the file ends after {} (truncated file?)",
-                                    path, nv, v));
+            throw IoError(fmt::format("{}: the header declares {} vertices but the file ends after {} (truncated file?)",
+                                      path, nv, v));
         words(line, w);
         Vec3d position;
         Vec3f color;
@@ -390,8 +390,8 @@ TriangleMesh readOff(const std::string& path, const std::string& bytes, size_t c
     std::vector<uint32_t> idx;
     for (int64_t f = 0; f < nf; ++f) {
         if (!lines.next(line))
-            throw Error(fmt::format("{}: the header declares {} faces but the file ends after {} (truncated file?)",
-                                    path, nf, f));
+            throw IoError(fmt::format("{}: the header declares {} faces but the file ends after {} (truncated file?)",
+                                      path, nf, f));
         words(line, w);
         parseFace(w, f, layout, idx, mesh.triangles, fail);
     }

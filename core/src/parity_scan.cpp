@@ -27,7 +27,7 @@ uint8_t prefixXor(uint8_t b)
 ParityScan scanParity(const std::vector<std::array<uint32_t, 3>>& bricks, const std::vector<Brick>& crossings)
 {
     if (bricks.size() != crossings.size())
-        throw Error(fmt::format("scanParity: {} bricks but {} crossing masks", bricks.size(), crossings.size()));
+        throw InvalidInput(fmt::format("scanParity: {} bricks but {} crossing masks", bricks.size(), crossings.size()));
     ParityScan out;
     out.inside.resize(bricks.size());
     // Bricks of one brick column together, going up in z (callers usually

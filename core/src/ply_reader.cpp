@@ -121,7 +121,7 @@ public:
     {
         const std::string_view t = s_.next();
         if (t.empty()) return false;
-        if (!parseDouble(t, out)) throw Error(fmt::format("{}: line {}: malformed number {}", path_, s_.line(), quoted(t)));
+        if (!parseDouble(t, out)) throw IoError(fmt::format("{}: line {}: malformed number {}", path_, s_.line(), quoted(t)));
         return true;
     }
     bool integer(Type, int64_t& out)
@@ -129,7 +129,7 @@ public:
         const std::string_view t = s_.next();
         if (t.empty()) return false;
         if (!parseInt(t, out))
-            throw Error(fmt::format("{}: line {}: expected an integer, found {}", path_, s_.line(), quoted(t)));
+            throw IoError(fmt::format("{}: line {}: expected an integer, found {}", path_, s_.line(), quoted(t)));
         return true;
     }
     bool skip(Type) { return !s_.next().empty(); }
@@ -152,7 +152,7 @@ Header readHeader(const std::string& path, const std::string& bytes)
     Header h;
     size_t pos = 0, lineNo = 0;
     bool haveFormat = false;
-    auto fail = [&](const std::string& what) { return Error(fmt::format("{}: line {}: {}", path, lineNo, what)); };
+    auto fail = [&](const std::string& what) { return IoError(fmt::format("{}: line {}: {}", path, lineNo, what)); };
     while (pos < bytes.size()) {
         const size_t nl = bytes.find('\n', pos);
         if (nl == std::string::npos) break;
@@ -163,7 +163,7 @@ Header readHeader(const std::string& path, const std::string& bytes)
         const std::string_view word = words.next();
         if (lineNo == 1) {
             if (word != "ply" || !words.next().empty())
-                throw Error(fmt::format("{}: not a PLY file (no 'ply' magic line)", path));
+                throw IoError(fmt::format("{}: not a PLY file (no 'ply' magic line)", path));
             continue;
         }
         if (word == "end_header") {
@@ -208,8 +208,8 @@ Header readHeader(const std::string& path, const std::string& bytes)
         }
     }
     if (lineNo == 0 && bytes.compare(0, 3, "ply") != 0)
-        throw Error(fmt::format("{}: not a PLY file (no 'ply' magic line)", path));
-    throw Error(fmt::format("{}: truncated PLY header (no end_header)", path));
+        throw IoError(fmt::format("{}: not a PLY file (no 'ply' magic line)", path));
+    throw IoError(fmt::format("{}: truncated PLY header (no end_header)", path));
 }
 
 /// What the body reader needs of an element: which properties are the
@@ -231,7 +231,7 @@ Layout layoutOf(const std::string& path, const Element& e)
         if (l.vertex && axis >= 0 && !p.list && l.axisOf[axis] < 0) l.axisOf[axis] = int(j);
         if (l.face && p.list && l.indices < 0 && (p.name == "vertex_indices" || p.name == "vertex_index")) {
             if (!isInteger(p.type))
-                throw Error(fmt::format("{}: the face element's '{}' list is not of an integer type", path, p.name));
+                throw IoError(fmt::format("{}: the face element's '{}' list is not of an integer type", path, p.name));
             l.indices = int(j);
         }
     }
@@ -245,8 +245,8 @@ void readRecord(const std::string& path, const Element& e, const Layout& l, uint
                 std::vector<uint32_t>& face, uint64_t& maxIndex, uint64_t& maxIndexFace)
 {
     auto truncated = [&]() {
-        return Error(fmt::format("{}: the file ends in {} {} of {}{} (truncated file?)", path, escaped(e.name), i,
-                                 e.count, src.where()));
+        return IoError(fmt::format("{}: the file ends in {} {} of {}{} (truncated file?)", path, escaped(e.name), i,
+                                   e.count, src.where()));
     };
     c[0] = c[1] = c[2] = 0;
     face.clear();
@@ -261,11 +261,11 @@ void readRecord(const std::string& path, const Element& e, const Layout& l, uint
         }
         int64_t n = 0;
         if (!src.integer(p.countType, n)) throw truncated();
-        if (n < 0) throw Error(fmt::format("{}: {} {} has a list of {} items{}", path, escaped(e.name), i, n, src.where()));
+        if (n < 0) throw IoError(fmt::format("{}: {} {} has a list of {} items{}", path, escaped(e.name), i, n, src.where()));
         if (uint64_t(n) > src.remaining()) // an item takes a byte or more
-            throw Error(fmt::format("{}: {} {} has a list of {} items, more than the rest of the file holds{} "
-                                    "(truncated file?)",
-                                    path, escaped(e.name), i, n, src.where()));
+            throw IoError(fmt::format("{}: {} {} has a list of {} items, more than the rest of the file holds{} "
+                                      "(truncated file?)",
+                                      path, escaped(e.name), i, n, src.where()));
         if (int(j) != l.indices) {
             for (int64_t k = 0; k < n; ++k)
                 if (!src.skip(p.type)) throw truncated();
@@ -276,7 +276,7 @@ void readRecord(const std::string& path, const Element& e, const Layout& l, uint
             int64_t v = 0;
             if (!src.integer(p.type, v)) throw truncated();
             if (v < 0 || v > int64_t(UINT32_MAX))
-                throw Error(fmt::format("{}: face {} uses vertex index {}{}", path, i, v, src.where()));
+                throw IoError(fmt::format("{}: face {} uses vertex index {}{}", path, i, v, src.where()));
             if (uint64_t(v) >= maxIndex) maxIndex = uint64_t(v) + 1, maxIndexFace = i;
             face.push_back(uint32_t(v));
         }
@@ -284,8 +284,8 @@ void readRecord(const std::string& path, const Element& e, const Layout& l, uint
     if (l.vertex)
         for (int a = 0; a < 3; ++a)
             if (!std::isfinite(c[a]))
-                throw Error(fmt::format("{}: vertex {} has a non-finite coordinate ({}, {}, {}){}", path, i, c[0], c[1],
-                                        c[2], src.where()));
+                throw IoError(fmt::format("{}: vertex {} has a non-finite coordinate ({}, {}, {}){}", path, i, c[0], c[1],
+                                          c[2], src.where()));
 }
 
 /// Fan triangulation; a face with fewer than 3 corners still covers its points.
@@ -310,9 +310,9 @@ void checkCounts(const std::string& path, const Header& h, const Source& src)
             bytesEach += h.format == Header::Ascii ? 2.0 : double(sizeOf(p.list ? p.countType : p.type));
         least += double(e.count) * bytesEach;
         if (least > double(src.remaining()) + 1)
-            throw Error(fmt::format("{}: the header declares {} '{}' elements, more than the file's {} bytes can hold "
-                                    "(truncated or corrupt file)",
-                                    path, e.count, escaped(e.name), h.bodyOffset + src.remaining()));
+            throw IoError(fmt::format("{}: the header declares {} '{}' elements, more than the file's {} bytes can hold "
+                                      "(truncated or corrupt file)",
+                                      path, e.count, escaped(e.name), h.bodyOffset + src.remaining()));
     }
 }
 
@@ -327,16 +327,16 @@ void readBody(const std::string& path, const Header& h, Source& src, TriangleMes
     for (const Element& e : h.elements) {
         const Layout l = layoutOf(path, e);
         if (l.vertex) {
-            if (haveVertices) throw Error(fmt::format("{}: more than one vertex element", path));
+            if (haveVertices) throw IoError(fmt::format("{}: more than one vertex element", path));
             haveVertices = true;
             for (int a = 0; a < 3; ++a)
                 if (l.axisOf[a] < 0)
-                    throw Error(fmt::format("{}: the vertex element has no scalar '{}' property", path, "xyz"[a]));
+                    throw IoError(fmt::format("{}: the vertex element has no scalar '{}' property", path, "xyz"[a]));
             if (e.count > UINT32_MAX)
-                throw Error(fmt::format("{}: {} vertices are more than 32-bit indices address", path, e.count));
+                throw IoError(fmt::format("{}: {} vertices are more than 32-bit indices address", path, e.count));
             mesh.positions.reserve(size_t(e.count));
         }
-        if (l.face && l.indices < 0) throw Error(fmt::format("{}: the face element has no 'vertex_indices' list", path));
+        if (l.face && l.indices < 0) throw IoError(fmt::format("{}: the face element has no 'vertex_indices' list", path));
         if (e.properties.empty()) continue; // nothing of it is stored, however many there are
         for (uint64_t i = 0; i < e.count; ++i) {
             double c[3];
@@ -346,8 +346,8 @@ void readBody(const std::string& path, const Header& h, Source& src, TriangleMes
         }
     }
     if (maxIndex > mesh.positions.size())
-        throw Error(fmt::format("{}: face {} uses vertex index {}, but the file has {} vertices", path, maxIndexFace,
-                                maxIndex - 1, mesh.positions.size()));
+        throw IoError(fmt::format("{}: face {} uses vertex index {}, but the file has {} vertices", path, maxIndexFace,
+                                  maxIndex - 1, mesh.positions.size()));
 }
 
 /// Where each record of an ASCII body starts, one a line (and where the last
@@ -417,7 +417,7 @@ bool readBodyInParallel(const std::string& path, const Header& h, std::string_vi
                     AsciiSource src(path, bytes, 0);
                     readRecord(path, e, l, i, src, c, face, localMax, maxFace);
                     double extra = 0;
-                    if (src.value(Type::Float64, extra)) throw Error("more values on the line than the record");
+                    if (src.value(Type::Float64, extra)) throw IoError("more values on the line than the record");
                     if (l.vertex) mesh.positions[i] = {c[0], c[1], c[2]};
                     if (l.face) addFace(face, triangles[t]);
                 }

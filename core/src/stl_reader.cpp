@@ -51,7 +51,7 @@ void weld(const std::vector<Vec3d>& corners, TriangleMesh& mesh)
 {
     const size_t n = corners.size();
     if (n >= UINT32_MAX) // corners are numbered in 32 bits below
-        throw Error(fmt::format("{}: {} triangles are more than svo reads from one STL file", mesh.source, n / 3));
+        throw IoError(fmt::format("{}: {} triangles are more than svo reads from one STL file", mesh.source, n / 3));
     constexpr size_t kBuckets = 256;
     std::vector<uint64_t> hashes(n);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const auto& r) {
@@ -106,7 +106,7 @@ void weld(const std::vector<Vec3d>& corners, TriangleMesh& mesh)
     uint64_t vertices = 0;
     for (size_t i = 0; i < n; ++i)
         if (first[i] == i) number[i] = uint32_t(vertices++);
-    if (vertices >= UINT32_MAX) throw Error(fmt::format("{}: more vertices than 32-bit indices address", mesh.source));
+    if (vertices >= UINT32_MAX) throw IoError(fmt::format("{}: more vertices than 32-bit indices address", mesh.source));
     mesh.positions.resize(size_t(vertices));
     mesh.triangles.resize(n / 3);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const auto& r) {
@@ -129,12 +129,12 @@ TriangleMesh readBinary(const std::string& path, const std::string& bytes)
     // An 80-byte header, a uint32 count and 50 bytes a triangle: a size that
     // disagrees means truncation.
     if (bytes.size() < 84)
-        throw Error(fmt::format("{}: truncated binary STL ({} bytes, header needs 84)", path, bytes.size()));
+        throw IoError(fmt::format("{}: truncated binary STL ({} bytes, header needs 84)", path, bytes.size()));
     const uint32_t n = littleEndian32(bytes.data() + 80);
     const uint64_t want = 84 + 50ull * n;
     if (bytes.size() < want)
-        throw Error(fmt::format("{}: truncated binary STL: {} triangles need {} bytes, the file has {}", path, n, want,
-                                bytes.size()));
+        throw IoError(fmt::format("{}: truncated binary STL: {} triangles need {} bytes, the file has {}", path, n, want,
+                                  bytes.size()));
     // Corners decoded in parallel; the first non-finite coordinate in file order is named.
     std::vector<Vec3d> corners(3 * size_t(n));
     std::atomic<uint64_t> firstBad{UINT64_MAX};
@@ -160,7 +160,7 @@ TriangleMesh readBinary(const std::string& path, const std::string& bytes)
         const uint32_t bits = littleEndian32(bytes.data() + 84 + 50 * (at / 9) + 12 + 4 * (at % 9));
         float f;
         std::memcpy(&f, &bits, 4);
-        throw Error(fmt::format("{}: triangle {} has a non-finite coordinate ({})", path, at / 9, f));
+        throw IoError(fmt::format("{}: triangle {} has a non-finite coordinate ({})", path, at / 9, f));
     }
     TriangleMesh mesh;
     mesh.source = path;
@@ -171,11 +171,11 @@ TriangleMesh readBinary(const std::string& path, const std::string& bytes)
 TriangleMesh readAscii(const std::string& path, const std::string& bytes)
 {
     TextScanner s(bytes);
-    auto fail = [&](const std::string& what) { return Error(fmt::format("{}: line {}: {}", path, s.line(), what)); };
+    auto fail = [&](const std::string& what) { return IoError(fmt::format("{}: line {}: {}", path, s.line(), what)); };
     auto expect = [&](const char* keyword) {
         const std::string_view t = s.next();
         if (t.empty())
-            throw Error(fmt::format("{}: the file ends where '{}' should follow (truncated file?)", path, keyword));
+            throw IoError(fmt::format("{}: the file ends where '{}' should follow (truncated file?)", path, keyword));
         if (!equalsNoCase(t, keyword)) throw fail(fmt::format("expected '{}', found {}", keyword, quoted(t)));
     };
     expect("solid");
@@ -188,7 +188,7 @@ TriangleMesh readAscii(const std::string& path, const std::string& bytes)
     std::vector<Vec3d> loop;
     for (;;) {
         std::string_view t = s.next();
-        if (t.empty()) throw Error(fmt::format("{}: the file ends without 'endsolid' (truncated file?)", path));
+        if (t.empty()) throw IoError(fmt::format("{}: the file ends without 'endsolid' (truncated file?)", path));
         if (equalsNoCase(t, "endsolid")) {
             s.skipLine();
             t = s.next();
@@ -200,7 +200,7 @@ TriangleMesh readAscii(const std::string& path, const std::string& bytes)
         if (!equalsNoCase(t, "facet")) throw fail(fmt::format("expected 'facet' or 'endsolid', found {}", quoted(t)));
         expect("normal");
         for (int a = 0; a < 3; ++a) // the normal is not used
-            if (s.next().empty()) throw Error(fmt::format("{}: the file ends in a facet normal (truncated file?)", path));
+            if (s.next().empty()) throw IoError(fmt::format("{}: the file ends in a facet normal (truncated file?)", path));
         expect("outer");
         expect("loop");
         loop.clear();
@@ -213,7 +213,7 @@ TriangleMesh readAscii(const std::string& path, const std::string& bytes)
             }
             loop.push_back({c[0], c[1], c[2]});
         }
-        if (t.empty()) throw Error(fmt::format("{}: the file ends in a facet (truncated file?)", path));
+        if (t.empty()) throw IoError(fmt::format("{}: the file ends in a facet (truncated file?)", path));
         if (!equalsNoCase(t, "endloop")) throw fail(fmt::format("expected 'vertex' or 'endloop', found {}", quoted(t)));
         expect("endfacet");
         if (loop.size() < 3) throw fail(fmt::format("a facet with {} vertices", loop.size()));

@@ -42,9 +42,9 @@ VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_
     using namespace gpu;
     for (const auto& s : sums)
         if (s[kSumCount] > kFixedMaxContributions)
-            throw Error(fmt::format("{} triangles cover one voxel, more than the {} the attribute sums hold; "
-                                    "use a finer grid or leave out the attribute channels",
-                                    s[kSumCount], kFixedMaxContributions));
+            throw Unsupported(fmt::format("{} triangles cover one voxel, more than the {} the attribute sums hold; "
+                                          "use a finer grid or leave out the attribute channels",
+                                          s[kSumCount], kFixedMaxContributions));
     VoxelAttributes a;
     auto fixedVec = [](const AttributeSums& s, uint32_t at) {
         return Vec3f{float(int32_t(s[at])) / kFixedScale, float(int32_t(s[at + 1])) / kFixedScale,

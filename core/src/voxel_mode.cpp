@@ -10,7 +10,7 @@ VoxelMode parseVoxelMode(const std::string& name)
 {
     if (name == "conservative") return VoxelMode::Conservative;
     if (name == "thin") return VoxelMode::Thin;
-    throw Error("unknown voxelization mode '" + name + "'; the modes are conservative and thin");
+    throw InvalidInput("unknown voxelization mode '" + name + "'; the modes are conservative and thin");
 }
 
 int separatingConnectivity(VoxelMode mode) { return mode == VoxelMode::Thin ? 6 : 26; }

@@ -181,9 +181,9 @@ struct Builder {
 
 WindingTree buildWindingTree(const std::vector<Vec3d>& positions, const std::vector<std::array<uint32_t, 3>>& triangles)
 {
-    if (triangles.empty()) throw Error("a winding tree needs at least one triangle");
+    if (triangles.empty()) throw InvalidInput("a winding tree needs at least one triangle");
     if (triangles.size() >= (size_t(1) << 31))
-        throw Error(fmt::format("{} triangles are more than a winding tree holds (2^31)", triangles.size()));
+        throw Unsupported(fmt::format("{} triangles are more than a winding tree holds (2^31)", triangles.size()));
     WindingTree tree;
     Builder b{positions, triangles, std::vector<Vec3d>(triangles.size()), tree};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {

@@ -31,6 +31,15 @@ namespace {
 /// Bad arguments: ValueError. Raised before any GPU work.
 [[noreturn]] void badValue(const std::string& what) { throw py::value_error(what); }
 
+// The library's errors become Python's by their type alone (one translator,
+// registered in PYBIND11_MODULE below): svo::InvalidInput -> ValueError,
+// svo::IoError -> OSError, svo::DeviceError -> RuntimeError,
+// svo::OutOfMemory -> svo.OutOfMemoryError (a MemoryError, and a
+// RuntimeError as GPU memory errors were before), svo::Unsupported ->
+// NotImplementedError (a RuntimeError), svo::Interrupted -> KeyboardInterrupt.
+// Where the module checks a keyword with a library rule (svo::checkBand, ...),
+// the rule names the keyword, and the error's argument() is the keyword.
+
 // --- grids between OpenVDB and pyopenvdb -----------------------------------
 
 void importPyopenvdb()
@@ -204,14 +213,11 @@ struct KeyboardInterrupter : openvdb::util::NullInterrupter {
 
 // --- the calls ---------------------------------------------------------------
 
-/// A number checked by the library's rule for it (svo::checkBand, ...), under its keyword: a ValueError.
+/// A number checked by the library's rule for it (svo::checkBand, ...), under its keyword: an
+/// svo::InvalidInput whose argument() is the keyword, a ValueError.
 void checked(void (*rule)(double, const std::string&), double value, const std::string& keyword)
 {
-    try {
-        rule(value, keyword);
-    } catch (const svo::Error& e) {
-        badValue(e.what());
-    }
+    rule(value, keyword);
 }
 
 /// Everything a voxelize() call needs, checked, before the GIL is released.
@@ -230,34 +236,31 @@ Request makeRequest(const py::handle& vertices, const py::handle& triangles, std
     std::vector<openvdb::Vec3I> tris;
     std::vector<openvdb::Vec4I> quads;
     toFaces(triangles, points.size(), tris, quads);
+    // The mesh or grid cannot be voxelized as asked: svo::InvalidInput, a ValueError.
     Request r;
-    try {
-        if (!transform.is_none()) {
-            r.xform = toTransform(transform);
-            svo::IndexSpaceMesh m = svo::prepareMesh(points, tris, quads, *r.xform);
-            r.mesh = std::move(m.mesh);
-            r.grid = m.grid;
-            return r;
-        }
-        // resolution or voxel size: the mesh and the grid exactly as `svo voxelize`
-        // has them (a file's mesh, then makeGrid), so both give the same voxels.
-        r.mesh = svo::toTriangleMesh(points, tris, quads);
-        r.mesh.source = "mesh";
-        svo::GridRequest req;
-        // The library's rules, under the keywords' names.
-        if (voxelSize) {
-            checked(svo::checkVoxelSize, *voxelSize, "voxel_size");
-            req.voxelSize = *voxelSize;
-        } else {
-            const double n = resolution.value_or(256);
-            checked(svo::checkResolution, n, "resolution");
-            req.resolution = int64_t(n);
-        }
-        r.grid = svo::makeGrid(r.mesh, req);
-        r.xform = svo::vdb::makeTransform(r.grid);
-    } catch (const svo::Error& e) {
-        throw py::value_error(e.what()); // the mesh or grid cannot be voxelized as asked
+    if (!transform.is_none()) {
+        r.xform = toTransform(transform);
+        svo::IndexSpaceMesh m = svo::prepareMesh(points, tris, quads, *r.xform);
+        r.mesh = std::move(m.mesh);
+        r.grid = m.grid;
+        return r;
     }
+    // resolution or voxel size: the mesh and the grid exactly as `svo voxelize`
+    // has them (a file's mesh, then makeGrid), so both give the same voxels.
+    r.mesh = svo::toTriangleMesh(points, tris, quads);
+    r.mesh.source = "mesh";
+    svo::GridRequest req;
+    // The library's rules, under the keywords' names.
+    if (voxelSize) {
+        checked(svo::checkVoxelSize, *voxelSize, "voxel_size");
+        req.voxelSize = *voxelSize;
+    } else {
+        const double n = resolution.value_or(256);
+        checked(svo::checkResolution, n, "resolution");
+        req.resolution = int64_t(n);
+    }
+    r.grid = svo::makeGrid(r.mesh, req);
+    r.xform = svo::vdb::makeTransform(r.grid);
     return r;
 }
 
@@ -285,8 +288,6 @@ svo::Octree run(svo::Voxelizer& v, const Request& r, const std::string& backend,
     } catch (const svo::Interrupted&) {
         if (interrupter.pending) throw py::error_already_set(); // the KeyboardInterrupt
         throw;
-    } catch (const svo::Error& e) {
-        throw std::runtime_error(e.what());
     }
 }
 
@@ -375,8 +376,6 @@ auto runField(const std::string& backend, F call)
     } catch (const svo::Interrupted&) {
         if (interrupter.pending) throw py::error_already_set();
         throw;
-    } catch (const svo::Error& e) {
-        throw std::runtime_error(e.what());
     }
 }
 
@@ -470,12 +469,9 @@ py::array_t<int32_t> activeVoxels(const py::handle& obj)
 py::tuple readMesh(const std::string& path)
 {
     svo::TriangleMesh m;
-    try {
+    {
         py::gil_scoped_release release;
-        m = svo::loadMesh(path);
-    } catch (const svo::Error& e) {
-        PyErr_SetString(PyExc_OSError, e.what());
-        throw py::error_already_set();
+        m = svo::loadMesh(path); // svo::IoError: an OSError
     }
     py::array_t<double> v({py::ssize_t(m.positions.size()), py::ssize_t(3)});
     py::array_t<uint32_t> t({py::ssize_t(m.triangles.size()), py::ssize_t(3)});
@@ -570,12 +566,8 @@ struct ConeKeywords {
         l.light.step = gi.step;
         l.light.distance = gi.distance;
         l.light.volumeResolution = lightVolume;
-        try {
-            svo::gl::checkAmbientOcclusion(l.ao);
-            if (lit) svo::gl::checkIllumination(l.light);
-        } catch (const svo::Error& e) {
-            badValue(e.what());
-        }
+        svo::gl::checkAmbientOcclusion(l.ao);
+        if (lit) svo::gl::checkIllumination(l.light);
     }
 };
 
@@ -682,12 +674,8 @@ py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, c
     const auto [width, height] = size;
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
         badValue("size: expected (width, height), 1 to 16384 pixels each");
-    svo::gl::ViewCamera camera;
-    try {
-        camera = svo::gl::namedView(svo::gl::gridWorldBox(p.octree.grid), view, double(width) / double(height));
-    } catch (const svo::Error& e) {
-        badValue(e.what());
-    }
+    const svo::gl::ViewCamera camera =
+        svo::gl::namedView(svo::gl::gridWorldBox(p.octree.grid), view, double(width) / double(height));
     svo::gl::Image image;
     {
         py::gil_scoped_release release;
@@ -717,13 +705,9 @@ PyOctree octreeFromGrid(const py::handle& obj, svo::Voxelizer* v, const std::str
     if (!grid) badValue("grid: expected a pyopenvdb BoolGrid, FloatGrid or Vec3SGrid");
     svo::VoxelizeOptions o;
     o.backend = toBackend(backend);
-    try {
-        py::gil_scoped_release release;
-        svo::Voxelizer local;
-        return PyOctree{(v ? *v : local).gridToOctree(*grid, o), grid->transform().copy()};
-    } catch (const svo::Error& e) {
-        throw py::value_error(e.what());
-    }
+    py::gil_scoped_release release;
+    svo::Voxelizer local;
+    return PyOctree{(v ? *v : local).gridToOctree(*grid, o), grid->transform().copy()};
 }
 
 /// A numpy view of `count` rows of `cols` values at `data`, kept alive by `owner`.
@@ -738,11 +722,7 @@ py::array view(const void* data, size_t count, size_t cols, const py::handle& ow
 /// worst=: the library's rule (svo::validate::checkWorst), a ValueError naming the keyword.
 size_t toWorst(int64_t worst)
 {
-    try {
-        svo::validate::checkWorst(worst, "worst");
-    } catch (const svo::Error& e) {
-        badValue(e.what());
-    }
+    svo::validate::checkWorst(worst, "worst");
     return size_t(worst);
 }
 
@@ -795,7 +775,7 @@ py::object validateLevelSetWith(const py::handle& vertices, const py::handle& tr
         return v.levelSet(r.mesh, r.grid, ls, o, r.xform);
     });
     std::string text;
-    try {
+    {
         py::gil_scoped_release release;
         const auto sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(grids.front());
         svo::validate::LevelSetReportOptions ro;
@@ -807,8 +787,6 @@ py::object validateLevelSetWith(const py::handle& vertices, const py::handle& tr
         ro.sign = stats.sign;
         text = svo::validate::levelSetReportJson(
             svo::validate::validateLevelSet(r.mesh, r.grid, svo::validate::activeLevelSetVoxels(*sdf), ro));
-    } catch (const svo::Error& e) {
-        throw std::runtime_error(e.what());
     }
     return py::module_::import("json").attr("loads")(text);
 }
@@ -847,7 +825,10 @@ Args:
 
 Raises:
     ValueError: a bad array, index, transform or option.
-    RuntimeError: the GPU failed (no context, out of memory).
+    RuntimeError: the GPU failed (no context, a driver limit).
+    svo.OutOfMemoryError: GPU or host memory, or gpu_memory, cannot hold the
+        work (a MemoryError, and a RuntimeError).
+    NotImplementedError: a request svo has no method for (a RuntimeError).
     KeyboardInterrupt: Ctrl-C during the call (the Voxelizer stays usable).
 )doc";
 
@@ -862,12 +843,34 @@ PYBIND11_MODULE(_svo, m)
     importPyopenvdb();
     openvdb::initialize();
 
+    // svo's errors by type (see the top of this file). Out of memory is
+    // svo.OutOfMemoryError: a MemoryError, and a RuntimeError as it was.
+    static PyObject* outOfMemory = [] {
+        PyObject* bases = PyTuple_Pack(2, PyExc_MemoryError, PyExc_RuntimeError);
+        PyObject* type = PyErr_NewExceptionWithDoc(
+            "svo._svo.OutOfMemoryError",
+            "Host or GPU memory, or the gpu_memory budget, cannot hold the work: a MemoryError, and a "
+            "RuntimeError (as svo raised it before).",
+            bases, nullptr);
+        Py_XDECREF(bases);
+        return type;
+    }();
+    if (!outOfMemory) throw py::error_already_set();
+    m.attr("OutOfMemoryError") = py::reinterpret_borrow<py::object>(outOfMemory);
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const svo::Interrupted& e) {
             PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
-        } catch (const svo::Error& e) {
+        } catch (const svo::InvalidInput& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const svo::IoError& e) {
+            PyErr_SetString(PyExc_OSError, e.what());
+        } catch (const svo::OutOfMemory& e) {
+            PyErr_SetString(outOfMemory, e.what());
+        } catch (const svo::Unsupported& e) {
+            PyErr_SetString(PyExc_NotImplementedError, e.what());
+        } catch (const svo::Error& e) { // svo::DeviceError
             PyErr_SetString(PyExc_RuntimeError, e.what());
         }
     });
@@ -985,22 +988,12 @@ PYBIND11_MODULE(_svo, m)
             if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
                 badValue("save: a .svo file holds a uniform voxel size and a whole-voxel translation; this octree's "
                          "transform is neither, so write its grid with pyopenvdb instead");
-            try {
-                svo::writeOctreeFile(path, p.octree);
-            } catch (const svo::Error& e) {
-                PyErr_SetString(PyExc_OSError, e.what());
-                throw py::error_already_set();
-            }
+            svo::writeOctreeFile(path, p.octree); // svo::IoError: an OSError
         }, py::arg("path"), "Write a .svo file (versioned, checksummed), atomically.");
     m.def("load", [](const std::string& path) {
-        try {
-            svo::Octree o = svo::readOctreeFile(path);
-            auto xform = svo::vdb::makeTransform(o.grid);
-            return PyOctree{std::move(o), xform};
-        } catch (const svo::Error& e) {
-            PyErr_SetString(PyExc_OSError, e.what());
-            throw py::error_already_set();
-        }
+        svo::Octree o = svo::readOctreeFile(path); // svo::IoError: an OSError
+        auto xform = svo::vdb::makeTransform(o.grid);
+        return PyOctree{std::move(o), xform};
     }, py::arg("path"), "Read a .svo file; a damaged or inconsistent file raises OSError naming the problem.");
 
     m.def(

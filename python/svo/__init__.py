@@ -15,9 +15,9 @@ try:
 except ImportError as e:  # pragma: no cover
     raise ImportError("svo returns pyopenvdb grids: install python3-openvdb") from e
 
-from ._svo import Octree, Voxelizer, active_voxels, load, read_mesh, voxelize
+from ._svo import Octree, OutOfMemoryError, Voxelizer, active_voxels, load, read_mesh, voxelize
 
-__all__ = ["Voxelizer", "Octree", "voxelize", "active_voxels", "read_mesh", "load"]
+__all__ = ["Voxelizer", "Octree", "voxelize", "active_voxels", "read_mesh", "load", "OutOfMemoryError"]
 
 try:  # built with SVO_WITH_VALIDATE (CGAL)
     from ._svo import validate, validate_level_set  # noqa: F401

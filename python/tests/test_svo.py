@@ -163,6 +163,37 @@ def test_read_mesh_errors_are_os_errors(tmp_path):
         svo.read_mesh(str(bad))
 
 
+def test_library_errors_become_python_errors_by_their_type(voxelizer, tmp_path):
+    v, t = tetrahedron()
+    # A bad option (svo::InvalidInput), named by its keyword: ValueError.
+    with pytest.raises(ValueError, match="exterior_band 0.5: a band is a number of voxels from 1 to 1000"):
+        voxelizer.level_set(v, t, resolution=8, exterior_band=0.5)
+    # A missing or damaged file (svo::IoError): OSError, naming the file.
+    with pytest.raises(OSError, match="missing.svo: cannot open the file"):
+        svo.load(str(tmp_path / "missing.svo"))
+    damaged = tmp_path / "damaged.svo"
+    damaged.write_bytes(b"SVOCTREE" + bytes(40))
+    with pytest.raises(OSError, match="damaged.svo: not a valid .svo file"):
+        svo.load(str(damaged))
+    faceless = tmp_path / "faceless.obj"  # a file of no mesh: damaged, not a bad argument
+    faceless.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\n")
+    with pytest.raises(OSError, match="faceless.obj"):
+        svo.read_mesh(str(faceless))
+    # The GPU budget exhausted (svo::OutOfMemory): MemoryError, and a RuntimeError as before.
+    with pytest.raises(MemoryError, match="cannot hold the mesh") as caught:
+        voxelizer.voxelize(v, t, resolution=16, gpu_memory=1024)
+    assert isinstance(caught.value, RuntimeError) and isinstance(caught.value, svo.OutOfMemoryError)
+    # A request svo has no method for (svo::Unsupported): NotImplementedError, a RuntimeError.
+    with pytest.raises(NotImplementedError, match="level sets are computed on the GPU") as caught:
+        voxelizer.level_set(v, t, resolution=8, backend="cpu")
+    assert isinstance(caught.value, RuntimeError)
+    # No usable device (svo::DeviceError): RuntimeError.
+    with pytest.raises(RuntimeError, match="no EGL device matches 'no-such-device'"):
+        svo.Voxelizer(device="no-such-device", program_cache="off").voxelize(v, t, resolution=8)
+    # KeyboardInterrupt (svo::Interrupted): test_ctrl_c_cancels_a_long_call_and_leaves_it_usable.
+    assert voxelizer.voxelize(v, t, resolution=8).activeVoxelCount() > 0
+
+
 def test_two_threads_with_two_voxelizers():
     v, t = tetrahedron()
     want = {r: as_set(svo.active_voxels(svo.voxelize(v, t, resolution=r))) for r in (40, 56)}

@@ -19,18 +19,18 @@ namespace {
 void checkOptions(const AmbientOcclusionOptions& options)
 {
     if (!(options.distance > 0))
-        throw Error(fmt::format("reference ambient occlusion: distance {} is not positive", options.distance));
+        throw InvalidInput(fmt::format("reference ambient occlusion: distance {} is not positive", options.distance));
     if (options.samples < 1)
-        throw Error(fmt::format("reference ambient occlusion: {} samples; at least 1", options.samples));
+        throw InvalidInput(fmt::format("reference ambient occlusion: {} samples; at least 1", options.samples));
     if (options.threads < 0)
-        throw Error(fmt::format("reference ambient occlusion: {} threads; 0 (TBB's default) or more", options.threads));
+        throw InvalidInput(fmt::format("reference ambient occlusion: {} threads; 0 (TBB's default) or more", options.threads));
 }
 
 void checkPoint(size_t i, const Vec3d& point, const Vec3d& normal)
 {
-    if (!finite(point)) throw Error(fmt::format("reference ambient occlusion: point {} is not finite", i));
+    if (!finite(point)) throw InvalidInput(fmt::format("reference ambient occlusion: point {} is not finite", i));
     if (!finite(normal) || !(length(normal) > 0))
-        throw Error(fmt::format("reference ambient occlusion: the normal of point {} is zero or not finite", i));
+        throw InvalidInput(fmt::format("reference ambient occlusion: the normal of point {} is zero or not finite", i));
 }
 
 double estimate(const Scene::Impl& s, size_t index, const Vec3d& point, const Vec3d& normal,
@@ -55,7 +55,7 @@ std::vector<double> ambientOcclusionAt(const Scene& scene, const std::vector<Vec
     const auto start = std::chrono::steady_clock::now();
     checkOptions(options);
     if (points.size() != normals.size())
-        throw Error(fmt::format("reference ambient occlusion: {} points but {} normals", points.size(), normals.size()));
+        throw InvalidInput(fmt::format("reference ambient occlusion: {} points but {} normals", points.size(), normals.size()));
     for (size_t i = 0; i < points.size(); ++i) checkPoint(i, points[i], normals[i]);
     const Scene::Impl& s = scene.impl();
     std::vector<double> result(points.size());

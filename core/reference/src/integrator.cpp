@@ -14,19 +14,19 @@ void checkLighting(const Lighting& lights)
     for (size_t i = 0; i < lights.directional.size(); ++i) {
         const auto& l = lights.directional[i];
         if (!finite(l.direction) || !(length(l.direction) > 0))
-            throw Error(fmt::format("reference lights: directional light {} has a zero or non-finite direction", i));
+            throw InvalidInput(fmt::format("reference lights: directional light {} has a zero or non-finite direction", i));
         if (bad(l.irradiance))
-            throw Error(fmt::format("reference lights: directional light {} has a negative or non-finite irradiance", i));
+            throw InvalidInput(fmt::format("reference lights: directional light {} has a negative or non-finite irradiance", i));
     }
     for (size_t i = 0; i < lights.point.size(); ++i) {
         const auto& l = lights.point[i];
         if (!finite(l.position))
-            throw Error(fmt::format("reference lights: point light {} has a non-finite position", i));
+            throw InvalidInput(fmt::format("reference lights: point light {} has a non-finite position", i));
         if (bad(l.intensity))
-            throw Error(fmt::format("reference lights: point light {} has a negative or non-finite intensity", i));
+            throw InvalidInput(fmt::format("reference lights: point light {} has a negative or non-finite intensity", i));
     }
     if (bad(lights.environment))
-        throw Error("reference lights: the environment radiance is negative or not finite");
+        throw InvalidInput("reference lights: the environment radiance is negative or not finite");
 }
 
 LocalLights::LocalLights(const Scene::Impl& scene, const Lighting& lights) : environment(lights.environment)

@@ -19,10 +19,10 @@ namespace {
 
 void checkOptions(const RenderOptions& options)
 {
-    if (options.samples < 1) throw Error(fmt::format("reference render: {} samples per pixel; at least 1", options.samples));
-    if (options.threads < 0) throw Error(fmt::format("reference render: {} threads; 0 (TBB's default) or more", options.threads));
+    if (options.samples < 1) throw InvalidInput(fmt::format("reference render: {} samples per pixel; at least 1", options.samples));
+    if (options.threads < 0) throw InvalidInput(fmt::format("reference render: {} threads; 0 (TBB's default) or more", options.threads));
     if (!(options.aoDistance > 0))
-        throw Error(fmt::format("reference render: ambient occlusion distance {} is not positive", options.aoDistance));
+        throw InvalidInput(fmt::format("reference render: ambient occlusion distance {} is not positive", options.aoDistance));
 }
 
 int maxScatter(Mode mode)

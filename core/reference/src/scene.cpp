@@ -87,24 +87,24 @@ Scene::Scene(const TriangleMesh& mesh, const Material& material, double rayEpsil
     validateMesh(mesh);
     const size_t nt = mesh.triangles.size(), nv = mesh.positions.size();
     if (!inUnit(material.albedo))
-        throw Error(fmt::format("reference scene: albedo ({}, {}, {}) is not in [0, 1]", material.albedo.x,
-                                material.albedo.y, material.albedo.z));
+        throw InvalidInput(fmt::format("reference scene: albedo ({}, {}, {}) is not in [0, 1]", material.albedo.x,
+                                       material.albedo.y, material.albedo.z));
     if (!material.emission.empty() && material.emission.size() != nt)
-        throw Error(fmt::format("reference scene: {} emissions for {} triangles (expected none or one per triangle)",
-                                material.emission.size(), nt));
+        throw InvalidInput(fmt::format("reference scene: {} emissions for {} triangles (expected none or one per triangle)",
+                                       material.emission.size(), nt));
     for (size_t t = 0; t < material.emission.size(); ++t)
         if (!finite(material.emission[t]) || !nonNegative(material.emission[t]))
-            throw Error(fmt::format("reference scene: the emission of triangle {} is negative or not finite", t));
+            throw InvalidInput(fmt::format("reference scene: the emission of triangle {} is negative or not finite", t));
     if (!(rayEpsilon >= 0) || !std::isfinite(rayEpsilon))
-        throw Error(fmt::format("reference scene: ray epsilon {} is not a finite number >= 0", rayEpsilon));
+        throw InvalidInput(fmt::format("reference scene: ray epsilon {} is not a finite number >= 0", rayEpsilon));
     if (material.vertexColors && !mesh.colors.empty())
         for (size_t v = 0; v < nv; ++v) {
             const Vec3f& c = mesh.colors[v];
             if (!inUnit({c.x, c.y, c.z}))
-                throw Error(fmt::format("reference scene: the colour ({}, {}, {}) of vertex {} is not in [0, 1]", c.x,
-                                        c.y, c.z, v));
+                throw InvalidInput(fmt::format("reference scene: the colour ({}, {}, {}) of vertex {} is not in [0, 1]", c.x,
+                                               c.y, c.z, v));
         }
-    if (nt > (size_t(1) << 31)) throw Error(fmt::format("reference scene: {} triangles; at most 2^31", nt));
+    if (nt > (size_t(1) << 31)) throw InvalidInput(fmt::format("reference scene: {} triangles; at most 2^31", nt));
 
     Impl& s = *impl_;
     s.bounds = mesh.bounds();
@@ -126,12 +126,12 @@ Scene::Scene(const TriangleMesh& mesh, const Material& material, double rayEpsil
 
     std::string error;
     s.device = rtcNewDevice(nullptr);
-    if (!s.device) throw Error(fmt::format("reference scene: Embree has no device (error {})", int(rtcGetDeviceError(nullptr))));
+    if (!s.device) throw DeviceError(fmt::format("reference scene: Embree has no device (error {})", int(rtcGetDeviceError(nullptr))));
     rtcSetDeviceErrorFunction(s.device, recordError, &error);
     auto check = [&](const char* what) {
         if (!error.empty()) {
             rtcSetDeviceErrorFunction(s.device, nullptr, nullptr);
-            throw Error(fmt::format("reference scene: {} failed: {}", what, error));
+            throw DeviceError(fmt::format("reference scene: {} failed: {}", what, error));
         }
     };
     s.scene = rtcNewScene(s.device);
@@ -146,7 +146,7 @@ Scene::Scene(const TriangleMesh& mesh, const Material& material, double rayEpsil
     if (!vertices || !indices) {
         rtcReleaseGeometry(geometry);
         check("allocating the mesh's buffers");
-        throw Error("reference scene: Embree could not allocate the mesh's buffers");
+        throw OutOfMemory("reference scene: Embree could not allocate the mesh's buffers");
     }
     for (size_t v = 0; v < nv; ++v) {
         vertices[3 * v + 0] = float(s.positions[v].x);

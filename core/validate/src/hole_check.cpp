@@ -50,17 +50,17 @@ HoleCheck checkHoles(const TriangleMesh& mesh, const GridSpec& grid, const std::
     const uint64_t nx = grid.dims[0] + 2ull, ny = grid.dims[1] + 2ull, nz = grid.dims[2] + 2ull;
     const uint64_t cells = nx * ny * nz;
     if (cells > (uint64_t(1) << 33))
-        throw Error(fmt::format("{}: the hole check needs {:.1f} GB for a {} x {} x {} grid; validate at a coarser "
-                                "resolution or skip the hole check",
-                                mesh.source, double(cells) / 1e9, nx, ny, nz));
+        throw OutOfMemory(fmt::format("{}: the hole check needs {:.1f} GB for a {} x {} x {} grid; validate at a coarser "
+                                      "resolution or skip the hole check",
+                                      mesh.source, double(cells) / 1e9, nx, ny, nz));
     auto at = [&](uint64_t x, uint64_t y, uint64_t z) { return (x * ny + y) * nz + z; };
     // state: 0 empty and unreached, 255 occupied, 1..26 reached via offset code-1, 254 the seed.
     std::vector<uint8_t> state(cells, 0);
     for (uint64_t k : voxels) {
         const auto p = unpackVoxelKey(k);
         if (p[0] >= grid.dims[0] || p[1] >= grid.dims[1] || p[2] >= grid.dims[2])
-            throw Error(fmt::format("{}: voxel ({}, {}, {}) lies outside the {} x {} x {} grid", mesh.source, p[0], p[1],
-                                    p[2], grid.dims[0], grid.dims[1], grid.dims[2]));
+            throw InvalidInput(fmt::format("{}: voxel ({}, {}, {}) lies outside the {} x {} x {} grid", mesh.source, p[0], p[1],
+                                           p[2], grid.dims[0], grid.dims[1], grid.dims[2]));
         state[at(p[0] + 1ull, p[1] + 1ull, p[2] + 1ull)] = 255;
     }
     const auto off = offsets(connectivity);

@@ -78,12 +78,12 @@ LevelSetCheck checkLevelSet(const TriangleMesh& mesh, const GridSpec& grid, cons
 {
     for (double w : {o.exteriorBand, o.interiorBand})
         if (!(w > 0) || !std::isfinite(w))
-            throw Error(fmt::format("level set check: a band of {} voxels; bands must be positive and finite", w));
+            throw InvalidInput(fmt::format("level set check: a band of {} voxels; bands must be positive and finite", w));
     if (!(o.tolerance >= 0) || !std::isfinite(o.tolerance))
-        throw Error(fmt::format("level set check: tolerance {} voxels; it must be zero or positive and finite",
-                                o.tolerance));
+        throw InvalidInput(fmt::format("level set check: tolerance {} voxels; it must be zero or positive and finite",
+                                       o.tolerance));
     const double h = o.voxelSize > 0 ? o.voxelSize : grid.voxelSize;
-    if (!(h > 0) || !std::isfinite(h)) throw Error(fmt::format("level set check: voxel size {} is not positive", h));
+    if (!(h > 0) || !std::isfinite(h)) throw InvalidInput(fmt::format("level set check: voxel size {} is not positive", h));
     validateMesh(mesh);
     const double tau = o.tolerance;
 
@@ -92,8 +92,8 @@ LevelSetCheck checkLevelSet(const TriangleMesh& mesh, const GridSpec& grid, cons
     std::sort(active.begin(), active.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
     for (size_t i = 1; i < active.size(); ++i)
         if (active[i].index == active[i - 1].index)
-            throw Error(fmt::format("level set check: voxel [{}, {}, {}] is listed twice", active[i].index[0],
-                                    active[i].index[1], active[i].index[2]));
+            throw InvalidInput(fmt::format("level set check: voxel [{}, {}, {}] is listed twice", active[i].index[0],
+                                           active[i].index[1], active[i].index[2]));
     auto isActive = [&](const Index& i) {
         return std::binary_search(active.begin(), active.end(), LevelSetVoxel{i, 0},
                                   [](const auto& a, const auto& b) { return a.index < b.index; });

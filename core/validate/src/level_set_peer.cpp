@@ -43,7 +43,7 @@ OpenVdbComparison compareWithOpenVdb(const TriangleMesh& mesh, const GridSpec& g
 {
     for (double w : {o.exteriorBand, o.interiorBand})
         if (!(w > 0) || !std::isfinite(w))
-            throw Error(fmt::format("OpenVDB comparison: a band of {} voxels; bands must be positive and finite", w));
+            throw InvalidInput(fmt::format("OpenVDB comparison: a band of {} voxels; bands must be positive and finite", w));
     validateMesh(mesh);
     const double h = o.voxelSize > 0 ? o.voxelSize : grid.voxelSize;
     const double tau = o.tolerance;
@@ -68,7 +68,7 @@ OpenVdbComparison compareWithOpenVdb(const TriangleMesh& mesh, const GridSpec& g
             *xform, points, triangles, {}, float(o.exteriorBand), float(o.interiorBand));
         c.openvdbSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     } catch (const openvdb::Exception& e) {
-        throw Error(fmt::format("{}: OpenVDB's meshToSignedDistanceField failed: {}", mesh.source, e.what()));
+        throw DeviceError(fmt::format("{}: OpenVDB's meshToSignedDistanceField failed: {}", mesh.source, e.what()));
     }
 
     std::vector<LevelSetVoxel> ours = voxels;

@@ -34,7 +34,7 @@ nlohmann::json casesJson(const std::vector<VoxelCase>& cases)
 void checkWorst(int64_t worst, const std::string& name)
 {
     if (worst < 0 || worst > 1000000)
-        throw Error(fmt::format("{} {}: the worst cases listed of each kind are 0 to 1000000", name, worst));
+        throw InvalidInput(name, fmt::format("{}: the worst cases listed of each kind are 0 to 1000000", worst));
 }
 
 Report validateVoxelization(const TriangleMesh& mesh, const Octree& octree, const std::vector<uint64_t>& voxelList,

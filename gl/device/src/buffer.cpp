@@ -18,8 +18,8 @@ Buffer::Buffer(const char* what, uint64_t bytes, const void* data, GLbitfield fl
     glNamedBufferStorage(n, GLsizeiptr(bytes ? bytes : 4), data, flags);
     const GLenum err = glGetError();
     if (err == GL_OUT_OF_MEMORY)
-        throw Error(fmt::format("the GPU cannot allocate {:.1f} MiB for the {}", double(bytes) / (1 << 20), what));
-    if (err != GL_NO_ERROR) throw Error(fmt::format("OpenGL error 0x{:04x} allocating the {}", err, what));
+        throw OutOfMemory(fmt::format("the GPU cannot allocate {:.1f} MiB for the {}", double(bytes) / (1 << 20), what));
+    if (err != GL_NO_ERROR) throw DeviceError(fmt::format("OpenGL error 0x{:04x} allocating the {}", err, what));
 }
 
 void Buffer::readBulk(uint64_t offset, uint64_t bytes, void* out) const
@@ -32,7 +32,7 @@ void Buffer::readBulk(uint64_t offset, uint64_t bytes, void* out) const
         const uint64_t n = std::min(chunk, bytes - done);
         glCopyNamedBufferSubData(h_.get(), staging.h_.get(), GLintptr(offset + done), 0, GLsizeiptr(n));
         const void* src = glMapNamedBufferRange(staging.h_.get(), 0, GLsizeiptr(n), GL_MAP_READ_BIT);
-        if (!src) throw Error(fmt::format("cannot map the readback staging buffer ({} bytes)", n));
+        if (!src) throw DeviceError(fmt::format("cannot map the readback staging buffer ({} bytes)", n));
         std::memcpy(dst + done, src, n);
         glUnmapNamedBuffer(staging.h_.get());
     }

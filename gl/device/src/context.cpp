@@ -321,8 +321,8 @@ struct Context::Impl {
         glGetIntegerv(GL_MAJOR_VERSION, &major);
         glGetIntegerv(GL_MINOR_VERSION, &minor);
         if (major * 10 + minor < 45)
-            throw Error(fmt::format("{} ({}) offers OpenGL {}.{}; svo needs 4.5 core", info.renderer, info.eglDevice,
-                                    major, minor));
+            throw DeviceError(fmt::format("{} ({}) offers OpenGL {}.{}; svo needs 4.5 core", info.renderer, info.eglDevice,
+                                          major, minor));
         GLint n = 0;
         glGetIntegerv(GL_NUM_EXTENSIONS, &n);
         for (GLint i = 0; i < n; ++i) {
@@ -364,7 +364,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
         Scope::Saved host;
         host.record();
         if (!host.glxContext && (host.context == EGL_NO_CONTEXT || host.api != EGL_OPENGL_API))
-            throw Error("no desktop OpenGL context is current on this thread to adopt");
+            throw DeviceError("no desktop OpenGL context is current on this thread to adopt");
         impl_->host = host;
         impl_->info.adopted = true;
         impl_->info.eglDevice = host.glxContext ? "the host's GLX context" : "the host's EGL context";
@@ -384,7 +384,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     const std::string want = deviceWanted(options.device);
     const std::vector<Candidate> candidates = candidatesFor(want);
     if (candidates.empty())
-        throw Error(fmt::format("no EGL device matches '{}' (use auto, hardware, software or a device index)", want));
+        throw DeviceError(fmt::format("no EGL device matches '{}' (use auto, hardware, software or a device index)", want));
 
     std::string reasons;
     for (const auto& c : candidates) {
@@ -393,7 +393,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
         reasons += fmt::format("{}{}: {}", reasons.empty() ? "" : "; ", c.name, why);
     }
     if (impl_->context == EGL_NO_CONTEXT)
-        throw Error("cannot create a headless OpenGL 4.5 core context through EGL: " + reasons);
+        throw DeviceError("cannot create a headless OpenGL 4.5 core context through EGL: " + reasons);
 
     impl_->query(options, debug);
     impl_->info.setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -429,7 +429,7 @@ Context::Scope::Scope(const Context& c)
         saved->capture();
         if (!host->restore()) {
             saved->restore();
-            throw Error("cannot make the host's OpenGL context current again on this thread; is it current on another?");
+            throw DeviceError("cannot make the host's OpenGL context current again on this thread; is it current on another?");
         }
         saved_ = std::move(saved);
         return;
@@ -447,9 +447,9 @@ Context::Scope::Scope(const Context& c)
     if (!eglMakeCurrent(c.impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, c.impl_->context)) {
         const EGLint err = eglGetError();
         saved->restore();
-        throw Error(fmt::format("cannot make svo's OpenGL context current on this thread ({}); is it current on "
-                                "another thread?",
-                                eglErrorName(err)));
+        throw DeviceError(fmt::format("cannot make svo's OpenGL context current on this thread ({}); is it current on "
+                                      "another thread?",
+                                      eglErrorName(err)));
     }
     saved_ = std::move(saved);
 }

@@ -15,7 +15,7 @@ EmptyFramebuffer::EmptyFramebuffer(int width, int height)
     glNamedFramebufferParameteri(n, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
     glNamedFramebufferParameteri(n, GL_FRAMEBUFFER_DEFAULT_SAMPLES, 0);
     if (glCheckNamedFramebufferStatus(n, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw Error(fmt::format("cannot create an empty {}x{} framebuffer", width, height));
+        throw DeviceError(fmt::format("cannot create an empty {}x{} framebuffer", width, height));
 }
 
 } // namespace svo::gl

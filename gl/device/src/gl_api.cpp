@@ -12,8 +12,8 @@ void checkGl(const char* what)
     if (first == GL_NO_ERROR) return;
     while (glGetError() != GL_NO_ERROR) {
     }
-    if (first == GL_OUT_OF_MEMORY) throw Error(fmt::format("the GPU ran out of memory during {}", what));
-    throw Error(fmt::format("OpenGL error 0x{:04x} during {}", first, what));
+    if (first == GL_OUT_OF_MEMORY) throw OutOfMemory(fmt::format("the GPU ran out of memory during {}", what));
+    throw DeviceError(fmt::format("OpenGL error 0x{:04x} during {}", first, what));
 }
 
 } // namespace svo::gl

@@ -18,7 +18,7 @@ GLenum stageOf(const std::string& file)
     if (file.size() > 5 && file.compare(file.size() - 5, 5, ".geom") == 0) return GL_GEOMETRY_SHADER;
     if (file.size() > 5 && file.compare(file.size() - 5, 5, ".frag") == 0) return GL_FRAGMENT_SHADER;
     if (file.size() > 5 && file.compare(file.size() - 5, 5, ".comp") == 0) return GL_COMPUTE_SHADER;
-    throw Error("unknown shader stage for " + file);
+    throw DeviceError("unknown shader stage for " + file);
 }
 } // namespace
 
@@ -55,7 +55,7 @@ Program::Program(const ProgramSource& source, bool retrievable) : files_(source.
             glGetShaderiv(s.get(), GL_INFO_LOG_LENGTH, &len);
             std::string log(size_t(std::max(len, 1)), '\0');
             glGetShaderInfoLog(s.get(), len, nullptr, log.data());
-            throw Error(fmt::format("shader {} does not compile on this driver: {}", file,
+            throw DeviceError(fmt::format("shader {} does not compile on this driver: {}", file,
                                     nameFilesInLog(log.c_str(), src)));
         }
         glAttachShader(h_.get(), s.get());
@@ -70,7 +70,7 @@ Program::Program(const ProgramSource& source, bool retrievable) : files_(source.
         glGetProgramiv(h_.get(), GL_INFO_LOG_LENGTH, &len);
         std::string log(size_t(std::max(len, 1)), '\0');
         glGetProgramInfoLog(h_.get(), len, nullptr, log.data());
-        throw Error(fmt::format("shader program {} does not link: {}", files_, log.c_str()));
+        throw DeviceError(fmt::format("shader program {} does not link: {}", files_, log.c_str()));
     }
     for (auto& s : shaders) glDetachShader(h_.get(), s.get());
     findUniforms();
@@ -89,9 +89,9 @@ std::optional<Program> Program::fromBinary(const ProgramSource& source, GLenum f
     // binary it cannot use leaves the link status false. Both are refusals.
     const GLenum err = glGetError();
     if (err == GL_INVALID_ENUM) return std::nullopt;
-    if (err == GL_OUT_OF_MEMORY) throw Error(fmt::format("the GPU ran out of memory loading program {}", source.name));
+    if (err == GL_OUT_OF_MEMORY) throw OutOfMemory(fmt::format("the GPU ran out of memory loading program {}", source.name));
     if (err != GL_NO_ERROR)
-        throw Error(fmt::format("OpenGL error 0x{:04x} loading program {} from its binary", err, source.name));
+        throw DeviceError(fmt::format("OpenGL error 0x{:04x} loading program {} from its binary", err, source.name));
     GLint ok = 0;
     glGetProgramiv(p.h_.get(), GL_LINK_STATUS, &ok);
     if (!ok) return std::nullopt;
@@ -142,7 +142,7 @@ GLint Program::location(const char* name) const
 {
     const auto it = locations_.find(std::string_view(name));
     if (it == locations_.end())
-        throw Error(fmt::format("shader program {} has no active uniform {}: misspelt, or unused by the shaders "
+        throw DeviceError(fmt::format("shader program {} has no active uniform {}: misspelt, or unused by the shaders "
                                 "and so removed by the linker",
                                 files_, name));
     return it->second;

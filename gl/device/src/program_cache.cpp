@@ -115,7 +115,7 @@ std::string ProgramCache::store(const ProgramSource& source, const Program& prog
     try {
         std::error_code ec;
         fs::create_directories(folder_, ec);
-        if (ec) throw Error(fmt::format("{}: {}", folder_, ec.message()));
+        if (ec) throw IoError(fmt::format("{}: {}", folder_, ec.message()));
         writeFileAtomically(entryPath(source), bytes);
     } catch (const std::exception& e) {
         writable_ = false; // one warning; the cache still reads

@@ -23,7 +23,7 @@ public:
         if (std::find(open_.begin(), open_.end(), name) != open_.end()) {
             std::string chain;
             for (const auto& f : open_) chain += f + " -> ";
-            throw Error("shader include cycle: " + chain + name);
+            throw DeviceError("shader include cycle: " + chain + name);
         }
         open_.push_back(name);
         const uint32_t file = numberOf(name);
@@ -65,7 +65,7 @@ private:
         if (const auto it = extra_.find(name); it != extra_.end()) return it->second;
         const auto& files = coreShaderFiles();
         const auto it = files.find(name);
-        if (it == files.end()) throw Error("no shader file named " + name);
+        if (it == files.end()) throw DeviceError("no shader file named " + name);
         return it->second;
     }
 

@@ -15,9 +15,9 @@ Texture2D::Texture2D(const char* what, GLenum internalFormat, int width, int hei
     glTextureStorage2D(n, 1, internalFormat, width, height);
     const GLenum err = glGetError();
     if (err == GL_OUT_OF_MEMORY)
-        throw Error(fmt::format("the GPU cannot allocate the {} ({} x {} texels)", what, width, height));
+        throw OutOfMemory(fmt::format("the GPU cannot allocate the {} ({} x {} texels)", what, width, height));
     if (err != GL_NO_ERROR)
-        throw Error(fmt::format("OpenGL error 0x{:04x} allocating the {} ({} x {} texels)", err, what, width, height));
+        throw DeviceError(fmt::format("OpenGL error 0x{:04x} allocating the {} ({} x {} texels)", err, what, width, height));
     glTextureParameteri(n, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(n, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     checkGl(fmt::format("setting up the {}", what).c_str());

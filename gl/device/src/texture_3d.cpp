@@ -16,9 +16,9 @@ Texture3D::Texture3D(const char* what, GLenum internalFormat, int levels, int wi
     glTextureStorage3D(n, levels, internalFormat, width, height, depth);
     const GLenum err = glGetError();
     if (err == GL_OUT_OF_MEMORY)
-        throw Error(fmt::format("the GPU cannot allocate the {} ({} x {} x {} texels)", what, width, height, depth));
+        throw OutOfMemory(fmt::format("the GPU cannot allocate the {} ({} x {} x {} texels)", what, width, height, depth));
     if (err != GL_NO_ERROR)
-        throw Error(fmt::format("OpenGL error 0x{:04x} allocating the {} ({} x {} x {} texels, {} levels)", err, what,
+        throw DeviceError(fmt::format("OpenGL error 0x{:04x} allocating the {} ({} x {} x {} texels, {} levels)", err, what,
                                 width, height, depth, levels));
     glTextureParameteri(n, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(n, GL_TEXTURE_MAG_FILTER, GL_LINEAR);

@@ -8,7 +8,7 @@ namespace svo::gl {
 void waitForGpu(const std::function<void()>& poll)
 {
     GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    if (!fence) throw Error("cannot create a GL fence to wait for the GPU");
+    if (!fence) throw DeviceError("cannot create a GL fence to wait for the GPU");
     GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT; // the first wait submits the commands
     for (;;) {
         const GLenum r = glClientWaitSync(fence, flags, 20'000'000); // 20 ms
@@ -16,7 +16,7 @@ void waitForGpu(const std::function<void()>& poll)
         if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED) break;
         if (r == GL_WAIT_FAILED) {
             glDeleteSync(fence);
-            throw Error("waiting for the GPU failed (glClientWaitSync)");
+            throw DeviceError("waiting for the GPU failed (glClientWaitSync)");
         }
         try {
             poll();

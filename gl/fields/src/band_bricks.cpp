@@ -153,7 +153,7 @@ std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, con
         },
         std::plus<uint64_t>());
     if (spanned > (uint64_t(1) << 32))
-        throw Error(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); use "
+        throw Unsupported(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); use "
                                 "a coarser grid or a narrower band",
                                 spanned));
     // Calls emit(brick) for every brick near triangle t.

@@ -32,7 +32,7 @@ std::vector<uint32_t> brickTable(const std::vector<std::array<uint32_t, 3>>& bri
 {
     uint64_t slots = 16;
     while (slots < 2 * uint64_t(bricks.size())) slots *= 2;
-    if (slots > (uint64_t(1) << 30)) throw Error(fmt::format("{} bricks are more than the brick table holds", bricks.size()));
+    if (slots > (uint64_t(1) << 30)) throw Unsupported(fmt::format("{} bricks are more than the brick table holds", bricks.size()));
     mask = uint32_t(slots - 1);
     std::vector<uint32_t> table(slots * gpu::kTableWords, 0);
     for (uint64_t s = 0; s < slots; ++s) table[s * gpu::kTableWords + 3] = gpu::kNoChild;
@@ -42,7 +42,7 @@ std::vector<uint32_t> brickTable(const std::vector<std::array<uint32_t, 3>>& bri
         while (table[s * gpu::kTableWords + 3] != gpu::kNoChild) {
             const uint32_t* w = &table[s * gpu::kTableWords];
             if (w[0] == b[0] && w[1] == b[1] && w[2] == b[2])
-                throw Error(fmt::format("internal error: brick ({}, {}, {}) requested twice", b[0], b[1], b[2]));
+                throw DeviceError(fmt::format("internal error: brick ({}, {}, {}) requested twice", b[0], b[1], b[2]));
             s = (s + 1) & mask;
         }
         uint32_t* w = &table[s * gpu::kTableWords];
@@ -148,21 +148,21 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         request.crossings ? workItems(local, mesh, grid, -1.0, true, crossingItems, &crossingWhole) : 0;
     for (uint64_t n : {nDistance, nCrossing})
         if (n > 0xFFFFFFFFu)
-            throw Error(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); "
-                                    "use a coarser grid or a narrower band",
-                                    n));
+            throw Unsupported(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); "
+                                          "use a coarser grid or a narrower band",
+                                          n));
     if (distances && nb > (uint64_t(1) << 23))
-        throw Error(fmt::format("the band has {} bricks, more than one distance pass holds (2^23); use a coarser "
-                                "grid or a narrower band",
-                                nb));
+        throw Unsupported(fmt::format("the band has {} bricks, more than one distance pass holds (2^23); use a coarser "
+                                      "grid or a narrower band",
+                                      nb));
     // One shader buffer holds each array (Context::shaderBufferLimit): refused, never cut short.
     const uint64_t block = context.shaderBufferLimit();
     const uint64_t largest = std::max({distances ? nb * 512 * 4 : 0, request.crossings ? nb * sizeof(Brick) : 0,
                                        uint64_t(mesh.positions.size()) * sizeof(Vec3d)});
     if (block && largest > block)
-        throw Error(fmt::format("the band's {} bricks need {} bytes in one GPU buffer, more than the {} a shader "
-                                "addresses; use a coarser grid or a narrower band",
-                                nb, largest, block));
+        throw DeviceError(fmt::format("the band's {} bricks need {} bytes in one GPU buffer, more than the {} a shader "
+                                      "addresses; use a coarser grid or a narrower band",
+                                      nb, largest, block));
     uint32_t tableMask = 0;
     const std::vector<uint32_t> table = brickTable(request.bricks, tableMask);
 

@@ -25,15 +25,15 @@ namespace svo {
 void checkBand(double voxels, const std::string& name)
 {
     if (!(voxels >= 1.0 && voxels <= 1000.0)) // NaN fails too
-        throw Error(fmt::format("{} {}: a band is a number of voxels from 1 to 1000", name, voxels));
+        throw InvalidInput(name, fmt::format("{}: a band is a number of voxels from 1 to 1000", voxels));
 }
 
 void checkWindingAccuracy(double accuracy, const std::string& name)
 {
     if (!(accuracy > 0) || !std::isfinite(accuracy))
-        throw Error(fmt::format("{} {}: the winding accuracy is a positive finite number (default 1.5; larger is "
-                                "slower and more exact, 1e300 evaluates every triangle)",
-                                name, accuracy));
+        throw InvalidInput(name, fmt::format("{}: the winding accuracy is a positive finite number (default 1.5; larger "
+                                             "is slower and more exact, 1e300 evaluates every triangle)",
+                                             accuracy));
 }
 
 void checkLevelSetOptions(const LevelSetOptions& ls)
@@ -46,9 +46,11 @@ void checkLevelSetOptions(const LevelSetOptions& ls)
 void checkFieldMode(const VoxelizeSettings& options)
 {
     if (options.mode != VoxelMode::Conservative)
-        throw Error(fmt::format("VoxelizeOptions::mode {}: VoxelizeOptions::mode applies to surface voxels; level "
-                                "sets, unsigned distances and solids do not depend on it (leave it conservative)",
-                                voxelModeName(options.mode)));
+        throw InvalidInput(std::vector<Error::Part>{
+            Error::option("VoxelizeOptions::mode"), fmt::format(" {}: ", voxelModeName(options.mode)),
+            Error::option("VoxelizeOptions::mode"),
+            " applies to surface voxels; level sets, unsigned distances and solids do not depend on it (leave it "
+            "conservative)"});
 }
 
 namespace gl {
@@ -66,7 +68,7 @@ GridSpec padded(const GridSpec& grid, uint32_t pad, const std::string& what)
         g.anchor[a] = floorTo8(grid.anchor[a] - int64_t(pad));
         const uint64_t dims = uint64_t(grid.anchor[a] - g.anchor[a]) + grid.dims[a] + pad;
         if (dims > kMaxGridDim)
-            throw Error(fmt::format("{}: the grid with its band is {} voxels wide, more than svo's {}", what, dims,
+            throw Unsupported(fmt::format("{}: the grid with its band is {} voxels wide, more than svo's {}", what, dims,
                                     kMaxGridDim));
         g.dims[a] = uint32_t(dims);
     }
@@ -92,7 +94,7 @@ SignChoice chooseSign(const TriangleMesh& mesh, const SignOptions& asked, std::v
     // three or more triangles, or two running the same way, can still give
     // even crossings (two solids sharing an edge, a flipped face): warned.
     if (edges.boundary)
-        throw Error(fmt::format("{}: parity signs need a mesh without holes, and this one has {}: a column of voxels "
+        throw Unsupported(fmt::format("{}: parity signs need a mesh without holes, and this one has {}: a column of voxels "
                                 "through a hole crosses the surface an odd number of times and every sign beyond it "
                                 "would flip; use the winding sign method (or auto, which picks it for such a mesh)",
                                 mesh.source, edges.describe()));
@@ -172,7 +174,7 @@ FieldResult fieldPass(Context& context, const TriangleMesh& mesh, const GridSpec
     RunStats report;
     FieldResult field = computeField(context, mesh, g, request, &report);
     if (field.lostCrossings)
-        throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
+        throw DeviceError(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
                                 field.lostCrossings));
     for (auto& st : report.stages) stats.stages.push_back(std::move(st));
     stats.gpuBytes = std::max(stats.gpuBytes, report.gpuBytes);
@@ -243,7 +245,7 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     checkLevelSetOptions(ls);
     checkFieldMode(settings);
     if (settings.backend == Backend::Cpu)
-        throw Error("level sets are computed on the GPU; choose the raster or compute backend, or auto");
+        throw Unsupported("level sets are computed on the GPU; choose the raster or compute backend, or auto");
     SignChoice sign{SignMethod::Parity, {}};
     if (signedField) sign = chooseSign(mesh, ls.sign, stats.warnings);
     const bool winding = signedField && sign.method == SignMethod::Winding;
@@ -299,7 +301,7 @@ SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec
 {
     checkFieldMode(settings); // the sign options: chooseSign
     if (settings.backend == Backend::Cpu)
-        throw Error("solids are computed on the GPU; choose the raster or compute backend, or auto");
+        throw Unsupported("solids are computed on the GPU; choose the raster or compute backend, or auto");
     const SignChoice sign = chooseSign(mesh, signOptions, stats.warnings);
     const bool winding = sign.method == SignMethod::Winding;
     const GridSpec g = padded(grid, 2, mesh.source);

@@ -38,18 +38,18 @@ std::vector<Vec3d> localPositions(const TriangleMesh& mesh, const GridSpec& grid
 WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                              const WindingTree& tree, const WindingRequest& request, RunStats* report)
 {
-    if (!(request.beta > 0)) throw Error(fmt::format("a winding accuracy (beta) of {}: it must be positive", request.beta));
+    if (!(request.beta > 0)) throw InvalidInput(fmt::format("a winding accuracy (beta) of {}: it must be positive", request.beta));
     if (tree.depth + 1 > gpu::kWindingStack)
-        throw Error(fmt::format("a winding tree {} levels deep is more than the shader's stack holds ({})",
-                                tree.depth + 1, gpu::kWindingStack));
+        throw Unsupported(fmt::format("a winding tree {} levels deep is more than the shader's stack holds ({})",
+                                      tree.depth + 1, gpu::kWindingStack));
     WindingResult result;
     RunStats stats;
     for (int a = 0; a < 3; ++a) result.brickDims[a] = (grid.dims[a] + 7) / 8;
     const uint64_t boxBricks = uint64_t(result.brickDims[0]) * result.brickDims[1] * result.brickDims[2];
     if (request.perBrick && boxBricks > (uint64_t(1) << 31))
-        throw Error(fmt::format("the grid's box holds {} bricks, more than the winding pass evaluates (2^31); use a "
-                                "coarser grid",
-                                boxBricks));
+        throw Unsupported(fmt::format("the grid's box holds {} bricks, more than the winding pass evaluates (2^31); use a "
+                                      "coarser grid",
+                                      boxBricks));
     const uint64_t nb = request.bricks.size();
     const Context::Scope scope(context);
     request.checkpoint(0.0, "winding upload");
@@ -73,9 +73,9 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
     // One shader buffer holds each array (Context::shaderBufferLimit): refused, never cut short.
     const uint64_t block = context.shaderBufferLimit();
     if (block && std::max(outBytes, brickWords.size() * 4) > block)
-        throw Error(fmt::format("winding numbers for {} bricks need {} bytes in one GPU buffer, more than the {} a "
-                                "shader addresses; use a coarser grid",
-                                nb, std::max(outBytes, brickWords.size() * 4), block));
+        throw DeviceError(fmt::format("winding numbers for {} bricks need {} bytes in one GPU buffer, more than the {} a "
+                                      "shader addresses; use a coarser grid",
+                                      nb, std::max(outBytes, brickWords.size() * 4), block));
     const Buffer& out = context.scratch("winding output", outBytes);
     uploadTimer.end();
     checkGl("winding upload");
@@ -144,10 +144,10 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
         uint32_t stopped = 0;
         out.read(resultBytes, 4, &stopped);
         if (stopped)
-            throw Error(fmt::format("winding numbers: {} ends a shader's loops after {} iterations, and walking this "
-                                    "mesh's winding tree at accuracy {} takes more; use a smaller winding accuracy "
-                                    "(1.5 by default) or a hardware GPU",
-                                    context.info().renderer, loopLimit, request.beta));
+            throw DeviceError(fmt::format("winding numbers: {} ends a shader's loops after {} iterations, and walking this "
+                                          "mesh's winding tree at accuracy {} takes more; use a smaller winding accuracy "
+                                          "(1.5 by default) or a hardware GPU",
+                                          context.info().renderer, loopLimit, request.beta));
         stats.stages.push_back({name, timer.milliseconds(), msSince(w0)});
     };
     if (request.perBrick) {

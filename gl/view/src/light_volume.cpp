@@ -79,18 +79,18 @@ uint32_t texelVoxels(const GridSpec& grid, uint32_t resolution)
 void checkVolumeResolution(const GridSpec& grid, uint32_t r, const char* what)
 {
     if (r < 8 || r > 2048 || (r & (r - 1)) != 0)
-        throw Error(fmt::format("octree view: {} {} is not a power of two from 8 to 2048", what, r));
+        throw InvalidInput(fmt::format("octree view: {} {} is not a power of two from 8 to 2048", what, r));
     if (texelVoxels(grid, r) > 8) {
         const uint64_t largest = *std::max_element(grid.dims.begin(), grid.dims.end());
-        throw Error(fmt::format("octree view: {} {} is too small for a grid {} voxels wide: at least {} (a texel "
-                                "holds at most 8³ voxels)",
-                                what, r, largest, nextPowerOfTwo((largest + 7) / 8)));
+        throw Unsupported(fmt::format("octree view: {} {} is too small for a grid {} voxels wide: at least {} (a texel "
+                                      "holds at most 8³ voxels)",
+                                      what, r, largest, nextPowerOfTwo((largest + 7) / 8)));
     }
 }
 
 void checkIllumination(const Illumination& l)
 {
-    auto bad = [](const std::string& what) { throw Error("octree view: lighting: " + what); };
+    auto bad = [](const std::string& what) { throw InvalidInput("octree view: lighting: " + what); };
     if (l.lights.directional.empty() && l.lights.point.empty()) bad("no light: give a directional or a point light");
     for (const DirectionalLight& d : l.lights.directional) {
         if (!finite(d.direction) || !(dot(d.direction, d.direction) > 0))
@@ -128,9 +128,10 @@ void checkIllumination(const Illumination& l)
 void checkIllumination(const Illumination& l, const ViewBuffers& octree)
 {
     checkIllumination(l);
-    auto bad = [](const std::string& what) { throw Error("octree view: lighting: " + what); };
     if (!octree.normals)
-        bad("the octree has no normal channel (voxelize the mesh with the normal attribute channel, svo::kNormals)");
+        throw InvalidInput(std::vector<Error::Part>{
+            "octree view: lighting: the octree has no normal channel (voxelize the mesh with ",
+            Error::option("svo::kNormals", "the normal attribute channel, svo::kNormals"), ")"});
     checkVolumeResolution(octree.grid, l.volumeResolution, "lighting: volume resolution");
 }
 
@@ -196,7 +197,7 @@ void bindLightVolume(const Program& p, const LightVolumeTextures& v, const ViewB
     }
     p.set("uDirectional", sixWay ? 1u : 0u);
     if (l.clearance && v.clear.levels() == 0)
-        throw Error("octree view: lighting: clearance asked for before its texture was built"); // buildClearance first
+        throw InvalidInput("octree view: lighting: clearance asked for before its texture was built"); // buildClearance first
     if (l.clearance) v.clear.bindTexture(SVO_UNIT_LIGHT_CLEAR);
     p.set("uConeClearance", l.clearance ? 1u : 0u);
     p.set("uSpecular", float(l.specular.x), float(l.specular.y), float(l.specular.z));
@@ -224,7 +225,7 @@ void injectLight(const Context& context, const ViewBuffers& o, const Illuminatio
 {
     checkIllumination(l, o);
     if (!v.lit || texelVoxels(o.grid, l.volumeResolution) != v.texelVoxels)
-        throw Error("octree view: lighting: re-injecting into another volume"); // callers rebuild instead
+        throw InvalidInput("octree view: lighting: re-injecting into another volume"); // callers rebuild instead
     v.built = l;
     // Lights in cell space (local + 1/2), two vec4 each (view_lights.glsl).
     std::vector<float> lights;
@@ -273,10 +274,10 @@ void fillVolume(const Context& context, const ViewBuffers& o, const Illumination
     // A texel marches a shadow ray per voxel and light: on a CPU rasterizer
     // a coarse texel of a large grid can spend the loop budget.
     if (const uint32_t cut = loopCut.count())
-        throw Error(fmt::format("lighting volume: {} ended the light injection of {} texels early (its limit of {} "
-                                "loop iterations an invocation), so their light would be wrong; light on a GPU, or "
-                                "a coarser grid or a finer lighting volume (fewer voxels a texel)",
-                                context.info().renderer, cut, context.info().loopLimit));
+        throw DeviceError(fmt::format("lighting volume: {} ended the light injection of {} texels early (its limit of {} "
+                                      "loop iterations an invocation), so their light would be wrong; light on a GPU, or "
+                                      "a coarser grid or a finer lighting volume (fewer voxels a texel)",
+                                      context.info().renderer, cut, context.info().loopLimit));
 
     // The mip-map, level by level; with six-way radiance, each direction's
     // level from the level below (level 1 from level 0's isotropic radiance).

@@ -81,7 +81,7 @@ Mat4 inverse(const Mat4& m)
     inv[15] = m[0] * m[5] * m[10] - m[0] * m[6] * m[9] - m[4] * m[1] * m[10] + m[4] * m[2] * m[9] +
               m[8] * m[1] * m[6] - m[8] * m[2] * m[5];
     const double det = m[0] * inv[0] + m[1] * inv[4] + m[2] * inv[8] + m[3] * inv[12];
-    if (!(std::abs(det) > 0)) throw Error("octree view: the camera's matrix cannot be inverted");
+    if (!(std::abs(det) > 0)) throw InvalidInput("octree view: the camera's matrix cannot be inverted");
     for (double& v : inv) v /= det;
     return inv;
 }
@@ -110,10 +110,10 @@ CellCamera cellCamera(const GridSpec& grid, const ViewCamera& camera, int width,
 {
     const Vec3d eye = toCell(grid, camera.eye), target = toCell(grid, camera.target);
     const Vec3d toTarget = target - eye;
-    if (!(length(toTarget) > 0)) throw Error("octree view: the camera's eye and target coincide");
+    if (!(length(toTarget) > 0)) throw InvalidInput("octree view: the camera's eye and target coincide");
     const Vec3d f = (1.0 / length(toTarget)) * toTarget;
     Vec3d r = cross(f, camera.up);
-    if (!(length(r) > 1e-9 * length(camera.up))) throw Error("octree view: the camera's up is along its view direction");
+    if (!(length(r) > 1e-9 * length(camera.up))) throw InvalidInput("octree view: the camera's up is along its view direction");
     r = (1.0 / length(r)) * r;
     const Vec3d u = cross(r, f);
     Mat4 view{r.x, u.x, -f.x, 0, r.y, u.y, -f.y, 0, r.z, u.z, -f.z, 0, -dot(r, eye), -dot(u, eye), dot(f, eye), 1};
@@ -164,7 +164,7 @@ struct Target {
         checkGl(fmt::format("allocating a {} x {} picture", width, height).c_str());
         const GLenum status = glCheckNamedFramebufferStatus(f, GL_FRAMEBUFFER);
         if (status != GL_FRAMEBUFFER_COMPLETE)
-            throw Error(fmt::format("octree view: the {} x {} framebuffer is incomplete (0x{:04x})", width, height, status));
+            throw DeviceError(fmt::format("octree view: the {} x {} framebuffer is incomplete (0x{:04x})", width, height, status));
     }
     Handle<deleteRenderbuffer> color, depth;
     Handle<detail::deleteFramebuffer> fbo;
@@ -189,8 +189,8 @@ struct SurfaceTarget {
         checkGl(fmt::format("allocating the mesh's {} x {} surface buffers", width, height).c_str());
         const GLenum status = glCheckNamedFramebufferStatus(f, GL_FRAMEBUFFER);
         if (status != GL_FRAMEBUFFER_COMPLETE)
-            throw Error(fmt::format("octree view: the mesh's {} x {} surface framebuffer is incomplete (0x{:04x})",
-                                    width, height, status));
+            throw DeviceError(fmt::format("octree view: the mesh's {} x {} surface framebuffer is incomplete (0x{:04x})",
+                                          width, height, status));
     }
     Texture2D triangle; ///< each pixel's triangle + 1, 0 where none (view_surface.frag)
     Handle<deleteRenderbuffer> depth;
@@ -213,7 +213,7 @@ std::array<Vec3d, 2> gridWorldBox(const GridSpec& grid)
 
 ViewCamera frameBox(const std::array<Vec3d, 2>& box, const Vec3d& direction, bool orthographic, double aspect)
 {
-    if (!(length(direction) > 0)) throw Error("octree view: a view direction must not be zero");
+    if (!(length(direction) > 0)) throw InvalidInput("octree view: a view direction must not be zero");
     const Vec3d dir = (1.0 / length(direction)) * direction;
     const Vec3d centre = 0.5 * (box[0] + box[1]);
     const double radius = std::max(0.5 * length(box[1] - box[0]), 1e-30);
@@ -241,7 +241,8 @@ ViewCamera namedView(const std::array<Vec3d, 2>& box, const std::string& name, d
                                                   {"-y", {0, 1, 0}},  {"+z", {0, 0, -1}}, {"-z", {0, 0, 1}}};
     for (const auto& [axis, dir] : axes)
         if (name == axis) return frameBox(box, dir, true, aspect);
-    throw Error(fmt::format("view '{}': expected front, +x, -x, +y, -y, +z or -z", name));
+    throw InvalidInput(std::vector<Error::Part>{Error::option("svo::gl::namedView", "view"),
+                                                fmt::format(" '{}': expected front, +x, -x, +y, -y, +z or -z", name)});
 }
 
 Lights defaultLights(const std::array<Vec3d, 2>& box, bool inside)
@@ -264,13 +265,13 @@ void checkAmbientOcclusion(const AmbientOcclusion& ao)
     if (ao.cones < 0 || ao.cones > 16 || (ao.only && ao.cones == 0) || !(ao.apertureDegrees > 0 && ao.apertureDegrees < 180) ||
         !(ao.offset >= 0 && ao.offset < 1e6) || !(ao.distance > 0 && ao.distance <= 1e7) ||
         !(ao.step > 0 && ao.step <= 1))
-        throw Error(fmt::format("octree view: ambient occlusion with {} cones (0 to 16; 1 or more to draw AO alone), aperture {} degrees "
-                                "(0 to 180), offset {} (0 or more), distance {} voxels (positive), step {} (0 to 1)",
-                                ao.cones, ao.apertureDegrees, ao.offset, ao.distance, ao.step));
+        throw InvalidInput(fmt::format("octree view: ambient occlusion with {} cones (0 to 16; 1 or more to draw AO alone), aperture {} degrees "
+                                       "(0 to 180), offset {} (0 or more), distance {} voxels (positive), step {} (0 to 1)",
+                                       ao.cones, ao.apertureDegrees, ao.offset, ao.distance, ao.step));
     const uint32_t r = ao.volumeResolution;
     if (ao.source == AmbientOcclusion::Source::Volume && (r < 8 || r > 2048 || (r & (r - 1)) != 0))
-        throw Error(fmt::format("octree view: ambient occlusion: volume resolution {} is not a power of two from 8 to "
-                                "2048", r));
+        throw InvalidInput(fmt::format("octree view: ambient occlusion: volume resolution {} is not a power of two from 8 to "
+                                       "2048", r));
 }
 
 struct OctreeView::Impl {
@@ -355,10 +356,12 @@ struct OctreeView::Impl {
     const LightVolumeTextures& opacityVolume(const Context& context, uint32_t resolution) const
     {
         if (texelVoxels(grid, resolution) > 8) // a texel holds at most 8³ voxels
-            throw Error(fmt::format("octree view: ambient occlusion: a grid {} voxels wide needs a volume of more "
-                                    "than {} texels a side (AmbientOcclusion::volumeResolution), or the octree's "
-                                    "opacity (AmbientOcclusion::Source::Octree)",
-                                    *std::max_element(grid.dims.begin(), grid.dims.end()), resolution));
+            throw Unsupported(std::vector<Error::Part>{
+                fmt::format("octree view: ambient occlusion: a grid {} voxels wide needs a volume of more than {} "
+                            "texels a side (",
+                            *std::max_element(grid.dims.begin(), grid.dims.end()), resolution),
+                Error::option("AmbientOcclusion::volumeResolution"), "), or the octree's opacity (",
+                Error::option("AmbientOcclusion::Source::Octree"), ")"});
         checkVolumeResolution(grid, resolution, "ambient occlusion: volume resolution");
         if (light && light->texelVoxels == texelVoxels(grid, resolution) && !light->opticalDepth) return *light;
         light.reset();
@@ -373,7 +376,7 @@ std::unique_ptr<OctreeView::Impl> upload(const Context& context, const Octree& o
 {
     if (octree.levelStart.size() != size_t(octree.brickLevel) + 2 || octree.levelStart.back() != octree.nodes.size() ||
         octree.nodes.empty())
-        throw Error("octree view: the octree's level ranges do not match its nodes");
+        throw InvalidInput("octree view: the octree's level ranges do not match its nodes");
     checkGl("the GL work before uploading an octree to view");
     auto impl = std::make_unique<OctreeView::Impl>();
     impl->grid = octree.grid;
@@ -440,7 +443,7 @@ std::unique_ptr<OctreeView::Impl> upload(const Context& context, const Octree& o
     if (!octree.attributes.empty()) {
         const std::vector<uint64_t> offsets = brickVoxelOffsets(octree);
         if (offsets.back() >= (uint64_t(1) << 32))
-            throw Error("octree view: attribute colours need fewer than 2^32 voxels");
+            throw Unsupported("octree view: attribute colours need fewer than 2^32 voxels");
         const std::vector<uint32_t> start(offsets.begin(), offsets.end());
         impl->voxelStart.emplace("brick voxel starts (view)", start.size() * 4, start.data(), 0);
         const VoxelAttributes& a = octree.attributes;
@@ -495,7 +498,7 @@ void checkSize(int width, int height)
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
     if (width < 1 || height < 1 || width > maxSize || height > maxSize)
-        throw Error(fmt::format("octree view: a {} x {} picture is outside 1 .. {} pixels per side", width, height, maxSize));
+        throw InvalidInput(fmt::format("octree view: a {} x {} picture is outside 1 .. {} pixels per side", width, height, maxSize));
 }
 
 /// Draws the layers into the framebuffer bound now, over (0, 0, width, height).
@@ -525,7 +528,7 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
 
     const bool shadeMesh = layers.voxels && layers.surface == Surface::Mesh;
     if (shadeMesh) {
-        if (!v.meshArray) throw Error("octree view: shading the mesh's surface needs the mesh, and the view has none");
+        if (!v.meshArray) throw InvalidInput("octree view: shading the mesh's surface needs the mesh, and the view has none");
         // The mesh into its own framebuffer: the triangle each pixel sees,
         // where the voxel pass meets it with the pixel's ray and shades.
         GLint drawn = 0;
@@ -554,7 +557,7 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
         case VoxelColor::Triangle: channel = &v.triangles, mode = SVO_VIEW_COLOR_TRIANGLE; break;
         }
         if (channel) {
-            if (!*channel) throw Error("octree view: the octree has no such attribute channel to colour voxels by");
+            if (!*channel) throw InvalidInput("octree view: the octree has no such attribute channel to colour voxels by");
             (*channel)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ATTRIBUTE);
             v.voxelStart->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_VOXEL_START);
         }
@@ -693,10 +696,10 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
 void checkLoopCut(const Context& context, const OctreeView::Impl& v)
 {
     if (v.cutPixels == 0) return;
-    throw Error(fmt::format("octree view: {} ended the rays of {} pixels early (its limit of {} loop iterations an "
-                            "invocation), so the picture would be incomplete; draw on a GPU, or with fewer cones, "
-                            "a wider cone step or a coarser grid",
-                            context.info().renderer, v.cutPixels, context.info().loopLimit));
+    throw DeviceError(fmt::format("octree view: {} ended the rays of {} pixels early (its limit of {} loop iterations an "
+                                  "invocation), so the picture would be incomplete; draw on a GPU, or with fewer cones, "
+                                  "a wider cone step or a coarser grid",
+                                  context.info().renderer, v.cutPixels, context.info().loopLimit));
 }
 
 } // namespace
@@ -718,7 +721,7 @@ std::vector<OctreeView::FrameTime> OctreeView::timeFrames(const ViewCamera& came
     Context::Scope scope(context_);
     checkGl("the GL work before timing a view");
     checkSize(width, height);
-    if (frames < 1) throw Error(fmt::format("octree view: {} frames to time; at least 1", frames));
+    if (frames < 1) throw InvalidInput(fmt::format("octree view: {} frames to time; at least 1", frames));
     Target target(width, height);
     glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.get());
     drawLayers(context_, *impl_, camera, width, height, layers); // programs made, caches warm: not timed

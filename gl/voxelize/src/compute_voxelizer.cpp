@@ -133,25 +133,25 @@ public:
           queueGroups_(queueGroups(context)), loopLimit_(context.info().loopLimit)
     {
         if (triangles_ >= (uint64_t(1) << 32))
-            throw Error(fmt::format("{} triangles are more than the compute backend indexes; use the raster backend",
-                                    triangles_));
+            throw Unsupported(fmt::format("{} triangles are more than the compute backend indexes; use the raster backend",
+                                          triangles_));
         const WorkList list = workList(local_, mesh, half_, dims_);
         items_ = list.items;
         // The shader counts one triangle's columns in 32 bits.
         if (list.maxColumns >= (uint64_t(1) << 32) - kChunk)
-            throw Error(fmt::format("a triangle spans {} voxel columns, more than the compute backend counts; use the "
-                                    "raster backend or a coarser grid",
-                                    list.maxColumns));
+            throw Unsupported(fmt::format("a triangle spans {} voxel columns, more than the compute backend counts; use the "
+                                          "raster backend or a coarser grid",
+                                          list.maxColumns));
         if (items_ >= (uint64_t(1) << 31))
-            throw Error(fmt::format("the compute backend would need {} column chunks, more than one pass indexes; "
-                                    "use the raster backend or a coarser grid",
-                                    items_));
+            throw Unsupported(fmt::format("the compute backend would need {} column chunks, more than one pass indexes; "
+                                          "use the raster backend or a coarser grid",
+                                          items_));
         const uint64_t block = context.shaderBufferLimit();
         const uint64_t workBytes = std::max<size_t>(list.large.size(), 1) * sizeof list.large[0];
         if (block && std::max<uint64_t>({local_.size() * 12, triangles_ * 12, workBytes}) > block)
-            throw Error(fmt::format("{} vertices and {} triangles are more than one shader buffer of {} bytes holds; "
-                                    "use the raster backend",
-                                    local_.size(), triangles_, block));
+            throw DeviceError(fmt::format("{} vertices and {} triangles are more than one shader buffer of {} bytes holds; "
+                                          "use the raster backend",
+                                          local_.size(), triangles_, block));
         work_ = &context.scratch("compute work list", workBytes);
         work_->write(0, list.large.size() * sizeof list.large[0], list.large.data());
         program_.set("uHalf", half_);

@@ -66,8 +66,8 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
     const uint32_t L = brickLevelFor(grid);
     // The shaders index uint words: 2 per node and 16 per brick, in 32 bits.
     if (nodeCapacity > (uint64_t(1) << 31) - 16 || brickCapacity > (uint64_t(1) << 28))
-        throw Error(fmt::format("the octree would need {} nodes and {} bricks, beyond 32-bit indices; use a coarser grid",
-                                nodeCapacity, brickCapacity));
+        throw Unsupported(fmt::format("the octree would need {} nodes and {} bricks, beyond 32-bit indices; use a coarser grid",
+                                      nodeCapacity, brickCapacity));
     Build b;
     b.nodeCapacity = 1 + (std::max<uint64_t>(nodeCapacity, 1) - 1 + 7) / 8 * 8; // root + whole blocks
     b.brickCapacity = std::max<uint64_t>(brickCapacity, 1);
@@ -187,7 +187,7 @@ Octree OctreeBuilder::readOctree(const Build& b, const GridSpec& grid)
 Octree buildOctreeGpu(Context& context, const GridSpec& grid, const std::vector<std::pair<uint64_t, Brick>>& bricks,
                       const Checkpoint& checkpoint, RunStats* report)
 {
-    if (bricks.size() > 0xFFFFFFF0u) throw Error(fmt::format("{} bricks exceed one GPU build", bricks.size()));
+    if (bricks.size() > 0xFFFFFFF0u) throw Unsupported(fmt::format("{} bricks exceed one GPU build", bricks.size()));
     const Context::Scope scope(context);
     checkpoint(0.0, "brick upload");
     RunStats stats;
@@ -203,8 +203,8 @@ Octree buildOctreeGpu(Context& context, const GridSpec& grid, const std::vector<
         if (!mask.count()) continue;
         const auto p = unpackVoxelKey(key);
         if (std::max({p[0], p[1], p[2]}) >> 3 >> L)
-            throw Error(fmt::format("brick at local ({}, {}, {}) lies outside the grid {} x {} x {}", p[0] & ~7u,
-                                    p[1] & ~7u, p[2] & ~7u, grid.dims[0], grid.dims[1], grid.dims[2]));
+            throw InvalidInput(fmt::format("brick at local ({}, {}, {}) lies outside the grid {} x {} x {}", p[0] & ~7u,
+                                           p[1] & ~7u, p[2] & ~7u, grid.dims[0], grid.dims[1], grid.dims[2]));
         keys.push_back(brickOfKey(key)), masks.push_back(mask);
     }
     const Buffer& entries = context.scratch("brick keys", keys.size() * 8);
@@ -226,7 +226,7 @@ Octree buildOctreeGpu(Context& context, const GridSpec& grid, const std::vector<
     auto build = builder.record(grid, in, OctreeBuilder::nodeBound(L, keys.size()), keys.size());
     timer.end();
     OctreeBuilder::readCounts(build);
-    if (build.overflowed()) throw Error("internal error: the octree build overflowed its upper bound");
+    if (build.overflowed()) throw DeviceError("internal error: the octree build overflowed its upper bound");
     stats.stages.front().gpuMs = uploadTimer.milliseconds();
     stats.stages.push_back({"octree build", timer.milliseconds(), msSince(t0)});
     stats.gpuBytes = entries.bytes() + maskBuffer.bytes() + build.bytes();

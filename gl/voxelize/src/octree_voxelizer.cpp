@@ -46,7 +46,7 @@ void attachAttributes(const Program& program, const TriangleMesh& mesh, uint32_t
 {
     const uint64_t voxels = octree.voxelCount();
     if (voxels > (uint64_t(1) << 28))
-        throw Error(fmt::format("{} voxels are too many for attribute channels in one pass", voxels));
+        throw Unsupported(fmt::format("{} voxels are too many for attribute channels in one pass", voxels));
     const auto offsets64 = brickVoxelOffsets(octree);
     const std::vector<uint32_t> offsets(offsets64.begin(), offsets64.end());
     const TriangleValues tv = triangleValues(mesh, true);
@@ -345,9 +345,9 @@ void refuseBeyondHostMemory(uint64_t entries)
     const uint64_t hostFree = availableHostMemory();
     const double hostNeed = double(entries) / 150.0 * 88.0;
     if (hostFree && hostNeed > double(hostFree))
-        throw Error(fmt::format("the octree would need about {:.1f} GiB of host memory (estimated from the "
-                                "triangles' areas), more than the {:.1f} GiB free; use a coarser grid",
-                                hostNeed / double(1 << 30), double(hostFree) / double(1 << 30)));
+        throw OutOfMemory(fmt::format("the octree would need about {:.1f} GiB of host memory (estimated from the "
+                                      "triangles' areas), more than the {:.1f} GiB free; use a coarser grid",
+                                      hostNeed / double(1 << 30), double(hostFree) / double(1 << 30)));
 }
 
 /// The tiles' octrees as one: bricks merged by origin (no two tiles share a
@@ -358,7 +358,7 @@ Octree mergeTiles(const GridSpec& grid, std::vector<Octree>& tiles, uint32_t att
     size_t total = 0;
     for (const Octree& t : tiles) total += t.bricks.size();
     if (total >= (uint64_t(1) << 32) - 1)
-        throw Error(fmt::format("{} bricks are more than one octree indexes (2^32); use a coarser grid", total));
+        throw Unsupported(fmt::format("{} bricks are more than one octree indexes (2^32); use a coarser grid", total));
     struct Source {
         uint64_t key;
         uint32_t tile, brick;
@@ -423,9 +423,9 @@ Octree voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSp
                         mesh.triangles.size(), context.shaderBufferLimit());
     const PassSize largest = budget.largest();
     if (!largest.list)
-        throw Error(fmt::format("a GPU memory budget of {} cannot hold the mesh ({}: vertices, indices, work "
-                                "list) and the smallest pass ({} in all); raise the budget",
-                                byteSize(budget.limit()), byteSize(budget.fixed()), byteSize(budget.bytes(budget.sizeFor(1)))));
+        throw OutOfMemory(fmt::format("a GPU memory budget of {} cannot hold the mesh ({}: vertices, indices, work "
+                                      "list) and the smallest pass ({} in all); raise the budget",
+                                      byteSize(budget.limit()), byteSize(budget.fixed()), byteSize(budget.bytes(budget.sizeFor(1)))));
     OctreePasses passes(context, mesh, grid, options, *writer, builder, attributeProgram, budget);
 
     // The whole grid first, rasterized and built without waiting, with room
@@ -460,9 +460,9 @@ Octree voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSp
             const uint64_t pieces = uint64_t(std::ceil(budget.excess(p.needed) * 1.25)) + 1;
             const std::vector<VoxelBox> boxes = splitBox(p.box, pieces);
             if (boxes.size() == 1)
-                throw Error(fmt::format("one brick of the grid (local {}, {}, {}) needs {} voxel-list entries, "
-                                        "more than a GPU budget of {} holds; raise the budget or use a coarser grid",
-                                        p.box.lo[0], p.box.lo[1], p.box.lo[2], p.needed.list, byteSize(budget.limit())));
+                throw OutOfMemory(fmt::format("one brick of the grid (local {}, {}, {}) needs {} voxel-list entries, "
+                                              "more than a GPU budget of {} holds; raise the budget or use a coarser grid",
+                                              p.box.lo[0], p.box.lo[1], p.box.lo[2], p.needed.list, byteSize(budget.limit())));
             for (const VoxelBox& box : boxes) {
                 const Checkpoint part = checkpoint.part(0.05 + 0.8 * done / volume, 0.05 + 0.8 * (done + box.volume()) / volume);
                 // A box holds at most its parent's entries (each entry lies in one box).

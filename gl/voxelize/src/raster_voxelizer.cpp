@@ -27,8 +27,8 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 bool useHardware(const Context& context, const RasterOptions& o)
 {
     if (o.conservative == ConservativeMode::Hardware && !context.info().conservativeRasterNV)
-        throw Error("hardware dilation needs GL_NV_conservative_raster, which " + context.info().renderer +
-                    " does not offer");
+        throw DeviceError("hardware dilation needs GL_NV_conservative_raster, which " + context.info().renderer +
+                          " does not offer");
     return o.conservative != ConservativeMode::Shader && o.conservative != ConservativeMode::CentroidPush &&
            context.info().conservativeRasterNV;
 }
@@ -66,7 +66,7 @@ public:
           program_(context.program(voxelizeShaders(), {"raster.vert", "raster.geom", "raster.frag"}))
     {
         const int maxTile = context.info().maxViewport;
-        if (maxTile < 1) throw Error("the GL context reports no usable viewport size");
+        if (maxTile < 1) throw DeviceError("the GL context reports no usable viewport size");
         vao_.setPositions(*vertices_, 0);
         vao_.setIndices(*indices_);
         checkGl("vertex array");
@@ -125,7 +125,7 @@ uint32_t readCount(const Buffer& counter)
     uint32_t c[2] = {0, 0};
     counter.read(0, sizeof c, c);
     if (c[1])
-        throw Error("the voxel list passed 2^32 entries, more than an atomic counter can address; use a coarser grid");
+        throw Unsupported("the voxel list passed 2^32 entries, more than an atomic counter can address; use a coarser grid");
     return c[0];
 }
 
@@ -142,9 +142,9 @@ std::unique_ptr<ListWriter> makeWriter(const Context& context, const TriangleMes
 const Buffer& makeList(const Context& context, uint64_t capacity)
 {
     if (capacity > (uint64_t(1) << 32) - 1)
-        throw Error(fmt::format("the voxel list would need {} entries, beyond the 2^32 an atomic counter "
-                                "can address; use a coarser grid",
-                                capacity));
+        throw Unsupported(fmt::format("the voxel list would need {} entries, beyond the 2^32 an atomic counter "
+                                      "can address; use a coarser grid",
+                                      capacity));
     return context.scratch("voxel list", capacity * 8);
 }
 
@@ -223,9 +223,9 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
         // shader addresses, refuse. The estimate runs high, so try with less first.
         if (block && capacity * 8 > block) {
             if (attempt > 0)
-                throw Error(fmt::format("the voxel list needs {} entries, more than one shader buffer of {} bytes "
-                                        "holds; voxelizeRaster has no tiles: use voxelizeToOctree or a coarser grid",
-                                        capacity, block));
+                throw DeviceError(fmt::format("the voxel list needs {} entries, more than one shader buffer of {} bytes "
+                                              "holds; voxelizeRaster has no tiles: use voxelizeToOctree or a coarser grid",
+                                              capacity, block));
             capacity = block / 8;
         }
         listBuffer = &makeList(context, capacity);

@@ -84,7 +84,7 @@ double VoxelizeStats::gpuMs() const
 
 VoxelizeStats medianStats(const std::vector<VoxelizeStats>& runs)
 {
-    if (runs.empty()) throw Error("medianStats needs at least one run");
+    if (runs.empty()) throw InvalidInput("medianStats needs at least one run");
     VoxelizeStats out = runs.back();
     for (size_t s = 0; s < out.stages.size(); ++s) {
         std::vector<double> gpu, wall;
@@ -104,7 +104,7 @@ Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool cr
 {
     // A dilation mode is a raster option: asking for one picks the raster backend.
     if (settings.backend == Backend::Compute && settings.dilation != Dilation::Auto)
-        throw Error("a dilation mode applies to the raster backend; the compute backend needs none");
+        throw InvalidInput("a dilation mode applies to the raster backend; the compute backend needs none");
     if (settings.backend != Backend::Auto) return settings.backend;
     if (settings.dilation != Dilation::Auto) return Backend::Raster;
     // Measured (bench/results/nvidia-h100/compute.md): compute is the faster

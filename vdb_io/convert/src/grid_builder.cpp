@@ -61,10 +61,10 @@ void checkVdbVoxelSize(double voxelSize, const std::string& what)
 {
     // The product, as ScaleMap forms it, decides; kMinVoxelSize is its cube root.
     if (!(voxelSize * voxelSize * voxelSize >= 3e-15))
-        throw Error(fmt::format("{}: voxel size {:.6g} is below the smallest an OpenVDB transform takes ({:.6g}, as "
-                                "its scale map needs voxel size^3 >= 3e-15); scale the mesh up, use a coarser grid, "
-                                "or write .svo",
-                                what, voxelSize, kMinVoxelSize));
+        throw InvalidInput(fmt::format("{}: voxel size {:.6g} is below the smallest an OpenVDB transform takes ({:.6g}, as "
+                                       "its scale map needs voxel size^3 >= 3e-15); scale the mesh up, use a coarser grid, "
+                                       "or write .svo",
+                                       what, voxelSize, kMinVoxelSize));
 }
 
 namespace {
@@ -79,12 +79,12 @@ openvdb::math::Transform::Ptr buildTransform(const GridSpec& grid, const std::st
         // (Transform(MapBase::Ptr) simplifies it), as the writer does.
         openvdb::math::Transform copy(xform->baseMap()->copy());
     } catch (const openvdb::Exception& e) {
-        throw Error(fmt::format("{}: the grid lies {:.3g} from the origin, {:.3g} voxels of {:.6g}: farther than an "
-                                "OpenVDB transform holds ({}); move the mesh nearer the origin, use a coarser grid, "
-                                "or write .svo",
-                                what, std::max({std::abs(t[0]), std::abs(t[1]), std::abs(t[2])}),
-                                std::max({std::abs(t[0]), std::abs(t[1]), std::abs(t[2])}) / grid.voxelSize,
-                                grid.voxelSize, e.what()));
+        throw InvalidInput(fmt::format("{}: the grid lies {:.3g} from the origin, {:.3g} voxels of {:.6g}: farther than an "
+                                       "OpenVDB transform holds ({}); move the mesh nearer the origin, use a coarser grid, "
+                                       "or write .svo",
+                                       what, std::max({std::abs(t[0]), std::abs(t[1]), std::abs(t[2])}),
+                                       std::max({std::abs(t[0]), std::abs(t[1]), std::abs(t[2])}) / grid.voxelSize,
+                                       grid.voxelSize, e.what()));
     }
     return xform;
 }
@@ -178,11 +178,11 @@ GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name, 
                 if (r != c ? m(r, c) != 0.0 : !(m(r, c) > 0.0)) diagonal = false;
     }
     if (!diagonal)
-        throw Error(fmt::format("{}: grid '{}' has a {} transform; svo needs scaling plus translation", name,
-                                base.getName(), map->type()));
+        throw InvalidInput(fmt::format("{}: grid '{}' has a {} transform; svo needs scaling plus translation", name,
+                                       base.getName(), map->type()));
     if (!(vs[0] > 0) || std::abs(vs[1] - vs[0]) > 1e-12 * vs[0] || std::abs(vs[2] - vs[0]) > 1e-12 * vs[0])
-        throw Error(fmt::format("{}: grid '{}' has non-uniform voxel size ({}, {}, {})", name, base.getName(), vs[0],
-                                vs[1], vs[2]));
+        throw InvalidInput(fmt::format("{}: grid '{}' has non-uniform voxel size ({}, {}, {})", name, base.getName(), vs[0],
+                                       vs[1], vs[2]));
     GridBricks out;
     out.grid.voxelSize = vs[0];
     const openvdb::Vec3d t = xform.indexToWorld(openvdb::Vec3d(0, 0, 0));
@@ -190,12 +190,12 @@ GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name, 
         const double s = t[a] / vs[0];
         const double r = std::round(s);
         if (std::abs(s - r) > 1e-6)
-            throw Error(fmt::format("{}: grid '{}' is translated by {} voxels along {}, not a whole number; svo's "
-                                    "octrees sit on whole-voxel lattices",
-                                    name, base.getName(), s, "xyz"[a]));
+            throw InvalidInput(fmt::format("{}: grid '{}' is translated by {} voxels along {}, not a whole number; svo's "
+                                           "octrees sit on whole-voxel lattices",
+                                           name, base.getName(), s, "xyz"[a]));
         if (!(std::abs(r) < 9.0e18))
-            throw Error(fmt::format("{}: grid '{}' is translated by {:.3g} voxels along {}, beyond 64-bit indices",
-                                    name, base.getName(), r, "xyz"[a]));
+            throw InvalidInput(fmt::format("{}: grid '{}' is translated by {:.3g} voxels along {}, beyond 64-bit indices",
+                                           name, base.getName(), r, "xyz"[a]));
         out.grid.shift[a] = int64_t(r);
     }
 
@@ -211,8 +211,8 @@ GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name, 
             out.grid.anchor[a] = floorTo8(lo);
             const int64_t dim = int64_t(bbox.max()[a]) - out.grid.anchor[a] + 1;
             if (dim > int64_t(kMaxGridDim))
-                throw Error(fmt::format("{}: grid '{}' spans {} voxels along {}, beyond the supported {}", name,
-                                        base.getName(), dim, "xyz"[a], kMaxGridDim));
+                throw InvalidInput(fmt::format("{}: grid '{}' spans {} voxels along {}, beyond the supported {}", name,
+                                               base.getName(), dim, "xyz"[a], kMaxGridDim));
             out.grid.dims[a] = uint32_t(dim);
         }
         auto keyAt = [&](const openvdb::Coord& c) {
@@ -236,9 +236,9 @@ GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name, 
         for (auto counter = it; counter; ++counter)
             if (counter.isTileValue()) tileBricks += counter.getBoundingBox().volume() / 512;
         if (tileBricks > maxTileBricks)
-            throw Error(fmt::format("{}: grid '{}' has active tiles covering {} bricks ({:.1f} G voxels), more than "
-                                    "svo expands",
-                                    name, base.getName(), tileBricks, double(tileBricks) * 512 / 1e9));
+            throw InvalidInput(fmt::format("{}: grid '{}' has active tiles covering {} bricks ({:.1f} G voxels), more than "
+                                           "svo expands",
+                                           name, base.getName(), tileBricks, double(tileBricks) * 512 / 1e9));
         out.bricks.reserve(out.bricks.size() + tileBricks);
         for (; it; ++it) {
             if (!it.isTileValue()) continue;
@@ -251,9 +251,9 @@ GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name, 
         }
     });
     if (!typed)
-        throw Error(fmt::format("{}: grid '{}' has type {}, which svo does not read (it reads bool, mask, float, "
-                                "double, int32, int64 and vec3 grids)",
-                                name, base.getName(), base.type()));
+        throw InvalidInput(fmt::format("{}: grid '{}' has type {}, which svo does not read (it reads bool, mask, float, "
+                                       "double, int32, int64 and vec3 grids)",
+                                       name, base.getName(), base.type()));
     checkGrid(out.grid, name);
     return out;
 }

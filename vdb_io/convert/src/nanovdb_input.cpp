@@ -23,7 +23,7 @@ namespace {
 
 [[noreturn]] void damaged(const std::string& name, const std::string& why)
 {
-    throw Error(fmt::format("{}: truncated or damaged: {}", name, why));
+    throw IoError(fmt::format("{}: truncated or damaged: {}", name, why));
 }
 
 /// A grid's bytes, copied out of the file into a 32-byte aligned buffer, with
@@ -50,7 +50,7 @@ std::vector<RawGrid> splitSegments(const std::string& bytes, const std::string& 
     using nanovdb::io::MetaData;
     std::vector<RawGrid> grids;
     const uint64_t size = bytes.size();
-    if (size == 0) throw Error(fmt::format("{}: the file is empty", name));
+    if (size == 0) throw IoError(fmt::format("{}: the file is empty", name));
     uint64_t at = 0;
     while (at < size) {
         if (size - at < sizeof(Header))
@@ -58,18 +58,18 @@ std::vector<RawGrid> splitSegments(const std::string& bytes, const std::string& 
         Header h;
         std::memcpy(&h, bytes.data() + at, sizeof h);
         if (h.magic != NANOVDB_MAGIC_NUMBER) {
-            if (at == 0) throw Error(fmt::format("{}: not a NanoVDB file (no NanoVDB magic number at its start)", name));
+            if (at == 0) throw IoError(fmt::format("{}: not a NanoVDB file (no NanoVDB magic number at its start)", name));
             damaged(name, fmt::format("no NanoVDB magic number at byte {}, where a segment should start", at));
         }
         if (h.version.getMajor() != NANOVDB_MAJOR_VERSION_NUMBER)
-            throw Error(fmt::format("{}: NanoVDB file format {} (version {}.{}.{}); svo reads format {}", name,
-                                    h.version.getMajor(), h.version.getMajor(), h.version.getMinor(),
-                                    h.version.getPatch(), NANOVDB_MAJOR_VERSION_NUMBER));
+            throw IoError(fmt::format("{}: NanoVDB file format {} (version {}.{}.{}); svo reads format {}", name,
+                                      h.version.getMajor(), h.version.getMajor(), h.version.getMinor(),
+                                      h.version.getPatch(), NANOVDB_MAJOR_VERSION_NUMBER));
         if (h.gridCount == 0) damaged(name, fmt::format("the segment at byte {} holds no grids", at));
         if (h.codec == Codec::ZIP || h.codec == Codec::BLOSC)
-            throw Error(fmt::format("{}: its grids are compressed with {}, which this svo is built without; write "
-                                    "the file uncompressed (nanovdb_convert without -z or -b)",
-                                    name, nanovdb::io::toStr(h.codec)));
+            throw IoError(fmt::format("{}: its grids are compressed with {}, which this svo is built without; write "
+                                      "the file uncompressed (nanovdb_convert without -z or -b)",
+                                      name, nanovdb::io::toStr(h.codec)));
         if (h.codec != Codec::NONE)
             damaged(name, fmt::format("unknown compression codec {} at byte {}", uint16_t(h.codec), at + 14));
         at += sizeof(Header);
@@ -257,7 +257,7 @@ template <typename BuildT> openvdb::GridBase::Ptr convert(const RawGrid& raw, co
     try {
         return nanovdb::nanoToOpenVDB(*grid);
     } catch (const std::exception& e) {
-        throw Error(fmt::format("{}: grid '{}' cannot become an OpenVDB grid: {}", name, raw.metaName, e.what()));
+        throw IoError(fmt::format("{}: grid '{}' cannot become an OpenVDB grid: {}", name, raw.metaName, e.what()));
     }
 }
 
@@ -277,23 +277,23 @@ openvdb::GridBase::Ptr toOpenVdb(const RawGrid& raw, const std::string& name)
     }
     if (uint32_t(raw.meta.gridType) >= uint32_t(GridType::End))
         damaged(name, fmt::format("grid '{}' has an unknown grid type {}", raw.metaName, uint32_t(raw.meta.gridType)));
-    throw Error(fmt::format("{}: grid '{}' is a NanoVDB {} grid; svo reads float, double, int32, int64, Vec3f, Vec3d, "
-                            "bool and mask grids",
-                            name, raw.metaName, typeName(raw.meta.gridType)));
+    throw IoError(fmt::format("{}: grid '{}' is a NanoVDB {} grid; svo reads float, double, int32, int64, Vec3f, Vec3d, "
+                              "bool and mask grids",
+                              name, raw.metaName, typeName(raw.meta.gridType)));
 }
 
 std::string readWholeFile(const std::string& path)
 {
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);
-    if (!fs::exists(st)) throw Error(fmt::format("{}: no such file", path));
-    if (fs::is_directory(st)) throw Error(fmt::format("{}: is a folder, not a .nvdb file", path));
+    if (!fs::exists(st)) throw IoError(fmt::format("{}: no such file", path));
+    if (fs::is_directory(st)) throw IoError(fmt::format("{}: is a folder, not a .nvdb file", path));
     if (!fs::is_regular_file(st))
-        throw Error(fmt::format("{}: is not a regular file; svo reads .nvdb files that are regular files", path));
+        throw IoError(fmt::format("{}: is not a regular file; svo reads .nvdb files that are regular files", path));
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(fmt::format("{}: cannot open the file", path));
+    if (!in) throw IoError(fmt::format("{}: cannot open the file", path));
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw Error(fmt::format("{}: cannot read the file", path));
+    if (in.bad()) throw IoError(fmt::format("{}: cannot read the file", path));
     return bytes;
 }
 
@@ -308,7 +308,7 @@ openvdb::GridPtrVec readNanoVdbGridsFromBytes(const std::string& bytes, const st
     if (!gridName.empty()) {
         for (const auto& r : raws)
             if (!named && r.metaName == gridName) named = &r;
-        if (!named) throw Error(fmt::format("{}: no grid named '{}'", name, gridName));
+        if (!named) throw InvalidInput(fmt::format("{}: no grid named '{}'", name, gridName));
     }
     openvdb::GridPtrVec out;
     // Every grid is checked, also when one is asked for.

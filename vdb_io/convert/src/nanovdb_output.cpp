@@ -16,14 +16,14 @@ namespace svo::vdb {
 
 nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const openvdb::GridBase::Ptr& grid)
 {
-    if (!grid) throw Error("no grid to convert to NanoVDB");
+    if (!grid) throw InvalidInput("no grid to convert to NanoVDB");
     try {
         // A full checksum (every node, not only the header and root) lets
         // svo's reader (nanovdb_input.h) find a changed value.
         return nanovdb::openToNanoVDB(grid, nanovdb::StatsMode::Default, nanovdb::ChecksumMode::Full);
     } catch (const std::exception& e) {
-        throw Error(fmt::format("grid '{}' ({}) cannot become a NanoVDB grid: {}", grid->getName(), grid->type(),
-                                e.what()));
+        throw Unsupported(fmt::format("grid '{}' ({}) cannot become a NanoVDB grid: {}", grid->getName(), grid->type(),
+                                      e.what()));
     }
 }
 
@@ -37,12 +37,12 @@ uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids)
         // destructor, unchecked: svo opens, flushes and closes the stream and
         // checks each step, so a full disk is an error naming its cause.
         std::ofstream os(tmp, std::ios::out | std::ios::binary | std::ios::trunc);
-        if (!os) throw Error(fmt::format("{}: cannot create the file: {}", path, std::strerror(errno)));
+        if (!os) throw IoError(fmt::format("{}: cannot create the file: {}", path, std::strerror(errno)));
         errno = 0;
         try {
             nanovdb::io::writeGrids<nanovdb::HostBuffer, std::vector>(os, handles);
         } catch (const std::exception& e) {
-            if (os) throw Error(fmt::format("{}: cannot write the NanoVDB file: {}", path, e.what()));
+            if (os) throw IoError(fmt::format("{}: cannot write the NanoVDB file: {}", path, e.what()));
         }
         int err = errno;
         if (os) {
@@ -53,7 +53,7 @@ uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids)
             os.close();
             err = errno;
         }
-        if (!os) throw Error(fmt::format("{}: {}", path, err ? std::strerror(err) : "the write failed"));
+        if (!os) throw IoError(fmt::format("{}: {}", path, err ? std::strerror(err) : "the write failed"));
     });
     return outputBytes(path); // the staged temporary while an OutputBatch holds it
 }

@@ -28,7 +28,7 @@ OutputFormat outputFormat(const std::string& path)
     if (ext == ".vdb") return OutputFormat::Vdb;
     if (ext == ".svo") return OutputFormat::Svo;
     if (ext == ".nvdb") return OutputFormat::NanoVdb;
-    throw Error(fmt::format("{}: the output must end in .vdb, .nvdb or .svo", path));
+    throw IoError(fmt::format("{}: the output must end in .vdb, .nvdb or .svo", path));
 }
 
 void checkOutputPath(const std::string& path)
@@ -44,8 +44,8 @@ WriteReport writeOctree(const std::string& path, const Octree& octree, const Gri
     report.format = outputFormat(path);
     if (report.format == OutputFormat::Svo) {
         if (grids.fog)
-            throw Error(fmt::format("{}: a .svo file holds the octree only; a fog grid needs .vdb or .nvdb output",
-                                    path));
+            throw InvalidInput(fmt::format("{}: a .svo file holds the octree only; a fog grid needs .vdb or .nvdb output",
+                                           path));
         const auto t0 = Clock::now();
         writeOctreeFile(path, octree);
         report.stages.push_back({"svo write", -1, msSince(t0)});

@@ -66,14 +66,14 @@ public:
             readHeader(is_);
         } catch (const std::exception& e) {
             if (!is_) damaged("the header is cut short");
-            throw Error(fmt::format("{}: not a readable VDB file: {}", name_, e.what()));
+            throw IoError(fmt::format("{}: not a readable VDB file: {}", name_, e.what()));
         }
         if (!is_) damaged("the header is cut short");
         // Older formats store the root as a table whose size comes from the
         // file (up to 2^32 entries); OpenVDB 2 (2013) already wrote 222.
         if (fileVersion() < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)
-            throw Error(fmt::format("{}: VDB file format {} is older than {}, the oldest svo reads", name_,
-                                    fileVersion(), int(openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)));
+            throw IoError(fmt::format("{}: VDB file format {} is older than {}, the oldest svo reads", name_,
+                                      fileVersion(), int(openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)));
         streamMeta_ = std::make_shared<openvdb::io::StreamMetadata>();
         streamMeta_->setSeekable(true);
         openvdb::io::setStreamMetadataPtr(is_, streamMeta_, /*transfer=*/false);
@@ -138,7 +138,7 @@ public:
 private:
     [[noreturn]] void damaged(const std::string& what) const
     {
-        throw Error(fmt::format("{}: truncated or damaged: {}", name_, what));
+        throw IoError(fmt::format("{}: truncated or damaged: {}", name_, what));
     }
     static std::string quoted(const GridDescriptor& gd) { return "'" + gd.gridName() + "'"; }
     int64_t tell() const { return is_ ? int64_t(is_.tellg()) : -1; }
@@ -224,8 +224,8 @@ private:
             gd.read(is_);
         } catch (const std::exception& e) {
             // A type this OpenVDB does not register: maybe damage, maybe a newer writer.
-            throw Error(fmt::format("{}: grid '{}' has type '{}', which this OpenVDB cannot read ({})", name_, name,
-                                    type, e.what()));
+            throw IoError(fmt::format("{}: grid '{}' has type '{}', which this OpenVDB cannot read ({})", name_, name,
+                                      type, e.what()));
         }
         if (!is_) damaged(what + " is cut short");
         return gd;
@@ -524,7 +524,7 @@ public:
     {
         std::ofstream os;
         os.open(tmp, std::ios_base::out | std::ios_base::binary);
-        if (!os) throw Error(fmt::format("{}: cannot create the file: {}", path, std::strerror(errno)));
+        if (!os) throw IoError(fmt::format("{}: cannot create the file: {}", path, std::strerror(errno)));
         errno = 0;
         Archive::write(os, grids, /*seekable=*/true);
         int err = errno;
@@ -536,7 +536,7 @@ public:
             os.close(); // the last bytes reach the file here
             err = errno;
         }
-        if (!os) throw Error(fmt::format("{}: {}", path, err ? std::strerror(err) : "the write failed"));
+        if (!os) throw IoError(fmt::format("{}: {}", path, err ? std::strerror(err) : "the write failed"));
     }
 };
 
@@ -550,7 +550,7 @@ void writeGrids(const std::string& path, const openvdb::GridPtrVec& grids)
         } catch (const Error&) {
             throw;
         } catch (const std::exception& e) {
-            throw Error(fmt::format("{}: cannot write the VDB file: {}", path, e.what()));
+            throw IoError(fmt::format("{}: cannot write the VDB file: {}", path, e.what()));
         }
     });
 }
@@ -652,15 +652,15 @@ void checkReadable(const std::string& path)
 {
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);
-    if (!fs::exists(st)) throw Error(fmt::format("{}: no such file", path));
-    if (fs::is_directory(st)) throw Error(fmt::format("{}: is a folder, not a .vdb file", path));
+    if (!fs::exists(st)) throw IoError(fmt::format("{}: no such file", path));
+    if (fs::is_directory(st)) throw IoError(fmt::format("{}: is a folder, not a .vdb file", path));
     if (!fs::is_regular_file(st)) {
         const char* kind = fs::is_character_file(st) ? "a character device"
                            : fs::is_block_file(st)   ? "a block device"
                            : fs::is_fifo(st)         ? "a FIFO"
                            : fs::is_socket(st)       ? "a socket"
                                                      : "not a regular file";
-        throw Error(fmt::format("{}: is {}, not a .vdb file; svo reads .vdb files that are regular files", path, kind));
+        throw IoError(fmt::format("{}: is {}, not a .vdb file; svo reads .vdb files that are regular files", path, kind));
     }
 }
 
@@ -670,8 +670,8 @@ uint64_t streamSize(std::istream& in, const std::string& name)
     in.seekg(0, std::ios::end);
     const std::streamoff size = in.tellg();
     in.seekg(0);
-    if (!in || size < 0) throw Error(fmt::format("{}: cannot read the file", name));
-    if (size == 0) throw Error(fmt::format("{}: the file is empty", name));
+    if (!in || size < 0) throw IoError(fmt::format("{}: cannot read the file", name));
+    if (size == 0) throw IoError(fmt::format("{}: the file is empty", name));
     return uint64_t(size);
 }
 } // namespace
@@ -680,7 +680,7 @@ VdbBricks readVdbBricks(const std::string& path, const std::string& gridName)
 {
     checkReadable(path);
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(fmt::format("{}: cannot open the file", path));
+    if (!in) throw IoError(fmt::format("{}: cannot open the file", path));
     return readVdbBricks(in, path, gridName);
 }
 
@@ -688,7 +688,7 @@ openvdb::GridPtrVec readVdbGrids(const std::string& path, const std::string& gri
 {
     checkReadable(path);
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(fmt::format("{}: cannot open the file", path));
+    if (!in) throw IoError(fmt::format("{}: cannot open the file", path));
     openvdb::initialize();
     const uint64_t size = streamSize(in, path);
     try {
@@ -696,7 +696,7 @@ openvdb::GridPtrVec readVdbGrids(const std::string& path, const std::string& gri
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
-        throw Error(fmt::format("{}: truncated or damaged: {}", path, e.what()));
+        throw IoError(fmt::format("{}: truncated or damaged: {}", path, e.what()));
     }
 }
 
@@ -752,7 +752,7 @@ VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::st
         throw;
     } catch (const std::exception& e) {
         // Whatever OpenVDB throws where the reader did not expect it.
-        throw Error(fmt::format("{}: truncated or damaged: {}", name, e.what()));
+        throw IoError(fmt::format("{}: truncated or damaged: {}", name, e.what()));
     }
 }
 
@@ -771,7 +771,7 @@ openvdb::GridPtrVec readSelected(std::istream& in, uint64_t size, const std::str
     if (reader.sequential()) grids = reader.readAll();
     else
         for (const auto& gd : reader.descriptors()) grids.push_back({gd, nullptr});
-    if (grids.empty()) throw Error(fmt::format("{}: the file holds no grids", name));
+    if (grids.empty()) throw IoError(fmt::format("{}: the file holds no grids", name));
     std::vector<const CheckedReader::Read*> chosen;
     if (all) {
         for (const auto& r : grids) chosen.push_back(&r);
@@ -788,7 +788,7 @@ openvdb::GridPtrVec readSelected(std::istream& in, uint64_t size, const std::str
         const std::string unique = GridDescriptor::stringAsUniqueName(gridName);
         for (const auto& r : grids)
             if (!named && r.gd.uniqueName() == unique) named = &r; // "name[1]": the second grid of that name
-        if (!named) throw Error(fmt::format("{}: no grid named '{}'", name, gridName));
+        if (!named) throw InvalidInput(fmt::format("{}: no grid named '{}'", name, gridName));
         chosen.push_back(named);
     }
     std::map<std::string, openvdb::GridBase::Ptr> byUniqueName;
@@ -804,8 +804,8 @@ openvdb::GridPtrVec readSelected(std::istream& in, uint64_t size, const std::str
             const std::string parent = c->gd.instanceParentName();
             auto it = byUniqueName.find(parent);
             if (it == byUniqueName.end())
-                throw Error(fmt::format("{}: truncated or damaged: grid '{}' shares the tree of a grid '{}' the file lacks",
-                                        name, c->gd.gridName(), GridDescriptor::nameAsString(parent)));
+                throw IoError(fmt::format("{}: truncated or damaged: grid '{}' shares the tree of a grid '{}' the file lacks",
+                                          name, c->gd.gridName(), GridDescriptor::nameAsString(parent)));
             grid->setTree(it->second->baseTreePtr());
         }
         out.push_back(grid);

@@ -33,7 +33,7 @@ namespace detail {
 double uniformScale(const openvdb::math::Transform& xform)
 {
     if (!xform.isLinear() || !xform.hasUniformScale())
-        throw Error("level sets need a linear transform with uniform scale, so that index distances are world "
+        throw Unsupported("level sets need a linear transform with uniform scale, so that index distances are world "
                     "distances");
     return xform.voxelSize()[0];
 }

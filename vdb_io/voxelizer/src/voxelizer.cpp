@@ -49,7 +49,7 @@ TriangleMesh worldMesh(const std::vector<PointT>& points, const std::vector<open
     const uint64_t n = points.size();
     auto checked = [&](uint64_t face, const char* kind, uint32_t i) {
         if (i >= n)
-            throw Error(fmt::format("{} {} refers to vertex {}, but the mesh has {} points", kind, face, i, n));
+            throw InvalidInput(fmt::format("{} {} refers to vertex {}, but the mesh has {} points", kind, face, i, n));
         return i;
     };
     // Triangles in parallel; a bad index is looked for again in order, so the message names the first.
@@ -85,9 +85,9 @@ IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<open
                        const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform)
 {
     if (!xform.isLinear())
-        throw Error(fmt::format("the transform is a {} map, which is not linear; svo voxelizes in the index space "
-                                "of linear (affine) transforms only",
-                                xform.baseMap()->type()));
+        throw InvalidInput(fmt::format("the transform is a {} map, which is not linear; svo voxelizes in the index space "
+                                       "of linear (affine) transforms only",
+                                       xform.baseMap()->type()));
     IndexSpaceMesh out;
     out.mesh = worldMesh(points, triangles, quads);
     TriangleMesh& m = out.mesh;
@@ -103,7 +103,7 @@ IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<open
         const openvdb::Vec3d t = mat.getTranslation();
         const openvdb::Mat3d inv = mat.getMat3().inverse();
         if (!std::isfinite(inv.det()) || inv.det() == 0.0)
-            throw Error("the transform's linear part is singular; it has no index space to voxelize in");
+            throw InvalidInput("the transform's linear part is singular; it has no index space to voxelize in");
         tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 4096), [&](const tbb::blocked_range<uint64_t>& r) {
             for (uint64_t i = r.begin(); i != r.end(); ++i) {
                 const openvdb::Vec3d p =

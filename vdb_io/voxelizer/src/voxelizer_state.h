@@ -38,7 +38,7 @@ private:
 };
 
 /// The uniform scale of a transform (world units per index unit).
-/// @throw svo::Error for a transform without uniform scale.
+/// @throw svo::Unsupported for a transform without uniform scale.
 double uniformScale(const openvdb::math::Transform& xform);
 
 } // namespace svo::detail

@@ -30,19 +30,20 @@ struct Camera {
 
 /// The rules of a camera's numbers, for every front door (the GL view, the
 /// reference, `svo view --ortho/--fov`), each naming the value as its caller
-/// calls it. Throw svo::Error "<name> <value>: <the rule>"; NaN never passes.
+/// calls it. Throw svo::InvalidInput "<name> <value>: <the rule>" (argument()
+/// `name`); NaN never passes.
 /// Camera::height of an orthographic view: a positive finite number of world units.
 inline void checkOrthographicHeight(double height, const std::string& name)
 {
     if (!(height > 0) || !std::isfinite(height))
-        throw Error(fmt::format("{} {}: an orthographic view spans a positive finite number of world units", name,
-                                height));
+        throw InvalidInput(name, fmt::format("{}: an orthographic view spans a positive finite number of world units",
+                                             height));
 }
 /// Camera::fovYDegrees of a perspective view: between 0 and 180 degrees, both excluded.
 inline void checkFieldOfView(double degrees, const std::string& name)
 {
     if (!(degrees > 0 && degrees < 180))
-        throw Error(fmt::format("{} {}: a field of view is between 0 and 180 degrees", name, degrees));
+        throw InvalidInput(name, fmt::format("{}: a field of view is between 0 and 180 degrees", degrees));
 }
 
 } // namespace svo

@@ -59,7 +59,8 @@ constexpr uint32_t kMaxGridDim = 1u << 21;
 /// The rules of a grid request's numbers, for every front door: makeGrid
 /// checks with them, and `svo --resolution/--voxel-size` and Python's
 /// resolution=/voxel_size= check what they are given with them under their
-/// own names. Throw svo::Error "<name> must be ..., got <value>"; NaN never passes.
+/// own names. Throw svo::InvalidInput "<name> must be ..., got <value>", whose
+/// argument() is `name`; NaN never passes.
 /// GridRequest::resolution: a whole number from 1 to kMaxGridDim - 16.
 void checkResolution(double resolution, const std::string& name);
 /// GridRequest::voxelSize: a positive finite number of world units.

@@ -15,13 +15,6 @@
 
 namespace svo {
 
-/// Thrown when the caller's interrupter asked to stop. Nothing partial is
-/// returned and nothing is written; the object that was working stays usable.
-class Interrupted : public Error {
-public:
-    explicit Interrupted(const std::string& what) : Error(what) {}
-};
-
 class Checkpoint {
 public:
     /// Gets the percentage done (0..100); returns true to cancel.

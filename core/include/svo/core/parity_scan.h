@@ -36,7 +36,7 @@ struct ParityScan {
 
 /// @param bricks    brick coordinates (local voxel coordinate / 8), unique
 /// @param crossings per brick, the odd-crossing voxels (bit order of Brick)
-/// @throw svo::Error when the two sizes differ.
+/// @throw svo::InvalidInput when the two sizes differ.
 ParityScan scanParity(const std::vector<std::array<uint32_t, 3>>& bricks, const std::vector<Brick>& crossings);
 
 } // namespace svo

@@ -60,7 +60,7 @@ struct WindingTree {
 /// Builds the tree for triangles over `positions` (any frame; svo uses
 /// local voxel coordinates). Degenerate triangles are kept (their area vector
 /// is zero, their solid angle zero).
-/// @throw svo::Error when there are no triangles or more than 2^31.
+/// @throw svo::InvalidInput when there are no triangles, svo::Unsupported for more than 2^31.
 WindingTree buildWindingTree(const std::vector<Vec3d>& positions,
                              const std::vector<std::array<uint32_t, 3>>& triangles);
 

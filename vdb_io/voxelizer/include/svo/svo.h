@@ -10,7 +10,8 @@
 ///   svo/core/mesh_io.h       mesh files (OBJ, PLY, STL, OFF) in double precision
 ///   svo/core/octree.h        the linear octree: layout, traversal, checks
 ///   svo/core/voxel_key.h     voxel keys (octreeKeys) and their local coordinates
-///   svo/core/interrupt.h     svo::Interrupted
+///   svo/core/error.h         svo::Error and its kinds (InvalidInput, IoError, ..., Interrupted)
+///   svo/core/interrupt.h     Checkpoint: how a call hears its interrupter
 #include "svo/core/error.h"
 #include "svo/core/interrupt.h"
 #include "svo/core/mesh_io.h"

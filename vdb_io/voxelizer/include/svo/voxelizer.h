@@ -45,11 +45,14 @@
 /// Several Voxelizers may run in parallel on different threads, on the same
 /// device or on different ones.
 ///
-/// Errors. svo::Error (svo/core/error.h) names the problem and the offending
-/// value: bad meshes (index out of range, NaN/Inf vertices), impossible grids,
-/// a non-linear transform, no usable GPU, GPU memory exhausted. An interrupted
-/// call throws svo::Interrupted (a svo::Error). After any exception the
-/// Voxelizer is usable for the next call.
+/// Errors. Every exception is an svo::Error (svo/core/error.h) naming the
+/// problem and the offending value, of a class that says what failed:
+/// svo::InvalidInput for bad meshes (index out of range, NaN/Inf vertices),
+/// impossible grids, a non-linear transform or a bad option; svo::DeviceError
+/// for no usable GPU or a GL failure; svo::OutOfMemory for GPU or host memory
+/// (or the budget) exhausted; svo::Unsupported for a request svo has no
+/// method for; svo::Interrupted for an interrupted call. After any exception
+/// the Voxelizer is usable for the next call.
 #include <openvdb/openvdb.h>
 #include <openvdb/util/NullInterrupter.h>
 #include <openvdb/util/Util.h> // INVALID_IDX
@@ -99,9 +102,10 @@ public:
     /// @param triangles  vertex indices; each must be < points.size()
     /// @param xform      any linear (affine) transform; voxels are index-space cubes of it
     /// @param options    backend, channels, interrupter, statistics
-    /// @throw svo::Error for an empty mesh, an index out of range, a NaN/Inf
+    /// @throw svo::InvalidInput for an empty mesh, an index out of range, a NaN/Inf
     ///        vertex, a non-linear transform, or a grid beyond OpenVDB's 32-bit
-    ///        coordinates or svo's 2^21 voxels a side; svo::Interrupted.
+    ///        coordinates or svo's 2^21 voxels a side; svo::DeviceError,
+    ///        svo::OutOfMemory from the GPU; svo::Interrupted.
     openvdb::MaskGrid::Ptr meshToMask(const std::vector<openvdb::Vec3s>& points,
                                       const std::vector<openvdb::Vec3I>& triangles,
                                       const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
@@ -158,7 +162,7 @@ public:
     /// @brief The active voxels of any grid (bool, mask, float, double, int32,
     /// int64, vec3; active tiles expanded) as an octree, built on the GPU
     /// (or the CPU with Backend::Cpu).
-    /// @throw svo::Error for an unsupported type, a transform other than a
+    /// @throw svo::InvalidInput for an unsupported type, a transform other than a
     ///        uniform scale plus a whole-voxel translation, or an extent beyond 2^21.
     Octree gridToOctree(const openvdb::GridBase& grid, const VoxelizeOptions& options = {});
     /// Whole bricks (brick-origin key, mask) on a grid, built into an octree.
@@ -185,10 +189,11 @@ public:
     /// meshes.
     /// @param xform      a linear transform with uniform scale (distances are world units)
     /// @param exteriorBand, interiorBand  band half widths in voxels, each >= 1
-    /// @throw svo::Error as meshToMask, and for a band that fails checkBand
-    ///        (NaN included), a VoxelizeOptions::mode other than Conservative
-    ///        (checkFieldMode), a transform without uniform scale, the CPU backend (this
-    ///        is GPU work), a winding accuracy that fails checkWindingAccuracy, or parity
+    /// @throw svo::Error as meshToMask; svo::InvalidInput for a band that fails
+    ///        checkBand (NaN included), a VoxelizeOptions::mode other than
+    ///        Conservative (checkFieldMode) or a winding accuracy that fails
+    ///        checkWindingAccuracy; svo::Unsupported for a transform without
+    ///        uniform scale, the CPU backend (this is GPU work), or parity
     ///        signs asked for a mesh with holes (boundary edges: a column
     ///        through a hole would flip every sign beyond it; winding and Auto
     ///        sign such meshes).
@@ -242,7 +247,7 @@ public:
     /// left current nowhere, and later calls may come from any one thread.
     /// No other call on this Voxelizer may run meanwhile. The first call's
     /// statistics still report the set-up (StartupStats::eglMs).
-    /// @throw svo::Error as the first GPU call would: no usable GPU or driver.
+    /// @throw svo::DeviceError as the first GPU call would: no usable GPU or driver.
     void startDevice();
     /// Frees the scratch buffers kept for the next call.
     void releaseScratch();
@@ -266,7 +271,7 @@ private:
 /// Voxelizer::voxelize treat it exactly as `svo voxelize` treats the file
 /// (what the Python module does with a resolution or voxel size). Quads as
 /// meshToMask splits them.
-/// @throw svo::Error for an index out of range or a NaN/Inf vertex, naming the first.
+/// @throw svo::InvalidInput for an index out of range or a NaN/Inf vertex, naming the first.
 TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3d>& points, const std::vector<openvdb::Vec3I>& triangles,
                             const std::vector<openvdb::Vec4I>& quads);
 TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& triangles,
@@ -274,7 +279,7 @@ TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3s>& points, const std
 /// @brief A mesh in OpenVDB's types as svo's double-precision mesh in the index
 /// space of @a xform, with the grid it voxelizes on (see Voxelizer::meshToOctree
 /// for which lattice that is).
-/// @throw svo::Error for a non-linear transform, an index out of range, or a
+/// @throw svo::InvalidInput for a non-linear transform, an index out of range, or a
 ///        grid beyond svo's limits.
 struct IndexSpaceMesh {
     TriangleMesh mesh;

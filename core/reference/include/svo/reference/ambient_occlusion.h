@@ -32,14 +32,14 @@ struct AmbientOcclusionOptions {
 /// AO at one point.
 /// @param point   world units, on (or just above) a surface
 /// @param normal  the side to look at; need not be unit length, must not be zero
-/// @throw svo::Error  point or normal not finite, normal zero, distance not > 0,
+/// @throw svo::InvalidInput  point or normal not finite, normal zero, distance not > 0,
 ///                    samples < 1, threads < 0.
 double ambientOcclusionAt(const Scene& scene, const Vec3d& point, const Vec3d& normal,
                           const AmbientOcclusionOptions& options, RenderStats* stats = nullptr);
 
 /// AO at many points in parallel; point i is sampled as index i (so the
 /// first point here equals the single-point call's result with the same seed).
-/// @throw svo::Error  as above, naming the first bad point, or when the lists'
+/// @throw svo::InvalidInput  as above, naming the first bad point, or when the lists'
 ///                    sizes differ.
 std::vector<double> ambientOcclusionAt(const Scene& scene, const std::vector<Vec3d>& points,
                                        const std::vector<Vec3d>& normals, const AmbientOcclusionOptions& options,

@@ -76,7 +76,7 @@ struct RenderStats {
 /// @param lights  ignored by AmbientOcclusion
 /// @param stats   when given, receives the ray counts and wall time
 /// @return the image; the same inputs give the same bytes, whatever the thread count.
-/// @throw svo::Error  the camera fails checkCamera; samples < 1; threads < 0;
+/// @throw svo::InvalidInput  the camera fails checkCamera; samples < 1; threads < 0;
 ///        aoDistance not > 0 (NaN included); a light direction zero or not
 ///        finite; a light position, irradiance, intensity or the environment
 ///        not finite or negative.

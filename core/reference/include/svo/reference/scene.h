@@ -48,11 +48,12 @@ public:
     /// Copies what it needs of `mesh` and `material` and builds the BVH.
     /// @param rayEpsilon  offset of secondary ray origins, world units; 0 picks
     ///                    1e-5 of the bounding box's diagonal (see the file comment)
-    /// @throw svo::Error  the mesh fails svo::validateMesh, a vertex colour or the
+    /// @throw svo::InvalidInput  the mesh fails svo::validateMesh, a vertex colour or the
     ///                    albedo is outside [0, 1] or not finite, the emission list
     ///                    is neither empty nor one per triangle, an emission is
     ///                    negative or not finite, rayEpsilon is negative or not
-    ///                    finite, or Embree fails (its message is kept).
+    ///                    finite; svo::DeviceError when Embree fails (its message
+    ///                    is kept), svo::OutOfMemory when it cannot allocate.
     explicit Scene(const TriangleMesh& mesh, const Material& material = {}, double rayEpsilon = 0);
     ~Scene();
     Scene(Scene&&) noexcept;

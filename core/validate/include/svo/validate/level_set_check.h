@@ -112,7 +112,7 @@ struct LevelSetCheck {
 /// @param grid   the grid whose index space the voxels' coordinates are in
 ///               (makeGrid's, or prepareMesh's for a caller's transform)
 /// @param voxels every active voxel, each once, in any order
-/// @throw svo::Error for a band that is not positive and finite, a negative
+/// @throw svo::InvalidInput for a band that is not positive and finite, a negative
 ///        or non-finite tolerance, or a voxel listed twice; svo::Error as
 ///        validateMesh for a bad mesh.
 LevelSetCheck checkLevelSet(const TriangleMesh& mesh, const GridSpec& grid, const std::vector<LevelSetVoxel>& voxels,
@@ -120,7 +120,7 @@ LevelSetCheck checkLevelSet(const TriangleMesh& mesh, const GridSpec& grid, cons
 
 /// The active voxels of an OpenVDB FloatGrid (any type with OpenVDB's grid
 /// interface), without including OpenVDB here.
-/// @throw svo::Error for an active tile: a level set has active voxels only.
+/// @throw svo::InvalidInput for an active tile: a level set has active voxels only.
 template <typename FloatGridT>
 std::vector<LevelSetVoxel> activeLevelSetVoxels(const FloatGridT& grid)
 {
@@ -128,7 +128,7 @@ std::vector<LevelSetVoxel> activeLevelSetVoxels(const FloatGridT& grid)
     out.reserve(size_t(grid.activeVoxelCount()));
     for (auto it = grid.cbeginValueOn(); it; ++it) {
         if (!it.isVoxelValue())
-            throw Error("grid '" + grid.getName() + "' has an active tile; a level set's band is active voxels only");
+            throw InvalidInput("grid '" + grid.getName() + "' has an active tile; a level set's band is active voxels only");
         const auto c = it.getCoord();
         out.push_back({{c.x(), c.y(), c.z()}, float(*it)});
     }

@@ -60,7 +60,7 @@ struct OpenVdbComparison {
 /// @brief Runs OpenVDB's meshToSignedDistanceField on the mesh and compares (see the file comment).
 /// @param mesh, grid, voxels  as checkLevelSet; the bands, tolerance and
 ///        value unit come from @a options (OpenVDB is given the bands as floats)
-/// @throw svo::Error as checkLevelSet; OpenVDB's exceptions are rethrown as svo::Error.
+/// @throw svo::Error as checkLevelSet; OpenVDB's exceptions are rethrown as svo::DeviceError.
 OpenVdbComparison compareWithOpenVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                      const std::vector<LevelSetVoxel>& voxels, const LevelSetCheckOptions& options = {});
 

@@ -50,7 +50,7 @@ struct Report {
 /// The rule of `worst` (ReportOptions::worst, LevelSetCheckOptions::worst)
 /// for the front doors that take it as a signed number (`svo validate
 /// --worst`, Python's worst=): a whole number from 0 to 1000000. Throws
-/// svo::Error "<name> <value>: ..." naming the caller's flag or keyword.
+/// svo::InvalidInput "<name> <value>: ..." naming the caller's flag or keyword.
 void checkWorst(int64_t worst, const std::string& name);
 
 /// @param voxelList the run's own voxel list (sorted, unique keys), from

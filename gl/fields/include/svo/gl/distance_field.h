@@ -87,9 +87,9 @@ struct FieldResult {
 ///        packing, readback) and the GPU buffer bytes they used
 /// @return per requested brick, the band's voxels with their distances (and
 ///        closest triangles), and the crossings
-/// @throw svo::Error when the work exceeds 2^32 items (a band or grid too
-///        large for one pass) or a GPU buffer cannot be allocated;
-///        svo::Interrupted from the checkpoint.
+/// @throw svo::Unsupported when the work exceeds 2^32 items (a band or grid
+///        too large for one pass); svo::DeviceError or svo::OutOfMemory when
+///        a GPU buffer cannot be allocated; svo::Interrupted from the checkpoint.
 FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                          const FieldRequest& request, RunStats* report = nullptr);
 

@@ -60,7 +60,8 @@ struct LevelSetOptions {
 /// with them (naming the field, e.g. LevelSetOptions::exteriorBand), and the
 /// command line and the Python module check what they are given with the same
 /// functions, naming their own flag or keyword (`name`). Each throws
-/// svo::Error with one line: "<name> <value>: <the rule>". NaN never passes.
+/// svo::InvalidInput with one line, "<name> <value>: <the rule>", whose
+/// argument() is `name` and detail() "<value>: <the rule>". NaN never passes.
 /// @{
 /// A band half width: a number of voxels from 1 to 1000.
 void checkBand(double voxels, const std::string& name);

@@ -65,9 +65,10 @@ struct WindingResult {
 ///        the GPU buffer bytes they used
 /// @return the inside voxels of each requested brick, and the brick centres'
 ///        winding numbers when asked
-/// @throw svo::Error for beta not positive, a box of more than 2^31 bricks,
-///        a tree deeper than the shader's stack, a walk the driver cut short,
-///        or a GPU buffer that cannot be allocated; svo::Interrupted from the
+/// @throw svo::InvalidInput for beta not positive; svo::Unsupported for a box
+///        of more than 2^31 bricks or a tree deeper than the shader's stack;
+///        svo::DeviceError or svo::OutOfMemory for a GPU buffer that cannot be
+///        allocated or a walk the driver cut short; svo::Interrupted from the
 ///        checkpoint.
 WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                              const WindingTree& tree, const WindingRequest& request, RunStats* report = nullptr);

@@ -188,7 +188,7 @@ struct Illumination {
     double gamma = 2.2;                   ///< 1: linear, to compare with a reference
 };
 
-/// Throw svo::Error, in one line naming the option, for options out of
+/// Throw svo::InvalidInput, in one line naming the option, for options out of
 /// range: what OctreeView::render would refuse, checked before any work
 /// (a command line checks them before it voxelizes). checkIllumination
 /// needs at least one light; what depends on the octree (its normal
@@ -281,7 +281,8 @@ ViewCamera frameBox(const std::array<Vec3d, 2>& box, const Vec3d& direction, boo
 /// The named views of `svo view --view`: "front" (perspective, looking along
 /// (-0.35, -0.3, -1), the Cornell box's open side) or an axis, "+x", "-x",
 /// "+y", "-y", "+z", "-z" (orthographic, looking from that side), framing the
-/// box with frameBox. Throws svo::Error for another name.
+/// box with frameBox. Throws svo::InvalidInput for another name ("view 'x':
+/// ...", its argument() "svo::gl::namedView").
 ViewCamera namedView(const std::array<Vec3d, 2>& box, const std::string& name, double aspect);
 
 /// Lights for a scene in the world box `box` when none are given: for a
@@ -313,13 +314,15 @@ public:
     void setOctree(const Octree& octree, const TriangleMesh* mesh = nullptr);
 
     /// Renders one frame offscreen (a colour and a depth renderbuffer) and
-    /// reads it back. The same inputs give the same bytes. Throws svo::Error
+    /// reads it back. The same inputs give the same bytes. Throws svo::InvalidInput
     /// for a size outside [1, the driver's largest renderbuffer], a degenerate
     /// camera (eye at target, up along the view, height or fov not positive),
     /// a voxel colour whose channel the octree lacks, AO or lighting options
     /// outside their ranges, lighting on an octree without a normal channel,
-    /// a GL error, or rays or light injection that a CPU rasterizer's loop
-    /// limit cut short (ContextInfo::loopLimit; see cutPixels()).
+    /// svo::DeviceError for a GL error, or rays or light injection that a CPU
+    /// rasterizer's loop limit cut short (ContextInfo::loopLimit; see
+    /// cutPixels()); svo::Unsupported for a grid too wide for the AO or
+    /// lighting volume (naming AmbientOcclusion::volumeResolution).
     Image render(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
 
     /// Draws one frame into the framebuffer bound now (a window's, when the

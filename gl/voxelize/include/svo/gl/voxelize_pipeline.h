@@ -77,7 +77,12 @@ struct VoxelizeStats {
     std::string device;            ///< "vendor | renderer | version (EGL device)", or "cpu"
     std::string renderer;          ///< GL renderer string, or "cpu"
     GridSpec grid;                 ///< the local grid the call used
-    std::vector<std::string> warnings; ///< what was asked for but could not be given (colours without vertex colours)
+    /// What was asked for but could not be given (colours without vertex
+    /// colours), one sentence each. Warnings name no option by its identifier
+    /// (LevelSetOptions::exteriorBand, ...), so front ends show them as they
+    /// are; a warning about an option would need its identifier kept apart,
+    /// as svo::Error keeps it.
+    std::vector<std::string> warnings;
     std::string sign;              ///< level sets and solids: the sign method used and why ("parity: closed and ...")
     uint64_t openColumns = 0;      ///< level sets and solids: voxel columns crossed an odd number of times (open mesh)
     uint64_t bandBricks = 0;       ///< level sets and solids: bricks whose distances or signs were computed

@@ -14,12 +14,12 @@
 namespace svo::vdb {
 
 /// One grid in NanoVDB form (name and transform kept).
-/// @throw svo::Error for a grid type NanoVDB cannot hold.
+/// @throw svo::Unsupported for a grid type NanoVDB cannot hold.
 nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const openvdb::GridBase::Ptr& grid);
 
 /// Writes the grids to one uncompressed .nvdb file, atomically (a temporary
 /// file renamed into place). Returns the file's size in bytes.
-/// @throw svo::Error naming the path.
+/// @throw svo::IoError naming the path.
 uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids);
 
 } // namespace svo::vdb

@@ -19,7 +19,7 @@ namespace svo {
 
 enum class OutputFormat { Vdb, Svo, NanoVdb };
 
-/// The format an output path names. @throw svo::Error for another extension.
+/// The format an output path names. @throw svo::IoError for another extension.
 OutputFormat outputFormat(const std::string& path);
 /// The format and whether the path can be written, before any heavy work.
 void checkOutputPath(const std::string& path);
