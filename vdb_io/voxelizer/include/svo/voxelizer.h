@@ -237,12 +237,12 @@ public:
     /// resolved (a dilation mode's raster backend when one is asked for; else
     /// compute on a hardware GPU, raster on a software rasterizer such as
     /// llvmpipe). Creates no GL context: before one exists, EGL is asked
-    /// whether the device is software (about 1 ms).
+    /// whether the device is software, without making a context.
     Backend backendFor(const VoxelizeOptions& options);
     /// The GPU's vendor, renderer and version (creates the context if needed).
     std::string deviceDescription();
     /// @brief Creates the GL context now, rather than in the first GPU call.
-    /// @details EGL set-up takes 20-75 ms (more on a cold machine), so a caller
+    /// @details EGL set-up takes tens of milliseconds (docs/api.md), so a caller
     /// may run it on another thread while it reads its mesh: the context is
     /// left current nowhere, and later calls may come from any one thread.
     /// No other call on this Voxelizer may run meanwhile. The first call's

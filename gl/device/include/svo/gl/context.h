@@ -153,11 +153,10 @@ public:
     uint64_t availableMemory() const;
     /// The most bytes of one buffer the shaders may address, which work must
     /// stay within (tile or refuse): info().maxStorageBlock, or 0 (no limit
-    /// but the buffer's) on a CPU rasterizer. NVIDIA's limit (2 GiB on an
-    /// H100) is real: a 7.8 GB voxel list lost two thirds of its voxels
-    /// before it was a limit. Mesa's llvmpipe reports 128 MiB but addresses
-    /// whole buffers (a 139 MB list of the bunny at 2048^3 keeps the H100's
-    /// 14.4 M voxels, to 2 at the guard band).
+    /// but the buffer's) on a CPU rasterizer: a hardware driver's limit is
+    /// real (past it, voxels are lost without an error), while Mesa's
+    /// llvmpipe reports a small limit but addresses whole buffers
+    /// (docs/design.md says what was measured).
     uint64_t shaderBufferLimit() const;
 
 private:

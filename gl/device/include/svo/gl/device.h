@@ -61,7 +61,7 @@ public:
     bool started() const { return context_ != nullptr; }
     /// @brief Whether the device is a software rasterizer (llvmpipe).
     /// @param create with false and no context yet, EGL is asked about its
-    ///        first device without creating one (about 1 ms)
+    ///        first device without creating one
     bool software(bool create = true);
     /// @brief "vendor | renderer | version (EGL device, extensions used)";
     /// creates the context if needed.

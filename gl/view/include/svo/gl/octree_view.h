@@ -88,8 +88,8 @@ struct AmbientOcclusion {
     enum class Source { Volume, Octree };
     enum class Filter { Average, Max };
     /// The cones the front ends turn AO on with (svo view --render ao, the
-    /// window's G key, Python's ao_only): interleaved, 5 come within 1 % of
-    /// 7 and 16 on the Cornell box and the spheres (bench/results).
+    /// window's G key, Python's ao_only); bench/results/ has the error of
+    /// each count against more cones.
     static constexpr int kDefaultCones = 5;
     int cones = 0;                ///< 0: none; 1: the normal only; n: the normal and n - 1 around it (at most 16)
     double apertureDegrees = 60;  ///< full cone angle, (0, 180)
@@ -114,8 +114,9 @@ struct AmbientOcclusion {
     /// (a normal within 25 degrees, a point within a voxel of its tangent
     /// plane: no blur across edges or depth steps). One cone set samples the
     /// coarse texels at fixed places and its error has their pattern; 16
-    /// sets average most of it out, for one extra full-screen pass (design
-    /// §7c). False: every pixel the same cone set, nothing averaged.
+    /// sets average most of it out, for one extra full-screen pass
+    /// (docs/design.md, the viewer's AO). False: every pixel the same cone
+    /// set, nothing averaged.
     bool interleave = true;
     Filter filter = Filter::Max;  ///< Octree: how node opacities are filtered up the octree
     bool only = false;            ///< draw the voxels as grey AO alone (no colour or face light), to measure it
@@ -161,18 +162,18 @@ struct Illumination {
     /// lit on one side sends no light out of the other (a texel's light
     /// leaves its lit side by the cosine); the opacity is kept as optical
     /// depth, so that samples between a wall's texels still see it opaque.
-    /// Six textures at half resolution and one at level 0 (about 15 bytes a
-    /// texel of level 0) and up to four fetches a sample instead of one;
-    /// bench/results gives the error and time of both. Leaks through thin
-    /// walls: docs/design.md §7d.
+    /// Six textures at half resolution and one at level 0, and up to four
+    /// fetches a sample instead of one; bench/results/ gives the memory,
+    /// error and time of both, and docs/design.md (the light volume) the
+    /// leaks through thin walls that remain.
     bool directional = false;
     /// Cones read a coarse level only where its texels hold no voxel: beside
     /// a surface a cone narrows to the level whose texels stay clear of it,
     /// down to level 0, so that no sample averages light across a wall. A
     /// coarse texel that straddles a one-voxel wall holds the light of both
     /// its sides; with six-way radiance this is what remains of the thin-wall
-    /// leak (design §7d; bench/results give the leak, the error and the time
-    /// with and without). Near surfaces a cone then samples like a ray: more,
+    /// leak (docs/design.md, the light volume; bench/results/ measures the
+    /// leak, the error and the time with and without). Near surfaces a cone then samples like a ray: more,
     /// shorter steps and noisier light.
     bool clearance = false;
     /// Glossy reflection (Global only): one cone along the view direction
