@@ -28,6 +28,12 @@ inline constexpr OptionFlag kOptionFlags[] = {
     {"svo::gl::namedView", "--view", "view"},
     {"AmbientOcclusion::volumeResolution", "--light-volume", "view"},
     {"AmbientOcclusion::Source::Octree", "--ao-source octree", "view"},
+    // The view request (svo/gl/view_request.h).
+    {"ViewRequest::render", "--render", "view"},
+    {"ViewRequest::surface", "--surface", "view"},
+    {"ViewLayers::voxelColor", "--color", "view"},
+    {"svo::kColors", "--attributes color", "view"},
+    {"svo::kTriangles", "--attributes triangle", "view"},
 };
 
 /// @brief The flag for a library identifier; empty when no flag sets it (an

@@ -21,6 +21,7 @@
 #include "svo/core/error.h"
 #include "svo/gl/context.h"
 #include "svo/gl/octree_view.h"
+#include "svo/gl/view_request.h"
 #include "svo/load_octree.h"
 #include "svo/vdb_io/octree_files.h"
 
@@ -138,6 +139,9 @@ void parseLight(const std::string& text, Lights& lights)
     else lights.point.push_back({v, power});
 }
 
+/// The input as errors name it.
+std::string inputName(const ViewArgs& a) { return a.input.empty() ? "cornell_box" : a.input; }
+
 bool haveDisplay()
 {
     for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"})
@@ -161,37 +165,37 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     }
     if (a.frames < 0) throw InvalidInput(fmt::format("--frames {}: expected 0 (until closed) or more", a.frames));
     const auto [width, height] = parseSize(a.size);
-    gl::ViewLayers layers = parseLayers(a.layers);
+    // What the flags ask for; the view policy (svo/gl/view_request.h) makes
+    // the layers from it once the octree is loaded.
+    gl::ViewRequest asked;
+    asked.render = parse<gl::RenderMode>(a.render, "--render");
+    asked.surface = parse<gl::SurfaceChoice>(a.surface, "--surface");
+    asked.room = a.input.empty(); // the Cornell box, lit from under its ceiling
+    gl::ViewLayers& layers = asked.layers;
+    layers = parseLayers(a.layers);
     parseLevels(a.levels, layers);
+    layers.voxelColor = parse<gl::VoxelColor>(a.color, "--color");
     layers.ao = a.ao;
-    layers.ao.filter = a.aoFilter == "average" ? gl::AmbientOcclusion::Filter::Average : gl::AmbientOcclusion::Filter::Max;
-    layers.ao.source = a.aoSource == "octree" ? gl::AmbientOcclusion::Source::Octree : gl::AmbientOcclusion::Source::Volume;
+    layers.ao.filter = parse<gl::AmbientOcclusion::Filter>(a.aoFilter, "--ao-filter");
+    layers.ao.source = parse<gl::AmbientOcclusion::Source>(a.aoSource, "--ao-source");
     layers.ao.volumeResolution = a.light.volumeResolution;
-    if (a.render == "ao") {
-        layers.ao.only = true;
-        if (layers.ao.cones == 0) layers.ao.cones = gl::AmbientOcclusion::kDefaultCones;
-        layers.outlines = layers.bricks = false;
-    }
-    const bool lit = a.render == "direct" || a.render == "gi";
+    layers.light = a.light;
+    layers.ao.interleave = layers.light.interleave = a.conePattern == "interleaved";
+    const bool lit = gl::isLit(asked.render);
     if (lit) {
-        layers.light = a.light;
-        layers.light.mode = a.render == "gi" ? gl::Illumination::Mode::Global : gl::Illumination::Mode::Direct;
-        for (const std::string& l : a.lights) parseLight(l, layers.light.lights);
+        if (!a.lights.empty()) {
+            asked.lights.emplace();
+            for (const std::string& l : a.lights) parseLight(l, *asked.lights);
+        }
         if (!a.albedo.empty()) layers.light.albedo = parseColor(a.albedo, "--albedo");
         if (!a.specular.empty()) {
-            if (a.render != "gi") throw InvalidInput("--specular: the glossy cone is part of --render gi");
+            if (asked.render != gl::RenderMode::Global)
+                throw InvalidInput("--specular: the glossy cone is part of --render gi");
             layers.light.specular = parseColor(a.specular, "--specular");
         }
-        layers.outlines = layers.bricks = false;
     } else if (!a.lights.empty() || !a.albedo.empty() || !a.specular.empty()) {
         throw InvalidInput("--light, --albedo and --specular light the voxels of --render direct or gi");
     }
-    layers.surface = a.surface == "mesh" ? gl::Surface::Mesh : gl::Surface::Voxels; // auto: below, once loaded
-    layers.ao.interleave = layers.light.interleave = a.conePattern == "interleaved";
-    layers.voxelColor = a.color == "normal" ? gl::VoxelColor::Normal
-                        : a.color == "color" ? gl::VoxelColor::Color
-                        : a.color == "triangle" ? gl::VoxelColor::Triangle
-                                                : gl::VoxelColor::Flat;
     gl::namedView({Vec3d{0, 0, 0}, Vec3d{1, 1, 1}}, a.view, 1.0); // the view's name, checked before any work (--view)
     std::vector<double> cam;
     if (!a.camera.empty()) {
@@ -208,23 +212,15 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     OutputBatch outputs({a.screenshot});
 
     // Options out of range are refused before any voxelizing (the default
-    // lights come once the octree's box is known: a stand-in meanwhile).
-    gl::checkAmbientOcclusion(layers.ao);
-    if (lit) {
-        gl::Illumination probe = layers.light;
-        if (probe.lights.directional.empty() && probe.lights.point.empty())
-            probe.lights.directional.push_back({{0, -1, 0}, {1, 1, 1}});
-        gl::checkIllumination(probe);
-    }
+    // lights come once the octree's box is known).
+    gl::checkViewRequest(asked);
 
     BackendArgs backend = a.backend;
-    // Lighting shades by the surface's normal, with the vertex colours as the
-    // albedo where the mesh has them (a mesh without colours gets no colour
-    // channel); AO from the volume leaves along the normal. (The window
-    // voxelizes again with them when either is turned on.)
-    if (lit || (layers.ao.source == gl::AmbientOcclusion::Source::Volume && layers.ao.cones > 0))
-        backend.attributes |= kNormals;
-    if (lit) backend.attributes |= kColors;
+    // The channels the picture reads: lit pictures the normals and the vertex
+    // colours as the albedo (a mesh without colours gets no colour channel),
+    // AO from the volume the normals. (The window voxelizes again with them
+    // when either is turned on.)
+    backend.attributes |= gl::channelsFor(asked);
     LibraryCall call(backend, "building the octree");
     LoadedOctree lo;
     const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
@@ -238,30 +234,12 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     if (lo.mesh) printWarnings(lo.mesh->warnings);
     printWarnings(call.stats.warnings);
     if (layers.mesh && !lo.mesh) fmt::print(stderr, "svo: warning: the input has no mesh to draw (--layers mesh)\n");
-    // Lit and AO pictures of a mesh shade its triangles (the octree lights
-    // them: no blocks, and the path tracer's surface); other pictures, and
-    // inputs without a mesh, the voxels.
-    if (a.surface == "auto")
-        layers.surface = lo.mesh && (lit || a.render == "ao") ? gl::Surface::Mesh : gl::Surface::Voxels;
-    if (layers.surface == gl::Surface::Mesh && !lo.mesh)
-        throw InvalidInput(fmt::format("{}: --surface mesh shades the input mesh, and this input holds voxels only (give the "
-                                       "mesh file, or --surface voxels)",
-                                       a.input));
-    const VoxelAttributes& at = lo.octree.attributes;
-    if ((a.color == "normal" && at.normals.empty()) || (a.color == "color" && at.colors.empty()) ||
-        (a.color == "triangle" && at.triangles.empty()))
-        throw InvalidInput(fmt::format("--color {}: the octree has no {} channel (voxelize a mesh with --attributes {}{})",
-                                       a.color, a.color == "color" ? "colour" : a.color,
-                                       a.color,
-                                       a.color == "color" ? "; colours need vertex colours" : ""));
-
-    if (lit && at.normals.empty())
-        throw InvalidInput(fmt::format("{}: --render {} needs the octree's normal channel, which it lacks (voxelize the mesh "
-                                       "with --attributes normal, or view the mesh itself)",
-                                       a.input, a.render));
-    // The window can turn lighting on at any time: it gets the lights too.
-    if ((lit || window) && layers.light.lights.directional.empty() && layers.light.lights.point.empty())
-        layers.light.lights = gl::defaultLights(gl::gridWorldBox(lo.octree.grid), a.input.empty());
+    gl::ViewLayers shown;
+    try {
+        shown = gl::viewLayers(asked, lo.octree, lo.mesh.has_value());
+    } catch (const InvalidInput& e) { // named after the input, as it is about it
+        throw InvalidInput(fmt::format("{}: {}", inputName(a), errorMessage(e)));
+    }
     const double aspect = double(width) / double(height);
     gl::ViewCamera camera = gl::namedView(gl::gridWorldBox(lo.octree.grid), a.view, aspect);
     if (!cam.empty()) {
@@ -288,8 +266,9 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         in.stats = call.stats;
         in.backend = backend;
         in.camera = camera;
-        in.layers = layers;
-        in.autoSurface = a.surface == "auto";
+        in.layers = shown;
+        in.autoSurface = asked.surface == gl::SurfaceChoice::Auto;
+        in.room = asked.room;
         in.width = width;
         in.height = height;
         in.frames = a.frames;
@@ -316,7 +295,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     gl::Image image;
     {
         Progress p("rendering " + a.screenshot);
-        image = view.render(camera, width, height, layers);
+        image = view.render(camera, width, height, shown);
         writePng(a.screenshot, image);
     }
     outputs.commit();
@@ -364,7 +343,7 @@ void addViewCommand(CLI::App& app)
         "Orthographic, spanning this many world units vertically (a positive number)");
     cmd->add_option("--layers", args->layers, "Comma-separated: voxels, outlines, bricks, mesh")->capture_default_str();
     cmd->add_option("--color", args->color, "Voxel colours: flat, or the attribute channel normal, color or triangle")
-        ->check(CLI::IsMember({"flat", "normal", "color", "triangle"}))
+        ->check(CLI::IsMember(names<gl::VoxelColor>()))
         ->capture_default_str();
     cmd->add_option("--levels", args->levels, "Outline levels a:b (0 = root; a, a: or :b)");
     cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
@@ -383,17 +362,17 @@ void addViewCommand(CLI::App& app)
                                                    "and sampled trilinearly: closer to a path tracer, faster) or octree "
                                                    "(the octree's nodes as the mip-map: no extra memory, fewer leaks "
                                                    "in closed rooms)")
-        ->check(CLI::IsMember({"volume", "octree"}))
+        ->check(CLI::IsMember(names<gl::AmbientOcclusion::Source>()))
         ->capture_default_str();
     cmd->add_option("--ao-filter", args->aoFilter, "--ao-source octree: opacity up the octree: max (a node as opaque as its most opaque "
                                                    "child: fewer leaks through walls) or average (its face share)")
-        ->check(CLI::IsMember({"max", "average"}))
+        ->check(CLI::IsMember(names<gl::AmbientOcclusion::Filter>()))
         ->capture_default_str();
     cmd->add_option("--surface", args->surface,
                     "What the voxel layer shades: voxels (those the camera's rays hit: the octree as it is), mesh "
                     "(the input mesh's triangles, lit, occluded and coloured through the octree: no blocks; needs a "
                     "mesh input) or auto (mesh for --render ao, direct and gi of a mesh, else voxels)")
-        ->check(CLI::IsMember({"voxels", "mesh", "auto"}))
+        ->check(CLI::IsMember(names<gl::SurfaceChoice>()))
         ->capture_default_str();
     cmd->add_option("--cone-pattern", args->conePattern,
                     "AO from the volume, and gi's bounce: interleaved (each pixel of a 4x4 tile turns its cones and "
@@ -405,7 +384,7 @@ void addViewCommand(CLI::App& app)
                     "debug: the layers; ao: the surface as its ambient occlusion, grey (5 cones unless --ao says); "
                     "direct: lit by --light with shadows; gi: direct and one diffuse bounce cone-traced through the "
                     "lighting volume")
-        ->check(CLI::IsMember({"debug", "ao", "direct", "gi"}))
+        ->check(CLI::IsMember(names<gl::RenderMode>()))
         ->capture_default_str();
     cmd->add_option("--light", args->lights,
                     "direct/gi: sun:dx,dy,dz[:E] (travelling along d) or point:x,y,z[:I], world units, E and I one "

@@ -38,6 +38,23 @@ Vec3d rotate(const Vec3d& v, const Vec3d& k, double angle)
     return c * v + s * cross(k, v) + ((1 - c) * dot(k, v)) * k;
 }
 
+/// A combo box over an enum's names (svo/core/enum_names.h), in its table's order.
+template <typename E>
+bool enumCombo(const char* label, E& value)
+{
+    const auto& table = enumNames(E{});
+    int at = 0;
+    for (int i = 0; i < int(std::size(table)); ++i)
+        if (table[i].value == value) at = i;
+    const auto item = [](void* data, int i, const char** text) {
+        *text = static_cast<const EnumName<E>*>(data)[i].name.data();
+        return true;
+    };
+    if (!ImGui::Combo(label, &at, item, const_cast<EnumName<E>*>(std::data(table)), int(std::size(table)))) return false;
+    value = table[at].value;
+    return true;
+}
+
 /// The last GLFW error, for one-line messages.
 std::string glfwReason()
 {
@@ -202,30 +219,46 @@ struct ViewerState {
         revoxelize(resolution);
     }
 
-    /// Lighting off, direct, or direct and one bounce (as --render direct|gi:
-    /// the outlines and brick boxes go while it is on). An octree file
-    /// without the normal channel cannot be lit: the panel says so.
-    void setLighting(gl::Illumination::Mode m)
+    /// A render mode turned on or off (keys L, R and G, the panel), with the
+    /// panel's layers as they are: the view policy (svo/gl/view_request.h)
+    /// gives the layers as svo view --render gets them (no outlines or brick
+    /// boxes while lit or AO alone, default cones and lights, the mesh's
+    /// surface under --surface auto), after the channels it reads are
+    /// voxelized. A request the octree cannot meet (lighting an octree file
+    /// without normals) leaves the layers as they were and says why in the
+    /// panel.
+    void follow(gl::RenderMode render)
     {
-        gl::ViewLayers& l = in.layers;
-        if (m != gl::Illumination::Mode::Off) ensureChannels(kNormals | kColors);
-        if (m != gl::Illumination::Mode::Off && octree.attributes.normals.empty()) {
-            message = "lighting needs the octree's normal channel (voxelize the mesh with --attributes normal)";
-            return;
+        gl::ViewRequest r;
+        r.render = render;
+        r.surface = in.autoSurface                          ? gl::SurfaceChoice::Auto
+                    : in.layers.surface == gl::Surface::Mesh ? gl::SurfaceChoice::Mesh
+                                                             : gl::SurfaceChoice::Voxels;
+        r.room = in.room;
+        r.layers = in.layers;
+        ensureChannels(gl::channelsFor(r));
+        r.layers = in.layers; // as a re-voxelization left them
+        try {
+            in.layers = gl::viewLayers(r, octree, in.loaded.mesh.has_value());
+        } catch (const InvalidInput& e) {
+            message = errorMessage(e);
         }
-        if (m != gl::Illumination::Mode::Off && l.light.mode == gl::Illumination::Mode::Off)
-            l.outlines = l.bricks = false;
-        l.light.mode = m;
-        followSurface();
     }
 
-    /// --surface auto: the mesh's surface for AO alone and lit pictures, as
-    /// svo view --render ao|direct|gi --screenshot shades them.
-    void followSurface()
+    /// Lighting off, direct, or direct and one bounce; AO alone as it was.
+    void setLighting(gl::Illumination::Mode m)
     {
-        gl::ViewLayers& l = in.layers;
-        if (in.autoSurface && in.loaded.mesh)
-            l.surface = l.ao.only || l.light.mode != gl::Illumination::Mode::Off ? gl::Surface::Mesh : gl::Surface::Voxels;
+        follow(m == gl::Illumination::Mode::Global   ? gl::RenderMode::Global
+               : m == gl::Illumination::Mode::Direct ? gl::RenderMode::Direct
+               : in.layers.ao.only                   ? gl::RenderMode::AmbientOcclusion
+                                                     : gl::RenderMode::Layers);
+    }
+
+    /// AO alone on or off, lighting as it was.
+    void setAoOnly(bool only)
+    {
+        in.layers.ao.only = only;
+        setLighting(in.layers.light.mode);
     }
 
     /// One key, from the keyboard or the --keys script.
@@ -239,12 +272,11 @@ struct ViewerState {
         case 'k': l.bricks = !l.bricks; break;
         case 'a': nextColor(); break;
         case 'l': setLighting(gl::Illumination::Mode((int(l.light.mode) + 1) % 3)); break;
-        case 'g': l.ao.cones = l.ao.cones ? 0 : gl::AmbientOcclusion::kDefaultCones; if (!l.ao.cones) l.ao.only = false; break;
-        case 'r':
-            l.ao.only = !l.ao.only;
-            if (l.ao.only) l.ao.cones = std::max(l.ao.cones, gl::AmbientOcclusion::kDefaultCones), l.outlines = l.bricks = false;
-            followSurface();
+        case 'g':
+            l.ao.cones = l.ao.cones ? 0 : gl::AmbientOcclusion::kDefaultCones;
+            if (!l.ao.cones) setAoOnly(false);
             break;
+        case 'r': setAoOnly(!l.ao.only); break;
         case '+': case '=': revoxelize(resolution * 2); break;
         case '-': revoxelize(std::max<int64_t>(resolution / 2, 1)); break;
         case 'b': backend = (backend + 1) % int(std::size(kBackends)); revoxelize(resolution); break;
@@ -341,14 +373,12 @@ struct ViewerState {
         ImGui::SliderInt("AO cones (G)", &l.ao.cones, 0, 16);
         if (l.ao.cones > 0) {
             ImGui::SameLine();
-            if (ImGui::Checkbox("AO alone (R)", &l.ao.only)) followSurface();
+            bool only = l.ao.only;
+            if (ImGui::Checkbox("AO alone (R)", &only)) setAoOnly(only);
             float aperture = float(l.ao.apertureDegrees), offset = float(l.ao.offset), distance = float(l.ao.distance);
             if (ImGui::SliderFloat("AO aperture", &aperture, 10.0f, 120.0f, "%.0f deg")) l.ao.apertureDegrees = aperture;
             const bool volume = l.ao.source == gl::AmbientOcclusion::Source::Volume;
-            int source = volume ? 0 : 1;
-            static constexpr const char* kSources[] = {"volume", "octree"};
-            if (ImGui::Combo("AO source", &source, kSources, IM_ARRAYSIZE(kSources)))
-                l.ao.source = source == 0 ? gl::AmbientOcclusion::Source::Volume : gl::AmbientOcclusion::Source::Octree;
+            enumCombo("AO source", l.ao.source);
             if (ImGui::SliderFloat("AO offset", &offset, 0.0f, 8.0f, volume ? "%.2f texels" : "%.2f voxels"))
                 l.ao.offset = offset;
             if (ImGui::SliderFloat("AO distance", &distance, 1.0f, 1024.0f, "%.0f voxels", ImGuiSliderFlags_Logarithmic))
@@ -356,10 +386,7 @@ struct ViewerState {
             float step = float(l.ao.step);
             if (ImGui::SliderFloat("AO step", &step, 0.05f, 1.0f, "%.2f of the cone")) l.ao.step = step;
             if (volume) ImGui::Checkbox("AO cones interleaved over 4x4 pixels", &l.ao.interleave);
-            int filter = int(l.ao.filter);
-            static constexpr const char* kFilters[] = {"average", "max"};
-            if (!volume && ImGui::Combo("AO filter", &filter, kFilters, IM_ARRAYSIZE(kFilters)))
-                l.ao.filter = gl::AmbientOcclusion::Filter(filter);
+            if (!volume) enumCombo("AO filter", l.ao.filter);
         } else {
             l.ao.only = false;
         }

@@ -7,6 +7,7 @@
 
 #include "cli_options.h"
 #include "svo/gl/octree_view.h"
+#include "svo/gl/view_request.h"
 #include "svo/load_octree.h"
 #include "svo/vdb_io/octree_files.h"
 #include "svo/voxelizer.h"
@@ -24,6 +25,7 @@ struct ViewWindowInput {
     /// --surface auto: the mesh's surface while AO alone or lighting is on
     /// (when the input is a mesh), else the voxels; the panel's checkbox ends it.
     bool autoSurface = false;
+    bool room = false;        ///< lighting turned on without lights gets a room's (gl::ViewRequest::room)
     int width = 1280, height = 960; ///< the window's first size
     int frames = 0;           ///< close after this many frames; 0: when the user closes it
     std::string keys;         ///< pressed one per frame from the second frame on (scripted demos, tests)

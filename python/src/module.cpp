@@ -11,10 +11,12 @@
 
 #include <cmath>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "svo/gl/context.h"
 #include "svo/gl/octree_view.h"
+#include "svo/gl/view_request.h"
 #include "svo/svo.h"
 #ifdef SVO_WITH_VALIDATE
 #include "svo/validate/level_set_report.h"
@@ -540,147 +542,173 @@ svo::Lights lightsOf(const py::iterable& list)
     return out;
 }
 
-/// Octree.render's cone keywords, as svo view's --ao-* and --gi-* options;
-/// their defaults are the library's.
-struct ConeKeywords {
-    svo::gl::AmbientOcclusion ao;
-    svo::gl::Illumination gi;
-    uint32_t lightVolume = svo::gl::Illumination{}.volumeResolution;
+/// Keyword arguments read one by one, each with its default; a keyword that
+/// is not read is refused, as Python refuses an unknown one.
+class Keywords {
+public:
+    Keywords(const char* function, const py::kwargs& given) : function_(function), given_(given) {}
 
-    /// Into l, checked by the library's own checks (a ValueError naming the
-    /// value); the gi keywords only where lighting is on.
-    void apply(svo::gl::ViewLayers& l, bool lit) const
+    bool given(const char* name) const { return given_.contains(name) && !given_[name].is_none(); }
+    /// The keyword's value (None and absent: none), marked as read.
+    py::object object(const char* name)
     {
-        const svo::gl::Illumination none;
-        if (!lit && (gi.cones != none.cones || gi.apertureDegrees != none.apertureDegrees ||
-                     gi.offset != none.offset || gi.step != none.step || gi.distance != none.distance))
-            badValue("gi_cones, gi_aperture, gi_offset, gi_step and gi_distance shape the bounce of lighting='gi'");
-        l.ao.apertureDegrees = ao.apertureDegrees;
-        l.ao.offset = ao.offset;
-        l.ao.distance = ao.distance;
-        l.ao.step = ao.step;
-        l.ao.volumeResolution = lightVolume;
-        l.light.cones = gi.cones;
-        l.light.apertureDegrees = gi.apertureDegrees;
-        l.light.offset = gi.offset;
-        l.light.step = gi.step;
-        l.light.distance = gi.distance;
-        l.light.volumeResolution = lightVolume;
-        svo::gl::checkAmbientOcclusion(l.ao);
-        if (lit) svo::gl::checkIllumination(l.light);
+        read_.insert(name);
+        return given_.contains(name) ? py::reinterpret_borrow<py::object>(given_[name]) : py::none();
     }
+    template <typename T>
+    T get(const char* name, T fallback)
+    {
+        const py::object o = object(name);
+        if (!given_.contains(name)) return fallback;
+        try {
+            return o.cast<T>();
+        } catch (const py::cast_error&) {
+            throw py::type_error(std::string(function_) + "(): keyword '" + name + "' has the wrong type (" +
+                                 std::string(py::str(o.get_type().attr("__name__"))) + ")");
+        }
+    }
+    /// TypeError for a keyword no get() read.
+    void checkAllRead() const
+    {
+        for (const auto& item : given_) {
+            const std::string name = py::cast<std::string>(item.first);
+            if (!read_.count(name))
+                throw py::type_error(std::string(function_) + "() got an unexpected keyword argument '" + name + "'");
+        }
+    }
+
+private:
+    const char* function_;
+    const py::kwargs& given_;
+    std::set<std::string> read_;
 };
 
-/// Octree.render: one frame of the octree view, (H, W, 4) uint8, rows from the top.
-py::array_t<uint8_t> renderOctree(const PyOctree& p, std::pair<int, int> size, const std::string& view,
-                                  const std::vector<std::string>& layers, std::optional<std::pair<int, int>> levels,
-                                  const std::string& color, int ao, bool aoOnly, const std::string& aoSource,
-                                  const std::string& lighting, const std::optional<py::iterable>& lights,
-                                  const py::object& albedo, const py::object& specular, const py::object& mesh,
-                                  const std::string& surface, const std::string& giEmission, bool giClearance,
-                                  double aoAperture, double aoOffset, double aoDistance, double aoStep, int giCones,
-                                  double giAperture, double giOffset, double giStep, double giDistance,
-                                  uint32_t lightVolume)
+/// The library's names for what Octree.render's keywords set, for its messages.
+std::string keywordFor(const std::string& identifier)
 {
-    ConeKeywords cones;
-    cones.ao.apertureDegrees = aoAperture, cones.ao.offset = aoOffset, cones.ao.distance = aoDistance;
-    cones.ao.step = aoStep;
-    cones.gi.cones = giCones, cones.gi.apertureDegrees = giAperture, cones.gi.offset = giOffset;
-    cones.gi.step = giStep, cones.gi.distance = giDistance;
-    cones.lightVolume = lightVolume;
-    svo::gl::ViewLayers l;
-    // The mesh's own triangles, shaded through the octree (svo view --surface).
-    if (surface != "auto" && surface != "voxels" && surface != "mesh")
-        badValue("surface: expected 'auto', 'voxels' or 'mesh', got '" + surface + "'");
-    std::optional<svo::TriangleMesh> triangles;
-    if (!mesh.is_none()) {
-        if (!py::isinstance<py::sequence>(mesh) || py::len(mesh) != 2)
-            badValue("mesh: expected (vertices, triangles), the arrays the octree was voxelized from");
-        const auto parts = mesh.cast<py::sequence>();
-        if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
-            badValue("mesh: the octree's transform is not a uniform voxel size and a whole-voxel translation, so "
-                     "its triangles cannot be placed in it (voxelize it with resolution or voxel_size)");
-        const std::vector<openvdb::Vec3d> points = toPoints(parts[0]);
-        std::vector<openvdb::Vec3I> tris;
-        std::vector<openvdb::Vec4I> quads;
-        toFaces(parts[1], points.size(), tris, quads);
-        svo::TriangleMesh m;
-        m.source = "mesh";
-        for (const auto& q : points) m.positions.push_back({q.x(), q.y(), q.z()});
-        for (const auto& t : tris) m.triangles.push_back({uint32_t(t.x()), uint32_t(t.y()), uint32_t(t.z())});
-        for (const auto& q : quads) {
-            m.triangles.push_back({uint32_t(q[0]), uint32_t(q[1]), uint32_t(q[2])});
-            m.triangles.push_back({uint32_t(q[0]), uint32_t(q[2]), uint32_t(q[3])});
-        }
-        triangles = std::move(m);
+    static const std::pair<const char*, const char*> keywords[] = {
+        {"ViewRequest::render", "lighting"},          {"ViewRequest::surface", "surface"},
+        {"ViewLayers::voxelColor", "color"},          {"svo::kNormals", "attributes=['normal']"},
+        {"svo::kColors", "attributes=['color']"},     {"svo::kTriangles", "attributes=['triangle']"},
+        {"AmbientOcclusion::volumeResolution", "light_volume"},
+        {"AmbientOcclusion::Source::Octree", "ao_source='octree'"}};
+    for (const auto& [id, keyword] : keywords)
+        if (identifier == id) return keyword;
+    return {};
+}
+
+/// The mesh=(vertices, triangles) keyword, in the octree's frame.
+std::optional<svo::TriangleMesh> renderMesh(const PyOctree& p, const py::object& mesh)
+{
+    if (mesh.is_none()) return std::nullopt;
+    if (!py::isinstance<py::sequence>(mesh) || py::len(mesh) != 2)
+        badValue("mesh: expected (vertices, triangles), the arrays the octree was voxelized from");
+    const auto parts = mesh.cast<py::sequence>();
+    if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
+        badValue("mesh: the octree's transform is not a uniform voxel size and a whole-voxel translation, so "
+                 "its triangles cannot be placed in it (voxelize it with resolution or voxel_size)");
+    const std::vector<openvdb::Vec3d> points = toPoints(parts[0]);
+    std::vector<openvdb::Vec3I> tris;
+    std::vector<openvdb::Vec4I> quads;
+    toFaces(parts[1], points.size(), tris, quads);
+    svo::TriangleMesh m;
+    m.source = "mesh";
+    for (const auto& q : points) m.positions.push_back({q.x(), q.y(), q.z()});
+    for (const auto& t : tris) m.triangles.push_back({uint32_t(t.x()), uint32_t(t.y()), uint32_t(t.z())});
+    for (const auto& q : quads) {
+        m.triangles.push_back({uint32_t(q[0]), uint32_t(q[1]), uint32_t(q[2])});
+        m.triangles.push_back({uint32_t(q[0]), uint32_t(q[2]), uint32_t(q[3])});
     }
-    if (surface == "mesh" && !triangles) badValue("surface='mesh' shades the mesh: give mesh=(vertices, triangles)");
-    l.surface = surface == "mesh" || (surface == "auto" && triangles && (aoOnly || lighting != "off"))
-                    ? svo::gl::Surface::Mesh
-                    : svo::gl::Surface::Voxels;
-    if (lighting != "off" && lighting != "direct" && lighting != "gi")
-        badValue("lighting: expected 'off', 'direct' or 'gi', got '" + lighting + "'");
-    if (lighting != "off") {
-        // As svo view --render direct|gi: lit voxels, no outlines.
-        l.light.mode = lighting == "gi" ? svo::gl::Illumination::Mode::Global : svo::gl::Illumination::Mode::Direct;
-        l.light.lights = lights ? lightsOf(*lights)
-                                : svo::gl::defaultLights(svo::gl::gridWorldBox(p.octree.grid), false);
-        if (!albedo.is_none()) l.light.albedo = colorOf(albedo, "albedo");
-        if (!specular.is_none()) l.light.specular = colorOf(specular, "specular");
-        if (giEmission != "isotropic" && giEmission != "directional")
-            badValue("gi_emission: expected 'isotropic' or 'directional', got '" + giEmission + "'");
-        l.light.directional = giEmission == "directional";
-        l.light.clearance = giClearance;
-        if (p.octree.attributes.normals.empty())
-            badValue("lighting: the octree has no normal channel (make it with attributes=['normal'])");
-    } else if (lights || !albedo.is_none() || !specular.is_none() || giEmission != "isotropic" || giClearance) {
-        badValue("lights, albedo, specular, gi_emission and gi_clearance light the voxels of lighting='direct' or "
-                 "'gi'");
-    }
-    if (ao < 0 || ao > 16) badValue("ao: expected 0 (none) to 16 cones");
-    if (aoSource != "volume" && aoSource != "octree")
-        badValue("ao_source: expected 'volume' or 'octree', got '" + aoSource + "'");
-    l.ao.source = aoSource == "octree" ? svo::gl::AmbientOcclusion::Source::Octree
-                                       : svo::gl::AmbientOcclusion::Source::Volume;
-    if (aoOnly && ao == 0) ao = svo::gl::AmbientOcclusion::kDefaultCones;
-    l.ao.cones = ao;
-    l.ao.only = aoOnly;
-    cones.apply(l, lighting != "off");
+    return m;
+}
+
+/// Octree.render(**keywords): one frame of the octree view, (H, W, 4) uint8,
+/// rows from the top. The keywords fill a view request (svo/gl/view_request.h),
+/// as svo view's flags do; the library applies the defaults and the checks.
+py::array_t<uint8_t> renderOctree(const PyOctree& p, const py::kwargs& kwargs)
+{
+    namespace gl = svo::gl;
+    Keywords kw("render", kwargs);
+    const auto [width, height] = kw.get("size", std::pair<int, int>(640, 480));
+    const std::string view = kw.get<std::string>("view", "front");
+    gl::ViewRequest request;
+    gl::ViewLayers& l = request.layers;
     l.voxels = l.outlines = false;
-    for (const std::string& name : layers) {
-        if (lighting != "off" && name != "voxels") continue; // lit: the voxels alone
+    for (const std::string& name : kw.get("layers", std::vector<std::string>{"voxels", "outlines"})) {
         if (name == "voxels") l.voxels = true;
         else if (name == "outlines") l.outlines = true;
         else if (name == "bricks") l.bricks = true;
         else badValue("layers: expected 'voxels', 'outlines' or 'bricks', got '" + name + "'");
     }
-    if (levels) {
-        if (levels->first < 0 || levels->second < levels->first) badValue("levels: expected (first, last) with 0 <= first <= last");
+    if (const auto levels = kw.get<std::optional<std::pair<int, int>>>("levels", std::nullopt)) {
+        if (levels->first < 0 || levels->second < levels->first)
+            badValue("levels: expected (first, last) with 0 <= first <= last");
         l.firstLevel = uint32_t(levels->first);
         l.lastLevel = uint32_t(levels->second);
     }
-    const std::pair<const char*, svo::gl::VoxelColor> colors[] = {{"flat", svo::gl::VoxelColor::Flat},
-                                                                  {"normal", svo::gl::VoxelColor::Normal},
-                                                                  {"color", svo::gl::VoxelColor::Color},
-                                                                  {"triangle", svo::gl::VoxelColor::Triangle}};
-    bool known = false;
-    for (const auto& [name, c] : colors)
-        if (color == name) l.voxelColor = c, known = true;
-    if (!known) badValue("color: expected 'flat', 'normal', 'color' or 'triangle', got '" + color + "'");
-    const auto& a = p.octree.attributes;
-    if ((color == "normal" && a.normals.empty()) || (color == "color" && a.colors.empty()) ||
-        (color == "triangle" && a.triangles.empty()))
-        badValue("color: the octree has no '" + color + "' channel (make it with attributes=['" + color + "'])");
-    const auto [width, height] = size;
+    l.voxelColor = svo::parse<gl::VoxelColor>(kw.get<std::string>("color", "flat"), "color");
+    l.ao.cones = kw.get("ao", 0);
+    if (l.ao.cones < 0 || l.ao.cones > 16) badValue("ao: expected 0 (none) to 16 cones");
+    l.ao.only = kw.get("ao_only", false); // AO alone, the layers kept
+    l.ao.source = svo::parse<gl::AmbientOcclusion::Source>(kw.get<std::string>("ao_source", "volume"), "ao_source");
+    const gl::Illumination::Mode lighting =
+        svo::parse<gl::Illumination::Mode>(kw.get<std::string>("lighting", "off"), "lighting");
+    request.render = lighting == gl::Illumination::Mode::Global   ? gl::RenderMode::Global
+                     : lighting == gl::Illumination::Mode::Direct ? gl::RenderMode::Direct
+                                                                  : gl::RenderMode::Layers;
+    const bool lit = gl::isLit(request.render);
+    if (const py::object lights = kw.object("lights"); !lights.is_none()) {
+        if (!py::isinstance<py::iterable>(lights)) throw py::type_error("render(): lights: expected a list of lights");
+        request.lights = lightsOf(lights);
+    }
+    if (const py::object albedo = kw.object("albedo"); !albedo.is_none()) l.light.albedo = colorOf(albedo, "albedo");
+    if (const py::object specular = kw.object("specular"); !specular.is_none())
+        l.light.specular = colorOf(specular, "specular");
+    std::optional<svo::TriangleMesh> triangles = renderMesh(p, kw.object("mesh"));
+    request.surface = svo::parse<gl::SurfaceChoice>(kw.get<std::string>("surface", "auto"), "surface");
+    const std::string emission = kw.get<std::string>("gi_emission", "isotropic");
+    if (emission != "isotropic" && emission != "directional")
+        badValue("gi_emission: expected 'isotropic' or 'directional', got '" + emission + "'");
+    l.light.directional = emission == "directional";
+    l.light.clearance = kw.get("gi_clearance", false);
+    // The cones' shape, as svo view's --ao-* and --gi-* options; their defaults are the library's.
+    const gl::AmbientOcclusion ao;
+    const gl::Illumination gi;
+    l.ao.apertureDegrees = kw.get("ao_aperture", ao.apertureDegrees);
+    l.ao.offset = kw.get("ao_offset", ao.offset);
+    l.ao.distance = kw.get("ao_distance", ao.distance);
+    l.ao.step = kw.get("ao_step", ao.step);
+    l.light.cones = kw.get("gi_cones", gi.cones);
+    l.light.apertureDegrees = kw.get("gi_aperture", gi.apertureDegrees);
+    l.light.offset = kw.get("gi_offset", gi.offset);
+    l.light.step = kw.get("gi_step", gi.step);
+    l.light.distance = kw.get("gi_distance", gi.distance);
+    l.ao.volumeResolution = l.light.volumeResolution = kw.get("light_volume", gi.volumeResolution);
+    kw.checkAllRead();
+    // Keywords that light the voxels, given without lighting.
+    if (!lit) {
+        if (request.lights || kw.given("albedo") || kw.given("specular") || emission != "isotropic" ||
+            l.light.clearance)
+            badValue("lights, albedo, specular, gi_emission and gi_clearance light the voxels of lighting='direct' or "
+                     "'gi'");
+        if (l.light.cones != gi.cones || l.light.apertureDegrees != gi.apertureDegrees || l.light.offset != gi.offset ||
+            l.light.step != gi.step || l.light.distance != gi.distance)
+            badValue("gi_cones, gi_aperture, gi_offset, gi_step and gi_distance shape the bounce of lighting='gi'");
+    }
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
         badValue("size: expected (width, height), 1 to 16384 pixels each");
-    const svo::gl::ViewCamera camera =
-        svo::gl::namedView(svo::gl::gridWorldBox(p.octree.grid), view, double(width) / double(height));
-    svo::gl::Image image;
+    gl::ViewLayers shown;
+    try {
+        shown = gl::viewLayers(request, p.octree, triangles.has_value());
+    } catch (const svo::InvalidInput& e) {
+        badValue(e.message(keywordFor));
+    }
+    const gl::ViewCamera camera = gl::namedView(gl::gridWorldBox(p.octree.grid), view, double(width) / double(height));
+    gl::Image image;
     {
         py::gil_scoped_release release;
-        const svo::gl::OctreeView v(pictureContext(), p.octree, triangles ? &*triangles : nullptr);
-        image = v.render(camera, width, height, l);
+        const gl::OctreeView v(pictureContext(), p.octree, triangles ? &*triangles : nullptr);
+        image = v.render(camera, width, height, shown);
     }
     py::array_t<uint8_t> out({py::ssize_t(height), py::ssize_t(width), py::ssize_t(4)});
     std::copy(image.rgba.begin(), image.rgba.end(), out.mutable_data());
@@ -949,20 +977,12 @@ PYBIND11_MODULE(_svo, m)
             g.attributes = false;
             return toPython(svo::octreeToGrids(p.octree, g, p.xform)[g.fog ? 1 : 0]);
         }, py::arg("grid") = "bool", "A pyopenvdb grid of the voxels with the octree's transform.")
-        .def("render", &renderOctree, py::kw_only(), py::arg("size") = std::pair<int, int>(640, 480),
-             py::arg("view") = "front", py::arg("layers") = std::vector<std::string>{"voxels", "outlines"},
-             py::arg("levels") = py::none(), py::arg("color") = "flat", py::arg("ao") = 0, py::arg("ao_only") = false,
-             py::arg("ao_source") = "volume", py::arg("lighting") = "off", py::arg("lights") = py::none(),
-             py::arg("albedo") = py::none(), py::arg("specular") = py::none(), py::arg("mesh") = py::none(),
-             py::arg("surface") = "auto", py::arg("gi_emission") = "isotropic", py::arg("gi_clearance") = false,
-             py::arg("ao_aperture") = svo::gl::AmbientOcclusion{}.apertureDegrees,
-             py::arg("ao_offset") = svo::gl::AmbientOcclusion{}.offset,
-             py::arg("ao_distance") = svo::gl::AmbientOcclusion{}.distance,
-             py::arg("ao_step") = svo::gl::AmbientOcclusion{}.step, py::arg("gi_cones") = svo::gl::Illumination{}.cones,
-             py::arg("gi_aperture") = svo::gl::Illumination{}.apertureDegrees,
-             py::arg("gi_offset") = svo::gl::Illumination{}.offset, py::arg("gi_step") = svo::gl::Illumination{}.step,
-             py::arg("gi_distance") = svo::gl::Illumination{}.distance,
-             py::arg("light_volume") = svo::gl::Illumination{}.volumeResolution,
+        .def("render", &renderOctree,
+             "render(*, size=(640, 480), view='front', layers=['voxels', 'outlines'], levels=None, color='flat',\n"
+             "       ao=0, ao_only=False, ao_source='volume', lighting='off', lights=None, albedo=None,\n"
+             "       specular=None, mesh=None, surface='auto', gi_emission='isotropic', gi_clearance=False,\n"
+             "       ao_aperture=60.0, ao_offset=2.0, ao_distance=32.0, ao_step=0.5, gi_cones=5, gi_aperture=60.0,\n"
+             "       gi_offset=1.5, gi_step=0.5, gi_distance=0.0, light_volume=256)\n\n"
              "A picture of the octree drawn on the GPU, as svo view --screenshot draws it: (H, W, 4) uint8,\n"
              "rows from the top. view: 'front' or an axis view '+x', '-x', '+y', '-y', '+z', '-z';\n"
              "layers: 'voxels', 'outlines', 'bricks'; levels: (first, last) outline levels; color: 'flat'\n"

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "svo/core/camera.h"
+#include "svo/core/enum_names.h"
 #include "svo/core/lights.h"
 #include "svo/core/mesh.h"
 #include "svo/core/octree.h"
@@ -50,6 +51,11 @@ using ViewCamera = svo::Camera;
 /// octree (VoxelAttributes): the normal as 0.5 + 0.5 n, the colour, or a
 /// colour hashed from the triangle id.
 enum class VoxelColor { Flat, Normal, Color, Triangle };
+inline constexpr EnumName<VoxelColor> kVoxelColorNames[] = {{VoxelColor::Flat, "flat"},
+                                                             {VoxelColor::Normal, "normal"},
+                                                             {VoxelColor::Color, "color"},
+                                                             {VoxelColor::Triangle, "triangle"}};
+constexpr const auto& enumNames(VoxelColor) { return kVoxelColorNames; }
 
 /// Ambient occlusion on the voxels (Crassin et al. 2011): cones over the
 /// hemisphere, one along the normal and a ring tilted 60 degrees around it,
@@ -121,6 +127,12 @@ struct AmbientOcclusion {
     Filter filter = Filter::Max;  ///< Octree: how node opacities are filtered up the octree
     bool only = false;            ///< draw the voxels as grey AO alone (no colour or face light), to measure it
 };
+inline constexpr EnumName<AmbientOcclusion::Source> kAoSourceNames[] = {{AmbientOcclusion::Source::Volume, "volume"},
+                                                                         {AmbientOcclusion::Source::Octree, "octree"}};
+constexpr const auto& enumNames(AmbientOcclusion::Source) { return kAoSourceNames; }
+inline constexpr EnumName<AmbientOcclusion::Filter> kAoFilterNames[] = {{AmbientOcclusion::Filter::Average, "average"},
+                                                                         {AmbientOcclusion::Filter::Max, "max"}};
+constexpr const auto& enumNames(AmbientOcclusion::Filter) { return kAoFilterNames; }
 
 /// Light injected into the octree and gathered by cones (design §7d;
 /// Crassin et al. 2011). When on, the voxels are drawn lit instead of by
@@ -188,6 +200,10 @@ struct Illumination {
     double exposure = 1.0;                ///< the picture is (radiance x exposure)^(1 / gamma), clamped to 1
     double gamma = 2.2;                   ///< 1: linear, to compare with a reference
 };
+inline constexpr EnumName<Illumination::Mode> kLightingNames[] = {{Illumination::Mode::Off, "off"},
+                                                                   {Illumination::Mode::Direct, "direct"},
+                                                                   {Illumination::Mode::Global, "gi"}};
+constexpr const auto& enumNames(Illumination::Mode) { return kLightingNames; }
 
 /// Throw svo::InvalidInput, in one line naming the option, for options out of
 /// range: what OctreeView::render would refuse, checked before any work
@@ -240,6 +256,8 @@ struct LightVolume {
 ///     voxel's from the injection). Colours by attribute, and the albedo,
 ///     are the channel's value at the voxel holding the point.
 enum class Surface { Voxels, Mesh };
+inline constexpr EnumName<Surface> kSurfaceNames[] = {{Surface::Voxels, "voxels"}, {Surface::Mesh, "mesh"}};
+constexpr const auto& enumNames(Surface) { return kSurfaceNames; }
 
 /// What to draw.
 struct ViewLayers {

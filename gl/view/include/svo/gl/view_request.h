@@ -1,0 +1,87 @@
+#pragma once
+/// @file view_request.h
+/// The view policy: what a picture of an octree gets by default, and which
+/// combinations are refused, written once for `svo view` (its flags), its
+/// window (its keys and panel) and Python's Octree.render (its keywords).
+///
+/// A front end fills a ViewRequest with what the user asked for and calls
+/// viewLayers, which gives the ViewLayers OctreeView draws:
+///   - the render mode: Layers draws the layers as asked; AmbientOcclusion
+///     draws the surface as its AO alone, grey, and Direct and Global light
+///     it (Illumination::Mode); AO alone and lit pictures draw the voxel
+///     layer without outlines and brick boxes;
+///   - AO alone with no cones asked takes AmbientOcclusion::kDefaultCones;
+///   - lit pictures without lights take defaultLights over the octree's
+///     grid (a room's when `room`);
+///   - the surface: Auto shades the mesh (when one is given) for AO alone and
+///     lit pictures, else the voxels;
+///   - refused (svo::InvalidInput naming the option): the Mesh surface
+///     without a mesh, a voxel colour whose channel the octree lacks, lit
+///     pictures of an octree without the normal channel, and AO or lighting
+///     options out of range (checkAmbientOcclusion, checkIllumination).
+#include <cstdint>
+#include <optional>
+
+#include "svo/core/enum_names.h"
+#include "svo/core/lights.h"
+#include "svo/core/octree.h"
+#include "svo/gl/octree_view.h"
+
+namespace svo::gl {
+
+/// What a picture shows (svo view --render).
+enum class RenderMode {
+    Layers,           ///< "debug": the layers as asked (voxels coloured, outlines, bricks, mesh; AO when it has cones)
+    AmbientOcclusion, ///< "ao": the surface as its ambient occlusion, grey
+    Direct,           ///< "direct": lit, with shadows
+    Global,           ///< "gi": lit, and one diffuse bounce
+};
+inline constexpr EnumName<RenderMode> kRenderModeNames[] = {{RenderMode::Layers, "debug"},
+                                                             {RenderMode::AmbientOcclusion, "ao"},
+                                                             {RenderMode::Direct, "direct"},
+                                                             {RenderMode::Global, "gi"}};
+constexpr const auto& enumNames(RenderMode) { return kRenderModeNames; }
+
+/// The surface asked for (svo view --surface): Surface, or Auto.
+enum class SurfaceChoice { Auto, Voxels, Mesh };
+inline constexpr EnumName<SurfaceChoice> kSurfaceChoiceNames[] = {
+    {SurfaceChoice::Voxels, "voxels"}, {SurfaceChoice::Mesh, "mesh"}, {SurfaceChoice::Auto, "auto"}};
+constexpr const auto& enumNames(SurfaceChoice) { return kSurfaceChoiceNames; }
+
+/// What a caller asks of one picture. Errors name its fields as
+/// "ViewRequest::render", "ViewRequest::surface" and "ViewLayers::voxelColor".
+struct ViewRequest {
+    RenderMode render = RenderMode::Layers;
+    SurfaceChoice surface = SurfaceChoice::Auto;
+    /// The layers, outline levels, voxel colour, and AO and lighting as asked
+    /// (cones, their shape, source, albedo, specular, ...). viewLayers sets
+    /// `surface`, `light.mode` and, for RenderMode::AmbientOcclusion,
+    /// `ao.only`; `ao.only` asked with RenderMode::Layers is AO alone with
+    /// the layers kept (the window's checkbox, Python's ao_only).
+    ViewLayers layers;
+    /// The lights of lit pictures; none: `layers.light.lights`, or where that
+    /// is empty, defaultLights(gridWorldBox(octree.grid), room).
+    std::optional<Lights> lights;
+    bool room = false; ///< the default lights are a room's seen from inside (the Cornell box)
+};
+
+/// The layers to draw `octree` with (and its mesh, when `haveMesh`): the
+/// defaults applied and the request checked. Throws svo::InvalidInput naming
+/// the option at fault (see the file comment).
+ViewLayers viewLayers(const ViewRequest& request, const Octree& octree, bool haveMesh);
+
+/// What viewLayers checks before any octree exists (AO and lighting options
+/// out of range; a lit request without lights is checked as if it had one):
+/// a command line checks it before it voxelizes. Throws svo::InvalidInput.
+void checkViewRequest(const ViewRequest& request);
+
+/// The attribute channels (svo::AttributeChannel) the request's picture
+/// reads: lit pictures the normals and colours (the albedo, where a mesh has
+/// vertex colours), AO from the volume the normals (its cones leave along
+/// them).
+uint32_t channelsFor(const ViewRequest& request);
+
+/// True for RenderMode::Direct and RenderMode::Global.
+inline bool isLit(RenderMode mode) { return mode == RenderMode::Direct || mode == RenderMode::Global; }
+
+} // namespace svo::gl
