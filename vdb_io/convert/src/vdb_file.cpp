@@ -282,7 +282,8 @@ private:
         openvdb::GridBase::Ptr grid;
         try {
             grid = newGrid(gd, g);
-            setGridStream(*grid);
+            openvdb::io::StreamMetadata::Ptr gridMeta;
+            setGridStream(*grid, gridMeta);
             const RestoreStream restore{is_, streamMeta_};
             readTransform(*grid, g);
             if (!gd.isInstance()) readTree(*grid, blockPos, g);
@@ -312,10 +313,11 @@ private:
         return grid;
     }
 
-    /// Per-grid stream state, as Archive::readGrid sets it up.
-    void setGridStream(const openvdb::GridBase& grid)
+    /// Per-grid stream state, as Archive::readGrid sets it up, in `gridMeta`,
+    /// which must outlive the grid's reading: the stream keeps its address.
+    void setGridStream(const openvdb::GridBase& grid, openvdb::io::StreamMetadata::Ptr& gridMeta)
     {
-        auto gridMeta = std::make_shared<openvdb::io::StreamMetadata>(*streamMeta_);
+        gridMeta = std::make_shared<openvdb::io::StreamMetadata>(*streamMeta_);
         gridMeta->setHalfFloat(grid.saveFloatAsHalf());
         gridMeta->gridMetadata() = static_cast<const openvdb::MetaMap&>(grid);
         gridMeta->setLeaf(0);
