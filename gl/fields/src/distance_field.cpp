@@ -116,37 +116,38 @@ void dispatchItems(const Context& context, const Program& program, uint64_t item
     dispatchLooping(program, items, groups, info.loopLimit, iterations, "uItemFirst", "uItems");
 }
 
-} // namespace
-
-FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridSpec& grid, const FieldRequest& request,
-                         RunStats* report)
-{
-    const Context::Scope scope(context);
-    FieldResult result;
-    RunStats stats;
-    const uint64_t nb = request.bricks.size();
-    const double band = request.band;
-    const bool distances = band > 0;
-    request.checkpoint(0.0, "field upload");
-
-    // Upload: local double positions, indices, items, the brick table.
-    auto t0 = Clock::now();
-    const std::vector<Vec3d> local = localPositions(mesh, grid);
-    // A thread per small triangle: for crossings everywhere (a few columns
-    // each); for distances as FieldWork says. On an H100 a workgroup per
-    // brick ran faster than a thread per small triangle (whose up to 512
-    // centres run one after another) from 1024³ up
-    // (bench/results/nvidia-h100/band_ab.md).
-    const bool software = context.info().software;
-    const bool smallTriangles =
-        request.work == FieldWork::SmallTriangles || (request.work == FieldWork::Auto && software);
+/// The work items of each pass computeField runs (workItems), and the
+/// one-item triangles listed apart.
+struct FieldItems {
     std::vector<uint32_t> distanceItems, crossingItems, distanceWhole, crossingWhole;
-    const uint64_t nDistance = distances ? workItems(local, mesh, grid, band, smallTriangles, distanceItems,
-                                                     smallTriangles ? &distanceWhole : nullptr)
-                                         : 0;
-    const uint64_t nCrossing =
-        request.crossings ? workItems(local, mesh, grid, -1.0, true, crossingItems, &crossingWhole) : 0;
-    for (uint64_t n : {nDistance, nCrossing})
+    uint64_t nDistance = 0, nCrossing = 0;
+};
+
+/// A thread per small triangle: for crossings everywhere (a few columns
+/// each); for distances as FieldWork says. On an H100 a workgroup per
+/// brick ran faster than a thread per small triangle (whose up to 512
+/// centres run one after another) from 1024³ up
+/// (bench/results/nvidia-h100/band_ab.md).
+FieldItems fieldItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid,
+                      const FieldRequest& request, bool smallTriangles)
+{
+    const bool distances = request.band > 0;
+    FieldItems w;
+    w.nDistance = distances ? workItems(local, mesh, grid, request.band, smallTriangles, w.distanceItems,
+                                        smallTriangles ? &w.distanceWhole : nullptr)
+                            : 0;
+    w.nCrossing = request.crossings ? workItems(local, mesh, grid, -1.0, true, w.crossingItems, &w.crossingWhole) : 0;
+    return w;
+}
+
+/// Refuses work no pass holds, and arrays no shader buffer holds
+/// (Context::shaderBufferLimit): refused, never cut short.
+void checkFieldLimits(const Context& context, const TriangleMesh& mesh, const FieldRequest& request,
+                      const FieldItems& w)
+{
+    const uint64_t nb = request.bricks.size();
+    const bool distances = request.band > 0;
+    for (uint64_t n : {w.nDistance, w.nCrossing})
         if (n > 0xFFFFFFFFu)
             throw Unsupported(fmt::format("the distance field needs {} brick work items, more than one pass holds (2^32); "
                                           "use a coarser grid or a narrower band",
@@ -155,7 +156,6 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         throw Unsupported(fmt::format("the band has {} bricks, more than one distance pass holds (2^23); use a coarser "
                                       "grid or a narrower band",
                                       nb));
-    // One shader buffer holds each array (Context::shaderBufferLimit): refused, never cut short.
     const uint64_t block = context.shaderBufferLimit();
     const uint64_t largest = std::max({distances ? nb * 512 * 4 : 0, request.crossings ? nb * sizeof(Brick) : 0,
                                        uint64_t(mesh.positions.size()) * sizeof(Vec3d)});
@@ -163,51 +163,74 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         throw DeviceError(fmt::format("the band's {} bricks need {} bytes in one GPU buffer, more than the {} a shader "
                                       "addresses; use a coarser grid or a narrower band",
                                       nb, largest, block));
-    uint32_t tableMask = 0;
-    const std::vector<uint32_t> table = brickTable(request.bricks, tableMask);
+}
 
-    TimerQuery uploadTimer;
-    uploadTimer.begin();
-    const Buffer positions("field positions", local.size() * sizeof(Vec3d), local.data());
-    const Buffer indices("field indices", mesh.triangles.size() * 12, mesh.triangles.data());
-    const Buffer tableBuffer("brick table", table.size() * 4, table.data());
-    const Buffer counters("field counters", 16);
-    counters.clearUint(0);
-    const uint32_t none = 0xFFFFFFFFu, inf = 0x7F800000u; // float +inf
-    const Buffer* distanceBuffer = nullptr;
-    const Buffer* closestBuffer = nullptr;
-    const Buffer* flipBuffer = nullptr;
-    if (distances) {
-        distanceBuffer = &context.scratch("field distances", std::max<uint64_t>(nb, 1) * 512 * 4);
-        distanceBuffer->clearUint(inf, nb * 512 * 4);
-        if (request.closestTriangle) {
-            closestBuffer = &context.scratch("field closest triangles", std::max<uint64_t>(nb, 1) * 512 * 4);
-            closestBuffer->clearUint(none, nb * 512 * 4);
+/// The mesh, the brick table and the counters uploaded, and the per-brick
+/// outputs of the passes (scratch buffers, cleared): distances, closest
+/// triangles and crossings, each only when the request asks for it.
+struct FieldBuffers {
+    FieldBuffers(const Context& context, const std::vector<Vec3d>& local, const TriangleMesh& mesh,
+                 const std::vector<uint32_t>& table, const FieldRequest& request)
+        : positions("field positions", local.size() * sizeof(Vec3d), local.data()),
+          indices("field indices", mesh.triangles.size() * 12, mesh.triangles.data()),
+          tableBuffer("brick table", table.size() * 4, table.data()), counters("field counters", 16)
+    {
+        const uint64_t nb = request.bricks.size();
+        counters.clearUint(0);
+        const uint32_t none = 0xFFFFFFFFu, inf = 0x7F800000u; // float +inf
+        if (request.band > 0) {
+            distances = &context.scratch("field distances", std::max<uint64_t>(nb, 1) * 512 * 4);
+            distances->clearUint(inf, nb * 512 * 4);
+            if (request.closestTriangle) {
+                closest = &context.scratch("field closest triangles", std::max<uint64_t>(nb, 1) * 512 * 4);
+                closest->clearUint(none, nb * 512 * 4);
+            }
+        }
+        if (request.crossings) {
+            flips = &context.scratch("field crossings", std::max<uint64_t>(nb, 1) * sizeof(Brick));
+            flips->clearUint(0, nb * sizeof(Brick));
         }
     }
-    if (request.crossings) {
-        flipBuffer = &context.scratch("field crossings", std::max<uint64_t>(nb, 1) * sizeof(Brick));
-        flipBuffer->clearUint(0, nb * sizeof(Brick));
+    /// The mesh's slots (and the table's), which band packing also uses.
+    void bindMesh() const
+    {
+        positions.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_POSITIONS);
+        indices.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_INDICES);
+        tableBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_TABLE);
     }
-    uploadTimer.end();
-    stats.stages.push_back({"field upload", -1, msSince(t0)});
-    positions.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_POSITIONS);
-    indices.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_INDICES);
-    tableBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_TABLE);
-    counters.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_COUNTERS);
-    if (distanceBuffer) distanceBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_DISTANCES);
-    if (closestBuffer) closestBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_CLOSEST);
-    if (flipBuffer) flipBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_FLIPS);
-    const auto poll = [&] { request.checkpoint(0.5, "distance field"); };
+    void bindAll() const
+    {
+        bindMesh();
+        counters.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_COUNTERS);
+        if (distances) distances->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_DISTANCES);
+        if (closest) closest->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_CLOSEST);
+        if (flips) flips->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_FLIPS);
+    }
 
-    // One pass over a set of items and one-item triangles, timed, by a
-    // program of `groupSize` threads a workgroup. A thread of an item loops
-    // at most `itemIterations` times, one of a one-item triangle at most
-    // `wholeIterations` (its columns, their centres and brick probes); a
-    // workgroup's threads share the units of its dispatch, with a margin
-    // for the loop around them.
-    auto pass = [&](const char* name, const Program& program, uint32_t groupSize, const std::vector<uint32_t>& items,
-                    uint64_t n, uint64_t itemIterations, const std::vector<uint32_t>* whole, uint64_t wholeIterations) {
+    const Buffer positions, indices, tableBuffer, counters;
+    const Buffer* distances = nullptr;
+    const Buffer* closest = nullptr;
+    const Buffer* flips = nullptr;
+};
+
+/// Runs the distance and crossing passes over their work items, each timed
+/// into `stats`, polling the request's checkpoint while the GPU works.
+struct FieldPasses {
+    const Context& context;
+    const TriangleMesh& mesh;
+    const FieldRequest& request;
+    uint32_t tableMask;
+    RunStats& stats;
+
+    /// One pass over a set of items and one-item triangles, timed, by a
+    /// program of `groupSize` threads a workgroup. A thread of an item loops
+    /// at most `itemIterations` times, one of a one-item triangle at most
+    /// `wholeIterations` (its columns, their centres and brick probes); a
+    /// workgroup's threads share the units of its dispatch, with a margin
+    /// for the loop around them.
+    void run(const char* name, const Program& program, uint32_t groupSize, const std::vector<uint32_t>& items,
+             uint64_t n, uint64_t itemIterations, const std::vector<uint32_t>* whole, uint64_t wholeIterations) const
+    {
         const auto w0 = Clock::now();
         TimerQuery timer;
         const size_t records = items.size(), listed = whole ? whole->size() : 0;
@@ -234,13 +257,16 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         timer.end();
         checkGl(name);
-        waitForGpu(poll);
+        waitForGpu([&] { request.checkpoint(0.5, "distance field"); });
         stats.stages.push_back({name, timer.milliseconds(), msSince(w0)});
-    };
-    if (distances) {
+    }
+
+    /// The band's distances, then (when asked) each voxel's closest triangle.
+    void distances(const FieldItems& w, bool smallTriangles, bool closest) const
+    {
         const Program& program =
             context.program(fieldsShaders(), {smallTriangles ? "band_distance_columns.comp" : "band_distance.comp"});
-        program.set("uBand", float(band));
+        program.set("uBand", float(request.band));
         program.set("uPass", 0u);
         // band_distance.comp: 64 threads, an item's thread loops 1 + 32
         // (triangleOfItem's search) + 8 (its column) times and probes the
@@ -252,98 +278,153 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         // centres.
         const uint32_t groupSize = smallTriangles ? 8 : 64;
         const uint64_t itemIterations = smallTriangles ? 512 : 256, wholeIterations = 1024;
-        const std::vector<uint32_t>* whole = smallTriangles ? &distanceWhole : nullptr;
-        pass("band distance", program, groupSize, distanceItems, nDistance, itemIterations, whole, wholeIterations);
-        if (closestBuffer) {
+        const std::vector<uint32_t>* whole = smallTriangles ? &w.distanceWhole : nullptr;
+        run("band distance", program, groupSize, w.distanceItems, w.nDistance, itemIterations, whole, wholeIterations);
+        if (closest) {
             program.set("uPass", 1u);
-            pass("closest triangle", program, groupSize, distanceItems, nDistance, itemIterations, whole,
-                 wholeIterations);
+            run("closest triangle", program, groupSize, w.distanceItems, w.nDistance, itemIterations, whole,
+                wholeIterations);
         }
     }
-    const Buffer* maskBuffer = nullptr;
-    const Buffer* offsetBuffer = nullptr;
-    const Buffer* packedBuffer = nullptr;
-    const Buffer* packedClosestBuffer = nullptr;
-    if (distances) {
-        // Packs the band: a mask, an offset and the kept values per brick.
-        maskBuffer = &context.scratch("band masks", std::max<uint64_t>(nb, 1) * sizeof(Brick));
-        offsetBuffer = &context.scratch("band offsets", std::max<uint64_t>(nb, 1) * 4);
-        packedBuffer = &context.scratch("band packed distances", std::max<uint64_t>(nb, 1) * 2048);
-        if (closestBuffer) packedClosestBuffer = &context.scratch("band packed closest", std::max<uint64_t>(nb, 1) * 2048);
-        maskBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_MASKS);
-        offsetBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_OFFSETS);
-        packedBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_DISTANCES);
-        (packedClosestBuffer ? packedClosestBuffer : packedBuffer)
-            ->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_CLOSEST);
-        if (!closestBuffer) distanceBuffer->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_CLOSEST);
-        const auto w0 = Clock::now();
-        TimerQuery timer;
-        timer.begin();
-        // With the CPU rasterizers' cut, a thread a brick, looping 1 + 16 *
-        // 33 + 16 + 512 times at most (band_compact_bricks.comp), 8 threads
-        // a workgroup sharing its bricks (so the limit a brick is an eighth
-        // of that, with a margin); else a workgroup a brick, whose threads
-        // loop 1 + 8 + 64 + 8 times (band_compact.comp).
-        const Program& program =
-            context.program(fieldsShaders(), {smallTriangles ? "band_compact_bricks.comp" : "band_compact.comp"});
-        program.set("uBand", float(band));
-        program.set("uClosest", closestBuffer ? 1u : 0u);
-        const uint64_t groupSize = smallTriangles ? 8 : 1;
-        dispatchLooping(program, nb,
-                        uint32_t(std::min<uint64_t>((nb + groupSize - 1) / groupSize, software ? 256 : 65535)),
-                        context.info().loopLimit, smallTriangles ? 1058 / 8 + 8 : 96, "uBrickFirst", "uBricks");
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        timer.end();
-        checkGl("band packing");
-        waitForGpu(poll);
-        stats.stages.push_back({"band packing", timer.milliseconds(), msSince(w0)});
-        // The mesh's slots are the field passes' again.
-        positions.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_POSITIONS);
-        indices.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_INDICES);
-        tableBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_TABLE);
-    }
-    if (request.crossings) {
+
+    void crossings(const GridSpec& grid, const FieldItems& w) const
+    {
         const Program& program = context.program(fieldsShaders(), {"parity_flips.comp"});
         program.set("uDimZ", grid.dims[2]);
         // 64 threads; an item's thread loops 1 + 32 times and probes once,
         // a one-item triangle's thread takes 64 columns, a probe each.
-        pass("parity crossings", program, 64, crossingItems, nCrossing, 256, &crossingWhole, 256);
+        run("parity crossings", program, 64, w.crossingItems, w.nCrossing, 256, &w.crossingWhole, 256);
     }
-    stats.stages.front().gpuMs = uploadTimer.milliseconds();
-    stats.gpuBytes = positions.bytes() + indices.bytes() + tableBuffer.bytes() + counters.bytes() +
-                     (distanceBuffer ? nb * (2048 + 2048 + sizeof(Brick) + 4) : 0) +
-                     (closestBuffer ? nb * 2048 * 2 : 0) +
-                     (flipBuffer ? nb * sizeof(Brick) : 0) +
-                     std::max(distanceItems.size() + distanceWhole.size(),
-                              crossingItems.size() + crossingWhole.size()) * 4;
-    request.checkpoint(0.8, "field readback");
+};
 
-    t0 = Clock::now();
+/// The band packed: a mask, an offset and the kept values per brick.
+struct PackedBand {
+    const Buffer* masks = nullptr;
+    const Buffer* offsets = nullptr;
+    const Buffer* distances = nullptr;
+    const Buffer* closest = nullptr;
+};
+
+/// Packs the band's distances (and closest triangles) into scratch buffers,
+/// timed into `stats`; the mesh's slots are the field passes' again after.
+PackedBand packBand(const Context& context, const FieldBuffers& buffers, const FieldRequest& request,
+                    bool smallTriangles, RunStats& stats)
+{
+    const uint64_t nb = request.bricks.size();
+    const bool software = context.info().software;
+    PackedBand packed;
+    packed.masks = &context.scratch("band masks", std::max<uint64_t>(nb, 1) * sizeof(Brick));
+    packed.offsets = &context.scratch("band offsets", std::max<uint64_t>(nb, 1) * 4);
+    packed.distances = &context.scratch("band packed distances", std::max<uint64_t>(nb, 1) * 2048);
+    if (buffers.closest) packed.closest = &context.scratch("band packed closest", std::max<uint64_t>(nb, 1) * 2048);
+    packed.masks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_MASKS);
+    packed.offsets->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_OFFSETS);
+    packed.distances->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_DISTANCES);
+    (packed.closest ? packed.closest : packed.distances)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_COMPACT_CLOSEST);
+    if (!buffers.closest) buffers.distances->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_CLOSEST);
+    const auto w0 = Clock::now();
+    TimerQuery timer;
+    timer.begin();
+    // With the CPU rasterizers' cut, a thread a brick, looping 1 + 16 *
+    // 33 + 16 + 512 times at most (band_compact_bricks.comp), 8 threads
+    // a workgroup sharing its bricks (so the limit a brick is an eighth
+    // of that, with a margin); else a workgroup a brick, whose threads
+    // loop 1 + 8 + 64 + 8 times (band_compact.comp).
+    const Program& program =
+        context.program(fieldsShaders(), {smallTriangles ? "band_compact_bricks.comp" : "band_compact.comp"});
+    program.set("uBand", float(request.band));
+    program.set("uClosest", buffers.closest ? 1u : 0u);
+    const uint64_t groupSize = smallTriangles ? 8 : 1;
+    dispatchLooping(program, nb, uint32_t(std::min<uint64_t>((nb + groupSize - 1) / groupSize, software ? 256 : 65535)),
+                    context.info().loopLimit, smallTriangles ? 1058 / 8 + 8 : 96, "uBrickFirst", "uBricks");
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    timer.end();
+    checkGl("band packing");
+    waitForGpu([&] { request.checkpoint(0.5, "distance field"); });
+    stats.stages.push_back({"band packing", timer.milliseconds(), msSince(w0)});
+    buffers.bindMesh();
+    return packed;
+}
+
+/// The GPU bytes the passes held: the uploads, the per-brick buffers and the larger item list.
+uint64_t fieldGpuBytes(const FieldBuffers& buffers, const FieldItems& w, uint64_t nb)
+{
+    return buffers.positions.bytes() + buffers.indices.bytes() + buffers.tableBuffer.bytes() +
+           buffers.counters.bytes() + (buffers.distances ? nb * (2048 + 2048 + sizeof(Brick) + 4) : 0) +
+           (buffers.closest ? nb * 2048 * 2 : 0) + (buffers.flips ? nb * sizeof(Brick) : 0) +
+           std::max(w.distanceItems.size() + w.distanceWhole.size(), w.crossingItems.size() + w.crossingWhole.size()) *
+               4;
+}
+
+/// Reads the counters and the packed band and crossings back into `result`, timed into `stats`.
+void readField(const FieldBuffers& buffers, const PackedBand& packed, uint64_t nb, FieldResult& result,
+               RunStats& stats)
+{
+    const auto t0 = Clock::now();
     TimerQuery readTimer;
     readTimer.begin();
     uint32_t count[2] = {0, 0}; // lost crossings, packed band values
-    counters.read(0, 8, count);
-    if (distanceBuffer) {
+    buffers.counters.read(0, 8, count);
+    if (buffers.distances) {
         result.bandMasks.resize(nb);
-        maskBuffer->readBulk(0, nb * sizeof(Brick), result.bandMasks.data());
+        packed.masks->readBulk(0, nb * sizeof(Brick), result.bandMasks.data());
         result.bandOffsets.resize(nb);
-        offsetBuffer->readBulk(0, nb * 4, result.bandOffsets.data());
+        packed.offsets->readBulk(0, nb * 4, result.bandOffsets.data());
         result.distances.resize(count[1]);
-        packedBuffer->readBulk(0, uint64_t(count[1]) * 4, result.distances.data());
+        packed.distances->readBulk(0, uint64_t(count[1]) * 4, result.distances.data());
     }
-    if (packedClosestBuffer) {
+    if (packed.closest) {
         result.closest.resize(count[1]);
-        packedClosestBuffer->readBulk(0, uint64_t(count[1]) * 4, result.closest.data());
+        packed.closest->readBulk(0, uint64_t(count[1]) * 4, result.closest.data());
     }
-    if (flipBuffer) {
+    if (buffers.flips) {
         result.crossings.resize(nb);
-        flipBuffer->readBulk(0, nb * sizeof(Brick), result.crossings.data());
+        buffers.flips->readBulk(0, nb * sizeof(Brick), result.crossings.data());
     }
     const uint32_t lost = count[0];
     readTimer.end();
     checkGl("field readback");
     result.lostCrossings = lost;
     stats.stages.push_back({"field readback", readTimer.milliseconds(), msSince(t0)});
+}
+
+} // namespace
+
+FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridSpec& grid, const FieldRequest& request,
+                         RunStats* report)
+{
+    const Context::Scope scope(context);
+    FieldResult result;
+    RunStats stats;
+    const uint64_t nb = request.bricks.size();
+    const bool distances = request.band > 0;
+    request.checkpoint(0.0, "field upload");
+
+    // Upload: local double positions, indices, items, the brick table.
+    const auto t0 = Clock::now();
+    const std::vector<Vec3d> local = localPositions(mesh, grid);
+    const bool smallTriangles =
+        request.work == FieldWork::SmallTriangles || (request.work == FieldWork::Auto && context.info().software);
+    const FieldItems items = fieldItems(local, mesh, grid, request, smallTriangles);
+    checkFieldLimits(context, mesh, request, items);
+    uint32_t tableMask = 0;
+    const std::vector<uint32_t> table = brickTable(request.bricks, tableMask);
+    TimerQuery uploadTimer;
+    uploadTimer.begin();
+    const FieldBuffers buffers(context, local, mesh, table, request);
+    uploadTimer.end();
+    stats.stages.push_back({"field upload", -1, msSince(t0)});
+    buffers.bindAll();
+
+    const FieldPasses passes{context, mesh, request, tableMask, stats};
+    if (distances) passes.distances(items, smallTriangles, buffers.closest != nullptr);
+    const PackedBand packed = distances ? packBand(context, buffers, request, smallTriangles, stats) : PackedBand{};
+    if (request.crossings) passes.crossings(grid, items);
+    stats.stages.front().gpuMs = uploadTimer.milliseconds();
+    stats.gpuBytes = fieldGpuBytes(buffers, items, nb);
+    request.checkpoint(0.8, "field readback");
+
+    readField(buffers, packed, nb, result, stats);
     if (report) *report = std::move(stats);
     return result;
 }

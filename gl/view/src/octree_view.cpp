@@ -274,7 +274,12 @@ void checkAmbientOcclusion(const AmbientOcclusion& ao)
                                        "2048", r));
 }
 
-struct OctreeView::Impl {
+namespace {
+
+/// What a view holds: its octree on the GPU, and the caches drawing fills.
+/// It is OctreeView::Impl, whose name only OctreeView's members may use;
+/// the file's helpers take it by this one.
+struct ViewState {
     GridSpec grid;
     uint32_t brickLevel = 0;
     std::vector<uint32_t> levelStart;
@@ -370,15 +375,22 @@ struct OctreeView::Impl {
     }
 };
 
+} // namespace
+
+struct OctreeView::Impl : ViewState {};
+
 namespace {
 
-std::unique_ptr<OctreeView::Impl> upload(const Context& context, const Octree& octree, const TriangleMesh* mesh)
+/// Uploads the octree (and mesh) into a new `State`: OctreeView::Impl, which
+/// only OctreeView's members may name, so they name it here.
+template <class State>
+std::unique_ptr<State> upload(const Context& context, const Octree& octree, const TriangleMesh* mesh)
 {
     if (octree.levelStart.size() != size_t(octree.brickLevel) + 2 || octree.levelStart.back() != octree.nodes.size() ||
         octree.nodes.empty())
         throw InvalidInput("octree view: the octree's level ranges do not match its nodes");
     checkGl("the GL work before uploading an octree to view");
-    auto impl = std::make_unique<OctreeView::Impl>();
+    auto impl = std::make_unique<State>();
     impl->grid = octree.grid;
     impl->brickLevel = octree.brickLevel;
     impl->levelStart = octree.levelStart;
@@ -472,7 +484,7 @@ std::unique_ptr<OctreeView::Impl> upload(const Context& context, const Octree& o
 OctreeView::OctreeView(const Context& context, const Octree& octree, const TriangleMesh* mesh) : context_(context)
 {
     Context::Scope scope(context_);
-    impl_ = upload(context_, octree, mesh);
+    impl_ = upload<Impl>(context_, octree, mesh);
 }
 
 OctreeView::~OctreeView()
@@ -484,7 +496,7 @@ OctreeView::~OctreeView()
 void OctreeView::setOctree(const Octree& octree, const TriangleMesh* mesh)
 {
     Context::Scope scope(context_);
-    auto next = upload(context_, octree, mesh);
+    auto next = upload<Impl>(context_, octree, mesh);
     impl_ = std::move(next);
 }
 
@@ -501,15 +513,9 @@ void checkSize(int width, int height)
         throw InvalidInput(fmt::format("octree view: a {} x {} picture is outside 1 .. {} pixels per side", width, height, maxSize));
 }
 
-/// Draws the layers into the framebuffer bound now, over (0, 0, width, height).
-void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCamera& camera, int width, int height,
-                const ViewLayers& layers)
+/// The frame's fixed GL state, the framebuffer cleared, and the octree's buffers bound.
+void beginFrame(const ViewState& v, int width, int height)
 {
-    v.cutPixels = 0;
-    const CellCamera cam = cellCamera(v.grid, camera, width, height);
-    const auto viewProjection = toFloat(cam.viewProjection);
-    const auto inverseViewProjection = toFloat(cam.inverseViewProjection);
-
     glViewport(0, 0, width, height);
     const auto& bg = ViewColors::background;
     glClearColor(bg[0], bg[1], bg[2], 1.0f);
@@ -525,175 +531,267 @@ void drawLayers(const Context& context, const OctreeView::Impl& v, const ViewCam
     v.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_NODES);
     v.bricks.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_BRICKS);
     v.origins.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ORIGINS);
+}
 
-    const bool shadeMesh = layers.voxels && layers.surface == Surface::Mesh;
-    if (shadeMesh) {
-        if (!v.meshArray) throw InvalidInput("octree view: shading the mesh's surface needs the mesh, and the view has none");
-        // The mesh into its own framebuffer: the triangle each pixel sees,
-        // where the voxel pass meets it with the pixel's ray and shades.
-        GLint drawn = 0;
-        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawn);
-        const SurfaceTarget& target = v.surfaceTarget(width, height);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.fbo.get());
-        const GLuint none[4] = {0, 0, 0, 0};
-        glClearNamedFramebufferuiv(target.fbo.get(), GL_COLOR, 0, none);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        const Program& p = context.program(viewShaders(), {"view_mesh.vert", "view_surface.frag"});
-        p.setMatrix("uViewProjection", viewProjection.data());
-        p.use();
-        v.meshArray->bind();
-        glDrawElements(GL_TRIANGLES, GLsizei(v.meshIndexCount), GL_UNSIGNED_INT, nullptr);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(drawn));
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-        checkGl("drawing the mesh's surface");
+/// The mesh into its own framebuffer: the triangle each pixel sees, where
+/// the voxel pass meets it with the pixel's ray and shades (Surface::Mesh).
+void drawMeshSurface(const Context& context, const ViewState& v, const std::array<float, 16>& viewProjection,
+                     int width, int height)
+{
+    if (!v.meshArray) throw InvalidInput("octree view: shading the mesh's surface needs the mesh, and the view has none");
+    GLint drawn = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawn);
+    const SurfaceTarget& target = v.surfaceTarget(width, height);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.fbo.get());
+    const GLuint none[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferuiv(target.fbo.get(), GL_COLOR, 0, none);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    const Program& p = context.program(viewShaders(), {"view_mesh.vert", "view_surface.frag"});
+    p.setMatrix("uViewProjection", viewProjection.data());
+    p.use();
+    v.meshArray->bind();
+    glDrawElements(GL_TRIANGLES, GLsizei(v.meshIndexCount), GL_UNSIGNED_INT, nullptr);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(drawn));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    checkGl("drawing the mesh's surface");
+}
+
+/// Binds the attribute channel the voxels are coloured by, if any; returns
+/// the shader's colour mode (SVO_VIEW_COLOR_*).
+int bindVoxelColor(const ViewState& v, VoxelColor color)
+{
+    const std::optional<Buffer>* channel = nullptr;
+    int mode = SVO_VIEW_COLOR_FLAT;
+    switch (color) {
+    case VoxelColor::Flat: break;
+    case VoxelColor::Normal: channel = &v.normals, mode = SVO_VIEW_COLOR_NORMAL; break;
+    case VoxelColor::Color: channel = &v.colors, mode = SVO_VIEW_COLOR_RGB; break;
+    case VoxelColor::Triangle: channel = &v.triangles, mode = SVO_VIEW_COLOR_TRIANGLE; break;
     }
-    if (layers.voxels) {
-        const std::optional<Buffer>* channel = nullptr;
-        int mode = SVO_VIEW_COLOR_FLAT;
-        switch (layers.voxelColor) {
-        case VoxelColor::Flat: break;
-        case VoxelColor::Normal: channel = &v.normals, mode = SVO_VIEW_COLOR_NORMAL; break;
-        case VoxelColor::Color: channel = &v.colors, mode = SVO_VIEW_COLOR_RGB; break;
-        case VoxelColor::Triangle: channel = &v.triangles, mode = SVO_VIEW_COLOR_TRIANGLE; break;
-        }
-        if (channel) {
-            if (!*channel) throw InvalidInput("octree view: the octree has no such attribute channel to colour voxels by");
-            (*channel)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ATTRIBUTE);
+    if (channel) {
+        if (!*channel) throw InvalidInput("octree view: the octree has no such attribute channel to colour voxels by");
+        (*channel)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_ATTRIBUTE);
+        v.voxelStart->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_VOXEL_START);
+    }
+    return mode;
+}
+
+/// The volume the voxel pass gathers from: the lighting volume when lit,
+/// else the opacity volume for AO's cones (made on first use).
+void bindVoxelLight(const Context& context, const ViewState& v, const Program& p, const Illumination& light,
+                    const AmbientOcclusion& ao)
+{
+    const bool aoVolume = ao.source == AmbientOcclusion::Source::Volume;
+    if (light.mode != Illumination::Mode::Off) {
+        bindLightVolume(p, v.lightVolume(context, light), v.buffers(), light);
+        p.set("uExposure", float(light.exposure));
+        p.set("uGamma", float(light.gamma));
+    } else if (aoVolume) {
+        // Cones through the opacity volume: the gather's uniforms; with no
+        // cones the volume is neither built nor sampled.
+        if (ao.cones > 0)
+            bindOpacityVolume(p, v.opacityVolume(context, ao.volumeResolution), v.grid, ao.cones,
+                              ao.apertureDegrees, ao.offset, ao.distance, ao.step);
+        else
+            p.set("uCones", 0);
+        if (v.normals) {
+            v.normals->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_NORMALS);
             v.voxelStart->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_VOXEL_START);
         }
-        const AmbientOcclusion& ao = layers.ao;
-        checkAmbientOcclusion(ao);
-        v.opacity.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_OPACITY);
-        const Program& p = context.program(viewShaders(), {"view_voxels.comp"});
-        const Illumination& light = layers.light;
-        const bool aoVolume = ao.source == AmbientOcclusion::Source::Volume;
-        if (light.mode != Illumination::Mode::Off) {
-            bindLightVolume(p, v.lightVolume(context, light), v.buffers(), light);
-            p.set("uExposure", float(light.exposure));
-            p.set("uGamma", float(light.gamma));
-        } else if (aoVolume) {
-            // Cones through the opacity volume: the gather's uniforms; with no
-            // cones the volume is neither built nor sampled.
-            if (ao.cones > 0)
-                bindOpacityVolume(p, v.opacityVolume(context, ao.volumeResolution), v.grid, ao.cones,
-                                  ao.apertureDegrees, ao.offset, ao.distance, ao.step);
-            else
-                p.set("uCones", 0);
-            if (v.normals) {
-                v.normals->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_NORMALS);
-                v.voxelStart->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_VOXEL_START);
-            }
-        }
-        p.set("uSurface", shadeMesh ? 1u : 0u);
-        if (shadeMesh) {
-            v.surface->triangle.bindTexture(SVO_UNIT_VIEW_SURFACE_TRIANGLE);
-            v.meshVertices->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_MESH_POSITIONS);
-            v.meshIndices->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_MESH_TRIANGLES);
-        }
-        p.set("uAoVolume", aoVolume ? 1u : 0u);
-        p.set("uAoNormals", v.normals ? 1u : 0u);
-        p.set("uLightMode", light.mode == Illumination::Mode::Off      ? 0
-                            : light.mode == Illumination::Mode::Direct ? 1
-                                                                       : 2);
-        p.set("uColorMode", mode);
-        p.set("uAoCones", ao.cones);
-        p.set("uAoTanHalf", float(std::tan(ao.apertureDegrees * M_PI / 360.0)));
-        p.set("uAoOffset", float(ao.offset));
-        p.set("uAoDistance", float(ao.distance));
-        p.set("uAoStep", float(ao.step));
-        p.set("uAoFilter", ao.filter == AmbientOcclusion::Filter::Max ? 1u : 0u);
-        p.set("uAoOnly", ao.only ? 1u : 0u);
-        p.setMatrix("uInverseViewProjection", inverseViewProjection.data());
-        p.setMatrix("uViewProjection", viewProjection.data());
-        p.set("uViewport", float(width), float(height));
-        p.set("uBrickLevel", v.brickLevel);
-        p.set("uDims", int(v.grid.dims[0]), int(v.grid.dims[1]), int(v.grid.dims[2]));
-        const auto& c = shadeMesh ? ViewColors::mesh : ViewColors::voxel;
-        p.set("uColor", c[0], c[1], c[2]);
-        // The rays in a compute pass, then their pixels and depths into the
-        // framebuffer by a full-screen triangle (view_pixels.frag).
-        // Interleaved cones: the gathered light apart, averaged over 4x4
-        // pixels by a second pass (view_resolve.comp), which also composes.
-        const bool interleave = light.mode == Illumination::Mode::Global
-                                    ? light.interleave
-                                    : light.mode == Illumination::Mode::Off && aoVolume && ao.cones > 0 && ao.interleave;
-        p.set("uInterleave", interleave ? 1u : 0u);
-        const Texture2D& pixels = v.pixelImage(width, height);
-        pixels.bindImage(SVO_IMAGE_VIEW_PIXELS, interleave ? GL_READ_WRITE : GL_WRITE_ONLY, GL_RGBA32F);
-        if (interleave) v.bindInterleaveImages(width, height);
-        v.loopCut.arm(p, SVO_BIND_VIEW_LOOP_CUT, context.info().loopLimit);
-        p.dispatch((uint32_t(width) + 7) / 8, (uint32_t(height) + 7) / 8);
-        checkGl("casting the voxels' rays");
-        if (interleave) {
-            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            const Program& r = context.program(viewShaders(), {"view_resolve.comp"});
-            r.set("uLightMode", light.mode == Illumination::Mode::Global ? 2 : 0);
-            r.set("uAoOnly", ao.only ? 1u : 0u);
-            r.set("uExposure", float(light.exposure));
-            r.set("uGamma", float(light.gamma));
-            r.set("uViewport", float(width), float(height));
-            r.set("uPlaneTolerance", 1.0f);
-            r.dispatch((uint32_t(width) + 7) / 8, (uint32_t(height) + 7) / 8);
-            checkGl("averaging the interleaved cones");
-        }
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-        v.cutPixels = v.loopCut.count();
-        const Program& copy = context.program(viewShaders(), {"view_fullscreen.vert", "view_pixels.frag"});
-        pixels.bindTexture(SVO_UNIT_VIEW_PIXELS);
-        copy.use();
-        v.empty.bind();
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        checkGl("drawing the voxels");
     }
-    if (layers.mesh && v.meshArray && !shadeMesh) {
-        const Program& p = context.program(viewShaders(), {"view_mesh.vert", "view_mesh.frag"});
-        p.setMatrix("uViewProjection", viewProjection.data());
-        const auto& c = ViewColors::mesh;
-        p.set("uColor", c[0], c[1], c[2]);
-        p.set("uEye", float(cam.eye.x), float(cam.eye.y), float(cam.eye.z));
-        p.set("uViewDir", float(cam.forward.x), float(cam.forward.y), float(cam.forward.z));
-        p.set("uOrthographic", camera.orthographic ? 1.0f : 0.0f);
-        p.use();
-        v.meshArray->bind();
-        glDrawElements(GL_TRIANGLES, GLsizei(v.meshIndexCount), GL_UNSIGNED_INT, nullptr);
-        checkGl("drawing the mesh");
+}
+
+/// The voxel pass's uniforms past the volume's: the mesh surface it meets,
+/// the lighting and AO modes, the camera, the grid and the colour.
+void setVoxelUniforms(const ViewState& v, const Program& p, const ViewLayers& layers, bool shadeMesh, int colorMode,
+                      const std::array<float, 16>& viewProjection, const std::array<float, 16>& inverseViewProjection,
+                      int width, int height)
+{
+    const AmbientOcclusion& ao = layers.ao;
+    const Illumination& light = layers.light;
+    const bool aoVolume = ao.source == AmbientOcclusion::Source::Volume;
+    p.set("uSurface", shadeMesh ? 1u : 0u);
+    if (shadeMesh) {
+        v.surface->triangle.bindTexture(SVO_UNIT_VIEW_SURFACE_TRIANGLE);
+        v.meshVertices->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_MESH_POSITIONS);
+        v.meshIndices->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_MESH_TRIANGLES);
     }
-    auto finish = [] {
-        glBindVertexArray(0);
-        glUseProgram(0);
-        glDisable(GL_DEPTH_TEST);
-    };
-    // Node boxes of levels [from, to] in one colour, one instanced draw per level.
-    auto outlines = [&](uint32_t from, uint32_t to, const float* c) {
-        const Program& p = context.program(viewShaders(), {"view_outlines.vert", "view_color.frag"});
-        p.setMatrix("uViewProjection", viewProjection.data());
-        p.set("uDepthBias", 2e-4f);
-        p.set("uColor", c[0], c[1], c[2]);
-        p.use();
-        v.empty.bind();
-        for (uint32_t level = from; level <= to; ++level) {
-            const uint32_t first = v.levelStart[level], count = v.levelStart[level + 1] - first;
-            p.set("uFirstNode", first);
-            p.set("uNodeSize", float(8u << (v.brickLevel - level)));
-            glDrawArraysInstanced(GL_LINES, 0, 24, GLsizei(count));
-        }
-        checkGl("drawing the node outlines");
-    };
+    p.set("uAoVolume", aoVolume ? 1u : 0u);
+    p.set("uAoNormals", v.normals ? 1u : 0u);
+    p.set("uLightMode", light.mode == Illumination::Mode::Off      ? 0
+                        : light.mode == Illumination::Mode::Direct ? 1
+                                                                   : 2);
+    p.set("uColorMode", colorMode);
+    p.set("uAoCones", ao.cones);
+    p.set("uAoTanHalf", float(std::tan(ao.apertureDegrees * M_PI / 360.0)));
+    p.set("uAoOffset", float(ao.offset));
+    p.set("uAoDistance", float(ao.distance));
+    p.set("uAoStep", float(ao.step));
+    p.set("uAoFilter", ao.filter == AmbientOcclusion::Filter::Max ? 1u : 0u);
+    p.set("uAoOnly", ao.only ? 1u : 0u);
+    p.setMatrix("uInverseViewProjection", inverseViewProjection.data());
+    p.setMatrix("uViewProjection", viewProjection.data());
+    p.set("uViewport", float(width), float(height));
+    p.set("uBrickLevel", v.brickLevel);
+    p.set("uDims", int(v.grid.dims[0]), int(v.grid.dims[1]), int(v.grid.dims[2]));
+    const auto& c = shadeMesh ? ViewColors::mesh : ViewColors::voxel;
+    p.set("uColor", c[0], c[1], c[2]);
+}
+
+/// Whether the cones' light is gathered apart and averaged over 4x4 pixels
+/// by a second pass (view_resolve.comp), which also composes.
+bool interleavesCones(const Illumination& light, const AmbientOcclusion& ao)
+{
+    const bool aoVolume = ao.source == AmbientOcclusion::Source::Volume;
+    return light.mode == Illumination::Mode::Global
+               ? light.interleave
+               : light.mode == Illumination::Mode::Off && aoVolume && ao.cones > 0 && ao.interleave;
+}
+
+/// The rays in a compute pass (view_voxels.comp) into the pixel image, which it returns.
+const Texture2D& castRays(const Context& context, const ViewState& v, const Program& p, bool interleave, int width,
+                          int height)
+{
+    p.set("uInterleave", interleave ? 1u : 0u);
+    const Texture2D& pixels = v.pixelImage(width, height);
+    pixels.bindImage(SVO_IMAGE_VIEW_PIXELS, interleave ? GL_READ_WRITE : GL_WRITE_ONLY, GL_RGBA32F);
+    if (interleave) v.bindInterleaveImages(width, height);
+    v.loopCut.arm(p, SVO_BIND_VIEW_LOOP_CUT, context.info().loopLimit);
+    p.dispatch((uint32_t(width) + 7) / 8, (uint32_t(height) + 7) / 8);
+    checkGl("casting the voxels' rays");
+    return pixels;
+}
+
+/// Averages the interleaved cones' light over 4x4 pixels and composes (view_resolve.comp).
+void resolveInterleavedCones(const Context& context, const Illumination& light, const AmbientOcclusion& ao, int width,
+                             int height)
+{
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    const Program& r = context.program(viewShaders(), {"view_resolve.comp"});
+    r.set("uLightMode", light.mode == Illumination::Mode::Global ? 2 : 0);
+    r.set("uAoOnly", ao.only ? 1u : 0u);
+    r.set("uExposure", float(light.exposure));
+    r.set("uGamma", float(light.gamma));
+    r.set("uViewport", float(width), float(height));
+    r.set("uPlaneTolerance", 1.0f);
+    r.dispatch((uint32_t(width) + 7) / 8, (uint32_t(height) + 7) / 8);
+    checkGl("averaging the interleaved cones");
+}
+
+/// The pixels and depths into the framebuffer by a full-screen triangle
+/// (view_pixels.frag); counts the rays the driver cut short.
+void drawPixels(const Context& context, const ViewState& v, const Texture2D& pixels)
+{
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    v.cutPixels = v.loopCut.count();
+    const Program& copy = context.program(viewShaders(), {"view_fullscreen.vert", "view_pixels.frag"});
+    pixels.bindTexture(SVO_UNIT_VIEW_PIXELS);
+    copy.use();
+    v.empty.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    checkGl("drawing the voxels");
+}
+
+/// The voxels: rays cast per pixel in a compute pass, their cones' light
+/// resolved when interleaved, then their pixels and depths drawn.
+void drawVoxels(const Context& context, const ViewState& v, const ViewLayers& layers, bool shadeMesh,
+                const std::array<float, 16>& viewProjection, const std::array<float, 16>& inverseViewProjection,
+                int width, int height)
+{
+    const int mode = bindVoxelColor(v, layers.voxelColor);
+    const AmbientOcclusion& ao = layers.ao;
+    checkAmbientOcclusion(ao);
+    v.opacity.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_VIEW_OPACITY);
+    const Program& p = context.program(viewShaders(), {"view_voxels.comp"});
+    const Illumination& light = layers.light;
+    bindVoxelLight(context, v, p, light, ao);
+    setVoxelUniforms(v, p, layers, shadeMesh, mode, viewProjection, inverseViewProjection, width, height);
+    const bool interleave = interleavesCones(light, ao);
+    const Texture2D& pixels = castRays(context, v, p, interleave, width, height);
+    if (interleave) resolveInterleavedCones(context, light, ao, width, height);
+    drawPixels(context, v, pixels);
+}
+
+/// The mesh drawn as triangles, shaded by the view direction (ViewLayers::mesh).
+void drawMesh(const Context& context, const ViewState& v, const CellCamera& cam,
+              const std::array<float, 16>& viewProjection, bool orthographic)
+{
+    const Program& p = context.program(viewShaders(), {"view_mesh.vert", "view_mesh.frag"});
+    p.setMatrix("uViewProjection", viewProjection.data());
+    const auto& c = ViewColors::mesh;
+    p.set("uColor", c[0], c[1], c[2]);
+    p.set("uEye", float(cam.eye.x), float(cam.eye.y), float(cam.eye.z));
+    p.set("uViewDir", float(cam.forward.x), float(cam.forward.y), float(cam.forward.z));
+    p.set("uOrthographic", orthographic ? 1.0f : 0.0f);
+    p.use();
+    v.meshArray->bind();
+    glDrawElements(GL_TRIANGLES, GLsizei(v.meshIndexCount), GL_UNSIGNED_INT, nullptr);
+    checkGl("drawing the mesh");
+}
+
+/// Node boxes of levels [from, to] in one colour, one instanced draw per level.
+void drawOutlines(const Context& context, const ViewState& v, const std::array<float, 16>& viewProjection,
+                  uint32_t from, uint32_t to, const float* c)
+{
+    const Program& p = context.program(viewShaders(), {"view_outlines.vert", "view_color.frag"});
+    p.setMatrix("uViewProjection", viewProjection.data());
+    p.set("uDepthBias", 2e-4f);
+    p.set("uColor", c[0], c[1], c[2]);
+    p.use();
+    v.empty.bind();
+    for (uint32_t level = from; level <= to; ++level) {
+        const uint32_t first = v.levelStart[level], count = v.levelStart[level + 1] - first;
+        p.set("uFirstNode", first);
+        p.set("uNodeSize", float(8u << (v.brickLevel - level)));
+        glDrawArraysInstanced(GL_LINES, 0, 24, GLsizei(count));
+    }
+    checkGl("drawing the node outlines");
+}
+
+/// The brick boxes in their colour, then the outlines of the other levels asked for.
+void drawNodeBoxes(const Context& context, const ViewState& v, const ViewLayers& layers,
+                   const std::array<float, 16>& viewProjection)
+{
     uint32_t last = std::min(layers.lastLevel, v.brickLevel);
     if (layers.bricks) {
-        outlines(v.brickLevel, v.brickLevel, ViewColors::brick);
+        drawOutlines(context, v, viewProjection, v.brickLevel, v.brickLevel, ViewColors::brick);
         if (last == v.brickLevel) { // the brick boxes are drawn already, in their colour
-            if (last == 0) return finish();
+            if (last == 0) return;
             --last;
         }
     }
-    if (layers.outlines && layers.firstLevel <= last) outlines(layers.firstLevel, last, ViewColors::outline);
-    finish();
+    if (layers.outlines && layers.firstLevel <= last)
+        drawOutlines(context, v, viewProjection, layers.firstLevel, last, ViewColors::outline);
+}
+
+/// What OctreeView::draw promises to leave: no vertex array or program bound, depth testing off.
+void endFrame()
+{
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDisable(GL_DEPTH_TEST);
+}
+
+/// Draws the layers into the framebuffer bound now, over (0, 0, width, height).
+void drawLayers(const Context& context, const ViewState& v, const ViewCamera& camera, int width, int height,
+                const ViewLayers& layers)
+{
+    v.cutPixels = 0;
+    const CellCamera cam = cellCamera(v.grid, camera, width, height);
+    const auto viewProjection = toFloat(cam.viewProjection);
+    const auto inverseViewProjection = toFloat(cam.inverseViewProjection);
+    beginFrame(v, width, height);
+    const bool shadeMesh = layers.voxels && layers.surface == Surface::Mesh;
+    if (shadeMesh) drawMeshSurface(context, v, viewProjection, width, height);
+    if (layers.voxels) drawVoxels(context, v, layers, shadeMesh, viewProjection, inverseViewProjection, width, height);
+    if (layers.mesh && v.meshArray && !shadeMesh) drawMesh(context, v, cam, viewProjection, camera.orthographic);
+    drawNodeBoxes(context, v, layers, viewProjection);
+    endFrame();
 }
 
 /// Refuses a frame whose rays the driver cut short (loop_cut.glsl): its
 /// picture would be missing voxels or occlusion without a sign of it.
-void checkLoopCut(const Context& context, const OctreeView::Impl& v)
+void checkLoopCut(const Context& context, const ViewState& v)
 {
     if (v.cutPixels == 0) return;
     throw DeviceError(fmt::format("octree view: {} ended the rays of {} pixels early (its limit of {} loop iterations an "

@@ -62,49 +62,14 @@ public:
     /// positions checked against each other and the file size.
     void open()
     {
-        try {
-            readHeader(is_);
-        } catch (const std::exception& e) {
-            if (!is_) damaged("the header is cut short");
-            throw IoError(fmt::format("{}: not a readable VDB file: {}", name_, e.what()));
-        }
-        if (!is_) damaged("the header is cut short");
-        // Older formats store the root as a table whose size comes from the
-        // file (up to 2^32 entries); OpenVDB 2 (2013) already wrote 222.
-        if (fileVersion() < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)
-            throw IoError(fmt::format("{}: VDB file format {} is older than {}, the oldest svo reads", name_,
-                                      fileVersion(), int(openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)));
-        streamMeta_ = std::make_shared<openvdb::io::StreamMetadata>();
-        streamMeta_->setSeekable(true);
-        openvdb::io::setStreamMetadataPtr(is_, streamMeta_, /*transfer=*/false);
-        setFormatVersion(is_);
-        setLibraryVersion(is_);
-        setDataCompression(is_);
+        readFileHeader();
+        setUpStreamMetadata();
         openvdb::MetaMap fileMeta;
         readMeta(fileMeta, "the file metadata");
-        int32_t count = 0;
-        is_.read(reinterpret_cast<char*>(&count), sizeof count);
-        if (!is_) damaged("the file ends before the grid count");
-        // A grid takes at least its descriptor: three strings and three positions.
-        if (count < 0 || uint64_t(count) > left() / 36)
-            damaged(fmt::format("the file declares {} grids in its last {} bytes", count, left()));
+        const int32_t count = readGridCount();
         count_ = count;
         if (!inputHasGridOffsets()) return; // written as a stream: grids follow one another, read by readAll
-        for (int32_t i = 0; i < count; ++i) {
-            GridDescriptor gd = readDescriptor(i);
-            const int64_t at = tell();
-            const std::string g = quoted(gd);
-            if (gd.getGridPos() != at)
-                damaged(fmt::format("grid {} should start at byte {}, after its descriptor, but the descriptor says {}",
-                                    g, at, gd.getGridPos()));
-            if (gd.getBlockPos() < gd.getGridPos() || gd.getEndPos() < gd.getBlockPos())
-                damaged(fmt::format("grid {} has its positions out of order (start {}, data {}, end {})", g,
-                                    gd.getGridPos(), gd.getBlockPos(), gd.getEndPos()));
-            if (uint64_t(gd.getEndPos()) > size_)
-                damaged(fmt::format("grid {} ends at byte {} but the file has {} bytes", g, gd.getEndPos(), size_));
-            is_.seekg(gd.getEndPos());
-            descriptors_.push_back(gd);
-        }
+        for (int32_t i = 0; i < count; ++i) descriptors_.push_back(readPlacedDescriptor(i));
         checkEnd();
     }
 
@@ -154,6 +119,69 @@ private:
         if (uint64_t(at) != size_)
             damaged(fmt::format("the last grid ends at byte {} but the file has {} bytes", at, size_));
     }
+    // --- the file's header and its grid descriptors -------------------------
+
+    /// The header, refused when cut short or older than svo reads.
+    void readFileHeader()
+    {
+        try {
+            readHeader(is_);
+        } catch (const std::exception& e) {
+            if (!is_) damaged("the header is cut short");
+            throw IoError(fmt::format("{}: not a readable VDB file: {}", name_, e.what()));
+        }
+        if (!is_) damaged("the header is cut short");
+        // Older formats store the root as a table whose size comes from the
+        // file (up to 2^32 entries); OpenVDB 2 (2013) already wrote 222.
+        if (fileVersion() < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)
+            throw IoError(fmt::format("{}: VDB file format {} is older than {}, the oldest svo reads", name_,
+                                      fileVersion(), int(openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)));
+    }
+
+    /// The stream state OpenVDB's readers look up, as Archive sets it up.
+    void setUpStreamMetadata()
+    {
+        streamMeta_ = std::make_shared<openvdb::io::StreamMetadata>();
+        streamMeta_->setSeekable(true);
+        openvdb::io::setStreamMetadataPtr(is_, streamMeta_, /*transfer=*/false);
+        setFormatVersion(is_);
+        setLibraryVersion(is_);
+        setDataCompression(is_);
+    }
+
+    /// The grid count, checked against the bytes left.
+    int32_t readGridCount()
+    {
+        int32_t count = 0;
+        is_.read(reinterpret_cast<char*>(&count), sizeof count);
+        if (!is_) damaged("the file ends before the grid count");
+        // A grid takes at least its descriptor: three strings and three positions.
+        if (count < 0 || uint64_t(count) > left() / 36)
+            damaged(fmt::format("the file declares {} grids in its last {} bytes", count, left()));
+        return count;
+    }
+
+    /// Grid i's descriptor in a file with positions, the positions checked
+    /// against where it sits and the file size; leaves the stream at the grid's end.
+    GridDescriptor readPlacedDescriptor(int32_t i)
+    {
+        GridDescriptor gd = readDescriptor(i);
+        const int64_t at = tell();
+        const std::string g = quoted(gd);
+        if (gd.getGridPos() != at)
+            damaged(fmt::format("grid {} should start at byte {}, after its descriptor, but the descriptor says {}",
+                                g, at, gd.getGridPos()));
+        if (gd.getBlockPos() < gd.getGridPos() || gd.getEndPos() < gd.getBlockPos())
+            damaged(fmt::format("grid {} has its positions out of order (start {}, data {}, end {})", g,
+                                gd.getGridPos(), gd.getBlockPos(), gd.getEndPos()));
+        if (uint64_t(gd.getEndPos()) > size_)
+            damaged(fmt::format("grid {} ends at byte {} but the file has {} bytes", g, gd.getEndPos(), size_));
+        is_.seekg(gd.getEndPos());
+        return gd;
+    }
+
+    // --- sizes, strings and metadata, checked against the bytes left --------
+
     uint32_t readU32(const std::string& what)
     {
         uint32_t v = 0;
@@ -180,32 +208,47 @@ private:
         const uint32_t count = readU32(what);
         if (count > left() / 12) // name, type and size take 12 bytes at least
             damaged(fmt::format("{} declares {} entries in its last {} bytes", what, count, left()));
-        for (uint32_t i = 0; i < count; ++i) {
-            const std::string key = readString(what);
-            const std::string type = readString(what);
-            const uint32_t n = readU32(what);
-            if (n > left()) damaged(fmt::format("{}: '{}' declares {} bytes, {} bytes before the end", what, key, n, left()));
-            std::string bytes(sizeof n + n, '\0');
-            std::memcpy(bytes.data(), &n, sizeof n);
-            if (n) is_.read(bytes.data() + sizeof n, n);
-            if (!is_) damaged(what + " is cut short");
-            // "__" types only serve reading (delayed loading, which svo never
-            // does); OpenVDB drops them from the grid too.
-            if (type.compare(0, 2, "__") == 0) continue;
-            openvdb::Metadata::Ptr m;
-            if (openvdb::Metadata::isRegisteredType(type)) m = openvdb::Metadata::createMetadata(type);
-            else m = std::make_shared<openvdb::UnknownMetadata>(type);
-            std::istringstream value(bytes);
-            try {
-                m->read(value);
-            } catch (const std::exception& e) {
-                damaged(fmt::format("{}: '{}' of type {}: {}", what, key, type, e.what()));
-            }
-            if (!value || value.tellg() != std::streamoff(bytes.size()))
-                damaged(fmt::format("{}: '{}' has {} bytes, not what type {} holds", what, key, n, type));
-            if (key.empty()) damaged(what + " has an entry without a name"); // OpenVDB's insertMeta throws
-            out.insertMeta(key, *m);
+        for (uint32_t i = 0; i < count; ++i) readMetaEntry(out, what);
+    }
+
+    /// One metadata entry: name, type, size and value, into `out` unless its
+    /// type only serves reading.
+    void readMetaEntry(openvdb::MetaMap& out, const std::string& what)
+    {
+        const std::string key = readString(what);
+        const std::string type = readString(what);
+        const uint32_t n = readU32(what);
+        if (n > left()) damaged(fmt::format("{}: '{}' declares {} bytes, {} bytes before the end", what, key, n, left()));
+        std::string bytes(sizeof n + n, '\0');
+        std::memcpy(bytes.data(), &n, sizeof n);
+        if (n) is_.read(bytes.data() + sizeof n, n);
+        if (!is_) damaged(what + " is cut short");
+        // "__" types only serve reading (delayed loading, which svo never
+        // does); OpenVDB drops them from the grid too.
+        if (type.compare(0, 2, "__") == 0) return;
+        const openvdb::Metadata::Ptr m = parseMetaValue(what, key, type, bytes);
+        if (key.empty()) damaged(what + " has an entry without a name"); // OpenVDB's insertMeta throws
+        out.insertMeta(key, *m);
+    }
+
+    /// An entry's value parsed from `bytes` (its size, then the value), which
+    /// it must fill exactly.
+    openvdb::Metadata::Ptr parseMetaValue(const std::string& what, const std::string& key, const std::string& type,
+                                          const std::string& bytes) const
+    {
+        const uint64_t n = bytes.size() - sizeof(uint32_t);
+        openvdb::Metadata::Ptr m;
+        if (openvdb::Metadata::isRegisteredType(type)) m = openvdb::Metadata::createMetadata(type);
+        else m = std::make_shared<openvdb::UnknownMetadata>(type);
+        std::istringstream value(bytes);
+        try {
+            m->read(value);
+        } catch (const std::exception& e) {
+            damaged(fmt::format("{}: '{}' of type {}: {}", what, key, type, e.what()));
         }
+        if (!value || value.tellg() != std::streamoff(bytes.size()))
+            damaged(fmt::format("{}: '{}' has {} bytes, not what type {} holds", what, key, n, type));
+        return m;
     }
 
     GridDescriptor readDescriptor(int32_t i)
@@ -238,50 +281,12 @@ private:
         const std::string g = quoted(gd);
         openvdb::GridBase::Ptr grid;
         try {
-            grid = openvdb::GridBase::createGrid(gd.gridType());
-            grid->setSaveFloatAsHalf(gd.saveFloatAsHalf());
-            readGridCompression(is_);
-            openvdb::MetaMap meta;
-            readMeta(meta, "the metadata of grid " + g);
-            for (auto it = meta.beginMeta(); it != meta.endMeta(); ++it) grid->insertMeta(it->first, *it->second);
-            // As OpenVDB's reader: the descriptor says it; the writer adds it again.
-            grid->removeMeta(openvdb::GridBase::META_SAVE_HALF_FLOAT);
-
-            // Per-grid stream state, as Archive::readGrid sets it up.
-            auto gridMeta = std::make_shared<openvdb::io::StreamMetadata>(*streamMeta_);
-            gridMeta->setHalfFloat(grid->saveFloatAsHalf());
-            gridMeta->gridMetadata() = static_cast<openvdb::MetaMap&>(*grid);
-            gridMeta->setLeaf(0);
-            openvdb::io::setStreamMetadataPtr(is_, gridMeta, /*transfer=*/false);
-            openvdb::io::setGridClass(is_, grid->getGridClass());
-            openvdb::io::setGridBackgroundValuePtr(is_, nullptr);
-            struct Restore { // the stream keeps the address of the pointer
-                std::istream& is;
-                openvdb::io::StreamMetadata::Ptr& meta;
-                ~Restore() { openvdb::io::setStreamMetadataPtr(is, meta, false); }
-            } restore{is_, streamMeta_};
-
-            {
-                // The transform starts with its map's type name.
-                const int64_t at = tell();
-                readString("the transform of grid " + g);
-                is_.seekg(at);
-            }
-            grid->readTransform(is_);
-            if (!is_) damaged(fmt::format("grid {} is cut short in its transform", g));
-            if (!gd.isInstance()) {
-                checkTree(*grid, g);
-                grid->readTopology(is_);
-                if (!is_) damaged(fmt::format("grid {} is cut short in its tree", g));
-                if (blockPos >= 0 && tell() != blockPos)
-                    damaged(fmt::format("the tree of grid {} should end at byte {} but ends at byte {}", g, blockPos,
-                                        tell()));
-                const TopologyMasks masks = topologyMasks(*grid);
-                grid->readBuffers(is_);
-                if (!is_) damaged(fmt::format("grid {} is cut short in its voxel data", g));
-                checkLeaves(*grid, masks, g);
-                checkStats(*grid, g);
-            }
+            grid = newGrid(gd, g);
+            openvdb::io::StreamMetadata::Ptr gridMeta;
+            setGridStream(*grid, gridMeta);
+            const RestoreStream restore{is_, streamMeta_};
+            readTransform(*grid, g);
+            if (!gd.isInstance()) readTree(*grid, blockPos, g);
         } catch (const Error&) {
             throw;
         } catch (const std::bad_alloc&) {
@@ -291,6 +296,69 @@ private:
             damaged(fmt::format("grid {}: {}", g, e.what()));
         }
         return grid;
+    }
+
+    /// An empty grid of the descriptor's type with the grid's metadata, read as
+    /// Archive::readGrid reads it.
+    openvdb::GridBase::Ptr newGrid(const GridDescriptor& gd, const std::string& g)
+    {
+        openvdb::GridBase::Ptr grid = openvdb::GridBase::createGrid(gd.gridType());
+        grid->setSaveFloatAsHalf(gd.saveFloatAsHalf());
+        readGridCompression(is_);
+        openvdb::MetaMap meta;
+        readMeta(meta, "the metadata of grid " + g);
+        for (auto it = meta.beginMeta(); it != meta.endMeta(); ++it) grid->insertMeta(it->first, *it->second);
+        // As OpenVDB's reader: the descriptor says it; the writer adds it again.
+        grid->removeMeta(openvdb::GridBase::META_SAVE_HALF_FLOAT);
+        return grid;
+    }
+
+    /// Per-grid stream state, as Archive::readGrid sets it up, in `gridMeta`,
+    /// which must outlive the grid's reading: the stream keeps its address.
+    void setGridStream(const openvdb::GridBase& grid, openvdb::io::StreamMetadata::Ptr& gridMeta)
+    {
+        gridMeta = std::make_shared<openvdb::io::StreamMetadata>(*streamMeta_);
+        gridMeta->setHalfFloat(grid.saveFloatAsHalf());
+        gridMeta->gridMetadata() = static_cast<const openvdb::MetaMap&>(grid);
+        gridMeta->setLeaf(0);
+        openvdb::io::setStreamMetadataPtr(is_, gridMeta, /*transfer=*/false);
+        openvdb::io::setGridClass(is_, grid.getGridClass());
+        openvdb::io::setGridBackgroundValuePtr(is_, nullptr);
+    }
+
+    /// Puts the file's stream state back after a grid's (setGridStream).
+    struct RestoreStream { // the stream keeps the address of the pointer
+        std::istream& is;
+        openvdb::io::StreamMetadata::Ptr& meta;
+        ~RestoreStream() { openvdb::io::setStreamMetadataPtr(is, meta, false); }
+    };
+
+    void readTransform(openvdb::GridBase& grid, const std::string& g)
+    {
+        {
+            // The transform starts with its map's type name.
+            const int64_t at = tell();
+            readString("the transform of grid " + g);
+            is_.seekg(at);
+        }
+        grid.readTransform(is_);
+        if (!is_) damaged(fmt::format("grid {} is cut short in its transform", g));
+    }
+
+    /// The tree: walked first, then its topology (ending at blockPos when
+    /// known) and its voxel data, each checked.
+    void readTree(openvdb::GridBase& grid, int64_t blockPos, const std::string& g)
+    {
+        checkTree(grid, g);
+        grid.readTopology(is_);
+        if (!is_) damaged(fmt::format("grid {} is cut short in its tree", g));
+        if (blockPos >= 0 && tell() != blockPos)
+            damaged(fmt::format("the tree of grid {} should end at byte {} but ends at byte {}", g, blockPos, tell()));
+        const TopologyMasks masks = topologyMasks(grid);
+        grid.readBuffers(is_);
+        if (!is_) damaged(fmt::format("grid {} is cut short in its voxel data", g));
+        checkLeaves(grid, masks, g);
+        checkStats(grid, g);
     }
 
     /// Walks the tree of a grid of a type svo reads (others are left to
@@ -395,33 +463,54 @@ private:
         const int64_t start = tell();
         if (get<int32_t>(g) != 1) damaged(fmt::format("grid {} has a buffer count other than 1", g)); // OpenVDB warns only
         skip(sizeof(ValueT), g); // background
+        const std::vector<openvdb::util::NodeMask<3>> leaves = walkRoot<RootT, ValueT>(compression, half, g);
+        walkLeafData<ValueT, LeafT>(leaves, compression, half, g);
+        is_.clear();
+        is_.seekg(start);
+    }
+
+    /// The root's tiles and children, each child's subtree walked; returns
+    /// the leaves' masks in the order of their data.
+    template <typename RootT, typename ValueT>
+    std::vector<openvdb::util::NodeMask<3>> walkRoot(uint32_t compression, bool half, const std::string& g)
+    {
         const uint32_t tiles = get<uint32_t>(g), children = get<uint32_t>(g);
-        // Root tiles and children sit on the lattice of the root's child size,
-        // so origin + DIM - 1 (their last voxel, which OpenVDB computes when it
-        // takes a bounding box) cannot overflow int32.
         const int32_t dim = RootT::ChildNodeType::DIM;
-        const auto origin = [&](const char* what) {
-            int32_t o[3];
-            is_.read(reinterpret_cast<char*>(o), sizeof o);
-            if (!is_) damaged(fmt::format("grid {} is cut short in its tree", g));
-            if ((o[0] & (dim - 1)) || (o[1] & (dim - 1)) || (o[2] & (dim - 1)))
-                damaged(fmt::format("grid {} has a root {} at ({}, {}, {}), off the lattice", g, what, o[0], o[1], o[2]));
-            return openvdb::Coord(o[0], o[1], o[2]);
-        };
         for (uint32_t t = 0; t < tiles; ++t) {
-            origin("tile");
+            rootOrigin(dim, "tile", g);
             skip(sizeof(ValueT) + 1, g); // value, active
         }
         std::vector<openvdb::util::NodeMask<3>> leaves;
         openvdb::Coord last;
         for (uint32_t c = 0; c < children; ++c) {
-            const openvdb::Coord o = origin("child");
+            const openvdb::Coord o = rootOrigin(dim, "child", g);
             // The root keeps its children sorted; the data section follows that order.
             if (c && !(last < o))
                 damaged(fmt::format("grid {} has a root child at ({}, {}, {}) out of order", g, o[0], o[1], o[2]));
             last = o;
             walkInternal<typename RootT::ChildNodeType>(compression, half, leaves, g);
         }
+        return leaves;
+    }
+
+    /// A root tile's or child's origin. They sit on the lattice of the root's
+    /// child size (`dim`), so origin + DIM - 1 (their last voxel, which
+    /// OpenVDB computes when it takes a bounding box) cannot overflow int32.
+    openvdb::Coord rootOrigin(int32_t dim, const char* what, const std::string& g)
+    {
+        int32_t o[3];
+        is_.read(reinterpret_cast<char*>(o), sizeof o);
+        if (!is_) damaged(fmt::format("grid {} is cut short in its tree", g));
+        if ((o[0] & (dim - 1)) || (o[1] & (dim - 1)) || (o[2] & (dim - 1)))
+            damaged(fmt::format("grid {} has a root {} at ({}, {}, {}), off the lattice", g, what, o[0], o[1], o[2]));
+        return openvdb::Coord(o[0], o[1], o[2]);
+    }
+
+    /// The leaves' data section, in the order of `leaves`.
+    template <typename ValueT, typename LeafT>
+    void walkLeafData(const std::vector<openvdb::util::NodeMask<3>>& leaves, uint32_t compression, bool half,
+                      const std::string& g)
+    {
         for (const auto& mask : leaves) {
             if constexpr (std::is_same_v<ValueT, bool>) {
                 // Mask leaves: mask, origin; bool leaves: mask, origin, values.
@@ -431,8 +520,6 @@ private:
                 walkValues<ValueT>(mask, compression, half, g);
             }
         }
-        is_.clear();
-        is_.seekg(start);
     }
 
     /// Mask and bool leaves store their mask twice, in the tree and in the

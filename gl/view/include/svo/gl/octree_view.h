@@ -381,9 +381,9 @@ public:
     const GridSpec& grid() const;
     uint32_t brickLevel() const;
 
+private:
     struct Impl; ///< opaque: GPU buffers and what drawing them needs
 
-private:
     const Context& context_;
     std::unique_ptr<Impl> impl_;
 };
