@@ -121,7 +121,7 @@ TEST(PathTraceCamera, PixelCentresFollowTheGlView)
     EXPECT_EQ(o.direction.z, -1.0);
 }
 
-// The GL view's own matrices (gl/src/octree_view.cpp's cellCamera: view,
+// The GL view's own matrices (gl/view/src/octree_view.cpp's cellCamera: view,
 // then a perspective or orthographic projection, column-major) project every
 // point of the reference's ray for pixel (x, y) to the NDC of the fragment
 // at gl_FragCoord = (x + 1/2, height - 1 - y + 1/2): the same ray.

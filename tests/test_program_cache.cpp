@@ -1,4 +1,4 @@
-// Start-up: the program binary cache (gl/src/program_cache.h) and the
+// Start-up: the program binary cache (gl/device/include/svo/gl/program_cache.h) and the
 // start-up record of a call (VoxelizeStats::startup). What is expected comes
 // from the cache folder itself (its files), from a Voxelizer without a cache,
 // and from the driver's own program binaries.
