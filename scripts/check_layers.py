@@ -1,4 +1,10 @@
 #!/usr/bin/env python3
+# Runs under bash too (`bash scripts/check_layers.py`, as the other scripts are
+# run): to bash the next line is the no-op `:` and the one after hands over to
+# Python; to Python the three lines are a string.
+""":"
+exec python3 "$0" "$@"
+"""
 """The layer check: every #include and every CMake link of svo's own code must
 follow the layer diagram of docs/design.md. Exit 1, naming each offending
 line, when one does not.
