@@ -149,10 +149,10 @@ bool haveDisplay()
     return false;
 }
 
-void runView(const ViewArgs& a, const CLI::App& cmd)
+/// Window or screenshot: refuses the flags of the other, and a window without a display.
+void checkOutputKind(const ViewArgs& a)
 {
-    const bool window = a.screenshot.empty();
-    if (window) {
+    if (a.screenshot.empty()) {
 #ifndef SVO_WITH_WINDOW
         throw Unsupported("this svo was built without its window (SVO_WITH_WINDOW=OFF); give --screenshot PNG to render "
                           "offscreen");
@@ -164,9 +164,33 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         throw InvalidInput("--keys, --frames and --save drive the window; --screenshot renders one frame without it");
     }
     if (a.frames < 0) throw InvalidInput(fmt::format("--frames {}: expected 0 (until closed) or more", a.frames));
-    const auto [width, height] = parseSize(a.size);
-    // What the flags ask for; the view policy (svo/gl/view_request.h) makes
-    // the layers from it once the octree is loaded.
+}
+
+/// The lights, albedo and glossy colour of a lit picture, into the request.
+void parseLighting(const ViewArgs& a, gl::ViewRequest& asked)
+{
+    gl::ViewLayers& layers = asked.layers;
+    if (!gl::isLit(asked.render)) {
+        if (!a.lights.empty() || !a.albedo.empty() || !a.specular.empty())
+            throw InvalidInput("--light, --albedo and --specular light the voxels of --render direct or gi");
+        return;
+    }
+    if (!a.lights.empty()) {
+        asked.lights.emplace();
+        for (const std::string& l : a.lights) parseLight(l, *asked.lights);
+    }
+    if (!a.albedo.empty()) layers.light.albedo = parseColor(a.albedo, "--albedo");
+    if (!a.specular.empty()) {
+        if (asked.render != gl::RenderMode::Global)
+            throw InvalidInput("--specular: the glossy cone is part of --render gi");
+        layers.light.specular = parseColor(a.specular, "--specular");
+    }
+}
+
+/// What the flags ask for; the view policy (svo/gl/view_request.h) makes the
+/// layers from it once the octree is loaded. Checked before any voxelizing.
+gl::ViewRequest viewRequest(const ViewArgs& a)
+{
     gl::ViewRequest asked;
     asked.render = parse<gl::RenderMode>(a.render, "--render");
     asked.surface = parse<gl::SurfaceChoice>(a.surface, "--surface");
@@ -181,67 +205,26 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     layers.ao.volumeResolution = a.light.volumeResolution;
     layers.light = a.light;
     layers.ao.interleave = layers.light.interleave = a.conePattern == "interleaved";
-    const bool lit = gl::isLit(asked.render);
-    if (lit) {
-        if (!a.lights.empty()) {
-            asked.lights.emplace();
-            for (const std::string& l : a.lights) parseLight(l, *asked.lights);
-        }
-        if (!a.albedo.empty()) layers.light.albedo = parseColor(a.albedo, "--albedo");
-        if (!a.specular.empty()) {
-            if (asked.render != gl::RenderMode::Global)
-                throw InvalidInput("--specular: the glossy cone is part of --render gi");
-            layers.light.specular = parseColor(a.specular, "--specular");
-        }
-    } else if (!a.lights.empty() || !a.albedo.empty() || !a.specular.empty()) {
-        throw InvalidInput("--light, --albedo and --specular light the voxels of --render direct or gi");
-    }
-    gl::namedView({Vec3d{0, 0, 0}, Vec3d{1, 1, 1}}, a.view, 1.0); // the view's name, checked before any work (--view)
+    parseLighting(a, asked);
+    gl::checkViewRequest(asked); // out-of-range options (the default lights come with the octree's box)
+    return asked;
+}
+
+/// --camera: eye and target, and optionally up (6 or 9 numbers); empty when not given.
+std::vector<double> parseCamera(const std::string& text)
+{
     std::vector<double> cam;
-    if (!a.camera.empty()) {
-        for (const std::string& part : split(a.camera, ',')) cam.push_back(number(part, "--camera"));
-        if (cam.size() != 6 && cam.size() != 9)
-            throw InvalidInput(fmt::format("--camera '{}': expected eye x,y,z, target x,y,z and optionally up x,y,z",
-                                           a.camera));
-    }
-    if (!window) checkWritable(a.screenshot);
-    if (!a.save.empty()) checkWritable(a.save);
-    checkOutputs({a.input}, {a.screenshot, a.save});
-    // The screenshot is put in place at the very end (atomic_file.h); the
-    // window's own pictures (key p, --save) are written as they are taken.
-    OutputBatch outputs({a.screenshot});
+    if (text.empty()) return cam;
+    for (const std::string& part : split(text, ',')) cam.push_back(number(part, "--camera"));
+    if (cam.size() != 6 && cam.size() != 9)
+        throw InvalidInput(fmt::format("--camera '{}': expected eye x,y,z, target x,y,z and optionally up x,y,z", text));
+    return cam;
+}
 
-    // Options out of range are refused before any voxelizing (the default
-    // lights come once the octree's box is known).
-    gl::checkViewRequest(asked);
-
-    BackendArgs backend = a.backend;
-    // The channels the picture reads: lit pictures the normals and the vertex
-    // colours as the albedo (a mesh without colours gets no colour channel),
-    // AO from the volume the normals. (The window voxelizes again with them
-    // when either is turned on.)
-    backend.attributes |= gl::channelsFor(asked);
-    LibraryCall call(backend, "building the octree");
-    LoadedOctree lo;
-    const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
-    if (a.input.empty()) {
-        lo.mesh = cornellBox();
-        lo.kind = LoadedOctree::Kind::Mesh;
-        lo.octree = call.voxelizer.voxelize(*lo.mesh, makeGrid(*lo.mesh, request), call.options);
-    } else {
-        lo = loadOctree(call.voxelizer, a.input, a.gridName, request, call.options);
-    }
-    if (lo.mesh) printWarnings(lo.mesh->warnings);
-    printWarnings(call.stats.warnings);
-    if (layers.mesh && !lo.mesh) fmt::print(stderr, "svo: warning: the input has no mesh to draw (--layers mesh)\n");
-    gl::ViewLayers shown;
-    try {
-        shown = gl::viewLayers(asked, lo.octree, lo.mesh.has_value());
-    } catch (const InvalidInput& e) { // named after the input, as it is about it
-        throw InvalidInput(fmt::format("{}: {}", inputName(a), errorMessage(e)));
-    }
-    const double aspect = double(width) / double(height);
-    gl::ViewCamera camera = gl::namedView(gl::gridWorldBox(lo.octree.grid), a.view, aspect);
+/// The camera: --view of the grid's box, then --camera, --fov and --ortho.
+gl::ViewCamera viewCamera(const ViewArgs& a, const GridSpec& grid, double aspect, const std::vector<double>& cam)
+{
+    gl::ViewCamera camera = gl::namedView(gl::gridWorldBox(grid), a.view, aspect);
     if (!cam.empty()) {
         camera.eye = {cam[0], cam[1], cam[2]};
         camera.target = {cam[3], cam[4], cam[5]};
@@ -253,50 +236,55 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         camera.orthographic = true;
         camera.height = *a.ortho;
     }
-    const std::string inputName = a.input.empty() ? "cornell_box" : a.input;
-    const std::string inputLine = describeInput(inputName, lo, call.stats);
-    if (window) {
-#ifdef SVO_WITH_WINDOW
-        ViewWindowInput in;
-        in.title = inputName;
-        in.resolution = request.resolution > 0 ? request.resolution
-                                               : int64_t(*std::max_element(lo.octree.grid.dims.begin(),
-                                                                           lo.octree.grid.dims.end()));
-        in.loaded = std::move(lo);
-        in.stats = call.stats;
-        in.backend = backend;
-        in.camera = camera;
-        in.layers = shown;
-        in.autoSurface = asked.surface == gl::SurfaceChoice::Auto;
-        in.room = asked.room;
-        in.width = width;
-        in.height = height;
-        in.frames = a.frames;
-        in.keys = a.keys;
-        in.save = a.save;
-        const ViewWindowResult r = runViewWindow(std::move(in), call.voxelizer);
-        if (!a.save.empty()) writeOctree(a.save, r.octree);
-        fmt::print("svo view\n");
-        fmt::print("  {:<8} {}\n", "input", inputLine);
-        fmt::print("  {:<8} {} voxels, {} bricks, {} levels, resolution {}\n", "octree", thousands(r.octree.voxelCount()),
-                   thousands(r.octree.bricks.size()), r.octree.brickLevel + 1, r.resolution);
-        fmt::print("  {:<8} {} frames, {:.2f} ms a frame on {}\n", "window", r.frames, r.meanFrameMs, r.renderer);
-        for (const std::string& shot : r.screenshots) fmt::print("  {:<8} {}\n", "picture", shot);
-        if (!a.save.empty()) fmt::print("  {:<8} {}\n", "saved", a.save);
-        for (const std::string& e : r.errors) fmt::print(stderr, "svo: warning: {}\n", e);
-#endif
-        return;
+    return camera;
+}
+
+/// The octree to show: the built-in Cornell box voxelized, or the input loaded.
+LoadedOctree loadInput(const ViewArgs& a, const GridRequest& request, LibraryCall& call)
+{
+    LoadedOctree lo;
+    if (a.input.empty()) {
+        lo.mesh = cornellBox();
+        lo.kind = LoadedOctree::Kind::Mesh;
+        lo.octree = call.voxelizer.voxelize(*lo.mesh, makeGrid(*lo.mesh, request), call.options);
+    } else {
+        lo = loadOctree(call.voxelizer, a.input, a.gridName, request, call.options);
     }
+    if (lo.mesh) printWarnings(lo.mesh->warnings);
+    printWarnings(call.stats.warnings);
+    return lo;
+}
+
+#ifdef SVO_WITH_WINDOW
+/// The window until it closes, then what it did.
+void showWindow(const ViewArgs& a, ViewWindowInput in, LibraryCall& call, const std::string& inputLine)
+{
+    const ViewWindowResult r = runViewWindow(std::move(in), call.voxelizer);
+    if (!a.save.empty()) writeOctree(a.save, r.octree);
+    fmt::print("svo view\n");
+    fmt::print("  {:<8} {}\n", "input", inputLine);
+    fmt::print("  {:<8} {} voxels, {} bricks, {} levels, resolution {}\n", "octree", thousands(r.octree.voxelCount()),
+               thousands(r.octree.bricks.size()), r.octree.brickLevel + 1, r.resolution);
+    fmt::print("  {:<8} {} frames, {:.2f} ms a frame on {}\n", "window", r.frames, r.meanFrameMs, r.renderer);
+    for (const std::string& shot : r.screenshots) fmt::print("  {:<8} {}\n", "picture", shot);
+    if (!a.save.empty()) fmt::print("  {:<8} {}\n", "saved", a.save);
+    for (const std::string& e : r.errors) fmt::print(stderr, "svo: warning: {}\n", e);
+}
+#endif
+
+/// One picture offscreen, written to --screenshot when the batch commits.
+void renderScreenshot(const ViewArgs& a, const LoadedOctree& lo, const gl::ViewCamera& camera,
+                      const gl::ViewLayers& shown, int width, int height, const std::string& inputLine,
+                      OutputBatch& outputs)
+{
     gl::ContextOptions co;
-    co.device = a.backend.device;
-    co.debug = a.backend.glDebug;
+    co.device = a.backend.device.device;
+    co.debug = a.backend.device.glDebug;
     gl::Context context(co);
     gl::OctreeView view(context, lo.octree, lo.mesh ? &*lo.mesh : nullptr);
-    gl::Image image;
     {
         Progress p("rendering " + a.screenshot);
-        image = view.render(camera, width, height, shown);
-        writePng(a.screenshot, image);
+        writePng(a.screenshot, view.render(camera, width, height, shown));
     }
     outputs.commit();
     fmt::print("svo view\n");
@@ -310,6 +298,63 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
                                    : fmt::format("fov {:.6g}", camera.fovYDegrees));
     fmt::print("  {:<8} {} ({} x {}) on {}\n", "picture", a.screenshot, width, height, context.info().renderer);
 }
+
+void runView(const ViewArgs& a, const CLI::App& cmd)
+{
+    checkOutputKind(a);
+    const auto [width, height] = parseSize(a.size);
+    const gl::ViewRequest asked = viewRequest(a);
+    gl::namedView({Vec3d{0, 0, 0}, Vec3d{1, 1, 1}}, a.view, 1.0); // the view's name, checked before any work (--view)
+    const std::vector<double> cam = parseCamera(a.camera);
+    const bool window = a.screenshot.empty();
+    if (!window) checkWritable(a.screenshot);
+    if (!a.save.empty()) checkWritable(a.save);
+    checkOutputs({a.input}, {a.screenshot, a.save});
+    // The screenshot is put in place at the very end (atomic_file.h); the
+    // window's own pictures (key p, --save) are written as they are taken.
+    OutputBatch outputs({a.screenshot});
+
+    BackendArgs backend = a.backend;
+    // The channels the picture reads: lit pictures the normals and the vertex
+    // colours as the albedo (a mesh without colours gets no colour channel),
+    // AO from the volume the normals. (The window voxelizes again with them
+    // when either is turned on.)
+    backend.settings.attributes |= gl::channelsFor(asked);
+    LibraryCall call(backend, "building the octree");
+    const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
+    LoadedOctree lo = loadInput(a, request, call);
+    if (asked.layers.mesh && !lo.mesh) fmt::print(stderr, "svo: warning: the input has no mesh to draw (--layers mesh)\n");
+    gl::ViewLayers shown;
+    try {
+        shown = gl::viewLayers(asked, lo.octree, lo.mesh.has_value());
+    } catch (const InvalidInput& e) { // named after the input, as it is about it
+        throw InvalidInput(fmt::format("{}: {}", inputName(a), errorMessage(e)));
+    }
+    const gl::ViewCamera camera = viewCamera(a, lo.octree.grid, double(width) / double(height), cam);
+    const std::string inputLine = describeInput(inputName(a), lo, call.stats);
+    if (!window) return renderScreenshot(a, lo, camera, shown, width, height, inputLine, outputs);
+#ifdef SVO_WITH_WINDOW
+    ViewWindowInput in;
+    in.title = inputName(a);
+    in.resolution = request.resolution > 0
+                        ? request.resolution
+                        : int64_t(*std::max_element(lo.octree.grid.dims.begin(), lo.octree.grid.dims.end()));
+    in.loaded = std::move(lo);
+    in.stats = call.stats;
+    in.backend = backend;
+    in.camera = camera;
+    in.layers = shown;
+    in.autoSurface = asked.surface == gl::SurfaceChoice::Auto;
+    in.room = asked.room;
+    in.width = width;
+    in.height = height;
+    in.frames = a.frames;
+    in.keys = a.keys;
+    in.save = a.save;
+    showWindow(a, std::move(in), call, inputLine);
+#endif
+}
+
 
 } // namespace
 
@@ -436,8 +481,7 @@ void addViewCommand(CLI::App& app)
                   {".svo", ".vdb", ".nvdb"});
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
-    addModeOption(*cmd, args->backend);
-    addAttributeOption(*cmd, args->backend);
+    addOptions(*cmd, args->backend.settings, {"mode", "attributes"});
     cmd->callback([args, cmd] { runView(*args, *cmd); });
 }
 

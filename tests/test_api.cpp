@@ -546,6 +546,44 @@ TEST_F(Api, OctreeToGridsAndBack)
     }
 }
 
+// A result carries its record of what ran, and the grids made of it say so:
+// the octree's backend, mode and renderer; a level set's also its sign method.
+TEST_F(Api, GridsCarryTheRecordOfWhatMadeThem)
+{
+    const VdbMesh mesh = toVdb(sphere({0.2, 0.1, 0}, 0.8, 24, 16));
+    const auto xform = openvdb::math::Transform::createLinearTransform(0.05);
+    VoxelizeOptions o;
+    o.backend = Backend::Cpu;
+    o.mode = VoxelMode::Thin;
+    const Octree octree = voxelizer().meshToOctree(mesh.points, mesh.triangles, {}, *xform, o);
+    EXPECT_EQ(octree.madeBy.backend, "cpu");
+    EXPECT_EQ(octree.madeBy.mode, "thin");
+    for (const auto& grid : octreeToGrids(octree, GridOptions{})) {
+        EXPECT_EQ(grid->metaValue<std::string>("svo:backend"), "cpu");
+        EXPECT_EQ(grid->metaValue<std::string>("svo:mode"), "thin");
+        EXPECT_EQ(grid->metaValue<std::string>("svo:renderer"), "cpu");
+    }
+    // A grid read back into an octree was not voxelized: no record to repeat.
+    const Octree back = voxelizer().gridToOctree(*octreeToGrids(octree)[0]);
+    EXPECT_TRUE(octreeToGrids(back)[0]->beginMeta() == octreeToGrids(back)[0]->endMeta());
+
+    VoxelizeStats stats;
+    VoxelizeOptions field;
+    field.stats = &stats;
+    LevelSetOptions ls;
+    ls.closestTriangle = true;
+    const TriangleMesh ball = sphere({0.2, 0.1, 0}, 0.8, 24, 16);
+    GridRequest request;
+    request.resolution = 32;
+    const openvdb::GridPtrVec grids = voxelizer().levelSet(ball, makeGrid(ball, request), ls, field);
+    ASSERT_EQ(grids.size(), 2u);
+    for (const auto& grid : grids) {
+        EXPECT_EQ(grid->metaValue<std::string>("svo:sign"), stats.sign);
+        EXPECT_EQ(grid->metaValue<std::string>("svo:sign").rfind("parity: the mesh is closed", 0), 0u);
+        EXPECT_EQ(grid->metaValue<std::string>("svo:backend"), stats.backend);
+    }
+}
+
 TEST_F(Api, NanoVdbFileHoldsTheSameVoxels)
 {
     const TempDir dir("api");

@@ -8,9 +8,12 @@
 #include <string>
 #include <sys/wait.h>
 
+#include <fmt/format.h>
+
 #include "option_flags.h"
 #include "run_shell.h"
 #include "svo/gl/octree_view.h"
+#include "svo/vdb_io/grid_options.h"
 #include "svo/voxelizer.h"
 #include "temp_dir.h"
 
@@ -181,3 +184,56 @@ TEST(CliOptions, ErrorsNameTheFlagNeverTheLibrarysField)
 }
 
 } // namespace
+
+namespace {
+/// The flag and the names of one declared option, as `svo voxelize --help` must list them.
+struct HelpCheck {
+    const std::string& help;
+    template <typename E, typename = decltype(enumNames(E{}))>
+    void operator()(const svo::OptionInfo& info, E& value)
+    {
+        const std::string line = flagLine(info);
+        for (const auto& n : svo::names<E>()) EXPECT_NE(line.find(n), std::string::npos) << info.identifier << " " << n;
+        EXPECT_NE(line.find("=" + std::string(svo::nameOf(value))), std::string::npos) << info.identifier << ": " << line;
+    }
+    void operator()(const svo::OptionInfo& info, svo::CheckedNumber number)
+    {
+        const std::string line = flagLine(info);
+        EXPECT_NE(line.find(fmt::format("={}", number.value)), std::string::npos) << info.identifier << ": " << line;
+    }
+    template <typename T>
+    void operator()(const svo::OptionInfo& info, T&&)
+    {
+        flagLine(info);
+    }
+    /// The help's line that starts with the option's flag; the library's errors about the option name that flag.
+    std::string flagLine(const svo::OptionInfo& info)
+    {
+        const std::string f = svo::flagOf(info);
+        EXPECT_EQ(svo::app::flagFor(info.identifier), f);
+        const size_t at = help.find("  " + f + " ");
+        EXPECT_NE(at, std::string::npos) << info.identifier << " -> " << f;
+        if (at == std::string::npos) return {};
+        return help.substr(at, help.find('\n', at) - at);
+    }
+};
+} // namespace
+
+// Each option is declared once, beside its library struct (forEachOption):
+// `svo voxelize` lists every one as a flag, with the declared names of its
+// values and the library's default, and errors about it name that flag.
+TEST(CliOptions, EveryDeclaredOptionIsAFlagWithTheLibrarysDefault)
+{
+    const auto r = runSvo("voxelize --help");
+    ASSERT_EQ(r.code, 0) << r.out;
+    HelpCheck check{r.out};
+    svo::VoxelizeSettings settings;
+    svo::DeviceOptions device;
+    svo::LevelSetOptions levelSet;
+    svo::forEachOption(settings, check);
+    svo::forEachOption(device, check);
+    svo::forEachOption(levelSet, check);
+    svo::GridOptions grids;
+    grids.topology = svo::GridOptions::Topology::Bool; // the command line's own default: python3-openvdb reads it
+    svo::forEachOption(grids, check);
+}

@@ -116,7 +116,7 @@ Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool cr
 void describeBackend(Device& device, Backend backend, VoxelizeStats& stats)
 {
     const bool cpu = backend == Backend::Cpu;
-    stats.backend = cpu ? "cpu" : backend == Backend::Compute ? "compute" : "raster";
+    stats.backend = nameOf(backend);
     stats.device = cpu ? "cpu" : device.describe();
     stats.renderer = cpu ? "cpu" : device.context().info().renderer;
 }

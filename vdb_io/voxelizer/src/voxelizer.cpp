@@ -187,6 +187,7 @@ Octree Voxelizer::voxelizeChecked(const TriangleMesh& mesh, const GridSpec& grid
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;
     Octree octree = gl::voxelizeMesh(device_, mesh, grid, options, checkpoint, stats, voxelList);
+    octree.madeBy = {stats.backend, stats.mode, stats.renderer}; // a mesh's voxels: the record files carry
     return finish(std::move(octree), stats, options, checkpoint);
 }
 
@@ -237,12 +238,7 @@ openvdb::MaskGrid::Ptr Voxelizer::meshToMask(const std::vector<openvdb::Vec3d>& 
     return toMask(*this, points, triangles, quads, xform, options);
 }
 
-Backend Voxelizer::backendFor(const VoxelizeOptions& options)
-{
-    if (options.backend != Backend::Auto) return options.backend;
-    if (options.dilation != Dilation::Auto) return Backend::Raster;
-    return gl::resolveBackend(device_, options, false);
-}
+Backend Voxelizer::backendFor(const VoxelizeOptions& options) { return gl::resolveBackend(device_, options, false); }
 
 std::string Voxelizer::deviceDescription() { return device_.describe(); }
 

@@ -238,6 +238,7 @@ public:
     /// compute on a hardware GPU, raster on a software rasterizer such as
     /// llvmpipe). Creates no GL context: before one exists, EGL is asked
     /// whether the device is software, without making a context.
+    /// @throw svo::InvalidInput for a dilation mode with Backend::Compute.
     Backend backendFor(const VoxelizeOptions& options);
     /// The GPU's vendor, renderer and version (creates the context if needed).
     std::string deviceDescription();
