@@ -11,26 +11,15 @@
 
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
+#include "svo/core/octree.h"
 #include "svo/voxelizer.h"
 
 namespace svo::app {
 
-DeviceOptions BackendArgs::deviceOptions() const { return DeviceOptions{device, glDebug, ""}; }
-
 VoxelizeOptions BackendArgs::voxelizeOptions() const
 {
     VoxelizeOptions o;
-    o.backend = backend == "cpu"       ? Backend::Cpu
-                : backend == "raster"  ? Backend::Raster
-                : backend == "compute" ? Backend::Compute
-                                       : Backend::Auto;
-    o.dilation = conservative == "hardware" ? Dilation::Hardware
-                 : conservative == "shader" ? Dilation::Shader
-                 : conservative == "centroid" ? Dilation::CentroidPush
-                                              : Dilation::Auto;
-    o.attributes = attributes;
-    o.mode = parseVoxelMode(mode);
-    o.gpuMemory = gpuMemory;
+    static_cast<VoxelizeSettings&>(o) = settings;
     return o;
 }
 
@@ -61,101 +50,119 @@ uint64_t parseByteSize(const std::string& text, const std::string& option)
     return uint64_t(bytes);
 }
 
-void addGpuMemoryOption(CLI::App& cmd, BackendArgs& a)
+namespace {
+
+/// Adds each option a library struct declares (forEachOption) as a flag bound to its field.
+class FlagAdder {
+public:
+    FlagAdder(CLI::App& cmd, std::vector<std::string_view> keywords, std::string appliesTo)
+        : cmd_(cmd), keywords_(std::move(keywords)), appliesTo_(std::move(appliesTo))
+    {
+    }
+
+    void operator()(const OptionInfo& info, bool& value)
+    {
+        if (wanted(info)) cmd_.add_flag(flagOf(info), value, help(info));
+    }
+    void operator()(const OptionInfo& info, std::string& value)
+    {
+        if (wanted(info)) cmd_.add_option(flagOf(info), value, help(info));
+    }
+    template <typename E, typename = decltype(enumNames(E{}))>
+    void operator()(const OptionInfo& info, E& value)
+    {
+        if (!wanted(info)) return;
+        const std::string flag = flagOf(info);
+        cmd_.add_option_function<std::string>(
+               flag, [&value, flag](const std::string& name) { value = parse<E>(name, flag); }, help(info))
+            ->check(CLI::IsMember(names<E>()))
+            ->default_str(std::string(nameOf(value)));
+    }
+    void operator()(const OptionInfo& info, CheckedNumber number)
+    {
+        if (!wanted(info)) return;
+        const std::string flag = flagOf(info);
+        cmd_.add_option_function<double>(
+               flag,
+               [number, flag](double v) {
+                   number.rule(v, flag); // the library's rule, under the flag's name
+                   number.value = v;
+               },
+               help(info))
+            ->default_str(fmt::format("{}", number.value));
+    }
+    void operator()(const OptionInfo& info, ByteCount count)
+    {
+        if (!wanted(info)) return;
+        const std::string flag = flagOf(info);
+        cmd_.add_option_function<std::string>(
+            flag, [count, flag](const std::string& text) { count.bytes = parseByteSize(text, flag); }, help(info));
+    }
+    void operator()(const OptionInfo& info, ChannelSet channels)
+    {
+        if (!wanted(info)) return;
+        const std::string flag = flagOf(info);
+        cmd_.add_option_function<std::vector<std::string>>(
+               flag,
+               [channels, flag](const std::vector<std::string>& names) {
+                   for (const auto& n : names) channels.bits |= parse<AttributeChannel>(n, flag);
+               },
+               help(info))
+            ->delimiter(',')
+            ->check(CLI::IsMember(names<AttributeChannel>()));
+    }
+
+private:
+    bool wanted(const OptionInfo& info) const
+    {
+        return keywords_.empty() || std::find(keywords_.begin(), keywords_.end(), info.keyword) != keywords_.end();
+    }
+    std::string help(const OptionInfo& info) const
+    {
+        return appliesTo_.empty() ? std::string(info.doc) : fmt::format("{}, {}", info.doc, appliesTo_);
+    }
+
+    CLI::App& cmd_;
+    std::vector<std::string_view> keywords_;
+    std::string appliesTo_;
+};
+
+} // namespace
+
+template <typename Options>
+void addOptions(CLI::App& cmd, Options& options, std::vector<std::string_view> keywords, const std::string& appliesTo)
 {
-    cmd.add_option_function<std::string>(
-        "--gpu-memory", [&a](const std::string& t) { a.gpuMemory = parseByteSize(t, "--gpu-memory"); },
-        "GPU memory a voxelization may use (e.g. 8G, 512M); a grid that needs more is voxelized in tiles and "
-        "merged, with the same voxels (default: what the device reports free)");
+    forEachOption(options, FlagAdder(cmd, std::move(keywords), appliesTo));
 }
+template void addOptions(CLI::App&, VoxelizeSettings&, std::vector<std::string_view>, const std::string&);
+template void addOptions(CLI::App&, DeviceOptions&, std::vector<std::string_view>, const std::string&);
+template void addOptions(CLI::App&, LevelSetOptions&, std::vector<std::string_view>, const std::string&);
+template void addOptions(CLI::App&, GridOptions&, std::vector<std::string_view>, const std::string&);
 
 void addBackendOptions(CLI::App& cmd, BackendArgs& a)
 {
-    cmd.add_option("--backend", a.backend,
-                   "auto (compute on a GPU, raster on llvmpipe: the faster there), raster, compute (GPU compute "
-                   "shaders, the same voxels), or cpu (double-precision reference)")
-        ->check(CLI::IsMember({"auto", "raster", "compute", "cpu"}))
-        ->capture_default_str();
-    cmd.add_option("--conservative", a.conservative,
-                   "Raster dilation: auto, hardware (GL_NV_conservative_raster), shader, or centroid (the seed "
-                   "report's vertex push; a benchmark baseline that misses voxels)")
-        ->check(CLI::IsMember({"auto", "hardware", "shader", "centroid"}))
-        ->capture_default_str();
-    cmd.add_option("--device", a.device, "EGL device: auto, hardware, software or an index (env SVO_EGL_DEVICE)");
-    cmd.add_flag("--gl-debug", a.glDebug, "Print GL debug messages");
+    addOptions(cmd, a.settings, {"backend", "conservative"});
+    addOptions(cmd, a.device, {"device", "gl_debug"});
 }
 
-void addModeOption(CLI::App& cmd, BackendArgs& a)
+LevelSetOptions FieldArgs::levelSetOptions(const CLI::App& cmd) const
 {
-    cmd.add_option("--mode", a.mode,
-                   "conservative (every voxel whose cube meets a triangle; 26-separating) or thin (every voxel one "
-                   "of whose three axis-aligned centre segments meets a triangle; 6-separating)")
-        ->check(CLI::IsMember({"conservative", "thin"}))
-        ->capture_default_str();
-}
-
-void addAttributeOption(CLI::App& cmd, BackendArgs& a)
-{
-    cmd.add_option_function<std::vector<std::string>>(
-           "--attributes",
-           [&a](const std::vector<std::string>& names) {
-               for (const auto& n : names)
-                   a.attributes |= n == "normal" ? kNormals : n == "triangle" ? kTriangles : kColors;
-           },
-           "Per-voxel channels: normal, triangle (smallest triangle id), color (needs vertex colours)")
-        ->delimiter(',')
-        ->check(CLI::IsMember({"normal", "triangle", "color"}));
-}
-
-LevelSetOptions FieldArgs::levelSetOptions() const
-{
-    LevelSetOptions ls;
-    ls.sign = SignOptions(sign == "parity"    ? SignMethod::Parity
-                          : sign == "winding" ? SignMethod::Winding
-                                              : SignMethod::Auto,
-                          windingAccuracy.value_or(SignOptions{}.windingAccuracy));
-    if (band) ls.exteriorBand = ls.interiorBand = *band;
-    if (exteriorBand) ls.exteriorBand = *exteriorBand;
-    if (interiorBand) ls.interiorBand = *interiorBand;
+    LevelSetOptions ls = options;
+    if (band && !cmd.count("--exterior-band")) ls.exteriorBand = *band;
+    if (band && !cmd.count("--interior-band")) ls.interiorBand = *band;
     return ls;
 }
 
-namespace {
-/// A number option checked, as it is parsed, by the library's rule under the flag's name.
-CLI::Option* addCheckedNumber(CLI::App& cmd, const std::string& flag, std::optional<double>& value,
-                              void (*rule)(double, const std::string&), const std::string& help)
-{
-    return cmd.add_option_function<double>(
-        flag,
-        [&value, flag, rule](double v) {
-            rule(v, flag);
-            value = v;
-        },
-        help);
-}
-} // namespace
-
 void addBandOptions(CLI::App& cmd, FieldArgs& a, const std::string& appliesTo)
 {
-    addCheckedNumber(cmd, "--band", a.band, checkBand,
-                     "Band half width in voxels on both sides, 1 to 1000, " + appliesTo + " (default 3)");
-    addCheckedNumber(cmd, "--exterior-band", a.exteriorBand, checkBand,
-                     "Band width outside the surface, in voxels, 1 to 1000 (default 3)");
-    addCheckedNumber(cmd, "--interior-band", a.interiorBand, checkBand,
-                     "Band width inside the surface, in voxels, 1 to 1000 (default 3)");
-}
-
-void addSignOptions(CLI::App& cmd, FieldArgs& a, const std::string& appliesTo)
-{
-    cmd.add_option("--sign", a.sign,
-                   "Inside/outside " + appliesTo +
-                       ": auto (parity for closed, consistently oriented meshes, the winding number otherwise), "
-                       "parity or winding (as asked)")
-        ->check(CLI::IsMember({"auto", "parity", "winding"}));
-    addCheckedNumber(cmd, "--winding-accuracy", a.windingAccuracy, checkWindingAccuracy,
-                     "Winding numbers: tree nodes farther than this many radii use their far-field expansion (a "
-                     "positive finite number, default 1.5; larger is slower and more exact; 1e300 evaluates every "
-                     "triangle)");
+    cmd.add_option_function<double>(
+        "--band",
+        [&a](double v) {
+            checkBand(v, "--band");
+            a.band = v;
+        },
+        "Band half width in voxels on both sides, 1 to 1000, " + appliesTo + " (default 3)");
+    addOptions(cmd, a.options, {"exterior_band", "interior_band"});
 }
 
 bool bandsGiven(const CLI::App& cmd)
@@ -206,21 +213,7 @@ CLI::Option* addOutputPath(CLI::App& cmd, const std::string& name, std::string& 
         "FILE");
 }
 
-GridOptions OutputArgs::gridOptions() const
-{
-    GridOptions g;
-    g.topology = topology == "bool" ? GridOptions::Topology::Bool : GridOptions::Topology::Mask;
-    g.fog = fog;
-    return g;
-}
-
-void addOutputOptions(CLI::App& cmd, OutputArgs& a)
-{
-    cmd.add_option("--topology", a.topology, "Grid type of the topology: bool (BoolGrid, which python3-openvdb reads) or mask (MaskGrid)")
-        ->check(CLI::IsMember({"mask", "bool"}))
-        ->capture_default_str();
-    cmd.add_flag("--fog", a.fog, "Also write a fog-volume FloatGrid 'density' (.vdb and .nvdb output)");
-}
+void addOutputOptions(CLI::App& cmd, OutputArgs& a) { addOptions(cmd, a.grids); }
 
 std::string backendLine(const VoxelizeStats& s)
 {
@@ -268,7 +261,7 @@ std::string errorMessage(const std::exception& e)
 {
     const auto* error = dynamic_cast<const Error*>(&e);
     if (!error) return e.what();
-    return error->message([](const std::string& identifier) { return std::string(flagFor(identifier)); });
+    return error->message([](const std::string& identifier) { return flagFor(identifier); });
 }
 
 void printWarnings(const std::vector<std::string>& warnings)

@@ -6,11 +6,15 @@
 #include <exception>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "svo/core/field_options.h"
 #include "svo/core/grid.h"
 #include "svo/core/octree.h"
 #include "svo/vdb_io/grid_options.h"
+#include "svo/gl/device.h"
+#include "svo/gl/voxelize_pipeline.h"
 #include "svo/load_octree.h"
 #include "svo/vdb_io/octree_files.h"
 
@@ -22,53 +26,42 @@ class Option;
 namespace svo {
 class Voxelizer;
 struct VoxelizeOptions;
-struct DeviceOptions;
-struct VoxelizeStats;
-struct StartupStats;
-struct LevelSetOptions;
 } // namespace svo
 
 namespace svo::app {
 
-/// --backend, --conservative, --device, --gl-debug, --attributes, --mode.
-struct BackendArgs {
-    std::string backend = "auto"; ///< auto | raster | cpu
-    std::string conservative = "auto";
-    std::string device;
-    bool glDebug = false;
-    uint32_t attributes = 0; ///< AttributeChannel bits
-    std::string mode = "conservative"; ///< conservative | thin
-    uint64_t gpuMemory = 0;  ///< --gpu-memory in bytes; 0: not given
+/// @brief Adds a flag for each option of @a options (declared once beside the
+/// library struct: svo/core/option_info.h), bound to its field, with the
+/// field's current value as the default shown.
+/// @param keywords  only these options (all when empty)
+/// @param appliesTo ends each flag's help text ("for --sdf")
+template <typename Options>
+void addOptions(CLI::App& cmd, Options& options, std::vector<std::string_view> keywords = {},
+                const std::string& appliesTo = "");
 
-    DeviceOptions deviceOptions() const;
+/// The voxelization and device options of a command that voxelizes.
+struct BackendArgs {
+    VoxelizeSettings settings;
+    DeviceOptions device;
     /// The options these arguments ask for (no interrupter, no statistics yet).
     VoxelizeOptions voxelizeOptions() const;
 };
+/// --backend, --conservative, --device, --gl-debug.
 void addBackendOptions(CLI::App& cmd, BackendArgs& args);
-void addAttributeOption(CLI::App& cmd, BackendArgs& args);
-/// --mode conservative|thin: which voxels a triangle covers (for the commands that voxelize meshes).
-void addModeOption(CLI::App& cmd, BackendArgs& args);
-/// --gpu-memory SIZE: the GPU budget past which a grid is voxelized in tiles.
-void addGpuMemoryOption(CLI::App& cmd, BackendArgs& args);
 /// Bytes from "1073741824", "512M", "1.5G", "2GiB" (K, M, G, T: powers of 1024).
 /// Throws svo::Error naming `option` for anything else, or for 0.
 uint64_t parseByteSize(const std::string& text, const std::string& option);
 
-/// --band, --exterior-band, --interior-band, --sign, --winding-accuracy:
-/// the level-set arguments `svo voxelize` and `svo validate --sdf` share.
-/// Each number is checked as it is parsed, by the library's rule for it
-/// (svo::checkBand, svo::checkWindingAccuracy) under its flag's name.
+/// The level-set options `svo voxelize` and `svo validate --sdf` share, and
+/// --band, which sets both bands (the command line's own shorthand).
 struct FieldArgs {
-    std::string sign = "auto"; ///< auto | parity | winding
-    std::optional<double> windingAccuracy;                ///< none: the library's default
-    std::optional<double> band, exteriorBand, interiorBand; ///< none: not given
-    /// The library's defaults with the bands and sign asked for.
-    LevelSetOptions levelSetOptions() const;
+    LevelSetOptions options;
+    std::optional<double> band; ///< --band: both bands, unless one is given on its own
+    /// The options with --band applied.
+    LevelSetOptions levelSetOptions(const CLI::App& cmd) const;
 };
 /// --band, --exterior-band, --interior-band; `appliesTo` ends the help text ("for --sdf").
 void addBandOptions(CLI::App& cmd, FieldArgs& args, const std::string& appliesTo);
-/// --sign and --winding-accuracy; `appliesTo` as above.
-void addSignOptions(CLI::App& cmd, FieldArgs& args, const std::string& appliesTo);
 /// Whether any of --band, --exterior-band, --interior-band was given.
 bool bandsGiven(const CLI::App& cmd);
 
@@ -81,11 +74,13 @@ void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize);
 /// The request those options make; resolution 256 when neither is given.
 GridRequest gridRequest(const CLI::App& cmd, int64_t resolution, double voxelSize);
 
-/// --topology and --fog, as the library's GridOptions.
+/// --topology and --fog. The command line's default topology is bool, which python3-openvdb reads.
 struct OutputArgs {
-    std::string topology = "bool"; ///< bool (default: python3-openvdb reads it) | mask
-    bool fog = false;
-    GridOptions gridOptions() const;
+    GridOptions grids = [] {
+        GridOptions g;
+        g.topology = GridOptions::Topology::Bool;
+        return g;
+    }();
 };
 void addOutputOptions(CLI::App& cmd, OutputArgs& args);
 

@@ -70,7 +70,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
     checkOutputPath(a.output);
     checkOutputs({a.input}, {a.output});
     OutputBatch outputs({a.output}); // in place at the very end (atomic_file.h)
-    const GridOptions grids = a.out.gridOptions();
+    const GridOptions grids = a.out.grids;
     const bool toSvo = outputFormat(a.output) == OutputFormat::Svo;
     if (toSvo && (cmd.count("--fog") || cmd.count("--topology")))
         throw InvalidInput(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", a.output));

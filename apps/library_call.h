@@ -13,7 +13,7 @@ namespace svo::app {
 
 struct LibraryCall {
     LibraryCall(const BackendArgs& args, std::string progressLabel)
-        : voxelizer(args.deviceOptions()), options(args.voxelizeOptions()), progress(std::move(progressLabel))
+        : voxelizer(args.device), options(args.voxelizeOptions()), progress(std::move(progressLabel))
     {
         options.interrupter = &progress;
         options.stats = &stats;

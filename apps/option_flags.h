@@ -1,9 +1,12 @@
 #pragma once
 /// @file option_flags.h
-/// @brief The command line's flag for each option the library names in its
-/// errors (svo::Error::argument() and the options a message names), so that
-/// `svo` prints "--exterior-band 0.5: ..." where the library writes
-/// "LevelSetOptions::exteriorBand 0.5: ...". The one table of them.
+/// @brief The command line's flag for each name the library uses in its
+/// errors (svo::Error::argument() and the options a message names) that is
+/// not an option declared with forEachOption, so that `svo` prints
+/// "--attributes normal ..." where the library writes "svo::kNormals ...".
+/// Declared options (LevelSetOptions::exteriorBand -> --exterior-band) take
+/// their flags from their declarations (cli_options.h, errorMessage).
+#include <string>
 #include <string_view>
 
 namespace svo::app {
@@ -18,11 +21,9 @@ struct OptionFlag {
 
 /// @brief Every identifier the library names in an error that a flag of `svo` sets.
 inline constexpr OptionFlag kOptionFlags[] = {
-    // The options' rules (svo/voxelizer.h), where the library checks a field the command line set.
-    {"LevelSetOptions::exteriorBand", "--exterior-band", "voxelize"},
-    {"LevelSetOptions::interiorBand", "--interior-band", "voxelize"},
-    {"SignOptions::windingAccuracy", "--winding-accuracy", "voxelize"},
-    {"VoxelizeOptions::mode", "--mode", "voxelize"},
+    // Options declared beside their structs (forEachOption, svo/core/option_info.h) are not
+    // here: their flags come from the declarations. These are the other names the library's
+    // errors use: values of an option, and the view's settings.
     {"svo::kNormals", "--attributes normal", "voxelize"},
     // The octree view (svo/gl/octree_view.h).
     {"svo::gl::namedView", "--view", "view"},
@@ -36,14 +37,10 @@ inline constexpr OptionFlag kOptionFlags[] = {
     {"svo::kTriangles", "--attributes triangle", "view"},
 };
 
-/// @brief The flag for a library identifier; empty when no flag sets it (an
-/// identifier that is a flag or a keyword already, or one the command line
-/// never passes), and the message then names it as the library does.
-inline std::string_view flagFor(std::string_view identifier)
-{
-    for (const OptionFlag& o : kOptionFlags)
-        if (o.identifier == identifier) return o.flag;
-    return {};
-}
+/// @brief The flag for a library identifier: a declared option's (its
+/// forEachOption declaration), else the table's; empty when no flag sets it
+/// (an identifier that is a flag or a keyword already, or one the command
+/// line never passes), and the message then names it as the library does.
+std::string flagFor(std::string_view identifier);
 
 } // namespace svo::app

@@ -52,13 +52,13 @@ void checkSdfArgs(const ValidateArgs& a, const CLI::App& cmd)
     }
     if (cmd.count("--band") && (cmd.count("--exterior-band") || cmd.count("--interior-band")))
         throw InvalidInput("--band sets both bands; give it or --exterior-band/--interior-band, not both");
-    if (cmd.count("--winding-accuracy") && a.levelSet.sign == "parity")
+    if (cmd.count("--winding-accuracy") && a.levelSet.options.sign.method == SignMethod::Parity)
         throw InvalidInput("--winding-accuracy applies to winding-number signs, not to --sign parity");
     checkFieldMode(a.backend.voxelizeOptions()); // the library's rule, as svo voxelize --sdf checks it
     if (cmd.count("--errors")) throw InvalidInput("--errors writes missed and extra surface voxels; it does not apply to --sdf");
     if (cmd.count("--no-holes") || cmd.count("--strict"))
         throw InvalidInput("--no-holes and --strict apply to surface voxels, not to --sdf");
-    if (cmd.count("--conservative") || a.backend.backend == "raster")
+    if (cmd.count("--conservative") || a.backend.settings.backend == Backend::Raster)
         throw InvalidInput("--sdf runs compute passes only: --backend raster and --conservative do not apply");
 }
 
@@ -93,10 +93,9 @@ void printCases(const char* what, const std::vector<validate::LevelSetCase>& cas
 }
 
 /// svo validate --sdf: the level set against CGAL, and beside OpenVDB's.
-void runValidateSdf(const ValidateArgs& a, const TriangleMesh& mesh, const GridSpec& grid, const std::string& scene,
+void runValidateSdf(const ValidateArgs& a, const LevelSetOptions& ls, const TriangleMesh& mesh, const GridSpec& grid, const std::string& scene,
                     OutputBatch& outputs)
 {
-    const LevelSetOptions ls = a.levelSet.levelSetOptions();
     LibraryCall call(a.backend, "computing the distance field");
     const VoxelizeStats& stats = call.stats;
     const auto sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(call.voxelizer.levelSet(mesh, grid, ls, call.options).front());
@@ -195,7 +194,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     if (!a.errors.empty()) checkWritable(a.errors);
     const GridSpec grid = makeGrid(mesh, request);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
-    if (a.sdf) return runValidateSdf(a, mesh, grid, scene, outputs);
+    if (a.sdf) return runValidateSdf(a, a.levelSet.levelSetOptions(cmd), mesh, grid, scene, outputs);
 
     // The voxelization under test, and the voxel list it was built from (the
     // same run, read back apart), to check every level of the octree against.
@@ -308,7 +307,7 @@ void addValidateCommand(CLI::App& app)
         ->check(nonEmptyMeshPath, "MESH");
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
-    addModeOption(*cmd, args->backend);
+    addOptions(*cmd, args->backend.settings, {"mode"});
     addOutputPath(*cmd, "--json", args->json, "Write the report as JSON");
     addOutputPath(*cmd, "--errors", args->errors, "Write the missed and extra voxels (and any leak path) as MaskGrids in a .vdb",
                   {".vdb"});
@@ -326,7 +325,7 @@ void addValidateCommand(CLI::App& app)
                   "Check the level set (voxelize --sdf) instead: distances, signs and band against CGAL, beside "
                   "OpenVDB's meshToLevelSet");
     addBandOptions(*cmd, args->levelSet, "for --sdf");
-    addSignOptions(*cmd, args->levelSet, "for --sdf");
+    addOptions(*cmd, args->levelSet.options, {"sign", "winding_accuracy"}, "for --sdf");
     cmd->callback([args, cmd] { runValidate(*args, *cmd); });
 }
 

@@ -220,7 +220,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     // colours as the albedo (a mesh without colours gets no colour channel),
     // AO from the volume the normals. (The window voxelizes again with them
     // when either is turned on.)
-    backend.attributes |= gl::channelsFor(asked);
+    backend.settings.attributes |= gl::channelsFor(asked);
     LibraryCall call(backend, "building the octree");
     LoadedOctree lo;
     const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
@@ -288,8 +288,8 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         return;
     }
     gl::ContextOptions co;
-    co.device = a.backend.device;
-    co.debug = a.backend.glDebug;
+    co.device = a.backend.device.device;
+    co.debug = a.backend.device.glDebug;
     gl::Context context(co);
     gl::OctreeView view(context, lo.octree, lo.mesh ? &*lo.mesh : nullptr);
     gl::Image image;
@@ -436,8 +436,7 @@ void addViewCommand(CLI::App& app)
                   {".svo", ".vdb", ".nvdb"});
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
-    addModeOption(*cmd, args->backend);
-    addAttributeOption(*cmd, args->backend);
+    addOptions(*cmd, args->backend.settings, {"mode", "attributes"});
     cmd->callback([args, cmd] { runView(*args, *cmd); });
 }
 

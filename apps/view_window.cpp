@@ -55,6 +55,16 @@ bool enumCombo(const char* label, E& value)
     return true;
 }
 
+/// The value after @a value in its enum's table, the first after the last (keys that cycle).
+template <typename E>
+E nextValue(E value)
+{
+    const auto& table = enumNames(E{});
+    for (size_t i = 0; i < std::size(table); ++i)
+        if (table[i].value == value) return table[(i + 1) % std::size(table)].value;
+    return table[0].value;
+}
+
 /// The last GLFW error, for one-line messages.
 std::string glfwReason()
 {
@@ -106,7 +116,7 @@ struct ViewerState {
     Octree octree;
     VoxelizeStats stats;
     int64_t resolution = 0;
-    int backend = 0, dilation = 0, mode = 0; // indices into the names below
+    VoxelizeSettings panel; ///< the backend, dilation and mode the panel (keys B, C, T) asks for
     Orbit orbit;
     int width = 0, height = 0;               // framebuffer pixels
     std::string perLevel;                    // occupied nodes per level, for the panel
@@ -117,9 +127,6 @@ struct ViewerState {
     ViewWindowResult result;
     double lastX = 0, lastY = 0;
 
-    static constexpr const char* kBackends[] = {"auto", "raster", "compute", "cpu"};
-    static constexpr const char* kDilations[] = {"auto", "hardware", "shader", "centroid"};
-    static constexpr const char* kModes[] = {"conservative", "thin"};
 
     ViewerState(ViewWindowInput input, Voxelizer& v) : in(std::move(input)), voxelizer(v) {}
 
@@ -147,9 +154,9 @@ struct ViewerState {
         }
         r = std::clamp<int64_t>(r, 1, int64_t(kMaxGridDim) - 1);
         BackendArgs args = in.backend;
-        args.backend = kBackends[backend];
-        args.conservative = kDilations[dilation];
-        args.mode = kModes[mode];
+        args.settings.backend = panel.backend;
+        args.settings.dilation = panel.dilation;
+        args.settings.mode = panel.mode;
         try {
             VoxelizeOptions options = args.voxelizeOptions();
             VoxelizeStats s;
@@ -195,7 +202,7 @@ struct ViewerState {
     void nextColor()
     {
         if (octree.attributes.triangles.empty() && canRevoxelize()) {
-            in.backend.attributes = kNormals | kTriangles | (in.loaded.mesh->colors.empty() ? 0u : uint32_t(kColors));
+            in.backend.settings.attributes = kNormals | kTriangles | (in.loaded.mesh->colors.empty() ? 0u : uint32_t(kColors));
             revoxelize(resolution);
         }
         const VoxelAttributes& a = octree.attributes;
@@ -214,8 +221,8 @@ struct ViewerState {
     {
         if (!canRevoxelize()) return;
         if (in.loaded.mesh->colors.empty()) wanted &= ~uint32_t(kColors);
-        if ((octree.channels() & wanted) == wanted || (in.backend.attributes & wanted) == wanted) return;
-        in.backend.attributes |= wanted;
+        if ((octree.channels() & wanted) == wanted || (in.backend.settings.attributes & wanted) == wanted) return;
+        in.backend.settings.attributes |= wanted;
         revoxelize(resolution);
     }
 
@@ -279,9 +286,9 @@ struct ViewerState {
         case 'r': setAoOnly(!l.ao.only); break;
         case '+': case '=': revoxelize(resolution * 2); break;
         case '-': revoxelize(std::max<int64_t>(resolution / 2, 1)); break;
-        case 'b': backend = (backend + 1) % int(std::size(kBackends)); revoxelize(resolution); break;
-        case 'c': dilation = (dilation + 1) % int(std::size(kDilations)); revoxelize(resolution); break;
-        case 't': mode = 1 - mode; revoxelize(resolution); break;
+        case 'b': panel.backend = nextValue(panel.backend); revoxelize(resolution); break;
+        case 'c': panel.dilation = nextValue(panel.dilation); revoxelize(resolution); break;
+        case 't': panel.mode = nextValue(panel.mode); revoxelize(resolution); break;
         case 'f': frameAll(unit(orbit.camera.target - orbit.camera.eye), orbit.camera.orthographic); break;
         case 'x': frameAll({-1, 0, 0}, true); break;
         case 'y': frameAll({0, -1, 0}, true); break;
@@ -414,9 +421,9 @@ struct ViewerState {
             int r = int(resolution);
             ImGui::SliderInt("resolution (+/-)", &r, 8, 4096, "%d", ImGuiSliderFlags_Logarithmic);
             if (ImGui::IsItemDeactivatedAfterEdit()) revoxelize(r);
-            bool changed = ImGui::Combo("backend (B)", &backend, kBackends, IM_ARRAYSIZE(kBackends));
-            changed |= ImGui::Combo("dilation (C)", &dilation, kDilations, IM_ARRAYSIZE(kDilations));
-            changed |= ImGui::Combo("mode (T)", &mode, kModes, IM_ARRAYSIZE(kModes));
+            bool changed = enumCombo("backend (B)", panel.backend);
+            changed |= enumCombo("dilation (C)", panel.dilation);
+            changed |= enumCombo("mode (T)", panel.mode);
             if (changed) revoxelize(resolution);
         } else {
             ImGui::TextDisabled("re-voxelization needs a mesh input");
@@ -463,7 +470,7 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, input.backend.glDebug ? GLFW_TRUE : GLFW_FALSE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, input.backend.device.glDebug ? GLFW_TRUE : GLFW_FALSE);
     const std::string title = "svo view: " + input.title;
     ws.window = glfwCreateWindow(input.width, input.height, title.c_str(), nullptr, nullptr);
     if (!ws.window) throw DeviceError("cannot open svo view's window with OpenGL 4.5 core: " + glfwReason());
@@ -473,7 +480,7 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
     ViewerState st(std::move(input), voxelizer);
     gl::ContextOptions co;
     co.adoptCurrent = true;
-    co.debug = st.in.backend.glDebug;
+    co.debug = st.in.backend.device.glDebug;
     st.context.emplace(co);
     st.result.renderer = st.context->info().renderer;
     st.setOctree(std::move(st.in.loaded.octree));
@@ -481,11 +488,7 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
     st.resolution = st.in.resolution;
     st.view.emplace(*st.context, st.octree, st.in.loaded.mesh ? &*st.in.loaded.mesh : nullptr);
     st.orbit.camera = st.in.camera;
-    for (int i = 0; i < 4; ++i) {
-        if (st.in.backend.backend == ViewerState::kBackends[i]) st.backend = i;
-        if (st.in.backend.conservative == ViewerState::kDilations[i]) st.dilation = i;
-    }
-    st.mode = st.in.backend.mode == "thin";
+    st.panel = st.in.backend.settings;
 
     // Our callbacks first: ImGui's GLFW backend chains to them.
     glfwSetWindowUserPointer(ws.window, &st);

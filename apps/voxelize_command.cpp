@@ -34,10 +34,11 @@ struct VoxelizeArgs {
     BackendArgs backend;
     OutputArgs out;
     // Level sets, unsigned distances and solids.
-    bool sdf = false, udf = false, closestTriangle = false;
+    bool sdf = false;
     std::string fill = "surface";
-    FieldArgs levelSet; ///< bands and sign
-    bool field() const { return sdf || udf || fill == "solid"; }
+    FieldArgs levelSet; ///< bands, sign, --udf and --closest-triangle
+    bool udf() const { return levelSet.options.unsignedDistance; }
+    bool field() const { return sdf || udf() || fill == "solid"; }
 };
 
 double peakRssMb()
@@ -83,24 +84,24 @@ nlohmann::json stagesJson(const std::vector<StageTime>& stages)
 /// Refuses combinations that have no meaning before any work is done.
 void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
 {
-    const int modes = int(a.sdf) + int(a.udf) + int(a.fill == "solid");
+    const int modes = int(a.sdf) + int(a.udf()) + int(a.fill == "solid");
     if (modes > 1) throw InvalidInput("--sdf, --udf and --fill solid each make a different grid; give one of them");
     const bool bands = bandsGiven(cmd);
-    if (bands && !a.sdf && !a.udf) throw InvalidInput("--band, --exterior-band and --interior-band apply to --sdf and --udf");
+    if (bands && !a.sdf && !a.udf()) throw InvalidInput("--band, --exterior-band and --interior-band apply to --sdf and --udf");
     if (cmd.count("--band") && (cmd.count("--exterior-band") || cmd.count("--interior-band")))
         throw InvalidInput("--band sets both bands; give it or --exterior-band/--interior-band, not both");
-    if (a.udf && cmd.count("--interior-band")) throw InvalidInput("--interior-band applies to --sdf; --udf has no inside");
-    if (a.closestTriangle && !a.sdf && !a.udf) throw InvalidInput("--closest-triangle applies to --sdf and --udf");
+    if (a.udf() && cmd.count("--interior-band")) throw InvalidInput("--interior-band applies to --sdf; --udf has no inside");
+    if (a.levelSet.options.closestTriangle && !a.sdf && !a.udf()) throw InvalidInput("--closest-triangle applies to --sdf and --udf");
     if (cmd.count("--sign") && !a.sdf && a.fill != "solid") throw InvalidInput("--sign applies to --sdf and --fill solid");
     if (cmd.count("--winding-accuracy") && !a.sdf && a.fill != "solid")
         throw InvalidInput("--winding-accuracy applies to --sdf and --fill solid");
-    if (cmd.count("--winding-accuracy") && a.levelSet.sign == "parity")
+    if (cmd.count("--winding-accuracy") && a.levelSet.options.sign.method == SignMethod::Parity)
         throw InvalidInput("--winding-accuracy applies to winding-number signs, not to --sign parity");
-    if (cmd.count("--gpu-memory") && a.backend.backend == "cpu")
+    if (cmd.count("--gpu-memory") && a.backend.settings.backend == Backend::Cpu)
         throw InvalidInput("--gpu-memory applies to the GPU backends, not to --backend cpu");
     if (!a.field()) return;
     checkFieldMode(a.backend.voxelizeOptions()); // --mode thin: the library's rule, as svo validate --sdf checks it
-    if (a.backend.attributes) throw InvalidInput("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
+    if (a.backend.settings.attributes) throw InvalidInput("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
     if (cmd.count("--gpu-memory"))
         throw InvalidInput("--gpu-memory applies to surface voxels; --sdf, --udf and --fill solid do not tile yet");
     if (cmd.count("--fog") || cmd.count("--topology"))
@@ -108,7 +109,7 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
     if (!a.output.empty() && outputFormat(a.output) != OutputFormat::Vdb)
         throw InvalidInput(fmt::format("{}: --sdf, --udf and --fill solid write OpenVDB grids; name a .vdb file", a.output));
     // A level set's band comes from the triangles, not from rasterized voxels.
-    if ((a.sdf || a.udf) && (cmd.count("--conservative") || a.backend.backend == "raster"))
+    if ((a.sdf || a.udf()) && (cmd.count("--conservative") || a.backend.settings.backend == Backend::Raster))
         throw InvalidInput("--sdf and --udf run compute passes only: --backend raster and --conservative do not apply");
 }
 
@@ -123,14 +124,11 @@ nlohmann::json startupJson(const StartupStats& s)
 }
 
 /// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb.
-void runField(const VoxelizeArgs& a, LibraryCall& call, const TriangleMesh& mesh, const StageTime& load,
+void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& call, const TriangleMesh& mesh, const StageTime& load,
               const std::string& scene,
               const GridSpec& grid, const GridRequest& request, const std::string& output, bool timingOnly,
               std::chrono::steady_clock::time_point start)
 {
-    LevelSetOptions ls = a.levelSet.levelSetOptions();
-    ls.unsignedDistance = a.udf;
-    ls.closestTriangle = a.closestTriangle;
     const bool solid = a.fill == "solid";
 
     std::vector<VoxelizeStats> runs(size_t(a.repeat));
@@ -160,9 +158,6 @@ void runField(const VoxelizeArgs& a, LibraryCall& call, const TriangleMesh& mesh
                                      {{"svo:source", mesh.source},
                                       {"svo:triangles", std::to_string(mesh.triangles.size())},
                                       {"svo:voxel_size", fmt::format("{}", grid.voxelSize)},
-                                      {"svo:backend", stats.backend},
-                                      {"svo:renderer", stats.renderer},
-                                      {"svo:sign", stats.sign},
                                       {"svo:version", SVO_VERSION}});
         stats.stages.push_back({"write", -1, written.writeMs});
     }
@@ -171,7 +166,7 @@ void runField(const VoxelizeArgs& a, LibraryCall& call, const TriangleMesh& mesh
     printHeading(scene, mesh, grid, request);
     if (solid)
         fmt::print("  {:<11} solid: inside and surface voxels\n", "grid kind");
-    else if (a.udf)
+    else if (a.udf())
         fmt::print("  {:<11} unsigned distance, band {} voxels\n", "grid kind", ls.exteriorBand);
     else
         fmt::print("  {:<11} level set, exterior band {} voxels, interior band {} voxels\n", "grid kind",
@@ -197,7 +192,7 @@ void runField(const VoxelizeArgs& a, LibraryCall& call, const TriangleMesh& mesh
                                        {"triangles", mesh.triangles.size()},
                                        {"dims", grid.dims},
                                        {"voxel_size", grid.voxelSize},
-                                       {"kind", solid ? "solid" : a.udf ? "udf" : "sdf"},
+                                       {"kind", solid ? "solid" : a.udf() ? "udf" : "sdf"},
                                        {"exterior_band", ls.exteriorBand},
                                        {"interior_band", ls.interiorBand},
                                        {"sign", stats.sign},
@@ -268,10 +263,10 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     if (!timingOnly && outputFormat(output) != OutputFormat::Svo) vdb::checkVdbGrid(grid, output);
     if (device.valid()) device.get();
     if (a.field()) {
-        runField(a, call, mesh, load, scene, grid, request, output, timingOnly, start);
+        runField(a, a.levelSet.levelSetOptions(cmd), call, mesh, load, scene, grid, request, output, timingOnly, start);
         return outputs.commit();
     }
-    const GridOptions grids = a.out.gridOptions();
+    const GridOptions grids = a.out.grids;
     if (!timingOnly && outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
         throw InvalidInput(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
 
@@ -299,9 +294,6 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         {"svo:grid", request.voxelSize > 0 ? fmt::format("voxel size {}", grid.voxelSize)
                                            : fmt::format("resolution {}", request.resolution)},
         {"svo:voxel_size", fmt::format("{}", grid.voxelSize)},
-        {"svo:backend", stats.backend},
-        {"svo:mode", stats.mode},
-        {"svo:renderer", stats.renderer},
         {"svo:epsilon", fmt::format("{:.3g}", grid.epsilon())},
         {"svo:version", SVO_VERSION}};
     WriteReport written;
@@ -343,7 +335,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
             {"resolution", request.resolution},
             {"backend", stats.backend},
             {"mode", stats.mode},
-            {"conservative", a.backend.conservative},
+            {"conservative", nameOf(a.backend.settings.dilation)},
             {"dilation", stats.dilation},
             {"renderer", stats.renderer},
             {"epsilon", grid.epsilon()},
@@ -380,21 +372,18 @@ void addVoxelizeCommand(CLI::App& app)
     addOutputPath(*cmd, "--json", args->json, "Also write the summary (counts, bytes, stage times) as JSON");
     addGridOptions(*cmd, args->resolution, args->voxelSize);
     addBackendOptions(*cmd, args->backend);
-    addAttributeOption(*cmd, args->backend);
-    addModeOption(*cmd, args->backend);
-    addGpuMemoryOption(*cmd, args->backend);
+    addOptions(*cmd, args->backend.settings, {"attributes", "mode", "gpu_memory"});
     addOutputOptions(*cmd, args->out);
     cmd->add_flag("--sdf", args->sdf,
                   "Write a narrow-band signed distance field (OpenVDB level set, grid 'surface') instead of voxels");
-    cmd->add_flag("--udf", args->udf, "Write unsigned distances within the band (grid 'distance'); any mesh");
+    addOptions(*cmd, args->levelSet.options, {"unsigned"}, "within the band (grid 'distance') instead of voxels");
     cmd->add_option("--fill", args->fill,
                     "surface: the voxels the triangles touch; solid: also every voxel whose centre is inside "
                     "(grid 'solid', whole regions as tiles)")
         ->check(CLI::IsMember({"surface", "solid"}));
     addBandOptions(*cmd, args->levelSet, "for --sdf and --udf");
-    addSignOptions(*cmd, args->levelSet, "for --sdf and --fill solid");
-    cmd->add_flag("--closest-triangle", args->closestTriangle,
-                  "With --sdf or --udf, also an Int32 grid 'closest_triangle' on the band");
+    addOptions(*cmd, args->levelSet.options, {"sign", "winding_accuracy"}, "for --sdf and --fill solid");
+    addOptions(*cmd, args->levelSet.options, {"closest_triangle"}, "with --sdf or --udf");
     cmd->add_option("--repeat", args->repeat,
                     "Voxelize N times (after one warm-up on the GPU) and report per-stage medians; without -o, "
                     "nothing is written")

@@ -381,13 +381,6 @@ auto runField(const std::string& backend, F call)
     }
 }
 
-/// The sign method a call used, and why, as the CLI writes it to a file:
-/// grid metadata "svo:sign" (empty for unsigned fields).
-void tagSign(openvdb::GridBase& grid, const svo::VoxelizeStats& stats)
-{
-    if (!stats.sign.empty()) grid.insertMeta("svo:sign", openvdb::StringMetadata(stats.sign));
-}
-
 py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                         std::optional<double> resolution, std::optional<double> voxelSize,
                         const py::object& transform, double exteriorBand, double interiorBand, bool unsignedDistance,
@@ -408,7 +401,6 @@ py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py:
         o.stats = &stats;
         return v.levelSet(r.mesh, r.grid, ls, o, r.xform);
     });
-    tagSign(*grids.front(), stats);
     if (!closestTriangle) return toPython(grids.front());
     // pyopenvdb has no Int32Grid: the band's voxels and their triangles as arrays.
     const auto closest = openvdb::gridPtrCast<openvdb::Int32Grid>(grids.at(1));
@@ -441,7 +433,6 @@ py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::ha
     auto out = openvdb::BoolGrid::create(openvdb::BoolTree::Ptr(new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
     out->setTransform(mask->transform().copy());
     out->setName(mask->getName());
-    tagSign(*out, stats);
     return toPython(out);
 }
 

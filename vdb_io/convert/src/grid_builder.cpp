@@ -10,6 +10,7 @@
 
 #include "svo/core/error.h"
 #include "svo/core/voxel_key.h"
+#include "svo/vdb_io/vdb_file.h"
 
 namespace svo::vdb {
 namespace {
@@ -161,7 +162,16 @@ openvdb::GridPtrVec octreeToGrids(const Octree& octree, const GridOptions& optio
         for (auto& g : buildAttributeGrids(octree)) grids.push_back(g);
     if (xform)
         for (auto& g : grids) g->setTransform(xform->copy());
+    for (auto& g : grids) tagProvenance(*g, octree.madeBy);
     return grids;
+}
+
+void tagProvenance(openvdb::GridBase& grid, const Provenance& madeBy)
+{
+    const std::pair<const char*, const std::string*> fields[] = {
+        {"svo:backend", &madeBy.backend}, {"svo:mode", &madeBy.mode}, {"svo:renderer", &madeBy.renderer}};
+    for (const auto& [key, value] : fields)
+        if (!value->empty()) grid.insertMeta(key, openvdb::StringMetadata(validUtf8(*value)));
 }
 
 GridBricks gridToBricks(const openvdb::GridBase& base, const std::string& name, uint64_t maxTileBricks)

@@ -7,6 +7,7 @@
 #include "svo/gl/field_pipeline.h"
 #include "svo/vdb_io/field_grids.h"
 #include "svo/vdb_io/grid_builder.h"
+#include "svo/vdb_io/vdb_file.h"
 #include "voxelizer_state.h"
 
 namespace svo {
@@ -16,13 +17,19 @@ using detail::Clock;
 using detail::InterruptScope;
 using detail::msSince;
 
-/// The last stage and the result's counts, then the statistics handed out.
-void finishStats(VoxelizeStats& stats, const char* stage, Clock::time_point t0, const openvdb::GridBase& result,
+/// The last stage, the result's record of what ran (each grid's metadata:
+/// backend, renderer and the sign method with why, "" for unsigned fields)
+/// and its counts, then the statistics handed out.
+void finishStats(VoxelizeStats& stats, const char* stage, Clock::time_point t0, const openvdb::GridPtrVec& result,
                  const Checkpoint& checkpoint, const VoxelizeOptions& options)
 {
     stats.stages.push_back({stage, -1, msSince(t0)});
-    stats.voxels = result.activeVoxelCount();
-    stats.bricks = result.baseTree().leafCount();
+    for (const auto& grid : result) {
+        vdb::tagProvenance(*grid, {stats.backend, "", stats.renderer});
+        grid->insertMeta("svo:sign", openvdb::StringMetadata(vdb::validUtf8(stats.sign)));
+    }
+    stats.voxels = result.front()->activeVoxelCount();
+    stats.bricks = result.front()->baseTree().leafCount();
     checkpoint(1.0, "finish");
     if (options.stats) *options.stats = std::move(stats);
 }
@@ -68,7 +75,7 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
     checkpoint(0.85, "level set grid");
     const auto t0 = Clock::now();
     openvdb::GridPtrVec out = vdb::levelSetGrids(field, ls.exteriorBand, ls.interiorBand, worldPerVoxel, xform);
-    finishStats(stats, "level set grid", t0, *out.front(), checkpoint, options);
+    finishStats(stats, "level set grid", t0, out, checkpoint, options);
     return out;
 }
 
@@ -83,7 +90,7 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
     checkpoint(0.8, "solid grid");
     const auto t0 = Clock::now();
     openvdb::MaskGrid::Ptr out = vdb::solidGrid(solid, xform);
-    finishStats(stats, "solid grid", t0, *out, checkpoint, options);
+    finishStats(stats, "solid grid", t0, {out}, checkpoint, options);
     return out;
 }
 

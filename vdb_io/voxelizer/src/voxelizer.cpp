@@ -118,10 +118,12 @@ IndexSpaceMesh prepare(const std::vector<PointT>& points, const std::vector<open
     return out;
 }
 
-/// The end every call shares: the last checkpoint, the statistics handed over.
+/// The end every call shares: the last checkpoint, the result's record of
+/// what ran, the statistics handed over.
 Octree finish(Octree octree, VoxelizeStats& stats, const VoxelizeOptions& options, const Checkpoint& checkpoint)
 {
     checkpoint(1.0, "finish");
+    octree.madeBy = {stats.backend, stats.mode, stats.renderer};
     if (options.stats) *options.stats = std::move(stats);
     return octree;
 }

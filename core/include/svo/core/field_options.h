@@ -6,6 +6,7 @@
 #include <string>
 
 #include "svo/core/enum_names.h"
+#include "svo/core/option_info.h"
 
 namespace svo {
 
@@ -52,6 +53,13 @@ struct LevelSetOptions {
     SignOptions sign;
 };
 
+/// @brief Each option of SignOptions and LevelSetOptions, declared once for
+/// every front end (svo/core/option_info.h).
+template <typename Visit>
+void forEachOption(SignOptions& o, Visit&& visit);
+template <typename Visit>
+void forEachOption(LevelSetOptions& o, Visit&& visit);
+
 /// @name The rules of the options' numbers
 /// One rule per number, for every front door: the library checks its options
 /// with them (naming the field, e.g. LevelSetOptions::exteriorBand), and the
@@ -67,5 +75,36 @@ void checkWindingAccuracy(double accuracy, const std::string& name);
 /// Both bands (the interior one only for signed fields) and the winding accuracy.
 void checkLevelSetOptions(const LevelSetOptions& options);
 /// @}
+
+template <typename Visit>
+void forEachOption(SignOptions& o, Visit&& visit)
+{
+    visit(OptionInfo{"SignOptions::method", "sign",
+                     "Inside/outside: auto (parity for closed, consistently oriented meshes, the winding number "
+                     "otherwise), parity or winding (as asked)"},
+          o.method);
+    visit(OptionInfo{"SignOptions::windingAccuracy", "winding_accuracy",
+                     "Winding numbers: tree nodes farther than this many radii use their far-field expansion (a "
+                     "positive finite number; larger is slower and more exact; 1e300 evaluates every triangle)"},
+          CheckedNumber{o.windingAccuracy, checkWindingAccuracy});
+}
+
+template <typename Visit>
+void forEachOption(LevelSetOptions& o, Visit&& visit)
+{
+    visit(OptionInfo{"LevelSetOptions::exteriorBand", "exterior_band",
+                     "Band width outside the surface, in voxels, 1 to 1000"},
+          CheckedNumber{o.exteriorBand, checkBand});
+    visit(OptionInfo{"LevelSetOptions::interiorBand", "interior_band",
+                     "Band width inside the surface, in voxels, 1 to 1000"},
+          CheckedNumber{o.interiorBand, checkBand});
+    visit(OptionInfo{"LevelSetOptions::unsignedDistance", "unsigned",
+                     "Unsigned distances: no inside or outside needed (open meshes, soups)", "--udf"},
+          o.unsignedDistance);
+    visit(OptionInfo{"LevelSetOptions::closestTriangle", "closest_triangle",
+                     "Also the index of each band voxel's closest triangle (an Int32Grid 'closest_triangle')"},
+          o.closestTriangle);
+    forEachOption(o.sign, visit);
+}
 
 } // namespace svo

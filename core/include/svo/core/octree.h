@@ -18,6 +18,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+
+#include "svo/core/enum_names.h"
 #include <vector>
 
 #include "svo/core/gpu_layout.h"
@@ -59,6 +61,19 @@ struct VoxelAttributes {
 
 /// Bit flags naming channels (CLI --attributes, .svo header).
 enum AttributeChannel : uint32_t { kNormals = 1, kTriangles = 2, kColors = 4 };
+/// The channels' names, as --attributes and Python's attributes= take them.
+inline constexpr EnumName<AttributeChannel> kAttributeChannelNames[] = {
+    {kNormals, "normal"}, {kTriangles, "triangle"}, {kColors, "color"}};
+constexpr const auto& enumNames(AttributeChannel) { return kAttributeChannelNames; }
+
+/// What ran to make a result, kept with it so that the files written from it
+/// say so (svo:backend, svo:mode, svo:renderer, svo:sign grid metadata). Empty
+/// fields for results read from files or assembled by hand.
+struct Provenance {
+    std::string backend;  ///< "raster", "compute" or "cpu"
+    std::string mode;     ///< "conservative" or "thin"; empty where nothing was voxelized
+    std::string renderer; ///< the GL renderer, or "cpu"
+};
 
 struct Octree {
     GridSpec grid;
@@ -68,6 +83,7 @@ struct Octree {
     std::vector<uint32_t> levelStart;
     std::vector<Brick> bricks;
     VoxelAttributes attributes;
+    Provenance madeBy; ///< set by svo::Voxelizer; not part of the voxels (sameOctree ignores it)
 
     uint64_t voxelCount() const;
     uint32_t channels() const;

@@ -2,7 +2,7 @@
 /// @file voxel_mode.h
 /// Which voxels a triangle covers: the two voxelizations svo computes
 /// (docs/design.md, "What a voxelization is").
-#include <string>
+#include "svo/core/enum_names.h"
 
 namespace svo {
 
@@ -16,11 +16,12 @@ enum class VoxelMode {
     Thin,
 };
 
-/// "conservative" or "thin".
-const char* voxelModeName(VoxelMode mode);
-/// The mode a name gives; throws svo::Error naming the word for anything
-/// but "conservative" and "thin".
-VoxelMode parseVoxelMode(const std::string& name);
+inline constexpr EnumName<VoxelMode> kVoxelModeNames[] = {{VoxelMode::Conservative, "conservative"},
+                                                          {VoxelMode::Thin, "thin"}};
+constexpr const auto& enumNames(VoxelMode) { return kVoxelModeNames; }
+
+/// "conservative" or "thin" (the names above, as a C string).
+inline const char* voxelModeName(VoxelMode mode) { return nameOf(mode).data(); }
 
 /// The flood-fill connectivity that must not cross a voxelization of a closed
 /// surface in this mode: 26 for conservative, 6 for thin.

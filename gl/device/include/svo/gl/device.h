@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "svo/core/option_info.h"
 #include "svo/gl/context.h"
 
 namespace svo {
@@ -30,6 +31,21 @@ struct DeviceOptions {
     /// statistics). Drivers with no program binary formats have no cache.
     std::string programCache;
 };
+
+/// @brief Each option of DeviceOptions, declared once for every front end
+/// (svo/core/option_info.h).
+template <typename Visit>
+void forEachOption(DeviceOptions& o, Visit&& visit)
+{
+    visit(OptionInfo{"DeviceOptions::device", "device",
+                     "EGL device: auto, hardware, software or an index (default: $SVO_EGL_DEVICE, else auto)"},
+          o.device);
+    visit(OptionInfo{"DeviceOptions::glDebug", "gl_debug", "Print GL debug messages"}, o.glDebug);
+    visit(OptionInfo{"DeviceOptions::programCache", "program_cache",
+                     "Folder of cached GL program binaries; off for none (default: $SVO_PROGRAM_CACHE, else "
+                     "$XDG_CACHE_HOME/svo/programs)"},
+          o.programCache);
+}
 
 /// Start-up work a call paid for: the GL context and the programs it made.
 /// All zero on a warm Device whose programs are made.

@@ -15,6 +15,7 @@
 #include "svo/core/grid.h"
 #include "svo/core/interrupt.h"
 #include "svo/core/mesh.h"
+#include "svo/core/option_info.h"
 #include "svo/core/octree.h"
 #include "svo/core/voxel_mode.h"
 #include "svo/core/voxelization.h"
@@ -37,6 +38,16 @@ enum class Dilation {
     Shader,       ///< edge offsets in the geometry shader
     CentroidPush, ///< an early vertex-push method; misses voxels; benchmarks only
 };
+
+/// The names of Backend and Dilation, as the command line and Python write them.
+inline constexpr EnumName<Backend> kBackendNames[] = {
+    {Backend::Auto, "auto"}, {Backend::Raster, "raster"}, {Backend::Compute, "compute"}, {Backend::Cpu, "cpu"}};
+constexpr const auto& enumNames(Backend) { return kBackendNames; }
+inline constexpr EnumName<Dilation> kDilationNames[] = {{Dilation::Auto, "auto"},
+                                                        {Dilation::Hardware, "hardware"},
+                                                        {Dilation::Shader, "shader"},
+                                                        {Dilation::CentroidPush, "centroid"}};
+constexpr const auto& enumNames(Dilation) { return kDilationNames; }
 
 /// What a voxelization computes and where. Plain values; the defaults suit most uses.
 struct VoxelizeSettings {
@@ -61,6 +72,33 @@ struct VoxelizeSettings {
     /// and solids do not tile yet: they report running out of memory instead.
     uint64_t gpuMemory = 0;
 };
+
+/// @brief Each option of VoxelizeSettings, declared once for every front end
+/// (svo/core/option_info.h).
+template <typename Visit>
+void forEachOption(VoxelizeSettings& s, Visit&& visit)
+{
+    visit(OptionInfo{"VoxelizeOptions::backend", "backend",
+                     "Where voxelization runs: auto (compute on a GPU, raster on llvmpipe: the faster there), raster, "
+                     "compute (GPU compute shaders, the same voxels), or cpu (double-precision reference)"},
+          s.backend);
+    visit(OptionInfo{"VoxelizeOptions::mode", "mode",
+                     "Which voxels a triangle covers: conservative (every voxel whose cube meets a triangle; "
+                     "26-separating) or thin (every voxel one of whose three axis-aligned centre segments meets a "
+                     "triangle; 6-separating)"},
+          s.mode);
+    visit(OptionInfo{"VoxelizeOptions::dilation", "conservative",
+                     "Raster dilation: auto, hardware (GL_NV_conservative_raster), shader, or centroid (the seed "
+                     "report's vertex push; a benchmark baseline that misses voxels)"},
+          s.dilation);
+    visit(OptionInfo{"VoxelizeOptions::attributes", "attributes",
+                     "Per-voxel channels: normal, triangle (smallest triangle id), color (needs vertex colours)"},
+          ChannelSet{s.attributes});
+    visit(OptionInfo{"VoxelizeOptions::gpuMemory", "gpu_memory",
+                     "GPU memory a voxelization may use (e.g. 8G, 512M); a grid that needs more is voxelized in tiles "
+                     "and merged, with the same voxels (default: what the device reports free)"},
+          ByteCount{s.gpuMemory});
+}
 
 /// What one call measured. Kept apart from the result; filled only when asked.
 struct VoxelizeStats {

@@ -33,9 +33,14 @@ openvdb::GridPtrVec buildAttributeGrids(const Octree& octree);
 /// An octree's voxels as grids, in this order: the topology grid (Mask or
 /// Bool, named grids.name), the fog grid "density" when asked, then the
 /// attribute grids when asked and present. Their transform is @a xform, or
-/// the octree's own lattice (makeTransform) when it is null.
+/// the octree's own lattice (makeTransform) when it is null. Each carries
+/// the octree's provenance (tagProvenance).
 openvdb::GridPtrVec octreeToGrids(const Octree& octree, const GridOptions& grids = {},
                                   openvdb::math::Transform::ConstPtr xform = nullptr);
+
+/// @brief Writes what made a result into a grid's metadata: "svo:backend",
+/// "svo:mode" and "svo:renderer", each only when known.
+void tagProvenance(openvdb::GridBase& grid, const Provenance& madeBy);
 
 /// Grid types whose active voxels can become an octree.
 using GridTypes = openvdb::TypeList<openvdb::MaskGrid, openvdb::BoolGrid, openvdb::FloatGrid, openvdb::DoubleGrid,

@@ -4,6 +4,9 @@
 #include <cstdint>
 #include <string>
 
+#include "svo/core/enum_names.h"
+#include "svo/core/option_info.h"
+
 namespace svo {
 
 struct GridSpec;
@@ -15,6 +18,23 @@ struct GridOptions {
     bool fog = false;                    ///< also a fog FloatGrid "density": 1 on voxels, background 0
     bool attributes = true;              ///< the octree's channels as "normal", "triangle_id", "color"
 };
+
+/// The names of GridOptions::Topology, as --topology takes them.
+inline constexpr EnumName<GridOptions::Topology> kTopologyNames[] = {{GridOptions::Topology::Bool, "bool"},
+                                                                     {GridOptions::Topology::Mask, "mask"}};
+constexpr const auto& enumNames(GridOptions::Topology) { return kTopologyNames; }
+
+/// @brief The options of GridOptions a front end sets, declared once
+/// (svo/core/option_info.h); the grid's name and channels are the caller's.
+template <typename Visit>
+void forEachOption(GridOptions& g, Visit&& visit)
+{
+    visit(OptionInfo{"GridOptions::topology", "topology",
+                     "Grid type of the topology: bool (BoolGrid, which python3-openvdb reads) or mask (MaskGrid)"},
+          g.topology);
+    visit(OptionInfo{"GridOptions::fog", "fog", "Also write a fog-volume FloatGrid 'density' (.vdb and .nvdb output)"},
+          g.fog);
+}
 
 namespace vdb {
 /// Active tiles a reader expands into bricks by default: 2^28 bricks, 137 G

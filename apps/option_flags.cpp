@@ -1,0 +1,31 @@
+// The command line's flag for a library identifier (option_flags.h).
+#include "option_flags.h"
+
+#include "svo/core/field_options.h"
+#include "svo/gl/device.h"
+#include "svo/gl/voxelize_pipeline.h"
+#include "svo/vdb_io/grid_options.h"
+
+namespace svo::app {
+
+std::string flagFor(std::string_view identifier)
+{
+    std::string flag;
+    const auto find = [&](const OptionInfo& info, auto&&) {
+        if (info.identifier == identifier) flag = flagOf(info);
+    };
+    VoxelizeSettings voxelize;
+    DeviceOptions device;
+    LevelSetOptions levelSet;
+    GridOptions grids;
+    forEachOption(voxelize, find);
+    forEachOption(device, find);
+    forEachOption(levelSet, find);
+    forEachOption(grids, find);
+    if (!flag.empty()) return flag;
+    for (const OptionFlag& o : kOptionFlags)
+        if (o.identifier == identifier) return std::string(o.flag);
+    return {};
+}
+
+} // namespace svo::app

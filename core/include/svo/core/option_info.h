@@ -1,0 +1,73 @@
+#pragma once
+/// @file option_info.h
+/// @brief How an option of a library struct is declared once, for every
+/// front end: its names and its doc beside the struct, its type and default
+/// in the struct itself.
+///
+/// @details A struct whose fields are options has one function beside it,
+/// found by argument-dependent lookup, that shows each field to a visitor with
+/// its OptionInfo:
+/// @code
+///   struct Knobs { double width = 3; Shape shape = Shape::Round; };
+///   template <typename Visit>
+///   void forEachOption(Knobs& k, Visit&& visit)
+///   {
+///       visit(OptionInfo{"Knobs::width", "width", "how wide, in voxels"}, CheckedNumber{k.width, checkWidth});
+///       visit(OptionInfo{"Knobs::shape", "shape", "the shape of the thing"}, k.shape);
+///   }
+/// @endcode
+/// The command line visits a struct to add a flag per field and bind it there;
+/// Python visits it to read keywords into it, and to list keywords, defaults
+/// and docs for its docstrings and a test of its type stub. The default shown
+/// is the field's value in a default-constructed struct. A field is one of:
+/// bool, std::string, an enum with names (svo/core/enum_names.h), or one of
+/// the wrappers below, which say how a number is read and checked.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace svo {
+
+/// @brief One option's names and doc.
+struct OptionInfo {
+    /// How the library's errors name the field: "LevelSetOptions::exteriorBand".
+    std::string_view identifier;
+    /// Python's keyword; the command line's flag is "--" and the keyword with
+    /// '-' for '_' unless `flag` is given.
+    std::string_view keyword;
+    /// One line for --help, docstrings and stubs. An enum's names and every
+    /// default are added by the front end.
+    std::string_view doc;
+    /// The command line's flag where it differs from the keyword's.
+    std::string_view flag = {};
+};
+
+/// @brief A double checked by a library rule as it is read: rule(value, name)
+/// throws svo::InvalidInput naming the flag or keyword.
+struct CheckedNumber {
+    double& value;
+    void (*rule)(double, const std::string&);
+};
+
+/// @brief A number of bytes: "8G", "512M" or a plain number on the command
+/// line, an int or None in Python; 0 (the default) means "not given".
+struct ByteCount {
+    uint64_t& bytes;
+};
+
+/// @brief A set of AttributeChannel bits, given as names ("normal", ...).
+struct ChannelSet {
+    uint32_t& bits;
+};
+
+/// @brief The command line's flag of an option: "--" and its keyword with '-' for '_', or its own flag.
+inline std::string flagOf(const OptionInfo& info)
+{
+    if (!info.flag.empty()) return std::string(info.flag);
+    std::string flag = "--" + std::string(info.keyword);
+    for (char& c : flag)
+        if (c == '_') c = '-';
+    return flag;
+}
+
+} // namespace svo
