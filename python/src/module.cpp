@@ -9,10 +9,14 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "svo/gl/context.h"
 #include "svo/gl/octree_view.h"
@@ -40,7 +44,9 @@ namespace {
 // RuntimeError as GPU memory errors were before), svo::Unsupported ->
 // NotImplementedError (a RuntimeError), svo::Interrupted -> KeyboardInterrupt.
 // Where the module checks a keyword with a library rule (svo::checkBand, ...),
-// the rule names the keyword, and the error's argument() is the keyword.
+// the rule names the keyword; where the library names an option by its
+// identifier ("VoxelizeOptions::dilation"), the message names the keyword
+// that sets it instead (pythonMessage).
 
 // --- grids between OpenVDB and pyopenvdb -----------------------------------
 
@@ -171,35 +177,319 @@ openvdb::math::Transform::Ptr toTransform(const py::handle& obj)
     return openvdb::math::Transform::createLinearTransform(m);
 }
 
-// --- options ---------------------------------------------------------------
+// --- keywords ----------------------------------------------------------------
+//
+// Each keyword is declared once: the library's options beside their structs
+// (forEachOption, svo/core/option_info.h), Python's own ones in
+// kPythonKeywords. A call lists the keywords it takes (kCalls); reading its
+// **kwargs, its docstring and svo._options() (which the stub's test reads)
+// all come from those declarations, so none of them can drift apart.
 
-svo::Backend toBackend(const std::string& s)
-{
-    if (s == "auto") return svo::Backend::Auto;
-    if (s == "raster") return svo::Backend::Raster;
-    if (s == "compute") return svo::Backend::Compute;
-    if (s == "cpu") return svo::Backend::Cpu;
-    badValue("backend: expected 'auto', 'raster', 'compute' or 'cpu', got '" + s + "'");
-}
+/// A keyword only Python has: no library struct declares it.
+struct PythonKeyword {
+    std::string_view keyword;
+    py::object (*fallback)(); ///< its default; a function, as no Python object exists before the module loads
+    std::string_view doc;
+};
 
-svo::VoxelMode toMode(const std::string& s)
-{
-    if (s == "conservative") return svo::VoxelMode::Conservative;
-    if (s == "thin") return svo::VoxelMode::Thin;
-    badValue("mode: expected 'conservative' or 'thin', got '" + s + "'");
-}
+py::object none() { return py::none(); }
 
-uint32_t toChannels(const std::vector<std::string>& names)
-{
-    uint32_t c = 0;
-    for (const auto& n : names) {
-        if (n == "normal") c |= svo::kNormals;
-        else if (n == "triangle") c |= svo::kTriangles;
-        else if (n == "color") c |= svo::kColors;
-        else badValue("attributes: expected 'normal', 'triangle' or 'color', got '" + n + "'");
+const PythonKeyword kPythonKeywords[] = {
+    {"resolution", none,
+     "Voxels along the longest bounding-box side, a whole number: voxel size = longest side / resolution "
+     "(None: 256, as `svo voxelize`)"},
+    {"voxel_size", none, "World units per voxel, instead of resolution"},
+    {"transform", none,
+     "A pyopenvdb.Transform or a 4x4 affine matrix (OpenVDB's row-vector convention), instead of resolution; "
+     "voxels are cubes of its index space"},
+    {"grid", [] { return py::object(py::str("bool")); },
+     "'bool' (a BoolGrid 'surface', true on voxels) or 'fog' (a FloatGrid 'density', 1 on voxels)"},
+    {"holes", [] { return py::object(py::bool_(true)); },
+     "Run the flood-fill hole check (closed meshes), as `svo validate` without --no-holes"},
+    {"strict", [] { return py::object(py::bool_(false)); }, "Fail on extra voxels too"},
+    {"worst", [] { return py::object(py::int_(5)); }, "Worst cases listed of each kind, 0 to 1000000"},
+    {"openvdb", [] { return py::object(py::bool_(true)); }, "Also compare with OpenVDB's meshToLevelSet"},
+};
+
+/// One keyword as a call shows it.
+struct KeywordInfo {
+    std::string keyword;
+    std::string identifier; ///< the library's name for it ("LevelSetOptions::exteriorBand"); empty for Python's own
+    std::string doc;
+    py::object fallback; ///< the default, as a Python value
+    std::string names;   ///< the names an enum or channel set takes, quoted; else empty
+};
+
+/// Each option of a library struct, with its value (a default-constructed
+/// struct's: the default) as a Python value.
+struct Describe {
+    std::vector<KeywordInfo>& out;
+
+    void add(const svo::OptionInfo& i, py::object value, std::string names = {}) const
+    {
+        out.push_back({std::string(i.keyword), std::string(i.identifier), std::string(i.doc), std::move(value),
+                       std::move(names)});
     }
-    return c;
+    void operator()(const svo::OptionInfo& i, bool& v) const { add(i, py::bool_(v)); }
+    void operator()(const svo::OptionInfo& i, std::string& v) const { add(i, py::str(v)); }
+    template <typename E, typename = decltype(enumNames(E{}))>
+    void operator()(const svo::OptionInfo& i, E& v) const
+    {
+        add(i, py::str(std::string(svo::nameOf(v))), svo::quotedNames<E>());
+    }
+    void operator()(const svo::OptionInfo& i, svo::CheckedNumber n) const { add(i, py::float_(n.value)); }
+    void operator()(const svo::OptionInfo& i, svo::ByteCount c) const
+    {
+        add(i, c.bytes ? py::object(py::int_(c.bytes)) : none()); // 0: the device's free memory, None in Python
+    }
+    void operator()(const svo::OptionInfo& i, svo::ChannelSet c) const
+    {
+        py::list set; // a tuple: a default Python can share between calls
+        for (const auto& n : enumNames(svo::AttributeChannel{}))
+            if (c.bits & n.value) set.append(py::str(std::string(n.name)));
+        add(i, py::tuple(set), svo::quotedNames<svo::AttributeChannel>());
+    }
+};
+
+/// Every keyword any call takes: Python's own, then the library's declared options.
+std::vector<KeywordInfo> allKeywords()
+{
+    std::vector<KeywordInfo> out;
+    for (const PythonKeyword& k : kPythonKeywords)
+        out.push_back({std::string(k.keyword), {}, std::string(k.doc), k.fallback(), {}});
+    svo::VoxelizeSettings voxelize;
+    svo::DeviceOptions device;
+    svo::LevelSetOptions levelSet; // its SignOptions included
+    forEachOption(voxelize, Describe{out});
+    forEachOption(device, Describe{out});
+    forEachOption(levelSet, Describe{out});
+    return out;
 }
+
+/// The Python keyword of a library identifier ("LevelSetOptions::exteriorBand" -> "exterior_band"), for
+/// Error::message; empty where none sets it.
+std::string keywordOf(const std::string& identifier)
+{
+    std::string keyword;
+    const auto find = [&](const svo::OptionInfo& info, auto&&) {
+        if (info.identifier == identifier) keyword = std::string(info.keyword);
+    };
+    svo::VoxelizeSettings voxelize;
+    svo::DeviceOptions device;
+    svo::LevelSetOptions levelSet;
+    forEachOption(voxelize, find);
+    forEachOption(device, find);
+    forEachOption(levelSet, find);
+    return keyword;
+}
+
+/// A call that takes keywords: the name its messages use and its keywords, in order.
+struct Call {
+    const char* name;
+    std::vector<std::string_view> keywords;
+};
+
+const Call kDeviceCall{"Voxelizer", {"device", "gl_debug", "program_cache"}};
+const Call kVoxelizeCall{"voxelize",
+                         {"resolution", "voxel_size", "transform", "grid", "backend", "mode", "conservative",
+                          "attributes", "gpu_memory"}};
+const Call kOctreeCall{
+    "octree",
+    {"resolution", "voxel_size", "transform", "backend", "mode", "conservative", "attributes", "gpu_memory"}};
+const Call kLevelSetCall{"level_set",
+                         {"resolution", "voxel_size", "transform", "exterior_band", "interior_band", "unsigned",
+                          "closest_triangle", "sign", "winding_accuracy", "backend"}};
+const Call kSolidCall{"solid", {"resolution", "voxel_size", "transform", "sign", "winding_accuracy", "backend"}};
+const Call kFromGridCall{"from_grid", {"backend"}};
+#ifdef SVO_WITH_VALIDATE
+const Call kValidateCall{"validate",
+                         {"resolution", "voxel_size", "transform", "backend", "conservative", "mode", "holes",
+                          "strict", "worst"}};
+const Call kValidateLevelSetCall{"validate_level_set",
+                                 {"resolution", "voxel_size", "transform", "exterior_band", "interior_band", "sign",
+                                  "winding_accuracy", "backend", "worst", "openvdb"}};
+#endif
+
+/// Every call by the name Python gives it, for svo._options().
+const std::pair<const char*, const Call*> kCalls[] = {
+    {"Voxelizer.__init__", &kDeviceCall},
+    {"Voxelizer.voxelize", &kVoxelizeCall},
+    {"Voxelizer.octree", &kOctreeCall},
+    {"Voxelizer.level_set", &kLevelSetCall},
+    {"Voxelizer.solid", &kSolidCall},
+    {"Octree.from_grid", &kFromGridCall},
+    {"voxelize", &kVoxelizeCall},
+#ifdef SVO_WITH_VALIDATE
+    {"validate", &kValidateCall},
+    {"validate_level_set", &kValidateLevelSetCall},
+#endif
+};
+
+/// The keywords of a call, in its order. A keyword declared nowhere is this
+/// module's mistake: it fails the import (every docstring is made then).
+std::vector<KeywordInfo> keywordsOf(const Call& call)
+{
+    const std::vector<KeywordInfo> all = allKeywords();
+    std::vector<KeywordInfo> out;
+    for (const std::string_view k : call.keywords) {
+        const auto it = std::find_if(all.begin(), all.end(), [&](const KeywordInfo& i) { return i.keyword == k; });
+        if (it == all.end())
+            throw std::logic_error("svo: " + std::string(call.name) + "() lists keyword '" + std::string(k) +
+                                   "', which nothing declares");
+        out.push_back(*it);
+    }
+    return out;
+}
+
+/// @a text in lines of at most @a width characters, each after @a indent.
+std::string wrapped(const std::string& text, const std::string& indent, size_t width = 100)
+{
+    std::string out, line;
+    size_t start = 0;
+    while (start < text.size()) {
+        size_t end = text.find(' ', start);
+        if (end == std::string::npos) end = text.size();
+        const std::string word = text.substr(start, end - start);
+        if (!line.empty() && indent.size() + line.size() + 1 + word.size() > width) {
+            out += indent + line + "\n";
+            line.clear();
+        }
+        line += (line.empty() ? "" : " ") + word;
+        start = end + 1;
+    }
+    if (!line.empty()) out += indent + line + "\n";
+    return out;
+}
+
+/// A call's docstring: @a summary, then each keyword with its default and its doc.
+std::string docstring(const std::string& summary, const Call& call)
+{
+    std::string out = summary + "\n\nKeywords:\n";
+    for (const KeywordInfo& k : keywordsOf(call)) {
+        out += "    " + k.keyword + "=" + std::string(py::repr(k.fallback)) + "\n";
+        std::string doc = k.doc;
+        if (!k.names.empty()) doc += " (" + k.names + ")";
+        out += wrapped(doc, "        ");
+    }
+    return out;
+}
+
+/// svo._options(): per call, each keyword's default (a Python value) and doc.
+py::dict optionsTable()
+{
+    py::dict out;
+    for (const auto& [name, call] : kCalls) {
+        py::dict keywords;
+        for (const KeywordInfo& k : keywordsOf(*call)) {
+            py::dict entry;
+            entry["default"] = k.fallback;
+            entry["doc"] = k.doc;
+            // The library's name for it (errors name the keyword instead: pythonMessage); None for Python's own.
+            entry["identifier"] = k.identifier.empty() ? none() : py::object(py::str(k.identifier));
+            keywords[py::str(k.keyword)] = entry;
+        }
+        out[name] = keywords;
+    }
+    return out;
+}
+
+/// The keywords one call was given: refused, as Python refuses them, unless
+/// the call takes them; then read into library structs (read) or one by one (get).
+class CallKeywords {
+public:
+    CallKeywords(const Call& call, const py::kwargs& given) : call_(call), given_(given)
+    {
+        for (const auto& item : given_) {
+            const std::string name = py::cast<std::string>(item.first);
+            if (!takes(name))
+                throw py::type_error(std::string(call_.name) + "() got an unexpected keyword argument '" + name + "'");
+        }
+    }
+
+    /// A keyword of Python's own: its value, or its default (kPythonKeywords).
+    template <typename T>
+    T get(std::string_view keyword) const
+    {
+        if (!takes(keyword)) throw std::logic_error("svo: " + std::string(call_.name) + "() reads an unlisted keyword");
+        if (given(keyword)) return as<T>(keyword);
+        for (const PythonKeyword& k : kPythonKeywords)
+            if (k.keyword == keyword) return k.fallback().template cast<T>();
+        throw std::logic_error("svo: keyword '" + std::string(keyword) + "' is not one of Python's own");
+    }
+
+    /// The options of @a options this call takes and was given, each read as its declaration says.
+    template <typename Options>
+    void read(Options& options) const
+    {
+        forEachOption(options, Reader{*this});
+    }
+
+private:
+    bool takes(std::string_view keyword) const
+    {
+        return std::find(call_.keywords.begin(), call_.keywords.end(), keyword) != call_.keywords.end();
+    }
+    bool given(std::string_view keyword) const { return given_.contains(py::str(std::string(keyword))); }
+    /// The keyword's value as T; a TypeError (as a mistyped argument was before) when it is not one.
+    template <typename T>
+    T as(std::string_view keyword) const
+    {
+        const py::object value = given_[py::str(std::string(keyword))];
+        try {
+            return value.template cast<T>();
+        } catch (const py::cast_error&) {
+            throw py::type_error(std::string(call_.name) + "(): keyword '" + std::string(keyword) +
+                                 "' has the wrong type (" + std::string(py::str(value.get_type().attr("__name__"))) +
+                                 ")");
+        }
+    }
+
+    /// Sets each field whose keyword was given; the others keep the struct's defaults.
+    struct Reader {
+        const CallKeywords& kw;
+
+        bool wanted(const svo::OptionInfo& i) const { return kw.takes(i.keyword) && kw.given(i.keyword); }
+        void operator()(const svo::OptionInfo& i, bool& v) const
+        {
+            if (wanted(i)) v = kw.as<bool>(i.keyword);
+        }
+        void operator()(const svo::OptionInfo& i, std::string& v) const
+        {
+            if (wanted(i)) v = kw.as<std::string>(i.keyword);
+        }
+        template <typename E, typename = decltype(enumNames(E{}))>
+        void operator()(const svo::OptionInfo& i, E& v) const
+        {
+            if (wanted(i)) v = svo::parse<E>(kw.as<std::string>(i.keyword), std::string(i.keyword));
+        }
+        void operator()(const svo::OptionInfo& i, svo::CheckedNumber n) const
+        {
+            if (!wanted(i)) return;
+            const double v = kw.as<double>(i.keyword);
+            n.rule(v, std::string(i.keyword)); // the library's rule, under the keyword
+            n.value = v;
+        }
+        void operator()(const svo::OptionInfo& i, svo::ByteCount c) const
+        {
+            if (!wanted(i)) return;
+            // Bytes as an int (a float was taken too), or None: what the device reports free.
+            const auto bytes = kw.as<std::optional<double>>(i.keyword);
+            if (bytes && !(*bytes >= 1 && *bytes <= 1e18))
+                badValue(std::string(i.keyword) + ": expected a positive number of bytes or None");
+            c.bytes = bytes ? uint64_t(*bytes) : 0;
+        }
+        void operator()(const svo::OptionInfo& i, svo::ChannelSet c) const
+        {
+            if (!wanted(i)) return;
+            c.bits = 0; // the channels given, not added to the default's
+            for (const std::string& name : kw.as<std::vector<std::string>>(i.keyword))
+                c.bits |= svo::parse<svo::AttributeChannel>(name, std::string(i.keyword));
+        }
+    };
+
+    const Call& call_;
+    const py::kwargs& given_;
+};
 
 /// Ctrl-C while the GIL is released: polled between the library's stages.
 struct KeyboardInterrupter : openvdb::util::NullInterrupter {
@@ -215,13 +505,6 @@ struct KeyboardInterrupter : openvdb::util::NullInterrupter {
 
 // --- the calls ---------------------------------------------------------------
 
-/// A number checked by the library's rule for it (svo::checkBand, ...), under its keyword: an
-/// svo::InvalidInput whose argument() is the keyword, a ValueError.
-void checked(void (*rule)(double, const std::string&), double value, const std::string& keyword)
-{
-    rule(value, keyword);
-}
-
 /// Everything a voxelize() call needs, checked, before the GIL is released.
 struct Request {
     svo::TriangleMesh mesh;
@@ -229,9 +512,12 @@ struct Request {
     openvdb::math::Transform::Ptr xform; ///< the output grids' transform
 };
 
-Request makeRequest(const py::handle& vertices, const py::handle& triangles, std::optional<double> resolution,
-                    std::optional<double> voxelSize, const py::object& transform)
+/// The mesh and the grid of resolution=, voxel_size= or transform=.
+Request makeRequest(const py::handle& vertices, const py::handle& triangles, const CallKeywords& kw)
 {
+    const auto resolution = kw.get<std::optional<double>>("resolution");
+    const auto voxelSize = kw.get<std::optional<double>>("voxel_size");
+    const auto transform = kw.get<py::object>("transform");
     const int given = int(resolution.has_value()) + int(voxelSize.has_value()) + int(!transform.is_none());
     if (given > 1) badValue("give one of resolution, voxel_size and transform");
     const std::vector<openvdb::Vec3d> points = toPoints(vertices);
@@ -254,11 +540,11 @@ Request makeRequest(const py::handle& vertices, const py::handle& triangles, std
     svo::GridRequest req;
     // The library's rules, under the keywords' names.
     if (voxelSize) {
-        checked(svo::checkVoxelSize, *voxelSize, "voxel_size");
+        svo::checkVoxelSize(*voxelSize, "voxel_size");
         req.voxelSize = *voxelSize;
     } else {
         const double n = resolution.value_or(256);
-        checked(svo::checkResolution, n, "resolution");
+        svo::checkResolution(n, "resolution");
         req.resolution = int64_t(n);
     }
     r.grid = svo::makeGrid(r.mesh, req);
@@ -266,22 +552,11 @@ Request makeRequest(const py::handle& vertices, const py::handle& triangles, std
     return r;
 }
 
-/// gpu_memory: bytes, or None for the device's free memory.
-uint64_t toGpuMemory(const std::optional<double>& bytes)
-{
-    if (!bytes) return 0;
-    if (!(*bytes >= 1 && *bytes <= 1e18)) badValue("gpu_memory: expected a positive number of bytes or None");
-    return uint64_t(*bytes);
-}
-
-svo::Octree run(svo::Voxelizer& v, const Request& r, const std::string& backend, svo::VoxelMode mode,
-                uint32_t channels, std::vector<uint64_t>* voxelList = nullptr, uint64_t gpuMemory = 0)
+svo::Octree run(svo::Voxelizer& v, const Request& r, const svo::VoxelizeSettings& settings,
+                std::vector<uint64_t>* voxelList = nullptr)
 {
     svo::VoxelizeOptions o;
-    o.backend = toBackend(backend);
-    o.mode = mode;
-    o.attributes = channels;
-    o.gpuMemory = gpuMemory;
+    static_cast<svo::VoxelizeSettings&>(o) = settings;
     KeyboardInterrupter interrupter;
     o.interrupter = &interrupter;
     try {
@@ -314,17 +589,16 @@ py::array_t<int32_t> voxelOrder(const svo::Octree& octree)
 }
 
 py::object voxelizeWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
-                        std::optional<double> resolution, std::optional<double> voxelSize,
-                        const py::object& transform, const std::string& grid, const std::string& backend,
-                        const std::vector<std::string>& attributes, const std::string& mode,
-                        std::optional<double> gpuMemory)
+                        const py::kwargs& kwargs)
 {
+    const CallKeywords kw(kVoxelizeCall, kwargs);
+    const std::string grid = kw.get<std::string>("grid");
     if (grid != "bool" && grid != "fog") badValue("grid: expected 'bool' or 'fog', got '" + grid + "'");
-    const uint32_t channels = toChannels(attributes);
-    const svo::VoxelMode m = toMode(mode);
-    const uint64_t budget = toGpuMemory(gpuMemory);
-    const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
-    const svo::Octree octree = run(v, r, backend, m, channels, nullptr, budget);
+    svo::VoxelizeSettings settings;
+    kw.read(settings);
+    const uint32_t channels = settings.attributes;
+    const Request r = makeRequest(vertices, triangles, kw);
+    const svo::Octree octree = run(v, r, settings);
     svo::GridOptions g;
     g.topology = svo::GridOptions::Topology::Bool; // pyopenvdb has no MaskGrid
     g.fog = grid == "fog";
@@ -354,22 +628,12 @@ py::object voxelizeWith(svo::Voxelizer& v, const py::handle& vertices, const py:
     return out;
 }
 
-svo::SignOptions toSign(const std::string& sign, double windingAccuracy)
-{
-    checked(svo::checkWindingAccuracy, windingAccuracy, "winding_accuracy");
-    if (sign == "auto") return {svo::SignMethod::Auto, windingAccuracy};
-    if (sign == "parity") return {svo::SignMethod::Parity, windingAccuracy};
-    if (sign == "winding") return {svo::SignMethod::Winding, windingAccuracy};
-    badValue("sign: expected 'auto', 'parity' or 'winding', got '" + sign + "'");
-    return {};
-}
-
 /// Runs a level-set or solid call with the GIL released and Ctrl-C heard.
 template <typename F>
-auto runField(const std::string& backend, F call)
+auto runField(const svo::VoxelizeSettings& settings, F call)
 {
     svo::VoxelizeOptions o;
-    o.backend = toBackend(backend);
+    static_cast<svo::VoxelizeSettings&>(o) = settings;
     KeyboardInterrupter interrupter;
     o.interrupter = &interrupter;
     try {
@@ -382,26 +646,20 @@ auto runField(const std::string& backend, F call)
 }
 
 py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
-                        std::optional<double> resolution, std::optional<double> voxelSize,
-                        const py::object& transform, double exteriorBand, double interiorBand, bool unsignedDistance,
-                        bool closestTriangle, const std::string& sign, double windingAccuracy,
-                        const std::string& backend)
+                        const py::kwargs& kwargs)
 {
-    checked(svo::checkBand, exteriorBand, "exterior_band");
-    checked(svo::checkBand, interiorBand, "interior_band");
+    const CallKeywords kw(kLevelSetCall, kwargs);
     svo::LevelSetOptions ls;
-    ls.exteriorBand = exteriorBand;
-    ls.interiorBand = interiorBand;
-    ls.unsignedDistance = unsignedDistance;
-    ls.closestTriangle = closestTriangle;
-    ls.sign = toSign(sign, windingAccuracy);
-    const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
+    kw.read(ls);
+    svo::VoxelizeSettings settings;
+    kw.read(settings);
+    const Request r = makeRequest(vertices, triangles, kw);
     svo::VoxelizeStats stats;
-    const openvdb::GridPtrVec grids = runField(backend, [&](svo::VoxelizeOptions o) {
+    const openvdb::GridPtrVec grids = runField(settings, [&](svo::VoxelizeOptions o) {
         o.stats = &stats;
         return v.levelSet(r.mesh, r.grid, ls, o, r.xform);
     });
-    if (!closestTriangle) return toPython(grids.front());
+    if (!ls.closestTriangle) return toPython(grids.front());
     // pyopenvdb has no Int32Grid: the band's voxels and their triangles as arrays.
     const auto closest = openvdb::gridPtrCast<openvdb::Int32Grid>(grids.at(1));
     const auto n = py::ssize_t(closest->activeVoxelCount());
@@ -419,20 +677,24 @@ py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py:
 }
 
 py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
-                     std::optional<double> resolution, std::optional<double> voxelSize, const py::object& transform,
-                     const std::string& sign, double windingAccuracy, const std::string& backend)
+                     const py::kwargs& kwargs)
 {
-    const svo::SignOptions signOptions = toSign(sign, windingAccuracy);
-    const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
+    const CallKeywords kw(kSolidCall, kwargs);
+    svo::SignOptions signOptions;
+    kw.read(signOptions);
+    svo::VoxelizeSettings settings;
+    kw.read(settings);
+    const Request r = makeRequest(vertices, triangles, kw);
     svo::VoxelizeStats stats;
-    const auto mask = runField(backend, [&](svo::VoxelizeOptions o) {
+    const auto mask = runField(settings, [&](svo::VoxelizeOptions o) {
         o.stats = &stats;
         return v.solid(r.mesh, r.grid, o, signOptions, r.xform);
     });
     // pyopenvdb has no MaskGrid: the same topology as a BoolGrid, true on it.
     auto out = openvdb::BoolGrid::create(openvdb::BoolTree::Ptr(new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
     out->setTransform(mask->transform().copy());
-    out->setName(mask->getName());
+    // The library's svo:* metadata (svo:sign: which sign method ran and why) and the name, as it tagged them.
+    for (auto meta = mask->beginMeta(); meta != mask->endMeta(); ++meta) out->insertMeta(meta->first, *meta->second);
     return toPython(out);
 }
 
@@ -588,6 +850,16 @@ std::string keywordFor(const std::string& identifier)
     return {};
 }
 
+/// An error's message with the Python keyword for each library identifier it names: a declared
+/// option's (keywordOf), else render's (keywordFor), else the library's own words.
+std::string pythonMessage(const svo::Error& e)
+{
+    return e.message([](const std::string& identifier) {
+        const std::string keyword = keywordOf(identifier);
+        return keyword.empty() ? keywordFor(identifier) : keyword;
+    });
+}
+
 /// The mesh=(vertices, triangles) keyword, in the octree's frame.
 std::optional<svo::TriangleMesh> renderMesh(const PyOctree& p, const py::object& mesh)
 {
@@ -688,12 +960,8 @@ py::array_t<uint8_t> renderOctree(const PyOctree& p, const py::kwargs& kwargs)
     }
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
         badValue("size: expected (width, height), 1 to 16384 pixels each");
-    gl::ViewLayers shown;
-    try {
-        shown = gl::viewLayers(request, p.octree, triangles.has_value());
-    } catch (const svo::InvalidInput& e) {
-        badValue(e.message(keywordFor));
-    }
+    // An svo::InvalidInput names render's keywords through the translator (pythonMessage).
+    const gl::ViewLayers shown = gl::viewLayers(request, p.octree, triangles.has_value());
     const gl::ViewCamera camera = gl::namedView(gl::gridWorldBox(p.octree.grid), view, double(width) / double(height));
     gl::Image image;
     {
@@ -707,26 +975,25 @@ py::array_t<uint8_t> renderOctree(const PyOctree& p, const py::kwargs& kwargs)
 }
 
 PyOctree octreeWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
-                    std::optional<double> resolution, std::optional<double> voxelSize, const py::object& transform,
-                    const std::string& backend, const std::vector<std::string>& attributes, const std::string& mode,
-                    std::optional<double> gpuMemory)
+                    const py::kwargs& kwargs)
 {
-    const uint32_t channels = toChannels(attributes);
-    const svo::VoxelMode m = toMode(mode);
-    const uint64_t budget = toGpuMemory(gpuMemory);
-    const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
-    return PyOctree{run(v, r, backend, m, channels, nullptr, budget), r.xform};
+    const CallKeywords kw(kOctreeCall, kwargs);
+    svo::VoxelizeSettings settings;
+    kw.read(settings);
+    const Request r = makeRequest(vertices, triangles, kw);
+    return PyOctree{run(v, r, settings), r.xform};
 }
 
-PyOctree octreeFromGrid(const py::handle& obj, svo::Voxelizer* v, const std::string& backend)
+PyOctree octreeFromGrid(const py::handle& obj, const py::kwargs& kwargs)
 {
+    const CallKeywords kw(kFromGridCall, kwargs);
+    svo::VoxelizeOptions o;
+    kw.read(static_cast<svo::VoxelizeSettings&>(o));
     const openvdb::GridBase::Ptr grid = fromPython(obj);
     if (!grid) badValue("grid: expected a pyopenvdb BoolGrid, FloatGrid or Vec3SGrid");
-    svo::VoxelizeOptions o;
-    o.backend = toBackend(backend);
     py::gil_scoped_release release;
-    svo::Voxelizer local;
-    return PyOctree{(v ? *v : local).gridToOctree(*grid, o), grid->transform().copy()};
+    svo::Voxelizer v;
+    return PyOctree{v.gridToOctree(*grid, o), grid->transform().copy()};
 }
 
 /// A numpy view of `count` rows of `cols` values at `data`, kept alive by `owner`.
@@ -746,21 +1013,22 @@ size_t toWorst(int64_t worst)
 }
 
 /// The voxelization checked against CGAL's exact reference: the numbers of `svo validate --json`.
-py::object validateWith(const py::handle& vertices, const py::handle& triangles, std::optional<double> resolution,
-                        std::optional<double> voxelSize, const py::object& transform, const std::string& backend,
-                        bool holes, bool strict, int64_t worst, const std::string& mode)
+py::object validateWith(const py::handle& vertices, const py::handle& triangles, const py::kwargs& kwargs)
 {
-    const svo::VoxelMode m = toMode(mode);
-    const size_t worstCases = toWorst(worst);
-    const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
+    const CallKeywords kw(kValidateCall, kwargs);
+    svo::VoxelizeSettings settings;
+    kw.read(settings);
+    const size_t worstCases = toWorst(kw.get<int64_t>("worst"));
+    const bool holes = kw.get<bool>("holes"), strict = kw.get<bool>("strict");
+    const Request r = makeRequest(vertices, triangles, kw);
     svo::Voxelizer v;
     std::vector<uint64_t> list;
-    const svo::Octree octree = run(v, r, backend, m, 0, &list);
+    const svo::Octree octree = run(v, r, settings, &list);
     std::string text;
     {
         py::gil_scoped_release release;
         svo::validate::ReportOptions ro;
-        ro.mode = m;
+        ro.mode = settings.mode;
         ro.holes = holes;
         ro.strict = strict;
         ro.worst = worstCases;
@@ -773,23 +1041,19 @@ py::object validateWith(const py::handle& vertices, const py::handle& triangles,
 #ifdef SVO_WITH_VALIDATE
 /// The GPU level set checked against CGAL and beside OpenVDB's meshToLevelSet:
 /// the numbers of `svo validate --sdf --json`.
-py::object validateLevelSetWith(const py::handle& vertices, const py::handle& triangles,
-                                std::optional<double> resolution, std::optional<double> voxelSize,
-                                const py::object& transform, double exteriorBand, double interiorBand,
-                                const std::string& sign, double windingAccuracy, const std::string& backend,
-                                int64_t worst, bool openvdb)
+py::object validateLevelSetWith(const py::handle& vertices, const py::handle& triangles, const py::kwargs& kwargs)
 {
-    checked(svo::checkBand, exteriorBand, "exterior_band");
-    checked(svo::checkBand, interiorBand, "interior_band");
-    const size_t worstCases = toWorst(worst);
+    const CallKeywords kw(kValidateLevelSetCall, kwargs);
     svo::LevelSetOptions ls;
-    ls.exteriorBand = exteriorBand;
-    ls.interiorBand = interiorBand;
-    ls.sign = toSign(sign, windingAccuracy);
-    const Request r = makeRequest(vertices, triangles, resolution, voxelSize, transform);
+    kw.read(ls);
+    svo::VoxelizeSettings settings;
+    kw.read(settings);
+    const size_t worstCases = toWorst(kw.get<int64_t>("worst"));
+    const bool openvdb = kw.get<bool>("openvdb");
+    const Request r = makeRequest(vertices, triangles, kw);
     svo::Voxelizer v;
     svo::VoxelizeStats stats;
-    const openvdb::GridPtrVec grids = runField(backend, [&](svo::VoxelizeOptions o) {
+    const openvdb::GridPtrVec grids = runField(settings, [&](svo::VoxelizeOptions o) {
         o.stats = &stats;
         return v.levelSet(r.mesh, r.grid, ls, o, r.xform);
     });
@@ -798,8 +1062,8 @@ py::object validateLevelSetWith(const py::handle& vertices, const py::handle& tr
         py::gil_scoped_release release;
         const auto sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(grids.front());
         svo::validate::LevelSetReportOptions ro;
-        ro.check.exteriorBand = exteriorBand;
-        ro.check.interiorBand = interiorBand;
+        ro.check.exteriorBand = ls.exteriorBand;
+        ro.check.interiorBand = ls.interiorBand;
         ro.check.voxelSize = sdf->transform().voxelSize()[0]; // world units per voxel of the values
         ro.check.worst = worstCases;
         ro.openvdb = openvdb;
@@ -811,8 +1075,8 @@ py::object validateLevelSetWith(const py::handle& vertices, const py::handle& tr
 }
 #endif
 
-constexpr const char* kVoxelizeDoc = R"doc(
-Voxelize a triangle mesh on the GPU into a pyopenvdb grid.
+/// What voxelize() does; its keywords follow, from their declarations (docstring()).
+constexpr const char* kVoxelizeDoc = R"doc(Voxelize a triangle mesh on the GPU into a pyopenvdb grid.
 
 With mode "conservative" (the default) the result holds every voxel whose
 closed cube touches a triangle (the 26-separating voxelization); with "thin",
@@ -823,33 +1087,21 @@ voxels within a tiny stated guard band of a triangle.
 Args:
     vertices: (N, 3) array-like of float32/float64 world positions.
     triangles: (M, 3) integer array of vertex indices, or (M, 4) quads.
-    resolution: voxels along the longest bounding-box side: voxel size =
-        longest side / resolution (default 256, as `svo voxelize`).
-    voxel_size: world units per voxel, instead of resolution.
-    transform: a pyopenvdb.Transform or a 4x4 affine matrix (OpenVDB's
-        row-vector convention); voxels are cubes of its index space.
-    grid: "bool" (BoolGrid "surface", true on voxels) or "fog" (FloatGrid
-        "density", 1 on voxels).
-    backend: "auto" (compute on a GPU, raster on llvmpipe), "raster", "compute" (GPU compute shaders, the same voxels) or "cpu" (the
-        double-precision reference).
-    attributes: channels to compute: "normal", "triangle", "color". With any,
-        a dict is returned: the grid ("surface" or "density"), "normal" and
-        "color" Vec3SGrids, "ijk" ((K, 3) int32 voxel coordinates) and, in
-        the same order, "triangle_id" ((K,) int32), "normal_values" and
-        "color_values" ((K, 3) float32).
-    mode: "conservative" or "thin" (see above).
-    gpu_memory: GPU bytes the call may use; a grid that needs more is
-        voxelized in tiles and merged, with the same voxels. None: what the
-        device reports free.
+
+Returns:
+    The grid; with attributes, a dict: the grid ("surface" or "density"),
+    "normal" and "color" Vec3SGrids, "ijk" ((K, 3) int32 voxel coordinates)
+    and, in the same order, "triangle_id" ((K,) int32), "normal_values" and
+    "color_values" ((K, 3) float32).
 
 Raises:
     ValueError: a bad array, index, transform or option.
+    TypeError: a keyword the call does not take, or of the wrong type.
     RuntimeError: the GPU failed (no context, a driver limit).
     svo.OutOfMemoryError: GPU or host memory, or gpu_memory, cannot hold the
         work (a MemoryError, and a RuntimeError).
     NotImplementedError: a request svo has no method for (a RuntimeError).
-    KeyboardInterrupt: Ctrl-C during the call (the Voxelizer stays usable).
-)doc";
+    KeyboardInterrupt: Ctrl-C during the call (the Voxelizer stays usable).)doc";
 
 } // namespace
 
@@ -880,71 +1132,62 @@ PYBIND11_MODULE(_svo, m)
         try {
             if (p) std::rethrow_exception(p);
         } catch (const svo::Interrupted& e) {
-            PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+            PyErr_SetString(PyExc_KeyboardInterrupt, pythonMessage(e).c_str());
         } catch (const svo::InvalidInput& e) {
-            PyErr_SetString(PyExc_ValueError, e.what());
+            PyErr_SetString(PyExc_ValueError, pythonMessage(e).c_str());
         } catch (const svo::IoError& e) {
-            PyErr_SetString(PyExc_OSError, e.what());
+            PyErr_SetString(PyExc_OSError, pythonMessage(e).c_str());
         } catch (const svo::OutOfMemory& e) {
-            PyErr_SetString(outOfMemory, e.what());
+            PyErr_SetString(outOfMemory, pythonMessage(e).c_str());
         } catch (const svo::Unsupported& e) {
-            PyErr_SetString(PyExc_NotImplementedError, e.what());
+            PyErr_SetString(PyExc_NotImplementedError, pythonMessage(e).c_str());
         } catch (const svo::Error& e) { // svo::DeviceError
-            PyErr_SetString(PyExc_RuntimeError, e.what());
+            PyErr_SetString(PyExc_RuntimeError, pythonMessage(e).c_str());
         }
     });
 
     py::class_<svo::Voxelizer>(m, "Voxelizer",
                                "A reusable GPU voxelizer: keeps its GL context, compiled programs and buffers, so "
                                "later calls pay only for their work. Use one per thread.")
-        .def(py::init([](const std::string& device, const std::string& programCache) {
-                 return svo::Voxelizer(svo::DeviceOptions{device, false, programCache});
+        .def(py::init([](const py::kwargs& kwargs) {
+                 const CallKeywords kw(kDeviceCall, kwargs);
+                 svo::DeviceOptions device;
+                 kw.read(device);
+                 return svo::Voxelizer(device);
              }),
-             py::arg("device") = "auto", py::arg("program_cache") = "",
-             "device: 'auto' (hardware first), 'hardware', 'software' or an EGL device index as a string. "
-             "program_cache: folder of cached GL program binaries; '' ($SVO_PROGRAM_CACHE, else "
-             "~/.cache/svo/programs) or 'off'.")
-        .def("voxelize", &voxelizeWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
-             py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
-             py::arg("transform") = py::none(), py::arg("grid") = "bool", py::arg("backend") = "auto",
-             py::arg("attributes") = std::vector<std::string>{}, py::arg("mode") = "conservative",
-             py::arg("gpu_memory") = py::none(), kVoxelizeDoc)
-        .def("octree", &octreeWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
-             py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
-             py::arg("transform") = py::none(), py::arg("backend") = "auto",
-             py::arg("attributes") = std::vector<std::string>{}, py::arg("mode") = "conservative",
-             py::arg("gpu_memory") = py::none(), "The voxels of a mesh as an svo.Octree (arguments as voxelize()).")
-        .def("level_set", &levelSetWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
-             py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
-             py::arg("transform") = py::none(), py::arg("exterior_band") = 3.0, py::arg("interior_band") = 3.0,
-             py::arg("unsigned") = false, py::arg("closest_triangle") = false, py::arg("sign") = "auto",
-             py::arg("winding_accuracy") = 1.5, py::arg("backend") = "auto",
-             "A narrow-band signed distance field on the GPU, as OpenVDB's meshToLevelSet: a FloatGrid\n"
-             "'surface' of class GRID_LEVEL_SET, world-unit distances, negative inside, exact to float\n"
-             "rounding. Bands are in voxels (>= 1). unsigned=True gives unsigned distances (grid 'distance')\n"
-             "for any mesh. closest_triangle=True returns (grid, ijk, triangle): the band's voxels, an (N, 3)\n"
-             "int32 array of index coordinates, and each one's nearest triangle, (N,) int32.\n"
-             "sign: 'auto' (parity for closed, consistently oriented meshes, else the winding number),\n"
-             "'parity' (refused for a mesh with holes) or 'winding'; the grid's metadata\n"
-             "'svo:sign' says which ran and why. winding_accuracy: tree nodes farther than this many radii\n"
-             "use their far-field expansion (default 1.5). Grid arguments as voxelize(); a transform must have uniform scale.")
-        .def("solid", &solidWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
-             py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(),
-             py::arg("transform") = py::none(), py::arg("sign") = "auto", py::arg("winding_accuracy") = 1.5,
-             py::arg("backend") = "auto",
-             "The solid a mesh bounds, as a BoolGrid 'solid': the surface voxels and every voxel\n"
-             "whose centre is inside; regions wholly inside are active tiles; metadata 'svo:sign' as level_set().\n"
-             "Arguments as level_set().")
+             docstring("A Voxelizer on the EGL device the keywords choose (made on its first call).", kDeviceCall)
+                 .c_str())
+        .def("voxelize", &voxelizeWith, py::arg("vertices"), py::arg("triangles"),
+             docstring(kVoxelizeDoc, kVoxelizeCall).c_str())
+        .def("octree", &octreeWith, py::arg("vertices"), py::arg("triangles"),
+             docstring("The voxels of a mesh as an svo.Octree (as voxelize()).", kOctreeCall).c_str())
+        .def("level_set", &levelSetWith, py::arg("vertices"), py::arg("triangles"),
+             docstring("A narrow-band signed distance field on the GPU, as OpenVDB's meshToLevelSet: a FloatGrid\n"
+                       "'surface' of class GRID_LEVEL_SET, world-unit distances, negative inside, exact to float\n"
+                       "rounding. unsigned=True gives unsigned distances (grid 'distance') for any mesh.\n"
+                       "closest_triangle=True returns (grid, ijk, triangle): the band's voxels, an (N, 3) int32\n"
+                       "array of index coordinates, and each one's nearest triangle, (N,) int32. The grid's\n"
+                       "metadata 'svo:sign' says which sign method ran and why. Arrays as voxelize(); a\n"
+                       "transform must have uniform scale.",
+                       kLevelSetCall)
+                 .c_str())
+        .def("solid", &solidWith, py::arg("vertices"), py::arg("triangles"),
+             docstring("The solid a mesh bounds, as a BoolGrid 'solid': the surface voxels and every voxel\n"
+                       "whose centre is inside; regions wholly inside are active tiles; metadata 'svo:sign' as\n"
+                       "level_set(). Arrays as voxelize().",
+                       kSolidCall)
+                 .c_str())
         .def("device", &svo::Voxelizer::deviceDescription, "The GPU's vendor, renderer and version.");
 
     py::class_<PyOctree>(m, "Octree",
                          "svo's sparse voxel octree: one array of nodes (child, child mask), children c = x + 2y + "
                          "4z, and 8^3 bricks of OpenVDB leaf masks. Make one with Voxelizer.octree(), "
                          "Octree.from_grid() or svo.load().")
-        .def_static("from_grid", [](const py::handle& grid, const std::string& backend) {
-            return octreeFromGrid(grid, nullptr, backend);
-        }, py::arg("grid"), py::arg("backend") = "auto",
-            "The active voxels of a pyopenvdb grid (uniform voxel size, whole-voxel translation) as an octree.")
+        .def_static("from_grid", &octreeFromGrid, py::arg("grid"),
+                    docstring("The active voxels of a pyopenvdb grid (uniform voxel size, whole-voxel "
+                              "translation) as an octree.",
+                              kFromGridCall)
+                        .c_str())
         .def_property_readonly("nodes", [](py::object self) {
             const auto& o = self.cast<const PyOctree&>().octree;
             return view<uint32_t>(o.nodes.data(), o.nodes.size(), 2, self);
@@ -1009,41 +1252,37 @@ PYBIND11_MODULE(_svo, m)
 
     m.def(
         "voxelize",
-        [](const py::handle& vertices, const py::handle& triangles, std::optional<double> resolution,
-           std::optional<double> voxelSize, const py::object& transform, const std::string& grid,
-           const std::string& backend, const std::vector<std::string>& attributes, const std::string& mode,
-           std::optional<double> gpuMemory) {
+        [](const py::handle& vertices, const py::handle& triangles, const py::kwargs& kwargs) {
             svo::Voxelizer v;
-            return voxelizeWith(v, vertices, triangles, resolution, voxelSize, transform, grid, backend, attributes,
-                                mode, gpuMemory);
+            return voxelizeWith(v, vertices, triangles, kwargs);
         },
-        py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("resolution") = py::none(),
-        py::arg("voxel_size") = py::none(), py::arg("transform") = py::none(), py::arg("grid") = "bool",
-        py::arg("backend") = "auto", py::arg("attributes") = std::vector<std::string>{},
-        py::arg("mode") = "conservative", py::arg("gpu_memory") = py::none(),
-        (std::string("One-off call with a Voxelizer made for it (keep a Voxelizer for repeated calls).\n") +
-         kVoxelizeDoc)
+        py::arg("vertices"), py::arg("triangles"),
+        docstring(std::string("One-off call with a Voxelizer made for it (keep a Voxelizer for repeated calls).\n") +
+                      kVoxelizeDoc,
+                  kVoxelizeCall)
             .c_str());
 #ifdef SVO_WITH_VALIDATE
-    m.def("validate", &validateWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
-          py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(), py::arg("transform") = py::none(),
-          py::arg("backend") = "auto", py::arg("holes") = true, py::arg("strict") = false, py::arg("worst") = 5,
-          py::arg("mode") = "conservative",
-          "Voxelize the mesh and check it against CGAL's exact tests, as `svo validate` does (triangle/box for "
-          "mode 'conservative', triangle/segment and a 6-connected hole fill for 'thin'): a dict with mode, voxels, required (R), exact (E), allowed (A), missed (R \\ G), missed_exact (E \\ G), boundary, extra, worst_missed, worst_extra, holes "
-          "(applies, leak, path, ...), octree_consistent, epsilon, passed and reason.");
-    m.def("validate_level_set", &validateLevelSetWith, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
-          py::arg("resolution") = py::none(), py::arg("voxel_size") = py::none(), py::arg("transform") = py::none(),
-          py::arg("exterior_band") = 3.0, py::arg("interior_band") = 3.0, py::arg("sign") = "auto",
-          py::arg("winding_accuracy") = 1.5, py::arg("backend") = "auto", py::arg("worst") = 5,
-          py::arg("openvdb") = true,
-          "Make the level set (as Voxelizer.level_set) and check it as `svo validate --sdf` does: CGAL's exact "
-          "distance at every active voxel, CGAL's side on closed meshes, and the band both ways, with a "
-          "tolerance of 1e-4 voxel; beside OpenVDB's meshToLevelSet when openvdb=True. A dict with max_error, "
-          "rms_error, over_tolerance, sign_checked, sign_reason, sign_disagreements, sign_near_surface, missing, "
-          "extra, band_unjudged, the worst cases, openvdb (active, common, only_svo, only_openvdb, "
-          "sign_disagreements, max_difference, ...), passed and reason.");
+    m.def("validate", &validateWith, py::arg("vertices"), py::arg("triangles"),
+          docstring("Voxelize the mesh and check it against CGAL's exact tests, as `svo validate` does (triangle/box "
+                    "for\nmode 'conservative', triangle/segment and a 6-connected hole fill for 'thin'): a dict with "
+                    "mode,\nvoxels, required (R), exact (E), allowed (A), missed (R \\ G), missed_exact (E \\ G), "
+                    "boundary,\nextra, worst_missed, worst_extra, holes (applies, leak, path, ...), "
+                    "octree_consistent,\nepsilon, passed and reason.",
+                    kValidateCall)
+              .c_str());
+    m.def("validate_level_set", &validateLevelSetWith, py::arg("vertices"), py::arg("triangles"),
+          docstring("Make the level set (as Voxelizer.level_set) and check it as `svo validate --sdf` does: CGAL's "
+                    "exact\ndistance at every active voxel, CGAL's side on closed meshes, and the band both ways, "
+                    "with a\ntolerance of 1e-4 voxel; beside OpenVDB's meshToLevelSet when openvdb=True. A dict with "
+                    "max_error,\nrms_error, over_tolerance, sign_checked, sign_reason, sign_disagreements, "
+                    "sign_near_surface,\nmissing, extra, band_unjudged, the worst cases, openvdb (active, common, "
+                    "only_svo, only_openvdb,\nsign_disagreements, max_difference, ...), passed and reason.",
+                    kValidateLevelSetCall)
+              .c_str());
 #endif
+    m.def("_options", &optionsTable,
+          "Internal: per call ('Voxelizer.voxelize', 'voxelize', ...), each keyword's default and doc, from the "
+          "declarations the calls read their keywords by (the stub's test compares them).");
     m.def("active_voxels", &activeVoxels, py::arg("grid"),
           "The index coordinates of a grid's active voxels (tiles expanded) as a (K, 3) int32 array, in "
           "OpenVDB's tree order; any transform.");

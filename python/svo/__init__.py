@@ -16,6 +16,7 @@ except ImportError as e:  # pragma: no cover
     raise ImportError("svo returns pyopenvdb grids: install python3-openvdb") from e
 
 from ._svo import Octree, OutOfMemoryError, Voxelizer, active_voxels, load, read_mesh, voxelize
+from ._svo import _options  # noqa: F401  (internal: each call's keywords, for the stub's test)
 
 __all__ = ["Voxelizer", "Octree", "voxelize", "active_voxels", "read_mesh", "load", "OutOfMemoryError"]
 

@@ -1,4 +1,7 @@
-"""Type stubs for svo (the compiled module has no annotations of its own)."""
+"""Type stubs for svo (the compiled module has no annotations of its own).
+
+The keywords and defaults here are checked against the module's own declarations
+(svo._options()) by python/tests/test_options.py."""
 from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -9,19 +12,20 @@ Grid = Any  # a pyopenvdb BoolGrid, FloatGrid or Vec3SGrid
 Transform = Any  # a pyopenvdb.Transform, or a 4x4 matrix
 
 class Voxelizer:
-    def __init__(self, device: str = "auto", program_cache: str = "") -> None: ...
+    def __init__(self, *, device: str = "", gl_debug: bool = False, program_cache: str = "") -> None: ...
     def voxelize(
         self,
         vertices: ArrayLike,
         triangles: ArrayLike,
         *,
-        resolution: Optional[float] = None,
+        resolution: Optional[int] = None,
         voxel_size: Optional[float] = None,
         transform: Optional[Union[Transform, ArrayLike]] = None,
         grid: str = "bool",
         backend: str = "auto",
-        attributes: Sequence[str] = (),
         mode: str = "conservative",
+        conservative: str = "auto",
+        attributes: Sequence[str] = (),
         gpu_memory: Optional[int] = None,
     ) -> Union[Grid, Dict[str, Any]]: ...
     def octree(
@@ -29,12 +33,13 @@ class Voxelizer:
         vertices: ArrayLike,
         triangles: ArrayLike,
         *,
-        resolution: Optional[float] = None,
+        resolution: Optional[int] = None,
         voxel_size: Optional[float] = None,
         transform: Optional[Union[Transform, ArrayLike]] = None,
         backend: str = "auto",
-        attributes: Sequence[str] = (),
         mode: str = "conservative",
+        conservative: str = "auto",
+        attributes: Sequence[str] = (),
         gpu_memory: Optional[int] = None,
     ) -> "Octree": ...
     def level_set(
@@ -42,22 +47,23 @@ class Voxelizer:
         vertices: ArrayLike,
         triangles: ArrayLike,
         *,
-        resolution: Optional[float] = None,
+        resolution: Optional[int] = None,
         voxel_size: Optional[float] = None,
         transform: Optional[Union[Transform, ArrayLike]] = None,
         exterior_band: float = 3.0,
         interior_band: float = 3.0,
         unsigned: bool = False,
+        closest_triangle: bool = False,
         sign: str = "auto",
         winding_accuracy: float = 1.5,
         backend: str = "auto",
-    ) -> Grid: ...
+    ) -> Union[Grid, Tuple[Grid, npt.NDArray[np.int32], npt.NDArray[np.int32]]]: ...
     def solid(
         self,
         vertices: ArrayLike,
         triangles: ArrayLike,
         *,
-        resolution: Optional[float] = None,
+        resolution: Optional[int] = None,
         voxel_size: Optional[float] = None,
         transform: Optional[Union[Transform, ArrayLike]] = None,
         sign: str = "auto",
@@ -68,7 +74,7 @@ class Voxelizer:
 
 class Octree:
     @staticmethod
-    def from_grid(grid: Grid, backend: str = "auto") -> "Octree": ...
+    def from_grid(grid: Grid, *, backend: str = "auto") -> "Octree": ...
     @property
     def nodes(self) -> npt.NDArray[np.uint32]: ...
     @property
@@ -119,13 +125,14 @@ def voxelize(
     vertices: ArrayLike,
     triangles: ArrayLike,
     *,
-    resolution: Optional[float] = None,
+    resolution: Optional[int] = None,
     voxel_size: Optional[float] = None,
     transform: Optional[Union[Transform, ArrayLike]] = None,
     grid: str = "bool",
     backend: str = "auto",
-    attributes: Sequence[str] = (),
     mode: str = "conservative",
+    conservative: str = "auto",
+    attributes: Sequence[str] = (),
     gpu_memory: Optional[int] = None,
 ) -> Union[Grid, Dict[str, Any]]: ...
 def active_voxels(grid: Grid) -> npt.NDArray[np.int32]: ...
@@ -134,10 +141,11 @@ def validate(
     vertices: ArrayLike,
     triangles: ArrayLike,
     *,
-    resolution: Optional[float] = None,
+    resolution: Optional[int] = None,
     voxel_size: Optional[float] = None,
     transform: Optional[Union[Transform, ArrayLike]] = None,
     backend: str = "auto",
+    conservative: str = "auto",
     holes: bool = True,
     strict: bool = False,
     worst: int = 5,
@@ -147,7 +155,7 @@ def validate_level_set(
     vertices: ArrayLike,
     triangles: ArrayLike,
     *,
-    resolution: Optional[float] = None,
+    resolution: Optional[int] = None,
     voxel_size: Optional[float] = None,
     transform: Optional[Union[Transform, ArrayLike]] = None,
     exterior_band: float = 3.0,
