@@ -151,6 +151,9 @@ bool haveDisplay()
 
 void runView(const ViewArgs& a, const CLI::App& cmd)
 {
+    // The viewer and its lighting draw with OpenGL: without it, one line and no other work.
+    if (const std::string why = gl::openGlMissing(); !why.empty())
+        throw DeviceError("svo view needs OpenGL, which cannot be loaded here: " + why);
     const bool window = a.screenshot.empty();
     if (window) {
 #ifndef SVO_WITH_WINDOW
