@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "svo/core/error.h"
 #include "svo/gl/context.h"
 
 namespace svo::app {
@@ -14,6 +15,8 @@ void addGlInfoCommand(CLI::App& app)
     CLI::App* cmd = app.add_subcommand("glinfo", "Create the headless GL context and print what it is");
     cmd->add_option("--device", *device, "EGL device: auto, hardware, software or an index (env SVO_EGL_DEVICE)");
     cmd->callback([device] {
+        if (const std::string why = gl::openGlMissing(); !why.empty())
+            throw DeviceError("svo glinfo needs OpenGL, which cannot be loaded here: " + why);
         gl::Context context(gl::ContextOptions{*device, false, ""});
         const auto& i = context.info();
         fmt::print("EGL        {}\nvendor     {}\nrenderer   {}\nversion    {}\n", i.eglDevice, i.vendor, i.renderer,

@@ -2,7 +2,9 @@
 /// @file progress.h
 /// A progress line on stderr for any step that runs longer than a second.
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
+#include <cstdio>
 #include <memory>
 #include <exception>
 #include <mutex>
@@ -12,14 +14,26 @@
 
 namespace svo::app {
 
-/// Shows "<label> ... 42 %, 3.2 s, about 4 s left" on stderr, refreshed 4
-/// times a second, once the step has run for one second (the share and the
-/// estimate appear once set() has been called); on a non-terminal it prints
-/// one line when the step starts being slow and one when it ends. Quiet
-/// steps print nothing.
+/// When a Progress speaks, and where.
+struct ProgressTiming {
+    std::chrono::milliseconds slowAfter{1000}; ///< a step is slow, and shown, after this long
+    std::chrono::milliseconds refresh{250};    ///< a terminal's line is rewritten this often
+    std::chrono::milliseconds logEvery{5000};  ///< elsewhere (a log), one line this often
+    std::FILE* out = stderr;
+    /// Whether `out` is a terminal: -1 asks isatty, 0 or 1 says (for tests).
+    int terminal = -1;
+};
+
+/// Shows "<label> ... 42 %, 3.2 s, about 4 s left" once the step has run for
+/// one second (the share and the estimate appear once set() has been
+/// called). On a terminal the line is rewritten 4 times a second; elsewhere
+/// (stderr to a log or a pipe) the step prints "<label> ..." when it becomes
+/// slow, then one such line every 5 seconds, with no carriage returns.
+/// Either way one line at the end says how long it took. Quiet steps print
+/// nothing.
 class Progress {
 public:
-    explicit Progress(std::string label);
+    explicit Progress(std::string label, ProgressTiming timing = {});
     ~Progress();
     Progress(const Progress&) = delete;
     Progress& operator=(const Progress&) = delete;
@@ -30,6 +44,7 @@ public:
 private:
     void run();
     std::string label_;
+    ProgressTiming timing_;
     std::atomic<double> fraction_{-1.0};
     std::mutex mutex_;
     std::condition_variable cv_;

@@ -152,6 +152,9 @@ bool haveDisplay()
 /// Window or screenshot: refuses the flags of the other, and a window without a display.
 void checkOutputKind(const ViewArgs& a)
 {
+    // The viewer and its lighting draw with OpenGL: without it, one line and no other work.
+    if (const std::string why = gl::openGlMissing(); !why.empty())
+        throw DeviceError("svo view needs OpenGL, which cannot be loaded here: " + why);
     if (a.screenshot.empty()) {
 #ifndef SVO_WITH_WINDOW
         throw Unsupported("this svo was built without its window (SVO_WITH_WINDOW=OFF); give --screenshot PNG to render "

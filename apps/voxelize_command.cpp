@@ -261,7 +261,15 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     const GridSpec grid = makeGrid(mesh, request);
     // An OpenVDB output must be able to hold the voxel size: refused before the GPU works.
     if (!timingOnly && outputFormat(output) != OutputFormat::Svo) vdb::checkVdbGrid(grid, output);
-    if (device.valid()) device.get();
+    if (device.valid()) {
+        try {
+            device.get();
+        } catch (const DeviceError&) {
+            // Backend::Auto with no GL runs on the CPU (gl::Device::withoutGl): the call decides,
+            // and fails with this error where the work needs the GPU.
+            if (call.options.backend != Backend::Auto || call.options.dilation != Dilation::Auto) throw;
+        }
+    }
     if (a.field()) {
         runField(a, a.levelSet.levelSetOptions(cmd), call, mesh, load, scene, grid, request, output, timingOnly, start);
         return outputs.commit();

@@ -72,7 +72,7 @@ TARGETS = {
 }
 
 # What a layer may not touch outside svo: header prefixes and CMake targets.
-NO_GL = (r"^(GL|EGL|GLFW)/", r"OpenGL::|glfw|EGL")
+NO_GL = (r"^(GL|EGL|GLFW|epoxy)/", r"OpenGL::|glfw|EGL|epoxy")
 NO_VDB = (r"^(openvdb|nanovdb)/", r"OpenVDB::")
 FORBIDDEN = {
     "core": [NO_GL, NO_VDB, (r"^CGAL/|^embree3/|^vtk", r"CGAL::|embree|VTK::")],

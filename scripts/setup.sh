@@ -13,7 +13,7 @@ packages=(
   build-essential cmake ninja-build pkg-config ccache
   libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libtbb-dev
   libopenmesh-dev libcgal-dev libcgal-demo
-  libglfw3-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  libglfw3-dev libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libvtk9-dev xvfb xauth libpng-dev libimgui-dev
   libcli11-dev libfmt-dev libgtest-dev libfast-float-dev
   pybind11-dev python3-dev python3-pytest python3-numpy

@@ -1,8 +1,8 @@
 // The public API (svo/svo.h) on OpenVDB types, against independent references:
 // CGAL's exact triangle/box test in the index space that OpenVDB's own
 // Transform::worldToIndex gives, and identities that must hold exactly.
-#include <EGL/egl.h>
 #include <atomic>
+#include <epoxy/egl.h>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <nanovdb/util/IO.h>

@@ -14,8 +14,7 @@
 #include <set>
 #include <vector>
 
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/glcorearb.h>
+#include "svo/gl/gl_api.h" // plain GL, through epoxy, for the reference drawing
 
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"

@@ -10,9 +10,7 @@
 #include <mutex>
 #include <optional>
 
-#define EGL_EGLEXT_PROTOTYPES 0
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
+#include <epoxy/egl.h>
 
 #include "svo/gl/gl_api.h"
 #include "svo/gl/buffer.h"
@@ -81,6 +79,25 @@ std::vector<Candidate> candidatesFor(const std::string& want)
         candidates.push_back({0, nullptr, "default EGL display", false});
     }
     return candidates;
+}
+
+/// Why libEGL or desktop GL cannot be loaded: "" when both load. epoxy
+/// loads them itself on first use, but ends the process where it cannot, so
+/// they are tried here first, and kept loaded. Asked once per process.
+std::string librariesMissing()
+{
+    static const std::string why = [] {
+        if (!dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL)) {
+            const char* e = dlerror();
+            return fmt::format("libEGL.so.1 cannot be loaded ({})", e ? e : "not found");
+        }
+        // epoxy takes desktop GL's core entry points from libOpenGL.so.0 (GLVND), else libGL.so.1.
+        if (!dlopen("libOpenGL.so.0", RTLD_NOW | RTLD_LOCAL) && !dlopen("libGL.so.1", RTLD_NOW | RTLD_LOCAL))
+            return std::string("neither libOpenGL.so.0 nor libGL.so.1 can be loaded");
+        if (!epoxy_has_egl()) return std::string("libepoxy cannot load libEGL.so.1");
+        return std::string();
+    }();
+    return why;
 }
 
 std::string eglErrorName(EGLint e) { return fmt::format("EGL error 0x{:04x}", unsigned(e)); }
@@ -360,6 +377,9 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
 #else
     const bool debug = options.debug;
 #endif
+    if (const std::string why = openGlMissing(); !why.empty())
+        throw DeviceError("OpenGL is not available: " + why +
+                          "; svo's GPU work needs EGL and an OpenGL 4.5 driver (the CPU backend needs neither)");
     if (options.adoptCurrent) {
         Scope::Saved host;
         host.record();
@@ -413,8 +433,11 @@ Context::~Context()
 
 const ContextInfo& Context::info() const { return impl_->info; }
 
+std::string openGlMissing() { return librariesMissing(); }
+
 bool softwareDevice(const std::string& device)
 {
+    if (!librariesMissing().empty()) return false;
     const std::vector<Candidate> candidates = candidatesFor(deviceWanted(device));
     // Only an EGL device says what it is; the fallbacks are known once tried.
     return !candidates.empty() && candidates.front().platform == EGL_PLATFORM_DEVICE_EXT &&

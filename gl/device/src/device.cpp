@@ -1,7 +1,10 @@
 #include "svo/gl/device.h"
 
+#include <cstdlib>
 #include <fmt/format.h>
 #include <utility>
+
+#include "svo/core/error.h"
 
 namespace svo::gl {
 
@@ -13,10 +16,34 @@ Device& Device::operator=(Device&&) noexcept = default;
 Context& Device::context()
 {
     if (!context_) {
-        context_ = std::make_unique<Context>(ContextOptions{options_.device, options_.glDebug, options_.programCache});
+        // A machine without GL stays so: the reason is kept, not paid for again on every call.
+        if (!failed_.empty()) throw DeviceError(failed_);
+        try {
+            context_ = std::make_unique<Context>(
+                ContextOptions{options_.device, options_.glDebug, options_.programCache});
+        } catch (const DeviceError& e) {
+            failed_ = e.what();
+            throw;
+        }
         unreportedEglMs_ = context_->info().setupMs;
     }
     return *context_;
+}
+
+bool Device::withoutGl(bool create)
+{
+    if (context_) return false;
+    const char* env = std::getenv("SVO_EGL_DEVICE");
+    const std::string want = !options_.device.empty() ? options_.device : env && *env ? env : "auto";
+    if (want != "auto") return false;
+    if (!openGlMissing().empty()) return true;
+    if (!create) return !failed_.empty();
+    try {
+        context();
+        return false;
+    } catch (const DeviceError&) {
+        return true;
+    }
 }
 
 bool Device::software(bool create)

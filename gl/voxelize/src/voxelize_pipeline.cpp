@@ -107,10 +107,18 @@ Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool cr
         throw InvalidInput("a dilation mode applies to the raster backend; the compute backend needs none");
     if (settings.backend != Backend::Auto) return settings.backend;
     if (settings.dilation != Dilation::Auto) return Backend::Raster;
+    // No GL on this machine (and no device named): the CPU reference does the work.
+    if (device.withoutGl(create)) return Backend::Cpu;
     // Measured (bench/results/nvidia-h100/compute.md): compute is the faster
     // on a hardware GPU; on llvmpipe the two are close, and raster, validated
     // longest, stays.
     return device.software(create) ? Backend::Raster : Backend::Compute;
+}
+
+bool runsOnCpu(Device& device, const VoxelizeSettings& settings, bool create)
+{
+    if (settings.backend == Backend::Cpu) return true;
+    return settings.backend == Backend::Auto && settings.dilation == Dilation::Auto && device.withoutGl(create);
 }
 
 void describeBackend(Device& device, Backend backend, VoxelizeStats& stats)

@@ -93,10 +93,18 @@ struct ProgramStats {
     std::vector<std::string> warnings; ///< the program cache's (at most one: a folder that cannot be written)
 };
 
+/// @brief Why no OpenGL can be loaded in this process: the library that is
+/// missing (libEGL.so.1, or both libOpenGL.so.0 and libGL.so.1) and the
+/// loader's words, or "" when they load. svo links no GL library (libepoxy
+/// loads them on first use), so a program that never makes a Context runs
+/// where there is none. Tries the libraries once per process; creates no context.
+std::string openGlMissing();
+
 /// Whether the EGL device a Context with this device option (ContextOptions::device,
 /// else SVO_EGL_DEVICE, else "auto") would try first is a software rasterizer
 /// (EGL_MESA_device_software: llvmpipe), asked without creating a context
-/// (about 1 ms against 25-80 ms for a context). False when EGL lists no devices.
+/// (about 1 ms against 25-80 ms for a context). False when EGL lists no devices
+/// or cannot be loaded.
 bool softwareDevice(const std::string& device);
 
 /// Owns an EGL context on a display shared with other Contexts of the same
@@ -105,8 +113,10 @@ bool softwareDevice(const std::string& device);
 /// from different threads at once.
 class Context {
 public:
-    /// Throws svo::Error with a one-line reason when no GL 4.5 core context can
-    /// be had (or, adopting, when none is current or it is older than 4.5).
+    /// Throws svo::DeviceError with a one-line reason when no GL 4.5 core
+    /// context can be had: no GL library to load (openGlMissing()), no EGL
+    /// display or device that makes one, or, adopting, none current or one
+    /// older than 4.5.
     /// Leaves the calling thread's current context as it was.
     explicit Context(const ContextOptions& options = {});
     ~Context();

@@ -6,6 +6,10 @@
 /// A CPU-only caller never creates a context; the first GPU call does (or
 /// start(), to overlap it with other work). The Device reports start-up once:
 /// takeStartup() hands over what was paid since the previous report.
+///
+/// Without GL (no libEGL or libOpenGL to load, or no EGL display that makes
+/// an OpenGL 4.5 context) context() throws svo::DeviceError, and withoutGl()
+/// tells the pipelines to run Backend::Auto on the CPU instead.
 #include <memory>
 #include <string>
 #include <vector>
@@ -69,8 +73,19 @@ public:
     Device& operator=(Device&&) noexcept;
 
     /// @brief The GL context, created on first use.
-    /// @throw svo::Error when no usable GPU or driver is found.
+    /// @throw svo::DeviceError when no usable GPU or driver is found; a Device
+    ///        that failed once keeps the reason and throws it again without
+    ///        trying again.
     Context& context();
+    /// @brief Whether this Device's work has no GL to run on, so that
+    /// Backend::Auto runs on the CPU: the device option (or SVO_EGL_DEVICE)
+    /// leaves the choice to svo ("" or "auto") and no GL library can be loaded
+    /// or, with @a create, no context can be made (it is made now, as
+    /// context() would). A device named by the caller is never given up for
+    /// the CPU: its failure is the call's. Throws nothing.
+    /// @param create with false and no context yet, only the GL libraries are
+    ///        tried (a display is known only once tried)
+    bool withoutGl(bool create = true);
     /// @brief Creates the context now (see context()).
     void start() { context(); }
     /// Whether the context exists.
@@ -94,6 +109,7 @@ private:
     std::unique_ptr<Context> context_;
     double unreportedEglMs_ = 0; // the context's creation, until takeStartup reports it
     ProgramStats reported_;      // the programs' statistics already reported
+    std::string failed_;         // why the context could not be made; "" until a failure
 };
 
 } // namespace gl

@@ -1,10 +1,10 @@
 #pragma once
-// OpenGL 4.5 core declarations. Entry points come straight from GLVND's
-// libOpenGL, which dispatches to the context made current through EGL.
-#ifndef GL_GLEXT_PROTOTYPES
-#define GL_GLEXT_PROTOTYPES 1
-#endif
-#include <GL/glcorearb.h>
+// OpenGL 4.5 core declarations, through libepoxy: each entry point is a
+// pointer epoxy resolves on its first call (libOpenGL and eglGetProcAddress,
+// loaded then), so nothing that includes this links a GL library. GL may be
+// called only in a context that a gl::Context made current, which fails
+// first, with a DeviceError, where no GL can be loaded.
+#include <epoxy/gl.h>
 
 #ifndef GL_CONSERVATIVE_RASTERIZATION_NV
 #define GL_CONSERVATIVE_RASTERIZATION_NV 0x9346

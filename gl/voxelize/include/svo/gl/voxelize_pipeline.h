@@ -140,11 +140,20 @@ VoxelizeStats medianStats(const std::vector<VoxelizeStats>& runs);
 namespace gl {
 
 /// @brief The backend a call with @a settings runs on: Backend::Auto resolved
-/// (a dilation mode's raster backend when one is asked for; else compute on a
-/// hardware GPU, raster on a software rasterizer such as llvmpipe).
-/// @param create with false and no context yet, none is created (Device::software)
+/// (a dilation mode's raster backend when one is asked for; else the CPU
+/// where there is no GL (Device::withoutGl), compute on a hardware GPU, raster
+/// on a software rasterizer such as llvmpipe).
+/// @param create with false and no context yet, none is created (Device::software,
+///        Device::withoutGl)
 /// @throw svo::Error for a dilation mode with Backend::Compute.
 Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool create = true);
+
+/// @brief Whether a call with @a settings runs on the CPU: Backend::Cpu, or
+/// Backend::Auto (with no dilation mode) where there is no GL
+/// (Device::withoutGl). For the passes whose GPU path has no raster/compute
+/// choice (level sets, solids). Throws nothing.
+/// @param create as for resolveBackend
+bool runsOnCpu(Device& device, const VoxelizeSettings& settings, bool create = true);
 
 /// @brief Where a call runs, in its statistics: backend, device and renderer
 /// names (the GPU's, or "cpu").
