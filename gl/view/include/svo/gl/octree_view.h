@@ -111,7 +111,7 @@ struct AmbientOcclusion {
     /// slower and misses thinner walls less. Near the surface, where a
     /// sample is finer than the cone, at most twice the share of its width.
     double step = 0.5;
-    Source source = Source::Volume;
+    Source source = Source::Volume; ///< where cones read opacity
     /// Volume: its largest side, texels: a power of two, 8 to 2048, and at
     /// least an eighth of the grid's largest side (a texel holds at most 8³
     /// voxels: 256 serves grids up to 2048 wide); wider grids are an error
@@ -162,7 +162,7 @@ constexpr const auto& enumNames(AmbientOcclusion::Filter) { return kAoFilterName
 /// pictures against the path-traced reference (svo/reference/path_trace.h).
 struct Illumination {
     enum class Mode { Off, Direct, Global }; ///< none; direct light with shadows; plus one diffuse bounce
-    Mode mode = Mode::Off;
+    Mode mode = Mode::Off;                ///< off by default
     Lights lights;                        ///< world units; at least one light when on; no environment light
     Vec3d albedo{0.75, 0.75, 0.75};       ///< ρ where the octree has no colour channel, each in [0, 1]
     int cones = 5;                        ///< indirect light: 1 (the normal) to 16 cones
