@@ -25,7 +25,7 @@ namespace svo {
 
 /// @brief Where voxelization runs.
 enum class Backend {
-    Auto,    ///< Compute on a GPU, Raster on a software renderer (llvmpipe): the faster, as measured
+    Auto,    ///< Compute on a GPU, Raster on a software renderer (llvmpipe): the faster of the two there (bench/results/*/compute.md)
     Raster,  ///< GPU: rasterization along each triangle's dominant axis
     Compute, ///< GPU: triangle-parallel compute shaders; the same voxels as Raster
     Cpu,     ///< the double-precision CPU reference (tests; no GL context needed)
