@@ -19,27 +19,34 @@
 
 namespace svo {
 
+/// @brief A camera in world units (see the file comment for its frame).
 struct Camera {
-    Vec3d eye{0, 0, 1};
-    Vec3d target{0, 0, 0};
-    Vec3d up{0, 1, 0};
-    bool orthographic = false;
+    Vec3d eye{0, 0, 1};        ///< where the camera is
+    Vec3d target{0, 0, 0};     ///< the point seen at the image's centre
+    Vec3d up{0, 1, 0};         ///< need not be orthogonal to the view; not along it
+    bool orthographic = false; ///< orthographic (height) or perspective (fovYDegrees)
     double fovYDegrees = 40.0; ///< perspective: vertical field of view
     double height = 1.0;       ///< orthographic: world units the image spans vertically
 };
 
-/// The rules of a camera's numbers, for every front door (the GL view, the
-/// reference, `svo view --ortho/--fov`), each naming the value as its caller
-/// calls it. Throw svo::InvalidInput "<name> <value>: <the rule>" (argument()
-/// `name`); NaN never passes.
-/// Camera::height of an orthographic view: a positive finite number of world units.
+// The rules of a camera's numbers, for every front door (the GL view, the
+// reference, `svo view --ortho/--fov`), each naming the value as its caller
+// calls it; NaN never passes.
+
+/// @brief The rule of Camera::height of an orthographic view: a positive
+/// finite number of world units.
+/// @param name the value's name for the caller (a flag, a keyword, a field)
+/// @throw svo::InvalidInput "<name> <value>: <the rule>" (argument() @a name)
 inline void checkOrthographicHeight(double height, const std::string& name)
 {
     if (!(height > 0) || !std::isfinite(height))
         throw InvalidInput(name, fmt::format("{}: an orthographic view spans a positive finite number of world units",
                                              height));
 }
-/// Camera::fovYDegrees of a perspective view: between 0 and 180 degrees, both excluded.
+/// @brief The rule of Camera::fovYDegrees of a perspective view: between 0
+/// and 180 degrees, both excluded.
+/// @param name the value's name for the caller
+/// @throw svo::InvalidInput "<name> <value>: <the rule>" (argument() @a name)
 inline void checkFieldOfView(double degrees, const std::string& name)
 {
     if (!(degrees > 0 && degrees < 180))

@@ -1,6 +1,6 @@
 #pragma once
 /// @file cpu_voxelizer.h
-/// The double-precision reference voxelizer.
+/// @brief The double-precision reference voxelizer.
 ///
 /// Method: for each triangle, along its dominant normal axis, walk the columns
 /// of its 2D bounding box; in each column take the range of the triangle's
@@ -27,6 +27,8 @@
 namespace svo {
 
 /// @brief The voxels of @a mesh on @a grid, in double precision on the CPU.
+/// @param mesh   a mesh already checked (validateMesh): indices must be valid
+/// @param grid   a grid already checked (checkGrid)
 /// @param guard  voxels to grow (> 0) or shrink (< 0) what is tested by
 /// @param mode   the cube (Conservative) or the centre segments (Thin)
 /// @param poll   when set, called on the calling thread between batches of
@@ -35,7 +37,7 @@ namespace svo {
 /// @param report when set, receives the run's stage ("voxelize (cpu)") and
 ///        its list entries (voxels written, duplicates included)
 /// @return the grid and its voxels as sorted, unique keys
-/// @throw what @a poll throws, and std::bad_alloc; the mesh's indices must be valid.
+/// @throw what @a poll throws (svo::Interrupted, typically), and std::bad_alloc
 Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, double guard = 0.0,
                          VoxelMode mode = VoxelMode::Conservative,
                          const std::function<void(double)>& poll = nullptr, RunStats* report = nullptr);

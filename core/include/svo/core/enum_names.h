@@ -23,8 +23,8 @@ namespace svo {
 /// @brief One value of an enum and its name.
 template <typename E>
 struct EnumName {
-    E value;
-    std::string_view name;
+    E value;               ///< the value
+    std::string_view name; ///< its name, as front ends write it
 };
 
 /// @brief The name of @a value; empty for a value the table lacks.
@@ -56,9 +56,10 @@ std::string quotedNames()
     return out;
 }
 
-/// @brief The value named @a text. Throws svo::InvalidInput whose argument()
-/// is @a identifier (the option, flag or keyword that gave the text):
-/// "<identifier>: expected 'a', 'b' or 'c', got 'x'".
+/// @brief The value named @a text.
+/// @param identifier the option, flag or keyword that gave the text
+/// @throw svo::InvalidInput whose argument() is @a identifier for a name the
+///        table lacks: "<identifier>: expected 'a', 'b' or 'c', got 'x'"
 template <typename E>
 E parse(std::string_view text, const std::string& identifier)
 {

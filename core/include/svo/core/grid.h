@@ -1,6 +1,6 @@
 #pragma once
 /// @file grid.h
-/// The voxel grid: OpenVDB's index convention plus the local frame the GPU works in.
+/// @brief The voxel grid: OpenVDB's index convention plus the local frame the GPU works in.
 ///
 /// Voxel (i,j,k) has its centre at index point (i,j,k) and covers the closed
 /// cube [i-1/2, i+1/2] x ... . World = voxelSize * index + translation, where
@@ -21,72 +21,85 @@
 
 namespace svo {
 
+/// @brief A grid: its lattice (voxel size and whole-voxel shift) and the
+/// local range the GPU works in (anchor and dims).
 struct GridSpec {
-    double voxelSize = 1.0;
+    double voxelSize = 1.0;          ///< world units per voxel
     std::array<int64_t, 3> shift{};  ///< translation = voxelSize * shift
     std::array<int64_t, 3> anchor{}; ///< index of local (0,0,0); multiple of 8
     std::array<uint32_t, 3> dims{};  ///< local voxel range [0, dims) per axis
 
-    /// World position -> OpenVDB index space (double): (world - translation) / voxelSize.
+    /// @brief World position -> OpenVDB index space (double): (world - translation) / voxelSize.
     Vec3d toIndex(const Vec3d& world) const;
-    /// World position -> local index coordinates (double).
+    /// @brief World position -> local index coordinates (double).
     Vec3d toLocal(const Vec3d& world) const;
-    /// Local integer coordinate -> OpenVDB index coordinate.
+    /// @brief Local integer coordinate -> OpenVDB index coordinate.
     std::array<int64_t, 3> toGlobal(const std::array<uint32_t, 3>& local) const
     {
         return {anchor[0] + local[0], anchor[1] + local[1], anchor[2] + local[2]};
     }
+    /// @brief The world position of index (0, 0, 0): voxelSize * shift.
     std::array<double, 3> translation() const
     {
         return {voxelSize * double(shift[0]), voxelSize * double(shift[1]), voxelSize * double(shift[2])};
     }
+    /// @brief The largest of dims.
     uint32_t maxDim() const;
-    /// Guard band, in voxels: 32 float ulps (2^-24 each) of the largest local
+    /// @brief The guard band, in voxels: 32 float ulps (2^-24 each) of the largest local
     /// dimension, so 16 to 32 ulps of the largest local coordinate.
     /// The GPU grows each cube by epsilon()/2; see docs/precision.md.
     double epsilon() const;
 };
 
-/// How the user asked for the grid: exactly one of the two is positive.
+/// @brief How the user asked for the grid: exactly one of the two is positive.
 struct GridRequest {
     int64_t resolution = 0; ///< voxels along the longest bounding-box side (vdb_tool's dim)
     double voxelSize = 0.0; ///< world units per voxel
 };
 
-/// Largest local extent per axis: voxel keys pack 21 bits per axis.
+/// @brief Largest local extent per axis: voxel keys pack 21 bits per axis.
 constexpr uint32_t kMaxGridDim = 1u << 21;
 
-/// The rules of a grid request's numbers, for every front door: makeGrid
-/// checks with them, and `svo --resolution/--voxel-size` and Python's
-/// resolution=/voxel_size= check what they are given with them under their
-/// own names. Throw svo::InvalidInput "<name> must be ..., got <value>", whose
-/// argument() is `name`; NaN never passes.
-/// GridRequest::resolution: a whole number from 1 to kMaxGridDim - 16.
+// The rules of a grid request's numbers, for every front door: makeGrid
+// checks with them, and `svo --resolution/--voxel-size` and Python's
+// resolution=/voxel_size= check what they are given with them under their
+// own names; NaN never passes.
+
+/// @brief The rule of GridRequest::resolution: a whole number from 1 to kMaxGridDim - 16.
+/// @param name the value's name for the caller (a flag, a keyword, a field)
+/// @throw svo::InvalidInput "<name> must be ..., got <value>" (argument() @a name)
 void checkResolution(double resolution, const std::string& name);
-/// GridRequest::voxelSize: a positive finite number of world units.
+/// @brief The rule of GridRequest::voxelSize: a positive finite number of world units.
+/// @param name the value's name for the caller
+/// @throw svo::InvalidInput "<name> must be ..., got <value>" (argument() @a name)
 void checkVoxelSize(double voxelSize, const std::string& name);
 
-/// The largest multiple of 8 at or below i: brick and OpenVDB leaf origins.
+/// @brief The largest multiple of 8 at or below @a i: brick and OpenVDB leaf origins.
 constexpr int64_t floorTo8(int64_t i) { return i >= 0 ? i / 8 * 8 : -((-i + 7) / 8) * 8; }
 
-/// Throws svo::Error (prefixed with `what`) unless the grid is usable: a
-/// positive finite voxel size, dims within kMaxGridDim, an anchor that is a
-/// multiple of 8, and every global index (anchor + [0, dims)) inside OpenVDB's
-/// int32 coordinates, also after the whole-voxel shift.
+/// @brief Checks that a grid is usable: a positive finite voxel size, dims
+/// within kMaxGridDim, an anchor that is a multiple of 8, and every global
+/// index (anchor + [0, dims)) inside OpenVDB's int32 coordinates, also after
+/// the whole-voxel shift.
+/// @param what prefixes the message (whose grid it is)
+/// @throw svo::InvalidInput for the first rule broken
 void checkGrid(const GridSpec& grid, const std::string& what);
 
-/// Anchor and dims for a mesh on a lattice whose voxel size and whole-voxel
-/// shift are given (a caller's transform). Throws svo::Error (naming
-/// mesh.source) for an empty mesh, a non-finite mapping, or indices beyond
-/// kMaxGridDim or OpenVDB's int32 coordinates.
+/// @brief Anchor and dims for a mesh on a lattice whose voxel size and
+/// whole-voxel shift are given (a caller's transform).
+/// @throw svo::InvalidInput (naming mesh.source) for an empty mesh, a
+///        non-finite mapping, or indices beyond kMaxGridDim or OpenVDB's
+///        int32 coordinates
 GridSpec makeGridOnLattice(const TriangleMesh& mesh, double voxelSize, const std::array<int64_t, 3>& shift);
 
-/// Chooses voxel size, shift, anchor and dims for a mesh. Throws svo::Error for
-/// a bad request (non-positive, non-finite), a mesh with zero extent under
-/// --resolution, or a grid beyond kMaxGridDim or OpenVDB's int32 coordinates.
+/// @brief Chooses voxel size, shift, anchor and dims for a mesh.
+/// @throw svo::InvalidInput for a bad request (both or neither given,
+///        non-positive, non-finite), a mesh with no triangles, or with zero
+///        extent under a resolution, or a grid beyond kMaxGridDim or
+///        OpenVDB's int32 coordinates
 GridSpec makeGrid(const TriangleMesh& mesh, const GridRequest& request);
 
-/// The mesh's vertices in local coordinates, in float, as uploaded to the GPU.
+/// @brief The mesh's vertices in local coordinates, in float, as uploaded to the GPU.
 std::vector<Vec3f> localPositionsFloat(const TriangleMesh& mesh, const GridSpec& grid);
 
 } // namespace svo

@@ -1,12 +1,13 @@
 #pragma once
 /// @file host_memory.h
-/// How much host memory is free, for sizing work that must stay within it.
+/// @brief How much host memory is free, for sizing work that must stay within it.
 #include <cstdint>
 
 namespace svo {
 
-/// Bytes the kernel reports available for new allocations without swapping
-/// (Linux: MemAvailable in /proc/meminfo), or 0 when it cannot be read.
+/// @brief The memory the kernel reports available for new allocations
+/// without swapping (Linux: MemAvailable in /proc/meminfo). Throws nothing.
+/// @return bytes; 0 when it cannot be read
 uint64_t availableHostMemory();
 
 } // namespace svo

@@ -1,6 +1,6 @@
 #pragma once
 /// @file interrupt.h
-/// Cancellation and progress: how a long call hears from its caller.
+/// @brief Cancellation and progress: how a long call hears from its caller.
 ///
 /// A Checkpoint wraps the caller's poll function (the public API adapts an
 /// openvdb::util::NullInterrupter to it). Work calls the checkpoint between
@@ -15,16 +15,20 @@
 
 namespace svo {
 
+/// @brief The caller's poll function, scaled to the part of a call's work at hand.
 class Checkpoint {
 public:
-    /// Gets the percentage done (0..100); returns true to cancel.
+    /// @brief Gets the percentage done (0..100); returns true to cancel.
     using Poll = std::function<bool(int percent)>;
 
     Checkpoint() = default; ///< polls nothing, never cancels
+    /// @brief Polls @a poll over the whole range [0, 1].
     explicit Checkpoint(Poll poll) : poll_(std::move(poll)) {}
 
-    /// `fraction` (0..1) of this part is done. Throws Interrupted when the poll
-    /// asks to stop; `where` names the step for the message.
+    /// @brief Reports progress to the poll, if any.
+    /// @param fraction how much of this part is done, clamped to [0, 1]
+    /// @param where    names the step for the message
+    /// @throw svo::Interrupted when the poll asks to stop
     void operator()(double fraction, const char* where = "") const
     {
         if (!poll_) return;
@@ -33,7 +37,7 @@ public:
             throw Interrupted(std::string("interrupted") + (*where ? std::string(" during ") + where : std::string()));
     }
 
-    /// The sub-range [a, b] of this part (fractions of it) as a part of its own.
+    /// @brief The sub-range [a, b] of this part (fractions of it) as a part of its own.
     Checkpoint part(double a, double b) const
     {
         Checkpoint c = *this;

@@ -11,7 +11,7 @@
 
 namespace svo {
 
-/// Parallel light, as from the sun.
+/// @brief Parallel light, as from the sun.
 struct DirectionalLight {
     /// The direction the light travels (from the light into the scene); need
     /// not be unit length, must not be zero.
@@ -21,17 +21,18 @@ struct DirectionalLight {
     Vec3d irradiance{1, 1, 1};
 };
 
-/// Isotropic point light.
+/// @brief Isotropic point light.
 struct PointLight {
-    Vec3d position{0, 0, 0};
+    Vec3d position{0, 0, 0}; ///< world units
     /// I: radiant intensity (>= 0). A surface at distance r whose normal makes
     /// angle theta with the direction to the light receives I cos(theta) / r².
     Vec3d intensity{1, 1, 1};
 };
 
+/// @brief The lights of a scene.
 struct Lights {
-    std::vector<DirectionalLight> directional;
-    std::vector<PointLight> point;
+    std::vector<DirectionalLight> directional; ///< parallel lights
+    std::vector<PointLight> point;             ///< point lights
     /// Radiance arriving along every ray that leaves the scene (>= 0); 0 is a
     /// black background. A constant environment is the white furnace's sky.
     Vec3d environment{0, 0, 0};

@@ -1,6 +1,6 @@
 #pragma once
 /// @file mesh.h
-/// An indexed triangle mesh in double precision: the input every backend takes.
+/// @brief An indexed triangle mesh in double precision: the input every backend takes.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -10,16 +10,20 @@
 
 namespace svo {
 
+/// @brief An axis-aligned box; empty (min above max) until a point is added.
 struct Bounds {
-    Vec3d min{+INFINITY, +INFINITY, +INFINITY};
-    Vec3d max{-INFINITY, -INFINITY, -INFINITY};
+    Vec3d min{+INFINITY, +INFINITY, +INFINITY}; ///< lowest corner
+    Vec3d max{-INFINITY, -INFINITY, -INFINITY}; ///< highest corner
+    /// @brief Whether the box holds no point.
     bool empty() const { return !(min.x <= max.x); }
+    /// @brief The box's size along each axis.
     Vec3d extent() const { return max - min; }
 };
 
+/// @brief An indexed triangle mesh in double precision, with optional vertex colours.
 struct TriangleMesh {
-    std::vector<Vec3d> positions;
-    std::vector<std::array<uint32_t, 3>> triangles;
+    std::vector<Vec3d> positions;                   ///< vertices
+    std::vector<std::array<uint32_t, 3>> triangles; ///< three indices into positions each
     /// Per-vertex RGB in [0, 1], one per position; empty when the file has none.
     std::vector<Vec3f> colors;
     /// Where the mesh came from (a path, or the built-in scene's name).
@@ -27,8 +31,9 @@ struct TriangleMesh {
     /// Things the reader could not keep, for the user to see (never silent).
     std::vector<std::string> warnings;
 
+    /// @brief The box of the vertices that triangles use.
     Bounds bounds() const;
-    /// The three corners of triangle t.
+    /// @brief The three corners of triangle @a t; unchecked.
     std::array<Vec3d, 3> corners(size_t t) const
     {
         const auto& f = triangles[t];
@@ -36,9 +41,10 @@ struct TriangleMesh {
     }
 };
 
-/// Throws svo::Error, naming mesh.source, when the mesh cannot be voxelized:
-/// no triangles, an index out of range, a NaN/Inf coordinate in a vertex
-/// that a triangle uses, or a colour list that does not match the vertices.
+/// @brief Checks that a mesh can be voxelized.
+/// @throw svo::InvalidInput, naming mesh.source, for no triangles, an index
+///        out of range, a NaN/Inf coordinate in a vertex that a triangle uses,
+///        or a colour list that does not match the vertices
 void validateMesh(const TriangleMesh& mesh);
 
 } // namespace svo

@@ -1,6 +1,6 @@
 #pragma once
 /// @file mesh_io.h
-/// Mesh file input: OBJ, PLY (ASCII, binary), STL (ASCII, binary) and OFF.
+/// @brief Mesh file input: OBJ, PLY (ASCII, binary), STL (ASCII, binary) and OFF.
 /// svo reads all but binary OFF (left to OpenMesh) itself: text coordinates
 /// correctly rounded to double, binary ones at the precision they are stored
 /// in. Polygons are fan-triangulated. Faces reach us exactly as the file lists
@@ -12,17 +12,22 @@
 
 namespace svo {
 
-/// Reads a mesh file. Throws svo::Error naming the file and the problem for a
-/// missing or unreadable file, an unknown extension, an empty or truncated
-/// file, zero triangles, NaN/Inf coordinates or out-of-range indices.
+/// @brief Reads a mesh file, of the format its extension names.
+/// @return the mesh, checked as validateMesh checks; TriangleMesh::source is @a path
+/// @throw svo::IoError naming the file and the problem for a missing or
+///        unreadable file, an unknown extension, an empty, truncated or
+///        malformed file, zero triangles, NaN/Inf coordinates or out-of-range
+///        indices (a file that holds a bad mesh is a damaged file)
 TriangleMesh loadMesh(const std::string& path);
 
-/// Writes an ASCII .off (COFF when the mesh has colours) or .obj, chosen by the
-/// extension, with coordinates in shortest round-trip form, atomically.
-/// Throws svo::Error naming the path.
+/// @brief Writes an ASCII .off (COFF when the mesh has colours) or .obj,
+/// chosen by the extension, with coordinates in shortest round-trip form,
+/// atomically (writeFileAtomically).
+/// @throw svo::IoError naming the path for another extension or a file that
+///        cannot be written
 void writeMesh(const std::string& path, const TriangleMesh& mesh);
 
-/// The file extensions loadMesh accepts, for help texts.
+/// @brief The file extensions loadMesh accepts, for help texts.
 const char* supportedMeshExtensions();
 
 } // namespace svo

@@ -1,6 +1,6 @@
 #pragma once
 /// @file mesh_topology.h
-/// Whether a mesh bounds a solid: the test that picks the sign method.
+/// @brief Whether a mesh bounds a solid: the test that picks the sign method.
 #include <cstdint>
 #include <string>
 
@@ -8,7 +8,7 @@
 
 namespace svo {
 
-/// Edge counts of a mesh after welding vertices at equal positions (so a
+/// @brief Edge counts of a mesh after welding vertices at equal positions (so a
 /// triangle soup such as an STL file counts as connected where it is).
 /// Triangles with a repeated corner are left out: they bound nothing.
 struct EdgeReport {
@@ -16,13 +16,15 @@ struct EdgeReport {
     uint64_t boundary = 0;     ///< edges of one triangle only
     uint64_t nonManifold = 0;  ///< edges of three or more triangles
     uint64_t misoriented = 0;  ///< edges of two triangles that run the same way along it
-    /// Every edge has exactly two triangles running opposite ways: parity
-    /// along any line gives inside and outside correctly.
+    /// @brief Whether every edge has exactly two triangles running opposite
+    /// ways: parity along any line then gives inside and outside correctly.
     bool closedAndOriented() const { return edges > 0 && !boundary && !nonManifold && !misoriented; }
-    /// "closed and consistently oriented", or what is wrong, with counts.
+    /// @brief "closed and consistently oriented", or what is wrong, with counts.
     std::string describe() const;
 };
 
+/// @brief Counts the edges of @a mesh after welding its vertices. Throws
+/// nothing but std::bad_alloc; indices must be valid (validateMesh).
 EdgeReport checkEdges(const TriangleMesh& mesh);
 
 } // namespace svo

@@ -1,6 +1,6 @@
 #pragma once
 /// @file octree.h
-/// The linear sparse voxel octree: its memory layout, a CPU reference build,
+/// @brief The linear sparse voxel octree: its memory layout, a CPU reference build,
 /// traversal, and the structural checks every producer must pass.
 ///
 /// Layout (docs/octree.md has the diagram):
@@ -28,6 +28,7 @@
 
 namespace svo {
 
+/// @brief One node: a child block or a brick, and which children are occupied.
 struct OctreeNode {
     uint32_t child = 0;     ///< first of 8 children (internal) or brick index (brick level)
     uint32_t childMask = 0; ///< bit c: child c occupied (internal); 1 if occupied (brick level)
@@ -36,18 +37,21 @@ static_assert(sizeof(OctreeNode) == 8 && alignof(OctreeNode) == 4);
 static_assert(offsetof(OctreeNode, childMask) == 4);
 static_assert(sizeof(OctreeNode) == gpu::kNodeWords * 4); // the shaders' view (gpu_layout.h)
 
+/// @brief An 8^3 block of voxel bits, laid out as an OpenVDB leaf's value mask.
 struct Brick {
     uint64_t words[8] = {}; ///< bit (x&7)<<6 | (y&7)<<3 | (z&7), as OpenVDB's NodeMask<3>
+    /// @brief Whether the two hold the same voxels.
     bool operator==(const Brick& o) const;
+    /// @brief The number of voxels set.
     uint32_t count() const;
 };
 static_assert(sizeof(Brick) == 64 && sizeof(Brick) == gpu::kBrickWords * 4);
 
-/// A child pointer that could not be allocated (GPU capacity overflow). Never
+/// @brief A child pointer that could not be allocated (GPU capacity overflow). Never
 /// present in a finished octree. The shaders write it (gpu_layout.h).
 constexpr uint32_t kNoChild = gpu::kNoChild;
 
-/// Optional per-voxel channels. Each is empty (not asked for, or the input
+/// @brief Optional per-voxel channels. Each is empty (not asked for, or the input
 /// lacks it) or holds one value per voxel, in voxel order: bricks in index
 /// order, and within a brick by bit index (brickVoxelOffsets gives where each
 /// brick starts).
@@ -55,18 +59,20 @@ struct VoxelAttributes {
     std::vector<Vec3f> normals;     ///< unit average of the covering triangles' normals (0 where they cancel or all are degenerate)
     std::vector<int32_t> triangles; ///< smallest index of a covering triangle
     std::vector<Vec3f> colors;      ///< average of the covering triangles' mean vertex colours
+    /// @brief Whether no channel is held.
     bool empty() const { return normals.empty() && triangles.empty() && colors.empty(); }
+    /// @brief Whether every channel is equal, value for value.
     bool operator==(const VoxelAttributes& o) const;
 };
 
-/// Bit flags naming channels (CLI --attributes, .svo header).
+/// @brief Bit flags naming channels (CLI --attributes, .svo header).
 enum AttributeChannel : uint32_t { kNormals = 1, kTriangles = 2, kColors = 4 };
 /// The channels' names, as --attributes and Python's attributes= take them.
 inline constexpr EnumName<AttributeChannel> kAttributeChannelNames[] = {
     {kNormals, "normal"}, {kTriangles, "triangle"}, {kColors, "color"}};
 constexpr const auto& enumNames(AttributeChannel) { return kAttributeChannelNames; }
 
-/// What ran to make a result, kept with it so that the files written from it
+/// @brief What ran to make a result, kept with it so that the files written from it
 /// say so (svo:backend, svo:mode, svo:renderer, svo:sign grid metadata). Empty
 /// fields for results read from files or assembled by hand.
 struct Provenance {
@@ -75,69 +81,88 @@ struct Provenance {
     std::string renderer; ///< the GL renderer, or "cpu"
 };
 
+/// @brief The octree: nodes level by level, bricks, and optional channels
+/// (see the file comment for the layout).
 struct Octree {
-    GridSpec grid;
+    GridSpec grid;                 ///< the grid whose local coordinates the octree covers
     uint32_t brickLevel = 0; ///< levels 0 (root) .. brickLevel (bricks)
-    std::vector<OctreeNode> nodes;
+    std::vector<OctreeNode> nodes; ///< level by level; the root is nodes[0]
     /// levelStart[l] is the first node of level l; levelStart[brickLevel + 1] == nodes.size().
     std::vector<uint32_t> levelStart;
-    std::vector<Brick> bricks;
-    VoxelAttributes attributes;
+    std::vector<Brick> bricks;     ///< indexed by the brick-level nodes' `child`
+    VoxelAttributes attributes;    ///< per-voxel channels, in voxel order
     Provenance madeBy; ///< set by svo::Voxelizer; not part of the voxels (sameOctree ignores it)
 
+    /// @brief The voxels set in all bricks.
     uint64_t voxelCount() const;
+    /// @brief The AttributeChannel bits of the channels held.
     uint32_t channels() const;
+    /// @brief The bytes of nodes, bricks and channels in memory.
     uint64_t bytes() const;
 };
 
-/// Where each brick's voxels start in voxel order; one more entry than bricks.
+/// @brief Where each brick's voxels start in voxel order.
+/// @return one more entry than bricks: the last is the voxel count
 std::vector<uint64_t> brickVoxelOffsets(const Octree& octree);
 
-/// Levels above the bricks that a grid needs: ceil(log2(max(ceil(dims/8)))).
+/// @brief Levels above the bricks that a grid needs: ceil(log2(max(ceil(dims/8)))).
 uint32_t brickLevelFor(const GridSpec& grid);
 
-/// Reference build from voxel keys (voxel_key.h; any order, duplicates fine).
-/// Children blocks and bricks are laid out in breadth-first Morton order, the
-/// canonical order that canonicalOrder() gives any octree.
+/// @brief The CPU reference build from voxel keys. Children blocks and bricks
+/// are laid out in breadth-first Morton order, the canonical order that
+/// canonicalOrder() gives any octree.
+/// @param keys local voxel keys (voxel_key.h), in any order, duplicates fine
+/// @throw svo::InvalidInput for a key outside the grid
+/// @throw svo::Unsupported for an octree beyond 32-bit node or brick indices
 Octree buildOctree(const GridSpec& grid, const std::vector<uint64_t>& keys);
 
-/// Reference build from whole bricks keyed by brick origin (key with low 9 bits 0).
-/// Bricks with equal keys are OR-ed; empty bricks are dropped.
+/// @brief The CPU reference build from whole bricks. Bricks with equal keys
+/// are OR-ed; empty bricks are dropped.
+/// @param bricks (brick-origin key, mask) pairs: keys with their low 9 bits 0
+/// @throw as buildOctree
 Octree buildOctreeFromBricks(const GridSpec& grid, std::vector<std::pair<uint64_t, Brick>> bricks);
 
-/// The same octree relaid out breadth-first with children in order, bricks in
+/// @brief The same octree relaid out breadth-first with children in order, bricks in
 /// the order their nodes appear. Two octrees of one voxel set and one grid are
 /// equal after this, whatever order their builder allocated in.
 Octree canonicalOrder(const Octree& octree);
 
-bool sameOctree(const Octree& a, const Octree& b); ///< grid, levels, nodes, bricks and attributes equal
+/// @brief Whether grid, levels, nodes, bricks and attributes are equal
+/// (Octree::madeBy is not compared).
+bool sameOctree(const Octree& a, const Octree& b);
 
-/// One occupied brick: local origin (multiples of 8) and index into bricks.
+/// @brief One occupied brick: local origin and index into bricks.
 struct BrickRef {
-    std::array<uint32_t, 3> origin;
-    uint32_t index;
+    std::array<uint32_t, 3> origin; ///< local, multiples of 8
+    uint32_t index;                 ///< into Octree::bricks
 };
-/// Every occupied brick, in traversal (Morton) order.
+/// @brief Every occupied brick, in traversal (Morton) order.
 std::vector<BrickRef> occupiedBricks(const Octree& octree);
 
-/// The voxel keys of an octree, sorted (brick-major) and unique.
+/// @brief The voxel keys of an octree, sorted (brick-major) and unique.
 std::vector<uint64_t> octreeKeys(const Octree& octree);
 
-/// Structural problems, empty when the octree is sound: level ranges, child
+/// @brief The structural checks every producer must pass: level ranges, child
 /// pointers in range and 8-aligned inside the next level, every node and brick
 /// referenced exactly once (no orphans), each mask equal to the OR of its
 /// children's occupancy, no empty brick, no brick outside the grid's range,
-/// attribute channels empty or one value per voxel.
-/// At most `limit` messages.
+/// attribute channels empty or one value per voxel. Throws nothing but
+/// std::bad_alloc.
+/// @param limit the most messages to return
+/// @return one message per problem; empty when the octree is sound
 std::vector<std::string> checkOctree(const Octree& octree, size_t limit = 20);
 
+/// @brief An octree's size, level by level.
 struct OctreeStats {
     std::vector<uint64_t> nodesPerLevel;         ///< allocated node slots
     std::vector<uint64_t> occupiedPerLevel;      ///< of which occupied
-    uint64_t bricks = 0, voxels = 0, bytes = 0;
+    uint64_t bricks = 0, voxels = 0, bytes = 0;  ///< bytes: Octree::bytes()
+    /// @brief Bytes per voxel; 0 for no voxels.
     double bytesPerVoxel() const { return voxels ? double(bytes) / double(voxels) : 0.0; }
+    /// @brief The share of the bricks' 512 voxels that are set; 0 for no bricks.
     double fillRatio() const { return bricks ? double(voxels) / (512.0 * double(bricks)) : 0.0; }
 };
+/// @brief Counts an octree's nodes, bricks, voxels and bytes.
 OctreeStats octreeStats(const Octree& octree);
 
 } // namespace svo

@@ -45,19 +45,19 @@ struct OptionInfo {
 /// @brief A double checked by a library rule as it is read: rule(value, name)
 /// throws svo::InvalidInput naming the flag or keyword.
 struct CheckedNumber {
-    double& value;
-    void (*rule)(double, const std::string&);
+    double& value;                            ///< the field
+    void (*rule)(double, const std::string&); ///< checkBand, checkVoxelSize, ...
 };
 
 /// @brief A number of bytes: "8G", "512M" or a plain number on the command
 /// line, an int or None in Python; 0 (the default) means "not given".
 struct ByteCount {
-    uint64_t& bytes;
+    uint64_t& bytes; ///< the field
 };
 
 /// @brief A set of AttributeChannel bits, given as names ("normal", ...).
 struct ChannelSet {
-    uint32_t& bits;
+    uint32_t& bits; ///< the field
 };
 
 /// @brief The command line's flag of an option: "--" and its keyword with '-' for '_', or its own flag.

@@ -1,9 +1,11 @@
 #pragma once
+/// @file vec3.h
+/// @brief svo::Vec3: the 3-vector of meshes, grids and the overlap test.
 #include <cmath>
 
 namespace svo {
 
-/// A minimal 3-vector with the GLSL spelling (x, y, z, dot, cross, abs, min,
+/// @brief A minimal 3-vector with the GLSL spelling (x, y, z, dot, cross, abs, min,
 /// max) so that overlap.glsl compiles unchanged as C++.
 template <typename T>
 struct Vec3 {
@@ -21,6 +23,7 @@ struct Vec3 {
 using Vec3d = Vec3<double>;
 using Vec3f = Vec3<float>;
 
+/// @brief GLSL's dot, cross and abs (componentwise), for overlap.glsl.
 template <typename T> constexpr T dot(Vec3<T> a, Vec3<T> b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 template <typename T> constexpr Vec3<T> cross(Vec3<T> a, Vec3<T> b)
 {

@@ -1,6 +1,6 @@
 #pragma once
 /// @file voxel_key.h
-/// A voxel as one 64-bit key in local grid coordinates, ordered brick-major.
+/// @brief A voxel as one 64-bit key in local grid coordinates, ordered brick-major.
 ///
 ///   bit 63      : 0
 ///   bits 62..45 : brick x  (local x >> 3, 18 bits)
@@ -18,6 +18,7 @@
 
 namespace svo {
 
+/// @brief The key of local voxel (x, y, z); each coordinate below kMaxGridDim (unchecked).
 constexpr uint64_t packVoxelKey(uint32_t x, uint32_t y, uint32_t z)
 {
     using namespace gpu;
@@ -26,6 +27,7 @@ constexpr uint64_t packVoxelKey(uint32_t x, uint32_t y, uint32_t z)
            (uint64_t(y & kBrickMask) << kKeyLeafYShift) | (uint64_t(z & kBrickMask) << kKeyLeafZShift);
 }
 
+/// @brief The local coordinates (x, y, z) of a key.
 constexpr std::array<uint32_t, 3> unpackVoxelKey(uint64_t k)
 {
     using namespace gpu;
@@ -36,7 +38,7 @@ constexpr std::array<uint32_t, 3> unpackVoxelKey(uint64_t k)
             axis(kKeyBrickZShift, kKeyLeafZShift)};
 }
 
-/// The brick part of a key (its low 9 bits cleared).
+/// @brief The brick part of a key (its low 9 bits cleared): its brick origin's key.
 constexpr uint64_t brickOfKey(uint64_t k) { return k & ~uint64_t(gpu::kKeyLeafMask); }
 
 static_assert(unpackVoxelKey(packVoxelKey(2097151, 5, 1234567))[0] == 2097151);

@@ -1,11 +1,12 @@
 #pragma once
 /// @file voxel_mode.h
-/// Which voxels a triangle covers: the two voxelizations svo computes
+/// @brief Which voxels a triangle covers: the two voxelizations svo computes
 /// (docs/design.md, "What a voxelization is").
 #include "svo/core/enum_names.h"
 
 namespace svo {
 
+/// @brief Which voxels a triangle covers.
 enum class VoxelMode {
     /// Every voxel whose closed cube [i-1/2, i+1/2]^3 meets a triangle: a
     /// closed mesh gives a shell that no 26-connected path crosses.
@@ -20,11 +21,12 @@ inline constexpr EnumName<VoxelMode> kVoxelModeNames[] = {{VoxelMode::Conservati
                                                           {VoxelMode::Thin, "thin"}};
 constexpr const auto& enumNames(VoxelMode) { return kVoxelModeNames; }
 
-/// "conservative" or "thin" (the names above, as a C string).
+/// @brief "conservative" or "thin" (the names above, as a C string).
 inline const char* voxelModeName(VoxelMode mode) { return nameOf(mode).data(); }
 
-/// The flood-fill connectivity that must not cross a voxelization of a closed
-/// surface in this mode: 26 for conservative, 6 for thin.
+/// @brief The flood-fill connectivity that must not cross a voxelization of a
+/// closed surface in this mode.
+/// @return 26 for conservative, 6 for thin
 int separatingConnectivity(VoxelMode mode);
 
 } // namespace svo

@@ -3,7 +3,7 @@
 /// @brief Any input as an octree: a .svo file as it is, one grid of a .vdb or
 /// .nvdb file (its active voxels built into an octree by a Voxelizer), or a
 /// mesh file (voxelized by a Voxelizer on the requested grid).
-/// Errors are svo::Error naming the path.
+/// Errors name the path.
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,10 +18,10 @@ namespace svo {
 class Voxelizer;
 struct VoxelizeOptions;
 
-/// What loadOctree read.
+/// @brief What loadOctree read.
 struct LoadedOctree {
-    Octree octree;
-    enum class Kind { Svo, Vdb, Mesh } kind = Kind::Svo;
+    Octree octree;                                       ///< the input as an octree
+    enum class Kind { Svo, Vdb, Mesh } kind = Kind::Svo; ///< what the input was (Vdb: .vdb or .nvdb)
     std::string gridName, gridType; ///< .vdb or .nvdb input: the grid read
     uint64_t tilesExpanded = 0;     ///< .vdb input: active tiles turned into bricks
     std::string valuesDropped;      ///< .vdb input: what the octree does not hold of the grid (vdb::valuesBeyondTopology)
@@ -29,9 +29,16 @@ struct LoadedOctree {
     std::vector<StageTime> stages;  ///< reading, building or voxelizing
 };
 
-/// Reads any input as an octree. @a gridName picks a .vdb grid (empty: the
-/// first); @a grid says how to voxelize a mesh. The Voxelizer (with
-/// @a options: backend, interrupter, statistics) builds .vdb and mesh inputs.
+/// @brief Reads any input as an octree, the kind chosen by the extension.
+/// @param voxelizer builds .vdb, .nvdb and mesh inputs, with @a options
+///        (backend, interrupter, statistics)
+/// @param gridName  picks a .vdb or .nvdb grid (empty: the first)
+/// @param grid      how to voxelize a mesh
+/// @throw svo::IoError for a file that is missing, unreadable or damaged
+/// @throw svo::InvalidInput for a missing grid, a grid or mesh svo cannot
+///        take, or a bad grid request
+/// @throw svo::DeviceError, svo::OutOfMemory, svo::Unsupported,
+///        svo::Interrupted as the Voxelizer's calls
 LoadedOctree loadOctree(Voxelizer& voxelizer, const std::string& path, const std::string& gridName,
                         const GridRequest& grid, const VoxelizeOptions& options);
 

@@ -12,7 +12,9 @@
 
 namespace svo {
 
-/// The voxels whose closed index-space cube meets a triangle, as a MaskGrid with transform @a xform.
+/// @brief The voxels whose closed index-space cube meets a triangle, as a
+/// MaskGrid with transform @a xform.
+/// @throw as Voxelizer::meshToMask
 template <typename PointT>
 openvdb::MaskGrid::Ptr meshToMask(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                                   const openvdb::math::Transform& xform, const VoxelizeOptions& options = {})
@@ -20,7 +22,9 @@ openvdb::MaskGrid::Ptr meshToMask(const std::vector<PointT>& points, const std::
     return Voxelizer().meshToMask(points, triangles, xform, options);
 }
 
-/// Triangles and quads (a quad whose fourth index is openvdb::util::INVALID_IDX is a triangle).
+/// @brief Triangles and quads (a quad whose fourth index is
+/// openvdb::util::INVALID_IDX is a triangle).
+/// @throw as Voxelizer::meshToMask
 template <typename PointT>
 openvdb::MaskGrid::Ptr meshToMask(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                                   const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform,
@@ -29,7 +33,8 @@ openvdb::MaskGrid::Ptr meshToMask(const std::vector<PointT>& points, const std::
     return Voxelizer().meshToMask(points, triangles, quads, xform, options);
 }
 
-/// The same voxels as a BoolGrid (true on active voxels).
+/// @brief The same voxels as a BoolGrid (true on active voxels).
+/// @throw as Voxelizer::meshToMask
 template <typename PointT>
 openvdb::BoolGrid::Ptr meshToBool(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                                   const openvdb::math::Transform& xform, const VoxelizeOptions& options = {})
@@ -37,7 +42,8 @@ openvdb::BoolGrid::Ptr meshToBool(const std::vector<PointT>& points, const std::
     return Voxelizer().meshToBool(points, triangles, xform, options);
 }
 
-/// The same voxels as a fog FloatGrid (1 on voxels, background 0).
+/// @brief The same voxels as a fog FloatGrid (1 on voxels, background 0).
+/// @throw as Voxelizer::meshToMask
 template <typename PointT>
 openvdb::FloatGrid::Ptr meshToFog(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                                   const openvdb::math::Transform& xform, const VoxelizeOptions& options = {})
@@ -45,7 +51,8 @@ openvdb::FloatGrid::Ptr meshToFog(const std::vector<PointT>& points, const std::
     return Voxelizer().meshToFog(points, triangles, xform, options);
 }
 
-/// The topology grid plus fog and attribute grids, as @a grids asks.
+/// @brief The topology grid plus fog and attribute grids, as @a grids asks.
+/// @throw as Voxelizer::meshToMask
 template <typename PointT>
 openvdb::GridPtrVec meshToGrids(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                                 const openvdb::math::Transform& xform, const VoxelizeOptions& options = {},
@@ -54,7 +61,8 @@ openvdb::GridPtrVec meshToGrids(const std::vector<PointT>& points, const std::ve
     return Voxelizer().meshToGrids(points, triangles, xform, options, grids);
 }
 
-/// The voxels as an octree (see Voxelizer::meshToOctree for its lattice).
+/// @brief The voxels as an octree (see Voxelizer::meshToOctree for its lattice).
+/// @throw as Voxelizer::meshToMask
 template <typename PointT>
 Octree meshToOctree(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                     const openvdb::math::Transform& xform, const VoxelizeOptions& options = {})

@@ -25,6 +25,6 @@
 #include "svo/vdb_io/octree_files.h"
 #include "svo/voxelizer.h"
 
-/// Version of the svo library these headers belong to.
+/// @brief Version of the svo library these headers belong to.
 #define SVO_VERSION_MAJOR 0
 #define SVO_VERSION_MINOR 1

@@ -74,7 +74,7 @@
 
 namespace svo {
 
-/// Options of one call: what to compute and where (VoxelizeSettings), and
+/// @brief Options of one call: what to compute and where (VoxelizeSettings), and
 /// how the call reports. Plain values; the defaults suit most uses.
 struct VoxelizeOptions : VoxelizeSettings {
     /// Polled between stages and between tiles with the percentage done;
@@ -88,10 +88,14 @@ struct VoxelizeOptions : VoxelizeSettings {
 
 struct IndexSpaceMesh;
 
+/// @brief A reusable voxelizer: meshes to grids, octrees, level sets and
+/// solids, and grids to octrees. Owns its GL context (see the file comment:
+/// reuse, host contexts, threads, errors). Movable, not copyable.
 class Voxelizer {
 public:
-    /// Creates no GL context yet: the first GPU call does (so a Cpu-backend
-    /// user never needs one). Throws nothing.
+    /// @brief Creates no GL context yet: the first GPU call does (so a
+    /// Cpu-backend user never needs one). Throws nothing.
+    /// @param device which GPU, GL debug output, the program cache
     explicit Voxelizer(const DeviceOptions& device = {});
     ~Voxelizer();
     Voxelizer(Voxelizer&&) noexcept;
@@ -102,40 +106,54 @@ public:
     /// @param triangles  vertex indices; each must be < points.size()
     /// @param xform      any linear (affine) transform; voxels are index-space cubes of it
     /// @param options    backend, channels, interrupter, statistics
+    /// @return the grid, named "surface", class GRID_UNKNOWN
     /// @throw svo::InvalidInput for an empty mesh, an index out of range, a NaN/Inf
-    ///        vertex, a non-linear transform, or a grid beyond OpenVDB's 32-bit
-    ///        coordinates or svo's 2^21 voxels a side; svo::DeviceError,
-    ///        svo::OutOfMemory from the GPU; svo::Interrupted.
+    ///        vertex, a non-linear or singular transform, a grid beyond
+    ///        OpenVDB's 32-bit coordinates or svo's 2^21 voxels a side, or
+    ///        an option that contradicts another
+    /// @throw svo::DeviceError for no usable GPU or a GL failure
+    /// @throw svo::OutOfMemory when GPU or host memory (or the budget) runs out
+    /// @throw svo::Unsupported for a result beyond one octree's 32-bit indices
+    /// @throw svo::Interrupted when options.interrupter asks to stop
     openvdb::MaskGrid::Ptr meshToMask(const std::vector<openvdb::Vec3s>& points,
                                       const std::vector<openvdb::Vec3I>& triangles,
                                       const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
-    /// Double-precision vertices: a mesh far from the origin is not rounded before svo maps it.
+    /// @brief Double-precision vertices: a mesh far from the origin is not
+    /// rounded before svo maps it.
+    /// @throw as above
     openvdb::MaskGrid::Ptr meshToMask(const std::vector<openvdb::Vec3d>& points,
                                       const std::vector<openvdb::Vec3I>& triangles,
                                       const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
-    /// Triangles and quads, as OpenVDB's meshToVolume takes them: a quad whose
-    /// fourth index is openvdb::util::INVALID_IDX is a triangle; others are
-    /// split along their 0-2 diagonal.
+    /// @brief Triangles and quads, as OpenVDB's meshToVolume takes them: a quad
+    /// whose fourth index is openvdb::util::INVALID_IDX is a triangle; others
+    /// are split along their 0-2 diagonal.
+    /// @throw as above
     openvdb::MaskGrid::Ptr meshToMask(const std::vector<openvdb::Vec3s>& points,
                                       const std::vector<openvdb::Vec3I>& triangles,
                                       const std::vector<openvdb::Vec4I>& quads,
                                       const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
+    /// @brief Triangles and quads with double-precision vertices.
+    /// @throw as above
     openvdb::MaskGrid::Ptr meshToMask(const std::vector<openvdb::Vec3d>& points,
                                       const std::vector<openvdb::Vec3I>& triangles,
                                       const std::vector<openvdb::Vec4I>& quads,
                                       const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
 
-    /// The same voxels as a BoolGrid (true on active voxels; what pyopenvdb reads).
+    /// @brief The same voxels as a BoolGrid (true on active voxels; what pyopenvdb reads).
+    /// @throw as meshToMask
     template <typename PointT>
     openvdb::BoolGrid::Ptr meshToBool(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                                       const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
-    /// The same voxels as a fog volume: FloatGrid, 1 on voxels, background 0, class GRID_FOG_VOLUME.
+    /// @brief The same voxels as a fog volume: FloatGrid, 1 on voxels,
+    /// background 0, class GRID_FOG_VOLUME.
+    /// @throw as meshToMask
     template <typename PointT>
     openvdb::FloatGrid::Ptr meshToFog(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                                       const openvdb::math::Transform& xform, const VoxelizeOptions& options = {});
-    /// The topology grid, then the fog grid and the attribute channels
+    /// @brief The topology grid, then the fog grid and the attribute channels
     /// (options.attributes) as grids "normal" (Vec3SGrid), "triangle_id"
     /// (Int32Grid) and "color" (Vec3SGrid), as @a grids asks.
+    /// @throw as meshToMask
     template <typename PointT>
     openvdb::GridPtrVec meshToGrids(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                                     const openvdb::math::Transform& xform, const VoxelizeOptions& options = {},
@@ -147,6 +165,8 @@ public:
     /// octreeToGrids(octree) describe); for any other transform it is the
     /// transform's index space itself (voxel size 1), and the caller keeps
     /// @a xform to turn the octree into grids (octreeToGrids(octree, xform)).
+    /// @param quads as meshToMask takes them; may be empty
+    /// @throw as meshToMask
     template <typename PointT>
     Octree meshToOctree(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                         const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform,
@@ -154,8 +174,12 @@ public:
 
     /// @brief svo's own types: a double-precision mesh on a grid chosen by
     /// makeGrid/makeGridOnLattice (what the CLI and the Python module use).
+    /// @param grid      a grid from makeGrid or makeGridOnLattice
     /// @param voxelList when set, also receives the backend's voxel set read back
     ///        apart from the octree (sorted, unique keys), for consistency checks.
+    /// @return the octree, in canonical order, with the channels asked for
+    /// @throw svo::InvalidInput for a mesh that fails validateMesh or a grid
+    ///        that fails checkGrid; otherwise as meshToMask
     Octree voxelize(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
                     std::vector<uint64_t>* voxelList = nullptr);
 
@@ -163,9 +187,14 @@ public:
     /// int64, vec3; active tiles expanded) as an octree, built on the GPU
     /// (or the CPU with Backend::Cpu).
     /// @throw svo::InvalidInput for an unsupported type, a transform other than a
-    ///        uniform scale plus a whole-voxel translation, or an extent beyond 2^21.
+    ///        uniform scale plus a whole-voxel translation, or an extent beyond 2^21
+    /// @throw svo::DeviceError, svo::OutOfMemory, svo::Unsupported,
+    ///        svo::Interrupted as meshToMask
     Octree gridToOctree(const openvdb::GridBase& grid, const VoxelizeOptions& options = {});
-    /// Whole bricks (brick-origin key, mask) on a grid, built into an octree.
+    /// @brief Whole bricks (brick-origin key, mask) on a grid, built into an
+    /// octree on the GPU (or the CPU with Backend::Cpu).
+    /// @throw svo::InvalidInput for a grid that fails checkGrid or a brick
+    ///        outside it; otherwise as meshToMask
     Octree bricksToOctree(const GridSpec& grid, std::vector<std::pair<uint64_t, Brick>> bricks,
                           const VoxelizeOptions& options = {});
 
@@ -189,21 +218,25 @@ public:
     /// meshes.
     /// @param xform      a linear transform with uniform scale (distances are world units)
     /// @param exteriorBand, interiorBand  band half widths in voxels, each >= 1
-    /// @throw svo::Error as meshToMask; svo::InvalidInput for a band that fails
-    ///        checkBand (NaN included), a VoxelizeOptions::mode other than
-    ///        Conservative (checkFieldMode) or a winding accuracy that fails
-    ///        checkWindingAccuracy; svo::Unsupported for a transform without
-    ///        uniform scale, the CPU backend (this is GPU work), or parity
-    ///        signs asked for a mesh with holes (boundary edges: a column
-    ///        through a hole would flip every sign beyond it; winding and Auto
-    ///        sign such meshes).
+    /// @return the grid, named "surface", class GRID_LEVEL_SET
+    /// @throw everything meshToMask throws
+    /// @throw svo::InvalidInput for a band that fails checkBand (NaN
+    ///        included), a VoxelizeOptions::mode other than Conservative
+    ///        (checkFieldMode) or a winding accuracy that fails
+    ///        checkWindingAccuracy
+    /// @throw svo::Unsupported for a transform without uniform scale, the CPU
+    ///        backend (this is GPU work), or parity signs asked for a mesh
+    ///        with holes (boundary edges: a column through a hole would flip
+    ///        every sign beyond it; winding and Auto sign such meshes)
     template <typename PointT>
     openvdb::FloatGrid::Ptr meshToLevelSet(const std::vector<PointT>& points,
                                            const std::vector<openvdb::Vec3I>& triangles,
                                            const openvdb::math::Transform& xform, float exteriorBand = 3.0f,
                                            float interiorBand = 3.0f, const VoxelizeOptions& options = {});
-    /// Unsigned distances within `band` voxels (class GRID_UNKNOWN, named
-    /// "distance", background band times the voxel size); needs no closed mesh.
+    /// @brief Unsigned distances within @a band voxels (class GRID_UNKNOWN,
+    /// named "distance", background band times the voxel size); needs no
+    /// closed mesh.
+    /// @throw as meshToLevelSet, but for the sign
     template <typename PointT>
     openvdb::FloatGrid::Ptr meshToUnsignedDistanceField(const std::vector<PointT>& points,
                                                         const std::vector<openvdb::Vec3I>& triangles,
@@ -214,22 +247,27 @@ public:
     /// (as meshToMask). Whole regions inside
     /// are active tiles at the largest tree level they fill, so memory follows
     /// the surface. Named "solid".
-    /// @throw svo::Error as meshToLevelSet.
+    /// @param sign how inside is decided (SignMethod)
+    /// @throw as meshToLevelSet
     template <typename PointT>
     openvdb::MaskGrid::Ptr meshToSolid(const std::vector<PointT>& points, const std::vector<openvdb::Vec3I>& triangles,
                                        const openvdb::math::Transform& xform, const VoxelizeOptions& options = {},
                                        const SignOptions& sign = {});
 
-    /// Level set (or unsigned field) of svo's own mesh on a grid from
-    /// makeGrid: the distance grid, then "closest_triangle" when asked. The
-    /// band may reach beyond grid.dims.
+    /// @brief Level set (or unsigned field) of svo's own mesh on a grid from
+    /// makeGrid. The band may reach beyond grid.dims.
+    /// @param levelSet the bands, sign, and whether to add closest triangles
+    /// @return the distance grid, then "closest_triangle" when asked
     /// @param xform  the output's transform: null for the grid's own lattice
     ///        (makeTransform), or the transform whose index space prepareMesh
     ///        mapped the mesh to (uniform scale)
+    /// @throw as meshToLevelSet, and svo::InvalidInput for a mesh that fails
+    ///        validateMesh or a grid that fails checkGrid
     openvdb::GridPtrVec levelSet(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& levelSet = {},
                                  const VoxelizeOptions& options = {}, openvdb::math::Transform::Ptr xform = nullptr);
-    /// Solid of svo's own mesh on a grid from makeGrid (see meshToSolid);
-    /// @a xform as for levelSet().
+    /// @brief Solid of svo's own mesh on a grid from makeGrid (see meshToSolid).
+    /// @param xform as for levelSet()
+    /// @throw as levelSet()
     openvdb::MaskGrid::Ptr solid(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
                                  const SignOptions& sign = {}, openvdb::math::Transform::Ptr xform = nullptr);
 
@@ -238,19 +276,22 @@ public:
     /// compute on a hardware GPU, raster on a software rasterizer such as
     /// llvmpipe). Creates no GL context: before one exists, EGL is asked
     /// whether the device is software, without making a context.
+    /// @return never Backend::Auto
     /// @throw svo::InvalidInput for a dilation mode with Backend::Compute.
     Backend backendFor(const VoxelizeOptions& options);
-    /// The GPU's vendor, renderer and version (creates the context if needed).
+    /// @brief The GPU's vendor, renderer and version (creates the context if needed).
+    /// @throw svo::DeviceError for no usable GPU or driver
     std::string deviceDescription();
     /// @brief Creates the GL context now, rather than in the first GPU call.
-    /// @details EGL set-up takes tens of milliseconds (docs/api.md), so a caller
-    /// may run it on another thread while it reads its mesh: the context is
+    /// @details EGL set-up is a large part of a cold start (docs/design.md,
+    /// Start-up, gives figures), so a caller may run it on another thread
+    /// while it reads its mesh: the context is
     /// left current nowhere, and later calls may come from any one thread.
     /// No other call on this Voxelizer may run meanwhile. The first call's
     /// statistics still report the set-up (StartupStats::eglMs).
     /// @throw svo::DeviceError as the first GPU call would: no usable GPU or driver.
     void startDevice();
-    /// Frees the scratch buffers kept for the next call.
+    /// @brief Frees the scratch buffers kept for the next call.
     void releaseScratch();
 
 private:
@@ -275,19 +316,25 @@ private:
 /// @throw svo::InvalidInput for an index out of range or a NaN/Inf vertex, naming the first.
 TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3d>& points, const std::vector<openvdb::Vec3I>& triangles,
                             const std::vector<openvdb::Vec4I>& quads);
+/// @brief The same from single-precision vertices.
+/// @throw as above
 TriangleMesh toTriangleMesh(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& triangles,
                             const std::vector<openvdb::Vec4I>& quads);
+/// @brief A mesh in the index space of a transform, with the grid it
+/// voxelizes on (prepareMesh).
+struct IndexSpaceMesh {
+    TriangleMesh mesh; ///< in the transform's index space, or on its lattice
+    GridSpec grid;     ///< the grid the mesh voxelizes on
+};
 /// @brief A mesh in OpenVDB's types as svo's double-precision mesh in the index
 /// space of @a xform, with the grid it voxelizes on (see Voxelizer::meshToOctree
 /// for which lattice that is).
-/// @throw svo::InvalidInput for a non-linear transform, an index out of range, or a
-///        grid beyond svo's limits.
-struct IndexSpaceMesh {
-    TriangleMesh mesh;
-    GridSpec grid;
-};
+/// @throw svo::InvalidInput for a non-linear or singular transform, an index
+///        out of range, a NaN/Inf vertex, or a grid beyond svo's limits
 IndexSpaceMesh prepareMesh(const std::vector<openvdb::Vec3d>& points, const std::vector<openvdb::Vec3I>& triangles,
                            const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform);
+/// @brief The same from single-precision vertices.
+/// @throw as above
 IndexSpaceMesh prepareMesh(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& triangles,
                            const std::vector<openvdb::Vec4I>& quads, const openvdb::math::Transform& xform);
 

@@ -22,23 +22,28 @@
 
 namespace svo::reference {
 
+/// @brief How AO is estimated at each point.
 struct AmbientOcclusionOptions {
     double distance = std::numeric_limits<double>::infinity(); ///< R, world units, > 0
     int samples = 256;  ///< rays per point, >= 1
-    uint64_t seed = 0;
+    uint64_t seed = 0;  ///< the same seed gives the same values, bit for bit
     int threads = 0;    ///< TBB threads for many points; 0 for TBB's default
 };
 
-/// AO at one point.
+/// @brief AO at one point.
 /// @param point   world units, on (or just above) a surface
 /// @param normal  the side to look at; need not be unit length, must not be zero
+/// @param stats   when given, receives the ray counts and wall time
+/// @return AO in [0, 1]; 1 = open
 /// @throw svo::InvalidInput  point or normal not finite, normal zero, distance not > 0,
 ///                    samples < 1, threads < 0.
 double ambientOcclusionAt(const Scene& scene, const Vec3d& point, const Vec3d& normal,
                           const AmbientOcclusionOptions& options, RenderStats* stats = nullptr);
 
-/// AO at many points in parallel; point i is sampled as index i (so the
+/// @brief AO at many points in parallel; point i is sampled as index i (so the
 /// first point here equals the single-point call's result with the same seed).
+/// @param normals one per point
+/// @return one AO value per point
 /// @throw svo::InvalidInput  as above, naming the first bad point, or when the lists'
 ///                    sizes differ.
 std::vector<double> ambientOcclusionAt(const Scene& scene, const std::vector<Vec3d>& points,

@@ -24,24 +24,25 @@
 
 namespace svo::reference {
 
-/// The camera of svo/core/camera.h, which svo::gl::ViewCamera is too.
+/// @brief The camera of svo/core/camera.h, which svo::gl::ViewCamera is too.
 using Camera = svo::Camera;
 
-/// A ray in world units; `direction` is unit length.
+/// @brief A ray in world units.
 struct Ray {
-    Vec3d origin;
-    Vec3d direction;
+    Vec3d origin;    ///< where it starts
+    Vec3d direction; ///< unit length
 };
 
-/// Throws svo::Error, in one line, when the camera cannot make an image of
-/// width x height pixels: a size outside [1, 32768] per side, a non-finite
-/// field, eye at target, up along the view direction (or zero), a field of
-/// view outside (0, 180) degrees, an orthographic height not positive.
+/// @brief Checks that the camera can make an image of @a width x @a height pixels.
+/// @throw svo::InvalidInput, in one line, for a size outside [1, 32768] per
+///        side, a non-finite field, eye at target, up along the view
+///        direction (or zero), a field of view outside (0, 180) degrees, an
+///        orthographic height not positive
 void checkCamera(const Camera& camera, int width, int height);
 
-/// The ray through the centre of pixel (x, y), rows from the top (see the
-/// file comment). Checks the camera as checkCamera does; throws svo::Error
-/// also for a pixel outside the image.
+/// @brief The ray through the centre of pixel (x, y), rows from the top (see
+/// the file comment).
+/// @throw svo::InvalidInput as checkCamera, and for a pixel outside the image
 Ray cameraRay(const Camera& camera, int width, int height, int x, int y);
 
 } // namespace svo::reference

@@ -6,6 +6,7 @@
 
 namespace svo::reference {
 
+/// @brief svo's lights under the reference's names.
 using DirectionalLight = svo::DirectionalLight;
 using PointLight = svo::PointLight;
 using Lighting = svo::Lights;

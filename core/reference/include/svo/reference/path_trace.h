@@ -39,10 +39,12 @@
 
 namespace svo::reference {
 
+/// @brief The quantity an image holds (see the file comment).
 enum class Mode { AmbientOcclusion, Direct, OneBounce, Full };
 
+/// @brief What to render and how many samples.
 struct RenderOptions {
-    Mode mode = Mode::Direct;
+    Mode mode = Mode::Direct; ///< the quantity
     int samples = 16;   ///< per pixel, >= 1; each sample is one path (or one AO ray)
     uint64_t seed = 0;  ///< the same seed gives the same image, bit for bit
     /// AmbientOcclusion: R, the distance within which a hit occludes (world
@@ -51,28 +53,31 @@ struct RenderOptions {
     int threads = 0;    ///< TBB threads; 0 for TBB's default. The image does not depend on it.
 };
 
-/// A float image, rows from the top: `channels` floats per pixel (1 for
+/// @brief A float image, rows from the top: `channels` floats per pixel (1 for
 /// AmbientOcclusion, RGB radiance for the others).
 struct FloatImage {
-    int width = 0, height = 0, channels = 0;
+    int width = 0, height = 0, channels = 0; ///< pixels; floats per pixel
     std::vector<float> pixels;   ///< width * height * channels
     std::vector<uint8_t> covered; ///< per pixel: 1 where the camera ray hits a triangle
+    /// @brief Channel @a c of pixel (@a x, @a y), row @a y from the top; unchecked.
     float at(int x, int y, int c = 0) const
     {
         return pixels[(size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c)];
     }
 };
 
-/// What a render cost; kept apart from its result.
+/// @brief What a render cost; kept apart from its result.
 struct RenderStats {
     uint64_t cameraRays = 0;    ///< one per pixel
     uint64_t occlusionRays = 0; ///< shadow and AO rays (any-hit)
     uint64_t bounceRays = 0;    ///< closest-hit rays after the camera's
-    double wallMs = 0;
+    double wallMs = 0;          ///< wall milliseconds
+    /// @brief All rays traced.
     uint64_t rays() const { return cameraRays + occlusionRays + bounceRays; }
 };
 
-/// Renders one mode of `scene` as seen by `camera` in a width x height image.
+/// @brief Renders one mode of @a scene as seen by @a camera in a @a width x
+/// @a height image.
 /// @param lights  ignored by AmbientOcclusion
 /// @param stats   when given, receives the ray counts and wall time
 /// @return the image; the same inputs give the same bytes, whatever the thread count.
@@ -83,7 +88,8 @@ struct RenderStats {
 FloatImage render(const Scene& scene, const Camera& camera, int width, int height, const Lighting& lights,
                   const RenderOptions& options, RenderStats* stats = nullptr);
 
-/// The same, building a Scene from `mesh` and `material` first (also throws what Scene's constructor throws).
+/// @brief The same, building a Scene from @a mesh and @a material first.
+/// @throw as above, and what Scene's constructor throws
 FloatImage render(const TriangleMesh& mesh, const Material& material, const Camera& camera, int width, int height,
                   const Lighting& lights, const RenderOptions& options, RenderStats* stats = nullptr);
 

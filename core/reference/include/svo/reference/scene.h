@@ -29,7 +29,7 @@
 
 namespace svo::reference {
 
-/// Reflectance and emission of every triangle.
+/// @brief Reflectance and emission of every triangle.
 struct Material {
     /// Albedo per channel, in [0, 1], where vertex colours are not used.
     Vec3d albedo{0.5, 0.5, 0.5};
@@ -40,20 +40,21 @@ struct Material {
     std::vector<Vec3d> emission;
 };
 
-/// A mesh and its material in an Embree BVH, ready for any number of renders
+/// @brief A mesh and its material in an Embree BVH, ready for any number of renders
 /// (which may run at the same time: a Scene is read-only after construction).
 /// Movable, not copyable.
 class Scene {
 public:
-    /// Copies what it needs of `mesh` and `material` and builds the BVH.
+    /// @brief Copies what it needs of @a mesh and @a material and builds the BVH.
     /// @param rayEpsilon  offset of secondary ray origins, world units; 0 picks
     ///                    1e-5 of the bounding box's diagonal (see the file comment)
     /// @throw svo::InvalidInput  the mesh fails svo::validateMesh, a vertex colour or the
     ///                    albedo is outside [0, 1] or not finite, the emission list
     ///                    is neither empty nor one per triangle, an emission is
     ///                    negative or not finite, rayEpsilon is negative or not
-    ///                    finite; svo::DeviceError when Embree fails (its message
-    ///                    is kept), svo::OutOfMemory when it cannot allocate.
+    ///                    finite, or there are more than 2^31 triangles
+    /// @throw svo::DeviceError when Embree fails (its message is kept)
+    /// @throw svo::OutOfMemory when Embree cannot allocate
     explicit Scene(const TriangleMesh& mesh, const Material& material = {}, double rayEpsilon = 0);
     ~Scene();
     Scene(Scene&&) noexcept;
@@ -63,10 +64,11 @@ public:
 
     Bounds bounds() const;       ///< of the mesh's vertices, world units
     double rayEpsilon() const;   ///< in use, world units
-    size_t triangleCount() const;
+    size_t triangleCount() const; ///< the mesh's triangles
     bool emits() const;          ///< some triangle has non-zero emission
 
     struct Impl; ///< Embree and the local frame (src/scene_impl.h)
+    /// @brief The library's own view of the scene, for its renderers; opaque to callers.
     const Impl& impl() const { return *impl_; }
 
 private:

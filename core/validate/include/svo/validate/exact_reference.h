@@ -1,6 +1,6 @@
 #pragma once
 /// @file exact_reference.h
-/// The exact voxelization (conservative or thin), computed with CGAL: the yardstick
+/// @brief The exact voxelization (conservative or thin), computed with CGAL: the yardstick
 /// `svo validate` holds the GPU against. This library is the only one that
 /// links CGAL, so the voxelizer never does.
 ///
@@ -40,6 +40,7 @@
 
 namespace svo::validate {
 
+/// @brief The reference sets R, E and A of a mesh on a grid (see the file comment).
 struct ReferenceSets {
     std::vector<uint64_t> required; ///< R: sorted voxel keys
     std::vector<uint64_t> exact;    ///< E: sorted voxel keys, between R and A
@@ -48,10 +49,11 @@ struct ReferenceSets {
     uint64_t degenerate = 0;        ///< triangles routed to the segment or point test
 };
 
+/// @brief The exact voxelization of @a mesh on @a grid and its guarded sets.
 /// @param epsilon  the guard band in voxels (grid.epsilon() for validation; 0 gives R = E = A)
 /// @param mode     which voxelization the sets describe: cubes, or thin centre segments
 /// @param progress called now and then from worker threads as (triangles done, total)
-/// @throw nothing beyond std::bad_alloc; the mesh's indices must be valid.
+/// @throw nothing beyond std::bad_alloc; the mesh's indices must be valid (validateMesh)
 ReferenceSets exactReference(const TriangleMesh& mesh, const GridSpec& grid, double epsilon,
                              VoxelMode mode = VoxelMode::Conservative,
                              const std::function<void(uint64_t, uint64_t)>& progress = {});

@@ -1,6 +1,6 @@
 #pragma once
 /// @file hole_check.h
-/// Hole-freeness of a voxelization of a closed mesh.
+/// @brief Hole-freeness of a voxelization of a closed mesh.
 ///
 /// Method: the empty voxels of the grid, padded by one layer, are flood-filled
 /// from a corner (26-connected for conservative voxelizations, 6-connected
@@ -27,15 +27,24 @@
 
 namespace svo::validate {
 
+/// @brief What the hole check found.
 struct HoleCheck {
-    bool applies = false;
+    bool applies = false;                          ///< the mesh is closed, so the check ran
     std::string reason;                            ///< why it does not apply
-    int connectivity = 26;
-    bool leak = false;
+    int connectivity = 26;                         ///< the fill's: 26 or 6
+    bool leak = false;                             ///< the fill reached an inside voxel
     std::vector<std::array<int64_t, 3>> leakPath;  ///< OpenVDB indices, outside -> inside
     uint64_t filled = 0, frontier = 0;             ///< voxels reached; of those, tested for inside
 };
 
+/// @brief Flood-fills the empty voxels around a voxelization of a closed mesh
+/// and reports whether the fill leaks inside (see the file comment).
+/// @param voxels       the voxelization: sorted, unique local keys on @a grid
+/// @param connectivity 26 for conservative voxelizations, 6 for thin ones
+///                     (separatingConnectivity)
+/// @param progress     called now and then as (voxels done, total)
+/// @throw svo::InvalidInput for a voxel outside the grid
+/// @throw svo::OutOfMemory when the grid is too large for the fill's host memory
 HoleCheck checkHoles(const TriangleMesh& mesh, const GridSpec& grid, const std::vector<uint64_t>& voxels,
                      int connectivity = 26, const std::function<void(uint64_t, uint64_t)>& progress = {});
 

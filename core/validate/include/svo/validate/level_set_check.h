@@ -48,14 +48,15 @@
 
 namespace svo::validate {
 
-/// One active voxel of a level set: its OpenVDB index coordinate and its
-/// value (world units unless LevelSetCheckOptions::voxelSize says otherwise;
-/// negative inside).
+/// @brief One active voxel of a level set: its OpenVDB index coordinate and
+/// its value (world units unless LevelSetCheckOptions::voxelSize says
+/// otherwise; negative inside).
 struct LevelSetVoxel {
-    std::array<int32_t, 3> index{};
-    float value = 0;
+    std::array<int32_t, 3> index{}; ///< OpenVDB index coordinate
+    float value = 0;                ///< signed distance, negative inside
 };
 
+/// @brief The bands, tolerance and value unit checkLevelSet works with.
 struct LevelSetCheckOptions {
     double exteriorBand = 3.0; ///< band outside the surface, in voxels (> 0)
     double interiorBand = 3.0; ///< band inside, in voxels (> 0)
@@ -70,17 +71,16 @@ struct LevelSetCheckOptions {
     size_t worst = 5; ///< worst cases kept of each kind
 };
 
-/// A voxel worth a look. `value` is the level set's, in voxels (NaN where it
-/// has no active voxel); `exact` is CGAL's distance in voxels, negative
-/// inside when the side is known (`side`: 1 inside, 0 outside, -1 unknown).
+/// @brief A voxel worth a look.
 struct LevelSetCase {
-    std::array<int64_t, 3> index{};
-    double value = 0;
-    double exact = 0;
-    int side = -1;
+    std::array<int64_t, 3> index{}; ///< OpenVDB index coordinate
+    double value = 0;               ///< the level set's, voxels; NaN where it has no active voxel
+    double exact = 0;               ///< CGAL's distance, voxels; negative inside when the side is known
+    int side = -1;                  ///< 1 inside, 0 outside, -1 unknown
     int64_t triangle = -1; ///< the closest triangle
 };
 
+/// @brief What checkLevelSet found, and its verdict (passed()).
 struct LevelSetCheck {
     uint64_t voxels = 0;     ///< active voxels checked
     uint64_t candidates = 0; ///< inactive voxels whose distance was computed to look for missing ones
@@ -88,7 +88,7 @@ struct LevelSetCheck {
     double rmsError = 0;     ///< root mean square distance error, voxels
     uint64_t overTolerance = 0; ///< active voxels whose distance error exceeds tau
     double tolerance = 0;    ///< tau used, voxels
-    bool signChecked = false;
+    bool signChecked = false;       ///< the mesh is closed, so sides were checked
     std::string signReason;         ///< why signs were not checked (open mesh, ...)
     uint64_t signDisagreements = 0; ///< wrong side, farther than tau from the surface
     uint64_t signNearSurface = 0;   ///< wrong side, within tau of the surface: allowed
@@ -99,8 +99,8 @@ struct LevelSetCheck {
     std::vector<LevelSetCase> worstSign;   ///< sign disagreements beyond tau, farthest from the surface first
     std::vector<LevelSetCase> worstMissing; ///< missing, deepest in the band first
     std::vector<LevelSetCase> worstExtra;   ///< extra, farthest beyond the band first
-    /// The level set meets every criterion: max error <= tau, no sign
-    /// disagreement beyond tau (when checked), nothing missing or extra.
+    /// @brief Whether the level set meets every criterion: max error <= tau,
+    /// no sign disagreement beyond tau (when checked), nothing missing or extra.
     bool passed() const
     {
         return maxError <= tolerance && signDisagreements == 0 && missing == 0 && extra == 0;
@@ -112,14 +112,16 @@ struct LevelSetCheck {
 /// @param grid   the grid whose index space the voxels' coordinates are in
 ///               (makeGrid's, or prepareMesh's for a caller's transform)
 /// @param voxels every active voxel, each once, in any order
-/// @throw svo::InvalidInput for a band that is not positive and finite, a negative
-///        or non-finite tolerance, or a voxel listed twice; svo::Error as
-///        validateMesh for a bad mesh.
+/// @param options bands, tolerance, value unit, worst cases kept
+/// @return the counts, worst cases and verdict
+/// @throw svo::InvalidInput for a band that is not positive and finite, a
+///        negative or non-finite tolerance, a voxel size that is not positive,
+///        a voxel listed twice, or a mesh that fails validateMesh
 LevelSetCheck checkLevelSet(const TriangleMesh& mesh, const GridSpec& grid, const std::vector<LevelSetVoxel>& voxels,
                             const LevelSetCheckOptions& options = {});
 
-/// The active voxels of an OpenVDB FloatGrid (any type with OpenVDB's grid
-/// interface), without including OpenVDB here.
+/// @brief The active voxels of an OpenVDB FloatGrid (any type with OpenVDB's
+/// grid interface), without including OpenVDB here.
 /// @throw svo::InvalidInput for an active tile: a level set has active voxels only.
 template <typename FloatGridT>
 std::vector<LevelSetVoxel> activeLevelSetVoxels(const FloatGridT& grid)

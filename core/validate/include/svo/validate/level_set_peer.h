@@ -30,6 +30,7 @@
 
 namespace svo::validate {
 
+/// @brief How a level set and OpenVDB's differ, and who is right where they do.
 struct OpenVdbComparison {
     uint64_t ours = 0;        ///< active voxels given
     uint64_t openvdb = 0;     ///< OpenVDB's active voxels
@@ -42,7 +43,7 @@ struct OpenVdbComparison {
     /// Closed meshes: of those, the ones where CGAL's Side_of_triangle_mesh
     /// gives ours (the rest give OpenVDB's); `signJudged` false otherwise.
     bool signJudged = false;
-    uint64_t signOursRight = 0;
+    uint64_t signOursRight = 0; ///< sign disagreements where CGAL gives ours
     double signFarthest = 0; ///< the largest exact distance (voxels) of a sign disagreement
     double maxDifference = 0; ///< largest | |ours| - |OpenVDB's| | on common voxels, voxels
     double maxErrorOurs = 0;  ///< largest distance error against CGAL on common voxels, voxels
@@ -60,7 +61,9 @@ struct OpenVdbComparison {
 /// @brief Runs OpenVDB's meshToSignedDistanceField on the mesh and compares (see the file comment).
 /// @param mesh, grid, voxels  as checkLevelSet; the bands, tolerance and
 ///        value unit come from @a options (OpenVDB is given the bands as floats)
-/// @throw svo::Error as checkLevelSet; OpenVDB's exceptions are rethrown as svo::DeviceError.
+/// @throw svo::InvalidInput for a band that is not positive and finite, or a
+///        mesh that fails validateMesh
+/// @throw svo::DeviceError for an exception from OpenVDB
 OpenVdbComparison compareWithOpenVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                      const std::vector<LevelSetVoxel>& voxels, const LevelSetCheckOptions& options = {});
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file level_set_report.h
-/// One validation of a level set, start to end: what `svo validate --sdf`
+/// @brief One validation of a level set, start to end: what `svo validate --sdf`
 /// and `svo.validate_level_set` print and return.
 ///
 /// Method: checkLevelSet (level_set_check.h) holds the level set against
@@ -19,32 +19,38 @@
 
 namespace svo::validate {
 
+/// @brief What validateLevelSet checks and how it reports progress.
 struct LevelSetReportOptions {
-    LevelSetCheckOptions check;
+    LevelSetCheckOptions check; ///< bands, tolerance, value unit, worst cases
     bool openvdb = true;  ///< also compare with OpenVDB's meshToLevelSet
     std::string sign;     ///< how the level set was signed (VoxelizeStats::sign), for the report
     /// Told the step now starting ("CGAL distances and sides", ...), for progress lines.
     std::function<void(const std::string& step)> onStep;
 };
 
+/// @brief One level set's validation: the check, the comparison and the verdict.
 struct LevelSetReport {
-    LevelSetCheck check;
+    LevelSetCheck check;       ///< against CGAL: the verdict's source
     bool compared = false; ///< `openvdb` holds a comparison
-    OpenVdbComparison openvdb;
+    OpenVdbComparison openvdb; ///< against OpenVDB's meshToLevelSet, when asked
     double exteriorBand = 0, interiorBand = 0; ///< voxels
-    std::string sign;
+    std::string sign;          ///< LevelSetReportOptions::sign
     double seconds = 0; ///< the check and the comparison
-    bool passed = false;
+    bool passed = false;       ///< the verdict
     std::string reason; ///< why it failed, one line
 };
 
+/// @brief Checks a level set against CGAL and, when asked, compares it with
+/// OpenVDB's (see the file comment).
+/// @param mesh, grid as checkLevelSet
 /// @param voxels the level set's active voxels (activeLevelSetVoxels)
-/// @throw svo::Error as checkLevelSet and compareWithOpenVdb.
+/// @throw svo::InvalidInput as checkLevelSet
+/// @throw svo::DeviceError as compareWithOpenVdb
 LevelSetReport validateLevelSet(const TriangleMesh& mesh, const GridSpec& grid, const std::vector<LevelSetVoxel>& voxels,
                                 const LevelSetReportOptions& options = {});
 
-/// The report as JSON text (what `svo validate --sdf --json` holds of it),
-/// so the CLI and Python give the same numbers.
+/// @brief The report as JSON text (what `svo validate --sdf --json` holds of
+/// it), so the CLI and Python give the same numbers.
 std::string levelSetReportJson(const LevelSetReport& report);
 
 } // namespace svo::validate

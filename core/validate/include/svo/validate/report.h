@@ -1,6 +1,6 @@
 #pragma once
 /// @file report.h
-/// One validation of a voxelization, start to end: what `svo validate` and
+/// @brief One validation of a voxelization, start to end: what `svo validate` and
 /// `svo.validate` print and return.
 ///
 /// Method: the octree is checked for structure and against the voxel list of
@@ -24,6 +24,7 @@
 
 namespace svo::validate {
 
+/// @brief What validateVoxelization checks and how it reports progress.
 struct ReportOptions {
     /// The voxelization under test: conservative (cubes, 26-connected hole
     /// fill) or thin (centre segments, 6-connected fill).
@@ -35,31 +36,38 @@ struct ReportOptions {
     std::function<void(const std::string& step)> onStep;
 };
 
+/// @brief One voxelization's validation: the sets, the hole check, the octree's
+/// consistency, and the verdict.
 struct Report {
     VoxelMode mode = VoxelMode::Conservative; ///< the mode the sets and the hole check used
     double epsilon = 0;            ///< the guard band R and A use, in voxels
     uint64_t degenerate = 0;       ///< triangles routed to segment or point tests
-    Classification classification;
-    HoleCheck holes;
+    Classification classification; ///< the octree's voxels against R, E and A
+    HoleCheck holes;               ///< the flood fill (closed meshes, when asked)
     std::string consistency;       ///< empty when the octree agrees with the voxel list
     double seconds = 0;            ///< reference, classification and hole check
-    bool passed = false;
+    bool passed = false;           ///< the verdict
     std::string reason;            ///< why it failed, one line
 };
 
-/// The rule of `worst` (ReportOptions::worst, LevelSetCheckOptions::worst)
+/// @brief The rule of `worst` (ReportOptions::worst, LevelSetCheckOptions::worst)
 /// for the front doors that take it as a signed number (`svo validate
-/// --worst`, Python's worst=): a whole number from 0 to 1000000. Throws
-/// svo::InvalidInput "<name> <value>: ..." naming the caller's flag or keyword.
+/// --worst`, Python's worst=): a whole number from 0 to 1000000.
+/// @param name the caller's flag or keyword
+/// @throw svo::InvalidInput "<name> <value>: ..." (argument() @a name)
 void checkWorst(int64_t worst, const std::string& name);
 
+/// @brief Validates a voxelization of @a mesh (see the file comment).
+/// @param octree    the voxelization under test, on its own grid
 /// @param voxelList the run's own voxel list (sorted, unique keys), from
 ///        Voxelizer::voxelize(..., voxelList), to check the octree against.
+/// @return the sets, hole check, consistency and verdict
+/// @throw svo::OutOfMemory when the hole check's grid does not fit host memory
 Report validateVoxelization(const TriangleMesh& mesh, const Octree& octree, const std::vector<uint64_t>& voxelList,
                             const ReportOptions& options = {});
 
-/// The report as JSON text (the fields of `svo validate --json` that the
-/// report holds), so the CLI and Python give the same numbers.
+/// @brief The report as JSON text (the fields of `svo validate --json` that
+/// the report holds), so the CLI and Python give the same numbers.
 std::string reportJson(const Report& report);
 
 } // namespace svo::validate

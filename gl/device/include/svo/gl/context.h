@@ -1,6 +1,6 @@
 #pragma once
 /// @file context.h
-/// A headless OpenGL 4.5 core context through EGL, with no window system.
+/// @brief svo::gl::Context: a headless OpenGL 4.5 core context through EGL, with no window system.
 ///
 /// Device choice: EGL_EXT_platform_device devices are enumerated; hardware
 /// devices are tried before software ones (Mesa llvmpipe), then Mesa's
@@ -44,6 +44,7 @@ namespace svo::gl {
 class Program;
 class Buffer;
 
+/// @brief How a Context finds or makes its OpenGL context.
 struct ContextOptions {
     std::string device;  ///< "" = $SVO_EGL_DEVICE or "auto"
     bool debug = false;  ///< GL debug output to stderr (always on in debug builds)
@@ -56,8 +57,9 @@ struct ContextOptions {
     bool adoptCurrent = false;
 };
 
+/// @brief What a Context found: the driver, its extensions and its limits.
 struct ContextInfo {
-    std::string vendor, renderer, version;
+    std::string vendor, renderer, version; ///< GL_VENDOR, GL_RENDERER, GL_VERSION
     std::string eglDevice;             ///< the EGL device used, or "the host's GLX context" (EGL) when adopted
     bool adopted = false;              ///< the context is the host's (ContextOptions::adoptCurrent)
     bool conservativeRasterNV = false; ///< GL_NV_conservative_raster present
@@ -78,13 +80,13 @@ struct ContextInfo {
     /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the most bytes of one buffer a shader
     /// can address; work whose buffers would pass it is tiled or refused.
     uint64_t maxStorageBlock = 0;
-    std::vector<std::string> extensionsUsed;
+    std::vector<std::string> extensionsUsed; ///< the optional extensions svo found and uses
     double setupMs = 0;                ///< wall ms the constructor took: EGL display, context, queries
     int programBinaryFormats = 0;      ///< GL_NUM_PROGRAM_BINARY_FORMATS; 0 means no program cache
     std::string programCache;          ///< the program cache folder in use; "" when off
 };
 
-/// What making programs has cost a Context so far (cumulative).
+/// @brief What making programs has cost a Context so far (cumulative).
 struct ProgramStats {
     int compiled = 0;  ///< programs compiled from source (refused ones included)
     int loaded = 0;    ///< programs loaded from the program cache
@@ -97,39 +99,48 @@ struct ProgramStats {
 /// missing (libEGL.so.1, or both libOpenGL.so.0 and libGL.so.1) and the
 /// loader's words, or "" when they load. svo links no GL library (libepoxy
 /// loads them on first use), so a program that never makes a Context runs
-/// where there is none. Tries the libraries once per process; creates no context.
+/// where there is none. Tries the libraries once per process; creates no
+/// context; throws nothing.
+/// @return the reason, or "" when the libraries load
 std::string openGlMissing();
 
-/// Whether the EGL device a Context with this device option (ContextOptions::device,
-/// else SVO_EGL_DEVICE, else "auto") would try first is a software rasterizer
-/// (EGL_MESA_device_software: llvmpipe), asked without creating a context
-/// (about 1 ms against 25-80 ms for a context). False when EGL lists no devices
-/// or cannot be loaded.
+/// @brief Whether the EGL device a Context would try first is a software
+/// rasterizer (EGL_MESA_device_software: llvmpipe), asked without creating a
+/// context, which costs far less than making one. Throws nothing.
+/// @param device as ContextOptions::device ("": SVO_EGL_DEVICE, else "auto")
+/// @return false also when EGL lists no devices or cannot be loaded
 bool softwareDevice(const std::string& device);
 
-/// Owns an EGL context on a display shared with other Contexts of the same
+/// @brief Owns an EGL context on a display shared with other Contexts of the same
 /// device (the display is terminated with its last Context). Not copyable.
 /// One thread at a time may use a Context; different Contexts may be used
 /// from different threads at once.
 class Context {
 public:
-    /// Throws svo::DeviceError with a one-line reason when no GL 4.5 core
-    /// context can be had: no GL library to load (openGlMissing()), no EGL
-    /// display or device that makes one, or, adopting, none current or one
-    /// older than 4.5.
-    /// Leaves the calling thread's current context as it was.
+    /// @brief Creates (or, with ContextOptions::adoptCurrent, wraps) the
+    /// context. Leaves the calling thread's current context as it was.
+    /// @throw svo::DeviceError with a one-line reason when no GL 4.5 core
+    ///        context can be had: no GL library to load (openGlMissing()), no
+    ///        EGL display or device that makes one, or, adopting, none current
+    ///        or one older than 4.5
+    /// @throw svo::OutOfMemory when GL runs out of memory setting it up
     explicit Context(const ContextOptions& options = {});
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
 
+    /// @brief What the context is and offers, found at construction.
     const ContextInfo& info() const;
 
-    /// Makes the context current for the scope's lifetime, then restores the
-    /// thread's previous context. Nested scopes of the same context are free.
+    /// @brief Makes the context current for the scope's lifetime, then restores
+    /// the thread's previous context. Nested scopes of the same context are free.
     class Scope {
     public:
+        /// @brief Makes @a context current, saving the thread's current one.
+        /// @throw svo::DeviceError when it cannot be made current (current on
+        ///        another thread, typically)
         explicit Scope(const Context& context);
+        /// @brief Puts the saved context back; never throws.
         ~Scope();
         Scope(const Scope&) = delete;
         Scope& operator=(const Scope&) = delete;
@@ -146,27 +157,35 @@ public:
     ///        function), looked up before the files core shares with every
     ///        shader (gpu_layout.h, overlap.glsl)
     /// @param files   the program's stages, by file name
-    /// @throw svo::Error when a shader does not compile or link, or on a GL error.
+    /// @return the program, owned by the context
+    /// @throw svo::DeviceError when a file is unknown or a shader does not
+    ///        compile or link; svo::OutOfMemory or svo::DeviceError on a GL
+    ///        error. A program cache that fails never throws.
     const Program& program(const ShaderFiles& library, std::initializer_list<const char*> files) const;
-    /// What program() has cost so far.
+    /// @brief What program() has cost so far.
     const ProgramStats& programStats() const;
-    /// A buffer named `what` of at least `bytes`, reused across calls; a
+    /// @brief A scratch buffer of at least @a bytes, reused across calls; a
     /// larger request frees the old one first. Contents are undefined.
+    /// @param what names the buffer, and so which scratch buffer is meant
+    /// @throw svo::OutOfMemory or svo::DeviceError as Buffer's constructor
     const Buffer& scratch(const char* what, uint64_t bytes) const;
-    /// Frees every scratch buffer (call inside a Scope, or it makes one).
+    /// @brief Frees every scratch buffer (call inside a Scope, or it makes one).
     void releaseScratch() const;
-    /// Bytes of scratch buffers held.
+    /// @brief Bytes of scratch buffers held.
     uint64_t scratchBytes() const;
-    /// Bytes of memory the device has free now: video memory where the driver
-    /// tells (GL_NVX_gpu_memory_info), host memory for a CPU rasterizer, whose
-    /// buffers live there; 0 when unknown.
+    /// @brief Bytes of memory the device has free now: video memory where the
+    /// driver tells (GL_NVX_gpu_memory_info), host memory for a CPU rasterizer,
+    /// whose buffers live there.
+    /// @return the bytes; 0 when unknown
+    /// @throw svo::OutOfMemory or svo::DeviceError on a GL error (checkGl)
     uint64_t availableMemory() const;
-    /// The most bytes of one buffer the shaders may address, which work must
-    /// stay within (tile or refuse): info().maxStorageBlock, or 0 (no limit
-    /// but the buffer's) on a CPU rasterizer: a hardware driver's limit is
-    /// real (past it, voxels are lost without an error), while Mesa's
-    /// llvmpipe reports a small limit but addresses whole buffers
-    /// (docs/design.md says what was measured).
+    /// @brief The most bytes of one buffer the shaders may address, which work
+    /// must stay within (tile or refuse). A hardware driver's limit is real
+    /// (past it, voxels are lost without an error), while Mesa's llvmpipe
+    /// reports a small limit but addresses whole buffers (docs/design.md says
+    /// what was measured).
+    /// @return info().maxStorageBlock, or 0 (no limit but the buffer's) on a
+    ///         CPU rasterizer
     uint64_t shaderBufferLimit() const;
 
 private:

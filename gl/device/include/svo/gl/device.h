@@ -19,7 +19,7 @@
 
 namespace svo {
 
-/// Which GPU a Device (and so a Voxelizer) uses.
+/// @brief Which GPU a Device (and so a Voxelizer) uses.
 struct DeviceOptions {
     /// "" ($SVO_EGL_DEVICE, else "auto"), "auto" (hardware first, then
     /// Mesa's software renderer), "hardware", "software", or an EGL device index.
@@ -51,8 +51,8 @@ void forEachOption(DeviceOptions& o, Visit&& visit)
           o.programCache);
 }
 
-/// Start-up work a call paid for: the GL context and the programs it made.
-/// All zero on a warm Device whose programs are made.
+/// @brief Start-up work a call paid for: the GL context and the programs it
+/// made. All zero on a warm Device whose programs are made.
 struct StartupStats {
     double eglMs = 0;          ///< creating the EGL display and GL context (the first GPU use)
     double programMs = 0;      ///< making programs: loading them from the cache or compiling them
@@ -64,6 +64,8 @@ struct StartupStats {
 
 namespace gl {
 
+/// @brief The GL context a pipeline runs on, created on first use, and the
+/// start-up it has not yet reported. Movable, not copyable.
 class Device {
 public:
     /// @brief A Device that creates no context yet. Throws nothing.
@@ -87,21 +89,24 @@ public:
     ///        tried (a display is known only once tried)
     bool withoutGl(bool create = true);
     /// @brief Creates the context now (see context()).
+    /// @throw as context()
     void start() { context(); }
-    /// Whether the context exists.
+    /// @brief Whether the context exists.
     bool started() const { return context_ != nullptr; }
     /// @brief Whether the device is a software rasterizer (llvmpipe).
     /// @param create with false and no context yet, EGL is asked about its
     ///        first device without creating one
+    /// @throw as context() when @a create makes the context
     bool software(bool create = true);
     /// @brief "vendor | renderer | version (EGL device, extensions used)";
     /// creates the context if needed.
+    /// @throw as context()
     std::string describe();
     /// @brief The start-up paid since the last call to this: the context's
     /// creation if not yet reported, and the programs made since.
     /// @param warnings receives the program cache's new warnings
     StartupStats takeStartup(std::vector<std::string>& warnings);
-    /// Frees the context's scratch buffers (nothing when there is no context).
+    /// @brief Frees the context's scratch buffers (nothing when there is no context).
     void releaseScratch();
 
 private:

@@ -1,6 +1,6 @@
 #pragma once
 /// @file program.h
-/// Linked GL programs: a program's expanded stages (ProgramSource,
+/// @brief Linked GL programs: a program's expanded stages (ProgramSource,
 /// programSource) and the program itself (Program), compiled or loaded from
 /// a driver's binary.
 #include <cstdint>
@@ -19,43 +19,60 @@
 
 namespace svo::gl {
 
-/// A program's stages with their #include lines expanded: what the driver
-/// compiles, and so what a cached binary of it is keyed by.
+/// @brief A program's stages with their #include lines expanded: what the
+/// driver compiles, and so what a cached binary of it is keyed by.
 struct ProgramSource {
     std::string name;                                        ///< "a.vert, a.frag", for messages
     std::vector<std::pair<std::string, ShaderSource>> stages; ///< file name, expanded text
 };
 
-/// The expanded stages of `files`, looked up in `extra` before the embedded
-/// files. Throws svo::Error for an unknown file or an include cycle.
+/// @brief The expanded stages of a program.
+/// @param files the stage files, by name
+/// @param extra files looked up before the embedded ones
+/// @throw svo::DeviceError for an unknown file, an include cycle, or a file
+///        whose extension names no stage
 ProgramSource programSource(std::initializer_list<const char*> files, const ShaderFiles& extra = {});
 
-/// A linked program from embedded shader files (see shaders.h), compiled or
-/// loaded from a binary the driver gave earlier.
+/// @brief A linked program from embedded shader files (see shaders.h),
+/// compiled or loaded from a binary the driver gave earlier. Calls need a
+/// current Context.
 class Program {
 public:
-    /// Stage files by name, e.g. {"raster.vert", "raster.geom", "raster.frag"}.
-    /// Throws svo::Error with the compiler log, its lines naming files, on failure.
+    /// @brief Compiles and links stage files by name, e.g. {"raster.vert",
+    /// "raster.geom", "raster.frag"}.
+    /// @throw svo::DeviceError for an unknown file or include cycle, or with
+    ///        the compiler log, its lines naming files, when a stage does not
+    ///        compile or the program does not link; svo::OutOfMemory or
+    ///        svo::DeviceError for a GL error (checkGl)
     Program(std::initializer_list<const char*> files);
-    /// The same, looking files up in `extra` before the embedded ones.
+    /// @brief The same, looking files up in @a extra before the embedded ones.
+    /// @throw as above
     Program(const ShaderFiles& extra, std::initializer_list<const char*> files);
-    /// Compiles and links `source`. `retrievable` asks the driver to keep the
-    /// linked binary for binary(). Throws as above.
+    /// @brief Compiles and links @a source.
+    /// @param retrievable asks the driver to keep the linked binary for binary()
+    /// @throw as above, but for the file lookup
     explicit Program(const ProgramSource& source, bool retrievable = false);
 
-    /// A program from a binary that binary() returned, or nothing when the
-    /// driver refuses it (another driver or GPU, a damaged binary, a format it
-    /// no longer offers): the caller compiles instead. Throws svo::Error for a
-    /// GL error left by earlier work, or one other than the refusal.
+    /// @brief A program from a binary that binary() returned.
+    /// @return the program, or nothing when the driver refuses the binary
+    ///         (another driver or GPU, a damaged binary, a format it no longer
+    ///         offers): the caller compiles instead
+    /// @throw svo::OutOfMemory or svo::DeviceError for a GL error left by
+    ///        earlier work, or one other than the refusal
     static std::optional<Program> fromBinary(const ProgramSource& source, GLenum format,
                                              const std::vector<uint8_t>& binary);
-    /// The linked binary and its format (glGetProgramBinary); empty when the
-    /// driver keeps none. Throws svo::Error on a GL error.
+    /// @brief The linked binary (glGetProgramBinary).
+    /// @param format receives the binary's format
+    /// @return the binary; empty when the driver keeps none
+    /// @throw svo::OutOfMemory or svo::DeviceError on a GL error
     std::vector<uint8_t> binary(GLenum& format) const;
 
-    /// set() throws svo::Error for a name that is not an active uniform:
-    /// misspelt, or unused by the shaders and so removed by the linker.
+    /// @brief Makes it the current program (glUseProgram).
     void use() const { glUseProgram(h_.get()); }
+    /// @brief Sets uniform @a name; the overloads follow GLSL's types (float,
+    /// int, uint, vec2, ivec3, uint[], uvec3, vec3, vec4).
+    /// @throw svo::DeviceError for a name that is not an active uniform:
+    ///        misspelt, or unused by the shaders and so removed by the linker
     void set(const char* name, float v) const { glProgramUniform1f(h_.get(), location(name), v); }
     void set(const char* name, int v) const { glProgramUniform1i(h_.get(), location(name), v); }
     void set(const char* name, float x, float y) const { glProgramUniform2f(h_.get(), location(name), x, y); }
@@ -77,24 +94,26 @@ public:
     {
         glProgramUniform4f(h_.get(), location(name), x, y, z, w);
     }
-    /// A mat4 uniform from 16 floats in column-major order (GLSL's).
+    /// @brief Sets a mat4 uniform from 16 floats in column-major order (GLSL's).
+    /// @throw svo::DeviceError as set()
     void setMatrix(const char* name, const float* columnMajor) const
     {
         glProgramUniformMatrix4fv(h_.get(), location(name), 1, GL_FALSE, columnMajor);
     }
-    /// Compute programs: `groups` work groups along x.
+    /// @brief Dispatches a compute program as @a groups work groups along x.
     void dispatch(uint32_t groups) const
     {
         use();
         glDispatchCompute(groups, 1, 1);
     }
-    /// Compute programs: x by y work groups.
+    /// @brief Dispatches a compute program as @a x by @a y work groups.
     void dispatch(uint32_t x, uint32_t y) const
     {
         use();
         glDispatchCompute(x, y, 1);
     }
-    /// Compute programs: group counts read on the GPU from `args` at byte `offset`.
+    /// @brief Dispatches a compute program with group counts read on the GPU
+    /// from @a args at byte @a offset (glDispatchComputeIndirect).
     void dispatchIndirect(const Buffer& args, uint64_t offset) const
     {
         use();

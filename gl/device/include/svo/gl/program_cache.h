@@ -1,6 +1,6 @@
 #pragma once
 /// @file program_cache.h (internal)
-/// Linked program binaries kept on disk between processes
+/// @brief svo::gl::ProgramCache: linked program binaries kept on disk between processes
 /// (glGetProgramBinary / glProgramBinary), so that a new context loads its
 /// programs instead of compiling them: compilation is most of a cold start
 /// on a small mesh.
@@ -23,39 +23,52 @@
 
 namespace svo::gl {
 
-/// The cache folder `option` asks for: a folder; "off" for none; or "" for
-/// $SVO_PROGRAM_CACHE when it is set (empty or "off": none), else
-/// $XDG_CACHE_HOME/svo/programs, else $HOME/.cache/svo/programs. Returns ""
-/// for none (also when "" finds neither XDG_CACHE_HOME nor HOME).
+/// @brief The cache folder an option asks for. Throws nothing.
+/// @param option a folder; "off" for none; or "" for $SVO_PROGRAM_CACHE when
+///        it is set (empty or "off": none), else $XDG_CACHE_HOME/svo/programs,
+///        else $HOME/.cache/svo/programs
+/// @return the folder; "" for none (also when "" finds neither
+///         XDG_CACHE_HOME nor HOME)
 std::string programCacheFolder(const std::string& option);
 
+/// @brief The program binaries of one GL driver in one folder.
 class ProgramCache {
 public:
-    /// `folder` "" turns the cache off. `driver` names the GL driver (vendor,
-    /// renderer, version): part of every entry's identity.
+    /// @brief A cache over @a folder; touches no file yet.
+    /// @param folder programCacheFolder()'s answer; "" turns the cache off
+    /// @param driver names the GL driver (vendor, renderer, version): part of
+    ///        every entry's identity
     ProgramCache(std::string folder, std::string driver);
 
+    /// @brief Whether the cache has a folder.
     bool enabled() const { return !folder_.empty(); }
+    /// @brief The cache folder; "" when off.
     const std::string& folder() const { return folder_; }
 
+    /// @brief What load() found.
     enum class Lookup {
         Absent,  ///< no entry (or the cache is off, or the entry cannot be read)
         Loaded,  ///< the program came from its entry
         Refused, ///< an entry exists but is damaged, of another identity, or refused by the driver
     };
-    /// The program `source` links to, from its entry, or nothing (`how` says
-    /// why). Throws only what Program::fromBinary throws (GL errors).
+    /// @brief The program @a source links to, from its entry.
+    /// @param how receives what was found
+    /// @return the program, or nothing (@a how says why)
+    /// @throw svo::OutOfMemory or svo::DeviceError for GL errors
+    ///        (Program::fromBinary); file errors never throw
     std::optional<Program> load(const ProgramSource& source, Lookup& how) const;
 
-    /// Writes the entry of `program`, linked from `source` with its binary
-    /// retrievable, atomically (a temporary file, then a rename), replacing
-    /// any entry there. Returns a one-line warning the first time the folder
-    /// cannot be written or the driver returns no binary (later stores then
-    /// do nothing), else "". File errors never throw; GL errors reading the
-    /// binary do.
+    /// @brief Writes the entry of @a program, linked from @a source with its
+    /// binary retrievable, atomically (a temporary file, then a rename),
+    /// replacing any entry there. Nothing when the cache is off.
+    /// @return a one-line warning the first time the folder cannot be written
+    ///         or the driver returns no binary (later stores then do nothing),
+    ///         else ""
+    /// @throw svo::OutOfMemory or svo::DeviceError for GL errors reading the
+    ///        binary (Program::binary); file errors never throw
     std::string store(const ProgramSource& source, const Program& program);
 
-    /// Where the entry of `source` lives.
+    /// @brief The path of the entry of @a source.
     std::string entryPath(const ProgramSource& source) const;
 
 private:

@@ -1,6 +1,6 @@
 #pragma once
 /// @file octree_view.h
-/// Pictures of an octree drawn by the GPU from the octree itself: the
+/// @brief Pictures of an octree drawn by the GPU from the octree itself: the
 /// renderer behind `svo view`.
 ///
 /// What is drawn, and from where:
@@ -17,7 +17,7 @@
 ///     every node its origin first, since the octree stores none;
 ///   - the mesh (grey, flat shaded), when one is given.
 /// The octree's nodes and bricks are uploaded once, as they are laid out in
-/// memory (docs/octree.md): about 1.2 bytes per voxel.
+/// memory (docs/octree.md; docs/design.md gives the bytes per voxel).
 ///
 /// Space: the camera is in world units (the octree's GridSpec gives the
 /// map). Depth is shared by the three layers, so outlines and mesh are hidden
@@ -43,11 +43,11 @@
 
 namespace svo::gl {
 
-/// A camera in world units (svo/core/camera.h), shared with the path-traced
+/// @brief A camera in world units (svo/core/camera.h), shared with the path-traced
 /// reference so that both see each pixel along the same ray.
 using ViewCamera = svo::Camera;
 
-/// How voxels are coloured: flat green, or by an attribute channel of the
+/// @brief How voxels are coloured: flat green, or by an attribute channel of the
 /// octree (VoxelAttributes): the normal as 0.5 + 0.5 n, the colour, or a
 /// colour hashed from the triangle id.
 enum class VoxelColor { Flat, Normal, Color, Triangle };
@@ -57,7 +57,9 @@ inline constexpr EnumName<VoxelColor> kVoxelColorNames[] = {{VoxelColor::Flat, "
                                                              {VoxelColor::Triangle, "triangle"}};
 constexpr const auto& enumNames(VoxelColor) { return kVoxelColorNames; }
 
-/// Ambient occlusion on the voxels (Crassin et al. 2011): cones over the
+/// @brief Ambient occlusion on the voxels (Crassin et al. 2011).
+///
+/// Cones over the
 /// hemisphere, one along the normal and a ring tilted 60 degrees around it,
 /// each weighted by its share of the cosine-weighted hemisphere, composited
 /// front to back; AO is one minus the weighted occlusion. Distances in
@@ -67,7 +69,8 @@ constexpr const auto& enumNames(VoxelColor) { return kVoxelColorNames; }
 ///     sampled trilinearly, opacity seen along x, y and z (Crassin's
 ///     anisotropic filter). Each cone keeps its occlusion per sector of its
 ///     cross-section, so that an occluder it sees at several depths (a
-///     sphere's near and far sides) is counted once (design §7c). The cones
+///     sphere's near and far sides) is counted once (docs/design.md, ambient
+///     occlusion). The cones
 ///     leave the voxel's centre along the octree's normal channel when it
 ///     has one, else along the face the ray hit. Allocated while AO is on,
 ///     `volumeResolution` texels at most.
@@ -81,18 +84,18 @@ constexpr const auto& enumNames(VoxelColor) { return kVoxelColorNames; }
 /// a finer one (what lies behind cannot occlude). Volume cones start away
 /// from a neighbouring surface (up to 2 texels down level 0's opacity
 /// gradient across the normal), so that a concave edge's cones do not start
-/// inside the other wall (design §7c).
+/// inside the other wall (docs/design.md, ambient occlusion).
 ///
 /// The cone model is biased, and bench/results measures both sources against
 /// a path-traced reference (svo/reference/path_trace.h). With the Octree
 /// source, coarse cells that a surface crosses only in part (room corners)
 /// let light leak through walls with the Average filter; the Max filter (a
-/// node at least as opaque as its most opaque child) closes most of them (a
-/// closed box's floor: AO 0.03 instead of 0.15) and darkens thin features
+/// node at least as opaque as its most opaque child) closes most of them
+/// (docs/design.md gives a closed box's floor) and darkens thin features
 /// instead.
 struct AmbientOcclusion {
-    enum class Source { Volume, Octree };
-    enum class Filter { Average, Max };
+    enum class Source { Volume, Octree }; ///< where cones read opacity (see above)
+    enum class Filter { Average, Max };   ///< Octree: a node's opacity from its children
     /// The cones the front ends turn AO on with (svo view --render ao, the
     /// window's G key, Python's ao_only); bench/results/ has the error of
     /// each count against more cones.
@@ -108,7 +111,7 @@ struct AmbientOcclusion {
     /// slower and misses thinner walls less. Near the surface, where a
     /// sample is finer than the cone, at most twice the share of its width.
     double step = 0.5;
-    Source source = Source::Volume;
+    Source source = Source::Volume; ///< where cones read opacity
     /// Volume: its largest side, texels: a power of two, 8 to 2048, and at
     /// least an eighth of the grid's largest side (a texel holds at most 8³
     /// voxels: 256 serves grids up to 2048 wide); wider grids are an error
@@ -134,9 +137,10 @@ inline constexpr EnumName<AmbientOcclusion::Filter> kAoFilterNames[] = {{Ambient
                                                                          {AmbientOcclusion::Filter::Max, "max"}};
 constexpr const auto& enumNames(AmbientOcclusion::Filter) { return kAoFilterNames; }
 
-/// Light injected into the octree and gathered by cones (design §7d;
-/// Crassin et al. 2011). When on, the voxels are drawn lit instead of by
-/// ViewLayers::voxelColor and AO:
+/// @brief Light injected into the octree and gathered by cones (Crassin et al.
+/// 2011; docs/design.md, light injection and one-bounce GI).
+///
+/// When on, the voxels are drawn lit instead of by ViewLayers::voxelColor and AO:
 ///   - injection: every voxel gets its outgoing radiance ρ/π Σ E cos θ V
 ///     (two-sided Lambertian, the normal from the octree's normal channel,
 ///     ρ from its colour channel or `albedo`), V from a ray marched through
@@ -157,11 +161,11 @@ constexpr const auto& enumNames(AmbientOcclusion::Filter) { return kAoFilterName
 /// resolution change (a moved light re-injects). bench/results measures the
 /// pictures against the path-traced reference (svo/reference/path_trace.h).
 struct Illumination {
-    enum class Mode { Off, Direct, Global };
-    Mode mode = Mode::Off;
+    enum class Mode { Off, Direct, Global }; ///< none; direct light with shadows; plus one diffuse bounce
+    Mode mode = Mode::Off;                ///< off by default
     Lights lights;                        ///< world units; at least one light when on; no environment light
     Vec3d albedo{0.75, 0.75, 0.75};       ///< ρ where the octree has no colour channel, each in [0, 1]
-    int cones = 5;                        ///< indirect light: 1 (the normal) to 16 cones (interleaved, 5 are about as close as 7)
+    int cones = 5;                        ///< indirect light: 1 (the normal) to 16 cones
     double apertureDegrees = 60;          ///< full cone angle, (0, 180)
     double offset = 1.5;                  ///< cones start this far out along the normal, texels of level 0 (voxels while a texel is one voxel)
     double distance = 0;                  ///< cones stop here, voxels; 0: the grid's diagonal
@@ -205,19 +209,21 @@ inline constexpr EnumName<Illumination::Mode> kLightingNames[] = {{Illumination:
                                                                    {Illumination::Mode::Global, "gi"}};
 constexpr const auto& enumNames(Illumination::Mode) { return kLightingNames; }
 
-/// Throw svo::InvalidInput, in one line naming the option, for options out of
-/// range: what OctreeView::render would refuse, checked before any work
-/// (a command line checks them before it voxelizes). checkIllumination
-/// needs at least one light; what depends on the octree (its normal
-/// channel, a volume resolution too small for its grid) is checked when
-/// drawing.
+/// @brief Checks lighting options before any work: what OctreeView::render
+/// would refuse (a command line checks them before it voxelizes). What
+/// depends on the octree (its normal channel, a volume resolution too small
+/// for its grid) is checked when drawing.
+/// @throw svo::InvalidInput, in one line naming the option, for an option out
+///        of range, no light, or an environment light
 void checkIllumination(const Illumination& light);
+/// @brief Checks AO options before any work, as checkIllumination.
+/// @throw svo::InvalidInput, in one line naming the option, for an option out of range
 void checkAmbientOcclusion(const AmbientOcclusion& ao);
 
-/// The lighting volume as read back (OctreeView::readLightVolume): level 0
-/// first, texels x fastest.
+/// @brief One level of the lighting volume as read back
+/// (OctreeView::readLightVolume), texels x fastest.
 struct LightVolumeLevel {
-    int size[3] = {0, 0, 0};
+    int size[3] = {0, 0, 0}; ///< texels along x, y, z
     std::vector<float> opacity;  ///< 4 per texel: seen along x, y, z, and coverage
     std::vector<float> radiance; ///< 4 per texel: radiance x coverage (rgb), coverage
     /// With Illumination::directional, from level 1 up, 4 per texel each:
@@ -231,9 +237,10 @@ struct LightVolumeLevel {
     /// of the light it holds.
     std::vector<float> litSide;
 };
+/// @brief The lighting volume as read back (OctreeView::readLightVolume).
 struct LightVolume {
     uint32_t texelVoxels = 1; ///< voxels per texel edge at level 0
-    std::vector<LightVolumeLevel> levels;
+    std::vector<LightVolumeLevel> levels; ///< level 0 first
     /// With Illumination::clearance, per texel of level 0: the coarsest
     /// level a cone may sample anywhere in that texel and read no texel of
     /// level 0 that holds a voxel (at most 7: distances stop at 255 texels).
@@ -241,7 +248,7 @@ struct LightVolume {
     std::vector<uint8_t> clearLevel;
 };
 
-/// The surface the voxel layer shades (ViewLayers::surface):
+/// @brief The surface the voxel layer shades (ViewLayers::surface):
 ///   - Voxels: the voxels camera rays hit in the octree, each shaded at its
 ///     centre along its normal channel (or the face the ray hit): what the
 ///     octree holds, blocky at its resolution;
@@ -259,11 +266,11 @@ enum class Surface { Voxels, Mesh };
 inline constexpr EnumName<Surface> kSurfaceNames[] = {{Surface::Voxels, "voxels"}, {Surface::Mesh, "mesh"}};
 constexpr const auto& enumNames(Surface) { return kSurfaceNames; }
 
-/// What to draw.
+/// @brief What to draw.
 struct ViewLayers {
     bool voxels = true; ///< the voxel layer: the `surface`, shaded
-    Surface surface = Surface::Voxels;
-    bool outlines = true;
+    Surface surface = Surface::Voxels; ///< what the voxel layer shades
+    bool outlines = true; ///< the node outlines of levels firstLevel to lastLevel
     bool bricks = false; ///< the brick-level nodes' boxes, in their own colour, whatever the level range
     bool mesh = false; ///< the mesh, flat grey, when the voxel layer does not shade it (needs a mesh; ignored without one)
     VoxelColor voxelColor = VoxelColor::Flat; ///< a channel the octree lacks is an error
@@ -273,14 +280,15 @@ struct ViewLayers {
     uint32_t lastLevel = std::numeric_limits<uint32_t>::max(); ///< clamped to the brick level
 };
 
-/// An RGBA8 picture, rows from the top.
+/// @brief An RGBA8 picture, rows from the top.
 struct Image {
-    int width = 0, height = 0;
+    int width = 0, height = 0; ///< pixels
     std::vector<uint8_t> rgba; ///< 4 bytes per pixel
+    /// @brief The 4 bytes of pixel (@a x, @a y), row @a y from the top; unchecked.
     const uint8_t* pixel(int x, int y) const { return &rgba[4 * (size_t(y) * size_t(width) + size_t(x))]; }
 };
 
-/// The colours of the layers, 0..1 (tests classify pixels by them).
+/// @brief The colours of the layers, 0..1 (tests classify pixels by them).
 struct ViewColors {
     static constexpr float voxel[3] = {0.15f, 0.85f, 0.20f};
     static constexpr float outline[3] = {0.95f, 0.10f, 0.10f};
@@ -289,23 +297,29 @@ struct ViewColors {
     static constexpr float background[3] = {0.08f, 0.08f, 0.10f};
 };
 
-/// The world box of the grid's voxels: local [-1/2, dims - 1/2] per axis.
+/// @brief The world box of the grid's voxels: local [-1/2, dims - 1/2] per axis.
+/// @return the box's lowest and highest corners, world units
 std::array<Vec3d, 2> gridWorldBox(const GridSpec& grid);
 
-/// A camera that sees the whole box, looking along `direction` (need not be
-/// unit; not zero). Orthographic views fit the box's bounding sphere in the
-/// image height and width (`aspect` = width / height).
+/// @brief A camera that sees the whole box. Orthographic views fit the box's
+/// bounding sphere in the image height and width.
+/// @param direction where the camera looks; need not be unit
+/// @param aspect    the picture's width / height
+/// @throw svo::InvalidInput for a zero @a direction
 ViewCamera frameBox(const std::array<Vec3d, 2>& box, const Vec3d& direction, bool orthographic, double aspect);
 
-/// The named views of `svo view --view`: "front" (perspective, looking along
-/// (-0.35, -0.3, -1), the Cornell box's open side) or an axis, "+x", "-x",
-/// "+y", "-y", "+z", "-z" (orthographic, looking from that side), framing the
-/// box with frameBox. Throws svo::InvalidInput for another name ("view 'x':
-/// ...", its argument() "svo::gl::namedView").
+/// @brief The named views of `svo view --view`, framing the box with frameBox.
+/// @param name "front" (perspective, looking along (-0.35, -0.3, -1), the
+///        Cornell box's open side) or an axis, "+x", "-x", "+y", "-y", "+z",
+///        "-z" (orthographic, looking from that side)
+/// @param aspect the picture's width / height
+/// @throw svo::InvalidInput for another name ("view 'x': ...", its
+///        argument() "svo::gl::namedView")
 ViewCamera namedView(const std::array<Vec3d, 2>& box, const std::string& name, double aspect);
 
-/// Lights for a scene in the world box `box` when none are given: for a
-/// room seen from inside (`inside`, e.g. the Cornell box), a point light a
+/// @brief Lights for a scene in the world box @a box when none are given.
+///
+/// For a room seen from inside (@a inside, e.g. the Cornell box), a point light a
 /// tenth of the box's height below the top's centre, with intensity π d²
 /// for d its distance to the box's centre; otherwise a directional light
 /// from above, left and in front (travelling along (0.4, -1, -0.6)) with
@@ -313,72 +327,91 @@ ViewCamera namedView(const std::array<Vec3d, 2>& box, const std::string& name, d
 /// reflects radiance 1.
 Lights defaultLights(const std::array<Vec3d, 2>& box, bool inside);
 
-/// Draws one octree (and optionally its mesh) with a Context. Not copyable.
+/// @brief Draws one octree (and optionally its mesh) with a Context. Not copyable.
 /// Every GL call happens inside a Context::Scope, so the caller's current
 /// context is left as it was.
 class OctreeView {
 public:
-    /// Uploads the octree's nodes and bricks and computes the node origins on
-    /// the GPU; `mesh`, when given, is uploaded in the octree's frame (it must
-    /// be the mesh the octree was made from, in world units). Throws
-    /// svo::Error when the octree fails checkOctree's level ranges, on a
-    /// shader or GL error, or when the GPU runs out of memory.
+    /// @brief Uploads the octree's nodes and bricks and computes the node
+    /// origins on the GPU.
+    /// @param context the context to draw with; must outlive the view
+    /// @param mesh    when given, uploaded in the octree's frame: it must be
+    ///        the mesh the octree was made from, in world units
+    /// @throw svo::InvalidInput when the octree fails checkOctree's level ranges
+    /// @throw svo::Unsupported for attribute channels over 2^32 voxels
+    /// @throw svo::OutOfMemory when the GPU runs out of memory
+    /// @throw svo::DeviceError on a shader or GL error
     OctreeView(const Context& context, const Octree& octree, const TriangleMesh* mesh = nullptr);
     ~OctreeView();
     OctreeView(const OctreeView&) = delete;
     OctreeView& operator=(const OctreeView&) = delete;
 
-    /// Replaces the octree (and mesh), e.g. after re-voxelizing; on a throw
-    /// the previous one stays.
+    /// @brief Replaces the octree (and mesh), e.g. after re-voxelizing; on a
+    /// throw the previous one stays.
+    /// @throw as the constructor
     void setOctree(const Octree& octree, const TriangleMesh* mesh = nullptr);
 
-    /// Renders one frame offscreen (a colour and a depth renderbuffer) and
-    /// reads it back. The same inputs give the same bytes. Throws svo::InvalidInput
-    /// for a size outside [1, the driver's largest renderbuffer], a degenerate
-    /// camera (eye at target, up along the view, height or fov not positive),
-    /// a voxel colour whose channel the octree lacks, AO or lighting options
-    /// outside their ranges, lighting on an octree without a normal channel,
-    /// svo::DeviceError for a GL error, or rays or light injection that a CPU
-    /// rasterizer's loop limit cut short (ContextInfo::loopLimit; see
-    /// cutPixels()); svo::Unsupported for a grid too wide for the AO or
-    /// lighting volume (naming AmbientOcclusion::volumeResolution).
+    /// @brief Renders one frame offscreen (a colour and a depth renderbuffer)
+    /// and reads it back. The same inputs give the same bytes.
+    /// @param width, height the picture's size, pixels
+    /// @return the picture
+    /// @throw svo::InvalidInput for a size outside [1, the driver's largest
+    ///        renderbuffer], a degenerate camera (eye at target, up along the
+    ///        view, height or fov not positive), a voxel colour whose channel
+    ///        the octree lacks, the Mesh surface without a mesh, AO or
+    ///        lighting options outside their ranges, lighting on an octree
+    ///        without a normal channel
+    /// @throw svo::DeviceError for a GL error, or rays or light injection that
+    ///        a CPU rasterizer's loop limit cut short (ContextInfo::loopLimit;
+    ///        see cutPixels())
+    /// @throw svo::Unsupported for a grid too wide for the AO or lighting
+    ///        volume (naming AmbientOcclusion::volumeResolution)
+    /// @throw svo::OutOfMemory when the GPU cannot hold the pictures or volumes
     Image render(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
 
-    /// Draws one frame into the framebuffer bound now (a window's, when the
-    /// Context adopted the window's context), over the viewport (0, 0, width,
-    /// height), clearing it first. Leaves depth testing off and no program or
-    /// vertex array bound. Throws as render() does, except that rays cut
-    /// short are drawn as they are and counted in cutPixels().
+    /// @brief Draws one frame into the framebuffer bound now (a window's, when
+    /// the Context adopted the window's context), over the viewport (0, 0,
+    /// width, height), clearing it first. Leaves depth testing off and no
+    /// program or vertex array bound.
+    /// @throw as render(), except that rays cut short are drawn as they are
+    ///        and counted in cutPixels()
     void draw(const ViewCamera& camera, int width, int height, const ViewLayers& layers = {}) const;
 
-    /// Times `frames` frames drawn offscreen one after another, after one
+    /// @brief The time of one frame (timeFrames).
+    struct FrameTime {
+        double gpuMs = 0, wallMs = 0; ///< GL timestamp queries; issue to glFinish
+    };
+    /// @brief Times frames drawn offscreen one after another, after one
     /// untimed frame (programs made, caches warm), nothing read back. Each
     /// frame gets its GPU time from GL timestamp queries and its wall time
     /// from issue to glFinish (software rasterizers such as llvmpipe draw at
-    /// the flush, so only the wall time is meaningful there). Throws as
-    /// render() does, and for `frames` < 1. `injectEachFrame` (lit layers)
-    /// injects the light and mip-maps the volume again inside each timed
-    /// frame, as after a light moves.
-    struct FrameTime {
-        double gpuMs = 0, wallMs = 0;
-    };
+    /// the flush, so only the wall time is meaningful there).
+    /// @param frames          the timed frames, at least 1
+    /// @param injectEachFrame lit layers: inject the light and mip-map the
+    ///        volume again inside each timed frame, as after a light moves
+    /// @return one FrameTime per timed frame
+    /// @throw as render(), and svo::InvalidInput for @a frames < 1
     std::vector<FrameTime> timeFrames(const ViewCamera& camera, int width, int height, const ViewLayers& layers,
                                       int frames, bool injectEachFrame = false) const;
 
-    /// The lighting volume `light` gives (built or taken from the cache as
-    /// drawing does), every level read back: for tests and tools. Throws as
-    /// render() does for lighting options out of range or a missing normal
-    /// channel, and when the GPU cannot hold the volume.
+    /// @brief The lighting volume @a light gives (built or taken from the cache
+    /// as drawing does), every level read back: for tests and tools.
+    /// @throw as render() for lighting options out of range, a missing normal
+    ///        channel, a grid too wide for the volume, a cut injection, and
+    ///        svo::OutOfMemory when the GPU cannot hold the volume
     LightVolume readLightVolume(const Illumination& light) const;
 
-    /// The pixels of the last frame whose rays (march, cones) a CPU
+    /// @brief The pixels of the last frame whose rays (march, cones) a CPU
     /// rasterizer's loop limit cut short (ContextInfo::loopLimit: llvmpipe
     /// ends all loops of an invocation after 65,535 iterations in all,
-    /// silently); always 0 on GPUs. render() and timeFrames() refuse such a
-    /// frame; a window drawn with draw() should say so.
+    /// silently). render() and timeFrames() refuse such a frame; a window
+    /// drawn with draw() should say so.
+    /// @return the count; always 0 on GPUs
     uint32_t cutPixels() const;
 
+    /// @brief The grid of the octree shown.
     const GridSpec& grid() const;
+    /// @brief The octree's brick level (Octree::brickLevel).
     uint32_t brickLevel() const;
 
 private:

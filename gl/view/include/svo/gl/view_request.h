@@ -1,6 +1,6 @@
 #pragma once
 /// @file view_request.h
-/// The view policy: what a picture of an octree gets by default, and which
+/// @brief The view policy: what a picture of an octree gets by default, and which
 /// combinations are refused, written once for `svo view` (its flags), its
 /// window (its keys and panel) and Python's Octree.render (its keywords).
 ///
@@ -29,7 +29,7 @@
 
 namespace svo::gl {
 
-/// What a picture shows (svo view --render).
+/// @brief What a picture shows (svo view --render).
 enum class RenderMode {
     Layers,           ///< "debug": the layers as asked (voxels coloured, outlines, bricks, mesh; AO when it has cones)
     AmbientOcclusion, ///< "ao": the surface as its ambient occlusion, grey
@@ -42,17 +42,17 @@ inline constexpr EnumName<RenderMode> kRenderModeNames[] = {{RenderMode::Layers,
                                                              {RenderMode::Global, "gi"}};
 constexpr const auto& enumNames(RenderMode) { return kRenderModeNames; }
 
-/// The surface asked for (svo view --surface): Surface, or Auto.
+/// @brief The surface asked for (svo view --surface): Surface, or Auto.
 enum class SurfaceChoice { Auto, Voxels, Mesh };
 inline constexpr EnumName<SurfaceChoice> kSurfaceChoiceNames[] = {
     {SurfaceChoice::Voxels, "voxels"}, {SurfaceChoice::Mesh, "mesh"}, {SurfaceChoice::Auto, "auto"}};
 constexpr const auto& enumNames(SurfaceChoice) { return kSurfaceChoiceNames; }
 
-/// What a caller asks of one picture. Errors name its fields as
+/// @brief What a caller asks of one picture. Errors name its fields as
 /// "ViewRequest::render", "ViewRequest::surface" and "ViewLayers::voxelColor".
 struct ViewRequest {
-    RenderMode render = RenderMode::Layers;
-    SurfaceChoice surface = SurfaceChoice::Auto;
+    RenderMode render = RenderMode::Layers;      ///< what the picture shows
+    SurfaceChoice surface = SurfaceChoice::Auto; ///< what the voxel layer shades
     /// The layers, outline levels, voxel colour, and AO and lighting as asked
     /// (cones, their shape, source, albedo, specular, ...). viewLayers sets
     /// `surface`, `light.mode` and, for RenderMode::AmbientOcclusion,
@@ -65,23 +65,26 @@ struct ViewRequest {
     bool room = false; ///< the default lights are a room's seen from inside (the Cornell box)
 };
 
-/// The layers to draw `octree` with (and its mesh, when `haveMesh`): the
-/// defaults applied and the request checked. Throws svo::InvalidInput naming
-/// the option at fault (see the file comment).
+/// @brief The layers to draw @a octree with: the defaults applied and the
+/// request checked.
+/// @param haveMesh whether the picture has the octree's mesh to draw
+/// @return what OctreeView::render and draw take
+/// @throw svo::InvalidInput naming the option at fault (see the file comment)
 ViewLayers viewLayers(const ViewRequest& request, const Octree& octree, bool haveMesh);
 
-/// What viewLayers checks before any octree exists (AO and lighting options
-/// out of range; a lit request without lights is checked as if it had one):
-/// a command line checks it before it voxelizes. Throws svo::InvalidInput.
+/// @brief What viewLayers checks before any octree exists (AO and lighting
+/// options out of range; a lit request without lights is checked as if it
+/// had one): a command line checks it before it voxelizes.
+/// @throw svo::InvalidInput naming the option at fault
 void checkViewRequest(const ViewRequest& request);
 
-/// The attribute channels (svo::AttributeChannel) the request's picture
-/// reads: lit pictures the normals and colours (the albedo, where a mesh has
-/// vertex colours), AO from the volume the normals (its cones leave along
-/// them).
+/// @brief The attribute channels the request's picture reads: lit pictures
+/// the normals and colours (the albedo, where a mesh has vertex colours), AO
+/// from the volume the normals (its cones leave along them). Throws nothing.
+/// @return svo::AttributeChannel bits
 uint32_t channelsFor(const ViewRequest& request);
 
-/// True for RenderMode::Direct and RenderMode::Global.
+/// @brief True for RenderMode::Direct and RenderMode::Global.
 inline bool isLit(RenderMode mode) { return mode == RenderMode::Direct || mode == RenderMode::Global; }
 
 } // namespace svo::gl

@@ -1,6 +1,6 @@
 #pragma once
 /// @file octree_builder.h
-/// The sparse voxel octree built on the GPU, from a voxel list or from bricks.
+/// @brief The sparse voxel octree built on the GPU, from a voxel list or from bricks.
 ///
 /// Method (Crassin & Green, "Octree-Based Sparse Voxelization", OpenGL
 /// Insights 2012): top-down, one level at a time, three compute passes:
@@ -31,15 +31,20 @@ namespace svo::gl {
 
 /// @brief Builds the octree of whole bricks on the GPU: the path by which
 /// OpenVDB grids become octrees.
+/// @param context    the GL context to build in (made current for the call)
+/// @param grid       the grid the brick keys are local to
 /// @param bricks     (brick-origin key, mask) pairs; keys must lie in the grid,
 ///        and empty masks are skipped
 /// @param checkpoint polled between stages with the fraction done
 /// @param report     when set, receives the stages (upload, octree build,
 ///        readback) and the GPU buffer bytes the build used
 /// @return the octree, in canonical order
-/// @throw svo::Error for more than 2^32 - 16 bricks, a brick outside the
-///        grid, or a GPU buffer that cannot be allocated; svo::Interrupted
-///        from the checkpoint.
+/// @throw svo::InvalidInput for a brick outside the grid
+/// @throw svo::Unsupported for more than 2^32 - 16 bricks, or an octree
+///        beyond 32-bit node or brick indices
+/// @throw svo::OutOfMemory when a GPU buffer cannot be allocated
+/// @throw svo::DeviceError on a GL error
+/// @throw svo::Interrupted from the checkpoint
 Octree buildOctreeGpu(Context& context, const GridSpec& grid, const std::vector<std::pair<uint64_t, Brick>>& bricks,
                       const Checkpoint& checkpoint = {}, RunStats* report = nullptr);
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file raster_voxelizer.h
-/// The raster backend: conservative voxelization through the GL pipeline.
+/// @brief The raster backend: conservative voxelization through the GL pipeline.
 ///
 /// Method (raster.geom, raster.frag): each triangle is projected along its
 /// dominant axis and enlarged by Hasselgren's edge offsets (or drawn with
@@ -30,17 +30,19 @@
 
 namespace svo::gl {
 
-/// Auto: hardware where available, else Shader. CentroidPush is the seed
-/// report's vertex push, kept only as a baseline for benchmarks: it misses voxels.
+/// @brief How the raster pipeline dilates triangles. Auto: Hardware where
+/// available, else Shader. CentroidPush is the seed report's vertex push,
+/// kept only as a baseline for benchmarks: it misses voxels.
 enum class ConservativeMode { Auto, Hardware, Shader, CentroidPush };
 
-/// How the voxel list is filled. Both walk the same columns with the same
+/// @brief How the voxel list is filled. Both walk the same columns with the same
 /// test (column_walk.glsl), so they keep the same voxels.
 enum class Pipeline {
     Raster,  ///< one fragment per column: the triangle rasterized along its dominant axis
     Compute, ///< triangle-parallel compute shaders; large triangles spread over workgroups
 };
 
+/// @brief Options of voxelizeRaster and voxelizeToOctree.
 struct RasterOptions {
     /// Raster draws or compute dispatches; the octree build is the same.
     Pipeline pipeline = Pipeline::Raster;
@@ -78,14 +80,21 @@ struct RasterOptions {
 
 /// @brief The voxel set as sorted keys: rasterize, read the list back, sort
 /// on the CPU. One pass, no tiles.
+/// @param context the GL context to run in (made current for the call)
+/// @param mesh    a mesh already checked (validateMesh)
+/// @param grid    a grid already checked (checkGrid)
 /// @param options the pipeline, dilation and mode (the octree-only fields are
 ///        ignored)
 /// @param report  when set, receives the stages (upload, voxelize, readback,
 ///        sort), the list entries, the retries of an overflowed list and the
 ///        GPU buffer bytes
 /// @return the grid and its voxels as sorted, unique keys
-/// @throw svo::Error when the list passes one shader buffer, or a GPU buffer
-///        cannot be allocated; svo::Interrupted from options.checkpoint.
+/// @throw svo::DeviceError when the list passes one shader buffer, Hardware
+///        dilation is asked for where GL_NV_conservative_raster is missing,
+///        or on a GL error
+/// @throw svo::Unsupported when the list passes 2^32 entries
+/// @throw svo::OutOfMemory when a GPU buffer cannot be allocated
+/// @throw svo::Interrupted from options.checkpoint
 Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                             const RasterOptions& options = {}, RunStats* report = nullptr);
 
@@ -100,21 +109,33 @@ Voxelization voxelizeRaster(Context& context, const TriangleMesh& mesh, const Gr
 /// voxels inside it; their bricks and attributes are merged on the host.
 /// Programs and buffers come from the context's caches, so a repeated call
 /// compiles nothing and allocates only when it needs more room.
+/// @param context the GL context to run in (made current for the call)
+/// @param mesh    a mesh already checked (validateMesh)
+/// @param grid    a grid already checked (checkGrid)
 /// @param options the pipeline, dilation, mode, channels, GPU budget,
 ///        checkpoint, and where to put the voxel list if wanted
 /// @param report  when set, receives the stages (upload, voxelize, octree
 ///        build, readback, attributes, tile merge), the list entries, the
 ///        retries of overflowed buffers, the GPU buffer bytes and the tiles
 /// @return the octree, in canonical order, with the channels asked for
-/// @throw svo::Error when the mesh alone passes the budget, when one brick's
-///        list does not fit, or when the merged octree would pass the host's
-///        free memory (estimated from triangle areas before any tile runs);
-///        svo::Interrupted from options.checkpoint.
+/// @throw svo::OutOfMemory when the mesh alone passes the budget, when one
+///        brick's list does not fit, when the merged octree would pass the
+///        host's free memory (estimated from triangle areas before any tile
+///        runs), or when a GPU buffer cannot be allocated
+/// @throw svo::Unsupported for an octree beyond 2^32 bricks, too many voxels
+///        for the attribute pass, or a mesh beyond the compute pipeline's
+///        indices
+/// @throw svo::DeviceError for Hardware dilation where it is missing, a mesh
+///        past one shader buffer (compute), or a GL error
+/// @throw svo::Interrupted from options.checkpoint
 Octree voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                         const RasterOptions& options = {}, RunStats* report = nullptr);
 
-/// "hardware", "shader" or "centroid-push (baseline)": which dilation voxelizeRaster would use
-/// ("" for the compute pipeline, which needs none).
+/// @brief Which dilation voxelizeRaster would use with @a options.
+/// @return "hardware", "shader" or "centroid-push (baseline)"; "" for the
+///         compute pipeline, which needs none
+/// @throw svo::DeviceError for ConservativeMode::Hardware where
+///        GL_NV_conservative_raster is missing
 const char* conservativeModeName(const Context& context, const RasterOptions& options);
 
 } // namespace svo::gl

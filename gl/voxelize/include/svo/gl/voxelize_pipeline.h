@@ -23,15 +23,15 @@
 
 namespace svo {
 
-/// Where voxelization runs.
+/// @brief Where voxelization runs.
 enum class Backend {
-    Auto,    ///< Compute on a GPU, Raster on a software renderer (llvmpipe): the faster, as measured
+    Auto,    ///< Compute on a GPU, Raster on a software renderer (llvmpipe): the faster of the two there (bench/results/*/compute.md)
     Raster,  ///< GPU: rasterization along each triangle's dominant axis
     Compute, ///< GPU: triangle-parallel compute shaders; the same voxels as Raster
     Cpu,     ///< the double-precision CPU reference (tests; no GL context needed)
 };
 
-/// How the raster backend enlarges triangles so no touched column is missed.
+/// @brief How the raster backend enlarges triangles so no touched column is missed.
 enum class Dilation {
     Auto,         ///< Hardware where GL_NV_conservative_raster exists, else Shader
     Hardware,     ///< GL_NV_conservative_raster; an error where it is missing
@@ -39,7 +39,7 @@ enum class Dilation {
     CentroidPush, ///< an early vertex-push method; misses voxels; benchmarks only
 };
 
-/// The names of Backend and Dilation, as the command line and Python write them.
+/// @brief The names of Backend and Dilation, as the command line and Python write them.
 inline constexpr EnumName<Backend> kBackendNames[] = {
     {Backend::Auto, "auto"}, {Backend::Raster, "raster"}, {Backend::Compute, "compute"}, {Backend::Cpu, "cpu"}};
 constexpr const auto& enumNames(Backend) { return kBackendNames; }
@@ -49,9 +49,9 @@ inline constexpr EnumName<Dilation> kDilationNames[] = {{Dilation::Auto, "auto"}
                                                         {Dilation::CentroidPush, "centroid"}};
 constexpr const auto& enumNames(Dilation) { return kDilationNames; }
 
-/// What a voxelization computes and where. Plain values; the defaults suit most uses.
+/// @brief What a voxelization computes and where. Plain values; the defaults suit most uses.
 struct VoxelizeSettings {
-    Backend backend = Backend::Auto;
+    Backend backend = Backend::Auto; ///< where it runs
     /// Which voxels a triangle covers: Conservative (every voxel whose closed
     /// cube it meets; 26-separating) or Thin (every voxel one of whose three
     /// axis-aligned centre segments it meets; 6-separating, fewer voxels).
@@ -100,10 +100,10 @@ void forEachOption(VoxelizeSettings& s, Visit&& visit)
           ByteCount{s.gpuMemory});
 }
 
-/// What one call measured. Kept apart from the result; filled only when asked.
+/// @brief What one call measured. Kept apart from the result; filled only when asked.
 struct VoxelizeStats {
     std::vector<StageTime> stages; ///< GPU (timer queries) and wall milliseconds per stage
-    uint64_t voxels = 0, bricks = 0;
+    uint64_t voxels = 0, bricks = 0; ///< the result's voxels and bricks
     uint64_t listEntries = 0;      ///< voxel-list entries written, duplicates included
     int overflowRetries = 0;       ///< passes repeated because a GPU buffer was too small
     uint32_t tiles = 1;            ///< boxes the grid was voxelized in to stay within GPU memory (1: all at once)
@@ -134,7 +134,7 @@ struct VoxelizeStats {
 
 /// @brief Statistics of repeated runs: each stage's median GPU and wall time;
 /// the other fields are the last run's.
-/// @throw svo::Error for an empty list.
+/// @throw svo::InvalidInput for an empty list
 VoxelizeStats medianStats(const std::vector<VoxelizeStats>& runs);
 
 namespace gl {
@@ -145,7 +145,10 @@ namespace gl {
 /// on a software rasterizer such as llvmpipe).
 /// @param create with false and no context yet, none is created (Device::software,
 ///        Device::withoutGl)
-/// @throw svo::Error for a dilation mode with Backend::Compute.
+/// @return never Backend::Auto
+/// @throw svo::InvalidInput for a dilation mode with Backend::Compute
+/// @throw svo::DeviceError when @a create makes a context for a named device
+///        that cannot have one
 Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool create = true);
 
 /// @brief Whether a call with @a settings runs on the CPU: Backend::Cpu, or
@@ -157,19 +160,30 @@ bool runsOnCpu(Device& device, const VoxelizeSettings& settings, bool create = t
 
 /// @brief Where a call runs, in its statistics: backend, device and renderer
 /// names (the GPU's, or "cpu").
+/// @param stats receives VoxelizeStats::backend, device and renderer
+/// @throw svo::DeviceError when @a backend is a GPU one and no context can
+///        be made
 void describeBackend(Device& device, Backend backend, VoxelizeStats& stats);
 
 /// @brief The voxels of a checked mesh on a checked grid, as an octree.
 /// @param checkpoint polled between stages and tiles with the fraction done
 /// @param stats      receives the stages, counts, backend and warnings
 /// @param voxelList  when set, also the backend's voxel set (sorted, unique keys)
-/// @throw svo::Error as the backends (no usable GPU, out of GPU memory, a
-///        dilation mode with the compute backend); svo::Interrupted.
+/// @return the octree, in canonical order, with the channels asked for
+/// @throw svo::InvalidInput for a dilation mode with the compute backend
+/// @throw svo::DeviceError, svo::OutOfMemory, svo::Unsupported as the
+///        backends (voxelizeToOctree, voxelizeCpu): no usable GPU, out of
+///        GPU or host memory, a grid beyond one octree
+/// @throw svo::Interrupted from the checkpoint
 Octree voxelizeMesh(Device& device, const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeSettings& settings,
                     const Checkpoint& checkpoint, VoxelizeStats& stats, std::vector<uint64_t>* voxelList = nullptr);
 
 /// @brief Whole bricks (brick-origin key, mask) on a checked grid, built into
 /// an octree on the GPU, or on the CPU with Backend::Cpu.
+/// @param backend Backend::Cpu, or any other for the GPU (already resolved)
+/// @param stats   receives the stages, counts and backend
+/// @return the octree, in canonical order
+/// @throw as buildOctreeGpu (the GPU) or buildOctreeFromBricks (the CPU)
 Octree bricksToOctree(Device& device, const GridSpec& grid, std::vector<std::pair<uint64_t, Brick>> bricks,
                       Backend backend, const Checkpoint& checkpoint, VoxelizeStats& stats);
 

@@ -15,15 +15,18 @@ namespace svo::vdb {
 /// OpenVDB's signedFloodFill signs them (parity) or as the winding number
 /// says. A signed field has class GRID_LEVEL_SET and is named "surface"; an
 /// unsigned one GRID_UNKNOWN, named "distance".
+/// @param field         the distances (and closest triangles) on bricks
 /// @param exteriorBand, interiorBand  the band on each side, in voxels
 /// @param worldPerVoxel the transform's uniform scale
 /// @param xform         the grids' transform
+/// @return the distance grid, then the closest-triangle grid when present
 openvdb::GridPtrVec levelSetGrids(const DistanceBricks& field, double exteriorBand, double interiorBand,
                                   double worldPerVoxel, openvdb::math::Transform::Ptr xform);
 
 /// @brief The MaskGrid "solid": the band's inside voxels, and whole regions
 /// inside as active tiles at the largest tree level they fill (memory follows
 /// the surface).
+/// @param xform the grid's transform
 openvdb::MaskGrid::Ptr solidGrid(const SolidBricks& solid, openvdb::math::Transform::Ptr xform);
 
 } // namespace svo::vdb

@@ -1,6 +1,6 @@
 #pragma once
 /// @file grid_options.h
-/// Which OpenVDB grids an octree becomes. No OpenVDB headers here.
+/// @brief Which OpenVDB grids an octree becomes. No OpenVDB headers here.
 #include <cstdint>
 #include <string>
 
@@ -11,15 +11,16 @@ namespace svo {
 
 struct GridSpec;
 
+/// @brief Which OpenVDB grids an octree becomes, and the topology grid's name.
 struct GridOptions {
-    enum class Topology { Mask, Bool };
+    enum class Topology { Mask, Bool }; ///< the topology grid's type
     Topology topology = Topology::Mask; ///< MaskGrid, or BoolGrid (true on active voxels)
     std::string name = "surface";       ///< name of the topology grid
     bool fog = false;                    ///< also a fog FloatGrid "density": 1 on voxels, background 0
     bool attributes = true;              ///< the octree's channels as "normal", "triangle_id", "color"
 };
 
-/// The names of GridOptions::Topology, as --topology takes them.
+/// @brief The names of GridOptions::Topology, as --topology takes them.
 inline constexpr EnumName<GridOptions::Topology> kTopologyNames[] = {{GridOptions::Topology::Bool, "bool"},
                                                                      {GridOptions::Topology::Mask, "mask"}};
 constexpr const auto& enumNames(GridOptions::Topology) { return kTopologyNames; }
@@ -37,23 +38,27 @@ void forEachOption(GridOptions& g, Visit&& visit)
 }
 
 namespace vdb {
-/// Active tiles a reader expands into bricks by default: 2^28 bricks, 137 G
-/// voxels, about 19 GB of bricks.
+/// @brief Active tiles a reader expands into bricks by default: 2^28 bricks,
+/// 137 G voxels, about 19 GB of bricks.
 inline constexpr uint64_t kMaxTileBricks = uint64_t(1) << 28;
 
-/// The smallest voxel size an OpenVDB linear transform takes: OpenVDB 10's
+/// @brief The smallest voxel size an OpenVDB linear transform takes: OpenVDB 10's
 /// ScaleMap refuses scales whose product is below 3e-15 (math/Maps.h), so
 /// the voxel size must be at least the cube root, about 1.4422e-5.
 inline constexpr double kMinVoxelSize = 1.4422495703074085e-05;
 
-/// Throws svo::Error, naming `what`, when `voxelSize` is below kMinVoxelSize:
-/// called before any work when the output is an OpenVDB grid.
+/// @brief Checks a voxel size against kMinVoxelSize, before any work when the
+/// output is an OpenVDB grid.
+/// @param what prefixes the message (whose voxel size it is)
+/// @throw svo::InvalidInput when @a voxelSize is below kMinVoxelSize
 void checkVdbVoxelSize(double voxelSize, const std::string& what);
 
-/// checkVdbVoxelSize, and that OpenVDB can hold the grid's whole transform:
-/// a grid far from the origin for its voxel size (a mesh 1e15 away) gives a
-/// matrix OpenVDB refuses to copy ("Non-zero scale values required"), which
-/// every write does. Throws svo::Error naming `what`; call before any work.
+/// @brief checkVdbVoxelSize, and that OpenVDB can hold the grid's whole
+/// transform: a grid far from the origin for its voxel size (a mesh 1e15
+/// away) gives a matrix OpenVDB refuses to copy ("Non-zero scale values
+/// required"), which every write does. Call before any work.
+/// @param what prefixes the message
+/// @throw svo::InvalidInput naming @a what when OpenVDB cannot hold the transform
 void checkVdbGrid(const GridSpec& grid, const std::string& what);
 } // namespace vdb
 

@@ -15,7 +15,7 @@
 /// nanovdb::nanoToOpenVDB makes the OpenVDB grid. Only uncompressed files
 /// are read (svo is built without NanoVDB's zip and Blosc codecs), and only
 /// the grid types svo writes: float, double, int32, int64, Vec3f, Vec3d,
-/// bool and mask. Errors are one-line svo::Error naming the file
+/// bool and mask. Errors are one line naming the file
 /// ("x.nvdb: truncated or damaged: ...").
 ///
 /// A NanoVDB checksum covers the grid's header and root only, or every node
@@ -28,15 +28,25 @@
 
 namespace svo::vdb {
 
-/// Every grid of the .nvdb file (empty @a gridName), or only the one named,
-/// as OpenVDB grids: type, class, name, transform and values.
+/// @brief Every grid of the .nvdb file, or only the one named, as OpenVDB
+/// grids: type, class, name, transform and values.
+/// @param gridName the grid to read; empty for all
+/// @throw svo::IoError naming the file when it is missing, unreadable, not
+///        NanoVDB, compressed, truncated or damaged, or holds a grid type svo
+///        does not read
+/// @throw svo::InvalidInput when no grid is named @a gridName
 openvdb::GridPtrVec readNanoVdbGrids(const std::string& path, const std::string& gridName = {});
-/// The same from a whole file's bytes; @a name stands for it in messages.
+/// @brief The same from a whole file's bytes.
+/// @param name stands for the file in messages
+/// @throw as readNanoVdbGrids
 openvdb::GridPtrVec readNanoVdbGridsFromBytes(const std::string& bytes, const std::string& name,
                                               const std::string& gridName = {});
 
-/// One grid's active voxels as bricks (@a gridName, or the first grid in name
-/// order), as readVdbBricks gives them from a .vdb.
+/// @brief One grid's active voxels as bricks, as readVdbBricks gives them
+/// from a .vdb.
+/// @param gridName the grid; empty for the first in name order
+/// @throw as readNanoVdbGrids, and svo::InvalidInput as gridToBricks (a
+///        transform or extent svo cannot take, too many tile bricks)
 VdbBricks readNanoVdbBricks(const std::string& path, const std::string& gridName = {});
 
 } // namespace svo::vdb

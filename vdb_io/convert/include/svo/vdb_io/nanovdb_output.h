@@ -13,13 +13,16 @@
 
 namespace svo::vdb {
 
-/// One grid in NanoVDB form (name and transform kept).
-/// @throw svo::Unsupported for a grid type NanoVDB cannot hold.
+/// @brief One grid in NanoVDB form (name and transform kept).
+/// @throw svo::InvalidInput for a null grid
+/// @throw svo::Unsupported for a grid type NanoVDB cannot hold
 nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const openvdb::GridBase::Ptr& grid);
 
-/// Writes the grids to one uncompressed .nvdb file, atomically (a temporary
-/// file renamed into place). Returns the file's size in bytes.
-/// @throw svo::IoError naming the path.
+/// @brief Writes the grids to one uncompressed .nvdb file, atomically (a
+/// temporary file renamed into place).
+/// @return the file's size in bytes
+/// @throw svo::IoError naming the path when it cannot be written
+/// @throw svo::Unsupported as toNanoVdb
 uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids);
 
 } // namespace svo::vdb

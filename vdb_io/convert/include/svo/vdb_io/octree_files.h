@@ -5,7 +5,7 @@
 /// octree_file.h) or .nvdb (the same grids as .vdb, in NanoVDB form).
 /// Reading any input as an octree needs a Voxelizer: svo/load_octree.h.
 /// Every file is written to a temporary in the same folder and renamed, so a
-/// failed write never leaves a partial file. Errors are svo::Error naming the path.
+/// failed write never leaves a partial file. Errors name the path.
 #include <map>
 #include <string>
 #include <vector>
@@ -17,23 +17,32 @@
 
 namespace svo {
 
+/// @brief The output file formats.
 enum class OutputFormat { Vdb, Svo, NanoVdb };
 
-/// The format an output path names. @throw svo::IoError for another extension.
+/// @brief The format an output path names: .vdb, .svo or .nvdb.
+/// @throw svo::IoError for another extension
 OutputFormat outputFormat(const std::string& path);
-/// The format and whether the path can be written, before any heavy work.
+/// @brief Checks the format and whether the path can be written, before any heavy work.
+/// @throw svo::IoError for another extension or a path that cannot be
+///        written (checkWritable)
 void checkOutputPath(const std::string& path);
 
+/// @brief What writeOctree took and made.
 struct WriteReport {
     std::vector<StageTime> stages; ///< building the grids, writing the file
     uint64_t bytes = 0;            ///< file size
     uint64_t leaves = 0;           ///< leaves of the topology grid (.vdb, .nvdb)
-    OutputFormat format = OutputFormat::Vdb;
+    OutputFormat format = OutputFormat::Vdb; ///< the format written
 };
 
-/// Writes the octree as the extension of @a path says. GridOptions apply to
-/// .vdb and .nvdb; a .svo file holds the octree itself (its topology is not
-/// a grid type), and a fog grid asked for there is refused. @a metadata is stored as strings on every .vdb grid.
+/// @brief Writes the octree as the extension of @a path says. GridOptions
+/// apply to .vdb and .nvdb; a .svo file holds the octree itself (its
+/// topology is not a grid type).
+/// @param metadata stored as strings on every .vdb and .nvdb grid
+/// @throw svo::IoError for another extension or a file that cannot be written
+/// @throw svo::InvalidInput for a fog grid asked of a .svo file, or a grid
+///        whose transform OpenVDB cannot hold (checkVdbGrid)
 WriteReport writeOctree(const std::string& path, const Octree& octree, const GridOptions& grids = {},
                         const std::map<std::string, std::string>& metadata = {});
 
