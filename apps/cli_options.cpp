@@ -62,11 +62,11 @@ public:
 
     void operator()(const OptionInfo& info, bool& value)
     {
-        if (wanted(info)) cmd_.add_flag(flagOf(info), value, help(info));
+        if (wanted(info)) cmd_.add_flag(flagNames(info), value, help(info));
     }
     void operator()(const OptionInfo& info, std::string& value)
     {
-        if (wanted(info)) cmd_.add_option(flagOf(info), value, help(info));
+        if (wanted(info)) cmd_.add_option(flagNames(info), value, help(info));
     }
     template <typename E, typename = decltype(enumNames(E{}))>
     void operator()(const OptionInfo& info, E& value)
@@ -74,7 +74,7 @@ public:
         if (!wanted(info)) return;
         const std::string flag = flagOf(info);
         cmd_.add_option_function<std::string>(
-               flag, [&value, flag](const std::string& name) { value = parse<E>(name, flag); }, help(info))
+               flagNames(info), [&value, flag](const std::string& name) { value = parse<E>(name, flag); }, help(info))
             ->check(CLI::IsMember(names<E>()))
             ->default_str(std::string(nameOf(value)));
     }
@@ -83,7 +83,7 @@ public:
         if (!wanted(info)) return;
         const std::string flag = flagOf(info);
         cmd_.add_option_function<double>(
-               flag,
+               flagNames(info),
                [number, flag](double v) {
                    number.rule(v, flag); // the library's rule, under the flag's name
                    number.value = v;
@@ -91,19 +91,32 @@ public:
                help(info))
             ->default_str(fmt::format("{}", number.value));
     }
+    template <typename T>
+    void operator()(const OptionInfo& info, OptionalNumber<T> number)
+    {
+        if (!wanted(info)) return;
+        const std::string flag = flagOf(info);
+        cmd_.add_option_function<double>(
+            flagNames(info),
+            [number, flag](double v) {
+                number.rule(v, flag); // the library's rule, under the flag's name
+                number.value = T(v);
+            },
+            help(info));
+    }
     void operator()(const OptionInfo& info, ByteCount count)
     {
         if (!wanted(info)) return;
         const std::string flag = flagOf(info);
         cmd_.add_option_function<std::string>(
-            flag, [count, flag](const std::string& text) { count.bytes = parseByteSize(text, flag); }, help(info));
+            flagNames(info), [count, flag](const std::string& text) { count.bytes = parseByteSize(text, flag); }, help(info));
     }
     void operator()(const OptionInfo& info, ChannelSet channels)
     {
         if (!wanted(info)) return;
         const std::string flag = flagOf(info);
         cmd_.add_option_function<std::vector<std::string>>(
-               flag,
+               flagNames(info),
                [channels, flag](const std::vector<std::string>& names) {
                    for (const auto& n : names) channels.bits |= parse<AttributeChannel>(n, flag);
                },
@@ -138,6 +151,7 @@ template void addOptions(CLI::App&, VoxelizeSettings&, std::vector<std::string_v
 template void addOptions(CLI::App&, DeviceOptions&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, LevelSetOptions&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, GridOptions&, std::vector<std::string_view>, const std::string&);
+template void addOptions(CLI::App&, GridRequest&, std::vector<std::string_view>, const std::string&);
 
 void addBackendOptions(CLI::App& cmd, BackendArgs& a)
 {
@@ -170,13 +184,10 @@ bool bandsGiven(const CLI::App& cmd)
     return cmd.count("--band") || cmd.count("--exterior-band") || cmd.count("--interior-band");
 }
 
-void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize)
+void addGridOptions(CLI::App& cmd, GridRequest& request)
 {
-    auto* res = cmd.add_option("-r,--resolution", resolution,
-                               "Voxel size = longest bounding-box side / N (default 256); the result spans N+1 voxels "
-                               "along that side (N+2 when the box ends exactly on voxel faces)");
-    auto* size = cmd.add_option("--voxel-size", voxelSize, "Voxel size in world units");
-    res->excludes(size);
+    addOptions(cmd, request);
+    cmd.get_option("--resolution")->excludes("--voxel-size");
 }
 
 std::string nonEmptyMeshPath(const std::string& value)
@@ -184,15 +195,10 @@ std::string nonEmptyMeshPath(const std::string& value)
     return value.empty() ? "the mesh path is empty; give a mesh file, or no mesh for the built-in Cornell box" : "";
 }
 
-GridRequest gridRequest(const CLI::App& cmd, int64_t resolution, double voxelSize)
+GridRequest gridRequest(const GridRequest& given)
 {
-    const bool gotRes = cmd.count("--resolution") > 0, gotSize = cmd.count("--voxel-size") > 0;
-    // The library's rules, under the flags' names (before any work).
-    if (gotRes) checkResolution(double(resolution), "--resolution");
-    if (gotSize) checkVoxelSize(voxelSize, "--voxel-size");
-    GridRequest r;
-    r.resolution = gotRes ? resolution : (gotSize ? 0 : 256);
-    r.voxelSize = gotSize ? voxelSize : 0;
+    GridRequest r = given; // each number checked by its rule as it was parsed
+    if (r.resolution == 0 && r.voxelSize == 0) r.resolution = kDefaultResolution;
     return r;
 }
 

@@ -18,6 +18,8 @@ std::string flagFor(std::string_view identifier)
     DeviceOptions device;
     LevelSetOptions levelSet;
     GridOptions grids;
+    GridRequest request;
+    forEachOption(request, find);
     forEachOption(voxelize, find);
     forEachOption(device, find);
     forEachOption(levelSet, find);
