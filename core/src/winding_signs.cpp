@@ -28,19 +28,35 @@ constexpr uint32_t kWalkStack = 64;
 
 inline double dot3(const Vec3d& u, const Vec3d& v) { return u.x * v.x + u.y * v.y + u.z * v.z; }
 
-/// Solid angle of a triangle whose corners, relative to the point, are x, y, z.
-float solidAngle(const Vec3d& x, const Vec3d& y, const Vec3d& z)
+/// The arctangent of r in [0, 1], in float, as Mesa's GLSL compiler lowers
+/// atan() for llvmpipe: an odd polynomial of degree 11 (absolute error about
+/// 1e-5), its terms summed from the lowest. The C library's atanf was a third
+/// of the walk's time and is no nearer a hardware GPU's own atan; with this
+/// one the CPU's sums are llvmpipe's, and it vectorizes.
+inline float atanUnit(float r)
+{
+    const float r2 = r * r, r3 = r2 * r, r5 = r3 * r2, r7 = r5 * r2, r9 = r7 * r2, r11 = r9 * r2;
+    return r * 0.9999793128310355f + r3 * -0.3326756418091246f + r5 * 0.1938924977115610f +
+           r7 * -0.1173503194786851f + r9 * 0.0536813784310406f + r11 * -0.0121323213173444f;
+}
+
+/// Solid angle of a triangle whose corners, relative to the point, are x, y,
+/// z (winding_walk.glsl's, without branches so that a loop over centres
+/// vectorizes: the same value as the GLSL's branches select).
+inline float solidAngle(const Vec3d& x, const Vec3d& y, const Vec3d& z)
 {
     const double lx = std::sqrt(dot3(x, x)), ly = std::sqrt(dot3(y, y)), lz = std::sqrt(dot3(z, z));
     const double det = dot3(x, cross(y, z));
-    if (det == 0.0) return 0.0f; // the point in the triangle's plane
     const double den = lx * ly * lz + dot3(x, y) * lz + dot3(y, z) * lx + dot3(z, x) * ly;
     // Half the angle is atan2(det, den), built as the GPU builds it: the
     // float arctangent of a ratio in [0, 1], its quadrant chosen here.
     const double ad = std::abs(det), aden = std::abs(den);
-    const float base = ad <= aden ? std::atan(float(ad / aden)) : kHalfPi - std::atan(float(aden / ad));
+    const bool low = ad <= aden;
+    const float at = atanUnit(float(low ? ad / aden : aden / ad));
+    const float base = low ? at : kHalfPi - at;
     const float angle = den >= 0.0 ? base : kPi - base;
-    return det > 0.0 ? 2.0f * angle : -2.0f * angle;
+    const float signedAngle = det > 0.0 ? 2.0f * angle : -2.0f * angle;
+    return det == 0.0 ? 0.0f : signedAngle; // 0: the point in the triangle's plane
 }
 
 /// One row i of the second moments added to the second-order sums.
@@ -129,7 +145,10 @@ struct Walk {
 
     /// The inside voxels of the brick at `origin`: one walk for its 512
     /// centres, each node visited for the mask of centres whose own walk
-    /// reaches it, in the order their own walks would visit it.
+    /// reaches it, in the order their own walks would visit it. A node
+    /// reached by many centres is evaluated for all 512 in one loop the
+    /// compiler vectorizes (the same IEEE operations, lane by lane; centres
+    /// not in the mask add 0, which leaves a sum as it is).
     Brick brick(const std::array<uint32_t, 3>& origin) const
     {
         struct Entry {
@@ -137,7 +156,14 @@ struct Walk {
             uint64_t mask[8];
         };
         Entry stack[2 * kWalkStack + 2];
-        float sum[512] = {};
+        alignas(64) float sum[512] = {};
+        alignas(64) float qx[512], qy[512], qz[512];
+        alignas(64) int32_t reached[512], farAt[512];
+        for (uint32_t v = 0; v < 512; ++v) {
+            qx[v] = float(origin[0] + (v >> 6));
+            qy[v] = float(origin[1] + ((v >> 3) & 7));
+            qz[v] = float(origin[2] + (v & 7));
+        }
         uint32_t top = 1;
         stack[0].node = 0;
         std::fill(stack[0].mask, stack[0].mask + 8, ~uint64_t(0));
@@ -148,20 +174,50 @@ struct Walk {
             const Entry e = stack[--top];
             uint64_t near[8] = {};
             bool anyNear = false;
-            for (int w = 0; w < 8; ++w)
-                for (uint64_t m = e.mask[w]; m; m &= m - 1) {
-                    const uint32_t v = uint32_t(64 * w + __builtin_ctzll(m));
-                    const float qx = float(origin[0] + (v >> 6)), qy = float(origin[1] + ((v >> 3) & 7)),
-                                qz = float(origin[2] + (v & 7));
-                    if (!far(e.node, qx, qy, qz, sum[v])) near[w] |= m & -m, anyNear = true;
+            uint32_t count = 0;
+            for (int w = 0; w < 8; ++w) count += uint32_t(__builtin_popcountll(e.mask[w]));
+            if (count >= 96) {
+                const float* cr = &tree.nodes[size_t(kWindingNodeFloats) * e.node];
+                const float* ex = cr + 4;
+                const float reach2 = beta2 * cr[3] * cr[3];
+                for (uint32_t v = 0; v < 512; ++v) reached[v] = -int32_t((e.mask[v >> 6] >> (v & 63)) & 1);
+                for (uint32_t v = 0; v < 512; ++v) {
+                    const float dx = cr[0] - qx[v], dy = cr[1] - qy[v], dz = cr[2] - qz[v];
+                    const float d2 = dx * dx + dy * dy + dz * dz;
+                    const bool isFar = d2 > reach2;
+                    const float t = farTerm(dx, dy, dz, d2, ex);
+                    farAt[v] = isFar ? -1 : 0;
+                    sum[v] += (reached[v] & farAt[v]) ? t : 0.0f;
                 }
+                for (uint32_t v = 0; v < 512; ++v)
+                    if (reached[v] & ~farAt[v]) near[v >> 6] |= uint64_t(1) << (v & 63), anyNear = true;
+            } else {
+                for (int w = 0; w < 8; ++w)
+                    for (uint64_t m = e.mask[w]; m; m &= m - 1) {
+                        const uint32_t v = uint32_t(64 * w + __builtin_ctzll(m));
+                        if (!far(e.node, qx[v], qy[v], qz[v], sum[v])) near[w] |= m & -m, anyNear = true;
+                    }
+            }
             if (!anyNear) continue;
             const uint32_t l0 = tree.links[2 * size_t(e.node)], l1 = tree.links[2 * size_t(e.node) + 1];
             if (l1 & gpu::kWindingLeaf) {
                 const uint32_t last = l0 + (l1 & ~gpu::kWindingLeaf);
+                uint32_t nearCount = 0;
+                for (int w = 0; w < 8; ++w) nearCount += uint32_t(__builtin_popcountll(near[w]));
+                const bool dense = nearCount >= 96;
+                if (dense)
+                    for (uint32_t v = 0; v < 512; ++v) reached[v] = -int32_t((near[v >> 6] >> (v & 63)) & 1);
                 for (uint32_t i = l0; i < last; ++i) {
                     const auto& f = mesh.triangles[tree.order[i]];
                     const Vec3d &a = local[f[0]], &b = local[f[1]], &c = local[f[2]];
+                    if (dense) { // all 512 centres in one vectorized loop, 0 added where not near
+                        for (uint32_t v = 0; v < 512; ++v) {
+                            const Vec3d q{double(qx[v]), double(qy[v]), double(qz[v])};
+                            const float t = solidAngle(a - q, b - q, c - q);
+                            sum[v] += reached[v] ? t : 0.0f;
+                        }
+                        continue;
+                    }
                     for (int w = 0; w < 8; ++w)
                         for (uint64_t m = near[w]; m; m &= m - 1) {
                             const uint32_t v = uint32_t(64 * w + __builtin_ctzll(m));
