@@ -62,11 +62,12 @@ std::map<BrickCoord, Brick> beyondBand(const FieldSigns& s)
 
 /// Where two winding-number signs may differ: a centre whose exact winding
 /// number (every triangle's solid angle in double) is 1/2 to within float
-/// rounding, as on a face of a closed mesh. The float sums round alike on both
-/// paths but for each exact triangle's float arctangent (the C library's on
-/// the CPU, the driver's on the GPU: llvmpipe's is a polynomial good to about
-/// 1e-6), and at 1/2 either side is the answer (test_level_set excludes such
-/// centres from its CGAL checks too).
+/// rounding, as on a face of a closed mesh, where either side is the answer
+/// (test_level_set excludes such centres from its CGAL checks too). On
+/// llvmpipe the CPU's sums are the GPU's bit for bit (the same operations and
+/// Mesa's arctangent polynomial), and no such centre differs but on the one
+/// triangle spanning a 512³ grid, where llvmpipe fuses a multiply-add in the
+/// double solid angle; a hardware GPU's own arctangent can move others.
 /// A centre on the surface (within 1e-6 voxel, test_level_set's tolerance)
 /// is a tie too: there the winding number jumps, and a solid angle summed
 /// from a point in a triangle's plane is 0 or +-1/2 as rounding has it.

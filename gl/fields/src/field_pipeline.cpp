@@ -1,6 +1,8 @@
 // Level sets, unsigned distance fields and solids on bricks
-// (svo/gl/field_pipeline.h): the band's bricks (band_bricks.h), distances and
-// parity crossings (distance_field.h), winding numbers (winding_number.h).
+// (svo/gl/field_pipeline.h): the band's bricks (svo/core/band_bricks.h),
+// distances and parity crossings (distance_field.h), winding numbers
+// (winding_number.h); with Backend::Cpu their CPU counterparts in core
+// (band_distances.h, parity_crossings.h, winding_signs.h).
 #include "svo/gl/field_pipeline.h"
 
 #include <algorithm>

@@ -15,9 +15,11 @@
 /// the centres whose own walk reaches it (a mask), so the tree's upper
 /// levels are read once a brick, not once a voxel.
 ///
-/// The only known difference from the GPU is the float arctangent of each
-/// exact triangle (the C library's against the driver's), a few float ulps,
-/// which can move a winding number within about 1e-6 of 1/2 across it.
+/// The float arctangent of each exact triangle is Mesa's polynomial (what
+/// llvmpipe runs for GLSL's atan, absolute error about 1e-5): on llvmpipe
+/// the sums are the GPU's bit for bit; a hardware GPU's own atan differs by
+/// about 1e-6 in a winding number, which moves only a centre whose number is
+/// that near 1/2 (on a face of the mesh, where either side is the answer).
 #include <array>
 #include <cstdint>
 #include <vector>
