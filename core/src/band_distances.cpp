@@ -160,6 +160,13 @@ BandDistances bandDistances(const std::vector<Vec3d>& local, const TriangleMesh&
                     const Vec3d boxLo{std::min({A.x, B.x, C.x}), std::min({A.y, B.y, C.y}), std::min({A.z, B.z, C.z})};
                     const Vec3d boxHi{std::max({A.x, B.x, C.x}), std::max({A.y, B.y, C.y}), std::max({A.z, B.z, C.z})};
                     const Tri tri = triangleOf(A, B, C);
+                    // The plane's slab, band_distance.glsl's slabOf: a centre
+                    // farther than the band from the plane is farther from
+                    // the triangle (widened for rounding and for needles,
+                    // whose normal is rounding noise).
+                    const double e1 = std::sqrt(dot3(B - A, B - A)), e2 = std::sqrt(dot3(C - A, C - A));
+                    const double slab = double(bandF) * std::sqrt(tri.n2) * (1.0 + 1e-6) +
+                                        1e-10 * e1 * e2 * (e1 + e2 + double(bandF));
                     for (int a = 0; a < 3; ++a) {
                         lo[a] = std::max(lo[a], org[a]) - org[a];
                         hi[a] = std::min(hi[a], org[a] + 7) - org[a];
@@ -175,8 +182,17 @@ BandDistances bandDistances(const std::vector<Vec3d>& local, const TriangleMesh&
                             const double rest = band2 - gx * gx - gy * gy;
                             if (rest < 0) continue;
                             const double reach = std::sqrt(rest) * (1 + 1e-9) + 1e-9;
-                            const double z0 = std::max(double(org[2] + lo[2]), std::ceil(boxLo.z - reach));
-                            const double z1 = std::min(double(org[2] + hi[2]), std::floor(boxHi.z + reach));
+                            double z0 = std::max(double(org[2] + lo[2]), std::ceil(boxLo.z - reach));
+                            double z1 = std::min(double(org[2] + hi[2]), std::floor(boxHi.z + reach));
+                            // ... and within the slab (band_distance.glsl's slabRun).
+                            const double h0 = tri.n.x * (px - A.x) + tri.n.y * (py - A.y) - tri.n.z * A.z;
+                            if (tri.n.z == 0.0) {
+                                if (!(std::abs(h0) <= slab)) continue;
+                            } else {
+                                const double s0 = (-slab - h0) / tri.n.z, s1 = (slab - h0) / tri.n.z;
+                                z0 = std::max(z0, std::ceil(std::min(s0, s1) - 1e-6));
+                                z1 = std::min(z1, std::floor(std::max(s0, s1) + 1e-6));
+                            }
                             for (double pz = z0; pz <= z1; pz += 1.0) {
                                 const Vec3d p{px, py, pz};
                                 const float dd = float(std::sqrt(triangleDistance2(p, tri)));

@@ -108,7 +108,7 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
     stats.stages.push_back({"winding tree", -1, msSince(t0)});
     t0 = Clock::now();
     const std::vector<float> centres = windingAtBrickCentres(tree, local, mesh, g, beta, checkpoint.part(0.0, 0.3));
-    stats.stages.push_back({"winding per brick (cpu)", -1, msSince(t0)});
+    stats.stages.push_back({"winding bricks (cpu)", -1, msSince(t0)});
     t0 = Clock::now();
     const std::array<uint32_t, 3> dims{(g.dims[0] + 7) / 8, (g.dims[1] + 7) / 8, (g.dims[2] + 7) / 8};
     BricksBeyondBand beyond = bricksBeyondBand(centres, dims, band);
@@ -118,7 +118,7 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
     fine.insert(fine.end(), beyond.voxelwise.begin(), beyond.voxelwise.end());
     stats.windingBricks = beyond.voxelwise.size();
     std::vector<Brick> inside = windingInside(tree, local, mesh, fine, beta, checkpoint.part(0.3, 1.0));
-    stats.stages.push_back({"winding per voxel (cpu)", -1, msSince(t0)});
+    stats.stages.push_back({"winding voxels (cpu)", -1, msSince(t0)});
     signs.inside.assign(inside.begin(), inside.begin() + std::ptrdiff_t(band.size()));
     for (size_t i = band.size(); i < fine.size(); ++i)
         if (inside[i].count()) signs.partial.push_back({fine[i], inside[i]});
@@ -213,7 +213,7 @@ std::vector<Brick> crossingsCpu(const std::vector<Vec3d>& local, const TriangleM
     ParityCrossings found = parityCrossings(local, mesh, g, bricks);
     if (found.lost)
         throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks", found.lost));
-    stats.stages.push_back({"parity crossings (cpu)", -1, msSince(t0)});
+    stats.stages.push_back({"crossings (cpu)", -1, msSince(t0)});
     return std::move(found.crossings);
 }
 
