@@ -273,7 +273,7 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     stats.epsilon = g.epsilon();
     stats.sign = sign.why;
     checkpoint(0.0, "band bricks");
-    if (settings.backend == Backend::Cpu) { // no GL context is made
+    if (runsOnCpu(device, settings)) { // no GL context is made
         describeBackend(device, Backend::Cpu, stats);
         DistanceBricks out = levelSetOnCpu(mesh, g, ls, sign, band, checkpoint, stats);
         noteOpenColumns(stats, out.signs.openColumns, "signs above its last crossing count as outside");
@@ -337,7 +337,7 @@ SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec
     SolidBricks out;
     out.grid = g;
     out.bricks = bandBricks(surface, 1, stats);
-    if (settings.backend == Backend::Cpu) { // the surface voxels came from the CPU voxelizer too
+    if (runsOnCpu(device, settings)) { // the surface voxels came from the CPU voxelizer too
         const std::vector<Vec3d> local = localPositions(mesh, g);
         if (winding) {
             out.signs = windingSignsCpu(mesh, local, g, out.bricks, signOptions.windingAccuracy,
