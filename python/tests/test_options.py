@@ -84,7 +84,8 @@ def test_library_defaults_are_the_structs():
     # The library's names, which its errors use, beside the keywords that replace them in Python's messages.
     assert OPTIONS["Voxelizer.level_set"]["exterior_band"]["identifier"] == "LevelSetOptions::exteriorBand"
     assert OPTIONS["Voxelizer.voxelize"]["conservative"]["identifier"] == "VoxelizeOptions::dilation"
-    assert OPTIONS["Voxelizer.voxelize"]["resolution"]["identifier"] is None
+    assert OPTIONS["Voxelizer.voxelize"]["resolution"]["identifier"] == "GridRequest::resolution"
+    assert OPTIONS["Voxelizer.voxelize"]["grid"]["identifier"] is None  # Python's own
 
 
 TETRAHEDRON = (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float),
