@@ -15,7 +15,7 @@ for t in test_gpu_voxelize test_gpu_octree test_api test_level_set test_cpu_fiel
   "$bin/$t" --gtest_brief=1 2>&1 | tail -25
 done 2>&1 | tee "$out/tests.txt"
 {
-  echo "== level sets: GPU (auto) against the CPU backend on $(nproc) cores, wall s (median of 3) and peak MB"
+  echo "== level sets: GPU (auto) against the CPU backend on $(nproc) cores, wall s (median of 3) and peak KB"
   for case in "stanford-bunny.obj 512" "japanese-temple.obj 256" "japanese-temple.obj 512" "spot.obj 512"; do
     set -- $case
     for backend in auto cpu; do

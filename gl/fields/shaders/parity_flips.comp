@@ -40,12 +40,16 @@ void columnCrossing(uint t, dvec3 A, dvec3 B, dvec3 C, uvec2 column)
     int sa = edgeSide(B.xy, C.xy, q), sb = edgeSide(C.xy, A.xy, q), sc = edgeSide(A.xy, B.xy, q);
     if (sa == 0 || sa != sb || sb != sc) return; // the column misses the triangle
     // Where it crosses: barycentric weights from the same edge functions.
-    double wa = (C.x - B.x) * (q.y - B.y) - (C.y - B.y) * (q.x - B.x);
-    double wb = (A.x - C.x) * (q.y - C.y) - (A.y - C.y) * (q.x - C.x);
-    double wc = (B.x - A.x) * (q.y - A.y) - (B.y - A.y) * (q.x - A.x);
-    double sum = wa + wb + wc;
+    // `precise`: a driver that fuses multiply-adds (NVIDIA's does) would move
+    // a crossing within rounding of a centre to the other side of it, and
+    // the CPU path (core/parity_crossings.cpp), which rounds each operation,
+    // would no longer give the same signs.
+    precise double wa = (C.x - B.x) * (q.y - B.y) - (C.y - B.y) * (q.x - B.x);
+    precise double wb = (A.x - C.x) * (q.y - C.y) - (A.y - C.y) * (q.x - C.x);
+    precise double wc = (B.x - A.x) * (q.y - A.y) - (B.y - A.y) * (q.x - A.x);
+    precise double sum = wa + wb + wc;
     if (sum == 0.0LF) return; // zero area in projection after rounding: no crossing to place
-    double zc = (wa * A.z + wb * B.z + wc * C.z) / sum;
+    precise double zc = (wa * A.z + wb * B.z + wc * C.z) / sum;
     double k = ceil(zc); // the first centre above the crossing (a centre on it counts as above)
     if (k >= double(uDimZ)) return; // nothing above it in the grid
     uint kz = uint(max(k, 0.0LF));
