@@ -88,6 +88,36 @@ void checkVolumeResolution(const GridSpec& grid, uint32_t r, const char* what)
     }
 }
 
+// The single-option rules (illumination.h): checkIllumination's ranges, one option each.
+void checkGiConeCount(int64_t cones, const std::string& name)
+{
+    if (cones < 1 || cones > 16) throw InvalidInput(name, fmt::format("{}: the bounce gathers 1 to 16 cones", cones));
+}
+
+void checkGiConeDistance(double voxels, const std::string& name)
+{
+    if (!(voxels >= 0 && voxels <= 1e7))
+        throw InvalidInput(name, fmt::format("{}: cones stop 0 (the grid's diagonal) to 1e7 voxels away", voxels));
+}
+
+void checkShadowOffset(double voxels, const std::string& name)
+{
+    if (!(voxels >= 0 && voxels < 1e6))
+        throw InvalidInput(name, fmt::format("{}: shadow rays start 0 or more voxels out, less than 1e6", voxels));
+}
+
+void checkVolumeResolution(int64_t texels, const std::string& name)
+{
+    if (texels < 8 || texels > 2048 || (texels & (texels - 1)) != 0)
+        throw InvalidInput(name, fmt::format("{}: a volume resolution is a power of two from 8 to 2048", texels));
+}
+
+void checkPositive(double value, const std::string& name)
+{
+    if (!(value > 0 && std::isfinite(value)))
+        throw InvalidInput(name, fmt::format("{}: expected a positive finite number", value));
+}
+
 void checkIllumination(const Illumination& l)
 {
     auto bad = [](const std::string& what) { throw InvalidInput("octree view: lighting: " + what); };

@@ -260,6 +260,36 @@ Lights defaultLights(const std::array<Vec3d, 2>& box, bool inside)
     return l;
 }
 
+// The single-option rules (ambient_occlusion.h): checkAmbientOcclusion's ranges, one option each.
+void checkAoConeCount(int64_t cones, const std::string& name)
+{
+    if (cones < 0 || cones > 16) throw InvalidInput(name, fmt::format("{}: AO takes 0 (none) to 16 cones", cones));
+}
+
+void checkConeAperture(double degrees, const std::string& name)
+{
+    if (!(degrees > 0 && degrees < 180)) // NaN fails too
+        throw InvalidInput(name, fmt::format("{}: a cone's aperture is between 0 and 180 degrees", degrees));
+}
+
+void checkConeOffset(double offset, const std::string& name)
+{
+    if (!(offset >= 0 && offset < 1e6))
+        throw InvalidInput(name, fmt::format("{}: cones start 0 or more out of the surface, less than 1e6", offset));
+}
+
+void checkAoConeDistance(double voxels, const std::string& name)
+{
+    if (!(voxels > 0 && voxels <= 1e7))
+        throw InvalidInput(name, fmt::format("{}: AO cones stop a positive distance away, at most 1e7 voxels", voxels));
+}
+
+void checkConeStep(double share, const std::string& name)
+{
+    if (!(share > 0 && share <= 1))
+        throw InvalidInput(name, fmt::format("{}: a cone's step is a share of its width in (0, 1]", share));
+}
+
 void checkAmbientOcclusion(const AmbientOcclusion& ao)
 {
     if (ao.cones < 0 || ao.cones > 16 || (ao.only && ao.cones == 0) || !(ao.apertureDegrees > 0 && ao.apertureDegrees < 180) ||
