@@ -158,9 +158,21 @@ TEST(CliOptions, TheOptionsTheLibraryNamesHaveFlags)
     thin.mode = svo::VoxelMode::Thin;
     named.push_back(argumentOf([&] { svo::checkFieldMode(thin); }));
     named.push_back(argumentOf([] { svo::gl::namedView({svo::Vec3d{0, 0, 0}, svo::Vec3d{1, 1, 1}}, "sideways", 1.0); }));
+    // The view's checks run the single-option rules on its fields (svo/gl/ambient_occlusion.h, illumination.h).
+    svo::gl::ViewRequest step;
+    step.layers.ao.step = 1.5;
+    named.push_back(argumentOf([&] { svo::gl::checkViewRequest(step); }));
+    svo::gl::ViewRequest volume;
+    volume.layers.ao.volumeResolution = 100;
+    named.push_back(argumentOf([&] { svo::gl::checkViewRequest(volume); }));
+    svo::gl::ViewRequest cones;
+    cones.render = svo::gl::RenderMode::Global;
+    cones.layers.light.cones = 0;
+    named.push_back(argumentOf([&] { svo::gl::checkViewRequest(cones); }));
     const std::vector<std::string> want = {"LevelSetOptions::exteriorBand", "LevelSetOptions::interiorBand",
                                            "SignOptions::windingAccuracy", "VoxelizeOptions::mode",
-                                           "svo::gl::namedView"};
+                                           "svo::gl::namedView", "AmbientOcclusion::step",
+                                           "AmbientOcclusion::volumeResolution", "Illumination::cones"};
     EXPECT_EQ(named, want);
     for (const auto& identifier : named) EXPECT_FALSE(svo::app::flagFor(identifier).empty()) << identifier;
 }

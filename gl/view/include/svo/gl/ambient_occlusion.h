@@ -95,8 +95,8 @@ constexpr const auto& enumNames(AmbientOcclusion::Filter) { return kAoFilterName
 void checkAmbientOcclusion(const AmbientOcclusion& ao);
 /// @name One AO option each, as front ends check what they are given
 /// @brief Each throws svo::InvalidInput "<name> <value>: <the rule>"
-/// (argument() @a name) for a value checkAmbientOcclusion would refuse; the
-/// ranges are checkAmbientOcclusion's. @a name is the flag or keyword.
+/// (argument() @a name); @a name is the flag or keyword, or the field's
+/// identifier where checkAmbientOcclusion runs them on a struct.
 /// @{
 /// @brief AmbientOcclusion::cones: 0 (none) to 16.
 void checkAoConeCount(int64_t cones, const std::string& name);

@@ -106,8 +106,8 @@ Lights defaultLights(const std::array<Vec3d, 2>& box, bool inside);
 
 /// @name One lighting option each, as front ends check what they are given
 /// @brief Each throws svo::InvalidInput "<name> <value>: <the rule>"
-/// (argument() @a name) for a value checkIllumination would refuse; the
-/// ranges are checkIllumination's. @a name is the flag or keyword. The cones'
+/// (argument() @a name); @a name is the flag or keyword, or the field's
+/// identifier where checkIllumination runs them on a struct. The cones'
 /// aperture, offset and step are ambient_occlusion.h's.
 /// @{
 /// @brief Illumination::cones: 1 to 16.
