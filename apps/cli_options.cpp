@@ -63,11 +63,11 @@ public:
 
     void operator()(const OptionInfo& info, bool& value)
     {
-        if (wanted(info)) cmd_.add_flag(flagOf(info), value, help(info));
+        if (wanted(info)) cmd_.add_flag(flagNames(info), value, help(info));
     }
     void operator()(const OptionInfo& info, std::string& value)
     {
-        if (wanted(info)) cmd_.add_option(flagOf(info), value, help(info));
+        if (wanted(info)) cmd_.add_option(flagNames(info), value, help(info));
     }
     template <typename E, typename = decltype(enumNames(E{}))>
     void operator()(const OptionInfo& info, E& value)
@@ -75,7 +75,7 @@ public:
         if (!wanted(info)) return;
         const std::string flag = flagOf(info);
         cmd_.add_option_function<std::string>(
-               flag, [&value, flag](const std::string& name) { value = parse<E>(name, flag); }, help(info))
+               flagNames(info), [&value, flag](const std::string& name) { value = parse<E>(name, flag); }, help(info))
             ->check(CLI::IsMember(names<E>()))
             ->default_str(std::string(nameOf(value)));
     }
@@ -84,7 +84,7 @@ public:
         if (!wanted(info)) return;
         const std::string flag = flagOf(info);
         cmd_.add_option_function<double>(
-               flag,
+               flagNames(info),
                [number, flag](double v) {
                    number.rule(v, flag); // the library's rule, under the flag's name
                    number.value = v;
@@ -99,7 +99,7 @@ public:
         const std::string flag = flagOf(info);
         // Read as the field's type (CLI11 refuses what it cannot hold), then the library's rule.
         cmd_.add_option_function<Int>(
-               flag,
+               flagNames(info),
                [number, flag](Int v) {
                    number.rule(int64_t(v), flag);
                    number.value = v;
@@ -111,23 +111,37 @@ public:
     {
         if (!wanted(info)) return;
         cmd_.add_option_function<std::string>(
-               flagOf(info), [choice](const std::string& name) { choice.value = name == choice.trueName; }, help(info))
+               flagNames(info), [choice](const std::string& name) { choice.value = name == choice.trueName; },
+               help(info))
             ->check(CLI::IsMember({std::string(choice.falseName), std::string(choice.trueName)}))
             ->default_str(std::string(choice.value ? choice.trueName : choice.falseName));
+    }
+    template <typename T>
+    void operator()(const OptionInfo& info, OptionalNumber<T> number)
+    {
+        if (!wanted(info)) return;
+        const std::string flag = flagOf(info);
+        cmd_.add_option_function<double>(
+            flagNames(info),
+            [number, flag](double v) {
+                number.rule(v, flag); // the library's rule, under the flag's name
+                number.value = T(v);
+            },
+            help(info));
     }
     void operator()(const OptionInfo& info, ByteCount count)
     {
         if (!wanted(info)) return;
         const std::string flag = flagOf(info);
         cmd_.add_option_function<std::string>(
-            flag, [count, flag](const std::string& text) { count.bytes = parseByteSize(text, flag); }, help(info));
+            flagNames(info), [count, flag](const std::string& text) { count.bytes = parseByteSize(text, flag); }, help(info));
     }
     void operator()(const OptionInfo& info, ChannelSet channels)
     {
         if (!wanted(info)) return;
         const std::string flag = flagOf(info);
         cmd_.add_option_function<std::vector<std::string>>(
-               flag,
+               flagNames(info),
                [channels, flag](const std::vector<std::string>& names) {
                    for (const auto& n : names) channels.bits |= parse<AttributeChannel>(n, flag);
                },
@@ -165,6 +179,7 @@ template void addOptions(CLI::App&, GridOptions&, std::vector<std::string_view>,
 template void addOptions(CLI::App&, gl::ViewRequest&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, gl::AmbientOcclusion&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, gl::Illumination&, std::vector<std::string_view>, const std::string&);
+template void addOptions(CLI::App&, GridRequest&, std::vector<std::string_view>, const std::string&);
 
 void addBackendOptions(CLI::App& cmd, BackendArgs& a)
 {
@@ -197,13 +212,10 @@ bool bandsGiven(const CLI::App& cmd)
     return cmd.count("--band") || cmd.count("--exterior-band") || cmd.count("--interior-band");
 }
 
-void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize)
+void addGridOptions(CLI::App& cmd, GridRequest& request)
 {
-    auto* res = cmd.add_option("-r,--resolution", resolution,
-                               "Voxel size = longest bounding-box side / N (default 256); the result spans N+1 voxels "
-                               "along that side (N+2 when the box ends exactly on voxel faces)");
-    auto* size = cmd.add_option("--voxel-size", voxelSize, "Voxel size in world units");
-    res->excludes(size);
+    addOptions(cmd, request);
+    cmd.get_option("--resolution")->excludes("--voxel-size");
 }
 
 std::string nonEmptyMeshPath(const std::string& value)
@@ -211,15 +223,10 @@ std::string nonEmptyMeshPath(const std::string& value)
     return value.empty() ? "the mesh path is empty; give a mesh file, or no mesh for the built-in Cornell box" : "";
 }
 
-GridRequest gridRequest(const CLI::App& cmd, int64_t resolution, double voxelSize)
+GridRequest gridRequest(const GridRequest& given)
 {
-    const bool gotRes = cmd.count("--resolution") > 0, gotSize = cmd.count("--voxel-size") > 0;
-    // The library's rules, under the flags' names (before any work).
-    if (gotRes) checkResolution(double(resolution), "--resolution");
-    if (gotSize) checkVoxelSize(voxelSize, "--voxel-size");
-    GridRequest r;
-    r.resolution = gotRes ? resolution : (gotSize ? 0 : 256);
-    r.voxelSize = gotSize ? voxelSize : 0;
+    GridRequest r = given; // each number checked by its rule as it was parsed
+    if (r.resolution == 0 && r.voxelSize == 0) r.resolution = kDefaultResolution;
     return r;
 }
 

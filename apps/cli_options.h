@@ -70,9 +70,9 @@ bool bandsGiven(const CLI::App& cmd);
 std::string nonEmptyMeshPath(const std::string& value);
 
 /// -r/--resolution and --voxel-size (mutually exclusive).
-void addGridOptions(CLI::App& cmd, int64_t& resolution, double& voxelSize);
+void addGridOptions(CLI::App& cmd, GridRequest& request);
 /// The request those options make; resolution 256 when neither is given.
-GridRequest gridRequest(const CLI::App& cmd, int64_t resolution, double voxelSize);
+GridRequest gridRequest(const GridRequest& given);
 
 /// --topology and --fog. The command line's default topology is bool, which python3-openvdb reads.
 struct OutputArgs {

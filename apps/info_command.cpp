@@ -15,8 +15,7 @@ namespace {
 
 struct InfoArgs {
     std::string input, gridName;
-    int64_t resolution = 0;
-    double voxelSize = 0;
+    GridRequest grid; ///< -r/--resolution or --voxel-size
     BackendArgs backend;
 };
 
@@ -47,7 +46,7 @@ void runInfo(const InfoArgs& a, const CLI::App& cmd)
 {
     LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo =
-        loadOctree(call.voxelizer, a.input, a.gridName, gridRequest(cmd, a.resolution, a.voxelSize), call.options);
+        loadOctree(call.voxelizer, a.input, a.gridName, gridRequest(a.grid), call.options);
     if (lo.mesh) printWarnings(lo.mesh->warnings);
     printWarnings(call.stats.warnings);
     fmt::print("svo info\n");
@@ -64,7 +63,7 @@ void addInfoCommand(CLI::App& app)
     CLI::App* cmd = app.add_subcommand("info", "Print the octree of a .svo, .vdb, .nvdb or mesh file: levels, nodes, bricks, bytes (and a .nvdb's grids)");
     cmd->add_option("input", args->input, "A .svo, .vdb, .nvdb or mesh file")->required();
     cmd->add_option("--grid", args->gridName, "Grid of a .vdb or .nvdb input (default: the first)");
-    addGridOptions(*cmd, args->resolution, args->voxelSize);
+    addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
     cmd->callback([args, cmd] { runInfo(*args, *cmd); });
 }

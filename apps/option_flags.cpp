@@ -20,6 +20,8 @@ std::string flagFor(std::string_view identifier)
     LevelSetOptions levelSet;
     GridOptions grids;
     gl::ViewRequest view; // its layers, AO and lighting too
+    GridRequest request;
+    forEachOption(request, find);
     forEachOption(voxelize, find);
     forEachOption(device, find);
     forEachOption(levelSet, find);

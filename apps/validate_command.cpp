@@ -31,8 +31,7 @@ namespace {
 
 struct ValidateArgs {
     std::string mesh, json, errors;
-    int64_t resolution = 0;
-    double voxelSize = 0;
+    GridRequest grid; ///< -r/--resolution or --voxel-size
     BackendArgs backend;
     bool noHoles = false;
     bool strict = false;
@@ -181,7 +180,7 @@ void runValidateSdf(const ValidateArgs& a, const LevelSetOptions& ls, const Tria
 void runValidate(const ValidateArgs& a, const CLI::App& cmd)
 {
     checkSdfArgs(a, cmd);
-    const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
+    const GridRequest request = gridRequest(a.grid);
     checkOutputs({a.mesh}, {a.json, a.errors}); // before any work
     OutputBatch outputs({a.json, a.errors});     // both in place together, or neither
     TriangleMesh mesh;
@@ -305,7 +304,7 @@ void addValidateCommand(CLI::App& app)
     cmd->add_option("mesh", args->mesh,
                     fmt::format("Mesh file ({}); none = built-in Cornell box", supportedMeshExtensions()))
         ->check(nonEmptyMeshPath, "MESH");
-    addGridOptions(*cmd, args->resolution, args->voxelSize);
+    addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
     addOptions(*cmd, args->backend.settings, {"mode"});
     addOutputPath(*cmd, "--json", args->json, "Write the report as JSON");

@@ -40,8 +40,7 @@ struct ViewArgs {
     std::string albedo, specular;
     double fov = 40.0;
     std::optional<double> ortho; ///< --ortho: the height an orthographic view spans
-    int64_t resolution = 0;
-    double voxelSize = 0;
+    GridRequest grid; ///< -r/--resolution or --voxel-size
     BackendArgs backend;
 };
 
@@ -316,7 +315,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     // when either is turned on.)
     backend.settings.attributes |= gl::channelsFor(asked);
     LibraryCall call(backend, "building the octree");
-    const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
+    const GridRequest request = gridRequest(a.grid);
     LoadedOctree lo = loadInput(a, request, call);
     if (asked.layers.mesh && !lo.mesh) fmt::print(stderr, "svo: warning: the input has no mesh to draw (--layers mesh)\n");
     gl::ViewLayers shown;
@@ -410,7 +409,7 @@ void addViewCommand(CLI::App& app)
                     "backend, dilation, mode; f x y z: views; p: screenshot; q: quit)");
     addOutputPath(*cmd, "--save", args->save, "Window: write the octree shown last to this .svo, .vdb or .nvdb on exit",
                   {".svo", ".vdb", ".nvdb"});
-    addGridOptions(*cmd, args->resolution, args->voxelSize);
+    addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
     addOptions(*cmd, args->backend.settings, {"mode", "attributes"});
     cmd->callback([args, cmd] { runView(*args, *cmd); });

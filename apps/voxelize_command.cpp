@@ -28,8 +28,7 @@ struct VoxelizeArgs {
     std::string mesh;
     std::string output;
     std::string json;
-    int64_t resolution = 0;
-    double voxelSize = 0;
+    GridRequest grid; ///< -r/--resolution or --voxel-size
     int repeat = 1;
     BackendArgs backend;
     OutputArgs out;
@@ -219,7 +218,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     checkFieldArgs(a, cmd);
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
-    const GridRequest request = gridRequest(cmd, a.resolution, a.voxelSize);
+    const GridRequest request = gridRequest(a.grid);
 
     // No output may be the input or another output: refused before any work.
     checkOutputs({a.mesh}, {a.output, a.json});
@@ -378,7 +377,7 @@ void addVoxelizeCommand(CLI::App& app)
         ->check(nonEmptyMeshPath, "MESH");
     addOutputPath(*cmd, "-o,--output", args->output, "Output .vdb, .nvdb (NanoVDB) or .svo (default: <scene>.vdb)");
     addOutputPath(*cmd, "--json", args->json, "Also write the summary (counts, bytes, stage times) as JSON");
-    addGridOptions(*cmd, args->resolution, args->voxelSize);
+    addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
     addOptions(*cmd, args->backend.settings, {"attributes", "mode", "gpu_memory"});
     addOutputOptions(*cmd, args->out);

@@ -17,8 +17,7 @@ namespace {
 
 struct VtkArgs {
     std::string input, output, png, levels, gridName;
-    int64_t resolution = 0;
-    double voxelSize = 0;
+    GridRequest grid; ///< -r/--resolution or --voxel-size
     BackendArgs backend;
     int width = 1600;
 };
@@ -70,7 +69,7 @@ void runVtk(const VtkArgs& a, const CLI::App& cmd)
     OutputBatch outputs({a.output, a.png}); // both in place together at the end, or neither
     LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo =
-        loadOctree(call.voxelizer, a.input, a.gridName, gridRequest(cmd, a.resolution, a.voxelSize), call.options);
+        loadOctree(call.voxelizer, a.input, a.gridName, gridRequest(a.grid), call.options);
     if (lo.mesh) printWarnings(lo.mesh->warnings);
     printWarnings(call.stats.warnings);
     fmt::print("svo vtk\n");
@@ -112,7 +111,7 @@ void addVtkCommand(CLI::App& app)
         ->check(CLI::Range(64, 8192))
         ->capture_default_str();
     cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
-    addGridOptions(*cmd, args->resolution, args->voxelSize);
+    addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
     cmd->callback([args, cmd] { runVtk(*args, *cmd); });
 }

@@ -358,6 +358,37 @@ TEST_F(Cli, ValidatePassesAndWritesItsReports)
     expectOnly({"v.json", "e.vdb"});
 }
 
+// --sdf, --udf and --fill solid run on the CPU with --backend cpu: the same
+// active voxels and sign method as the default backend's (test_cpu_fields
+// compares the fields voxel for voxel).
+TEST_F(Cli, FieldsRunOnTheCpuBackend)
+{
+    auto read = [&](const std::string& name) {
+        std::ifstream in(path(name));
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    auto field = [](const std::string& json, const std::string& key) {
+        std::smatch m;
+        return std::regex_search(json, m, std::regex("\"" + key + "\": (\"[^\"]*\"|[0-9]+)")) ? m[1].str()
+                                                                                              : std::string();
+    };
+    const std::string mesh =
+        write("tet.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    for (const char* kind : {"--sdf", "--udf", "--fill solid", "--sdf --sign winding"}) {
+        SCOPED_TRACE(kind);
+        auto r = runSvo("voxelize " + mesh + " -r 32 " + kind + " --backend cpu -o " + path("c.vdb") + " --json " +
+                        path("c.json"));
+        ASSERT_EQ(r.code, 0) << r.out;
+        r = runSvo("voxelize " + mesh + " -r 32 " + kind + " -o " + path("g.vdb") + " --json " + path("g.json"));
+        ASSERT_EQ(r.code, 0) << r.out;
+        const std::string cpu = read("c.json"), gpu = read("g.json");
+        EXPECT_EQ(field(cpu, "backend"), "\"cpu\"") << cpu;
+        EXPECT_NE(field(cpu, "active_voxels"), "") << cpu;
+        EXPECT_EQ(field(cpu, "active_voxels"), field(gpu, "active_voxels"));
+        EXPECT_EQ(field(cpu, "sign"), field(gpu, "sign"));
+    }
+}
+
 TEST_F(Cli, ThinModeVoxelizesFewerVoxelsAndValidates)
 {
     auto read = [&](const std::string& name) {

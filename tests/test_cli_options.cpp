@@ -238,7 +238,7 @@ struct HelpCheck {
     {
         const std::string f = svo::flagOf(info);
         EXPECT_EQ(svo::app::flagFor(info.identifier), f);
-        const size_t at = help.find("  " + f + " ");
+        const size_t at = help.find("  " + svo::flagNames(info) + " ");
         EXPECT_NE(at, std::string::npos) << info.identifier << " -> " << f;
         if (at == std::string::npos) return {};
         return help.substr(at, help.find('\n', at) - at);
@@ -254,9 +254,11 @@ TEST(CliOptions, EveryDeclaredOptionIsAFlagWithTheLibrarysDefault)
     const auto r = runSvo("voxelize --help");
     ASSERT_EQ(r.code, 0) << r.out;
     HelpCheck check{r.out};
+    svo::GridRequest request;
     svo::VoxelizeSettings settings;
     svo::DeviceOptions device;
     svo::LevelSetOptions levelSet;
+    svo::forEachOption(request, check);
     svo::forEachOption(settings, check);
     svo::forEachOption(device, check);
     svo::forEachOption(levelSet, check);

@@ -879,31 +879,40 @@ TEST(LevelSet, UnsignedDistancesOfAnOpenMeshMatchCgalWithClosestTriangles)
     EXPECT_EQ(closest->activeVoxelCount(), udf->activeVoxelCount());
 }
 
-TEST(LevelSet, BadBandsAndTheCpuBackendAreRefused)
+// Bad bands are refused on every backend; the CPU backend computes level
+// sets and solids (test_cpu_fields holds them to the GPU's bit for bit) and
+// refuses the same too-wide band.
+TEST(LevelSet, BadBandsAreRefusedAndTheCpuBackendWorks)
 {
     const TriangleMesh b = box({0, 0, 0}, {1, 1, 1});
     const GridSpec grid = makeGrid(b, GridRequest{8, 0});
     Voxelizer v;
+    VoxelizeOptions cpu;
+    cpu.backend = Backend::Cpu;
     for (double w : {0.5, -1.0, std::nan(""), 1e9}) {
         LevelSetOptions ls;
         ls.exteriorBand = w;
         EXPECT_THROW(v.levelSet(b, grid, ls), Error) << w;
+        EXPECT_THROW(v.levelSet(b, grid, ls, cpu), Error) << w;
     }
-    VoxelizeOptions cpu;
-    cpu.backend = Backend::Cpu;
-    EXPECT_THROW(v.levelSet(b, grid, {}, cpu), Error);
-    EXPECT_THROW(v.solid(b, grid, cpu), Error);
+    EXPECT_EQ(v.levelSet(b, grid, {}, cpu).front()->activeVoxelCount(),
+              v.levelSet(b, grid, {}).front()->activeVoxelCount());
+    EXPECT_EQ(v.solid(b, grid, cpu)->activeVoxelCount(), openvdb::Index64(9 * 9 * 9));
     // A band far wider than the triangles: 20,480 boxes of about 75^3 bricks
     // each, more work than a pass holds, refused before anything is listed.
     const TriangleMesh ico = icosphere({0, 0, 0}, 1.0, 5);
     LevelSetOptions wide;
     wide.exteriorBand = wide.interiorBand = 300;
-    try {
-        v.levelSet(ico, makeGrid(ico, GridRequest{64, 0}), wide);
-        ADD_FAILURE() << "a band of 300 voxels around 20,480 triangles was not refused";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("brick work items, more than one pass holds"), std::string::npos)
-            << e.what();
+    for (const Backend backend : {Backend::Auto, Backend::Cpu}) {
+        VoxelizeOptions o;
+        o.backend = backend;
+        try {
+            v.levelSet(ico, makeGrid(ico, GridRequest{64, 0}), wide, o);
+            ADD_FAILURE() << "a band of 300 voxels around 20,480 triangles was not refused";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("brick work items, more than one pass holds"), std::string::npos)
+                << e.what();
+        }
     }
 }
 

@@ -194,10 +194,6 @@ struct PythonKeyword {
 py::object none() { return py::none(); }
 
 const PythonKeyword kPythonKeywords[] = {
-    {"resolution", none,
-     "Voxels along the longest bounding-box side, a whole number: voxel size = longest side / resolution "
-     "(None: 256, as `svo voxelize`)"},
-    {"voxel_size", none, "World units per voxel, instead of resolution"},
     {"transform", none,
      "A pyopenvdb.Transform or a 4x4 affine matrix (OpenVDB's row-vector convention), instead of resolution; "
      "voxels are cubes of its index space"},
@@ -272,6 +268,11 @@ struct Describe {
         add(i, py::str(std::string(b.value ? b.trueName : b.falseName)),
             "'" + std::string(b.falseName) + "' or '" + std::string(b.trueName) + "'");
     }
+    template <typename T>
+    void operator()(const svo::OptionInfo& i, svo::OptionalNumber<T>) const
+    {
+        add(i, none()); // 0, "not given", is None in Python
+    }
     void operator()(const svo::OptionInfo& i, svo::ByteCount c) const
     {
         add(i, c.bytes ? py::object(py::int_(c.bytes)) : none()); // 0: the device's free memory, None in Python
@@ -291,9 +292,11 @@ std::vector<KeywordInfo> allKeywords()
     std::vector<KeywordInfo> out;
     for (const PythonKeyword& k : kPythonKeywords)
         out.push_back({std::string(k.keyword), {}, std::string(k.doc), k.fallback(), {}});
+    svo::GridRequest request;
     svo::VoxelizeSettings voxelize;
     svo::DeviceOptions device;
     svo::LevelSetOptions levelSet; // its SignOptions included
+    forEachOption(request, Describe{out});
     forEachOption(voxelize, Describe{out});
     forEachOption(device, Describe{out});
     forEachOption(levelSet, Describe{out});
@@ -364,10 +367,12 @@ std::string keywordOf(const std::string& identifier)
             if (std::find(call->keywords.begin(), call->keywords.end(), info.keyword) != call->keywords.end())
                 keyword = std::string(info.keyword);
     };
+    svo::GridRequest request;
     svo::VoxelizeSettings voxelize;
     svo::DeviceOptions device;
     svo::LevelSetOptions levelSet;
     svo::gl::ViewRequest view;
+    forEachOption(request, find);
     forEachOption(voxelize, find);
     forEachOption(device, find);
     forEachOption(levelSet, find);
@@ -538,6 +543,15 @@ private:
                         name + "'"});
             b.value = name == b.trueName;
         }
+        template <typename T>
+        void operator()(const svo::OptionInfo& i, svo::OptionalNumber<T> n) const
+        {
+            if (!wanted(i)) return;
+            const auto v = kw.as<std::optional<double>>(i.keyword); // None: not given
+            if (!v) return;
+            n.rule(*v, std::string(i.keyword)); // the library's rule, under the keyword (8.5 refused, not cut)
+            n.value = T(*v);
+        }
         void operator()(const svo::OptionInfo& i, svo::ByteCount c) const
         {
             if (!wanted(i)) return;
@@ -584,10 +598,10 @@ struct Request {
 /// The mesh and the grid of resolution=, voxel_size= or transform=.
 Request makeRequest(const py::handle& vertices, const py::handle& triangles, const CallKeywords& kw)
 {
-    const auto resolution = kw.get<std::optional<double>>("resolution");
-    const auto voxelSize = kw.get<std::optional<double>>("voxel_size");
+    svo::GridRequest req;
+    kw.read(req); // each number checked by its rule, under its keyword
     const auto transform = kw.get<py::object>("transform");
-    const int given = int(resolution.has_value()) + int(voxelSize.has_value()) + int(!transform.is_none());
+    const int given = int(req.resolution != 0) + int(req.voxelSize != 0) + int(!transform.is_none());
     if (given > 1) badValue("give one of resolution, voxel_size and transform");
     const std::vector<openvdb::Vec3d> points = toPoints(vertices);
     std::vector<openvdb::Vec3I> tris;
@@ -606,16 +620,7 @@ Request makeRequest(const py::handle& vertices, const py::handle& triangles, con
     // has them (a file's mesh, then makeGrid), so both give the same voxels.
     r.mesh = svo::toTriangleMesh(points, tris, quads);
     r.mesh.source = "mesh";
-    svo::GridRequest req;
-    // The library's rules, under the keywords' names.
-    if (voxelSize) {
-        svo::checkVoxelSize(*voxelSize, "voxel_size");
-        req.voxelSize = *voxelSize;
-    } else {
-        const double n = resolution.value_or(256);
-        svo::checkResolution(n, "resolution");
-        req.resolution = int64_t(n);
-    }
+    if (req.resolution == 0 && req.voxelSize == 0) req.resolution = svo::kDefaultResolution;
     r.grid = svo::makeGrid(r.mesh, req);
     r.xform = svo::vdb::makeTransform(r.grid);
     return r;

@@ -184,8 +184,8 @@ def test_library_errors_become_python_errors_by_their_type(voxelizer, tmp_path):
         voxelizer.voxelize(v, t, resolution=16, gpu_memory=1024)
     assert isinstance(caught.value, RuntimeError) and isinstance(caught.value, svo.OutOfMemoryError)
     # A request svo has no method for (svo::Unsupported): NotImplementedError, a RuntimeError.
-    with pytest.raises(NotImplementedError, match="level sets are computed on the GPU") as caught:
-        voxelizer.level_set(v, t, resolution=8, backend="cpu")
+    with pytest.raises(NotImplementedError, match="parity signs need a mesh without holes") as caught:
+        voxelizer.level_set(v, t[:3], resolution=8, sign="parity")
     assert isinstance(caught.value, RuntimeError)
     # No usable device (svo::DeviceError): RuntimeError.
     with pytest.raises(RuntimeError, match="no EGL device matches 'no-such-device'"):
@@ -458,6 +458,26 @@ def test_level_set_says_its_sign_and_gives_closest_triangles(voxelizer):
         "winding: the mesh is not closed (3 boundary edges)"
     with pytest.raises(RuntimeError, match="parity signs need a mesh without holes"):
         voxelizer.level_set(tv, tt[:3], resolution=24, sign="parity")
+
+
+def test_level_sets_and_solids_on_the_cpu_backend_are_the_default_backends(voxelizer):
+    # backend="cpu" runs level sets, unsigned fields and solids on the CPU
+    # (no GPU); test_cpu_fields holds them to the GPU path bit for bit.
+    v, t = tetrahedron()
+    for kwargs in ({}, {"unsigned": True}, {"sign": "winding"}):
+        gpu = voxelizer.level_set(v, t, resolution=32, **kwargs)
+        cpu = voxelizer.level_set(v, t, resolution=32, backend="cpu", **kwargs)
+        ijk = svo.active_voxels(gpu)
+        assert as_set(ijk) == as_set(svo.active_voxels(cpu)) and len(ijk) > 1000
+        a, b = gpu.getConstAccessor(), cpu.getConstAccessor()
+        assert all(a.getValue(tuple(int(c) for c in p)) == b.getValue(tuple(int(c) for c in p)) for p in ijk)
+        if "unsigned" not in kwargs:
+            assert cpu["svo:sign"] == gpu["svo:sign"]
+    open_t = t[:3]  # winding signs under auto
+    assert as_set(svo.active_voxels(voxelizer.solid(v, open_t, resolution=40, backend="cpu"))) == \
+        as_set(svo.active_voxels(voxelizer.solid(v, open_t, resolution=40)))
+    assert as_set(svo.active_voxels(voxelizer.solid(v, t, resolution=40, backend="cpu"))) == \
+        as_set(svo.active_voxels(voxelizer.solid(v, t, resolution=40)))
 
 
 def test_solid_of_a_tetrahedron_is_its_inside_and_surface(voxelizer):

@@ -1,6 +1,8 @@
 // Level sets, unsigned distance fields and solids on bricks
-// (svo/gl/field_pipeline.h): the band's bricks (band_bricks.h), distances and
-// parity crossings (distance_field.h), winding numbers (winding_number.h).
+// (svo/gl/field_pipeline.h): the band's bricks (svo/core/band_bricks.h),
+// distances and parity crossings (distance_field.h), winding numbers
+// (winding_number.h); with Backend::Cpu their CPU counterparts in core
+// (band_distances.h, parity_crossings.h, winding_signs.h).
 #include "svo/gl/field_pipeline.h"
 
 #include <algorithm>
@@ -12,10 +14,14 @@
 #include <tbb/parallel_sort.h>
 #include <utility>
 
-#include "band_bricks.h"
+#include "svo/core/band_bricks.h"
+#include "svo/core/band_distances.h"
+#include "svo/core/parity_crossings.h"
 #include "svo/core/error.h"
-#include "svo/core/mesh_topology.h"
+#include "svo/core/local_positions.h"
 #include "svo/core/parity_scan.h"
+#include "svo/core/sign_choice.h"
+#include "svo/core/winding_signs.h"
 #include "svo/core/winding_tree.h"
 #include "svo/gl/distance_field.h"
 #include "svo/gl/winding_number.h"
@@ -55,40 +61,9 @@ GridSpec padded(const GridSpec& grid, uint32_t pad, const std::string& what)
     return g;
 }
 
-/// The sign method a call uses, and why (for the statistics).
-struct SignChoice {
-    SignMethod method;
-    std::string why;
-};
-SignChoice chooseSign(const TriangleMesh& mesh, const SignOptions& asked, std::vector<std::string>& warnings)
-{
-    checkWindingAccuracy(asked.windingAccuracy, "SignOptions::windingAccuracy");
-    if (asked.method == SignMethod::Winding) return {SignMethod::Winding, "winding: as asked"};
-    const EdgeReport edges = checkEdges(mesh);
-    if (edges.closedAndOriented()) return {SignMethod::Parity, "parity: the mesh is " + edges.describe()};
-    if (asked.method == SignMethod::Auto)
-        return {SignMethod::Winding, "winding: the mesh is not closed (" + edges.describe() + ")"};
-    // A hole lets a column of voxel centres cross the surface an odd number
-    // of times, and parity then flips every sign beyond it: refused. Edges of
-    // three or more triangles, or two running the same way, can still give
-    // even crossings (two solids sharing an edge, a flipped face): warned.
-    if (edges.boundary)
-        throw Unsupported(fmt::format("{}: parity signs need a mesh without holes, and this one has {}: a column of voxels "
-                                "through a hole crosses the surface an odd number of times and every sign beyond it "
-                                "would flip; use the winding sign method (or auto, which picks it for such a mesh)",
-                                mesh.source, edges.describe()));
-    warnings.push_back(fmt::format("{} is not closed ({}): parity signs may be wrong", mesh.source, edges.describe()));
-    return {SignMethod::Parity, "parity: as asked (the mesh is not closed)"};
-}
-
-/// A brick beyond the band whose centre's winding number is nearer 1/2 than
-/// this may hold both sides (the 1/2 level crosses free space only where the
-/// mesh has holes); its voxels are evaluated one by one.
-constexpr float kWindingMargin = 0.25f;
-
 /// Winding-number signs: the number at every brick centre of the grid's box,
 /// then voxel by voxel in the band's bricks and in the bricks whose centre is
-/// within kWindingMargin of 1/2.
+/// within kWindingMargin of 1/2 (bricksBeyondBand, the CPU path's rule too).
 FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSpec& g,
                    const std::vector<BrickCoord>& band, double beta, const Checkpoint& checkpoint,
                    VoxelizeStats& stats)
@@ -104,27 +79,15 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     WindingResult centres = computeWinding(context, mesh, g, tree, coarse, &centresReport);
     for (auto& st : centresReport.stages) stats.stages.push_back(std::move(st));
 
-    // `band` is sorted (grownBricks): the box's bricks in x-major order walk it once.
     FieldSigns signs;
+    BricksBeyondBand beyond = bricksBeyondBand(centres.perBrick, centres.brickDims, band);
+    signs.insideBricks = std::move(beyond.inside);
     WindingRequest fine;
     fine.bricks = band;
+    fine.bricks.insert(fine.bricks.end(), beyond.voxelwise.begin(), beyond.voxelwise.end());
     fine.beta = beta;
     fine.checkpoint = checkpoint.part(0.3, 1.0);
-    const auto& d = centres.brickDims;
-    size_t next = 0;
-    for (uint32_t x = 0; x < d[0]; ++x)
-        for (uint32_t y = 0; y < d[1]; ++y)
-            for (uint32_t z = 0; z < d[2]; ++z) {
-                const BrickCoord b{x, y, z};
-                if (next < band.size() && band[next] == b) {
-                    ++next;
-                    continue;
-                }
-                const float w = centres.perBrick[x + size_t(d[0]) * (y + size_t(d[1]) * z)];
-                if (std::abs(w - 0.5f) < kWindingMargin) fine.bricks.push_back(b);
-                else if (w >= 0.5f) signs.insideBricks.push_back(b);
-            }
-    stats.windingBricks = fine.bricks.size() - band.size();
+    stats.windingBricks = beyond.voxelwise.size();
     RunStats voxelsReport;
     WindingResult voxels = computeWinding(context, mesh, g, tree, fine, &voxelsReport);
     for (auto& st : voxelsReport.stages) stats.stages.push_back(std::move(st));
@@ -132,6 +95,33 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     signs.inside.assign(voxels.inside.begin(), voxels.inside.begin() + std::ptrdiff_t(band.size()));
     for (size_t i = band.size(); i < fine.bricks.size(); ++i)
         if (voxels.inside[i].count()) signs.partial.push_back({fine.bricks[i], voxels.inside[i]});
+    return signs;
+}
+
+/// The same on the CPU (svo/core/winding_signs.h): the same tree, rule and sums.
+FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& local, const GridSpec& g,
+                           const std::vector<BrickCoord>& band, double beta, const Checkpoint& checkpoint,
+                           VoxelizeStats& stats)
+{
+    auto t0 = Clock::now();
+    const WindingTree tree = buildWindingTree(local, mesh.triangles);
+    stats.stages.push_back({"winding tree", -1, msSince(t0)});
+    t0 = Clock::now();
+    const std::vector<float> centres = windingAtBrickCentres(tree, local, mesh, g, beta, checkpoint.part(0.0, 0.3));
+    stats.stages.push_back({"winding bricks (cpu)", -1, msSince(t0)});
+    t0 = Clock::now();
+    const std::array<uint32_t, 3> dims{(g.dims[0] + 7) / 8, (g.dims[1] + 7) / 8, (g.dims[2] + 7) / 8};
+    BricksBeyondBand beyond = bricksBeyondBand(centres, dims, band);
+    FieldSigns signs;
+    signs.insideBricks = std::move(beyond.inside);
+    std::vector<BrickCoord> fine = band;
+    fine.insert(fine.end(), beyond.voxelwise.begin(), beyond.voxelwise.end());
+    stats.windingBricks = beyond.voxelwise.size();
+    std::vector<Brick> inside = windingInside(tree, local, mesh, fine, beta, checkpoint.part(0.3, 1.0));
+    stats.stages.push_back({"winding voxels (cpu)", -1, msSince(t0)});
+    signs.inside.assign(inside.begin(), inside.begin() + std::ptrdiff_t(band.size()));
+    for (size_t i = band.size(); i < fine.size(); ++i)
+        if (inside[i].count()) signs.partial.push_back({fine[i], inside[i]});
     return signs;
 }
 
@@ -214,6 +204,54 @@ void addSurface(const Octree& surface, const std::vector<BrickCoord>& band, std:
     });
 }
 
+/// The parity crossings found on the CPU, refused (as the GPU's pass refuses them)
+/// when one falls outside the band's bricks, timed into `stats`.
+std::vector<Brick> crossingsCpu(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& g,
+                                const std::vector<BrickCoord>& bricks, VoxelizeStats& stats)
+{
+    const auto t0 = Clock::now();
+    ParityCrossings found = parityCrossings(local, mesh, g, bricks);
+    if (found.lost)
+        throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks", found.lost));
+    stats.stages.push_back({"crossings (cpu)", -1, msSince(t0)});
+    return std::move(found.crossings);
+}
+
+/// levelSetBricks on the CPU (svo/core/band_distances.h, parity_crossings.h,
+/// winding_signs.h): the same bricks, distances and signs as the GPU's.
+DistanceBricks levelSetOnCpu(const TriangleMesh& mesh, const GridSpec& g, const LevelSetOptions& ls,
+                             const SignChoice& sign, double band, const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    const bool signedField = !ls.unsignedDistance;
+    const bool winding = signedField && sign.method == SignMethod::Winding;
+    DistanceBricks out;
+    auto t0 = Clock::now();
+    const std::vector<Vec3d> local = localPositions(mesh, g);
+    out.bricks = bricksNearTriangles(local, mesh, g, std::max(band, 1.0));
+    stats.bandBricks = out.bricks.size();
+    stats.stages.push_back({"band bricks", -1, msSince(t0)});
+    checkpoint(0.05, "band distance");
+    t0 = Clock::now();
+    BandDistances field =
+        bandDistances(local, mesh, g, out.bricks, band, ls.closestTriangle, checkpoint.part(0.05, winding ? 0.3 : 0.8));
+    stats.stages.push_back({"band distance (cpu)", -1, msSince(t0)});
+    if (winding) {
+        out.signs = windingSignsCpu(mesh, local, g, out.bricks, ls.sign.windingAccuracy, checkpoint.part(0.3, 0.85),
+                                    stats);
+    } else if (signedField) {
+        const std::vector<Brick> crossings = crossingsCpu(local, mesh, g, out.bricks, stats);
+        checkpoint(0.82, "parity scan");
+        t0 = Clock::now();
+        out.signs = paritySigns(out.bricks, crossings);
+        stats.stages.push_back({"parity scan", -1, msSince(t0)});
+    }
+    out.near = std::move(field.near);
+    out.offsets = std::move(field.offsets);
+    out.distances = std::move(field.distances);
+    out.closest = std::move(field.closest);
+    return out;
+}
+
 } // namespace
 
 DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
@@ -223,9 +261,7 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     const bool signedField = !ls.unsignedDistance;
     checkLevelSetOptions(ls);
     checkFieldMode(settings);
-    if (settings.backend == Backend::Cpu)
-        throw Unsupported("level sets are computed on the GPU; choose the raster or compute backend, or auto");
-    SignChoice sign{SignMethod::Parity, {}};
+    SignChoice sign;
     if (signedField) sign = chooseSign(mesh, ls.sign, stats.warnings);
     const bool winding = signedField && sign.method == SignMethod::Winding;
     const double band = signedField ? std::max(ls.exteriorBand, ls.interiorBand) : ls.exteriorBand;
@@ -235,9 +271,19 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     const GridSpec g = padded(grid, reach + 1, mesh.source);
     stats.grid = g;
     stats.epsilon = g.epsilon();
-    describeBackend(device, Backend::Compute, stats); // compute passes only, whatever the backend asked
     stats.sign = sign.why;
     checkpoint(0.0, "band bricks");
+    if (runsOnCpu(device, settings)) { // no GL context is made
+        describeBackend(device, Backend::Cpu, stats);
+        DistanceBricks out = levelSetOnCpu(mesh, g, ls, sign, band, checkpoint, stats);
+        noteOpenColumns(stats, out.signs.openColumns, "signs above its last crossing count as outside");
+        out.grid = g;
+        out.closestTriangle = ls.closestTriangle;
+        out.signedField = signedField;
+        out.winding = winding;
+        return out;
+    }
+    describeBackend(device, Backend::Compute, stats); // compute passes only, whatever the backend asked
 
     FieldRequest request;
     {
@@ -279,8 +325,6 @@ SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec
                         const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
     checkFieldMode(settings); // the sign options: chooseSign
-    if (settings.backend == Backend::Cpu)
-        throw Unsupported("solids are computed on the GPU; choose the raster or compute backend, or auto");
     const SignChoice sign = chooseSign(mesh, signOptions, stats.warnings);
     const bool winding = sign.method == SignMethod::Winding;
     const GridSpec g = padded(grid, 2, mesh.source);
@@ -293,7 +337,20 @@ SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec
     SolidBricks out;
     out.grid = g;
     out.bricks = bandBricks(surface, 1, stats);
-    if (winding) {
+    if (runsOnCpu(device, settings)) { // the surface voxels came from the CPU voxelizer too
+        const std::vector<Vec3d> local = localPositions(mesh, g);
+        if (winding) {
+            out.signs = windingSignsCpu(mesh, local, g, out.bricks, signOptions.windingAccuracy,
+                                        checkpoint.part(0.35, 0.8), stats);
+        } else {
+            checkpoint(0.35, "parity crossings");
+            const std::vector<Brick> crossings = crossingsCpu(local, mesh, g, out.bricks, stats);
+            checkpoint(0.7, "parity scan");
+            const auto t0 = Clock::now();
+            out.signs = paritySigns(out.bricks, crossings);
+            stats.stages.push_back({"parity scan", -1, msSince(t0)});
+        }
+    } else if (winding) {
         out.signs = windingSigns(device.context(), mesh, g, out.bricks, signOptions.windingAccuracy,
                                  checkpoint.part(0.35, 0.8), stats);
     } else {

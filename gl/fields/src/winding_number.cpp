@@ -26,15 +26,6 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 
 } // namespace
 
-std::vector<Vec3d> localPositions(const TriangleMesh& mesh, const GridSpec& grid)
-{
-    std::vector<Vec3d> local(mesh.positions.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, local.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) local[i] = grid.toLocal(mesh.positions[i]);
-    });
-    return local;
-}
-
 WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
                              const WindingTree& tree, const WindingRequest& request, RunStats* report)
 {

@@ -17,6 +17,8 @@
 #include <cstdint>
 #include <string>
 
+#include "svo/core/option_info.h"
+
 #include "svo/core/mesh.h"
 
 namespace svo {
@@ -57,6 +59,9 @@ struct GridRequest {
     double voxelSize = 0.0; ///< world units per voxel
 };
 
+/// @brief The resolution a request that gives neither number gets (as vdb_tool's default dim).
+inline constexpr int64_t kDefaultResolution = 256;
+
 /// @brief Largest local extent per axis: voxel keys pack 21 bits per axis.
 constexpr uint32_t kMaxGridDim = 1u << 21;
 
@@ -73,6 +78,21 @@ void checkResolution(double resolution, const std::string& name);
 /// @param name the value's name for the caller
 /// @throw svo::InvalidInput "<name> must be ..., got <value>" (argument() @a name)
 void checkVoxelSize(double voxelSize, const std::string& name);
+
+/// @brief Each option of GridRequest, declared once for every front end
+/// (svo/core/option_info.h). Neither given: kDefaultResolution.
+template <typename Visit>
+void forEachOption(GridRequest& r, Visit&& visit)
+{
+    visit(OptionInfo{"GridRequest::resolution", "resolution",
+                     "Voxels along the longest bounding-box side, a whole number: voxel size = longest side / N; the "
+                     "result spans N+1 voxels along that side (N+2 when the box ends exactly on voxel faces); neither "
+                     "this nor a voxel size: 256",
+                     "-r,--resolution"},
+          OptionalNumber<int64_t>{r.resolution, checkResolution});
+    visit(OptionInfo{"GridRequest::voxelSize", "voxel_size", "World units per voxel, instead of a resolution"},
+          OptionalNumber<double>{r.voxelSize, checkVoxelSize});
+}
 
 /// @brief The largest multiple of 8 at or below @a i: brick and OpenVDB leaf origins.
 constexpr int64_t floorTo8(int64_t i) { return i >= 0 ? i / 8 * 8 : -((-i + 7) / 8) * 8; }

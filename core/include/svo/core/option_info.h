@@ -39,7 +39,8 @@ struct OptionInfo {
     /// One line for --help, docstrings and stubs. An enum's names and every
     /// default are added by the front end.
     std::string_view doc;
-    /// The command line's flag where it differs from the keyword's.
+    /// The command line's flag where it differs from the keyword's, with any
+    /// short form first ("-r,--resolution").
     std::string_view flag = {};
 };
 
@@ -71,6 +72,16 @@ struct NamedBool {
     std::string_view trueName;   ///< the name of true
 };
 
+/// @brief A number a caller may leave out, checked by a library rule when
+/// given: its field's 0 means "not given" (None in Python; no default shown
+/// on the command line). T is double or int64_t; the rule sees a double, so
+/// that 8.5 given for a whole number is refused by the rule, not truncated.
+template <typename T>
+struct OptionalNumber {
+    T& value;
+    void (*rule)(double, const std::string&);
+};
+
 /// @brief A number of bytes: "8G", "512M" or a plain number on the command
 /// line, an int or None in Python; 0 (the default) means "not given".
 struct ByteCount {
@@ -82,14 +93,22 @@ struct ChannelSet {
     uint32_t& bits; ///< the field
 };
 
-/// @brief The command line's flag of an option: "--" and its keyword with '-' for '_', or its own flag.
-inline std::string flagOf(const OptionInfo& info)
+/// @brief The command line's names of an option, as CLI11 takes them:
+/// "--" and its keyword with '-' for '_', or its own ("-r,--resolution").
+inline std::string flagNames(const OptionInfo& info)
 {
     if (!info.flag.empty()) return std::string(info.flag);
     std::string flag = "--" + std::string(info.keyword);
     for (char& c : flag)
         if (c == '_') c = '-';
     return flag;
+}
+
+/// @brief The flag that names an option in messages: its long form ("--resolution").
+inline std::string flagOf(const OptionInfo& info)
+{
+    const std::string names = flagNames(info);
+    return names.substr(names.rfind(',') + 1);
 }
 
 } // namespace svo

@@ -2,7 +2,7 @@
 /// @file field_pipeline.h
 /// @brief Level sets, unsigned distance fields and solids of a mesh on svo's
 /// own types: the band's bricks from the triangles (a solid's from its
-/// surface voxels), distances there on the GPU (distance_field.h), and signs
+/// surface voxels), distances there on the GPU (distance_field.h) or the CPU, and signs
 /// by parity crossings or winding numbers (winding_number.h). What
 /// svo::Voxelizer runs, usable without OpenVDB; the converter
 /// (svo/vdb_io/field_grids.h) makes grids of the result.
@@ -29,23 +29,26 @@ void checkFieldMode(const VoxelizeSettings& settings);
 namespace gl {
 
 /// @brief A narrow-band distance field of a checked mesh on a checked grid,
-/// on the GPU (the settings' backend only refuses Backend::Cpu).
+/// on the GPU's compute passes, or on the CPU (TBB, no GL context) when the
+/// settings ask for Backend::Cpu; both give the same field.
 /// @details Every voxel centre within the band of a triangle gets its exact
 /// distance in double precision, rounded once to float; signed fields get
 /// each band voxel's side, and (winding) the bricks beyond the band inside.
-/// The result's grid is @a grid padded by the band.
+/// The result's grid is @a grid padded by the band. The CPU path's parts:
+/// svo/core/band_bricks.h, band_distances.h, parity_crossings.h, winding_signs.h.
 /// @param checkpoint polled between stages with the fraction done (to 0.85)
 /// @param stats      receives stages, counts, the sign method and why, warnings
 /// @throw svo::Error for options that fail checkLevelSetOptions or
-///        checkFieldMode, the CPU backend, parity signs asked for a mesh with
-///        holes, a band wider than one pass holds, no usable GPU or GPU
-///        memory exhausted; svo::Interrupted.
+///        checkFieldMode, parity signs asked for a mesh with holes, a band
+///        wider than one pass holds, no usable GPU or GPU memory exhausted
+///        (GPU backends); svo::Interrupted.
 DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
                               const LevelSetOptions& levelSet, const VoxelizeSettings& settings,
                               const Checkpoint& checkpoint, VoxelizeStats& stats);
 
 /// @brief The solid a checked mesh bounds on a checked grid: every voxel whose
-/// centre is inside, plus the surface voxels (conservative, as voxelizeMesh).
+/// centre is inside, plus the surface voxels (conservative, as voxelizeMesh);
+/// on the CPU when the settings ask for Backend::Cpu, with the same result.
 /// @param checkpoint polled between stages with the fraction done (to 0.8)
 /// @throw svo::Error as levelSetBricks.
 SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid,

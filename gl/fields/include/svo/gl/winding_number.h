@@ -24,6 +24,7 @@
 #include "svo/core/mesh.h"
 #include "svo/core/octree.h"
 #include "svo/core/voxelization.h"
+#include "svo/core/local_positions.h"
 #include "svo/core/winding_tree.h"
 #include "svo/gl/context.h"
 
@@ -74,7 +75,7 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
                              const WindingTree& tree, const WindingRequest& request, RunStats* report = nullptr);
 
 /// The mesh's positions in the grid's local voxel frame (double): what the
-/// tree is built from.
-std::vector<Vec3d> localPositions(const TriangleMesh& mesh, const GridSpec& grid);
+/// tree is built from (svo/core/local_positions.h).
+using svo::localPositions;
 
 } // namespace svo::gl

@@ -1,4 +1,5 @@
-#include "band_bricks.h"
+// The band's bricks (svo/core/band_bricks.h).
+#include "svo/core/band_bricks.h"
 
 #include <algorithm>
 #include <atomic>
@@ -12,7 +13,7 @@
 
 #include "svo/core/error.h"
 
-namespace svo::gl {
+namespace svo {
 namespace {
 
 /// The box of a non-empty brick's set bits: lowest x, y, z, then highest.
@@ -208,4 +209,4 @@ std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, con
     return sortedUnique(std::move(all));
 }
 
-} // namespace svo::gl
+} // namespace svo

@@ -1,0 +1,75 @@
+#pragma once
+/// @file winding_signs.h
+/// @brief Winding-number signs on the CPU: the evaluations of the GPU's
+/// winding pass (svo/gl/winding_number.h) with the same tree, the same
+/// far-field rule and the same arithmetic in the same order, and the rule
+/// (shared with the GPU path) for the bricks beyond a band.
+///
+/// A voxel centre q is inside when its winding number, summed by the walk of
+/// winding_tree.h, is at least 1/2: a node whose ball is farther from q than
+/// beta radii (|c - q|^2 > beta^2 r^2, in float) adds its far field in
+/// float; a nearer leaf adds its triangles' exact solid angles (double, the
+/// angle's arctangent in float); children are visited as the GPU's stack
+/// visits them, so each centre's sum adds the same terms in the same order.
+/// A brick's 512 centres share one walk: each node is visited once for all
+/// the centres whose own walk reaches it (a mask), so the tree's upper
+/// levels are read once a brick, not once a voxel.
+///
+/// The float arctangent of each exact triangle is Mesa's polynomial (what
+/// llvmpipe runs for GLSL's atan, absolute error about 1e-5): on llvmpipe
+/// the sums are the GPU's bit for bit; a hardware GPU's own atan differs by
+/// about 1e-6 in a winding number, which moves only a centre whose number is
+/// that near 1/2 (on a face of the mesh, where either side is the answer).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "svo/core/field_bricks.h"
+#include "svo/core/grid.h"
+#include "svo/core/interrupt.h"
+#include "svo/core/mesh.h"
+#include "svo/core/vec3.h"
+#include "svo/core/winding_tree.h"
+
+namespace svo {
+
+/// A brick beyond the band whose centre's winding number is nearer 1/2 than
+/// this may hold both sides (the 1/2 level crosses free space only where the
+/// mesh has holes); its voxels are evaluated one by one.
+inline constexpr float kWindingMargin = 0.25f;
+
+/// @brief The winding number at the centre of every brick of @a grid's box
+/// (brick b's centre is 8 b + 3.5 in local coordinates), on the CPU.
+/// @param tree  built from @a local and the mesh's triangles (buildWindingTree)
+/// @param local the mesh's positions in @a grid's local frame (localPositions)
+/// @param beta  the far-field threshold (SignOptions::windingAccuracy)
+/// @param checkpoint polled on the calling thread between batches
+/// @return x-fastest over the box of ceil(dims / 8) bricks
+/// @throw svo::Unsupported for a box of more than 2^31 bricks; svo::Interrupted.
+std::vector<float> windingAtBrickCentres(const WindingTree& tree, const std::vector<Vec3d>& local,
+                                         const TriangleMesh& mesh, const GridSpec& grid, double beta,
+                                         const Checkpoint& checkpoint);
+
+/// @brief Per brick of a list, the voxels whose centre's winding number is
+/// at least 1/2, on the CPU.
+/// @param bricks brick coordinates (local voxel coordinate / 8)
+/// @return per brick, in list order, the inside voxels (bit order of Brick)
+/// @throw svo::Interrupted from the checkpoint.
+std::vector<Brick> windingInside(const WindingTree& tree, const std::vector<Vec3d>& local, const TriangleMesh& mesh,
+                                 const std::vector<BrickCoord>& bricks, double beta, const Checkpoint& checkpoint);
+
+/// What the bricks beyond a band take from their centres' winding numbers.
+struct BricksBeyondBand {
+    std::vector<BrickCoord> voxelwise; ///< within kWindingMargin of 1/2: to classify voxel by voxel
+    std::vector<BrickCoord> inside;    ///< the others at or above 1/2: wholly inside
+};
+
+/// @brief The rule for the bricks of the grid's box that are not in the band.
+/// @param centres   windingAtBrickCentres (or the GPU's per-brick numbers), x-fastest
+/// @param brickDims the box in bricks
+/// @param band      the band's bricks, sorted (x-major) and unique
+/// @return both lists in x-major order
+BricksBeyondBand bricksBeyondBand(const std::vector<float>& centres, const std::array<uint32_t, 3>& brickDims,
+                                  const std::vector<BrickCoord>& band);
+
+} // namespace svo

@@ -1,0 +1,328 @@
+// Winding-number signs on the CPU (svo/core/winding_signs.h): winding_walk.glsl's
+// arithmetic, in the same order, for one point (brick centres) or for the
+// 512 centres of a brick sharing one walk (winding_columns.comp's idea, a
+// brick wide). Compiled with -ffp-contract=off: the float sums must be the
+// GPU's, whose operations are `precise`.
+#include "svo/core/winding_signs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "svo/core/error.h"
+#include "svo/core/gpu_layout.h"
+
+namespace svo {
+namespace {
+
+constexpr float kInvFourPi = 0.0795774715459476679f;
+constexpr float kPi = 3.14159265358979324f;
+constexpr float kHalfPi = 1.57079632679489662f;
+
+/// Tree levels the walk's stack holds: the GPU's (field_layout.h's
+/// kWindingStack), so both paths refuse the same trees.
+constexpr uint32_t kWalkStack = 64;
+
+inline double dot3(const Vec3d& u, const Vec3d& v) { return u.x * v.x + u.y * v.y + u.z * v.z; }
+
+/// The arctangent of r in [0, 1], in float, as Mesa's GLSL compiler lowers
+/// atan() for llvmpipe: an odd polynomial of degree 11 (absolute error about
+/// 1e-5), its terms summed from the lowest. The C library's atanf was a third
+/// of the walk's time and is no nearer a hardware GPU's own atan; with this
+/// one the CPU's sums are llvmpipe's, and it vectorizes.
+inline float atanUnit(float r)
+{
+    const float r2 = r * r, r3 = r2 * r, r5 = r3 * r2, r7 = r5 * r2, r9 = r7 * r2, r11 = r9 * r2;
+    return r * 0.9999793128310355f + r3 * -0.3326756418091246f + r5 * 0.1938924977115610f +
+           r7 * -0.1173503194786851f + r9 * 0.0536813784310406f + r11 * -0.0121323213173444f;
+}
+
+/// Solid angle of a triangle whose corners, relative to the point, are x, y,
+/// z (winding_walk.glsl's, without branches so that a loop over centres
+/// vectorizes: the same value as the GLSL's branches select).
+inline float solidAngle(const Vec3d& x, const Vec3d& y, const Vec3d& z)
+{
+    const double lx = std::sqrt(dot3(x, x)), ly = std::sqrt(dot3(y, y)), lz = std::sqrt(dot3(z, z));
+    const double det = dot3(x, cross(y, z));
+    const double den = lx * ly * lz + dot3(x, y) * lz + dot3(y, z) * lx + dot3(z, x) * ly;
+    // Half the angle is atan2(det, den), built as the GPU builds it: the
+    // float arctangent of a ratio in [0, 1], its quadrant chosen here.
+    const double ad = std::abs(det), aden = std::abs(den);
+    const bool low = ad <= aden;
+    const float at = atanUnit(float(low ? ad / aden : aden / ad));
+    const float base = low ? at : kHalfPi - at;
+    const float angle = den >= 0.0 ? base : kPi - base;
+    const float signedAngle = det > 0.0 ? 2.0f * angle : -2.0f * angle;
+    return det == 0.0 ? 0.0f : signedAngle; // 0: the point in the triangle's plane
+}
+
+/// One row i of the second moments added to the second-order sums.
+inline void addSecondMoments(float s00, float s01, float s02, float s11, float s12, float s22, float dx, float dy,
+                             float dz, float di, float sdi, float& a, float& b, float& c)
+{
+    const float sdx = s00 * dx + s01 * dy + s02 * dz, sdy = s01 * dx + s11 * dy + s12 * dz,
+                sdz = s02 * dx + s12 * dy + s22 * dz;
+    a = a + sdi;
+    b = b + di * (s00 + s11 + s22);
+    c = c + di * (dx * sdx + dy * sdy + dz * sdz);
+}
+
+/// A far node's term (times 4 pi) at d = c - q, d2 = |d|^2; `e` is the node's
+/// floats from the area vector on (winding_tree.h's layout: N, C, M).
+inline float farTerm(float dx, float dy, float dz, float d2, const float* e)
+{
+    // e[0..2] N, e[3] C_00, e[4..7] C_01 C_02 C_10 C_11, e[8..11] C_12 C_20
+    // C_21 C_22, then M: e[12..15] M_000 M_001 M_002 M_011, e[16..19] M_012
+    // M_022 M_100 M_101, e[20..23] M_102 M_111 M_112 M_122, e[24..27] M_200
+    // M_201 M_202 M_211, e[28..29] M_212 M_222.
+    const float cdx = e[3] * dx + e[4] * dy + e[5] * dz, cdy = e[6] * dx + e[7] * dy + e[8] * dz,
+                cdz = e[9] * dx + e[10] * dy + e[11] * dz;
+    const float inv3 = 1.0f / (d2 * std::sqrt(d2));
+    const float inv5 = inv3 / d2;
+    float a = 0.0f, b = 0.0f, c = 0.0f;
+    addSecondMoments(e[12], e[13], e[14], e[15], e[16], e[17], dx, dy, dz, dx, e[12] * dx + e[13] * dy + e[14] * dz,
+                     a, b, c);
+    addSecondMoments(e[18], e[19], e[20], e[21], e[22], e[23], dx, dy, dz, dy, e[19] * dx + e[21] * dy + e[22] * dz,
+                     a, b, c);
+    addSecondMoments(e[24], e[25], e[26], e[27], e[28], e[29], dx, dy, dz, dz, e[26] * dx + e[28] * dy + e[29] * dz,
+                     a, b, c);
+    const float first = ((dx * e[0] + dy * e[1] + dz * e[2]) + (e[3] + e[7] + e[11])) * inv3 -
+                        3.0f * (dx * cdx + dy * cdy + dz * cdz) * inv5;
+    const float second = 0.5f * (15.0f * c * inv5 / d2 - 3.0f * (2.0f * a + b) * inv5);
+    return first + second;
+}
+
+/// What every walk reads.
+struct Walk {
+    const WindingTree& tree;
+    const std::vector<Vec3d>& local;
+    const TriangleMesh& mesh;
+    float beta2;
+
+    /// Whether node n is farther than beta radii from qf; if so adds its term.
+    bool far(uint32_t n, float qx, float qy, float qz, float& sum) const
+    {
+        const float* cr = &tree.nodes[size_t(kWindingNodeFloats) * n];
+        const float dx = cr[0] - qx, dy = cr[1] - qy, dz = cr[2] - qz;
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        const float reach2 = beta2 * cr[3] * cr[3];
+        if (!(d2 > reach2)) return false;
+        sum += farTerm(dx, dy, dz, d2, cr + 4);
+        return true;
+    }
+
+    float triangleAt(uint32_t t, const Vec3d& q) const
+    {
+        const auto& f = mesh.triangles[t];
+        return solidAngle(local[f[0]] - q, local[f[1]] - q, local[f[2]] - q);
+    }
+
+    /// The winding number at q (winding_number.comp's windingNumber).
+    float at(const Vec3d& q) const
+    {
+        const float qx = float(q.x), qy = float(q.y), qz = float(q.z);
+        uint32_t stack[2 * kWalkStack + 2];
+        uint32_t top = 1;
+        stack[0] = 0;
+        float sum = 0.0f;
+        while (top > 0) {
+            const uint32_t n = stack[--top];
+            if (far(n, qx, qy, qz, sum)) continue;
+            const uint32_t l0 = tree.links[2 * size_t(n)], l1 = tree.links[2 * size_t(n) + 1];
+            if (l1 & gpu::kWindingLeaf) {
+                const uint32_t last = l0 + (l1 & ~gpu::kWindingLeaf);
+                for (uint32_t i = l0; i < last; ++i) sum += triangleAt(tree.order[i], q);
+            } else {
+                stack[top++] = l0;
+                stack[top++] = l1;
+            }
+        }
+        return sum * kInvFourPi;
+    }
+
+    /// The inside voxels of the brick at `origin`: one walk for its 512
+    /// centres, each node visited for the mask of centres whose own walk
+    /// reaches it, in the order their own walks would visit it. A node
+    /// reached by many centres is evaluated for all 512 in one loop the
+    /// compiler vectorizes (the same IEEE operations, lane by lane; centres
+    /// not in the mask add 0, which leaves a sum as it is).
+    // AVX2 where the CPU has it: twice the lanes, the same IEEE operations
+    // (no FMA: -ffp-contract=off), so the same bits.
+    __attribute__((target_clones("avx2", "default"))) Brick brick(const std::array<uint32_t, 3>& origin) const
+    {
+        struct Entry {
+            uint32_t node;
+            uint64_t mask[8];
+        };
+        Entry stack[2 * kWalkStack + 2];
+        alignas(64) float sum[512] = {};
+        alignas(64) float qx[512], qy[512], qz[512];
+        alignas(64) int32_t reached[512], farAt[512];
+        for (uint32_t v = 0; v < 512; ++v) {
+            qx[v] = float(origin[0] + (v >> 6));
+            qy[v] = float(origin[1] + ((v >> 3) & 7));
+            qz[v] = float(origin[2] + (v & 7));
+        }
+        uint32_t top = 1;
+        stack[0].node = 0;
+        std::fill(stack[0].mask, stack[0].mask + 8, ~uint64_t(0));
+        const auto centre = [&](uint32_t v) {
+            return Vec3d{double(origin[0] + (v >> 6)), double(origin[1] + ((v >> 3) & 7)), double(origin[2] + (v & 7))};
+        };
+        while (top > 0) {
+            const Entry e = stack[--top];
+            uint64_t near[8] = {};
+            bool anyNear = false;
+            uint32_t count = 0;
+            for (int w = 0; w < 8; ++w) count += uint32_t(__builtin_popcountll(e.mask[w]));
+            if (count >= 96) {
+                const float* cr = &tree.nodes[size_t(kWindingNodeFloats) * e.node];
+                const float* ex = cr + 4;
+                const float reach2 = beta2 * cr[3] * cr[3];
+                for (uint32_t v = 0; v < 512; ++v) reached[v] = -int32_t((e.mask[v >> 6] >> (v & 63)) & 1);
+                for (uint32_t v = 0; v < 512; ++v) {
+                    const float dx = cr[0] - qx[v], dy = cr[1] - qy[v], dz = cr[2] - qz[v];
+                    const float d2 = dx * dx + dy * dy + dz * dz;
+                    const bool isFar = d2 > reach2;
+                    const float t = farTerm(dx, dy, dz, d2, ex);
+                    farAt[v] = isFar ? -1 : 0;
+                    sum[v] += (reached[v] & farAt[v]) ? t : 0.0f;
+                }
+                for (uint32_t v = 0; v < 512; ++v)
+                    if (reached[v] & ~farAt[v]) near[v >> 6] |= uint64_t(1) << (v & 63), anyNear = true;
+            } else {
+                for (int w = 0; w < 8; ++w)
+                    for (uint64_t m = e.mask[w]; m; m &= m - 1) {
+                        const uint32_t v = uint32_t(64 * w + __builtin_ctzll(m));
+                        if (!far(e.node, qx[v], qy[v], qz[v], sum[v])) near[w] |= m & -m, anyNear = true;
+                    }
+            }
+            if (!anyNear) continue;
+            const uint32_t l0 = tree.links[2 * size_t(e.node)], l1 = tree.links[2 * size_t(e.node) + 1];
+            if (l1 & gpu::kWindingLeaf) {
+                const uint32_t last = l0 + (l1 & ~gpu::kWindingLeaf);
+                uint32_t nearCount = 0;
+                for (int w = 0; w < 8; ++w) nearCount += uint32_t(__builtin_popcountll(near[w]));
+                const bool dense = nearCount >= 96;
+                if (dense)
+                    for (uint32_t v = 0; v < 512; ++v) reached[v] = -int32_t((near[v >> 6] >> (v & 63)) & 1);
+                for (uint32_t i = l0; i < last; ++i) {
+                    const auto& f = mesh.triangles[tree.order[i]];
+                    const Vec3d &a = local[f[0]], &b = local[f[1]], &c = local[f[2]];
+                    if (dense) { // all 512 centres in one vectorized loop, 0 added where not near
+                        for (uint32_t v = 0; v < 512; ++v) {
+                            const Vec3d q{double(qx[v]), double(qy[v]), double(qz[v])};
+                            const float t = solidAngle(a - q, b - q, c - q);
+                            sum[v] += reached[v] ? t : 0.0f;
+                        }
+                        continue;
+                    }
+                    for (int w = 0; w < 8; ++w)
+                        for (uint64_t m = near[w]; m; m &= m - 1) {
+                            const uint32_t v = uint32_t(64 * w + __builtin_ctzll(m));
+                            const Vec3d q = centre(v);
+                            sum[v] += solidAngle(a - q, b - q, c - q);
+                        }
+                }
+            } else {
+                stack[top].node = l0;
+                std::copy(near, near + 8, stack[top++].mask);
+                stack[top].node = l1;
+                std::copy(near, near + 8, stack[top++].mask);
+            }
+        }
+        Brick inside;
+        for (uint32_t v = 0; v < 512; ++v)
+            if (sum[v] * kInvFourPi >= 0.5f) inside.words[v >> 6] |= uint64_t(1) << (v & 63);
+        return inside;
+    }
+};
+
+/// beta^2 in float; +infinity as the largest float, which no squared distance exceeds.
+float beta2Of(double beta)
+{
+    if (!(beta > 0)) throw InvalidInput(fmt::format("a winding accuracy (beta) of {}: it must be positive", beta));
+    const double b2 = beta * beta;
+    return b2 < 3.0e38 ? float(b2) : 3.0e38f;
+}
+
+void checkDepth(const WindingTree& tree)
+{
+    if (tree.depth + 1 > kWalkStack)
+        throw Unsupported(fmt::format("a winding tree {} levels deep is more than the walk's stack holds ({})",
+                                      tree.depth + 1, kWalkStack));
+}
+
+} // namespace
+
+std::vector<float> windingAtBrickCentres(const WindingTree& tree, const std::vector<Vec3d>& local,
+                                         const TriangleMesh& mesh, const GridSpec& grid, double beta,
+                                         const Checkpoint& checkpoint)
+{
+    checkDepth(tree);
+    const Walk walk{tree, local, mesh, beta2Of(beta)};
+    std::array<uint64_t, 3> d{};
+    for (int a = 0; a < 3; ++a) d[a] = (grid.dims[a] + 7) / 8;
+    const uint64_t n = d[0] * d[1] * d[2];
+    if (n > (uint64_t(1) << 31))
+        throw Unsupported(fmt::format("the grid's box holds {} bricks, more than the winding pass evaluates (2^31); use a "
+                                      "coarser grid",
+                                      n));
+    std::vector<float> out(n);
+    constexpr uint64_t kBatch = 1 << 14;
+    for (uint64_t first = 0; first < n; first += kBatch) {
+        const uint64_t last = std::min(n, first + kBatch);
+        tbb::parallel_for(tbb::blocked_range<uint64_t>(first, last, 64), [&](const tbb::blocked_range<uint64_t>& r) {
+            for (uint64_t g = r.begin(); g != r.end(); ++g) {
+                const uint64_t x = g % d[0], y = g / d[0] % d[1], z = g / (d[0] * d[1]);
+                out[g] = walk.at({double(8 * x) + 3.5, double(8 * y) + 3.5, double(8 * z) + 3.5});
+            }
+        });
+        checkpoint(double(last) / double(n), "winding per brick");
+    }
+    return out;
+}
+
+std::vector<Brick> windingInside(const WindingTree& tree, const std::vector<Vec3d>& local, const TriangleMesh& mesh,
+                                 const std::vector<BrickCoord>& bricks, double beta, const Checkpoint& checkpoint)
+{
+    checkDepth(tree);
+    const Walk walk{tree, local, mesh, beta2Of(beta)};
+    std::vector<Brick> out(bricks.size());
+    constexpr size_t kBatch = 256;
+    for (size_t first = 0; first < bricks.size(); first += kBatch) {
+        const size_t last = std::min(bricks.size(), first + kBatch);
+        tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 1), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i != r.end(); ++i)
+                out[i] = walk.brick({8 * bricks[i][0], 8 * bricks[i][1], 8 * bricks[i][2]});
+        });
+        checkpoint(double(last) / double(bricks.size()), "winding per voxel");
+    }
+    return out;
+}
+
+BricksBeyondBand bricksBeyondBand(const std::vector<float>& centres, const std::array<uint32_t, 3>& d,
+                                  const std::vector<BrickCoord>& band)
+{
+    // `band` is sorted: the box's bricks in x-major order walk it once.
+    BricksBeyondBand out;
+    size_t next = 0;
+    for (uint32_t x = 0; x < d[0]; ++x)
+        for (uint32_t y = 0; y < d[1]; ++y)
+            for (uint32_t z = 0; z < d[2]; ++z) {
+                const BrickCoord b{x, y, z};
+                if (next < band.size() && band[next] == b) {
+                    ++next;
+                    continue;
+                }
+                const float w = centres[x + size_t(d[0]) * (y + size_t(d[1]) * z)];
+                if (std::abs(w - 0.5f) < kWindingMargin) out.voxelwise.push_back(b);
+                else if (w >= 0.5f) out.inside.push_back(b);
+            }
+    return out;
+}
+
+} // namespace svo
