@@ -334,9 +334,8 @@ TEST_F(Api, ErrorsAreTypedByWhatFailedAndNameTheOptionApart)
     std::ofstream(dir.path("empty.obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\n"; // no faces: a file of no mesh
     EXPECT_THROW(loadMesh(dir.path("empty.obj")), IoError);
     // Work svo has no method for: Unsupported. GPU memory: OutOfMemory.
-    VoxelizeOptions cpu;
-    cpu.backend = Backend::Cpu;
-    EXPECT_THROW(voxelizer().meshToLevelSet(mesh.points, mesh.triangles, *xform, 3.0f, 3.0f, cpu), Unsupported);
+    // (A level set's distances are world distances only under a uniform scale.)
+    EXPECT_THROW(voxelizer().meshToLevelSet(mesh.points, mesh.triangles, *rotatedScaled()), Unsupported);
     VoxelizeOptions tiny;
     tiny.gpuMemory = 1024;
     EXPECT_THROW(voxelizer().meshToMask(mesh.points, mesh.triangles, *xform, tiny), OutOfMemory);

@@ -91,7 +91,8 @@ def test_library_defaults_are_the_structs():
     # The library's names, which its errors use, beside the keywords that replace them in Python's messages.
     assert OPTIONS["Voxelizer.level_set"]["exterior_band"]["identifier"] == "LevelSetOptions::exteriorBand"
     assert OPTIONS["Voxelizer.voxelize"]["conservative"]["identifier"] == "VoxelizeOptions::dilation"
-    assert OPTIONS["Voxelizer.voxelize"]["resolution"]["identifier"] is None
+    assert OPTIONS["Voxelizer.voxelize"]["resolution"]["identifier"] == "GridRequest::resolution"
+    assert OPTIONS["Voxelizer.voxelize"]["grid"]["identifier"] is None  # Python's own
     # The view's options, declared beside their structs as svo view's flags are.
     render = OPTIONS["Octree.render"]
     assert render["ao_aperture"]["default"] == 60.0 and render["ao_aperture"]["identifier"] == "AmbientOcclusion::apertureDegrees"
