@@ -60,9 +60,6 @@ struct CheckedInteger {
     Int& value;                                ///< the field
     void (*rule)(int64_t, const std::string&); ///< checkAoConeCount, ...
 };
-/// Deduces Int from the field (C++17 has no deduction for aggregates).
-template <typename Int>
-CheckedInteger(Int&, void (*)(int64_t, const std::string&)) -> CheckedInteger<Int>;
 
 /// @brief A bool given by one of two names rather than as a flag
 /// ("isotropic" or "directional"), for a choice that is not on or off.

@@ -119,7 +119,7 @@ template <typename Visit>
 void forEachOption(AmbientOcclusion& ao, Visit&& visit)
 {
     visit(OptionInfo{"AmbientOcclusion::cones", "ao", "Ambient occlusion, cone-traced: cones per pixel (0: off, 1 to 16)"},
-          CheckedInteger{ao.cones, checkAoConeCount});
+          CheckedInteger<int>{ao.cones, checkAoConeCount});
     visit(OptionInfo{"AmbientOcclusion::apertureDegrees", "ao_aperture", "AO cone aperture, degrees"},
           CheckedNumber{ao.apertureDegrees, checkConeAperture});
     visit(OptionInfo{"AmbientOcclusion::offset", "ao_offset",

@@ -136,7 +136,7 @@ void forEachOption(Illumination& l, Visit&& visit)
                      "gi: the glossy cone's aperture, degrees (narrower: shinier)"},
           CheckedNumber{l.specularApertureDegrees, checkConeAperture});
     visit(OptionInfo{"Illumination::cones", "gi_cones", "gi: cones gathering the bounce, 1 to 16"},
-          CheckedInteger{l.cones, checkGiConeCount});
+          CheckedInteger<int>{l.cones, checkGiConeCount});
     visit(OptionInfo{"Illumination::apertureDegrees", "gi_aperture", "gi: cone aperture, degrees"},
           CheckedNumber{l.apertureDegrees, checkConeAperture});
     visit(OptionInfo{"Illumination::offset", "gi_offset",
@@ -163,7 +163,7 @@ void forEachOption(Illumination& l, Visit&& visit)
     visit(OptionInfo{"Illumination::volumeResolution", "light_volume",
                      "direct/gi, and ao from the volume: the lighting volume's largest side in texels, a power of two "
                      "(a texel holds 1 to 8³ voxels)"},
-          CheckedInteger{l.volumeResolution, checkVolumeResolution});
+          CheckedInteger<uint32_t>{l.volumeResolution, checkVolumeResolution});
     visit(OptionInfo{"Illumination::exposure", "exposure", "direct/gi: the picture is (radiance x exposure)^(1/gamma)"},
           CheckedNumber{l.exposure, checkPositive});
     visit(OptionInfo{"Illumination::gamma", "gamma", "direct/gi: display gamma (1: linear radiance)"},
