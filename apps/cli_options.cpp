@@ -12,6 +12,7 @@
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 #include "svo/core/octree.h"
+#include "svo/gl/view_request.h"
 #include "svo/voxelizer.h"
 
 namespace svo::app {
@@ -91,6 +92,30 @@ public:
                help(info))
             ->default_str(fmt::format("{}", number.value));
     }
+    template <typename Int>
+    void operator()(const OptionInfo& info, CheckedInteger<Int> number)
+    {
+        if (!wanted(info)) return;
+        const std::string flag = flagOf(info);
+        // Read as the field's type (CLI11 refuses what it cannot hold), then the library's rule.
+        cmd_.add_option_function<Int>(
+               flagNames(info),
+               [number, flag](Int v) {
+                   number.rule(int64_t(v), flag);
+                   number.value = v;
+               },
+               help(info))
+            ->default_str(fmt::format("{}", number.value));
+    }
+    void operator()(const OptionInfo& info, NamedBool choice)
+    {
+        if (!wanted(info)) return;
+        cmd_.add_option_function<std::string>(
+               flagNames(info), [choice](const std::string& name) { choice.value = name == choice.trueName; },
+               help(info))
+            ->check(CLI::IsMember({std::string(choice.falseName), std::string(choice.trueName)}))
+            ->default_str(std::string(choice.value ? choice.trueName : choice.falseName));
+    }
     template <typename T>
     void operator()(const OptionInfo& info, OptionalNumber<T> number)
     {
@@ -151,6 +176,9 @@ template void addOptions(CLI::App&, VoxelizeSettings&, std::vector<std::string_v
 template void addOptions(CLI::App&, DeviceOptions&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, LevelSetOptions&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, GridOptions&, std::vector<std::string_view>, const std::string&);
+template void addOptions(CLI::App&, gl::ViewRequest&, std::vector<std::string_view>, const std::string&);
+template void addOptions(CLI::App&, gl::AmbientOcclusion&, std::vector<std::string_view>, const std::string&);
+template void addOptions(CLI::App&, gl::Illumination&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, GridRequest&, std::vector<std::string_view>, const std::string&);
 
 void addBackendOptions(CLI::App& cmd, BackendArgs& a)

@@ -3,6 +3,7 @@
 
 #include "svo/core/field_options.h"
 #include "svo/gl/device.h"
+#include "svo/gl/view_request.h"
 #include "svo/gl/voxelize_pipeline.h"
 #include "svo/vdb_io/grid_options.h"
 
@@ -18,12 +19,14 @@ std::string flagFor(std::string_view identifier)
     DeviceOptions device;
     LevelSetOptions levelSet;
     GridOptions grids;
+    gl::ViewRequest view; // its layers, AO and lighting too
     GridRequest request;
     forEachOption(request, find);
     forEachOption(voxelize, find);
     forEachOption(device, find);
     forEachOption(levelSet, find);
     forEachOption(grids, find);
+    forEachOption(view, find);
     if (!flag.empty()) return flag;
     for (const OptionFlag& o : kOptionFlags)
         if (o.identifier == identifier) return std::string(o.flag);

@@ -25,14 +25,11 @@ inline constexpr OptionFlag kOptionFlags[] = {
     // here: their flags come from the declarations. These are the other names the library's
     // errors use: values of an option, and the view's settings.
     {"svo::kNormals", "--attributes normal", "voxelize"},
-    // The octree view (svo/gl/octree_view.h).
+    // The octree view (svo/gl/octree_view.h): its declared options (svo/gl/view_request.h)
+    // are not here; these are its errors' other names.
     {"svo::gl::namedView", "--view", "view"},
-    {"AmbientOcclusion::volumeResolution", "--light-volume", "view"},
+    {"AmbientOcclusion::volumeResolution", "--light-volume", "view"}, // --light-volume sets both volumes
     {"AmbientOcclusion::Source::Octree", "--ao-source octree", "view"},
-    // The view request (svo/gl/view_request.h).
-    {"ViewRequest::render", "--render", "view"},
-    {"ViewRequest::surface", "--surface", "view"},
-    {"ViewLayers::voxelColor", "--color", "view"},
     {"svo::kColors", "--attributes color", "view"},
     {"svo::kTriangles", "--attributes triangle", "view"},
 };

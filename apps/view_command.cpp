@@ -30,12 +30,12 @@ namespace {
 
 struct ViewArgs {
     std::string input, screenshot, size = "1280x960", camera, view = "front", layers = "voxels,outlines", levels,
-                                     gridName, keys, save, color = "flat", render = "debug", aoFilter = "max",
-                                     aoSource = "volume", surface = "auto",
-                                     conePattern = "interleaved";
+                                     gridName, keys, save, conePattern = "interleaved";
     int frames = 0;
-    gl::AmbientOcclusion ao;
-    gl::Illumination light;
+    /// The declared options (svo/gl/view_request.h) bound here: --render,
+    /// --surface, --color, --ao*, --gi-*, ...; the layers, levels, lights,
+    /// colours and cone pattern are parsed into it by viewRequest.
+    gl::ViewRequest request;
     std::vector<std::string> lights;
     std::string albedo, specular;
     double fov = 40.0;
@@ -95,10 +95,10 @@ void parseLevels(const std::string& text, gl::ViewLayers& layers)
         throw InvalidInput(fmt::format("--levels '{}': the first level is past the last", text));
 }
 
-gl::ViewLayers parseLayers(const std::string& text)
+/// --layers: which of the voxel, outline, brick and mesh layers are drawn.
+void parseLayers(const std::string& text, gl::ViewLayers& l)
 {
-    gl::ViewLayers l;
-    l.voxels = l.outlines = l.mesh = false;
+    l.voxels = l.outlines = l.mesh = l.bricks = false;
     for (const std::string& name : split(text, ',')) {
         if (name == "voxels") l.voxels = true;
         else if (name == "outlines") l.outlines = true;
@@ -106,7 +106,6 @@ gl::ViewLayers parseLayers(const std::string& text)
         else if (name == "bricks") l.bricks = true;
         else throw InvalidInput(fmt::format("--layers '{}': layers are voxels, outlines, bricks and mesh", text));
     }
-    return l;
 }
 
 /// "r,g,b" or one value for all three.
@@ -193,19 +192,12 @@ void parseLighting(const ViewArgs& a, gl::ViewRequest& asked)
 /// layers from it once the octree is loaded. Checked before any voxelizing.
 gl::ViewRequest viewRequest(const ViewArgs& a)
 {
-    gl::ViewRequest asked;
-    asked.render = parse<gl::RenderMode>(a.render, "--render");
-    asked.surface = parse<gl::SurfaceChoice>(a.surface, "--surface");
+    gl::ViewRequest asked = a.request; // the declared options, read and checked as they were parsed
     asked.room = a.input.empty(); // the Cornell box, lit from under its ceiling
     gl::ViewLayers& layers = asked.layers;
-    layers = parseLayers(a.layers);
+    parseLayers(a.layers, layers);
     parseLevels(a.levels, layers);
-    layers.voxelColor = parse<gl::VoxelColor>(a.color, "--color");
-    layers.ao = a.ao;
-    layers.ao.filter = parse<gl::AmbientOcclusion::Filter>(a.aoFilter, "--ao-filter");
-    layers.ao.source = parse<gl::AmbientOcclusion::Source>(a.aoSource, "--ao-source");
-    layers.ao.volumeResolution = a.light.volumeResolution;
-    layers.light = a.light;
+    layers.ao.volumeResolution = layers.light.volumeResolution; // --light-volume: one volume for AO and light
     layers.ao.interleave = layers.light.interleave = a.conePattern == "interleaved";
     parseLighting(a, asked);
     gl::checkViewRequest(asked); // out-of-range options (the default lights come with the octree's box)
@@ -389,50 +381,18 @@ void addViewCommand(CLI::App& app)
         },
         "Orthographic, spanning this many world units vertically (a positive number)");
     cmd->add_option("--layers", args->layers, "Comma-separated: voxels, outlines, bricks, mesh")->capture_default_str();
-    cmd->add_option("--color", args->color, "Voxel colours: flat, or the attribute channel normal, color or triangle")
-        ->check(CLI::IsMember(names<gl::VoxelColor>()))
-        ->capture_default_str();
+    addOptions(*cmd, args->request, {"color"});
     cmd->add_option("--levels", args->levels, "Outline levels a:b (0 = root; a, a: or :b)");
     cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
-    cmd->add_option("--ao", args->ao.cones, "Ambient occlusion, cone-traced: cones per pixel (0: off, 1 to 16)")
-        ->check(CLI::Range(0, 16));
-    cmd->add_option("--ao-aperture", args->ao.apertureDegrees, "AO cone aperture, degrees")->capture_default_str();
-    cmd->add_option("--ao-offset", args->ao.offset, "AO cones start this far from the surface, texels of the volume "
-                                                    "(voxels with --ao-source octree; less: more contact shadow, more "
-                                                    "self-occlusion)")
-        ->capture_default_str();
-    cmd->add_option("--ao-distance", args->ao.distance, "AO cones stop this far away, voxels")->capture_default_str();
-    cmd->add_option("--ao-step", args->ao.step, "AO cone steps, share of the cone's width, (0, 1] (smaller: slower, "
-                                                "fewer thin walls missed)")
-        ->capture_default_str();
-    cmd->add_option("--ao-source", args->aoSource, "AO opacity: volume (the lighting volume's opacity, mip-mapped "
-                                                   "and sampled trilinearly: closer to a path tracer, faster) or octree "
-                                                   "(the octree's nodes as the mip-map: no extra memory, fewer leaks "
-                                                   "in closed rooms)")
-        ->check(CLI::IsMember(names<gl::AmbientOcclusion::Source>()))
-        ->capture_default_str();
-    cmd->add_option("--ao-filter", args->aoFilter, "--ao-source octree: opacity up the octree: max (a node as opaque as its most opaque "
-                                                   "child: fewer leaks through walls) or average (its face share)")
-        ->check(CLI::IsMember(names<gl::AmbientOcclusion::Filter>()))
-        ->capture_default_str();
-    cmd->add_option("--surface", args->surface,
-                    "What the voxel layer shades: voxels (those the camera's rays hit: the octree as it is), mesh "
-                    "(the input mesh's triangles, lit, occluded and coloured through the octree: no blocks; needs a "
-                    "mesh input) or auto (mesh for --render ao, direct and gi of a mesh, else voxels)")
-        ->check(CLI::IsMember(names<gl::SurfaceChoice>()))
-        ->capture_default_str();
+    addOptions(*cmd, args->request.layers.ao); // --ao, --ao-aperture, ... --ao-filter
+    addOptions(*cmd, args->request, {"surface"});
     cmd->add_option("--cone-pattern", args->conePattern,
                     "AO from the volume, and gi's bounce: interleaved (each pixel of a 4x4 tile turns its cones and "
                     "shifts their steps its own way, and the tile's pixels on one surface are averaged: smoother, "
                     "closer to a path tracer) or fixed (every pixel the same cones)")
         ->check(CLI::IsMember({"interleaved", "fixed"}))
         ->capture_default_str();
-    cmd->add_option("--render", args->render,
-                    "debug: the layers; ao: the surface as its ambient occlusion, grey (5 cones unless --ao says); "
-                    "direct: lit by --light with shadows; gi: direct and one diffuse bounce cone-traced through the "
-                    "lighting volume")
-        ->check(CLI::IsMember(names<gl::RenderMode>()))
-        ->capture_default_str();
+    addOptions(*cmd, args->request, {"render"});
     cmd->add_option("--light", args->lights,
                     "direct/gi: sun:dx,dy,dz[:E] (travelling along d) or point:x,y,z[:I], world units, E and I one "
                     "value or r,g,b (default pi); repeatable. None: a point light under the Cornell box's ceiling, "
@@ -441,39 +401,7 @@ void addViewCommand(CLI::App& app)
                                               "octree has no colour channel (default 0.75)");
     cmd->add_option("--specular", args->specular, "gi: glossy reflectance, one value or r,g,b in [0, 1]: one more "
                                                   "cone along the mirrored view ray (default 0: none)");
-    cmd->add_option("--specular-aperture", args->light.specularApertureDegrees,
-                    "gi: the glossy cone's aperture, degrees (narrower: shinier)")
-        ->capture_default_str();
-    cmd->add_option("--gi-cones", args->light.cones, "gi: cones gathering the bounce, 1 to 16")->capture_default_str();
-    cmd->add_option("--gi-aperture", args->light.apertureDegrees, "gi: cone aperture, degrees")->capture_default_str();
-    cmd->add_option("--gi-offset", args->light.offset, "gi: cones start this far out along the normal, texels of the "
-                                                       "lighting volume (less: more contact light, more self-lighting)")
-        ->capture_default_str();
-    cmd->add_option("--gi-step", args->light.step, "gi: cone steps, share of the cone's width, (0, 1]")
-        ->capture_default_str();
-    cmd->add_option("--gi-distance", args->light.distance, "gi: cones stop this far away, voxels (0: the grid's "
-                                                           "diagonal)")
-        ->capture_default_str();
-    cmd->add_option_function<std::string>(
-           "--gi-emission", [args](const std::string& e) { args->light.directional = e == "directional"; },
-           "gi: isotropic (one radiance per texel: faster) or directional (from the second level up, the radiance "
-           "seen along each of six directions, composited front to back: thin walls leak less)")
-        ->check(CLI::IsMember({"isotropic", "directional"}))
-        ->default_str("isotropic");
-    cmd->add_flag("--gi-clearance", args->light.clearance,
-                  "gi: cones read coarse texels only clear of voxels (no light averaged across a thin wall; slower, "
-                  "noisier)");
-    cmd->add_option("--shadow-offset", args->light.shadowOffset,
-                    "direct/gi: shadow rays start this far out of the surface, voxels (less: light through thinner "
-                    "gaps, more self-shadowing)")
-        ->capture_default_str();
-    cmd->add_option("--light-volume", args->light.volumeResolution,
-                    "direct/gi, and ao from the volume: the lighting volume's largest side in texels, a power of two "
-                    "(a texel holds 1 to 8³ voxels)")
-        ->capture_default_str();
-    cmd->add_option("--exposure", args->light.exposure, "direct/gi: the picture is (radiance x exposure)^(1/gamma)")
-        ->capture_default_str();
-    cmd->add_option("--gamma", args->light.gamma, "direct/gi: display gamma (1: linear radiance)")->capture_default_str();
+    addOptions(*cmd, args->request.layers.light); // --specular-aperture, --gi-*, ... --gamma
     cmd->add_option("--frames", args->frames, "Window: close after this many frames (0: when closed)");
     cmd->add_option("--keys", args->keys,
                     "Window: keys to press, one a frame from the second frame (v o m k: layers; a: colour; g r: AO on, AO "

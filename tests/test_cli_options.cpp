@@ -13,6 +13,7 @@
 #include "option_flags.h"
 #include "run_shell.h"
 #include "svo/gl/octree_view.h"
+#include "svo/gl/view_request.h"
 #include "svo/vdb_io/grid_options.h"
 #include "svo/voxelizer.h"
 #include "temp_dir.h"
@@ -157,9 +158,21 @@ TEST(CliOptions, TheOptionsTheLibraryNamesHaveFlags)
     thin.mode = svo::VoxelMode::Thin;
     named.push_back(argumentOf([&] { svo::checkFieldMode(thin); }));
     named.push_back(argumentOf([] { svo::gl::namedView({svo::Vec3d{0, 0, 0}, svo::Vec3d{1, 1, 1}}, "sideways", 1.0); }));
+    // The view's checks run the single-option rules on its fields (svo/gl/ambient_occlusion.h, illumination.h).
+    svo::gl::ViewRequest step;
+    step.layers.ao.step = 1.5;
+    named.push_back(argumentOf([&] { svo::gl::checkViewRequest(step); }));
+    svo::gl::ViewRequest volume;
+    volume.layers.ao.volumeResolution = 100;
+    named.push_back(argumentOf([&] { svo::gl::checkViewRequest(volume); }));
+    svo::gl::ViewRequest cones;
+    cones.render = svo::gl::RenderMode::Global;
+    cones.layers.light.cones = 0;
+    named.push_back(argumentOf([&] { svo::gl::checkViewRequest(cones); }));
     const std::vector<std::string> want = {"LevelSetOptions::exteriorBand", "LevelSetOptions::interiorBand",
                                            "SignOptions::windingAccuracy", "VoxelizeOptions::mode",
-                                           "svo::gl::namedView"};
+                                           "svo::gl::namedView", "AmbientOcclusion::step",
+                                           "AmbientOcclusion::volumeResolution", "Illumination::cones"};
     EXPECT_EQ(named, want);
     for (const auto& identifier : named) EXPECT_FALSE(svo::app::flagFor(identifier).empty()) << identifier;
 }
@@ -201,6 +214,20 @@ struct HelpCheck {
         const std::string line = flagLine(info);
         EXPECT_NE(line.find(fmt::format("={}", number.value)), std::string::npos) << info.identifier << ": " << line;
     }
+    template <typename Int>
+    void operator()(const svo::OptionInfo& info, svo::CheckedInteger<Int> number)
+    {
+        const std::string line = flagLine(info);
+        EXPECT_NE(line.find(fmt::format("={}", number.value)), std::string::npos) << info.identifier << ": " << line;
+    }
+    void operator()(const svo::OptionInfo& info, svo::NamedBool choice)
+    {
+        const std::string line = flagLine(info);
+        for (const std::string_view n : {choice.falseName, choice.trueName})
+            EXPECT_NE(line.find(std::string(n)), std::string::npos) << info.identifier << " " << n;
+        EXPECT_NE(line.find("=" + std::string(choice.value ? choice.trueName : choice.falseName)), std::string::npos)
+            << info.identifier << ": " << line;
+    }
     template <typename T>
     void operator()(const svo::OptionInfo& info, T&&)
     {
@@ -238,4 +265,32 @@ TEST(CliOptions, EveryDeclaredOptionIsAFlagWithTheLibrarysDefault)
     svo::GridOptions grids;
     grids.topology = svo::GridOptions::Topology::Bool; // the command line's own default: python3-openvdb reads it
     svo::forEachOption(grids, check);
+}
+
+// The view's options, declared beside the view's structs (svo/gl/view_request.h):
+// `svo view` lists every one as a flag with the library's default, and errors
+// about one name its flag.
+TEST(CliOptions, EveryDeclaredViewOptionIsAFlagOfView)
+{
+    const auto r = runSvo("view --help");
+    ASSERT_EQ(r.code, 0) << r.out;
+    HelpCheck check{r.out};
+    svo::gl::ViewRequest request;
+    forEachOption(request, check); // found by argument-dependent lookup in svo::gl
+}
+
+TEST(CliOptions, ViewOptionsAreCheckedByTheLibrarysRulesUnderTheirFlags)
+{
+    svo::test::TempDir dir("cli_view_options");
+    const std::string png = " --screenshot " + dir.path("v.png");
+    auto r = runSvo("view -r 8" + png + " --gi-cones 17");
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(r.out, "svo: error: --gi-cones 17: the bounce gathers 1 to 16 cones\n");
+    r = runSvo("view -r 8" + png + " --ao-step 1.5");
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(r.out, "svo: error: --ao-step 1.5: a cone's step is a share of its width in (0, 1]\n");
+    r = runSvo("view -r 8" + png + " --light-volume 100");
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_EQ(r.out, "svo: error: --light-volume 100: a volume resolution is a power of two from 8 to 2048\n");
+    EXPECT_FALSE(std::filesystem::exists(dir.path("v.png")));
 }

@@ -830,13 +830,13 @@ TEST(Lighting, BadLightingIsAClearError)
     bad([](Illumination& l) { l.lights = {}; }, "no light");
     bad([](Illumination& l) { l.lights.directional[0].direction = {0, 0, 0}; }, "is zero");
     bad([](Illumination& l) { l.lights.environment = {1, 1, 1}; }, "environment");
-    bad([](Illumination& l) { l.cones = 0; }, "0 cones");
+    bad([](Illumination& l) { l.cones = 0; }, "Illumination::cones 0"); // the field, as the rule names it
     bad([](Illumination& l) { l.volumeResolution = 100; }, "power of two");
     bad([](Illumination& l) { l.albedo = {1.5, 0, 0}; }, "albedo");
     bad([](Illumination& l) { l.exposure = 0; }, "exposure");
     bad([](Illumination& l) { l.specular = {0, 2, 0}; }, "specular");
-    bad([](Illumination& l) { l.step = 0; }, "cone step");
-    bad([](Illumination& l) { l.specularApertureDegrees = 180; }, "specular cone aperture");
+    bad([](Illumination& l) { l.step = 0; }, "Illumination::step 0");
+    bad([](Illumination& l) { l.specularApertureDegrees = 180; }, "Illumination::specularApertureDegrees 180");
     // A grid too wide for the volume: a texel holds at most 8³ voxels.
     const svo::Octree wide = octreeOf(unitGrid(1024, 8, 8), {{1000, 1, 1}}, {{1, 0, 0}});
     Illumination small = ok;

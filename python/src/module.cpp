@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -205,6 +204,31 @@ const PythonKeyword kPythonKeywords[] = {
     {"strict", [] { return py::object(py::bool_(false)); }, "Fail on extra voxels too"},
     {"worst", [] { return py::object(py::int_(5)); }, "Worst cases listed of each kind, 0 to 1000000"},
     {"openvdb", [] { return py::object(py::bool_(true)); }, "Also compare with OpenVDB's meshToLevelSet"},
+    // Octree.render's own: what svo view takes in other forms (--size WxH, --layers a,b, --levels a:b,
+    // --light sun:..., colours as r,g,b) or under other names (--render for lighting and ao_only).
+    {"size", [] { return py::object(py::make_tuple(640, 480)); }, "(width, height) of the picture, 1 to 16384 pixels each"},
+    {"view", [] { return py::object(py::str("front")); },
+     "'front' or an axis view '+x', '-x', '+y', '-y', '+z', '-z' (orthographic), framing the octree's grid"},
+    {"layers", [] { return py::object(py::make_tuple("voxels", "outlines")); },
+     "The layers drawn: 'voxels', 'outlines', 'bricks'"},
+    {"levels", none, "(first, last) outline levels, 0 = root (None: all)"},
+    {"ao_only", [] { return py::object(py::bool_(false)); },
+     "The voxels as their ambient occlusion alone, grey (5 cones unless ao says), as svo view --render ao"},
+    {"lighting", [] { return py::object(py::str("off")); },
+     "'off', 'direct' (direct light with shadows) or 'gi' (and one diffuse bounce), as svo view --render direct or "
+     "gi; needs the normal channel"},
+    {"lights", none,
+     "[('sun', (dx, dy, dz)[, E]), ('point', (x, y, z)[, I]), ...] in world units, E and I a number or (r, g, b), "
+     "pi by default (None: a sun from above-left-front)"},
+    {"albedo", none,
+     "Lit pictures: the surface albedo, a number or (r, g, b) in [0, 1], where the octree has no colour channel "
+     "(None: 0.75)"},
+    {"specular", none,
+     "lighting='gi': glossy reflectance, a number or (r, g, b) in [0, 1]: one more cone along the mirrored view ray "
+     "(None: 0, none)"},
+    {"mesh", none,
+     "(vertices, triangles) the octree was voxelized from (with resolution or voxel_size): drawn, or shaded "
+     "through the octree (surface)"},
 };
 
 /// One keyword as a call shows it.
@@ -234,6 +258,16 @@ struct Describe {
         add(i, py::str(std::string(svo::nameOf(v))), svo::quotedNames<E>());
     }
     void operator()(const svo::OptionInfo& i, svo::CheckedNumber n) const { add(i, py::float_(n.value)); }
+    template <typename Int>
+    void operator()(const svo::OptionInfo& i, svo::CheckedInteger<Int> n) const
+    {
+        add(i, py::int_(n.value));
+    }
+    void operator()(const svo::OptionInfo& i, svo::NamedBool b) const
+    {
+        add(i, py::str(std::string(b.value ? b.trueName : b.falseName)),
+            "'" + std::string(b.falseName) + "' or '" + std::string(b.trueName) + "'");
+    }
     template <typename T>
     void operator()(const svo::OptionInfo& i, svo::OptionalNumber<T>) const
     {
@@ -266,27 +300,14 @@ std::vector<KeywordInfo> allKeywords()
     forEachOption(voxelize, Describe{out});
     forEachOption(device, Describe{out});
     forEachOption(levelSet, Describe{out});
+    svo::gl::ViewRequest view; // its layers, AO and lighting too
+    forEachOption(view, Describe{out});
     return out;
 }
 
 /// The Python keyword of a library identifier ("LevelSetOptions::exteriorBand" -> "exterior_band"), for
 /// Error::message; empty where none sets it.
-std::string keywordOf(const std::string& identifier)
-{
-    std::string keyword;
-    const auto find = [&](const svo::OptionInfo& info, auto&&) {
-        if (info.identifier == identifier) keyword = std::string(info.keyword);
-    };
-    svo::GridRequest request;
-    svo::VoxelizeSettings voxelize;
-    svo::DeviceOptions device;
-    svo::LevelSetOptions levelSet;
-    forEachOption(request, find);
-    forEachOption(voxelize, find);
-    forEachOption(device, find);
-    forEachOption(levelSet, find);
-    return keyword;
-}
+std::string keywordOf(const std::string& identifier);
 
 /// A call that takes keywords: the name its messages use and its keywords, in order.
 struct Call {
@@ -306,6 +327,11 @@ const Call kLevelSetCall{"level_set",
                           "closest_triangle", "sign", "winding_accuracy", "backend"}};
 const Call kSolidCall{"solid", {"resolution", "voxel_size", "transform", "sign", "winding_accuracy", "backend"}};
 const Call kFromGridCall{"from_grid", {"backend"}};
+const Call kRenderCall{"render",
+                       {"size", "view", "layers", "levels", "color", "ao", "ao_only", "ao_source", "lighting", "lights",
+                        "albedo", "specular", "mesh", "surface", "gi_emission", "gi_clearance", "ao_aperture",
+                        "ao_offset", "ao_distance", "ao_step", "gi_cones", "gi_aperture", "gi_offset", "gi_step",
+                        "gi_distance", "light_volume"}};
 #ifdef SVO_WITH_VALIDATE
 const Call kValidateCall{"validate",
                          {"resolution", "voxel_size", "transform", "backend", "conservative", "mode", "holes",
@@ -323,12 +349,36 @@ const std::pair<const char*, const Call*> kCalls[] = {
     {"Voxelizer.level_set", &kLevelSetCall},
     {"Voxelizer.solid", &kSolidCall},
     {"Octree.from_grid", &kFromGridCall},
+    {"Octree.render", &kRenderCall},
     {"voxelize", &kVoxelizeCall},
 #ifdef SVO_WITH_VALIDATE
     {"validate", &kValidateCall},
     {"validate_level_set", &kValidateLevelSetCall},
 #endif
 };
+
+std::string keywordOf(const std::string& identifier)
+{
+    std::string keyword;
+    const auto find = [&](const svo::OptionInfo& info, auto&&) {
+        if (info.identifier != identifier) return;
+        // Only a keyword some call takes: ViewRequest::render is svo view's --render, Python's lighting.
+        for (const auto& [name, call] : kCalls)
+            if (std::find(call->keywords.begin(), call->keywords.end(), info.keyword) != call->keywords.end())
+                keyword = std::string(info.keyword);
+    };
+    svo::GridRequest request;
+    svo::VoxelizeSettings voxelize;
+    svo::DeviceOptions device;
+    svo::LevelSetOptions levelSet;
+    svo::gl::ViewRequest view;
+    forEachOption(request, find);
+    forEachOption(voxelize, find);
+    forEachOption(device, find);
+    forEachOption(levelSet, find);
+    forEachOption(view, find);
+    return keyword;
+}
 
 /// The keywords of a call, in its order. A keyword declared nowhere is this
 /// module's mistake: it fails the import (every docstring is made then).
@@ -473,6 +523,25 @@ private:
             const double v = kw.as<double>(i.keyword);
             n.rule(v, std::string(i.keyword)); // the library's rule, under the keyword
             n.value = v;
+        }
+        template <typename Int>
+        void operator()(const svo::OptionInfo& i, svo::CheckedInteger<Int> n) const
+        {
+            if (!wanted(i)) return;
+            const Int v = kw.as<Int>(i.keyword); // what the field's type cannot hold: a TypeError
+            n.rule(int64_t(v), std::string(i.keyword));
+            n.value = v;
+        }
+        void operator()(const svo::OptionInfo& i, svo::NamedBool b) const
+        {
+            if (!wanted(i)) return;
+            const std::string name = kw.as<std::string>(i.keyword);
+            if (name != b.falseName && name != b.trueName)
+                throw svo::InvalidInput(std::vector<svo::Error::Part>{
+                    svo::Error::option(std::string(i.keyword)),
+                    ": expected '" + std::string(b.falseName) + "' or '" + std::string(b.trueName) + "', got '" +
+                        name + "'"});
+            b.value = name == b.trueName;
         }
         template <typename T>
         void operator()(const svo::OptionInfo& i, svo::OptionalNumber<T> n) const
@@ -800,53 +869,12 @@ svo::Lights lightsOf(const py::iterable& list)
     return out;
 }
 
-/// Keyword arguments read one by one, each with its default; a keyword that
-/// is not read is refused, as Python refuses an unknown one.
-class Keywords {
-public:
-    Keywords(const char* function, const py::kwargs& given) : function_(function), given_(given) {}
-
-    bool given(const char* name) const { return given_.contains(name) && !given_[name].is_none(); }
-    /// The keyword's value (None and absent: none), marked as read.
-    py::object object(const char* name)
-    {
-        read_.insert(name);
-        return given_.contains(name) ? py::reinterpret_borrow<py::object>(given_[name]) : py::none();
-    }
-    template <typename T>
-    T get(const char* name, T fallback)
-    {
-        const py::object o = object(name);
-        if (!given_.contains(name)) return fallback;
-        try {
-            return o.cast<T>();
-        } catch (const py::cast_error&) {
-            throw py::type_error(std::string(function_) + "(): keyword '" + name + "' has the wrong type (" +
-                                 std::string(py::str(o.get_type().attr("__name__"))) + ")");
-        }
-    }
-    /// TypeError for a keyword no get() read.
-    void checkAllRead() const
-    {
-        for (const auto& item : given_) {
-            const std::string name = py::cast<std::string>(item.first);
-            if (!read_.count(name))
-                throw py::type_error(std::string(function_) + "() got an unexpected keyword argument '" + name + "'");
-        }
-    }
-
-private:
-    const char* function_;
-    const py::kwargs& given_;
-    std::set<std::string> read_;
-};
-
-/// The library's names for what Octree.render's keywords set, for its messages.
+/// The Python words for the library's other names in render's messages: its render mode is
+/// Python's lighting, channels and values of keywords.
 std::string keywordFor(const std::string& identifier)
 {
     static const std::pair<const char*, const char*> keywords[] = {
-        {"ViewRequest::render", "lighting"},          {"ViewRequest::surface", "surface"},
-        {"ViewLayers::voxelColor", "color"},          {"svo::kNormals", "attributes=['normal']"},
+        {"ViewRequest::render", "lighting"},          {"svo::kNormals", "attributes=['normal']"},
         {"svo::kColors", "attributes=['color']"},     {"svo::kTriangles", "attributes=['triangle']"},
         {"AmbientOcclusion::volumeResolution", "light_volume"},
         {"AmbientOcclusion::Source::Octree", "ao_source='octree'"}};
@@ -896,67 +924,44 @@ std::optional<svo::TriangleMesh> renderMesh(const PyOctree& p, const py::object&
 py::array_t<uint8_t> renderOctree(const PyOctree& p, const py::kwargs& kwargs)
 {
     namespace gl = svo::gl;
-    Keywords kw("render", kwargs);
-    const auto [width, height] = kw.get("size", std::pair<int, int>(640, 480));
-    const std::string view = kw.get<std::string>("view", "front");
+    const CallKeywords kw(kRenderCall, kwargs);
     gl::ViewRequest request;
+    kw.read(request); // the declared options (svo/gl/view_request.h), each checked as it is read
+    const auto [width, height] = kw.get<std::pair<int, int>>("size");
+    const std::string view = kw.get<std::string>("view");
     gl::ViewLayers& l = request.layers;
     l.voxels = l.outlines = false;
-    for (const std::string& name : kw.get("layers", std::vector<std::string>{"voxels", "outlines"})) {
+    for (const std::string& name : kw.get<std::vector<std::string>>("layers")) {
         if (name == "voxels") l.voxels = true;
         else if (name == "outlines") l.outlines = true;
         else if (name == "bricks") l.bricks = true;
         else badValue("layers: expected 'voxels', 'outlines' or 'bricks', got '" + name + "'");
     }
-    if (const auto levels = kw.get<std::optional<std::pair<int, int>>>("levels", std::nullopt)) {
+    if (const auto levels = kw.get<std::optional<std::pair<int, int>>>("levels")) {
         if (levels->first < 0 || levels->second < levels->first)
             badValue("levels: expected (first, last) with 0 <= first <= last");
         l.firstLevel = uint32_t(levels->first);
         l.lastLevel = uint32_t(levels->second);
     }
-    l.voxelColor = svo::parse<gl::VoxelColor>(kw.get<std::string>("color", "flat"), "color");
-    l.ao.cones = kw.get("ao", 0);
-    if (l.ao.cones < 0 || l.ao.cones > 16) badValue("ao: expected 0 (none) to 16 cones");
-    l.ao.only = kw.get("ao_only", false); // AO alone, the layers kept
-    l.ao.source = svo::parse<gl::AmbientOcclusion::Source>(kw.get<std::string>("ao_source", "volume"), "ao_source");
-    const gl::Illumination::Mode lighting =
-        svo::parse<gl::Illumination::Mode>(kw.get<std::string>("lighting", "off"), "lighting");
+    l.ao.only = kw.get<bool>("ao_only"); // AO alone, the layers kept
+    l.ao.volumeResolution = l.light.volumeResolution; // light_volume: one volume for AO and light
+    const gl::Illumination::Mode lighting = svo::parse<gl::Illumination::Mode>(kw.get<std::string>("lighting"), "lighting");
     request.render = lighting == gl::Illumination::Mode::Global   ? gl::RenderMode::Global
                      : lighting == gl::Illumination::Mode::Direct ? gl::RenderMode::Direct
                                                                   : gl::RenderMode::Layers;
     const bool lit = gl::isLit(request.render);
-    if (const py::object lights = kw.object("lights"); !lights.is_none()) {
+    if (const auto lights = kw.get<py::object>("lights"); !lights.is_none()) {
         if (!py::isinstance<py::iterable>(lights)) throw py::type_error("render(): lights: expected a list of lights");
         request.lights = lightsOf(lights);
     }
-    if (const py::object albedo = kw.object("albedo"); !albedo.is_none()) l.light.albedo = colorOf(albedo, "albedo");
-    if (const py::object specular = kw.object("specular"); !specular.is_none())
-        l.light.specular = colorOf(specular, "specular");
-    std::optional<svo::TriangleMesh> triangles = renderMesh(p, kw.object("mesh"));
-    request.surface = svo::parse<gl::SurfaceChoice>(kw.get<std::string>("surface", "auto"), "surface");
-    const std::string emission = kw.get<std::string>("gi_emission", "isotropic");
-    if (emission != "isotropic" && emission != "directional")
-        badValue("gi_emission: expected 'isotropic' or 'directional', got '" + emission + "'");
-    l.light.directional = emission == "directional";
-    l.light.clearance = kw.get("gi_clearance", false);
-    // The cones' shape, as svo view's --ao-* and --gi-* options; their defaults are the library's.
-    const gl::AmbientOcclusion ao;
-    const gl::Illumination gi;
-    l.ao.apertureDegrees = kw.get("ao_aperture", ao.apertureDegrees);
-    l.ao.offset = kw.get("ao_offset", ao.offset);
-    l.ao.distance = kw.get("ao_distance", ao.distance);
-    l.ao.step = kw.get("ao_step", ao.step);
-    l.light.cones = kw.get("gi_cones", gi.cones);
-    l.light.apertureDegrees = kw.get("gi_aperture", gi.apertureDegrees);
-    l.light.offset = kw.get("gi_offset", gi.offset);
-    l.light.step = kw.get("gi_step", gi.step);
-    l.light.distance = kw.get("gi_distance", gi.distance);
-    l.ao.volumeResolution = l.light.volumeResolution = kw.get("light_volume", gi.volumeResolution);
-    kw.checkAllRead();
+    const auto albedo = kw.get<py::object>("albedo"), specular = kw.get<py::object>("specular");
+    if (!albedo.is_none()) l.light.albedo = colorOf(albedo, "albedo");
+    if (!specular.is_none()) l.light.specular = colorOf(specular, "specular");
+    std::optional<svo::TriangleMesh> triangles = renderMesh(p, kw.get<py::object>("mesh"));
     // Keywords that light the voxels, given without lighting.
+    const gl::Illumination gi;
     if (!lit) {
-        if (request.lights || kw.given("albedo") || kw.given("specular") || emission != "isotropic" ||
-            l.light.clearance)
+        if (request.lights || !albedo.is_none() || !specular.is_none() || l.light.directional || l.light.clearance)
             badValue("lights, albedo, specular, gi_emission and gi_clearance light the voxels of lighting='direct' or "
                      "'gi'");
         if (l.light.cones != gi.cones || l.light.apertureDegrees != gi.apertureDegrees || l.light.offset != gi.offset ||
@@ -1217,32 +1222,11 @@ PYBIND11_MODULE(_svo, m)
             return toPython(svo::octreeToGrids(p.octree, g, p.xform)[g.fog ? 1 : 0]);
         }, py::arg("grid") = "bool", "A pyopenvdb grid of the voxels with the octree's transform.")
         .def("render", &renderOctree,
-             "render(*, size=(640, 480), view='front', layers=['voxels', 'outlines'], levels=None, color='flat',\n"
-             "       ao=0, ao_only=False, ao_source='volume', lighting='off', lights=None, albedo=None,\n"
-             "       specular=None, mesh=None, surface='auto', gi_emission='isotropic', gi_clearance=False,\n"
-             "       ao_aperture=60.0, ao_offset=2.0, ao_distance=32.0, ao_step=0.5, gi_cones=5, gi_aperture=60.0,\n"
-             "       gi_offset=1.5, gi_step=0.5, gi_distance=0.0, light_volume=256)\n\n"
-             "A picture of the octree drawn on the GPU, as svo view --screenshot draws it: (H, W, 4) uint8,\n"
-             "rows from the top. view: 'front' or an axis view '+x', '-x', '+y', '-y', '+z', '-z';\n"
-             "layers: 'voxels', 'outlines', 'bricks'; levels: (first, last) outline levels; color: 'flat'\n"
-             "or an attribute channel the octree has ('normal', 'color', 'triangle'); ao: cones of ambient\n"
-             "occlusion (0: none, up to 16); ao_only: the voxels as their AO, grey (5 cones unless ao says;\n"
-             "as svo view --render ao); ao_source: 'volume' (cones through the lighting volume's opacity)\n"
-             "or 'octree' (through the octree's nodes), as svo view --ao-source. lighting: 'direct' (direct\n"
-             "light with shadows) or 'gi' (and one diffuse bounce), as svo view --render direct|gi: needs the\n"
-             "normal channel; lights: [('sun', (dx, dy, dz)[, E]), ('point', (x, y, z)[, I]), ...] in world\n"
-             "units, E and I a number or (r, g, b), pi by default (none: a sun from above); albedo and\n"
-             "specular: a number or (r, g, b) in [0, 1]. mesh: (vertices, triangles) the octree was voxelized\n"
-             "from (with resolution or voxel_size); surface: 'voxels', 'mesh' (its triangles lit and occluded\n"
-             "through the octree) or 'auto' (the mesh for ao_only and lighting when it is given), as svo view\n"
-             "--surface. gi_emission: 'isotropic' or 'directional' (six-way radiance: thin walls leak less)\n"
-             "and gi_clearance: cones read coarse texels only clear of voxels (no light across a thin wall;\n"
-             "slower, noisier), as svo view --gi-emission and --gi-clearance. The cones, as svo view's options of\n"
-             "the same names: ao_aperture and gi_aperture (degrees), ao_offset and gi_offset (where cones start,\n"
-             "texels of the lighting volume; less: more contact shadow or light, more self-occlusion), ao_step and\n"
-             "gi_step (share of the cone's width, (0, 1]), ao_distance and gi_distance (voxels; gi 0: the grid's\n"
-             "diagonal), gi_cones (1 to 16); light_volume: the lighting volume's largest side, texels, a power of\n"
-             "two (a texel holds 1 to 8^3 voxels).")
+             docstring("A picture of the octree drawn on the GPU, as svo view --screenshot draws it: (H, W, 4) "
+                       "uint8,\nrows from the top. The keywords are svo view's options of the same names (--ao-step "
+                       "for\nao_step), declared once for both.",
+                       kRenderCall)
+                 .c_str())
         .def("save", [](const PyOctree& p, const std::string& path) {
             if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
                 badValue("save: a .svo file holds a uniform voxel size and a whole-voxel translation; this octree's "

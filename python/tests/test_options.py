@@ -38,6 +38,13 @@ def call_named(name):
 ANNOTATIONS = {bool: "bool", str: "str", float: "float", int: "int", tuple: "Sequence[str]"}
 
 
+def annotation_of(default):
+    """A default's annotation: a tuple of ints (render's size) is a fixed-size Tuple, other tuples lists of names."""
+    if isinstance(default, tuple) and default and all(type(v) is int for v in default):
+        return f"Tuple[{', '.join('int' for _ in default)}]"
+    return ANNOTATIONS[type(default)]
+
+
 @pytest.mark.parametrize("name", sorted(OPTIONS))
 def test_the_stub_declares_each_calls_keywords_and_defaults(name):
     declared = OPTIONS[name]
@@ -51,7 +58,7 @@ def test_the_stub_declares_each_calls_keywords_and_defaults(name):
         # The same value and type: 3.0, not 3; (), not [].
         assert (type(default), default) == (type(entry["default"]), entry["default"]), f"{name}({keyword}=...)"
         if entry["default"] is not None:
-            assert ast.unparse(annotation) == ANNOTATIONS[type(default)], f"{name}({keyword}: ...)"
+            assert ast.unparse(annotation) == annotation_of(default), f"{name}({keyword}: ...)"
     # Every option is keyword-only: no positional parameter has a default.
     assert not args.defaults, f"{name}: a positional parameter with a default"
 
@@ -86,6 +93,14 @@ def test_library_defaults_are_the_structs():
     assert OPTIONS["Voxelizer.voxelize"]["conservative"]["identifier"] == "VoxelizeOptions::dilation"
     assert OPTIONS["Voxelizer.voxelize"]["resolution"]["identifier"] == "GridRequest::resolution"
     assert OPTIONS["Voxelizer.voxelize"]["grid"]["identifier"] is None  # Python's own
+    # The view's options, declared beside their structs as svo view's flags are.
+    render = OPTIONS["Octree.render"]
+    assert render["ao_aperture"]["default"] == 60.0 and render["ao_aperture"]["identifier"] == "AmbientOcclusion::apertureDegrees"
+    assert render["gi_cones"]["default"] == 5 and type(render["gi_cones"]["default"]) is int
+    assert render["light_volume"]["default"] == 256
+    assert render["gi_emission"]["default"] == "isotropic"
+    assert render["surface"]["identifier"] == "ViewRequest::surface"
+    assert render["lighting"]["identifier"] is None  # Python's own word for svo view's --render
 
 
 TETRAHEDRON = (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float),

@@ -88,6 +88,36 @@ void checkVolumeResolution(const GridSpec& grid, uint32_t r, const char* what)
     }
 }
 
+// The single-option rules (illumination.h); checkIllumination runs them on a struct's fields.
+void checkGiConeCount(int64_t cones, const std::string& name)
+{
+    if (cones < 1 || cones > 16) throw InvalidInput(name, fmt::format("{}: the bounce gathers 1 to 16 cones", cones));
+}
+
+void checkGiConeDistance(double voxels, const std::string& name)
+{
+    if (!(voxels >= 0 && voxels <= 1e7))
+        throw InvalidInput(name, fmt::format("{}: cones stop 0 (the grid's diagonal) to 1e7 voxels away", voxels));
+}
+
+void checkShadowOffset(double voxels, const std::string& name)
+{
+    if (!(voxels >= 0 && voxels < 1e6))
+        throw InvalidInput(name, fmt::format("{}: shadow rays start 0 or more voxels out, less than 1e6", voxels));
+}
+
+void checkVolumeResolution(int64_t texels, const std::string& name)
+{
+    if (texels < 8 || texels > 2048 || (texels & (texels - 1)) != 0)
+        throw InvalidInput(name, fmt::format("{}: a volume resolution is a power of two from 8 to 2048", texels));
+}
+
+void checkPositive(double value, const std::string& name)
+{
+    if (!(value > 0 && std::isfinite(value)))
+        throw InvalidInput(name, fmt::format("{}: expected a positive finite number", value));
+}
+
 void checkIllumination(const Illumination& l)
 {
     auto bad = [](const std::string& what) { throw InvalidInput("octree view: lighting: " + what); };
@@ -106,23 +136,19 @@ void checkIllumination(const Illumination& l)
         bad("an environment light is not injected (directional and point lights are)");
     if (!nonNegative(l.albedo) || l.albedo.x > 1 || l.albedo.y > 1 || l.albedo.z > 1)
         bad(fmt::format("albedo {},{},{} is outside [0, 1]", l.albedo.x, l.albedo.y, l.albedo.z));
-    if (l.cones < 1 || l.cones > 16) bad(fmt::format("{} cones; 1 to 16", l.cones));
-    if (!(l.apertureDegrees > 0 && l.apertureDegrees < 180))
-        bad(fmt::format("cone aperture {} degrees is outside (0, 180)", l.apertureDegrees));
+    // The single-option rules, naming the field (a front end names its flag or keyword).
+    checkGiConeCount(l.cones, "Illumination::cones");
+    checkConeAperture(l.apertureDegrees, "Illumination::apertureDegrees");
     if (!nonNegative(l.specular) || l.specular.x > 1 || l.specular.y > 1 || l.specular.z > 1)
         bad(fmt::format("specular {},{},{} is outside [0, 1]", l.specular.x, l.specular.y, l.specular.z));
-    if (!(l.specularApertureDegrees > 0 && l.specularApertureDegrees < 180))
-        bad(fmt::format("specular cone aperture {} degrees is outside (0, 180)", l.specularApertureDegrees));
-    if (!(l.offset >= 0 && l.offset < 1e6)) bad(fmt::format("cone offset {} texels is not in [0, 1e6)", l.offset));
-    if (!(l.distance >= 0 && l.distance <= 1e7)) bad(fmt::format("cone distance {} voxels is not in [0, 1e7]", l.distance));
-    if (!(l.step > 0 && l.step <= 1)) bad(fmt::format("cone step {} is not in (0, 1]", l.step));
-    if (!(l.shadowOffset >= 0 && l.shadowOffset < 1e6))
-        bad(fmt::format("shadow offset {} voxels is not in [0, 1e6)", l.shadowOffset));
-    if (!(l.exposure > 0 && std::isfinite(l.exposure))) bad(fmt::format("exposure {} is not positive", l.exposure));
-    if (!(l.gamma > 0 && std::isfinite(l.gamma))) bad(fmt::format("gamma {} is not positive", l.gamma));
-    const uint32_t r = l.volumeResolution;
-    if (r < 8 || r > 2048 || (r & (r - 1)) != 0)
-        bad(fmt::format("volume resolution {} is not a power of two from 8 to 2048", r));
+    checkConeAperture(l.specularApertureDegrees, "Illumination::specularApertureDegrees");
+    checkConeOffset(l.offset, "Illumination::offset");
+    checkGiConeDistance(l.distance, "Illumination::distance");
+    checkConeStep(l.step, "Illumination::step");
+    checkShadowOffset(l.shadowOffset, "Illumination::shadowOffset");
+    checkPositive(l.exposure, "Illumination::exposure");
+    checkPositive(l.gamma, "Illumination::gamma");
+    checkVolumeResolution(l.volumeResolution, "Illumination::volumeResolution");
 }
 
 void checkIllumination(const Illumination& l, const ViewBuffers& octree)

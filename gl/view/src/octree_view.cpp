@@ -260,18 +260,48 @@ Lights defaultLights(const std::array<Vec3d, 2>& box, bool inside)
     return l;
 }
 
+// The single-option rules (ambient_occlusion.h); checkAmbientOcclusion runs them on a struct's fields.
+void checkAoConeCount(int64_t cones, const std::string& name)
+{
+    if (cones < 0 || cones > 16) throw InvalidInput(name, fmt::format("{}: AO takes 0 (none) to 16 cones", cones));
+}
+
+void checkConeAperture(double degrees, const std::string& name)
+{
+    if (!(degrees > 0 && degrees < 180)) // NaN fails too
+        throw InvalidInput(name, fmt::format("{}: a cone's aperture is between 0 and 180 degrees", degrees));
+}
+
+void checkConeOffset(double offset, const std::string& name)
+{
+    if (!(offset >= 0 && offset < 1e6))
+        throw InvalidInput(name, fmt::format("{}: cones start 0 or more out of the surface, less than 1e6", offset));
+}
+
+void checkAoConeDistance(double voxels, const std::string& name)
+{
+    if (!(voxels > 0 && voxels <= 1e7))
+        throw InvalidInput(name, fmt::format("{}: AO cones stop a positive distance away, at most 1e7 voxels", voxels));
+}
+
+void checkConeStep(double share, const std::string& name)
+{
+    if (!(share > 0 && share <= 1))
+        throw InvalidInput(name, fmt::format("{}: a cone's step is a share of its width in (0, 1]", share));
+}
+
 void checkAmbientOcclusion(const AmbientOcclusion& ao)
 {
-    if (ao.cones < 0 || ao.cones > 16 || (ao.only && ao.cones == 0) || !(ao.apertureDegrees > 0 && ao.apertureDegrees < 180) ||
-        !(ao.offset >= 0 && ao.offset < 1e6) || !(ao.distance > 0 && ao.distance <= 1e7) ||
-        !(ao.step > 0 && ao.step <= 1))
-        throw InvalidInput(fmt::format("octree view: ambient occlusion with {} cones (0 to 16; 1 or more to draw AO alone), aperture {} degrees "
-                                       "(0 to 180), offset {} (0 or more), distance {} voxels (positive), step {} (0 to 1)",
-                                       ao.cones, ao.apertureDegrees, ao.offset, ao.distance, ao.step));
-    const uint32_t r = ao.volumeResolution;
-    if (ao.source == AmbientOcclusion::Source::Volume && (r < 8 || r > 2048 || (r & (r - 1)) != 0))
-        throw InvalidInput(fmt::format("octree view: ambient occlusion: volume resolution {} is not a power of two from 8 to "
-                                       "2048", r));
+    // The single-option rules, naming the field (a front end names its flag or keyword).
+    checkAoConeCount(ao.cones, "AmbientOcclusion::cones");
+    if (ao.only && ao.cones == 0)
+        throw InvalidInput("AmbientOcclusion::cones", "0: drawing AO alone needs 1 or more cones");
+    checkConeAperture(ao.apertureDegrees, "AmbientOcclusion::apertureDegrees");
+    checkConeOffset(ao.offset, "AmbientOcclusion::offset");
+    checkAoConeDistance(ao.distance, "AmbientOcclusion::distance");
+    checkConeStep(ao.step, "AmbientOcclusion::step");
+    if (ao.source == AmbientOcclusion::Source::Volume)
+        checkVolumeResolution(ao.volumeResolution, "AmbientOcclusion::volumeResolution");
 }
 
 namespace {

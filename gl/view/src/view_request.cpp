@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "svo/core/error.h"
+#include "svo/gl/view_camera.h"
 
 namespace svo::gl {
 namespace {

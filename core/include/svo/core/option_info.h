@@ -21,7 +21,8 @@
 /// and docs for its docstrings and a test of its type stub. The default shown
 /// is the field's value in a default-constructed struct. A field is one of:
 /// bool, std::string, an enum with names (svo/core/enum_names.h), or one of
-/// the wrappers below, which say how a number is read and checked.
+/// the wrappers below, which say how a number (or a two-way choice) is read
+/// and checked.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -48,6 +49,24 @@ struct OptionInfo {
 struct CheckedNumber {
     double& value;                            ///< the field
     void (*rule)(double, const std::string&); ///< checkBand, checkVoxelSize, ...
+};
+
+/// @brief A whole number checked by a library rule as it is read, kept in the
+/// field's own integer type (int, uint32_t): a front end reads a value of that
+/// type, so what the type cannot hold is refused as before any rule runs.
+/// rule(value, name) throws svo::InvalidInput naming the flag or keyword.
+template <typename Int>
+struct CheckedInteger {
+    Int& value;                                ///< the field
+    void (*rule)(int64_t, const std::string&); ///< checkAoConeCount, ...
+};
+
+/// @brief A bool given by one of two names rather than as a flag
+/// ("isotropic" or "directional"), for a choice that is not on or off.
+struct NamedBool {
+    bool& value;                 ///< the field
+    std::string_view falseName;  ///< the name of false, listed first
+    std::string_view trueName;   ///< the name of true
 };
 
 /// @brief A number a caller may leave out, checked by a library rule when

@@ -22,31 +22,14 @@
 #include <cstdint>
 #include <optional>
 
-#include "svo/core/enum_names.h"
 #include "svo/core/lights.h"
 #include "svo/core/octree.h"
-#include "svo/gl/octree_view.h"
+#include "svo/core/option_info.h"
+#include "svo/gl/render_mode.h"
+#include "svo/gl/surface_choice.h"
+#include "svo/gl/view_layers.h"
 
 namespace svo::gl {
-
-/// @brief What a picture shows (svo view --render).
-enum class RenderMode {
-    Layers,           ///< "debug": the layers as asked (voxels coloured, outlines, bricks, mesh; AO when it has cones)
-    AmbientOcclusion, ///< "ao": the surface as its ambient occlusion, grey
-    Direct,           ///< "direct": lit, with shadows
-    Global,           ///< "gi": lit, and one diffuse bounce
-};
-inline constexpr EnumName<RenderMode> kRenderModeNames[] = {{RenderMode::Layers, "debug"},
-                                                             {RenderMode::AmbientOcclusion, "ao"},
-                                                             {RenderMode::Direct, "direct"},
-                                                             {RenderMode::Global, "gi"}};
-constexpr const auto& enumNames(RenderMode) { return kRenderModeNames; }
-
-/// @brief The surface asked for (svo view --surface): Surface, or Auto.
-enum class SurfaceChoice { Auto, Voxels, Mesh };
-inline constexpr EnumName<SurfaceChoice> kSurfaceChoiceNames[] = {
-    {SurfaceChoice::Voxels, "voxels"}, {SurfaceChoice::Mesh, "mesh"}, {SurfaceChoice::Auto, "auto"}};
-constexpr const auto& enumNames(SurfaceChoice) { return kSurfaceChoiceNames; }
 
 /// @brief What a caller asks of one picture. Errors name its fields as
 /// "ViewRequest::render", "ViewRequest::surface" and "ViewLayers::voxelColor".
@@ -64,6 +47,26 @@ struct ViewRequest {
     std::optional<Lights> lights;
     bool room = false; ///< the default lights are a room's seen from inside (the Cornell box)
 };
+
+/// @brief The request's options the front ends take, declared once
+/// (svo/core/option_info.h), then its layers' (view_layers.h). Python takes
+/// `surface` and the layers' options; its `lighting` (off, direct, gi) and
+/// `ao_only` are its own words for the render mode.
+template <typename Visit>
+void forEachOption(ViewRequest& r, Visit&& visit)
+{
+    visit(OptionInfo{"ViewRequest::render", "render",
+                     "debug: the layers; ao: the surface as its ambient occlusion, grey (5 cones unless --ao says); "
+                     "direct: lit by --light with shadows; gi: direct and one diffuse bounce cone-traced through the "
+                     "lighting volume"},
+          r.render);
+    visit(OptionInfo{"ViewRequest::surface", "surface",
+                     "What the voxel layer shades: voxels (those the camera's rays hit: the octree as it is), mesh (the "
+                     "input mesh's triangles, lit, occluded and coloured through the octree: no blocks; needs a mesh "
+                     "input) or auto (mesh for --render ao, direct and gi of a mesh, else voxels)"},
+          r.surface);
+    forEachOption(r.layers, visit);
+}
 
 /// @brief The layers to draw @a octree with: the defaults applied and the
 /// request checked.
@@ -83,8 +86,5 @@ void checkViewRequest(const ViewRequest& request);
 /// from the volume the normals (its cones leave along them). Throws nothing.
 /// @return svo::AttributeChannel bits
 uint32_t channelsFor(const ViewRequest& request);
-
-/// @brief True for RenderMode::Direct and RenderMode::Global.
-inline bool isLit(RenderMode mode) { return mode == RenderMode::Direct || mode == RenderMode::Global; }
 
 } // namespace svo::gl
