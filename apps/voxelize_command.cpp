@@ -230,7 +230,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
                                                   : "voxelizing");
     // EGL set-up beside loading the mesh; joined (a device error rethrown) before the first call.
     std::future<void> device;
-    if (a.field() || call.voxelizer.backendFor(call.options) != Backend::Cpu)
+    if (call.voxelizer.backendFor(call.options) != Backend::Cpu)
         device = std::async(std::launch::async, [&voxelizer = call.voxelizer] { voxelizer.startDevice(); });
     // Then load: a bad mesh must fail before any output is considered.
     TriangleMesh mesh;

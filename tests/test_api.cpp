@@ -406,26 +406,33 @@ TEST_F(Api, TheCpuBackendIsInterruptedWhileItVoxelizes)
     EXPECT_EQ(stop.ends, 1);
 }
 
-// backendFor tells what Auto runs on without creating a context, and the call agrees.
+// backendFor tells what Auto runs on without creating a context, and the
+// call agrees: the CPU on a software renderer, compute on a GPU (design.md,
+// "Which backend auto picks"), the GL passes on a named device.
 TEST_F(Api, BackendForSaysWhatAutoRunsOn)
 {
+    const bool software = gl::Context().info().software; // the renderer's own word, apart from the rule
     Voxelizer v;
     const Backend expected = v.backendFor({});
-    EXPECT_NE(expected, Backend::Auto);
-    EXPECT_NE(expected, Backend::Cpu);
+    EXPECT_EQ(expected, software ? Backend::Cpu : Backend::Compute);
     VoxelizeOptions shader;
     shader.dilation = Dilation::Shader;
     EXPECT_EQ(v.backendFor(shader), Backend::Raster);
     VoxelizeOptions cpu;
     cpu.backend = Backend::Cpu;
     EXPECT_EQ(v.backendFor(cpu), Backend::Cpu);
+    VoxelizeOptions budget;
+    budget.gpuMemory = uint64_t(1) << 30;
+    EXPECT_EQ(v.backendFor(budget), software ? Backend::Raster : Backend::Compute);
     const VdbMesh mesh = toVdb(sphere({0, 0, 0}, 1.0, 8, 6));
     VoxelizeStats stats;
     VoxelizeOptions o;
     o.stats = &stats;
     v.meshToMask(mesh.points, mesh.triangles, *openvdb::math::Transform::createLinearTransform(0.1), o);
-    EXPECT_EQ(stats.backend, expected == Backend::Compute ? "compute" : "raster");
+    EXPECT_EQ(stats.backend, nameOf(expected));
     EXPECT_EQ(v.backendFor({}), expected) << "the same with a context";
+    Voxelizer named(DeviceOptions{software ? "software" : "hardware", false, "off"});
+    EXPECT_EQ(named.backendFor({}), software ? Backend::Raster : Backend::Compute);
 }
 
 TEST_F(Api, CallerContextIsCurrentAgainOnEveryPathOut)

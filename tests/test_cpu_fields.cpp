@@ -13,6 +13,7 @@
 #include <map>
 #include <gtest/gtest.h>
 
+#include "gl_backend.h"
 #include "scenes.h"
 #include "stability_scenes.h"
 #include "svo/core/mesh_io.h"
@@ -156,7 +157,7 @@ void expectSameLevelSet(gl::Device& device, const TriangleMesh& mesh, const Grid
     const Run cpu = levelSet(device, mesh, grid, ls, Backend::Cpu);
     Run gpu;
     try {
-        gpu = levelSet(device, mesh, grid, ls, Backend::Auto);
+        gpu = levelSet(device, mesh, grid, ls, kGl);
     } catch (const DeviceError& e) {
         // llvmpipe's loop limit refuses some winding walks the CPU has no limit on.
         ASSERT_NE(std::string(e.what()).find("ends a shader's loops"), std::string::npos) << e.what();
@@ -225,6 +226,7 @@ void expectSameSolid(gl::Device& device, const TriangleMesh& mesh, const GridSpe
 {
     SCOPED_TRACE(mesh.source + " (solid)");
     VoxelizeSettings gpuSettings, cpuSettings;
+    gpuSettings.backend = kGl;
     cpuSettings.backend = Backend::Cpu;
     VoxelizeStats gpuStats, cpuStats;
     const SolidBricks cpu = gl::solidBricks(device, mesh, grid, cpuSettings, sign, Checkpoint{}, cpuStats);
@@ -510,8 +512,8 @@ TEST(CpuFields, NoContextProgressAndInterrupts)
 }
 
 // Through the public API: Voxelizer::levelSet and ::solid with Backend::Cpu
-// give the default backend's grids, value for value.
-TEST(CpuFields, PublicApiGridsAreTheDefaultBackendsGrids)
+// give the GL passes' grids, value for value.
+TEST(CpuFields, PublicApiGridsAreTheGlPassesGrids)
 {
     Voxelizer v;
     const TriangleMesh ico = icosphere({0.1, -0.2, 0.3}, 1.0, 3);
@@ -519,7 +521,7 @@ TEST(CpuFields, PublicApiGridsAreTheDefaultBackendsGrids)
     VoxelizeOptions cpu;
     cpu.backend = Backend::Cpu;
     LevelSetOptions ls = options(3, 3, SignMethod::Auto, true);
-    const auto a = v.levelSet(ico, grid, ls, {});
+    const auto a = v.levelSet(ico, grid, ls, onGl());
     const auto b = v.levelSet(ico, grid, ls, cpu);
     ASSERT_EQ(a.size(), b.size());
     for (size_t i = 0; i < a.size(); ++i) {
@@ -534,7 +536,7 @@ TEST(CpuFields, PublicApiGridsAreTheDefaultBackendsGrids)
         if (it.isVoxelValue()) differ += acc.getValue(it.getCoord()) != *it || acc.isValueOn(it.getCoord()) != it.isValueOn();
     EXPECT_EQ(differ, 0u);
     EXPECT_TRUE(fa->tree().hasSameTopology(fb->tree()));
-    const auto sa = v.solid(ico, grid, {});
+    const auto sa = v.solid(ico, grid, onGl());
     const auto sb = v.solid(ico, grid, cpu);
     EXPECT_EQ(sa->activeVoxelCount(), sb->activeVoxelCount());
     EXPECT_TRUE(sa->tree().hasSameTopology(sb->tree()));

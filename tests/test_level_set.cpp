@@ -16,6 +16,7 @@
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
+#include "gl_backend.h"
 #include "scenes.h"
 #include "svo/core/mesh_io.h"
 #include "svo/core/mesh_topology.h"
@@ -85,9 +86,7 @@ void forEachVoxel(const TriangleMesh& mesh, const GridSpec& grid, int pad, F f)
 openvdb::FloatGrid::Ptr levelSetOf(Voxelizer& v, const TriangleMesh& mesh, const GridSpec& grid,
                                    const LevelSetOptions& ls, VoxelizeStats* stats = nullptr)
 {
-    VoxelizeOptions o;
-    o.stats = stats;
-    return openvdb::gridPtrCast<openvdb::FloatGrid>(v.levelSet(mesh, grid, ls, o).front());
+    return openvdb::gridPtrCast<openvdb::FloatGrid>(v.levelSet(mesh, grid, ls, onGl(stats)).front());
 }
 
 /// Distances within float rounding of CGAL's, the side CGAL's, and the
@@ -493,9 +492,7 @@ TEST(Winding, OpenAndOverlappingMeshesAgreeWithTheirClosedOriginals)
         }
         ASSERT_LT(holed.triangles.size(), closed.triangles.size());
         VoxelizeStats stats;
-        VoxelizeOptions o;
-        o.stats = &stats;
-        const auto solid = v.solid(holed, grid, o);
+        const auto solid = v.solid(holed, grid, onGl(&stats));
         EXPECT_NE(stats.sign.find("winding: the mesh is not closed"), std::string::npos) << stats.sign;
         uint64_t total = 0;
         const uint64_t wrong = solidDisagreements(*solid, closed, grid, {&ref}, 1.0, [&](const openvdb::Coord& c) {
@@ -516,7 +513,7 @@ TEST(Winding, OpenAndOverlappingMeshesAgreeWithTheirClosedOriginals)
         for (auto t : other.triangles) two.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
         const GridSpec g2 = makeGrid(two, GridRequest{40, 0});
         const CgalReference a(closed, g2, true), b(other, g2, true);
-        const auto solid = v.solid(two, g2, {}, SignMethod::Winding);
+        const auto solid = v.solid(two, g2, onGl(), SignMethod::Winding);
         uint64_t total = 0;
         // Farther than a voxel from both surfaces: no surface voxel is compared.
         const uint64_t wrong = solidDisagreements(*solid, two, g2, {&a, &b}, 1.0, [&](const openvdb::Coord& c) {
@@ -533,9 +530,7 @@ TEST(Winding, OpenAndOverlappingMeshesAgreeWithTheirClosedOriginals)
         flipped.source = "flipped sphere";
         for (size_t t = 0; t < flipped.triangles.size(); t += 5) std::swap(flipped.triangles[t][1], flipped.triangles[t][2]);
         VoxelizeStats stats;
-        VoxelizeOptions o;
-        o.stats = &stats;
-        const auto solid = v.solid(flipped, grid, o);
+        const auto solid = v.solid(flipped, grid, onGl(&stats));
         EXPECT_NE(stats.sign.find("winding"), std::string::npos) << stats.sign;
         for (double margin : {1.0, 3.0}) {
             uint64_t total = 0;
@@ -628,7 +623,7 @@ TEST(LevelSet, OpenVdbToolsTakeItAsALevelSet)
     const GridSpec grid = makeGrid(mesh, GridRequest{64, 0});
     Voxelizer v;
     const std::string path = ::testing::TempDir() + "svo_level_set_tools.vdb";
-    vdb::writeVdbGrids(path, v.levelSet(mesh, grid), {});
+    vdb::writeVdbGrids(path, v.levelSet(mesh, grid, {}, onGl()), {});
     openvdb::io::File file(path);
     file.open();
     const auto sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("surface"));
@@ -720,7 +715,7 @@ TEST(LevelSet, AgreesWithOpenVdbMeshToLevelSetAndIsCloserToCgal)
     const double h = 0.05;
     const auto xform = openvdb::math::Transform::createLinearTransform(h);
     Voxelizer v;
-    const auto ours = v.meshToLevelSet(points, triangles, *xform, 3.0f, 3.0f);
+    const auto ours = v.meshToLevelSet(points, triangles, *xform, 3.0f, 3.0f, onGl());
     const auto theirs = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, points, triangles, 3.0f);
     EXPECT_EQ(ours->getGridClass(), openvdb::GRID_LEVEL_SET);
     EXPECT_FLOAT_EQ(ours->background(), theirs->background());
@@ -779,7 +774,7 @@ TEST(LevelSet, OpenMeshesTakeWindingUnderAutoAndAreRefusedUnderParity)
     for (const bool solid : {false, true}) {
         try {
             if (solid)
-                (void)v.solid(open, grid, {}, SignOptions(SignMethod::Parity));
+                (void)v.solid(open, grid, onGl(), SignOptions(SignMethod::Parity));
             else
                 levelSetOf(v, open, grid, ls);
             ADD_FAILURE() << "parity on a mesh with a hole was not refused";
@@ -831,7 +826,7 @@ TEST(LevelSet, UnsignedDistancesOfAnOpenMeshMatchCgalWithClosestTriangles)
     ls.exteriorBand = 2.5;
     ls.closestTriangle = true;
     Voxelizer v;
-    const auto grids = v.levelSet(open, grid, ls);
+    const auto grids = v.levelSet(open, grid, ls, onGl());
     ASSERT_EQ(grids.size(), 2u);
     const auto udf = openvdb::gridPtrCast<openvdb::FloatGrid>(grids[0]);
     const auto closest = openvdb::gridPtrCast<openvdb::Int32Grid>(grids[1]);
@@ -892,18 +887,18 @@ TEST(LevelSet, BadBandsAreRefusedAndTheCpuBackendWorks)
     for (double w : {0.5, -1.0, std::nan(""), 1e9}) {
         LevelSetOptions ls;
         ls.exteriorBand = w;
-        EXPECT_THROW(v.levelSet(b, grid, ls), Error) << w;
+        EXPECT_THROW(v.levelSet(b, grid, ls, onGl()), Error) << w;
         EXPECT_THROW(v.levelSet(b, grid, ls, cpu), Error) << w;
     }
     EXPECT_EQ(v.levelSet(b, grid, {}, cpu).front()->activeVoxelCount(),
-              v.levelSet(b, grid, {}).front()->activeVoxelCount());
+              v.levelSet(b, grid, {}, onGl()).front()->activeVoxelCount());
     EXPECT_EQ(v.solid(b, grid, cpu)->activeVoxelCount(), openvdb::Index64(9 * 9 * 9));
     // A band far wider than the triangles: 20,480 boxes of about 75^3 bricks
     // each, more work than a pass holds, refused before anything is listed.
     const TriangleMesh ico = icosphere({0, 0, 0}, 1.0, 5);
     LevelSetOptions wide;
     wide.exteriorBand = wide.interiorBand = 300;
-    for (const Backend backend : {Backend::Auto, Backend::Cpu}) {
+    for (const Backend backend : {kGl, Backend::Cpu}) {
         VoxelizeOptions o;
         o.backend = backend;
         try {
@@ -923,11 +918,9 @@ void expectSolidMatchesCgal(Voxelizer& v, const TriangleMesh& mesh, int resoluti
     SCOPED_TRACE(mesh.source);
     const GridSpec grid = makeGrid(mesh, GridRequest{resolution, 0});
     VoxelizeStats stats;
-    VoxelizeOptions o;
-    o.stats = &stats;
-    const auto solid = v.solid(mesh, grid, o, method);
+    const auto solid = v.solid(mesh, grid, onGl(&stats), method);
     EXPECT_EQ(stats.openColumns, 0u);
-    const Octree surface = v.voxelize(mesh, grid);
+    const Octree surface = v.voxelize(mesh, grid, onGl());
     std::set<std::array<int64_t, 3>> surfaceSet;
     for (uint64_t key : octreeKeys(surface)) {
         const auto l = unpackVoxelKey(key);
@@ -961,7 +954,7 @@ TEST(Solid, MatchesCgalsInsideTestAndUsesTiles)
     // A large solid is mostly tiles: far fewer leaves than its volume in leaves.
     const TriangleMesh big = box({0, 0, 0}, {1, 1, 1});
     const GridSpec grid = makeGrid(big, GridRequest{300, 0});
-    const auto solid = v.solid(big, grid);
+    const auto solid = v.solid(big, grid, onGl());
     // Index range [0, 300] on each axis: the box ends on voxel centres.
     EXPECT_EQ(solid->activeVoxelCount(), openvdb::Index64(301) * 301 * 301);
     EXPECT_LT(solid->tree().leafCount(), 6u * 40 * 40);
@@ -971,13 +964,13 @@ TEST(Solid, MatchesCgalsInsideTestAndUsesTiles)
     // 7,000th in one dispatch).
     const TriangleMesh ico = icosphere({0.3, 0.1, -0.2}, 1.0, 3);
     const GridSpec icoGrid = makeGrid(ico, GridRequest{240, 0});
-    const auto byParity = v.solid(ico, icoGrid, {}, SignOptions(SignMethod::Parity));
-    const auto byWinding = v.solid(ico, icoGrid, {}, SignOptions(SignMethod::Winding));
+    const auto byParity = v.solid(ico, icoGrid, onGl(), SignOptions(SignMethod::Parity));
+    const auto byWinding = v.solid(ico, icoGrid, onGl(), SignOptions(SignMethod::Winding));
     EXPECT_GT(byParity->activeVoxelCount(), 7'000'000u);
     EXPECT_EQ(byWinding->activeVoxelCount(), byParity->activeVoxelCount());
     EXPECT_TRUE(byWinding->tree().hasSameTopology(byParity->tree()));
     // The box by winding numbers: whole 128³ nodes of inside bricks are tiles.
-    const auto winding = v.solid(big, grid, {}, SignOptions(SignMethod::Winding));
+    const auto winding = v.solid(big, grid, onGl(), SignOptions(SignMethod::Winding));
     EXPECT_EQ(winding->activeVoxelCount(), openvdb::Index64(301) * 301 * 301);
     EXPECT_LT(winding->tree().leafCount(), 6u * 40 * 40);
     bool largeTile = false;

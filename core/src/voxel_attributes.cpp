@@ -2,9 +2,13 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <unordered_map>
 
 #include "svo/core/error.h"
+#include "svo/core/local_positions.h"
+#include "svo/core/voxel_key.h"
 #include "triangle_voxels.h"
 
 namespace svo {
@@ -66,41 +70,87 @@ VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_
     return a;
 }
 
+namespace {
+
+/// Where each voxel's sums live: its brick's first slot plus the voxel's rank
+/// among the brick's bits. One hash entry per brick, not per voxel.
+class VoxelSlots {
+public:
+    explicit VoxelSlots(const Octree& octree) : octree_(octree), offsets_(brickVoxelOffsets(octree))
+    {
+        const auto refs = occupiedBricks(octree);
+        brickOf_.reserve(refs.size());
+        for (const auto& r : refs) brickOf_.emplace(packVoxelKey(r.origin[0], r.origin[1], r.origin[2]), r.index);
+    }
+
+    /// The slot of @a key, or kNone when the octree lacks the voxel.
+    uint64_t find(uint64_t key) const
+    {
+        const auto it = brickOf_.find(brickOfKey(key));
+        if (it == brickOf_.end()) return kNone;
+        const uint64_t* words = octree_.bricks[it->second].words;
+        const uint32_t bit = uint32_t(key & 511u), word = bit >> 6;
+        const uint64_t below = (uint64_t(1) << (bit & 63)) - 1;
+        if (!(words[word] >> (bit & 63) & 1)) return kNone;
+        uint64_t rank = uint64_t(__builtin_popcountll(words[word] & below));
+        for (uint32_t w = 0; w < word; ++w) rank += uint64_t(__builtin_popcountll(words[w]));
+        return offsets_[it->second] + rank;
+    }
+
+    static constexpr uint64_t kNone = ~uint64_t(0);
+
+private:
+    const Octree& octree_;
+    std::vector<uint64_t> offsets_;
+    std::unordered_map<uint64_t, uint32_t> brickOf_;
+};
+
+// Sums from many threads: integer adds and a max commute, so the result does
+// not depend on the order (C++20's atomic_ref is this; the GCC/Clang builtins
+// stand in for it under C++17).
+void atomicAdd(uint32_t& word, uint32_t v) { __atomic_fetch_add(&word, v, __ATOMIC_RELAXED); }
+void atomicMax(uint32_t& word, uint32_t v)
+{
+    uint32_t seen = __atomic_load_n(&word, __ATOMIC_RELAXED);
+    while (seen < v && !__atomic_compare_exchange_n(&word, &seen, v, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+    }
+}
+
+void addTriangle(AttributeSums& s, uint32_t t, const TriangleValues& tv)
+{
+    using namespace gpu;
+    atomicMax(s[kSumTriangle], ~t);
+    auto add = [&s](uint32_t at, const Vec3f& v) {
+        atomicAdd(s[at], uint32_t(toFixed(v.x)));
+        atomicAdd(s[at + 1], uint32_t(toFixed(v.y)));
+        atomicAdd(s[at + 2], uint32_t(toFixed(v.z)));
+    };
+    add(kSumNormal, tv.normals[t]);
+    if (!tv.colors.empty()) add(kSumColor, tv.colors[t]);
+    atomicAdd(s[kSumCount], 1u);
+}
+
+} // namespace
+
 void attachAttributesCpu(const TriangleMesh& mesh, Octree& octree, uint32_t channels, double guard, VoxelMode mode)
 {
     channels = availableChannels(mesh, channels);
     octree.attributes = {};
     if (!channels) return;
-    // Voxel order: bricks in index order, bits ascending.
-    std::unordered_map<uint64_t, uint64_t> slot;
-    const auto offsets = brickVoxelOffsets(octree);
-    for (const auto& r : occupiedBricks(octree)) {
-        const Brick& b = octree.bricks[r.index];
-        const uint64_t base = packVoxelKey(r.origin[0], r.origin[1], r.origin[2]);
-        uint64_t at = offsets[r.index];
-        for (uint32_t bit = 0; bit < 512; ++bit)
-            if (b.words[bit >> 6] >> (bit & 63) & 1) slot[base | bit] = at++;
-    }
+    const VoxelSlots slots(octree);
     const TriangleValues tv = triangleValues(mesh, channels & kColors);
+    const std::vector<Vec3d> local = localPositions(mesh, octree.grid);
     std::vector<AttributeSums> sums(octree.voxelCount(), AttributeSums{});
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-        const auto p = mesh.corners(t);
-        const Vec3d a = octree.grid.toLocal(p[0]), b = octree.grid.toLocal(p[1]), c = octree.grid.toLocal(p[2]);
-        detail::voxelizeTriangle(a, b, c, octree.grid, guard, mode, [&](uint64_t key) {
-            const auto it = slot.find(key);
-            if (it == slot.end()) return;
-            using namespace gpu;
-            AttributeSums& s = sums[it->second];
-            s[kSumTriangle] = std::max(s[kSumTriangle], ~uint32_t(t));
-            auto add = [&s](uint32_t at, const Vec3f& v) {
-                s[at] += uint32_t(toFixed(v.x)), s[at + 1] += uint32_t(toFixed(v.y));
-                s[at + 2] += uint32_t(toFixed(v.z));
-            };
-            add(kSumNormal, tv.normals[t]);
-            if (!tv.colors.empty()) add(kSumColor, tv.colors[t]);
-            ++s[kSumCount];
-        });
-    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangles.size(), 64), [&](const auto& r) {
+        for (size_t t = r.begin(); t != r.end(); ++t) {
+            const auto& f = mesh.triangles[t];
+            detail::voxelizeTriangle(local[f[0]], local[f[1]], local[f[2]], octree.grid, guard, mode,
+                                     [&](uint64_t key) {
+                                         const uint64_t at = slots.find(key);
+                                         if (at != VoxelSlots::kNone) addTriangle(sums[at], uint32_t(t), tv);
+                                     });
+        }
+    });
     octree.attributes = finishAttributes(sums, channels);
 }
 

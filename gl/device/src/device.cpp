@@ -30,12 +30,16 @@ Context& Device::context()
     return *context_;
 }
 
-bool Device::withoutGl(bool create)
+bool Device::named() const
 {
-    if (context_) return false;
     const char* env = std::getenv("SVO_EGL_DEVICE");
     const std::string want = !options_.device.empty() ? options_.device : env && *env ? env : "auto";
-    if (want != "auto") return false;
+    return want != "auto";
+}
+
+bool Device::withoutGl(bool create)
+{
+    if (context_ || named()) return false;
     if (!openGlMissing().empty()) return true;
     if (!create) return !failed_.empty();
     try {

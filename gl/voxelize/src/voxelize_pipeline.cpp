@@ -100,6 +100,24 @@ VoxelizeStats medianStats(const std::vector<VoxelizeStats>& runs)
 
 namespace gl {
 
+namespace {
+
+/// Auto's rule (docs/design.md, "Which backend auto picks"): the GPU passes
+/// on a GPU, the CPU ones where there is no GL or only a software renderer
+/// (bench/results/cpu-2core-llvmpipe/auto_rule.md and cpu_fields.md: the CPU
+/// wins there for every kind). A device the caller named keeps the GL work.
+bool autoPicksCpu(Device& device, const VoxelizeSettings& settings, bool create)
+{
+    if (device.named()) return false;
+    if (device.withoutGl(false)) return true; // no GL library, or a context failed before
+    // A GPU memory budget asks for the GPU passes wherever there is GL, as a dilation mode asks for raster.
+    if (settings.gpuMemory) return create && device.withoutGl(true);
+    if (device.software(false)) return true; // EGL's device list says so without a context
+    return create && (device.withoutGl(true) || device.software(true));
+}
+
+} // namespace
+
 Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool create)
 {
     // A dilation mode is a raster option: asking for one picks the raster backend.
@@ -107,18 +125,17 @@ Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool cr
         throw InvalidInput("a dilation mode applies to the raster backend; the compute backend needs none");
     if (settings.backend != Backend::Auto) return settings.backend;
     if (settings.dilation != Dilation::Auto) return Backend::Raster;
-    // No GL on this machine (and no device named): the CPU reference does the work.
-    if (device.withoutGl(create)) return Backend::Cpu;
+    if (autoPicksCpu(device, settings, create)) return Backend::Cpu;
     // Measured (bench/results/nvidia-h100/compute.md): compute is the faster
-    // on a hardware GPU; on llvmpipe the two are close, and raster, validated
-    // longest, stays.
+    // on a hardware GPU; raster stays for a named software device, where the
+    // two are close and raster is validated longest.
     return device.software(create) ? Backend::Raster : Backend::Compute;
 }
 
 bool runsOnCpu(Device& device, const VoxelizeSettings& settings, bool create)
 {
     if (settings.backend == Backend::Cpu) return true;
-    return settings.backend == Backend::Auto && settings.dilation == Dilation::Auto && device.withoutGl(create);
+    return settings.backend == Backend::Auto && settings.dilation == Dilation::Auto && autoPicksCpu(device, settings, create);
 }
 
 void describeBackend(Device& device, Backend backend, VoxelizeStats& stats)

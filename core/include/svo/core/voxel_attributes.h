@@ -51,7 +51,8 @@ VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_
 /// @brief The CPU reference of the attribute pass: pairs from the shared overlap test on cubes grown by
 /// `guard` (thin mode: on the voxels' centre segments, as voxelizeCpu tests
 /// them), summed for the octree's voxels (others are ignored), stored on
-/// the octree. Colours are skipped when the mesh has none.
+/// the octree. Colours are skipped when the mesh has none. Triangles run in
+/// parallel; the sums (integer adds, a max) do not depend on their order.
 /// @param channels AttributeChannel bits
 /// @param guard    voxels the cubes are grown by
 /// @throw svo::Unsupported as finishAttributes

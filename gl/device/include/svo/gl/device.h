@@ -88,6 +88,10 @@ public:
     /// @param create with false and no context yet, only the GL libraries are
     ///        tried (a display is known only once tried)
     bool withoutGl(bool create = true);
+    /// @brief Whether the caller named the device (the device option, else
+    /// SVO_EGL_DEVICE, is neither "" nor "auto"): then the GL work runs there
+    /// or fails, and Backend::Auto does not trade it for the CPU. Throws nothing.
+    bool named() const;
     /// @brief Creates the context now (see context()).
     /// @throw as context()
     void start() { context(); }

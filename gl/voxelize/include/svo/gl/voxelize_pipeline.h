@@ -141,8 +141,10 @@ namespace gl {
 
 /// @brief The backend a call with @a settings runs on: Backend::Auto resolved
 /// (a dilation mode's raster backend when one is asked for; else the CPU
-/// where there is no GL (Device::withoutGl), compute on a hardware GPU, raster
-/// on a software rasterizer such as llvmpipe).
+/// where there is no GL (Device::withoutGl) or the GL device is a software
+/// rasterizer such as llvmpipe, unless the device was named (Device::named)
+/// or a GPU memory budget given: then raster on a software device and
+/// compute on a hardware GPU).
 /// @param create with false and no context yet, none is created (Device::software,
 ///        Device::withoutGl)
 /// @return never Backend::Auto
@@ -152,9 +154,9 @@ namespace gl {
 Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool create = true);
 
 /// @brief Whether a call with @a settings runs on the CPU: Backend::Cpu, or
-/// Backend::Auto (with no dilation mode) where there is no GL
-/// (Device::withoutGl). For the passes whose GPU path has no raster/compute
-/// choice (level sets, solids). Throws nothing.
+/// Backend::Auto (with no dilation mode) where resolveBackend would pick the
+/// CPU. For the passes whose GPU path has no raster/compute choice (level
+/// sets, solids). Throws nothing.
 /// @param create as for resolveBackend
 bool runsOnCpu(Device& device, const VoxelizeSettings& settings, bool create = true);
 
