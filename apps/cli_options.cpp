@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "svo/core/atomic_file.h"
+#include "svo/core/city_scene.h"
 #include "svo/core/error.h"
 #include "svo/core/octree.h"
 #include "svo/gl/view_request.h"
@@ -180,6 +181,7 @@ template void addOptions(CLI::App&, gl::ViewRequest&, std::vector<std::string_vi
 template void addOptions(CLI::App&, gl::AmbientOcclusion&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, gl::Illumination&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, GridRequest&, std::vector<std::string_view>, const std::string&);
+template void addOptions(CLI::App&, CityOptions&, std::vector<std::string_view>, const std::string&);
 
 void addBackendOptions(CLI::App& cmd, BackendArgs& a)
 {

@@ -1,6 +1,7 @@
 // The command line's flag for a library identifier (option_flags.h).
 #include "option_flags.h"
 
+#include "svo/core/city_scene.h"
 #include "svo/core/field_options.h"
 #include "svo/gl/device.h"
 #include "svo/gl/view_request.h"
@@ -21,7 +22,9 @@ std::string flagFor(std::string_view identifier)
     GridOptions grids;
     gl::ViewRequest view; // its layers, AO and lighting too
     GridRequest request;
+    CityOptions city;
     forEachOption(request, find);
+    forEachOption(city, find);
     forEachOption(voxelize, find);
     forEachOption(device, find);
     forEachOption(levelSet, find);

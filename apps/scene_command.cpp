@@ -6,7 +6,9 @@
 #include "commands.h"
 #include "cli_options.h"
 #include "svo/core/atomic_file.h"
+#include "svo/core/city_scene.h"
 #include "svo/core/default_scene.h"
+#include "svo/core/error.h"
 #include "svo/core/mesh_io.h"
 
 namespace svo::app {
@@ -15,13 +17,22 @@ namespace {
 struct SceneArgs {
     std::string name, output;
     int level = 8;
+    CityOptions city;
 };
 
-void runScene(const SceneArgs& a)
+TriangleMesh makeScene(const SceneArgs& a)
 {
-    const TriangleMesh mesh = a.name == "cornell"   ? cornellBox()
-                              : a.name == "spheres" ? sphereGrid()
-                                                    : icosphere({0, 0, 0}, 1.0, a.level);
+    if (a.name == "cornell") return cornellBox();
+    if (a.name == "spheres") return sphereGrid();
+    if (a.name == "city") return cityScene(a.city);
+    return icosphere({0, 0, 0}, 1.0, a.level);
+}
+
+void runScene(const CLI::App& cmd, const SceneArgs& a)
+{
+    for (const char* flag : {"--triangles", "--seed"})
+        if (a.name != "city" && cmd.count(flag)) throw InvalidInput(fmt::format("{} applies to the city scene", flag));
+    const TriangleMesh mesh = makeScene(a);
     OutputBatch outputs({a.output}); // in place at the very end (atomic_file.h)
     writeMesh(a.output, mesh);
     fmt::print("svo scene: {} ({} triangles, {} vertices) -> {}\n", mesh.source, thousands(mesh.triangles.size()),
@@ -36,15 +47,16 @@ void addSceneCommand(CLI::App& app)
     auto args = std::make_shared<SceneArgs>();
     CLI::App* cmd = app.add_subcommand("scene", "Write a generated scene as a .off or .obj mesh (for other tools and benchmarks)");
     cmd->add_option("name", args->name,
-                    "cornell (the built-in Cornell box, 3,136 triangles), spheres (a PBR-demo-like grid, 54,720) "
-                    "or icosphere (20 * 4^level)")
+                    "cornell (the built-in Cornell box, 3,136 triangles), spheres (a PBR-demo-like grid, 54,720), "
+                    "icosphere (20 * 4^level) or city (a procedural city of --triangles, from --seed)")
         ->required()
-        ->check(CLI::IsMember({"cornell", "spheres", "icosphere"}));
+        ->check(CLI::IsMember({"cornell", "spheres", "icosphere", "city"}));
     addOutputPath(*cmd, "-o,--output", args->output, "Output .off or .obj", {".off", ".obj"})->required();
     cmd->add_option("--level", args->level, "Icosphere subdivisions (8: 1,310,720 triangles)")
         ->check(CLI::Range(0, 10))
         ->capture_default_str();
-    cmd->callback([args] { runScene(*args); });
+    addOptions(*cmd, args->city);
+    cmd->callback([cmd, args] { runScene(*cmd, *args); });
 }
 
 } // namespace svo::app

@@ -874,6 +874,35 @@ TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)
     expectOnly({"ico.off", "ls.vdb", "solid.vdb", "cb.vdb"});
 }
 
+// svo scene city: a mesh of about --triangles from --seed, the same file for
+// the same seed, which svo voxelize reads; --triangles and --seed mean
+// nothing to the other scenes and are refused there.
+TEST_F(Cli, SceneCityWritesAMeshThatVoxelizeReads)
+{
+    const auto r = runSvo("scene city --triangles 20000 --seed 3 -o " + path("x.obj"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    std::smatch count;
+    ASSERT_TRUE(std::regex_search(r.out, count, std::regex(R"(city \(seed 3, 20,000 triangles\) \(((19|20),[0-9]{3}) triangles)")))
+        << r.out;
+    ASSERT_EQ(runSvo("scene city --seed 3 --triangles 20000 -o " + path("y.obj")).code, 0);
+    const auto bytes = [&](const std::string& name) {
+        std::ifstream in(path(name), std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    EXPECT_EQ(bytes("x.obj"), bytes("y.obj"));
+    const auto v = runSvo("voxelize " + path("x.obj") + " -r 128 -o " + path("x.vdb"));
+    ASSERT_EQ(v.code, 0) << v.out;
+    EXPECT_NE(v.out.find("triangles   " + count[1].str()), std::string::npos) << v.out;
+    EXPECT_NE(runCommand("vdb_print -l " + path("x.vdb")).find("Name: surface"), std::string::npos);
+    for (const char* bad : {"cornell --seed 2", "icosphere --triangles 5000", "city --triangles 999",
+                            "city --triangles 1000000001", "city --triangles 1e5"}) {
+        const auto b = runSvo(std::string("scene ") + bad + " -o " + path("bad.obj"));
+        EXPECT_EQ(b.code, 1) << bad << ": " << b.out;
+        EXPECT_EQ(std::count(b.out.begin(), b.out.end(), '\n'), 1) << bad << ": " << b.out;
+    }
+    expectOnly({"x.obj", "y.obj", "x.vdb"});
+}
+
 // svo validate --sdf: svo's level set against CGAL (and beside OpenVDB's);
 // options that need --sdf, or mean nothing with it, are refused in one line.
 TEST_F(Cli, ValidateSdfPassesOnClosedAndOpenMeshesAndRefusesMisuse)

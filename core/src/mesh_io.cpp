@@ -3,8 +3,14 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -26,6 +32,64 @@ std::string lowerExtension(const std::string& path)
     return ext;
 }
 
+/// A text output written in order from pieces formatted on all cores, so
+/// that a 10^8-triangle mesh's several gigabytes of text are never in memory
+/// whole. POSIX calls rather than a stream, so that a full disk is named.
+class TextFile {
+public:
+    TextFile(const std::string& tmp, const std::string& path) : path_(path)
+    {
+        fd_ = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+        if (fd_ < 0) fail(errno);
+    }
+    ~TextFile()
+    {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    TextFile(const TextFile&) = delete;
+    TextFile& operator=(const TextFile&) = delete;
+
+    void write(const char* bytes, size_t size)
+    {
+        for (size_t done = 0; done < size;) {
+            const ssize_t n = ::write(fd_, bytes + done, size - done);
+            if (n > 0) done += size_t(n);
+            else if (n == 0) fail(EIO);
+            else if (errno != EINTR) fail(errno);
+        }
+    }
+    /// Lines 0 to @a count - 1, line(buffer, i) appending line i: formatted
+    /// a batch of pieces at a time in parallel, written in order.
+    template <typename Line>
+    void lines(size_t count, const Line& line)
+    {
+        constexpr size_t kPiece = 1 << 15, kBatch = 32; // lines; pieces (some 64 MB of text a batch)
+        std::vector<fmt::memory_buffer> pieces(kBatch);
+        for (size_t start = 0; start < count; start += kPiece * kBatch) {
+            const size_t n = std::min(kBatch, (count - start + kPiece - 1) / kPiece);
+            tbb::parallel_for(size_t(0), n, [&](size_t k) {
+                pieces[k].clear();
+                const size_t first = start + k * kPiece, last = std::min(count, first + kPiece);
+                for (size_t i = first; i < last; ++i) line(pieces[k], i);
+            });
+            for (size_t k = 0; k < n; ++k) write(pieces[k].data(), pieces[k].size());
+        }
+    }
+    void close()
+    {
+        const int fd = std::exchange(fd_, -1);
+        if (::close(fd) != 0) fail(errno);
+    }
+
+private:
+    [[noreturn]] void fail(int error) const
+    {
+        throw IoError(fmt::format("{}: cannot write the file: {}", path_, std::strerror(error)));
+    }
+    std::string path_;
+    int fd_ = -1;
+};
+
 } // namespace
 
 void writeMesh(const std::string& path, const TriangleMesh& mesh)
@@ -33,19 +97,26 @@ void writeMesh(const std::string& path, const TriangleMesh& mesh)
     const std::string ext = lowerExtension(path);
     if (ext != "off" && ext != "obj") throw IoError(fmt::format("{}: meshes are written as .off or .obj", path));
     const bool obj = ext == "obj", colors = !obj && !mesh.colors.empty();
-    std::string text = obj ? std::string("# ") + mesh.source + "\n"
-                           : fmt::format("{}\n{} {} 0\n", colors ? "COFF" : "OFF", mesh.positions.size(),
-                                         mesh.triangles.size());
-    for (size_t i = 0; i < mesh.positions.size(); ++i) {
-        const Vec3d& p = mesh.positions[i];
-        text += fmt::format("{}{} {} {}", obj ? "v " : "", p.x, p.y, p.z); // shortest round-trip form
-        if (colors) text += fmt::format(" {} {} {} 1.0", mesh.colors[i].x, mesh.colors[i].y, mesh.colors[i].z);
-        text += '\n';
-    }
-    for (const auto& t : mesh.triangles)
-        text += obj ? fmt::format("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1)
-                    : fmt::format("3 {} {} {}\n", t[0], t[1], t[2]);
-    writeFileAtomically(path, text);
+    const std::string header = obj ? std::string("# ") + mesh.source + "\n"
+                                   : fmt::format("{}\n{} {} 0\n", colors ? "COFF" : "OFF", mesh.positions.size(),
+                                                 mesh.triangles.size());
+    writeAtomically(path, [&](const std::string& tmp) {
+        TextFile file(tmp, path);
+        file.write(header.data(), header.size());
+        file.lines(mesh.positions.size(), [&](fmt::memory_buffer& out, size_t i) {
+            const Vec3d& p = mesh.positions[i];
+            fmt::format_to(std::back_inserter(out), "{}{} {} {}", obj ? "v " : "", p.x, p.y, p.z); // shortest round-trip form
+            if (colors)
+                fmt::format_to(std::back_inserter(out), " {} {} {} 1.0", mesh.colors[i].x, mesh.colors[i].y, mesh.colors[i].z);
+            out.push_back('\n');
+        });
+        file.lines(mesh.triangles.size(), [&](fmt::memory_buffer& out, size_t i) {
+            const auto& t = mesh.triangles[i];
+            if (obj) fmt::format_to(std::back_inserter(out), "f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+            else fmt::format_to(std::back_inserter(out), "3 {} {} {}\n", t[0], t[1], t[2]);
+        });
+        file.close();
+    });
 }
 
 const char* supportedMeshExtensions() { return ".obj, .ply, .stl, .off"; }

@@ -22,7 +22,8 @@ TriangleMesh loadMesh(const std::string& path);
 
 /// @brief Writes an ASCII .off (COFF when the mesh has colours) or .obj,
 /// chosen by the extension, with coordinates in shortest round-trip form,
-/// atomically (writeFileAtomically).
+/// atomically (writeAtomically). The text is formatted on all cores and
+/// streamed: memory beyond the mesh stays under 100 MB at any size.
 /// @throw svo::IoError naming the path for another extension or a file that
 ///        cannot be written
 void writeMesh(const std::string& path, const TriangleMesh& mesh);
