@@ -29,8 +29,8 @@ measure() {
   echo "$w $m"
 }
 
-echo "| mesh | N | kind | raster s | compute s | cpu s | raster MB | cpu MB | cpu / raster |"
-echo "|---|---:|---|---:|---:|---:|---:|---:|---:|"
+echo "| mesh | N | kind | raster s | compute s | cpu s | auto s | raster MB | cpu MB | cpu / raster |"
+echo "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|"
 for mesh in $meshes; do
   for n in $sizes; do
     for kind in surface fog attributes; do
@@ -42,8 +42,9 @@ for mesh in $meshes; do
       read -r rw rm < <(measure "$mesh" -r "$n" --backend raster "${extra[@]}")
       read -r cw _ < <(measure "$mesh" -r "$n" --backend compute "${extra[@]}")
       read -r pw pm < <(measure "$mesh" -r "$n" --backend cpu "${extra[@]}")
+      read -r aw _ < <(measure "$mesh" -r "$n" "${extra[@]}") # the default: what auto picks
       ratio=$(awk -v a="$pw" -v b="$rw" 'BEGIN { printf "%.2f", a / b }')
-      echo "| $(basename "$mesh" .obj) | $n | $kind | $rw | $cw | $pw | $rm | $pm | $ratio |"
+      echo "| $(basename "$mesh" .obj) | $n | $kind | $rw | $cw | $pw | $aw | $rm | $pm | $ratio |"
     done
   done
 done

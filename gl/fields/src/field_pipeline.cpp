@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
+#include <optional>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -20,6 +21,7 @@
 #include "svo/core/error.h"
 #include "svo/core/local_positions.h"
 #include "svo/core/parity_scan.h"
+#include "svo/core/region.h"
 #include "svo/core/sign_choice.h"
 #include "svo/core/winding_signs.h"
 #include "svo/core/winding_tree.h"
@@ -61,12 +63,31 @@ GridSpec padded(const GridSpec& grid, uint32_t pad, const std::string& what)
     return g;
 }
 
+/// What a region's distances and signs need of a list of bricks: those that
+/// meet the region, or with `columns` (parity, which counts crossings from
+/// the bottom of each column) those under, in or over it. All without a region.
+std::vector<BrickCoord> forRegion(std::vector<BrickCoord> bricks, const GridSpec& g,
+                                  const std::optional<IndexBox>& region, bool columns)
+{
+    if (!region) return bricks;
+    const VoxelBox box = localBox(g, *region);
+    if (box.empty()) return {};
+    const int axes = columns ? 2 : 3;
+    const auto outside = [&](const BrickCoord& b) {
+        for (int a = 0; a < axes; ++a)
+            if (8 * b[a] + 8 <= box.lo[a] || 8 * b[a] >= box.hi[a]) return true;
+        return false;
+    };
+    bricks.erase(std::remove_if(bricks.begin(), bricks.end(), outside), bricks.end());
+    return bricks;
+}
+
 /// Winding-number signs: the number at every brick centre of the grid's box,
 /// then voxel by voxel in the band's bricks and in the bricks whose centre is
 /// within kWindingMargin of 1/2 (bricksBeyondBand, the CPU path's rule too).
 FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSpec& g,
-                   const std::vector<BrickCoord>& band, double beta, const Checkpoint& checkpoint,
-                   VoxelizeStats& stats)
+                   const std::vector<BrickCoord>& band, double beta, const std::optional<IndexBox>& region,
+                   const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
     auto t0 = Clock::now();
     const WindingTree tree = buildWindingTree(localPositions(mesh, g), mesh.triangles);
@@ -81,7 +102,8 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
 
     FieldSigns signs;
     BricksBeyondBand beyond = bricksBeyondBand(centres.perBrick, centres.brickDims, band);
-    signs.insideBricks = std::move(beyond.inside);
+    beyond.voxelwise = forRegion(std::move(beyond.voxelwise), g, region, false);
+    signs.insideBricks = forRegion(std::move(beyond.inside), g, region, false);
     WindingRequest fine;
     fine.bricks = band;
     fine.bricks.insert(fine.bricks.end(), beyond.voxelwise.begin(), beyond.voxelwise.end());
@@ -100,8 +122,8 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
 
 /// The same on the CPU (svo/core/winding_signs.h): the same tree, rule and sums.
 FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& local, const GridSpec& g,
-                           const std::vector<BrickCoord>& band, double beta, const Checkpoint& checkpoint,
-                           VoxelizeStats& stats)
+                           const std::vector<BrickCoord>& band, double beta, const std::optional<IndexBox>& region,
+                           const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
     auto t0 = Clock::now();
     const WindingTree tree = buildWindingTree(local, mesh.triangles);
@@ -112,8 +134,9 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
     t0 = Clock::now();
     const std::array<uint32_t, 3> dims{(g.dims[0] + 7) / 8, (g.dims[1] + 7) / 8, (g.dims[2] + 7) / 8};
     BricksBeyondBand beyond = bricksBeyondBand(centres, dims, band);
+    beyond.voxelwise = forRegion(std::move(beyond.voxelwise), g, region, false);
     FieldSigns signs;
-    signs.insideBricks = std::move(beyond.inside);
+    signs.insideBricks = forRegion(std::move(beyond.inside), g, region, false);
     std::vector<BrickCoord> fine = band;
     fine.insert(fine.end(), beyond.voxelwise.begin(), beyond.voxelwise.end());
     stats.windingBricks = beyond.voxelwise.size();
@@ -138,11 +161,12 @@ FieldSigns paritySigns(const std::vector<BrickCoord>& band, const std::vector<Br
 
 /// computeField, with its stages and buffer bytes added to `stats`.
 FieldResult fieldPass(Context& context, const TriangleMesh& mesh, const GridSpec& g,
-                          const FieldRequest& request, VoxelizeStats& stats)
+                          const FieldRequest& request, bool region, VoxelizeStats& stats)
 {
     RunStats report;
     FieldResult field = computeField(context, mesh, g, request, &report);
-    if (field.lostCrossings)
+    // A region keeps only its columns' bricks: the other columns' crossings are not needed.
+    if (field.lostCrossings && !region)
         throw DeviceError(fmt::format("internal error: {} parity crossings fell outside the band's bricks",
                                 field.lostCrossings));
     for (auto& st : report.stages) stats.stages.push_back(std::move(st));
@@ -207,11 +231,11 @@ void addSurface(const Octree& surface, const std::vector<BrickCoord>& band, std:
 /// The parity crossings found on the CPU, refused (as the GPU's pass refuses them)
 /// when one falls outside the band's bricks, timed into `stats`.
 std::vector<Brick> crossingsCpu(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& g,
-                                const std::vector<BrickCoord>& bricks, VoxelizeStats& stats)
+                                const std::vector<BrickCoord>& bricks, bool region, VoxelizeStats& stats)
 {
     const auto t0 = Clock::now();
     ParityCrossings found = parityCrossings(local, mesh, g, bricks);
-    if (found.lost)
+    if (found.lost && !region) // as fieldPass
         throw Error(fmt::format("internal error: {} parity crossings fell outside the band's bricks", found.lost));
     stats.stages.push_back({"crossings (cpu)", -1, msSince(t0)});
     return std::move(found.crossings);
@@ -220,14 +244,16 @@ std::vector<Brick> crossingsCpu(const std::vector<Vec3d>& local, const TriangleM
 /// levelSetBricks on the CPU (svo/core/band_distances.h, parity_crossings.h,
 /// winding_signs.h): the same bricks, distances and signs as the GPU's.
 DistanceBricks levelSetOnCpu(const TriangleMesh& mesh, const GridSpec& g, const LevelSetOptions& ls,
-                             const SignChoice& sign, double band, const Checkpoint& checkpoint, VoxelizeStats& stats)
+                             const SignChoice& sign, double band, const std::optional<IndexBox>& region,
+                             const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
     const bool signedField = !ls.unsignedDistance;
     const bool winding = signedField && sign.method == SignMethod::Winding;
     DistanceBricks out;
     auto t0 = Clock::now();
     const std::vector<Vec3d> local = localPositions(mesh, g);
-    out.bricks = bricksNearTriangles(local, mesh, g, std::max(band, 1.0));
+    out.bricks = forRegion(bricksNearTriangles(local, mesh, g, std::max(band, 1.0)), g, region,
+                           signedField && !winding);
     stats.bandBricks = out.bricks.size();
     stats.stages.push_back({"band bricks", -1, msSince(t0)});
     checkpoint(0.05, "band distance");
@@ -236,10 +262,10 @@ DistanceBricks levelSetOnCpu(const TriangleMesh& mesh, const GridSpec& g, const 
         bandDistances(local, mesh, g, out.bricks, band, ls.closestTriangle, checkpoint.part(0.05, winding ? 0.3 : 0.8));
     stats.stages.push_back({"band distance (cpu)", -1, msSince(t0)});
     if (winding) {
-        out.signs = windingSignsCpu(mesh, local, g, out.bricks, ls.sign.windingAccuracy, checkpoint.part(0.3, 0.85),
-                                    stats);
+        out.signs = windingSignsCpu(mesh, local, g, out.bricks, ls.sign.windingAccuracy, region,
+                                    checkpoint.part(0.3, 0.85), stats);
     } else if (signedField) {
-        const std::vector<Brick> crossings = crossingsCpu(local, mesh, g, out.bricks, stats);
+        const std::vector<Brick> crossings = crossingsCpu(local, mesh, g, out.bricks, region.has_value(), stats);
         checkpoint(0.82, "parity scan");
         t0 = Clock::now();
         out.signs = paritySigns(out.bricks, crossings);
@@ -261,6 +287,7 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     const bool signedField = !ls.unsignedDistance;
     checkLevelSetOptions(ls);
     checkFieldMode(settings);
+    if (settings.region) checkRegion(*settings.region);
     SignChoice sign;
     if (signedField) sign = chooseSign(mesh, ls.sign, stats.warnings);
     const bool winding = signedField && sign.method == SignMethod::Winding;
@@ -275,12 +302,13 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     checkpoint(0.0, "band bricks");
     if (runsOnCpu(device, settings)) { // no GL context is made
         describeBackend(device, Backend::Cpu, stats);
-        DistanceBricks out = levelSetOnCpu(mesh, g, ls, sign, band, checkpoint, stats);
+        DistanceBricks out = levelSetOnCpu(mesh, g, ls, sign, band, settings.region, checkpoint, stats);
         noteOpenColumns(stats, out.signs.openColumns, "signs above its last crossing count as outside");
         out.grid = g;
         out.closestTriangle = ls.closestTriangle;
         out.signedField = signedField;
         out.winding = winding;
+        out.region = settings.region.has_value();
         return out;
     }
     describeBackend(device, Backend::Compute, stats); // compute passes only, whatever the backend asked
@@ -288,7 +316,8 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     FieldRequest request;
     {
         const auto t0 = Clock::now();
-        request.bricks = bricksNearTriangles(localPositions(mesh, g), mesh, g, std::max(band, 1.0));
+        request.bricks = forRegion(bricksNearTriangles(localPositions(mesh, g), mesh, g, std::max(band, 1.0)), g,
+                                   settings.region, signedField && !winding);
         stats.bandBricks = request.bricks.size();
         stats.stages.push_back({"band bricks", -1, msSince(t0)});
     }
@@ -296,10 +325,10 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     request.closestTriangle = ls.closestTriangle;
     request.crossings = signedField && !winding;
     request.checkpoint = checkpoint.part(0.3, winding ? 0.55 : 0.85);
-    FieldResult field = fieldPass(device.context(), mesh, g, request, stats);
+    FieldResult field = fieldPass(device.context(), mesh, g, request, settings.region.has_value(), stats);
     DistanceBricks out;
     if (winding) {
-        out.signs = windingSigns(device.context(), mesh, g, request.bricks, ls.sign.windingAccuracy,
+        out.signs = windingSigns(device.context(), mesh, g, request.bricks, ls.sign.windingAccuracy, settings.region,
                                  checkpoint.part(0.55, 0.85), stats);
     } else if (signedField) {
         const auto t0 = Clock::now();
@@ -317,6 +346,7 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     out.closestTriangle = ls.closestTriangle;
     out.signedField = signedField;
     out.winding = winding;
+    out.region = settings.region.has_value();
     return out;
 }
 
@@ -325,39 +355,47 @@ SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec
                         const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
     checkFieldMode(settings); // the sign options: chooseSign
+    if (settings.region) checkRegion(*settings.region);
     const SignChoice sign = chooseSign(mesh, signOptions, stats.warnings);
     const bool winding = sign.method == SignMethod::Winding;
     const GridSpec g = padded(grid, 2, mesh.source);
     checkpoint(0.0, "surface voxels");
-    const Octree surface = surfaceVoxels(device, mesh, g, settings, stats);
+    // Parity counts crossings from the bottom of each column: a region's
+    // solid needs the surface of its columns, top to bottom.
+    VoxelizeSettings surfaceSettings = settings;
+    if (settings.region && !winding) {
+        surfaceSettings.region->lo[2] = floorTo8(g.anchor[2]);
+        surfaceSettings.region->hi[2] = floorTo8(g.anchor[2] + int64_t(g.dims[2]) + 7);
+    }
+    const Octree surface = surfaceVoxels(device, mesh, g, surfaceSettings, stats);
     stats.sign = sign.why;
     checkpoint(0.3, "signs");
 
     // The first centre above a crossing is within 1 voxel of it.
     SolidBricks out;
     out.grid = g;
-    out.bricks = bandBricks(surface, 1, stats);
+    out.bricks = forRegion(bandBricks(surface, 1, stats), g, settings.region, !winding);
     if (runsOnCpu(device, settings)) { // the surface voxels came from the CPU voxelizer too
         const std::vector<Vec3d> local = localPositions(mesh, g);
         if (winding) {
-            out.signs = windingSignsCpu(mesh, local, g, out.bricks, signOptions.windingAccuracy,
+            out.signs = windingSignsCpu(mesh, local, g, out.bricks, signOptions.windingAccuracy, settings.region,
                                         checkpoint.part(0.35, 0.8), stats);
         } else {
             checkpoint(0.35, "parity crossings");
-            const std::vector<Brick> crossings = crossingsCpu(local, mesh, g, out.bricks, stats);
+            const std::vector<Brick> crossings = crossingsCpu(local, mesh, g, out.bricks, settings.region.has_value(), stats);
             checkpoint(0.7, "parity scan");
             const auto t0 = Clock::now();
             out.signs = paritySigns(out.bricks, crossings);
             stats.stages.push_back({"parity scan", -1, msSince(t0)});
         }
     } else if (winding) {
-        out.signs = windingSigns(device.context(), mesh, g, out.bricks, signOptions.windingAccuracy,
+        out.signs = windingSigns(device.context(), mesh, g, out.bricks, signOptions.windingAccuracy, settings.region,
                                  checkpoint.part(0.35, 0.8), stats);
     } else {
         FieldRequest request;
         request.bricks = out.bricks;
         request.checkpoint = checkpoint.part(0.35, 0.8);
-        out.signs = paritySigns(out.bricks, fieldPass(device.context(), mesh, g, request, stats).crossings);
+        out.signs = paritySigns(out.bricks, fieldPass(device.context(), mesh, g, request, settings.region.has_value(), stats).crossings);
     }
     noteOpenColumns(stats, out.signs.openColumns, "the solid stops at its last crossing");
     addSurface(surface, out.bricks, out.signs.inside);

@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "svo/core/voxel_box.h"
 #include "svo/gl/buffer.h"
 #include "svo/gl/program.h"
 #include "svo/gl/timer_query.h"
@@ -14,13 +15,6 @@
 #include "voxelize_layout.h"
 
 namespace svo::gl {
-
-/// Voxels [lo, hi) of the local grid: the whole grid, or one tile of it.
-/// Tiles start on multiples of 8, so no brick is shared by two tiles.
-struct VoxelBox {
-    std::array<uint32_t, 3> lo{}, hi{};
-    uint64_t volume() const { return uint64_t(hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
-};
 
 class ListWriter {
 public:

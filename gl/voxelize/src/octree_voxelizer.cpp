@@ -437,8 +437,12 @@ Octree voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSp
         refuseBeyondHostMemory(writer->estimatedEntries());
         size = largest;
     }
-    VoxelBox whole;
-    whole.hi = grid.dims;
+    // The whole grid, or the asked-for box of it (tiled within the box past the budget).
+    const VoxelBox whole = options.box ? *options.box : VoxelBox{{0, 0, 0}, grid.dims};
+    if (whole.empty()) {
+        if (report) *report = std::move(stats);
+        return buildOctreeFromBricks(grid, {});
+    }
     OctreePasses::Outcome first = passes.run(whole, size, checkpoint.part(0.05, 0.95));
 
     std::vector<Octree> tiles;

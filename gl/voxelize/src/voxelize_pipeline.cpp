@@ -32,7 +32,8 @@ Octree voxelizeOnCpu(const TriangleMesh& mesh, const GridSpec& grid, const Voxel
 {
     auto t0 = Clock::now();
     const Checkpoint part = checkpoint.part(0.0, 0.6);
-    Voxelization v = voxelizeCpu(mesh, grid, 0.0, settings.mode, [&](double f) { part(f, "voxelize (cpu)"); });
+    const VoxelBox box = settings.region ? localBox(grid, *settings.region) : wholeBox(grid);
+    Voxelization v = voxelizeCpu(mesh, grid, box, 0.0, settings.mode, [&](double f) { part(f, "voxelize (cpu)"); });
     stats.stages.push_back({"voxelize (cpu)", -1, msSince(t0)});
     checkpoint(0.6, "octree build");
     t0 = Clock::now();
@@ -62,6 +63,7 @@ Octree voxelizeOnGpu(gl::Context& context, const TriangleMesh& mesh, const GridS
     ro.checkpoint = checkpoint.part(0.0, 0.98);
     ro.voxelList = voxelList;
     ro.gpuMemory = settings.gpuMemory;
+    if (settings.region) ro.box = localBox(grid, *settings.region);
     stats.dilation = gl::conservativeModeName(context, ro);
     RunStats report;
     Octree octree = gl::voxelizeToOctree(context, mesh, grid, ro, &report);
@@ -150,6 +152,7 @@ Octree voxelizeMesh(Device& device, const TriangleMesh& mesh, const GridSpec& gr
                     const Checkpoint& checkpoint, VoxelizeStats& stats, std::vector<uint64_t>* voxelList)
 {
     checkpoint(0.0, "start");
+    if (settings.region) checkRegion(*settings.region);
     stats.grid = grid;
     stats.epsilon = grid.epsilon();
     if (availableChannels(mesh, settings.attributes) != settings.attributes)

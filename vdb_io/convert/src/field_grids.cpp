@@ -37,6 +37,27 @@ void addBrickTiles(TreeT& tree, const GridSpec& grid, const std::vector<BrickCoo
         if (count[nodeOf(b)] != kFull) tree.addTile(1, leafOrigin(grid, b), value, active);
 }
 
+/// Parity: fills the runs of whole bricks inside with `value`; a run is one
+/// box where all 64 columns of its brick column are inside.
+template <typename TreeT>
+void fillRuns(TreeT& tree, const GridSpec& grid, const std::vector<InsideRun>& runs,
+              const typename TreeT::ValueType& value, bool active)
+{
+    for (const auto& run : runs) {
+        const openvdb::Coord lo = leafOrigin(grid, run.first);
+        const int32_t top = lo.z() + 8 * int32_t(run.bricks) - 1;
+        if (run.columns == ~uint64_t(0)) {
+            tree.fill(openvdb::CoordBBox(lo, openvdb::Coord(lo.x() + 7, lo.y() + 7, top)), value, active);
+            continue;
+        }
+        for (uint32_t c = 0; c < 64; ++c)
+            if ((run.columns >> c) & 1u) {
+                const openvdb::Coord a(lo.x() + int32_t(c / 8), lo.y() + int32_t(c % 8), lo.z());
+                tree.fill(openvdb::CoordBBox(a, openvdb::Coord(a.x(), a.y(), top)), value, active);
+            }
+    }
+}
+
 /// Adds leaves made in parallel (null: none) to a tree, in order.
 template <typename TreeT>
 void addLeaves(TreeT& tree, std::vector<typename TreeT::LeafNodeType*>& leaves)
@@ -106,6 +127,11 @@ openvdb::GridPtrVec levelSetGrids(const DistanceBricks& field, double exteriorBa
         }
         addBrickTiles(distance->tree(), g, signs.insideBricks, -background, false);
         distance->tree().prune();
+    } else if (signedField && field.region) {
+        // A region's band is cut at its sides, so a flood fill would guess
+        // beyond them; the parity runs say what the whole grid's fill says.
+        fillRuns(distance->tree(), g, signs.runs, -background, false);
+        distance->tree().prune();
     } else if (signedField) {
         openvdb::tools::signedFloodFill(distance->tree());
     }
@@ -150,20 +176,7 @@ openvdb::MaskGrid::Ptr solidGrid(const SolidBricks& solid, openvdb::math::Transf
             if (bitOf(m, v)) leaf->setValueOn(v);
     }
     addBrickTiles(out->tree(), g, signs.insideBricks, true, true);
-    // Parity: runs of whole bricks inside, tiles where all 64 columns are inside.
-    for (const auto& run : signs.runs) {
-        const openvdb::Coord lo = leafOrigin(g, run.first);
-        const int32_t top = lo.z() + 8 * int32_t(run.bricks) - 1;
-        if (run.columns == ~uint64_t(0)) {
-            out->tree().fill(openvdb::CoordBBox(lo, openvdb::Coord(lo.x() + 7, lo.y() + 7, top)), true, true);
-            continue;
-        }
-        for (uint32_t c = 0; c < 64; ++c)
-            if ((run.columns >> c) & 1u) {
-                const openvdb::Coord a(lo.x() + int32_t(c / 8), lo.y() + int32_t(c % 8), lo.z());
-                out->tree().fill(openvdb::CoordBBox(a, openvdb::Coord(a.x(), a.y(), top)), true, true);
-            }
-    }
+    fillRuns(out->tree(), g, signs.runs, true, true);
     out->tree().prune(); // full leaves and nodes become tiles at the largest level they fill
     out->setTransform(xform);
     out->setName("solid");

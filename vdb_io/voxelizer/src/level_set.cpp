@@ -1,7 +1,10 @@
 // Level sets, unsigned distance fields and solids (svo/voxelizer.h): the GPU's
 // field pipeline (svo/gl/field_pipeline.h) computes them on bricks, and the
 // converter (svo/vdb_io/field_grids.h) makes the grids.
+#include <algorithm>
+#include <climits>
 #include <fmt/format.h>
+#include <optional>
 
 #include "svo/core/error.h"
 #include "svo/gl/field_pipeline.h"
@@ -16,6 +19,19 @@ namespace {
 using detail::Clock;
 using detail::InterruptScope;
 using detail::msSince;
+
+/// A region's grids hold nothing outside it: the field passes cut their work
+/// to the region's bricks (or, for parity, its columns), and this cuts the
+/// rest, as the whole grid cut to the box would be (docs/design.md, "Regions").
+void clipToRegion(openvdb::GridBase& grid, const std::optional<IndexBox>& region)
+{
+    if (!region) return;
+    auto coord = [](const std::array<int64_t, 3>& v, int64_t add) {
+        auto c = [&](int a) { return int32_t(std::clamp<int64_t>(v[a] + add, INT32_MIN, INT32_MAX)); };
+        return openvdb::Coord(c(0), c(1), c(2));
+    };
+    grid.clip(openvdb::CoordBBox(coord(region->lo, 0), coord(region->hi, -1)));
+}
 
 /// The last stage, the result's record of what ran (each grid's metadata:
 /// backend, renderer and the sign method with why, "" for unsigned fields)
@@ -75,6 +91,7 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
     checkpoint(0.85, "level set grid");
     const auto t0 = Clock::now();
     openvdb::GridPtrVec out = vdb::levelSetGrids(field, ls.exteriorBand, ls.interiorBand, worldPerVoxel, xform);
+    for (auto& g : out) clipToRegion(*g, options.region);
     finishStats(stats, "level set grid", t0, out, checkpoint, options);
     return out;
 }
@@ -90,6 +107,7 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
     checkpoint(0.8, "solid grid");
     const auto t0 = Clock::now();
     openvdb::MaskGrid::Ptr out = vdb::solidGrid(solid, xform);
+    clipToRegion(*out, options.region);
     finishStats(stats, "solid grid", t0, {out}, checkpoint, options);
     return out;
 }

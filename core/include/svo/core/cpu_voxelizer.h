@@ -21,6 +21,7 @@
 #include <functional>
 
 #include "svo/core/mesh.h"
+#include "svo/core/voxel_box.h"
 #include "svo/core/voxel_mode.h"
 #include "svo/core/voxelization.h"
 
@@ -41,5 +42,12 @@ namespace svo {
 Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, double guard = 0.0,
                          VoxelMode mode = VoxelMode::Conservative,
                          const std::function<void(double)>& poll = nullptr, RunStats* report = nullptr);
+
+/// @brief The voxels of @a mesh on @a grid inside @a box: exactly the
+/// whole-grid result's voxels there; triangles that cannot reach the box are
+/// skipped. Parameters, return and throws as the whole-grid call.
+Voxelization voxelizeCpu(const TriangleMesh& mesh, const GridSpec& grid, const VoxelBox& box, double guard,
+                         VoxelMode mode, const std::function<void(double)>& poll = nullptr,
+                         RunStats* report = nullptr);
 
 } // namespace svo

@@ -43,6 +43,9 @@ struct DistanceBricks {
     bool signedField = true;         ///< false: unsigned distances, `signs` empty
     bool closestTriangle = false;    ///< `closest` was asked for (it may still be empty)
     bool winding = false;            ///< signs by winding number (known at every voxel), else by parity
+    /// Only a region's bricks (VoxelizeSettings::region): signs beyond the
+    /// band come from the parity runs, not from a flood fill of a band cut at the region's sides.
+    bool region = false;
     FieldSigns signs;
 };
 

@@ -19,10 +19,12 @@
 /// the centre segments: every voxel one of whose segments meets a triangle
 /// (the exact thin set), and only voxels one of whose segments, lengthened
 /// and thickened by grid.epsilon(), meets one.
+#include <optional>
 #include <vector>
 
 #include "svo/core/interrupt.h"
 #include "svo/core/mesh.h"
+#include "svo/core/voxel_box.h"
 #include "svo/core/voxel_mode.h"
 #include "svo/core/voxelization.h"
 #include "svo/gl/context.h"
@@ -76,6 +78,9 @@ struct RasterOptions {
     /// (sorted, unique keys), read back apart from the octree, so a check can
     /// compare the two without rasterizing again.
     std::vector<uint64_t>* voxelList = nullptr;
+    /// voxelizeToOctree only: when set, only the voxels of this local box
+    /// (its lo a multiple of 8), tiled within it past the budget. None: the whole grid.
+    std::optional<VoxelBox> box;
 };
 
 /// @brief The voxel set as sorted keys: rasterize, read the list back, sort

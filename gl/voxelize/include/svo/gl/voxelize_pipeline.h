@@ -8,11 +8,13 @@
 /// and gathers what it measured. Callers check the mesh and grid first
 /// (validateMesh, checkGrid).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "svo/core/grid.h"
+#include "svo/core/region.h"
 #include "svo/core/interrupt.h"
 #include "svo/core/mesh.h"
 #include "svo/core/option_info.h"
@@ -71,6 +73,10 @@ struct VoxelizeSettings {
     /// less a margin (unbounded where the driver does not tell). Level sets
     /// and solids do not tile yet: they report running out of memory instead.
     uint64_t gpuMemory = 0;
+    /// Only the voxels of this box of whole leaves (svo/core/region.h), in
+    /// the grid's index space: exactly what the whole-grid call gives there,
+    /// with the work cut to the box (docs/design.md, "Regions"). None: the whole grid.
+    std::optional<IndexBox> region;
 };
 
 /// @brief Each option of VoxelizeSettings, declared once for every front end

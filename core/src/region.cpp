@@ -1,0 +1,36 @@
+#include "svo/core/region.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+#include "svo/core/error.h"
+
+namespace svo {
+
+void checkRegion(const IndexBox& r)
+{
+    for (int a = 0; a < 3; ++a) {
+        if (r.lo[a] >= r.hi[a] || r.lo[a] % 8 != 0 || r.hi[a] % 8 != 0)
+            throw InvalidInput(std::vector<Error::Part>{
+                Error::option("VoxelizeOptions::region"),
+                fmt::format(" ({}, {}, {}) to ({}, {}, {}): a region is [lo, hi) with lo < hi on each axis and every "
+                            "bound a multiple of 8 (whole leaves)",
+                            r.lo[0], r.lo[1], r.lo[2], r.hi[0], r.hi[1], r.hi[2])});
+    }
+}
+
+VoxelBox localBox(const GridSpec& grid, const IndexBox& r)
+{
+    VoxelBox box;
+    for (int a = 0; a < 3; ++a) {
+        const int64_t lo = std::clamp<int64_t>(r.lo[a] - grid.anchor[a], 0, grid.dims[a]);
+        const int64_t hi = std::clamp<int64_t>(r.hi[a] - grid.anchor[a], lo, grid.dims[a]);
+        box.lo[a] = uint32_t(lo);
+        box.hi[a] = uint32_t(hi);
+    }
+    return box;
+}
+
+VoxelBox wholeBox(const GridSpec& grid) { return VoxelBox{{0, 0, 0}, grid.dims}; }
+
+} // namespace svo

@@ -1,0 +1,224 @@
+// Regions (VoxelizeOptions::region, svo/core/region.h): a call given a box
+// of whole leaves returns exactly the whole-grid call's result cut to that
+// box: the same voxels and attribute values for surfaces, and the same
+// active voxels, distances and signs (the whole grid clipped by OpenVDB's
+// own Grid::clip) for level sets, unsigned fields and solids, on every
+// backend. Boxes are random (seeded), overlap the grid's edges, and one lies
+// outside it.
+#include <gtest/gtest.h>
+#include <map>
+#include <openvdb/openvdb.h>
+
+#include "gl_backend.h"
+#include "scenes.h"
+#include "svo/core/city_scene.h"
+#include "svo/core/octree.h"
+#include "svo/core/region.h"
+#include "svo/core/voxel_key.h"
+#include "svo/svo.h"
+
+namespace svo::test {
+namespace {
+
+/// Leaf-aligned boxes over the grid's index range and a leaf beyond it on each side.
+std::vector<IndexBox> randomRegions(const GridSpec& g, int count, uint64_t seed)
+{
+    uint64_t state = seed;
+    auto next = [&](int64_t n) { // splitmix64, as the city scene uses
+        uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return int64_t((z ^ (z >> 31)) % uint64_t(n));
+    };
+    std::vector<IndexBox> boxes;
+    for (int i = 0; i < count; ++i) {
+        IndexBox b;
+        for (int a = 0; a < 3; ++a) {
+            const int64_t leaves = (int64_t(g.dims[a]) + 7) / 8 + 2;
+            const int64_t first = next(leaves), size = 1 + next(leaves - first);
+            b.lo[a] = g.anchor[a] - 8 + 8 * first;
+            b.hi[a] = b.lo[a] + 8 * size;
+        }
+        boxes.push_back(b);
+    }
+    IndexBox outside; // wholly beyond the grid
+    for (int a = 0; a < 3; ++a) outside.lo[a] = g.anchor[a] + ((int64_t(g.dims[a]) + 7) / 8 + 4) * 8;
+    for (int a = 0; a < 3; ++a) outside.hi[a] = outside.lo[a] + 16;
+    boxes.push_back(outside);
+    return boxes;
+}
+
+bool inRegion(const GridSpec& g, const IndexBox& r, uint64_t key)
+{
+    const auto local = unpackVoxelKey(key);
+    for (int a = 0; a < 3; ++a) {
+        const int64_t i = g.anchor[a] + local[a];
+        if (i < r.lo[a] || i >= r.hi[a]) return false;
+    }
+    return true;
+}
+
+/// Voxel key -> (normal, triangle) of an octree's attribute channels.
+std::map<uint64_t, std::pair<Vec3f, int32_t>> attributesByKey(const Octree& o)
+{
+    std::map<uint64_t, std::pair<Vec3f, int32_t>> out;
+    const auto offsets = brickVoxelOffsets(o);
+    for (const BrickRef& r : occupiedBricks(o)) {
+        uint64_t at = offsets[r.index];
+        const uint64_t base = packVoxelKey(r.origin[0], r.origin[1], r.origin[2]);
+        for (uint32_t bit = 0; bit < 512; ++bit)
+            if (o.bricks[r.index].words[bit >> 6] >> (bit & 63) & 1) {
+                out[base | bit] = {o.attributes.normals[at], o.attributes.triangles[at]};
+                ++at;
+            }
+    }
+    return out;
+}
+
+std::string describe(const IndexBox& r)
+{
+    return "region (" + std::to_string(r.lo[0]) + ", " + std::to_string(r.lo[1]) + ", " + std::to_string(r.lo[2]) +
+           ") to (" + std::to_string(r.hi[0]) + ", " + std::to_string(r.hi[1]) + ", " + std::to_string(r.hi[2]) + ")";
+}
+
+/// Every voxel of the region's grid as the whole grid clipped to the box has it.
+void expectSameAsClipped(const openvdb::GridBase& wholeGrid, const openvdb::GridBase& partGrid, const IndexBox& r)
+{
+    auto clipped = wholeGrid.deepCopyGrid();
+    clipped->clip(openvdb::CoordBBox(openvdb::Coord(int32_t(r.lo[0]), int32_t(r.lo[1]), int32_t(r.lo[2])),
+                                     openvdb::Coord(int32_t(r.hi[0] - 1), int32_t(r.hi[1] - 1), int32_t(r.hi[2] - 1))));
+    EXPECT_EQ(partGrid.activeVoxelCount(), clipped->activeVoxelCount());
+    auto compare = [&](const auto& a, const auto& b) {
+        uint64_t differ = 0;
+        const auto bAcc = b.getConstAccessor();
+        const auto aAcc = a.getConstAccessor();
+        for (int64_t x = r.lo[0]; x < r.hi[0]; ++x)
+            for (int64_t y = r.lo[1]; y < r.hi[1]; ++y)
+                for (int64_t z = r.lo[2]; z < r.hi[2]; ++z) {
+                    const openvdb::Coord c{int32_t(x), int32_t(y), int32_t(z)};
+                    const bool d = aAcc.getValue(c) != bAcc.getValue(c) || aAcc.isValueOn(c) != bAcc.isValueOn(c);
+                    if (d && differ < 3)
+                        ADD_FAILURE() << partGrid.getName() << " " << c << ": region " << aAcc.getValue(c) << " "
+                                      << aAcc.isValueOn(c) << ", whole " << bAcc.getValue(c) << " " << bAcc.isValueOn(c);
+                    differ += d;
+                }
+        EXPECT_EQ(differ, 0u) << "voxels of the box that differ";
+        EXPECT_TRUE(a.tree().hasSameTopology(b.tree()));
+    };
+    if (const auto f = dynamic_cast<const openvdb::FloatGrid*>(&partGrid))
+        compare(*f, static_cast<const openvdb::FloatGrid&>(*clipped));
+    else if (const auto m = dynamic_cast<const openvdb::MaskGrid*>(&partGrid))
+        compare(*m, static_cast<const openvdb::MaskGrid&>(*clipped));
+    else if (const auto i = dynamic_cast<const openvdb::Int32Grid*>(&partGrid))
+        compare(*i, static_cast<const openvdb::Int32Grid&>(*clipped));
+    else
+        ADD_FAILURE() << "unexpected grid type " << partGrid.type();
+}
+
+TriangleMesh holedSphere()
+{
+    TriangleMesh m = icosphere({0.1, -0.2, 0.3}, 1.0, 3);
+    std::vector<std::array<uint32_t, 3>> kept;
+    for (const auto& t : m.triangles)
+        if (m.positions[t[0]].z < 1.0 || m.positions[t[1]].z < 1.0 || m.positions[t[2]].z < 1.0) kept.push_back(t);
+    m.triangles = kept;
+    m.source = "holed sphere";
+    return m;
+}
+
+TriangleMesh smallCity()
+{
+    CityOptions o;
+    o.triangles = 5000;
+    o.seed = 7;
+    return cityScene(o);
+}
+
+class Regions : public ::testing::TestWithParam<Backend> {};
+
+TEST_P(Regions, SurfacesAndAttributesAreTheWholeGridsCutToTheBox)
+{
+    Voxelizer v;
+    for (const TriangleMesh& mesh : {icosphere({0.1, -0.2, 0.3}, 1.0, 3), smallCity()}) {
+        SCOPED_TRACE(mesh.source);
+        const GridSpec grid = makeGrid(mesh, GridRequest{56, 0});
+        VoxelizeOptions o;
+        o.backend = GetParam();
+        o.attributes = kNormals | kTriangles;
+        const Octree whole = v.voxelize(mesh, grid, o);
+        const auto wholeKeys = octreeKeys(whole);
+        const auto wholeValues = attributesByKey(whole);
+        ASSERT_GT(wholeKeys.size(), 1000u);
+        for (const IndexBox& r : randomRegions(grid, 6, 11)) {
+            SCOPED_TRACE(describe(r));
+            o.region = r;
+            const Octree part = v.voxelize(mesh, grid, o);
+            std::vector<uint64_t> expected;
+            for (uint64_t k : wholeKeys)
+                if (inRegion(grid, r, k)) expected.push_back(k);
+            EXPECT_EQ(octreeKeys(part), expected);
+            EXPECT_TRUE(checkOctree(part).empty());
+            uint64_t differ = 0;
+            for (const auto& [key, value] : attributesByKey(part)) {
+                const auto& w = wholeValues.at(key);
+                differ += !(w.first.x == value.first.x && w.first.y == value.first.y && w.first.z == value.first.z) ||
+                          w.second != value.second;
+            }
+            EXPECT_EQ(differ, 0u) << "voxels whose attributes differ";
+        }
+    }
+}
+
+TEST_P(Regions, LevelSetsUdfsAndSolidsAreTheWholeGridsCutToTheBox)
+{
+    Voxelizer v;
+    // Closed (parity signs: a column's crossings below the box count), open
+    // and mixed (winding numbers from the whole mesh's tree).
+    for (const TriangleMesh& mesh : {icosphere({0.1, -0.2, 0.3}, 1.0, 3), holedSphere(), smallCity()}) {
+        SCOPED_TRACE(mesh.source);
+        const GridSpec grid = makeGrid(mesh, GridRequest{40, 0});
+        VoxelizeOptions o;
+        o.backend = GetParam() == Backend::Cpu ? Backend::Cpu : kGl;
+        LevelSetOptions sdf, udf;
+        udf.unsignedDistance = true;
+        const auto wholeSdf = v.levelSet(mesh, grid, sdf, o);
+        const auto wholeUdf = v.levelSet(mesh, grid, udf, o);
+        const auto wholeSolid = v.solid(mesh, grid, o);
+        for (const IndexBox& r : randomRegions(grid, 4, 23)) {
+            SCOPED_TRACE(describe(r));
+            o.region = r;
+            const auto sdfPart = v.levelSet(mesh, grid, sdf, o);
+            ASSERT_EQ(sdfPart.size(), wholeSdf.size());
+            for (size_t i = 0; i < sdfPart.size(); ++i) expectSameAsClipped(*wholeSdf[i], *sdfPart[i], r);
+            const auto udfPart = v.levelSet(mesh, grid, udf, o);
+            for (size_t i = 0; i < udfPart.size(); ++i) expectSameAsClipped(*wholeUdf[i], *udfPart[i], r);
+            expectSameAsClipped(*wholeSolid, *v.solid(mesh, grid, o), r);
+        }
+        o.region.reset();
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, Regions, ::testing::Values(Backend::Cpu, Backend::Raster, Backend::Compute),
+                         [](const auto& info) { return std::string(nameOf(info.param)); });
+
+TEST(RegionsRule, BoxesOfPartLeavesOrNoVoxelsAreRefused)
+{
+    Voxelizer v;
+    const TriangleMesh mesh = icosphere({0, 0, 0}, 1.0, 2);
+    const GridSpec grid = makeGrid(mesh, GridRequest{32, 0});
+    VoxelizeOptions o;
+    o.backend = Backend::Cpu;
+    for (const IndexBox& bad : {IndexBox{{0, 0, 0}, {8, 8, 12}}, IndexBox{{4, 0, 0}, {16, 8, 8}},
+                                IndexBox{{8, 0, 0}, {8, 8, 8}}, IndexBox{{16, 0, 0}, {8, 8, 8}}}) {
+        o.region = bad;
+        try {
+            v.voxelize(mesh, grid, o);
+            ADD_FAILURE() << describe(bad) << " was not refused";
+        } catch (const InvalidInput& e) {
+            EXPECT_EQ(e.argument(), "VoxelizeOptions::region") << e.what();
+        }
+    }
+}
+
+} // namespace
+} // namespace svo::test
