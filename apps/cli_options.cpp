@@ -137,6 +137,21 @@ public:
         cmd_.add_option_function<std::string>(
             flagNames(info), [count, flag](const std::string& text) { count.bytes = parseByteSize(text, flag); }, help(info));
     }
+    void operator()(const OptionInfo& info, RegionOption option)
+    {
+        if (!wanted(info)) return;
+        const std::string flag = flagOf(info);
+        cmd_.add_option_function<std::vector<int64_t>>(
+               flagNames(info),
+               [option, flag](const std::vector<int64_t>& v) {
+                   if (v.size() != 6)
+                       throw InvalidInput(flag, fmt::format("takes six whole numbers x0,y0,z0,x1,y1,z1, got {}", v.size()));
+                   option.region = regionFrom({v[0], v[1], v[2], v[3], v[4], v[5]}, flag);
+               },
+               help(info))
+            ->delimiter(',')
+            ->type_name("X0,Y0,Z0,X1,Y1,Z1");
+    }
     void operator()(const OptionInfo& info, ChannelSet channels)
     {
         if (!wanted(info)) return;

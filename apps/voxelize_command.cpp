@@ -379,7 +379,7 @@ void addVoxelizeCommand(CLI::App& app)
     addOutputPath(*cmd, "--json", args->json, "Also write the summary (counts, bytes, stage times) as JSON");
     addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
-    addOptions(*cmd, args->backend.settings, {"attributes", "mode", "gpu_memory"});
+    addOptions(*cmd, args->backend.settings, {"attributes", "mode", "gpu_memory", "region"});
     addOutputOptions(*cmd, args->out);
     cmd->add_flag("--sdf", args->sdf,
                   "Write a narrow-band signed distance field (OpenVDB level set, grid 'surface') instead of voxels");

@@ -7,16 +7,21 @@
 
 namespace svo {
 
-void checkRegion(const IndexBox& r)
+void checkRegion(const IndexBox& r, const std::string& name)
 {
     for (int a = 0; a < 3; ++a) {
         if (r.lo[a] >= r.hi[a] || r.lo[a] % 8 != 0 || r.hi[a] % 8 != 0)
-            throw InvalidInput(std::vector<Error::Part>{
-                Error::option("VoxelizeOptions::region"),
-                fmt::format(" ({}, {}, {}) to ({}, {}, {}): a region is [lo, hi) with lo < hi on each axis and every "
-                            "bound a multiple of 8 (whole leaves)",
-                            r.lo[0], r.lo[1], r.lo[2], r.hi[0], r.hi[1], r.hi[2])});
+            throw InvalidInput(name, fmt::format("({}, {}, {}) to ({}, {}, {}): a region is [lo, hi) with lo < hi on "
+                                                 "each axis and every bound a multiple of 8 (whole leaves)",
+                                                 r.lo[0], r.lo[1], r.lo[2], r.hi[0], r.hi[1], r.hi[2]));
     }
+}
+
+IndexBox regionFrom(const std::array<int64_t, 6>& b, const std::string& name)
+{
+    const IndexBox r{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
+    checkRegion(r, name);
+    return r;
 }
 
 VoxelBox localBox(const GridSpec& grid, const IndexBox& r)

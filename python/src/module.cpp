@@ -20,6 +20,7 @@
 #include "svo/gl/context.h"
 #include "svo/gl/octree_view.h"
 #include "svo/gl/view_request.h"
+#include "svo/core/region.h"
 #include "svo/svo.h"
 #ifdef SVO_WITH_VALIDATE
 #include "svo/validate/level_set_report.h"
@@ -277,6 +278,10 @@ struct Describe {
     {
         add(i, c.bytes ? py::object(py::int_(c.bytes)) : none()); // 0: the device's free memory, None in Python
     }
+    void operator()(const svo::OptionInfo& i, svo::RegionOption) const
+    {
+        add(i, none()); // the whole grid
+    }
     void operator()(const svo::OptionInfo& i, svo::ChannelSet c) const
     {
         py::list set; // a tuple: a default Python can share between calls
@@ -318,14 +323,15 @@ struct Call {
 const Call kDeviceCall{"Voxelizer", {"device", "gl_debug", "program_cache"}};
 const Call kVoxelizeCall{"voxelize",
                          {"resolution", "voxel_size", "transform", "grid", "backend", "mode", "conservative",
-                          "attributes", "gpu_memory"}};
-const Call kOctreeCall{
-    "octree",
-    {"resolution", "voxel_size", "transform", "backend", "mode", "conservative", "attributes", "gpu_memory"}};
+                          "attributes", "gpu_memory", "region"}};
+const Call kOctreeCall{"octree",
+                       {"resolution", "voxel_size", "transform", "backend", "mode", "conservative", "attributes",
+                        "gpu_memory", "region"}};
 const Call kLevelSetCall{"level_set",
                          {"resolution", "voxel_size", "transform", "exterior_band", "interior_band", "unsigned",
-                          "closest_triangle", "sign", "winding_accuracy", "backend"}};
-const Call kSolidCall{"solid", {"resolution", "voxel_size", "transform", "sign", "winding_accuracy", "backend"}};
+                          "closest_triangle", "sign", "winding_accuracy", "backend", "region"}};
+const Call kSolidCall{"solid",
+                      {"resolution", "voxel_size", "transform", "sign", "winding_accuracy", "backend", "region"}};
 const Call kFromGridCall{"from_grid", {"backend"}};
 const Call kRenderCall{"render",
                        {"size", "view", "layers", "levels", "color", "ao", "ao_only", "ao_source", "lighting", "lights",
@@ -560,6 +566,15 @@ private:
             if (bytes && !(*bytes >= 1 && *bytes <= 1e18))
                 badValue(std::string(i.keyword) + ": expected a positive number of bytes or None");
             c.bytes = bytes ? uint64_t(*bytes) : 0;
+        }
+        void operator()(const svo::OptionInfo& i, svo::RegionOption r) const
+        {
+            if (!wanted(i)) return;
+            // ((x0, y0, z0), (x1, y1, z1)), or None: the whole grid.
+            const auto box = kw.as<std::optional<std::pair<std::array<int64_t, 3>, std::array<int64_t, 3>>>>(i.keyword);
+            if (!box) return;
+            const auto& [lo, hi] = *box;
+            r.region = svo::regionFrom({lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]}, std::string(i.keyword));
         }
         void operator()(const svo::OptionInfo& i, svo::ChannelSet c) const
         {

@@ -27,6 +27,7 @@ class Voxelizer:
         conservative: str = "auto",
         attributes: Sequence[str] = (),
         gpu_memory: Optional[int] = None,
+        region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
     ) -> Union[Grid, Dict[str, Any]]: ...
     def octree(
         self,
@@ -41,6 +42,7 @@ class Voxelizer:
         conservative: str = "auto",
         attributes: Sequence[str] = (),
         gpu_memory: Optional[int] = None,
+        region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
     ) -> "Octree": ...
     def level_set(
         self,
@@ -57,6 +59,7 @@ class Voxelizer:
         sign: str = "auto",
         winding_accuracy: float = 1.5,
         backend: str = "auto",
+        region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
     ) -> Union[Grid, Tuple[Grid, npt.NDArray[np.int32], npt.NDArray[np.int32]]]: ...
     def solid(
         self,
@@ -69,6 +72,7 @@ class Voxelizer:
         sign: str = "auto",
         winding_accuracy: float = 1.5,
         backend: str = "auto",
+        region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
     ) -> Grid: ...
     def device(self) -> str: ...
 
@@ -134,6 +138,7 @@ def voxelize(
     conservative: str = "auto",
     attributes: Sequence[str] = (),
     gpu_memory: Optional[int] = None,
+    region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
 ) -> Union[Grid, Dict[str, Any]]: ...
 def active_voxels(grid: Grid) -> npt.NDArray[np.int32]: ...
 def read_mesh(path: str) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.uint32]]: ...

@@ -244,6 +244,25 @@ def test_a_small_gpu_memory_budget_tiles_to_the_same_voxels(voxelizer):
         voxelizer.voxelize(v, t, resolution=160, gpu_memory=1024)
 
 
+def test_a_region_is_the_whole_grid_cut_to_its_box(voxelizer):
+    v, t = tetrahedron()
+    whole = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48)))
+    box = ((8, 0, 8), (32, 24, 48))
+    part = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, region=box)))
+    inside = {p for p in whole if all(box[0][a] <= p[a] < box[1][a] for a in range(3))}
+    assert part == inside and 0 < len(inside) < len(whole)
+    sdf = voxelizer.level_set(v, t, resolution=48)
+    sdf_part = voxelizer.level_set(v, t, resolution=48, region=box)
+    expected = {p for p in as_set(svo.active_voxels(sdf)) if all(box[0][a] <= p[a] < box[1][a] for a in range(3))}
+    assert as_set(svo.active_voxels(sdf_part)) == expected
+    acc, part_acc = sdf.getConstAccessor(), sdf_part.getConstAccessor()
+    assert all(acc.getValue(p) == part_acc.getValue(p) for p in expected)
+    with pytest.raises(ValueError, match="region .*multiple of 8"):
+        voxelizer.voxelize(v, t, resolution=48, region=((0, 0, 0), (8, 8, 12)))
+    with pytest.raises(TypeError):
+        voxelizer.voxelize(v, t, resolution=48, region=(0, 0, 0, 8, 8, 8))
+
+
 def test_thin_mode_is_inside_conservative_and_equal_on_every_backend(voxelizer):
     v, t = tetrahedron()
     conservative = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48)))

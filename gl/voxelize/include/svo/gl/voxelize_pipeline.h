@@ -104,6 +104,10 @@ void forEachOption(VoxelizeSettings& s, Visit&& visit)
                      "GPU memory a voxelization may use (e.g. 8G, 512M); a grid that needs more is voxelized in tiles "
                      "and merged, with the same voxels (default: what the device reports free)"},
           ByteCount{s.gpuMemory});
+    visit(OptionInfo{"VoxelizeOptions::region", "region",
+                     "Only the voxels of this box of the grid's index space, [lo, hi) with every bound a multiple of "
+                     "8: exactly the whole grid's result there (default: the whole grid)"},
+          RegionOption{s.region});
 }
 
 /// @brief What one call measured. Kept apart from the result; filled only when asked.
