@@ -728,11 +728,8 @@ py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py:
     svo::VoxelizeSettings settings;
     kw.read(settings);
     const Request r = makeRequest(vertices, triangles, kw);
-    svo::VoxelizeStats stats;
-    const openvdb::GridPtrVec grids = runField(settings, [&](svo::VoxelizeOptions o) {
-        o.stats = &stats;
-        return v.levelSet(r.mesh, r.grid, ls, o, r.xform);
-    });
+    const openvdb::GridPtrVec grids = runField(
+        settings, [&](const svo::VoxelizeOptions& o) { return v.levelSet(r.mesh, r.grid, ls, o, r.xform); });
     if (!ls.closestTriangle) return toPython(grids.front());
     // pyopenvdb has no Int32Grid: the band's voxels and their triangles as arrays.
     const auto closest = openvdb::gridPtrCast<openvdb::Int32Grid>(grids.at(1));
@@ -759,11 +756,8 @@ py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::ha
     svo::VoxelizeSettings settings;
     kw.read(settings);
     const Request r = makeRequest(vertices, triangles, kw);
-    svo::VoxelizeStats stats;
-    const auto mask = runField(settings, [&](svo::VoxelizeOptions o) {
-        o.stats = &stats;
-        return v.solid(r.mesh, r.grid, o, signOptions, r.xform);
-    });
+    const auto mask = runField(
+        settings, [&](const svo::VoxelizeOptions& o) { return v.solid(r.mesh, r.grid, o, signOptions, r.xform); });
     // pyopenvdb has no MaskGrid: the same topology as a BoolGrid, true on it.
     auto out = openvdb::BoolGrid::create(openvdb::BoolTree::Ptr(new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
     out->setTransform(mask->transform().copy());
