@@ -105,13 +105,10 @@ void runValidateSdf(const ValidateArgs& a, const LevelSetOptions& ls, const Tria
     ro.check.interiorBand = ls.interiorBand;
     ro.check.worst = a.report.worst; // --worst, one flag for both reports
     ro.sign = stats.sign;
-    std::unique_ptr<Progress> step;
-    ro.onStep = [&step](const std::string& s) {
-        step.reset(); // the previous step's line ends first
-        step = std::make_unique<Progress>(s);
-    };
+    StepProgress steps;
+    ro.onStep = steps.onStep();
     const validate::LevelSetReport report = validate::validateLevelSet(mesh, grid, voxels, ro);
-    step.reset();
+    steps.finish();
     const validate::LevelSetCheck& c = report.check;
     const validate::OpenVdbComparison& o = report.openvdb;
 
@@ -205,13 +202,10 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     // The checks: the octree against the list, the exact reference, the classification, the holes.
     validate::ReportOptions ro = a.report;
     ro.mode = call.options.mode;
-    std::unique_ptr<Progress> step;
-    ro.onStep = [&step](const std::string& s) {
-        step.reset(); // the previous step's line ends first
-        step = std::make_unique<Progress>(s);
-    };
+    StepProgress steps;
+    ro.onStep = steps.onStep();
     const validate::Report report = validate::validateVoxelization(mesh, octree, list, ro);
-    step.reset();
+    steps.finish();
     const validate::Classification& c = report.classification;
     const validate::HoleCheck& holes = report.holes;
     const std::string& consistency = report.consistency;
