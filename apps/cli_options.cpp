@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 #include <string_view>
 #include <utility>
 #include <fmt/format.h>
@@ -15,6 +16,9 @@
 #include "svo/core/octree.h"
 #include "svo/gl/view_request.h"
 #include "svo/voxelizer.h"
+#ifdef SVO_WITH_VALIDATE
+#include "svo/validate/report.h"
+#endif
 
 namespace svo::app {
 
@@ -64,7 +68,15 @@ public:
 
     void operator()(const OptionInfo& info, bool& value)
     {
-        if (wanted(info)) cmd_.add_flag(flagNames(info), value, help(info));
+        if (!wanted(info)) return;
+        if (!value) {
+            cmd_.add_flag(flagNames(info), value, help(info));
+            return;
+        }
+        // On by default: the flag turns it off, and its name must say so.
+        if (flagOf(info).rfind("--no-", 0) != 0)
+            throw std::logic_error("svo: " + std::string(info.identifier) + " is on by default; its flag must be --no-...");
+        cmd_.add_flag_callback(flagNames(info), [&value] { value = false; }, help(info) + ": on by default, this flag turns it off");
     }
     void operator()(const OptionInfo& info, std::string& value)
     {
@@ -93,17 +105,17 @@ public:
                help(info))
             ->default_str(fmt::format("{}", number.value));
     }
-    template <typename Int>
-    void operator()(const OptionInfo& info, CheckedInteger<Int> number)
+    template <typename Int, typename Read>
+    void operator()(const OptionInfo& info, CheckedInteger<Int, Read> number)
     {
         if (!wanted(info)) return;
         const std::string flag = flagOf(info);
-        // Read as the field's type (CLI11 refuses what it cannot hold), then the library's rule.
-        cmd_.add_option_function<Int>(
+        // Read as its declared type (CLI11 refuses what that cannot hold), then the library's rule.
+        cmd_.add_option_function<Read>(
                flagNames(info),
-               [number, flag](Int v) {
+               [number, flag](Read v) {
                    number.rule(int64_t(v), flag);
-                   number.value = v;
+                   number.value = Int(v);
                },
                help(info))
             ->default_str(fmt::format("{}", number.value));
@@ -197,6 +209,9 @@ template void addOptions(CLI::App&, gl::AmbientOcclusion&, std::vector<std::stri
 template void addOptions(CLI::App&, gl::Illumination&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, GridRequest&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, CityOptions&, std::vector<std::string_view>, const std::string&);
+#ifdef SVO_WITH_VALIDATE
+template void addOptions(CLI::App&, validate::ReportOptions&, std::vector<std::string_view>, const std::string&);
+#endif
 
 void addBackendOptions(CLI::App& cmd, BackendArgs& a)
 {

@@ -13,8 +13,10 @@
 #include "svo/core/grid.h"
 #include "svo/core/octree.h"
 #include "svo/vdb_io/grid_options.h"
-#include "svo/gl/device.h"
-#include "svo/gl/voxelize_pipeline.h"
+#include "svo/gl/device_options.h"
+#include "svo/gl/startup_stats.h"
+#include "svo/gl/voxelize_settings.h"
+#include "svo/gl/voxelize_stats.h"
 #include "svo/load_octree.h"
 #include "svo/vdb_io/octree_files.h"
 

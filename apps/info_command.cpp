@@ -45,10 +45,7 @@ void printNanoVdbGrids(const std::string& path)
 void runInfo(const InfoArgs& a, const CLI::App& cmd)
 {
     LibraryCall call(a.backend, "building the octree");
-    const LoadedOctree lo =
-        loadOctree(call.voxelizer, a.input, a.gridName, gridRequest(a.grid), call.options);
-    if (lo.mesh) printWarnings(lo.mesh->warnings);
-    printWarnings(call.stats.warnings);
+    const LoadedOctree lo = call.load(a.input, a.gridName, gridRequest(a.grid));
     fmt::print("svo info\n");
     fmt::print("  {:<12} {}\n", "input", describeInput(a.input, lo, call.stats));
     if (std::filesystem::path(a.input).extension() == ".nvdb") printNanoVdbGrids(a.input);

@@ -11,32 +11,20 @@
 #include <unistd.h>
 
 #include "svo/core/pending_files.h"
+#include "svo/core/slot_table.h"
 
 namespace svo::app {
 namespace {
 
-// Slot states: free, being written by its owner, ready for the handler.
-enum : int { kFree = 0, kWriting = 1, kReady = 2 };
-constexpr int kSlots = 64;
 constexpr size_t kPathBytes = 4096;
 
-struct ChildSlot {
-    std::atomic<int> state{kFree};
+struct Child {
     pid_t pid = 0;
     std::atomic<bool> hasFiles{false}; // lock and leftover below are set
     char lock[kPathBytes];
     char leftover[kPathBytes];
 };
-ChildSlot children[kSlots];
-
-int claim(ChildSlot* slots) noexcept
-{
-    for (int i = 0; i < kSlots; ++i) {
-        int expected = kFree;
-        if (slots[i].state.compare_exchange_strong(expected, kWriting)) return i;
-    }
-    return -1;
-}
+SlotTable<Child> children;
 
 void say(const char* text) noexcept
 {
@@ -70,7 +58,7 @@ bool holdsPid(const char* path, pid_t pid) noexcept
 /// A reaped child's files that it did not remove itself: an X server that
 /// dies abnormally (svo has seen one stopped mid-render leave its socket)
 /// keeps its lock, which names it, and its socket.
-void removeLeftovers(ChildSlot& c) noexcept
+void removeLeftovers(Child& c) noexcept
 {
     if (!c.hasFiles.load() || !holdsPid(c.lock, c.pid)) return;
     ::unlink(c.leftover);
@@ -89,37 +77,34 @@ extern "C" void onInterrupt(int sig)
 
 int registerChild(pid_t pid) noexcept
 {
-    const int slot = claim(children);
-    if (slot < 0) return -1;
-    children[slot].pid = pid;
-    children[slot].hasFiles.store(false);
-    children[slot].state.store(kReady);
-    return slot;
+    return children.add([&](Child& c) {
+        c.pid = pid;
+        c.hasFiles.store(false);
+    });
 }
 
 void setChildFiles(int slot, const char* lock, const char* leftover) noexcept
 {
-    if (slot < 0 || slot >= kSlots || std::strlen(lock) >= kPathBytes || std::strlen(leftover) >= kPathBytes) return;
-    ChildSlot& c = children[slot];
-    std::memcpy(c.lock, lock, std::strlen(lock) + 1);
-    std::memcpy(c.leftover, leftover, std::strlen(leftover) + 1);
-    c.hasFiles.store(true); // after the paths: the handler reads them only then
+    Child* c = children.find(slot);
+    if (!c || std::strlen(lock) >= kPathBytes || std::strlen(leftover) >= kPathBytes) return;
+    std::memcpy(c->lock, lock, std::strlen(lock) + 1);
+    std::memcpy(c->leftover, leftover, std::strlen(leftover) + 1);
+    c->hasFiles.store(true); // after the paths: the handler reads them only then
 }
 
 void releaseChild(int slot) noexcept
 {
-    if (slot < 0 || slot >= kSlots) return;
-    removeLeftovers(children[slot]);
-    children[slot].state.store(kFree);
+    Child* c = children.find(slot);
+    if (!c) return;
+    removeLeftovers(*c);
+    children.remove(slot);
 }
 
 void cleanUpForExit() noexcept
 {
     removeTemporaries();
-    for (ChildSlot& c : children)
-        if (c.state.load() == kReady) ::kill(c.pid, SIGTERM);
-    for (ChildSlot& c : children) {
-        if (c.state.load() != kReady) continue;
+    children.forEachReady([](const Child& c) { ::kill(c.pid, SIGTERM); });
+    children.forEachReady([](Child& c) {
         // Give the child time to remove its own files (Xvfb's socket and lock).
         for (int i = 0; i < 200; ++i) {
             const pid_t r = ::waitpid(c.pid, nullptr, WNOHANG);
@@ -128,7 +113,7 @@ void cleanUpForExit() noexcept
             const timespec tenMs{0, 10'000'000};
             ::nanosleep(&tenMs, nullptr);
         }
-    }
+    });
 }
 
 void installInterruptCleanup()

@@ -7,8 +7,9 @@
 /// installInterruptCleanup() installs SIGINT and SIGTERM handlers that do
 /// both and exit; cleanUpForExit() is the same clean-up for a program with a
 /// handler of its own. Both are safe inside a signal handler: the registry is
-/// a fixed array of atomics and the clean-up uses only unlink, kill, waitpid,
-/// nanosleep, and open, read and close.
+/// a fixed table of atomic slots (svo/core/slot_table.h, as the library's
+/// temporaries) and the clean-up uses only unlink, kill, waitpid, nanosleep,
+/// and open, read and close.
 #include <sys/types.h>
 
 namespace svo::app {

@@ -21,6 +21,16 @@ struct LibraryCall {
     LibraryCall(const LibraryCall&) = delete;
     LibraryCall& operator=(const LibraryCall&) = delete;
 
+    /// @brief The octree of an input (loadOctree: a mesh voxelized, or a
+    /// .vdb, .nvdb or .svo read), with the mesh's warnings and the call's printed.
+    LoadedOctree load(const std::string& input, const std::string& gridName, const GridRequest& request)
+    {
+        LoadedOctree loaded = loadOctree(voxelizer, input, gridName, request, options);
+        if (loaded.mesh) printWarnings(loaded.mesh->warnings);
+        printWarnings(stats.warnings);
+        return loaded;
+    }
+
     Voxelizer voxelizer;
     VoxelizeOptions options; ///< points at `progress` and `stats` below
     VoxelizeStats stats;

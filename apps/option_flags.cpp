@@ -3,9 +3,9 @@
 
 #include "svo/core/city_scene.h"
 #include "svo/core/field_options.h"
-#include "svo/gl/device.h"
+#include "svo/gl/device_options.h"
 #include "svo/gl/view_request.h"
-#include "svo/gl/voxelize_pipeline.h"
+#include "svo/gl/voxelize_settings.h"
 #include "svo/vdb_io/grid_options.h"
 
 namespace svo::app {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <memory>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <openvdb/util/NullInterrupter.h>
 #include <string>
@@ -52,6 +53,26 @@ private:
     bool failed_ = false; ///< the step ended by an exception: "stopped", not "done"
     int exceptions_ = std::uncaught_exceptions();
     std::thread thread_;
+};
+
+/// A Progress line for each step of a call that names its steps as it goes
+/// (the validator's onStep): a step's line ends when the next starts, the
+/// last one at finish() or when this ends.
+class StepProgress {
+public:
+    /// What the call is to be told; valid while this object lives.
+    std::function<void(const std::string&)> onStep()
+    {
+        return [this](const std::string& step) {
+            current_.reset(); // the previous step's line ends first
+            current_ = std::make_unique<Progress>(step);
+        };
+    }
+    /// Ends the last step's line.
+    void finish() { current_.reset(); }
+
+private:
+    std::unique_ptr<Progress> current_;
 };
 
 /// The library's interrupter, shown as a Progress line for each call.

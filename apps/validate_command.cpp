@@ -33,9 +33,7 @@ struct ValidateArgs {
     std::string mesh, json, errors;
     GridRequest grid; ///< -r/--resolution or --voxel-size
     BackendArgs backend;
-    bool noHoles = false;
-    bool strict = false;
-    size_t worst = 5;
+    validate::ReportOptions report; ///< --no-holes, --strict, --worst (its mode is the voxelization's)
     bool sdf = false;
     FieldArgs levelSet; ///< bands and sign, with --sdf
 };
@@ -105,15 +103,12 @@ void runValidateSdf(const ValidateArgs& a, const LevelSetOptions& ls, const Tria
     validate::LevelSetReportOptions ro;
     ro.check.exteriorBand = ls.exteriorBand;
     ro.check.interiorBand = ls.interiorBand;
-    ro.check.worst = a.worst;
+    ro.check.worst = a.report.worst; // --worst, one flag for both reports
     ro.sign = stats.sign;
-    std::unique_ptr<Progress> step;
-    ro.onStep = [&step](const std::string& s) {
-        step.reset(); // the previous step's line ends first
-        step = std::make_unique<Progress>(s);
-    };
+    StepProgress steps;
+    ro.onStep = steps.onStep();
     const validate::LevelSetReport report = validate::validateLevelSet(mesh, grid, voxels, ro);
-    step.reset();
+    steps.finish();
     const validate::LevelSetCheck& c = report.check;
     const validate::OpenVdbComparison& o = report.openvdb;
 
@@ -205,18 +200,12 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     const double gpuMs = stats.gpuMs();
 
     // The checks: the octree against the list, the exact reference, the classification, the holes.
-    validate::ReportOptions ro;
+    validate::ReportOptions ro = a.report;
     ro.mode = call.options.mode;
-    ro.holes = !a.noHoles;
-    ro.strict = a.strict;
-    ro.worst = a.worst;
-    std::unique_ptr<Progress> step;
-    ro.onStep = [&step](const std::string& s) {
-        step.reset(); // the previous step's line ends first
-        step = std::make_unique<Progress>(s);
-    };
+    StepProgress steps;
+    ro.onStep = steps.onStep();
     const validate::Report report = validate::validateVoxelization(mesh, octree, list, ro);
-    step.reset();
+    steps.finish();
     const validate::Classification& c = report.classification;
     const validate::HoleCheck& holes = report.holes;
     const std::string& consistency = report.consistency;
@@ -258,7 +247,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
                    "holes", holes.leak ? "LEAK" : "none", holes.connectivity, thousands(holes.filled),
                    thousands(holes.frontier));
     else
-        fmt::print("  {:<12} not checked: {}\n", "holes", a.noHoles ? "skipped (--no-holes)" : holes.reason);
+        fmt::print("  {:<12} not checked: {}\n", "holes", a.report.holes ? holes.reason : "skipped (--no-holes)");
     if (holes.leak) {
         fmt::print("    leak path ({} voxels, outside -> inside):", holes.leakPath.size());
         const size_t n = holes.leakPath.size();
@@ -310,16 +299,7 @@ void addValidateCommand(CLI::App& app)
     addOutputPath(*cmd, "--json", args->json, "Write the report as JSON");
     addOutputPath(*cmd, "--errors", args->errors, "Write the missed and extra voxels (and any leak path) as MaskGrids in a .vdb",
                   {".vdb"});
-    cmd->add_flag("--no-holes", args->noHoles, "Skip the flood-fill hole check");
-    cmd->add_flag("--strict", args->strict, "Fail on extra voxels too");
-    cmd->add_option_function<int64_t>(
-           "--worst",
-           [args](int64_t n) {
-               validate::checkWorst(n, "--worst");
-               args->worst = size_t(n);
-           },
-           "Worst cases to list of each kind, 0 to 1000000")
-        ->default_str("5");
+    addOptions(*cmd, args->report);
     cmd->add_flag("--sdf", args->sdf,
                   "Check the level set (voxelize --sdf) instead: distances, signs and band against CGAL, beside "
                   "OpenVDB's meshToLevelSet");

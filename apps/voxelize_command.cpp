@@ -122,6 +122,51 @@ nlohmann::json startupJson(const StartupStats& s)
             {"program_cache", s.programCache}};
 }
 
+/// What every --json report holds: the input and its grid, where the run
+/// went, and what it cost. Each kind of run adds its own fields.
+nlohmann::json runJson(const std::string& scene, const TriangleMesh& mesh, const GridSpec& grid,
+                       const VoxelizeStats& stats, int repeat, double wallMs)
+{
+    return {{"scene", scene},
+            {"triangles", mesh.triangles.size()},
+            {"dims", grid.dims},
+            {"voxel_size", grid.voxelSize},
+            {"backend", stats.backend},
+            {"renderer", stats.renderer},
+            {"gpu_bytes", stats.gpuBytes},
+            {"repeat", repeat},
+            {"peak_rss_mb", peakRssMb()},
+            {"startup", startupJson(stats.startup)},
+            {"stages", stagesJson(stats.stages)},
+            {"total_wall_ms", wallMs}};
+}
+
+/// Runs @a once --repeat times (after one warm-up when there are several
+/// runs and @a warmUp() says so) and returns the last run's result. @a stats
+/// gets each stage's median over the runs, the load stage first, and the
+/// start-up the first call paid; the warnings are printed.
+template <typename Once, typename WarmUp>
+auto timedRuns(LibraryCall& call, int repeat, WarmUp warmUp, const StageTime& load, VoxelizeStats& stats, Once once)
+{
+    std::vector<VoxelizeStats> runs(static_cast<size_t>(repeat));
+    decltype(once()) result;
+    std::optional<StartupStats> startup; // the first call's: later calls on this Voxelizer start warm
+    if (repeat > 1 && warmUp()) {
+        once();
+        startup = call.stats.startup;
+    }
+    for (auto& run : runs) {
+        result = once();
+        run = call.stats;
+        if (!startup) startup = run.startup;
+    }
+    stats = medianStats(runs);
+    stats.stages.insert(stats.stages.begin(), load);
+    stats.startup = *startup;
+    printWarnings(stats.warnings);
+    return result;
+}
+
 /// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb.
 void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& call, const TriangleMesh& mesh, const StageTime& load,
               const std::string& scene,
@@ -130,26 +175,11 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
 {
     const bool solid = a.fill == "solid";
 
-    std::vector<VoxelizeStats> runs(size_t(a.repeat));
-    openvdb::GridPtrVec grids;
-    auto once = [&] {
+    VoxelizeStats stats;
+    const openvdb::GridPtrVec grids = timedRuns(call, a.repeat, [] { return true; }, load, stats, [&] {
         if (solid) return openvdb::GridPtrVec{call.voxelizer.solid(mesh, grid, call.options, ls.sign)};
         return call.voxelizer.levelSet(mesh, grid, ls, call.options);
-    };
-    std::optional<StartupStats> startup; // the first call's: later calls on this Voxelizer start warm
-    if (a.repeat > 1) {
-        once();
-        startup = call.stats.startup;
-    }
-    for (auto& run : runs) {
-        grids = once();
-        run = call.stats;
-        if (!startup) startup = run.startup;
-    }
-    VoxelizeStats stats = medianStats(runs);
-    stats.stages.insert(stats.stages.begin(), load);
-    stats.startup = *startup;
-    printWarnings(stats.warnings);
+    });
     vdb::WriteStats written;
     if (!timingOnly) {
         Progress p("writing " + output);
@@ -187,28 +217,17 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
                             }()));
     printStageTable(stats.stages, wall, a.repeat, "", &stats.startup);
     if (!a.json.empty()) {
-        const nlohmann::json report = {{"scene", scene},
-                                       {"triangles", mesh.triangles.size()},
-                                       {"dims", grid.dims},
-                                       {"voxel_size", grid.voxelSize},
-                                       {"kind", solid ? "solid" : a.udf() ? "udf" : "sdf"},
-                                       {"exterior_band", ls.exteriorBand},
-                                       {"interior_band", ls.interiorBand},
-                                       {"sign", stats.sign},
-                                       {"open_columns", stats.openColumns},
-                                       {"active_voxels", main.activeVoxelCount()},
-                                       {"leaves", main.baseTree().leafCount()},
-                                       {"active_tiles", main.baseTree().activeTileCount()},
-                                       {"band_bricks", stats.bandBricks},
-                                       {"winding_bricks", stats.windingBricks},
-                                       {"backend", stats.backend},
-                                       {"renderer", stats.renderer},
-                                       {"gpu_bytes", stats.gpuBytes},
-                                       {"repeat", a.repeat},
-                                       {"peak_rss_mb", peakRssMb()},
-                                       {"startup", startupJson(stats.startup)},
-                                       {"stages", stagesJson(stats.stages)},
-                                       {"total_wall_ms", wall}};
+        nlohmann::json report = runJson(scene, mesh, grid, stats, a.repeat, wall);
+        report.update(nlohmann::json{{"kind", solid ? "solid" : a.udf() ? "udf" : "sdf"},
+                                     {"exterior_band", ls.exteriorBand},
+                                     {"interior_band", ls.interiorBand},
+                                     {"sign", stats.sign},
+                                     {"open_columns", stats.openColumns},
+                                     {"active_voxels", main.activeVoxelCount()},
+                                     {"leaves", main.baseTree().leafCount()},
+                                     {"active_tiles", main.baseTree().activeTileCount()},
+                                     {"band_bricks", stats.bandBricks},
+                                     {"winding_bricks", stats.windingBricks}});
         writeFileAtomically(a.json, report.dump(2) + "\n");
     }
 }
@@ -278,22 +297,10 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         throw InvalidInput(fmt::format("{}: --fog and --topology apply to .vdb and .nvdb output, not .svo", output));
 
     // Voxelize: with --repeat, one warm-up on the GPU, then per-stage medians.
-    std::vector<VoxelizeStats> runs(size_t(a.repeat));
-    Octree octree;
-    std::optional<StartupStats> startup; // the first call's: later calls on this Voxelizer start warm
-    if (a.repeat > 1 && call.voxelizer.backendFor(call.options) != Backend::Cpu) {
-        call.voxelizer.voxelize(mesh, grid, call.options);
-        startup = call.stats.startup;
-    }
-    for (auto& run : runs) {
-        octree = call.voxelizer.voxelize(mesh, grid, call.options);
-        run = call.stats;
-        if (!startup) startup = run.startup;
-    }
-    VoxelizeStats stats = medianStats(runs);
-    stats.stages.insert(stats.stages.begin(), load);
-    stats.startup = *startup;
-    printWarnings(stats.warnings);
+    VoxelizeStats stats;
+    const Octree octree = timedRuns(
+        call, a.repeat, [&] { return call.voxelizer.backendFor(call.options) != Backend::Cpu; }, load, stats,
+        [&] { return call.voxelizer.voxelize(mesh, grid, call.options); });
 
     const std::map<std::string, std::string> meta = {
         {"svo:source", mesh.source},
@@ -334,32 +341,20 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     printStageTable(stats.stages, wall, a.repeat, "voxelize stages: ", &stats.startup);
 
     if (!a.json.empty()) {
-        const nlohmann::json report = {
-            {"scene", scene},
-            {"triangles", mesh.triangles.size()},
-            {"dims", grid.dims},
-            {"voxel_size", grid.voxelSize},
-            {"resolution", request.resolution},
-            {"backend", stats.backend},
-            {"mode", stats.mode},
-            {"conservative", nameOf(a.backend.settings.dilation)},
-            {"dilation", stats.dilation},
-            {"renderer", stats.renderer},
-            {"epsilon", grid.epsilon()},
-            {"voxels", st.voxels},
-            {"bricks", st.bricks},
-            {"nodes", octree.nodes.size()},
-            {"nodes_per_level", st.nodesPerLevel},
-            {"octree_bytes", st.bytes},
-            {"list_entries", stats.listEntries},
-            {"overflow_retries", stats.overflowRetries},
-            {"gpu_bytes", stats.gpuBytes},
-            {"tiles", stats.tiles},
-            {"repeat", a.repeat},
-            {"peak_rss_mb", peakRssMb()},
-            {"startup", startupJson(stats.startup)},
-            {"stages", stagesJson(stats.stages)},
-            {"total_wall_ms", wall}};
+        nlohmann::json report = runJson(scene, mesh, grid, stats, a.repeat, wall);
+        report.update(nlohmann::json{{"resolution", request.resolution},
+                                     {"mode", stats.mode},
+                                     {"conservative", nameOf(a.backend.settings.dilation)},
+                                     {"dilation", stats.dilation},
+                                     {"epsilon", grid.epsilon()},
+                                     {"voxels", st.voxels},
+                                     {"bricks", st.bricks},
+                                     {"nodes", octree.nodes.size()},
+                                     {"nodes_per_level", st.nodesPerLevel},
+                                     {"octree_bytes", st.bytes},
+                                     {"list_entries", stats.listEntries},
+                                     {"overflow_retries", stats.overflowRetries},
+                                     {"tiles", stats.tiles}});
         writeFileAtomically(a.json, report.dump(2) + "\n");
     }
     outputs.commit();

@@ -68,10 +68,7 @@ void runVtk(const VtkArgs& a, const CLI::App& cmd)
     const VtkExport& vtk = vtkExport(); // before any work: a missing module is an error up front
     OutputBatch outputs({a.output, a.png}); // both in place together at the end, or neither
     LibraryCall call(a.backend, "building the octree");
-    const LoadedOctree lo =
-        loadOctree(call.voxelizer, a.input, a.gridName, gridRequest(a.grid), call.options);
-    if (lo.mesh) printWarnings(lo.mesh->warnings);
-    printWarnings(call.stats.warnings);
+    const LoadedOctree lo = call.load(a.input, a.gridName, gridRequest(a.grid));
     fmt::print("svo vtk\n");
     fmt::print("  {:<8} {}\n", "input", describeInput(a.input, lo, call.stats));
     fmt::print("  {:<8} {} voxels, {} levels (bricks at {}; levels {}..{} split bricks down to voxels)\n", "octree",

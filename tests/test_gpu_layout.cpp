@@ -21,7 +21,7 @@
 #include "svo/gl/buffer.h"
 #include "svo/gl/gl_api.h"
 #include "svo/gl/program.h"
-#include "svo/gl/shaders.h"
+#include "svo/gl/shader_source.h"
 #include "voxelize_layout.h"  // the voxelize layer's slots (gl/voxelize/shaders)
 #include "voxelize_shaders.h" // and its embedded shaders (gl/voxelize/src)
 

@@ -1,4 +1,4 @@
-// Start-up: the program binary cache (gl/device/include/svo/gl/program_cache.h) and the
+// Start-up: the program binary cache (gl/device/src/program_cache.h) and the
 // start-up record of a call (VoxelizeStats::startup). What is expected comes
 // from the cache folder itself (its files), from a Voxelizer without a cache,
 // and from the driver's own program binaries.
@@ -14,7 +14,7 @@
 
 #include "svo/gl/gl_api.h"
 #include "svo/gl/program.h"
-#include "svo/gl/program_cache.h"
+#include "program_cache.h" // gl/device/src: internal to the device layer
 #include "voxelize_shaders.h" // the voxelize layer's shaders (gl/voxelize/src)
 #include "scenes.h"
 #include "svo/core/octree.h"

@@ -183,23 +183,26 @@ struct Staged {
     int slot;
 };
 
-} // namespace
-
-struct OutputBatch::Impl {
+/// What a live OutputBatch holds, where writeAtomically finds it.
+struct Batch {
     std::vector<std::string> paths;
     std::vector<Staged> staged;
 };
 
-namespace {
 std::mutex batchMutex;
-OutputBatch::Impl* activeBatch = nullptr; // guarded by batchMutex
+Batch* activeBatch = nullptr; // guarded by batchMutex
 
 void discard(Staged& s)
 {
     std::remove(s.tmp.c_str());
     releaseTemporary(s.slot);
 }
+
 } // namespace
+
+// OutputBatch's private Impl is a Batch, which the free functions above can
+// name (a private nested type they could not).
+struct OutputBatch::Impl : Batch {};
 
 void checkWritable(const std::string& path)
 {

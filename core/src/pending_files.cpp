@@ -4,19 +4,17 @@
 #include <cstring>
 #include <unistd.h>
 
+#include "svo/core/slot_table.h"
+
 namespace svo {
 namespace {
 
-// Slot states: free, being written by its owner, ready for the handler.
-enum : int { kFree = 0, kWriting = 1, kReady = 2 };
-constexpr int kSlots = 64;
 constexpr size_t kPathBytes = 4096;
 
-struct TemporarySlot {
-    std::atomic<int> state{kFree};
+struct Temporary {
     char path[kPathBytes];
 };
-TemporarySlot temporaries[kSlots];
+SlotTable<Temporary> temporaries;
 
 // Whether an interrupt may still end the run: the first of the signal handler
 // (claimInterrupt) and finishWithoutInterrupts() to leave kRunning decides.
@@ -29,26 +27,15 @@ int registerTemporary(const char* path) noexcept
 {
     const size_t n = std::strlen(path);
     if (n >= kPathBytes) return -1;
-    for (int i = 0; i < kSlots; ++i) {
-        int expected = kFree;
-        if (!temporaries[i].state.compare_exchange_strong(expected, kWriting)) continue;
-        std::memcpy(temporaries[i].path, path, n + 1);
-        temporaries[i].state.store(kReady);
-        return i;
-    }
-    return -1;
+    return temporaries.add([&](Temporary& t) { std::memcpy(t.path, path, n + 1); });
 }
 
-void releaseTemporary(int slot) noexcept
-{
-    if (slot >= 0 && slot < kSlots) temporaries[slot].state.store(kFree);
-}
+void releaseTemporary(int slot) noexcept { temporaries.remove(slot); }
 
 void removeTemporaries() noexcept
 {
     // A temporary renamed just before we got here is simply not found.
-    for (TemporarySlot& t : temporaries)
-        if (t.state.load() == kReady) ::unlink(t.path);
+    temporaries.forEachReady([](const Temporary& t) { ::unlink(t.path); });
 }
 
 void finishWithoutInterrupts() noexcept

@@ -200,11 +200,6 @@ const PythonKeyword kPythonKeywords[] = {
      "voxels are cubes of its index space"},
     {"grid", [] { return py::object(py::str("bool")); },
      "'bool' (a BoolGrid 'surface', true on voxels) or 'fog' (a FloatGrid 'density', 1 on voxels)"},
-    {"holes", [] { return py::object(py::bool_(true)); },
-     "Run the flood-fill hole check (closed meshes), as `svo validate` without --no-holes"},
-    {"strict", [] { return py::object(py::bool_(false)); }, "Fail on extra voxels too"},
-    {"worst", [] { return py::object(py::int_(5)); }, "Worst cases listed of each kind, 0 to 1000000"},
-    {"openvdb", [] { return py::object(py::bool_(true)); }, "Also compare with OpenVDB's meshToLevelSet"},
     // Octree.render's own: what svo view takes in other forms (--size WxH, --layers a,b, --levels a:b,
     // --light sun:..., colours as r,g,b) or under other names (--render for lighting and ao_only).
     {"size", [] { return py::object(py::make_tuple(640, 480)); }, "(width, height) of the picture, 1 to 16384 pixels each"},
@@ -259,8 +254,8 @@ struct Describe {
         add(i, py::str(std::string(svo::nameOf(v))), svo::quotedNames<E>());
     }
     void operator()(const svo::OptionInfo& i, svo::CheckedNumber n) const { add(i, py::float_(n.value)); }
-    template <typename Int>
-    void operator()(const svo::OptionInfo& i, svo::CheckedInteger<Int> n) const
+    template <typename Int, typename Read>
+    void operator()(const svo::OptionInfo& i, svo::CheckedInteger<Int, Read> n) const
     {
         add(i, py::int_(n.value));
     }
@@ -291,22 +286,36 @@ struct Describe {
     }
 };
 
+/// Shows @a visit every option of the library structs Python's calls read,
+/// each in a default-constructed struct (so a value seen is its default).
+template <typename Visit>
+void forEachLibraryOption(Visit&& visit)
+{
+    svo::GridRequest request;
+    svo::VoxelizeSettings voxelize;
+    svo::DeviceOptions device;
+    svo::LevelSetOptions levelSet; // its SignOptions included
+    svo::gl::ViewRequest view;     // its layers, AO and lighting too
+    forEachOption(request, visit);
+    forEachOption(voxelize, visit);
+    forEachOption(device, visit);
+    forEachOption(levelSet, visit);
+    forEachOption(view, visit);
+#ifdef SVO_WITH_VALIDATE
+    svo::validate::ReportOptions report;
+    svo::validate::LevelSetReportOptions levelSetReport; // `worst` again: the same declaration
+    forEachOption(report, visit);
+    forEachOption(levelSetReport, visit);
+#endif
+}
+
 /// Every keyword any call takes: Python's own, then the library's declared options.
 std::vector<KeywordInfo> allKeywords()
 {
     std::vector<KeywordInfo> out;
     for (const PythonKeyword& k : kPythonKeywords)
         out.push_back({std::string(k.keyword), {}, std::string(k.doc), k.fallback(), {}});
-    svo::GridRequest request;
-    svo::VoxelizeSettings voxelize;
-    svo::DeviceOptions device;
-    svo::LevelSetOptions levelSet; // its SignOptions included
-    forEachOption(request, Describe{out});
-    forEachOption(voxelize, Describe{out});
-    forEachOption(device, Describe{out});
-    forEachOption(levelSet, Describe{out});
-    svo::gl::ViewRequest view; // its layers, AO and lighting too
-    forEachOption(view, Describe{out});
+    forEachLibraryOption(Describe{out});
     return out;
 }
 
@@ -373,16 +382,7 @@ std::string keywordOf(const std::string& identifier)
             if (std::find(call->keywords.begin(), call->keywords.end(), info.keyword) != call->keywords.end())
                 keyword = std::string(info.keyword);
     };
-    svo::GridRequest request;
-    svo::VoxelizeSettings voxelize;
-    svo::DeviceOptions device;
-    svo::LevelSetOptions levelSet;
-    svo::gl::ViewRequest view;
-    forEachOption(request, find);
-    forEachOption(voxelize, find);
-    forEachOption(device, find);
-    forEachOption(levelSet, find);
-    forEachOption(view, find);
+    forEachLibraryOption(find);
     return keyword;
 }
 
@@ -530,13 +530,13 @@ private:
             n.rule(v, std::string(i.keyword)); // the library's rule, under the keyword
             n.value = v;
         }
-        template <typename Int>
-        void operator()(const svo::OptionInfo& i, svo::CheckedInteger<Int> n) const
+        template <typename Int, typename Read>
+        void operator()(const svo::OptionInfo& i, svo::CheckedInteger<Int, Read> n) const
         {
             if (!wanted(i)) return;
-            const Int v = kw.as<Int>(i.keyword); // what the field's type cannot hold: a TypeError
+            const Read v = kw.as<Read>(i.keyword); // what the declared type cannot hold: a TypeError
             n.rule(int64_t(v), std::string(i.keyword));
-            n.value = v;
+            n.value = Int(v);
         }
         void operator()(const svo::OptionInfo& i, svo::NamedBool b) const
         {
@@ -743,11 +743,8 @@ py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py:
     svo::VoxelizeSettings settings;
     kw.read(settings);
     const Request r = makeRequest(vertices, triangles, kw);
-    svo::VoxelizeStats stats;
-    const openvdb::GridPtrVec grids = runField(settings, [&](svo::VoxelizeOptions o) {
-        o.stats = &stats;
-        return v.levelSet(r.mesh, r.grid, ls, o, r.xform);
-    });
+    const openvdb::GridPtrVec grids = runField(
+        settings, [&](const svo::VoxelizeOptions& o) { return v.levelSet(r.mesh, r.grid, ls, o, r.xform); });
     if (!ls.closestTriangle) return toPython(grids.front());
     // pyopenvdb has no Int32Grid: the band's voxels and their triangles as arrays.
     const auto closest = openvdb::gridPtrCast<openvdb::Int32Grid>(grids.at(1));
@@ -774,11 +771,8 @@ py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::ha
     svo::VoxelizeSettings settings;
     kw.read(settings);
     const Request r = makeRequest(vertices, triangles, kw);
-    svo::VoxelizeStats stats;
-    const auto mask = runField(settings, [&](svo::VoxelizeOptions o) {
-        o.stats = &stats;
-        return v.solid(r.mesh, r.grid, o, signOptions, r.xform);
-    });
+    const auto mask = runField(
+        settings, [&](const svo::VoxelizeOptions& o) { return v.solid(r.mesh, r.grid, o, signOptions, r.xform); });
     // pyopenvdb has no MaskGrid: the same topology as a BoolGrid, true on it.
     auto out = openvdb::BoolGrid::create(openvdb::BoolTree::Ptr(new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
     out->setTransform(mask->transform().copy());
@@ -1030,21 +1024,15 @@ py::array view(const void* data, size_t count, size_t cols, const py::handle& ow
 }
 
 #ifdef SVO_WITH_VALIDATE
-/// worst=: the library's rule (svo::validate::checkWorst), a ValueError naming the keyword.
-size_t toWorst(int64_t worst)
-{
-    svo::validate::checkWorst(worst, "worst");
-    return size_t(worst);
-}
-
 /// The voxelization checked against CGAL's exact reference: the numbers of `svo validate --json`.
 py::object validateWith(const py::handle& vertices, const py::handle& triangles, const py::kwargs& kwargs)
 {
     const CallKeywords kw(kValidateCall, kwargs);
     svo::VoxelizeSettings settings;
     kw.read(settings);
-    const size_t worstCases = toWorst(kw.get<int64_t>("worst"));
-    const bool holes = kw.get<bool>("holes"), strict = kw.get<bool>("strict");
+    svo::validate::ReportOptions ro;
+    kw.read(ro); // holes, strict, worst
+    ro.mode = settings.mode;
     const Request r = makeRequest(vertices, triangles, kw);
     svo::Voxelizer v;
     std::vector<uint64_t> list;
@@ -1052,11 +1040,6 @@ py::object validateWith(const py::handle& vertices, const py::handle& triangles,
     std::string text;
     {
         py::gil_scoped_release release;
-        svo::validate::ReportOptions ro;
-        ro.mode = settings.mode;
-        ro.holes = holes;
-        ro.strict = strict;
-        ro.worst = worstCases;
         text = svo::validate::reportJson(svo::validate::validateVoxelization(r.mesh, octree, list, ro));
     }
     return py::module_::import("json").attr("loads")(text);
@@ -1073,8 +1056,8 @@ py::object validateLevelSetWith(const py::handle& vertices, const py::handle& tr
     kw.read(ls);
     svo::VoxelizeSettings settings;
     kw.read(settings);
-    const size_t worstCases = toWorst(kw.get<int64_t>("worst"));
-    const bool openvdb = kw.get<bool>("openvdb");
+    svo::validate::LevelSetReportOptions ro;
+    kw.read(ro); // worst, openvdb
     const Request r = makeRequest(vertices, triangles, kw);
     svo::Voxelizer v;
     svo::VoxelizeStats stats;
@@ -1086,12 +1069,9 @@ py::object validateLevelSetWith(const py::handle& vertices, const py::handle& tr
     {
         py::gil_scoped_release release;
         const auto sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(grids.front());
-        svo::validate::LevelSetReportOptions ro;
         ro.check.exteriorBand = ls.exteriorBand;
         ro.check.interiorBand = ls.interiorBand;
         ro.check.voxelSize = sdf->transform().voxelSize()[0]; // world units per voxel of the values
-        ro.check.worst = worstCases;
-        ro.openvdb = openvdb;
         ro.sign = stats.sign;
         text = svo::validate::levelSetReportJson(
             svo::validate::validateLevelSet(r.mesh, r.grid, svo::validate::activeLevelSetVoxels(*sdf), ro));

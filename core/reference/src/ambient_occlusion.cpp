@@ -33,7 +33,7 @@ void checkPoint(size_t i, const Vec3d& point, const Vec3d& normal)
         throw InvalidInput(fmt::format("reference ambient occlusion: the normal of point {} is zero or not finite", i));
 }
 
-double estimate(const Scene::Impl& s, size_t index, const Vec3d& point, const Vec3d& normal,
+double estimate(const SceneData& s, size_t index, const Vec3d& point, const Vec3d& normal,
                 const AmbientOcclusionOptions& options, RayCounts& counts)
 {
     const Vec3d n = normalize(normal);
@@ -57,7 +57,7 @@ std::vector<double> ambientOcclusionAt(const Scene& scene, const std::vector<Vec
     if (points.size() != normals.size())
         throw InvalidInput(fmt::format("reference ambient occlusion: {} points but {} normals", points.size(), normals.size()));
     for (size_t i = 0; i < points.size(); ++i) checkPoint(i, points[i], normals[i]);
-    const Scene::Impl& s = scene.impl();
+    const SceneData& s = sceneData(scene);
     std::vector<double> result(points.size());
     std::atomic<uint64_t> rays{0};
     inArena(options.threads, [&] {

@@ -29,7 +29,7 @@ void checkLighting(const Lighting& lights)
         throw InvalidInput("reference lights: the environment radiance is negative or not finite");
 }
 
-LocalLights::LocalLights(const Scene::Impl& scene, const Lighting& lights) : environment(lights.environment)
+LocalLights::LocalLights(const SceneData& scene, const Lighting& lights) : environment(lights.environment)
 {
     for (const auto& l : lights.directional)
         if (maxChannel(l.irradiance) > 0) directional.push_back({-1.0 * normalize(l.direction), l.irradiance});
@@ -37,7 +37,7 @@ LocalLights::LocalLights(const Scene::Impl& scene, const Lighting& lights) : env
         if (maxChannel(l.intensity) > 0) point.push_back({scene.toLocal(l.position), l.intensity});
 }
 
-Vec3d directLight(const Scene::Impl& scene, const LocalLights& lights, const Surface& x, RayCounts& counts)
+Vec3d directLight(const SceneData& scene, const LocalLights& lights, const Surface& x, RayCounts& counts)
 {
     Vec3d irradiance{};
     const Vec3d origin = scene.offset(x);
@@ -65,7 +65,7 @@ Vec3d directLight(const Scene::Impl& scene, const LocalLights& lights, const Sur
     return (1.0 / M_PI) * mul(x.albedo, irradiance);
 }
 
-Vec3d pathRadiance(const Scene::Impl& scene, const LocalLights& lights, const Surface& first, int maxScatter,
+Vec3d pathRadiance(const SceneData& scene, const LocalLights& lights, const Surface& first, int maxScatter,
                    Rng& rng, RayCounts& counts)
 {
     const bool russianRoulette = maxScatter == INT_MAX;

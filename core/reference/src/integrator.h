@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "sampling.h"
-#include "scene_impl.h"
+#include "scene_data.h"
 #include "svo/reference/lights.h"
 
 namespace svo::reference {
@@ -24,24 +24,24 @@ struct LocalLights {
     std::vector<Directional> directional;
     std::vector<Point> point;
     Vec3d environment;
-    LocalLights(const Scene::Impl& scene, const Lighting& lights);
+    LocalLights(const SceneData& scene, const Lighting& lights);
 };
 
 // Reflected radiance toward the viewer at `x` from the lights, by one
 // reflection, with shadow rays: sum of albedo/pi * E cos, albedo/pi * I cos / r².
 // Deterministic.
-Vec3d directLight(const Scene::Impl& scene, const LocalLights& lights, const Surface& x, RayCounts& counts);
+Vec3d directLight(const SceneData& scene, const LocalLights& lights, const Surface& x, RayCounts& counts);
 
 // One path's radiance estimate toward the viewer from `first`, the surface
 // the camera ray hit, counting paths of at most `maxScatter` reflections
 // (INT_MAX: all, with Russian roulette). With no emitters and a black
 // environment, the last continuation could only bring 0 and is not traced.
-Vec3d pathRadiance(const Scene::Impl& scene, const LocalLights& lights, const Surface& first, int maxScatter,
+Vec3d pathRadiance(const SceneData& scene, const LocalLights& lights, const Surface& first, int maxScatter,
                    Rng& rng, RayCounts& counts);
 
 // One ambient-occlusion sample at `origin` (already offset) around unit `n`:
 // 1 when a cosine-weighted ray meets nothing within `distance`, else 0.
-inline double aoSample(const Scene::Impl& scene, const Vec3d& origin, const Vec3d& n, double distance, Rng& rng,
+inline double aoSample(const SceneData& scene, const Vec3d& origin, const Vec3d& n, double distance, Rng& rng,
                        RayCounts& counts)
 {
     const double u1 = rng.next(), u2 = rng.next();

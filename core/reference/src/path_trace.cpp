@@ -43,7 +43,7 @@ FloatImage render(const Scene& scene, const Camera& camera, int width, int heigh
     checkCamera(camera, width, height);
     checkOptions(options);
     checkLighting(lights);
-    const Scene::Impl& s = scene.impl();
+    const SceneData& s = sceneData(scene);
     const LocalLights local(s, lights);
     const bool ao = options.mode == Mode::AmbientOcclusion;
     const int scatter = maxScatter(options.mode);

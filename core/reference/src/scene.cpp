@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "scene_impl.h"
+#include "scene_data.h"
 #include "svo/core/error.h"
 #include "vec_math.h"
 
@@ -26,13 +26,13 @@ bool inUnit(const Vec3d& a) { return finite(a) && nonNegative(a) && a.x <= 1 && 
 
 } // namespace
 
-Scene::Impl::~Impl()
+SceneData::~SceneData()
 {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
 }
 
-bool Scene::Impl::intersect(const Vec3d& origin, const Vec3d& dir, Surface& hit) const
+bool SceneData::intersect(const Vec3d& origin, const Vec3d& dir, Surface& hit) const
 {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -63,7 +63,7 @@ bool Scene::Impl::intersect(const Vec3d& origin, const Vec3d& dir, Surface& hit)
     return true;
 }
 
-bool Scene::Impl::occluded(const Vec3d& origin, const Vec3d& dir, double tFar) const
+bool SceneData::occluded(const Vec3d& origin, const Vec3d& dir, double tFar) const
 {
     if (!(tFar > 0)) return false;
     RTCIntersectContext context;
@@ -82,7 +82,7 @@ bool Scene::Impl::occluded(const Vec3d& origin, const Vec3d& dir, double tFar) c
 }
 
 Scene::Scene(const TriangleMesh& mesh, const Material& material, double rayEpsilon)
-    : impl_(std::make_unique<Impl>())
+    : data_(std::make_unique<SceneData>())
 {
     validateMesh(mesh);
     const size_t nt = mesh.triangles.size(), nv = mesh.positions.size();
@@ -106,7 +106,7 @@ Scene::Scene(const TriangleMesh& mesh, const Material& material, double rayEpsil
         }
     if (nt > (size_t(1) << 31)) throw InvalidInput(fmt::format("reference scene: {} triangles; at most 2^31", nt));
 
-    Impl& s = *impl_;
+    SceneData& s = *data_;
     s.bounds = mesh.bounds();
     s.centre = 0.5 * (s.bounds.min + s.bounds.max);
     const double diagonal = length(s.bounds.extent());
@@ -166,9 +166,11 @@ Scene::~Scene() = default;
 Scene::Scene(Scene&&) noexcept = default;
 Scene& Scene::operator=(Scene&&) noexcept = default;
 
-Bounds Scene::bounds() const { return impl_->bounds; }
-double Scene::rayEpsilon() const { return impl_->epsilon; }
-size_t Scene::triangleCount() const { return impl_->triangles.size(); }
-bool Scene::emits() const { return impl_->emits; }
+Bounds Scene::bounds() const { return data_->bounds; }
+double Scene::rayEpsilon() const { return data_->epsilon; }
+size_t Scene::triangleCount() const { return data_->triangles.size(); }
+bool Scene::emits() const { return data_->emits; }
+
+const SceneData& sceneData(const Scene& scene) { return *scene.data_; }
 
 } // namespace svo::reference

@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "svo/core/error.h"
 #include "svo/validate/exact_reference.h"
 
 namespace svo::validate {
@@ -30,12 +29,6 @@ nlohmann::json casesJson(const std::vector<VoxelCase>& cases)
 }
 
 } // namespace
-
-void checkWorst(int64_t worst, const std::string& name)
-{
-    if (worst < 0 || worst > 1000000)
-        throw InvalidInput(name, fmt::format("{}: the worst cases listed of each kind are 0 to 1000000", worst));
-}
 
 Report validateVoxelization(const TriangleMesh& mesh, const Octree& octree, const std::vector<uint64_t>& voxelList,
                             const ReportOptions& options)

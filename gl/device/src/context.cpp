@@ -12,10 +12,10 @@
 
 #include <epoxy/egl.h>
 
+#include "program_cache.h"
 #include "svo/gl/gl_api.h"
 #include "svo/gl/buffer.h"
 #include "svo/gl/program.h"
-#include "svo/gl/program_cache.h"
 #include "svo/core/error.h"
 #include "svo/core/host_memory.h"
 

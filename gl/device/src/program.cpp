@@ -6,7 +6,7 @@
 #include <vector>
 #include <fmt/format.h>
 
-#include "svo/gl/shaders.h"
+#include "svo/gl/shader_source.h"
 #include "svo/core/error.h"
 
 namespace svo::gl {

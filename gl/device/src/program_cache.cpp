@@ -1,4 +1,4 @@
-#include "svo/gl/program_cache.h"
+#include "program_cache.h"
 
 #include <cstdlib>
 #include <cstring>

@@ -26,6 +26,7 @@
 #include "svo/core/winding_signs.h"
 #include "svo/core/winding_tree.h"
 #include "svo/gl/distance_field.h"
+#include "svo/gl/voxelize_pipeline.h"
 #include "svo/gl/winding_number.h"
 
 namespace svo {

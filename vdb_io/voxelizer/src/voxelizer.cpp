@@ -11,6 +11,7 @@
 
 #include "svo/core/error.h"
 #include "svo/core/interrupt.h"
+#include "svo/gl/voxelize_pipeline.h"
 #include "voxelizer_state.h"
 
 namespace svo {

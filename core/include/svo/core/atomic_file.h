@@ -85,9 +85,8 @@ public:
     ///        interrupts are allowed again
     void commit();
 
-    struct Impl; ///< atomic_file.cpp's
-
 private:
+    struct Impl; // atomic_file.cpp's: the paths held back and the outputs staged
     Impl* impl_;
 };
 

@@ -22,7 +22,8 @@
 /// is the field's value in a default-constructed struct. A field is one of:
 /// bool, std::string, an enum with names (svo/core/enum_names.h), or one of
 /// the wrappers below, which say how a number (or a two-way choice) is read
-/// and checked.
+/// and checked. A bool that is on by default is turned off on the command
+/// line, so its declaration gives that flag ("--no-holes").
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -52,10 +53,13 @@ struct CheckedNumber {
 };
 
 /// @brief A whole number checked by a library rule as it is read, kept in the
-/// field's own integer type (int, uint32_t): a front end reads a value of that
-/// type, so what the type cannot hold is refused as before any rule runs.
+/// field's own integer type (int, uint32_t): a front end reads a value of type
+/// Read, by default the field's, so what that type cannot hold is refused
+/// before any rule runs. A wider Read (int64_t for a size_t count) lets the
+/// rule, not the parser, refuse a negative number with its own message; the
+/// rule must then refuse all that Int cannot hold.
 /// rule(value, name) throws svo::InvalidInput naming the flag or keyword.
-template <typename Int>
+template <typename Int, typename Read = Int>
 struct CheckedInteger {
     Int& value;                                ///< the field
     void (*rule)(int64_t, const std::string&); ///< checkAoConeCount, ...

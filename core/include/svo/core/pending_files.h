@@ -8,8 +8,8 @@
 /// (in an OutputBatch, until the batch's commit). A program that wants SIGINT
 /// and SIGTERM to leave nothing behind removes them from its signal handler
 /// (the CLI's apps/interrupt_cleanup.h does). Everything here is safe inside
-/// a signal handler: the registry is a fixed array of atomics, and removal
-/// uses only unlink.
+/// a signal handler: the registry is a fixed table of atomic slots
+/// (slot_table.h), and removal uses only unlink.
 ///
 /// Library callers that cancel through an interrupter need none of this: a
 /// cancelled call unwinds by exception, and writeAtomically removes its

@@ -66,9 +66,10 @@
 #include "svo/core/octree.h"
 #include "svo/core/voxel_mode.h"
 #include "svo/core/voxelization.h"
-#include "svo/gl/device.h"            // DeviceOptions, StartupStats
+#include "svo/gl/device.h"            // gl::Device, DeviceOptions, StartupStats
 #include "svo/gl/field_pipeline.h"    // SignMethod, SignOptions, LevelSetOptions and their rules
-#include "svo/gl/voxelize_pipeline.h" // Backend, Dilation, VoxelizeSettings, VoxelizeStats
+#include "svo/gl/voxelize_settings.h" // Backend, Dilation, VoxelizeSettings
+#include "svo/gl/voxelize_stats.h"
 #include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/grid_options.h"
 

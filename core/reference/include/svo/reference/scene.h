@@ -29,6 +29,8 @@
 
 namespace svo::reference {
 
+struct SceneData; // what a Scene prepares: the renderers' (src/scene_data.h), opaque here
+
 /// @brief Reflectance and emission of every triangle.
 struct Material {
     /// Albedo per channel, in [0, 1], where vertex colours are not used.
@@ -67,12 +69,10 @@ public:
     size_t triangleCount() const; ///< the mesh's triangles
     bool emits() const;          ///< some triangle has non-zero emission
 
-    struct Impl; ///< Embree and the local frame (src/scene_impl.h)
-    /// @brief The library's own view of the scene, for its renderers; opaque to callers.
-    const Impl& impl() const { return *impl_; }
-
 private:
-    std::unique_ptr<Impl> impl_;
+    std::unique_ptr<SceneData> data_;
+    /// The renderers' way in (path_trace.cpp, ambient_occlusion.cpp), not a caller's.
+    friend const SceneData& sceneData(const Scene& scene);
 };
 
 } // namespace svo::reference

@@ -16,6 +16,7 @@
 
 #include "svo/validate/level_set_check.h"
 #include "svo/validate/level_set_peer.h"
+#include "svo/validate/worst_cases.h"
 
 namespace svo::validate {
 
@@ -27,6 +28,18 @@ struct LevelSetReportOptions {
     /// Told the step now starting ("CGAL distances and sides", ...), for progress lines.
     std::function<void(const std::string& step)> onStep;
 };
+
+/// @brief The options of LevelSetReportOptions a caller chooses, each with
+/// its names and doc, for every front end (svo/core/option_info.h). The
+/// bands and the sign are the level set's own (LevelSetOptions, its run's
+/// record), so they are not among them.
+template <typename Visit>
+void forEachOption(LevelSetReportOptions& o, Visit&& visit)
+{
+    visitWorst(o.check.worst, visit);
+    visit(OptionInfo{"LevelSetReportOptions::openvdb", "openvdb", "Also compare with OpenVDB's meshToLevelSet"},
+          o.openvdb);
+}
 
 /// @brief One level set's validation: the check, the comparison and the verdict.
 struct LevelSetReport {

@@ -21,6 +21,7 @@
 #include "svo/core/voxel_mode.h"
 #include "svo/validate/classify.h"
 #include "svo/validate/hole_check.h"
+#include "svo/validate/worst_cases.h"
 
 namespace svo::validate {
 
@@ -36,6 +37,18 @@ struct ReportOptions {
     std::function<void(const std::string& step)> onStep;
 };
 
+/// @brief The options of ReportOptions a caller chooses, each with its
+/// names and doc, for every front end (svo/core/option_info.h). `mode` is the
+/// voxelization's own (VoxelizeOptions::mode), so it is not one of them.
+template <typename Visit>
+void forEachOption(ReportOptions& o, Visit&& visit)
+{
+    visit(OptionInfo{"ReportOptions::holes", "holes", "Run the flood-fill hole check (closed meshes)", "--no-holes"},
+          o.holes);
+    visit(OptionInfo{"ReportOptions::strict", "strict", "Fail on extra voxels too"}, o.strict);
+    visitWorst(o.worst, visit);
+}
+
 /// @brief One voxelization's validation: the sets, the hole check, the octree's
 /// consistency, and the verdict.
 struct Report {
@@ -49,13 +62,6 @@ struct Report {
     bool passed = false;           ///< the verdict
     std::string reason;            ///< why it failed, one line
 };
-
-/// @brief The rule of `worst` (ReportOptions::worst, LevelSetCheckOptions::worst)
-/// for the front doors that take it as a signed number (`svo validate
-/// --worst`, Python's worst=): a whole number from 0 to 1000000.
-/// @param name the caller's flag or keyword
-/// @throw svo::InvalidInput "<name> <value>: ..." (argument() @a name)
-void checkWorst(int64_t worst, const std::string& name);
 
 /// @brief Validates a voxelization of @a mesh (see the file comment).
 /// @param octree    the voxelization under test, on its own grid

@@ -35,65 +35,16 @@
 #include <initializer_list>
 #include <memory>
 #include <string>
-#include <vector>
 
-#include "svo/gl/shaders.h"
+#include "svo/gl/context_info.h"
+#include "svo/gl/context_options.h"
+#include "svo/gl/program_stats.h"
+#include "svo/gl/shader_files.h"
 
 namespace svo::gl {
 
 class Program;
 class Buffer;
-
-/// @brief How a Context finds or makes its OpenGL context.
-struct ContextOptions {
-    std::string device;  ///< "" = $SVO_EGL_DEVICE or "auto"
-    bool debug = false;  ///< GL debug output to stderr (always on in debug builds)
-    /// Folder of cached program binaries: "" = $SVO_PROGRAM_CACHE when set
-    /// (empty or "off": no cache), else $XDG_CACHE_HOME/svo/programs, else
-    /// ~/.cache/svo/programs; "off" = no cache; or a folder.
-    std::string programCache;
-    /// Wrap the context current on the calling thread instead of creating one
-    /// (`device` is then ignored). It must be OpenGL 4.5 core.
-    bool adoptCurrent = false;
-};
-
-/// @brief What a Context found: the driver, its extensions and its limits.
-struct ContextInfo {
-    std::string vendor, renderer, version; ///< GL_VENDOR, GL_RENDERER, GL_VERSION
-    std::string eglDevice;             ///< the EGL device used, or "the host's GLX context" (EGL) when adopted
-    bool adopted = false;              ///< the context is the host's (ContextOptions::adoptCurrent)
-    bool conservativeRasterNV = false; ///< GL_NV_conservative_raster present
-    bool memoryInfoNVX = false;        ///< GL_NVX_gpu_memory_info present (free video memory can be asked)
-    bool software = false;             ///< a CPU rasterizer (llvmpipe, softpipe, lavapipe-like)
-    /// Loop iterations a shader may run in all, over all its loops, before the
-    /// driver ends them silently: Mesa's gallivm (llvmpipe, softpipe) stops
-    /// at 65,535. 0: no such limit. Passes whose invocations loop over work
-    /// cut their dispatches to stay under it, or stop and report it. On such
-    /// a driver the environment variable SVO_LOOP_LIMIT may lower it (not
-    /// raise it), so that tests reach the split dispatches with small scenes.
-    uint64_t loopLimit = 0;
-    /// The invocations that share one loopLimit: gallivm runs loopLanes of them
-    /// as one SIMD vector, whose loops iterate while any lane does, so lanes
-    /// whose loops diverge spend the limit together (llvmpipe's "N bits" / 32).
-    uint32_t loopLanes = 1;
-    int maxViewport = 0;               ///< largest framebuffer width/height usable
-    /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the most bytes of one buffer a shader
-    /// can address; work whose buffers would pass it is tiled or refused.
-    uint64_t maxStorageBlock = 0;
-    std::vector<std::string> extensionsUsed; ///< the optional extensions svo found and uses
-    double setupMs = 0;                ///< wall ms the constructor took: EGL display, context, queries
-    int programBinaryFormats = 0;      ///< GL_NUM_PROGRAM_BINARY_FORMATS; 0 means no program cache
-    std::string programCache;          ///< the program cache folder in use; "" when off
-};
-
-/// @brief What making programs has cost a Context so far (cumulative).
-struct ProgramStats {
-    int compiled = 0;  ///< programs compiled from source (refused ones included)
-    int loaded = 0;    ///< programs loaded from the program cache
-    int refused = 0;   ///< cache entries damaged or refused by the driver, compiled again and replaced
-    double ms = 0;     ///< wall ms spent making programs: expanding, compiling or loading, cache files
-    std::vector<std::string> warnings; ///< the program cache's (at most one: a folder that cannot be written)
-};
 
 /// @brief Why no OpenGL can be loaded in this process: the library that is
 /// missing (libEGL.so.1, or both libOpenGL.so.0 and libGL.so.1) and the

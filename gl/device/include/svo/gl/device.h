@@ -14,55 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "svo/core/option_info.h"
 #include "svo/gl/context.h"
+#include "svo/gl/device_options.h"
+#include "svo/gl/program_stats.h"
+#include "svo/gl/startup_stats.h"
 
-namespace svo {
-
-/// @brief Which GPU a Device (and so a Voxelizer) uses.
-struct DeviceOptions {
-    /// "" ($SVO_EGL_DEVICE, else "auto"), "auto" (hardware first, then
-    /// Mesa's software renderer), "hardware", "software", or an EGL device index.
-    std::string device;
-    bool glDebug = false; ///< print GL debug messages to stderr
-    /// Folder of cached GL program binaries, so that a new Device (in this
-    /// process or a later one) loads its programs instead of compiling them:
-    /// "" ($SVO_PROGRAM_CACHE when set, where empty or "off" means none; else
-    /// $XDG_CACHE_HOME/svo/programs, else ~/.cache/svo/programs), "off", or a
-    /// folder. Entries are keyed by the GL driver and the programs' full
-    /// source; one the driver refuses is compiled again and replaced. A folder
-    /// that cannot be written never fails a call (one warning in the call's
-    /// statistics). Drivers with no program binary formats have no cache.
-    std::string programCache;
-};
-
-/// @brief Each option of DeviceOptions, declared once for every front end
-/// (svo/core/option_info.h).
-template <typename Visit>
-void forEachOption(DeviceOptions& o, Visit&& visit)
-{
-    visit(OptionInfo{"DeviceOptions::device", "device",
-                     "EGL device: auto, hardware, software or an index (default: $SVO_EGL_DEVICE, else auto)"},
-          o.device);
-    visit(OptionInfo{"DeviceOptions::glDebug", "gl_debug", "Print GL debug messages"}, o.glDebug);
-    visit(OptionInfo{"DeviceOptions::programCache", "program_cache",
-                     "Folder of cached GL program binaries; off for none (default: $SVO_PROGRAM_CACHE, else "
-                     "$XDG_CACHE_HOME/svo/programs)"},
-          o.programCache);
-}
-
-/// @brief Start-up work a call paid for: the GL context and the programs it
-/// made. All zero on a warm Device whose programs are made.
-struct StartupStats {
-    double eglMs = 0;          ///< creating the EGL display and GL context (the first GPU use)
-    double programMs = 0;      ///< making programs: loading them from the cache or compiling them
-    int programsCompiled = 0;  ///< compiled from source (those the cache refused included)
-    int programsLoaded = 0;    ///< loaded from the program cache
-    int programsRefused = 0;   ///< cache entries damaged or refused by the driver: compiled again, replaced
-    std::string programCache;  ///< the program cache folder, "" when off
-};
-
-namespace gl {
+namespace svo::gl {
 
 /// @brief The GL context a pipeline runs on, created on first use, and the
 /// start-up it has not yet reported. Movable, not copyable.
@@ -121,5 +78,4 @@ private:
     std::string failed_;         // why the context could not be made; "" until a failure
 };
 
-} // namespace gl
-} // namespace svo
+} // namespace svo::gl

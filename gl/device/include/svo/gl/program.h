@@ -1,39 +1,24 @@
 #pragma once
 /// @file program.h
-/// @brief Linked GL programs: a program's expanded stages (ProgramSource,
-/// programSource) and the program itself (Program), compiled or loaded from
-/// a driver's binary.
+/// @brief svo::gl::Program: a linked GL program, compiled from its expanded
+/// stages (program_source.h) or loaded from a driver's binary.
 #include <cstdint>
 #include <functional>
 #include <initializer_list>
 #include <map>
 #include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "svo/gl/buffer.h"
 #include "svo/gl/gl_api.h"
 #include "svo/gl/handle.h"
-#include "svo/gl/shaders.h"
+#include "svo/gl/program_source.h"
+#include "svo/gl/shader_files.h"
 
 namespace svo::gl {
 
-/// @brief A program's stages with their #include lines expanded: what the
-/// driver compiles, and so what a cached binary of it is keyed by.
-struct ProgramSource {
-    std::string name;                                        ///< "a.vert, a.frag", for messages
-    std::vector<std::pair<std::string, ShaderSource>> stages; ///< file name, expanded text
-};
-
-/// @brief The expanded stages of a program.
-/// @param files the stage files, by name
-/// @param extra files looked up before the embedded ones
-/// @throw svo::DeviceError for an unknown file, an include cycle, or a file
-///        whose extension names no stage
-ProgramSource programSource(std::initializer_list<const char*> files, const ShaderFiles& extra = {});
-
-/// @brief A linked program from embedded shader files (see shaders.h),
+/// @brief A linked program from embedded shader files (see shader_source.h),
 /// compiled or loaded from a binary the driver gave earlier. Calls need a
 /// current Context.
 class Program {

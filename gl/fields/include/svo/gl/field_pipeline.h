@@ -14,7 +14,8 @@
 #include "svo/core/interrupt.h"
 #include "svo/core/mesh.h"
 #include "svo/gl/device.h"
-#include "svo/gl/voxelize_pipeline.h"
+#include "svo/gl/voxelize_settings.h"
+#include "svo/gl/voxelize_stats.h"
 
 namespace svo {
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file winding_number.h
-/// Generalized winding numbers on the GPU (svo/core/winding_tree.h has the
+/// @brief Generalized winding numbers on the GPU (svo/core/winding_tree.h has the
 /// method): the sign of level sets and solids for meshes that are not closed.
 ///
 /// Two evaluations, both in the grid's local voxel frame:
@@ -15,46 +15,16 @@
 /// nearer triangles add their exact solid angle. The error falls as
 /// (1 / beta)^3 or faster relative to the node's own contribution;
 /// beta = infinity evaluates every triangle.
-#include <array>
-#include <cstdint>
-#include <vector>
-
 #include "svo/core/grid.h"
-#include "svo/core/interrupt.h"
-#include "svo/core/mesh.h"
-#include "svo/core/octree.h"
-#include "svo/core/voxelization.h"
 #include "svo/core/local_positions.h"
+#include "svo/core/mesh.h"
+#include "svo/core/voxelization.h"
 #include "svo/core/winding_tree.h"
 #include "svo/gl/context.h"
+#include "svo/gl/winding_request.h"
+#include "svo/gl/winding_result.h"
 
 namespace svo::gl {
-
-/// How the per-voxel evaluation walks the tree (both give the same bits). A
-/// GPU runs fastest with a walk per voxel centre; a CPU rasterizer, whose
-/// SIMD lanes are a workgroup's threads, with one walk per column of 8
-/// centres that treats each centre as its own walk would.
-enum class WindingWork {
-    Auto,   ///< by the renderer: Columns on a CPU rasterizer, else Points
-    Points, ///< a walk per voxel centre
-    Columns ///< a walk per column of 8 voxel centres
-};
-
-struct WindingRequest {
-    /// Bricks (local voxel coordinate / 8) whose voxels to classify.
-    std::vector<std::array<uint32_t, 3>> bricks;
-    bool perBrick = false; ///< also the winding number at every brick centre of the grid's box
-    double beta = 1.5;     ///< far-field threshold; +infinity: every triangle exactly
-    WindingWork work = WindingWork::Auto;
-    Checkpoint checkpoint;
-};
-
-/// What computeWinding gives back.
-struct WindingResult {
-    std::vector<Brick> inside;   ///< per requested brick: voxels whose winding number is >= 1/2
-    std::vector<float> perBrick; ///< x-fastest over the box of bricks, when asked
-    std::array<uint32_t, 3> brickDims{}; ///< that box, in bricks
-};
 
 /// @brief Runs on @a context for a mesh on @a grid (both checked by the
 /// caller).

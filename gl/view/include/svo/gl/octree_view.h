@@ -37,7 +37,7 @@
 #include "svo/gl/context.h"
 #include "svo/gl/illumination.h"
 #include "svo/gl/image.h"
-#include "svo/gl/light_volume_readback.h"
+#include "svo/gl/light_volume.h"
 #include "svo/gl/surface.h"
 #include "svo/gl/view_camera.h"
 #include "svo/gl/view_colors.h"

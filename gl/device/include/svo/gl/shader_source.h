@@ -1,17 +1,15 @@
 #pragma once
-/// @file shaders.h (internal)
-/// @brief Shader text: embedded files (each GL layer's CMakeLists.txt) with `#include "name"` lines
-/// expanded, and compiler logs mapped back to those files.
+/// @file shader_source.h
+/// @brief svo::gl::ShaderSource: one shader stage's text, from embedded files
+/// (shader_files.h) with `#include "name"` lines expanded, and compiler logs
+/// mapped back to those files.
 #include <cstdint>
-#include <map>
 #include <string>
 #include <vector>
 
-namespace svo::gl {
+#include "svo/gl/shader_files.h"
 
-/// @brief Files by name, consulted before core's shared ones (a layer's embedded shaders; tests compile their own
-/// shaders this way).
-using ShaderFiles = std::map<std::string, std::string>;
+namespace svo::gl {
 
 /// @brief One stage's text, ready for glShaderSource, and where each of its
 /// lines comes from.

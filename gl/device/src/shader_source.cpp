@@ -1,4 +1,4 @@
-#include "svo/gl/shaders.h"
+#include "svo/gl/shader_source.h"
 
 #include <algorithm>
 #include <regex>

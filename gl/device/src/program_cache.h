@@ -1,5 +1,5 @@
 #pragma once
-/// @file program_cache.h (internal)
+/// @file program_cache.h
 /// @brief svo::gl::ProgramCache: linked program binaries kept on disk between processes
 /// (glGetProgramBinary / glProgramBinary), so that a new context loads its
 /// programs instead of compiling them: compilation is most of a cold start
@@ -16,6 +16,9 @@
 /// identity or refused by the driver means compiling, and the entry is
 /// written anew; a folder that cannot be written gives one warning, after
 /// which the cache only reads.
+///
+/// Internal to the device layer (Context keeps one); not installed. Callers
+/// choose the folder through ContextOptions::programCache.
 #include <optional>
 #include <string>
 

@@ -1,9 +1,8 @@
 #pragma once
-/// @file light_volume_readback.h
-/// @brief The lighting volume as OctreeView::readLightVolume reads it back, level
-/// by level, for tests and tools (the volume itself is the view's, on the GPU).
+/// @file light_volume_level.h
+/// @brief svo::gl::LightVolumeLevel: one level of the lighting volume as
+/// OctreeView::readLightVolume reads it back (light_volume.h).
 #include <array>
-#include <cstdint>
 #include <vector>
 
 namespace svo::gl {
@@ -24,16 +23,6 @@ struct LightVolumeLevel {
     /// that a trilinear sample divided by the sampled light is the lit side
     /// of the light it holds.
     std::vector<float> litSide;
-};
-/// @brief The lighting volume as read back (OctreeView::readLightVolume).
-struct LightVolume {
-    uint32_t texelVoxels = 1; ///< voxels per texel edge at level 0
-    std::vector<LightVolumeLevel> levels; ///< level 0 first
-    /// With Illumination::clearance, per texel of level 0: the coarsest
-    /// level a cone may sample anywhere in that texel and read no texel of
-    /// level 0 that holds a voxel (at most 7: distances stop at 255 texels).
-    /// Empty otherwise.
-    std::vector<uint8_t> clearLevel;
 };
 
 } // namespace svo::gl

@@ -1,6 +1,7 @@
 #pragma once
-// Scene::Impl: the Embree device and BVH, and the mesh in the local frame
-// (double), which is where every ray is made.
+// SceneData: what a Scene prepares, the Embree device and BVH and the mesh in
+// the local frame (double), which is where every ray is made. The renderers
+// reach it through sceneData(); the public header only forward-declares it.
 #include <embree3/rtcore.h>
 
 #include <cstdint>
@@ -18,7 +19,7 @@ struct Surface {
     Vec3d emission;
 };
 
-struct Scene::Impl {
+struct SceneData {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     Vec3d centre;                 // world = local + centre
@@ -31,7 +32,7 @@ struct Scene::Impl {
     std::vector<Vec3d> emission;  // per triangle; empty: none
     bool emits = false;
 
-    ~Impl();
+    ~SceneData();
 
     Vec3d toLocal(const Vec3d& world) const { return world - centre; }
 
@@ -43,5 +44,8 @@ struct Scene::Impl {
     // Where secondary rays from a surface start.
     Vec3d offset(const Surface& s) const { return s.point + epsilon * s.normal; }
 };
+
+// The data of a Scene, for the renderers (a friend of Scene).
+const SceneData& sceneData(const Scene& scene);
 
 } // namespace svo::reference

@@ -1,0 +1,29 @@
+#pragma once
+/// @file field_request.h
+/// @brief svo::gl::FieldRequest: the bricks and passes computeField
+/// (distance_field.h) runs.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "svo/core/interrupt.h"
+#include "svo/gl/field_work.h"
+
+namespace svo::gl {
+
+/// @brief What computeField computes: for which bricks, and which of
+/// distances, closest triangles and parity crossings.
+struct FieldRequest {
+    /// The bricks to compute (brick coordinates: local voxel coordinate / 8),
+    /// unique. Every voxel a result needs must lie in one of them: each voxel
+    /// within `band` of a triangle for distances, and the first voxel centre
+    /// above every crossing for signs.
+    std::vector<std::array<uint32_t, 3>> bricks;
+    double band = 0;             ///< distances up to this many voxels; 0: no distances
+    bool closestTriangle = false; ///< also the closest triangle of each voxel in the band
+    bool crossings = true;       ///< the parity crossings
+    FieldWork work = FieldWork::Auto; ///< how the distance pass cuts its work
+    Checkpoint checkpoint;            ///< polled while the passes run; throws svo::Interrupted to stop
+};
+
+} // namespace svo::gl
