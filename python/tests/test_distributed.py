@@ -187,3 +187,23 @@ def test_bad_arguments_fail_before_any_work(client):
         svo.distributed.voxelize((v, t), client=client, kind="fog")
     with pytest.raises(ValueError, match="multiple of 8"):
         svo.distributed.voxelize((v, t), client=client, tile=12)
+
+
+def test_tiles_cover_the_box_once_in_whole_leaves():
+    box = ((-40, -16, 8), (40, 72, 24))
+    parts = svo.distributed.tiles(box, 24)
+    covered = np.zeros((80, 88, 16), dtype=int)
+    for lo, hi in parts:
+        assert all(c % 8 == 0 for c in lo + hi)
+        covered[lo[0] + 40:hi[0] + 40, lo[1] + 16:hi[1] + 16, lo[2] - 8:hi[2] - 8] += 1
+    assert (covered == 1).all()
+    # About 4 tiles per worker; from 128 up, whole OpenVDB internal nodes.
+    assert svo.distributed.default_tile(((0, 0, 0), (64, 64, 64)), 2) == 32  # 8 tiles of 32³
+    assert svo.distributed.default_tile(((0, 0, 0), (2048, 2048, 2048)), 4) == 896  # 812 rounded up to 128s
+
+
+def test_without_a_client_a_local_cluster_runs_and_closes(voxelizer):
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
+    t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], dtype=np.int64)
+    got = svo.distributed.voxelize((v, t), tile=8, kind="solid", resolution=16)
+    assert_same_grid(got, voxelizer.solid(v, t, resolution=16))
