@@ -184,10 +184,9 @@ def _run(client, mesh, kind, tile, progress, keywords):
         mesh = client.scatter((vertices, triangles), broadcast=True)
     else:
         mesh = os.fspath(mesh)
-    try:
-        box, grid = client.submit(_plan_task, mesh, kind, keywords, pure=False).result()
-    except Exception as e:
-        raise type(e)(f"planning {mesh if isinstance(mesh, str) else 'the mesh'}: {e}") from e
+    # On a worker: a path is read where the tiles will read it (svo's reader
+    # errors name the file), and the client needs no GL context.
+    box, grid = client.submit(_plan_task, mesh, kind, keywords, pure=False).result()
     if tile is None:
         tile = default_tile(box, len(client.scheduler_info()["workers"]))
     boxes = tiles(box, tile)
