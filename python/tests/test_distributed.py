@@ -207,3 +207,13 @@ def test_without_a_client_a_local_cluster_runs_and_closes(voxelizer):
     t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], dtype=np.int64)
     got = svo.distributed.voxelize((v, t), tile=8, kind="solid", resolution=16)
     assert_same_grid(got, voxelizer.solid(v, t, resolution=16))
+
+
+@pytest.mark.parametrize("kind, keywords", [("surface", {"grid": "fog"}),
+                                            ("sdf", {"exterior_band": 6.0, "interior_band": 2.0})])
+def test_keywords_pass_through_to_each_tile(client, voxelizer, kind, keywords):
+    v, t = open_sphere()
+    got = svo.distributed.voxelize((v, t), client=client, tile=TILE, kind=kind, resolution=RESOLUTION, **keywords)
+    want = (voxelizer.voxelize if kind == "surface" else voxelizer.level_set)(v, t, resolution=RESOLUTION,
+                                                                              **keywords)
+    assert_same_grid(got, want)
