@@ -1,0 +1,298 @@
+"""svo on a Dask cluster: one grid voxelized in tiles, one Dask task per tile.
+
+    import svo.distributed
+    grid = svo.distributed.voxelize("city.obj", kind="sdf", resolution=1024)   # a LocalCluster
+    grid = svo.distributed.voxelize((vertices, triangles), client=Client("tcp://host:8786"), tile=256)
+
+Each tile is a region of the grid (svo's ``region=``, docs/design.md "Regions"),
+which computes exactly the whole grid's result inside its box, so the tiles
+joined are the single-process grid: same voxels, same values, same inactive
+values. Tiles are boxes of whole leaves, so no two share a leaf and joining
+them moves nodes (svo._svo._join_region).
+
+Command line: ``python3 -m svo.distributed voxelize MESH -r N [--sdf|--udf|--fill solid]
+[--tile N] [--workers N | --scheduler ADDRESS] -o OUT.vdb``.
+
+Not yet (issue 43): tiles balanced by the surface they hold (tiles are a
+regular lattice), the mesh partitioned to tiles (every task reads or receives
+the whole mesh), one GPU per worker, per-tile files with a JSON index for
+results larger than one host, attributes (calls that return a dict of grids),
+and a test of a worker killed in the middle of a task.
+"""
+import argparse
+import math
+import os
+import sys
+import tempfile
+
+import svo
+from svo._svo import _join_region
+
+KINDS = ("surface", "sdf", "udf", "solid")
+
+
+class TileError(RuntimeError):
+    """A tile's call failed; the message names the tile's box and the call's error."""
+
+
+# --- what runs on a worker ---------------------------------------------------
+
+# One Voxelizer per worker process: it keeps its GL context, programs and
+# buffers across the tiles the worker runs.
+_worker_voxelizer = None
+
+
+def _voxelizer():
+    global _worker_voxelizer
+    if _worker_voxelizer is None:
+        _worker_voxelizer = svo.Voxelizer()
+    return _worker_voxelizer
+
+
+def _mesh_arrays(mesh):
+    """A path read with svo's readers, or the (vertices, triangles) pair itself."""
+    if isinstance(mesh, (str, os.PathLike)):
+        return svo.read_mesh(os.fspath(mesh))
+    return mesh
+
+
+def _call(mesh, kind, keywords, region=None):
+    vertices, triangles = _mesh_arrays(mesh)
+    v = _voxelizer()
+    if region is not None:
+        keywords = dict(keywords, region=region)
+    if kind == "surface":
+        return v.voxelize(vertices, triangles, **keywords)
+    if kind == "sdf":
+        return v.level_set(vertices, triangles, **keywords)
+    if kind == "udf":
+        return v.level_set(vertices, triangles, unsigned=True, **keywords)
+    return v.solid(vertices, triangles, **keywords)
+
+
+# An index box no grid reaches (OpenVDB coordinates are int32; svo keeps
+# indices well inside them): a region there computes nothing but still gives
+# the grid's transform, class, name and metadata.
+_NOWHERE = ((2**30, 2**30, 2**30), (2**30 + 8, 2**30 + 8, 2**30 + 8))
+
+
+def _plan_task(mesh, kind, keywords):
+    """The index box that holds every value of the whole grid that is not
+    background, and an empty grid with its transform and metadata."""
+    vertices, triangles = _mesh_arrays(mesh)
+    empty = _call((vertices, triangles), kind, keywords, region=_NOWHERE)
+    xform = empty.transform
+    lo = [math.inf] * 3
+    hi = [-math.inf] * 3
+    # The mesh's world box, its 8 corners to index space: holds the mesh under
+    # any affine transform.
+    wlo, whi = vertices.min(axis=0), vertices.max(axis=0)
+    for cx in (wlo[0], whi[0]):
+        for cy in (wlo[1], whi[1]):
+            for cz in (wlo[2], whi[2]):
+                p = xform.worldToIndex((float(cx), float(cy), float(cz)))
+                lo = [min(lo[a], p[a]) for a in range(3)]
+                hi = [max(hi[a], p[a]) for a in range(3)]
+    # What a grid holds beyond the mesh: a surface's voxels touch it (one
+    # voxel); a level set's band leaves reach its band and one leaf further.
+    margin = 2
+    if kind in ("sdf", "udf"):
+        margin += math.ceil(max(keywords.get("exterior_band", 3.0), keywords.get("interior_band", 3.0))) + 8
+    box_lo = tuple(_floor8(math.floor(lo[a]) - margin) for a in range(3))
+    box_hi = tuple(_ceil8(math.ceil(hi[a]) + margin + 1) for a in range(3))
+    return (box_lo, box_hi), empty
+
+
+def _tile_task(mesh, kind, keywords, box):
+    try:
+        return _call(mesh, kind, keywords, region=box)
+    except Exception as e:  # the job's error must say which tile
+        raise TileError(f"tile {box[0]}..{box[1]}: {type(e).__name__}: {e}") from e
+
+
+# --- planning ----------------------------------------------------------------
+
+
+def _floor8(i):
+    return i // 8 * 8
+
+
+def _ceil8(i):
+    return -(-i // 8) * 8
+
+
+def default_tile(box, workers):
+    """About 4 tiles per worker: a cube of that many voxels, a multiple of 8
+    (of 128 from 128 up, so large tiles hold whole OpenVDB internal nodes)."""
+    volume = math.prod(box[1][a] - box[0][a] for a in range(3))
+    side = (volume / (4 * max(1, workers))) ** (1 / 3)
+    step = 128 if side >= 128 else 8
+    return max(step, math.ceil(side / step) * step)
+
+
+def tiles(box, tile):
+    """The box cut into boxes of `tile` voxels a side (the last of each axis shorter)."""
+    if tile <= 0 or tile % 8:
+        raise ValueError(f"tile must be a positive multiple of 8, got {tile}")
+    lo, hi = box
+    starts = [range(lo[a], hi[a], tile) for a in range(3)]
+    return [((x, y, z), (min(x + tile, hi[0]), min(y + tile, hi[1]), min(z + tile, hi[2])))
+            for x in starts[0] for y in starts[1] for z in starts[2]]
+
+
+# --- the call ------------------------------------------------------------------
+
+
+def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, **keywords):
+    """Voxelize a mesh on a Dask cluster: exactly the single-process grid.
+
+    mesh: a path every worker can read, or a (vertices, triangles) pair of
+    numpy arrays (sent to the workers once). kind: "surface" (svo.voxelize),
+    "sdf" (Voxelizer.level_set), "udf" (level_set unsigned=True) or "solid".
+    keywords: those of that call (resolution, voxel_size, grid, backend,
+    exterior_band, sign, ...); not region, and not attributes (their dict of
+    grids is not joined yet). client: a dask.distributed Client; None starts a
+    LocalCluster of one-thread worker processes and closes it after. tile:
+    voxels per tile side, a multiple of 8 (default: about 4 tiles per worker).
+    progress(done, total) is called as tiles finish.
+    """
+    if kind not in KINDS:
+        raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    if "region" in keywords:
+        raise ValueError("region: svo.distributed plans the regions itself")
+    if keywords.get("attributes"):
+        raise NotImplementedError("attributes: svo.distributed does not join dicts of grids yet")
+    if kind == "udf" and "unsigned" in keywords:
+        raise ValueError("unsigned: kind='udf' sets it")
+    if tile is not None and (tile <= 0 or tile % 8):
+        raise ValueError(f"tile must be a positive multiple of 8, got {tile}")
+    if client is None:
+        from distributed import Client, LocalCluster
+
+        # The dashboard on a free port: a second cluster on the machine is no error.
+        with LocalCluster(processes=True, threads_per_worker=1, dashboard_address=":0") as cluster, \
+                Client(cluster) as own:
+            return _run(own, mesh, kind, tile, progress, keywords)
+    return _run(client, mesh, kind, tile, progress, keywords)
+
+
+def _run(client, mesh, kind, tile, progress, keywords):
+    from distributed import as_completed
+
+    if not isinstance(mesh, (str, os.PathLike)):
+        vertices, triangles = mesh
+        mesh = client.scatter((vertices, triangles), broadcast=True)
+    else:
+        mesh = os.fspath(mesh)
+    # On a worker: a path is read where the tiles will read it (svo's reader
+    # errors name the file), and the client needs no GL context.
+    box, grid = client.submit(_plan_task, mesh, kind, keywords, pure=False).result()
+    if tile is None:
+        tile = default_tile(box, len(client.scheduler_info()["workers"]))
+    boxes = tiles(box, tile)
+    futures = [client.submit(_tile_task, mesh, kind, keywords, b, pure=False) for b in boxes]
+    done = 0
+    if progress:
+        progress(done, len(boxes))
+    try:
+        # Joined as they arrive, so the client holds one tile's grid at a time
+        # besides the result.
+        for future in as_completed(futures):
+            _join_region(grid, future.result())
+            future.release()
+            done += 1
+            if progress:
+                progress(done, len(boxes))
+    except BaseException:
+        # One call for all: a failed tile (or Ctrl-C) stops the tiles still queued.
+        client.cancel(futures)
+        raise
+    return grid
+
+
+# --- command line ------------------------------------------------------------
+
+
+def _main(argv=None):
+    parser = argparse.ArgumentParser(prog="python3 -m svo.distributed",
+                                     description="Voxelize a mesh on a Dask cluster, in tiles.")
+    commands = parser.add_subparsers(dest="command", required=True)
+    p = commands.add_parser("voxelize", help="a mesh file to one .vdb grid")
+    p.add_argument("mesh", help="OBJ, PLY, STL or OFF; every worker must be able to read this path")
+    size = p.add_mutually_exclusive_group()
+    size.add_argument("-r", "--resolution", type=int, help="voxels along the longest side of the mesh's box")
+    size.add_argument("--voxel-size", type=float, help="world units per voxel")
+    kind = p.add_mutually_exclusive_group()
+    kind.add_argument("--sdf", action="store_true", help="a signed distance level set")
+    kind.add_argument("--udf", action="store_true", help="an unsigned distance field")
+    kind.add_argument("--fill", choices=("solid",), help="solid: the voxels inside the mesh too")
+    p.add_argument("--grid", choices=("bool", "fog"), help="a surface's grid type (default bool)")
+    p.add_argument("--band", type=float, help="level set half width in voxels, both sides (default 3)")
+    p.add_argument("--backend", help="svo's backend (auto, raster, compute, cpu)")
+    p.add_argument("--tile", type=int, help="voxels per tile side, a multiple of 8 (default: ~4 tiles per worker)")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=int, default=2, help="local cluster worker processes (default 2)")
+    where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://host:8786")
+    p.add_argument("-o", "--output", required=True, help="the .vdb file (written atomically)")
+    args = parser.parse_args(argv)
+
+    kind = "sdf" if args.sdf else "udf" if args.udf else "solid" if args.fill else "surface"
+    keywords = {}
+    if args.resolution is not None:
+        keywords["resolution"] = args.resolution
+    if args.voxel_size is not None:
+        keywords["voxel_size"] = args.voxel_size
+    if args.grid:
+        keywords["grid"] = args.grid
+    if args.band is not None:
+        keywords["exterior_band"] = keywords["interior_band"] = args.band
+    if args.backend:
+        keywords["backend"] = args.backend
+
+    tty = sys.stderr.isatty()
+
+    def report(done, total):
+        # A terminal gets one line rewritten; a log gets a line per update.
+        print(f"\rtiles {done}/{total}" if tty else f"tiles {done}/{total}", end="" if tty else "\n",
+              file=sys.stderr, flush=True)
+
+    from distributed import Client, LocalCluster
+
+    try:
+        if args.scheduler:
+            with Client(args.scheduler) as client:
+                grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report, **keywords)
+        else:
+            with LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
+                              dashboard_address=":0") as cluster, Client(cluster) as client:
+                print(f"dashboard: {client.dashboard_link}", file=sys.stderr, flush=True)
+                grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report, **keywords)
+    except Exception as e:
+        if tty:
+            print(file=sys.stderr)
+        print(f"svo.distributed: {e}", file=sys.stderr)
+        return 1
+    if tty:
+        print(file=sys.stderr)
+    _write_atomically(args.output, grid)
+    return 0
+
+
+def _write_atomically(path, grid):
+    """pyopenvdb.write to a temporary file beside `path`, then a rename: an
+    interrupted run leaves no partial file."""
+    import pyopenvdb
+
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, temporary = tempfile.mkstemp(prefix=".svo-", suffix=".vdb", dir=folder)
+    os.close(fd)
+    try:
+        pyopenvdb.write(temporary, [grid])
+        os.replace(temporary, path)
+    except BaseException:
+        os.unlink(temporary)
+        raise
+
+
+if __name__ == "__main__":
+    sys.exit(_main())

@@ -1,0 +1,219 @@
+"""svo.distributed against the single-process call: the tiles joined are the
+whole grid, voxel for voxel and value for value (inactive values too)."""
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pyopenvdb
+import pytest
+
+distributed = pytest.importorskip("distributed")  # CI installs python3-distributed (scripts/setup.sh)
+
+import svo  # noqa: E402
+import svo.distributed  # noqa: E402
+
+SVO_EXE = os.environ.get("SVO_EXE", "")
+RESOLUTION = 40
+TILE = 16
+
+
+@pytest.fixture(scope="module")
+def client():
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
+        yield c
+
+
+@pytest.fixture(scope="module")
+def voxelizer():
+    return svo.Voxelizer()
+
+
+def icosphere(subdivisions=2):
+    """A closed unit sphere: an icosahedron's faces split in four, repeatedly."""
+    g = (1 + 5 ** 0.5) / 2
+    v = [(-1, g, 0), (1, g, 0), (-1, -g, 0), (1, -g, 0), (0, -1, g), (0, 1, g),
+         (0, -1, -g), (0, 1, -g), (g, 0, -1), (g, 0, 1), (-g, 0, -1), (-g, 0, 1)]
+    t = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
+         (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5),
+         (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    vertices = [np.array(p, dtype=np.float64) / np.linalg.norm(p) for p in v]
+    for _ in range(subdivisions):
+        middle = {}
+
+        def half(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in middle:
+                p = vertices[a] + vertices[b]
+                vertices.append(p / np.linalg.norm(p))
+                middle[key] = len(vertices) - 1
+            return middle[key]
+
+        t = [f for a, b, c in t
+             for ab, bc, ca in [(half(a, b), half(b, c), half(c, a))]
+             for f in ((a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca))]
+    return np.array(vertices), np.array(t, dtype=np.int64)
+
+
+def open_sphere():
+    """The sphere without its top cap: a hole whose inside signs depend on triangles far away."""
+    v, t = icosphere()
+    return v, t[v[t].mean(axis=1)[:, 2] < 0.6]
+
+
+@pytest.fixture(scope="module")
+def city(tmp_path_factory):
+    if not SVO_EXE or not os.path.exists(SVO_EXE):
+        pytest.skip("the svo binary is not built (SVO_EXE)")
+    path = tmp_path_factory.mktemp("city") / "city.obj"
+    subprocess.run([SVO_EXE, "scene", "city", "--triangles", "5000", "-o", str(path)], check=True,
+                   capture_output=True)
+    return str(path)
+
+
+def single(voxelizer, mesh, kind):
+    v, t = svo.read_mesh(mesh) if isinstance(mesh, str) else mesh
+    if kind == "surface":
+        return voxelizer.voxelize(v, t, resolution=RESOLUTION)
+    if kind == "sdf":
+        return voxelizer.level_set(v, t, resolution=RESOLUTION)
+    if kind == "udf":
+        return voxelizer.level_set(v, t, resolution=RESOLUTION, unsigned=True)
+    return voxelizer.solid(v, t, resolution=RESOLUTION)
+
+
+def active_mask(grid):
+    return set(map(tuple, svo.active_voxels(grid).tolist()))
+
+
+def values(grid, lo, hi):
+    dtype = bool if isinstance(grid, pyopenvdb.BoolGrid) else np.float32
+    a = np.empty(tuple(h - l for l, h in zip(lo, hi)), dtype=dtype)
+    grid.copyToArray(a, ijk=lo)
+    return a
+
+
+def assert_same_grid(got, want):
+    assert type(got) is type(want)
+    assert (got.name, got.gridClass, got.background) == (want.name, want.gridClass, want.background)
+    assert got.transform.indexToWorld((1, 2, 3)) == want.transform.indexToWorld((1, 2, 3))
+    assert got.transform.voxelSize() == want.transform.voxelSize()
+    # pyopenvdb.write adds file_* statistics to what it writes; the grid's own metadata must be the same.
+    def own(grid):
+        return {k: v for k, v in dict(grid.metadata).items() if not k.startswith("file_")}
+
+    assert own(got) == own(want)
+    assert got.activeVoxelCount() == want.activeVoxelCount() > 0
+    assert active_mask(got) == active_mask(want)
+    assert got.evalLeafBoundingBox() == want.evalLeafBoundingBox()
+    # Every value of the grid's box and a margin, active or not: the interior
+    # tiles of level sets and solids are inactive values that must survive.
+    lo, hi = want.evalLeafBoundingBox()
+    lo, hi = tuple(c - 24 for c in lo), tuple(c + 25 for c in hi)
+    assert np.array_equal(values(got, lo, hi), values(want, lo, hi))
+
+
+KINDS = ("surface", "sdf", "udf", "solid")
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("shape", ["closed", "open"])
+def test_tiles_joined_are_the_single_process_grid(client, voxelizer, shape, kind):
+    mesh = icosphere() if shape == "closed" else open_sphere()
+    calls = []
+    got = svo.distributed.voxelize(mesh, client=client, tile=TILE, kind=kind, resolution=RESOLUTION,
+                                   progress=lambda done, total: calls.append((done, total)))
+    total = calls[-1][1]
+    assert total >= 8 and calls[0] == (0, total) and calls[-1] == (total, total)
+    assert [d for d, _ in calls] == list(range(total + 1))
+    assert_same_grid(got, single(voxelizer, mesh, kind))
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_mesh_file_every_worker_reads(client, voxelizer, city, kind):
+    got = svo.distributed.voxelize(city, client=client, tile=24, kind=kind, resolution=RESOLUTION)
+    assert_same_grid(got, single(voxelizer, city, kind))
+
+
+def run_cli(*args):
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    return subprocess.run([sys.executable, "-m", "svo.distributed", *args], capture_output=True, text=True,
+                          env=env, timeout=120)
+
+
+def test_the_command_line_writes_the_same_grid(voxelizer, tmp_path):
+    v, t = icosphere()
+    mesh = tmp_path / "sphere.obj"
+    with open(mesh, "w") as f:
+        f.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in t.tolist())
+    out = tmp_path / "sphere.vdb"
+    r = run_cli("voxelize", str(mesh), "-r", str(RESOLUTION), "--sdf", "--tile", "24", "--workers", "1",
+                "-o", str(out))
+    assert r.returncode == 0, r.stderr
+    lines = [line for line in r.stderr.splitlines() if line.startswith("tiles ")]
+    total = int(lines[0].split("/")[1])
+    assert total >= 8 and lines == [f"tiles {done}/{total}" for done in range(total + 1)]  # not a tty: a line each
+    grids, _ = pyopenvdb.readAll(str(out))
+    assert len(grids) == 1
+    written = grids[0]
+    assert_same_grid(written, single(voxelizer, str(mesh), "sdf"))
+    assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".svo-")] == []
+
+
+def test_a_bad_mesh_path_fails_clearly(client, tmp_path):
+    missing = str(tmp_path / "no-such-mesh.obj")
+    with pytest.raises(OSError, match="no-such-mesh.obj"):
+        svo.distributed.voxelize(missing, client=client, resolution=RESOLUTION)
+    r = run_cli("voxelize", missing, "-r", "16", "--workers", "1", "-o", str(tmp_path / "x.vdb"))
+    assert r.returncode == 1 and "no-such-mesh.obj" in r.stderr and not (tmp_path / "x.vdb").exists()
+
+
+def test_a_failing_tile_names_its_box(client):
+    # A tile's call that fails (a band the level set refuses) raises, through
+    # Dask, an error naming the tile's box and the call's error.
+    v, t = icosphere()
+    box = ((0, 0, 0), (16, 16, 16))
+    future = client.submit(svo.distributed._tile_task, (v, t), "sdf",
+                           {"resolution": RESOLUTION, "exterior_band": 0.5}, box)
+    with pytest.raises(svo.distributed.TileError, match=r"tile \(0, 0, 0\)\.\.\(16, 16, 16\): ValueError: "):
+        future.result()
+
+
+def test_bad_arguments_fail_before_any_work(client):
+    v, t = icosphere()
+    with pytest.raises(ValueError, match="kind"):
+        svo.distributed.voxelize((v, t), client=client, kind="fog")
+    with pytest.raises(ValueError, match="multiple of 8"):
+        svo.distributed.voxelize((v, t), client=client, tile=12)
+
+
+def test_tiles_cover_the_box_once_in_whole_leaves():
+    box = ((-40, -16, 8), (40, 72, 24))
+    parts = svo.distributed.tiles(box, 24)
+    covered = np.zeros((80, 88, 16), dtype=int)
+    for lo, hi in parts:
+        assert all(c % 8 == 0 for c in lo + hi)
+        covered[lo[0] + 40:hi[0] + 40, lo[1] + 16:hi[1] + 16, lo[2] - 8:hi[2] - 8] += 1
+    assert (covered == 1).all()
+    # About 4 tiles per worker; from 128 up, whole OpenVDB internal nodes.
+    assert svo.distributed.default_tile(((0, 0, 0), (64, 64, 64)), 2) == 32  # 8 tiles of 32³
+    assert svo.distributed.default_tile(((0, 0, 0), (2048, 2048, 2048)), 4) == 896  # 812 rounded up to 128s
+
+
+def test_without_a_client_a_local_cluster_runs_and_closes(voxelizer):
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
+    t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], dtype=np.int64)
+    got = svo.distributed.voxelize((v, t), tile=8, kind="solid", resolution=16)
+    assert_same_grid(got, voxelizer.solid(v, t, resolution=16))
+
+
+@pytest.mark.parametrize("kind, keywords", [("surface", {"grid": "fog"}),
+                                            ("sdf", {"exterior_band": 6.0, "interior_band": 2.0})])
+def test_keywords_pass_through_to_each_tile(client, voxelizer, kind, keywords):
+    v, t = open_sphere()
+    got = svo.distributed.voxelize((v, t), client=client, tile=TILE, kind=kind, resolution=RESOLUTION, **keywords)
+    want = (voxelizer.voxelize if kind == "surface" else voxelizer.level_set)(v, t, resolution=RESOLUTION,
+                                                                              **keywords)
+    assert_same_grid(got, want)
