@@ -21,6 +21,7 @@
 #include "svo/gl/octree_view.h"
 #include "svo/gl/view_request.h"
 #include "svo/core/region.h"
+#include "svo/vdb_io/join_region.h"
 #include "svo/svo.h"
 #ifdef SVO_WITH_VALIDATE
 #include "svo/validate/level_set_report.h"
@@ -83,45 +84,11 @@ openvdb::GridBase::Ptr fromPython(const py::handle& obj)
 
 // --- joining regions (svo.distributed) --------------------------------------
 
-/// Moves the result of one region into the grid of other regions, which it
-/// does not meet (regions are whole leaves, so no leaf is shared). OpenVDB's
-/// merge policies move children but drop an inactive tile wherever the target
-/// already has a node, and the interior of a level set or a solid beyond its
-/// band is exactly such tiles (-background, or true): the tiles are set
-/// first, at their own level, then the children move over (MERGE_NODES).
-template <typename GridT>
-void joinRegionInto(GridT& into, GridT& part)
-{
-    using TreeT = typename GridT::TreeType;
-    if (!openvdb::math::isExactlyEqual(into.background(), part.background()))
-        badValue("_join_region: the grids have different backgrounds");
-    // A grid that came through pickle (from a Dask worker) is read with
-    // OpenVDB's delayed loading: its leaves fill in on first touch, taking
-    // their inactive values from the grid they were read into. Read them now,
-    // while that grid lives; moved leaves filled in later held garbage.
-    into.tree().readNonresidentBuffers();
-    part.tree().readNonresidentBuffers();
-    const auto background = part.background();
-    auto tile = part.tree().cbeginValueAll();
-    tile.setMaxDepth(TreeT::ValueAllCIter::LEAF_DEPTH - 1); // tiles only: leaves move whole below
-    for (; tile; ++tile) {
-        if (!tile.isValueOn() && openvdb::math::isExactlyEqual(*tile, background)) continue;
-        into.tree().addTile(tile.getLevel(), tile.getCoord(), *tile, tile.isValueOn());
-    }
-    into.tree().merge(part.tree(), openvdb::MERGE_NODES);
-}
-
 void joinRegion(const py::handle& intoObj, const py::handle& partObj)
 {
     const openvdb::GridBase::Ptr into = fromPython(intoObj), part = fromPython(partObj);
-    if (!into || !part || into->type() != part->type())
-        badValue("_join_region: expected two pyopenvdb grids of one type");
-    if (auto b = openvdb::gridPtrCast<openvdb::BoolGrid>(into))
-        joinRegionInto(*b, *openvdb::gridPtrCast<openvdb::BoolGrid>(part));
-    else if (auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(into))
-        joinRegionInto(*f, *openvdb::gridPtrCast<openvdb::FloatGrid>(part));
-    else
-        joinRegionInto(*openvdb::gridPtrCast<openvdb::Vec3SGrid>(into), *openvdb::gridPtrCast<openvdb::Vec3SGrid>(part));
+    if (!into || !part) badValue("_join_region: expected two pyopenvdb grids");
+    svo::vdb::joinRegion(*into, *part);
 }
 
 // --- arrays ----------------------------------------------------------------
