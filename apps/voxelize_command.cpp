@@ -101,8 +101,6 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
     if (!a.field()) return;
     checkFieldMode(a.backend.voxelizeOptions()); // --mode thin: the library's rule, as svo validate --sdf checks it
     if (a.backend.settings.attributes) throw InvalidInput("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
-    if (cmd.count("--gpu-memory"))
-        throw InvalidInput("--gpu-memory applies to surface voxels; --sdf, --udf and --fill solid do not tile yet");
     if (cmd.count("--fog") || cmd.count("--topology"))
         throw InvalidInput("--fog and --topology apply to surface voxels, not to --sdf, --udf or --fill solid");
     if (!a.output.empty() && outputFormat(a.output) != OutputFormat::Vdb)

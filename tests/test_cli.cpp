@@ -808,7 +808,7 @@ TEST_F(Cli, AGpuMemoryBudgetTilesTheGridToTheSameVoxels)
     EXPECT_NE(printed.find(fmt("file_voxel_count: {}\n", number(whole, "voxels"))), std::string::npos) << printed;
 
     for (const std::string& bad : {"--gpu-memory 12Q", "--gpu-memory 0", "--gpu-memory -5M", "--gpu-memory 1K",
-                                   "--gpu-memory 1G --backend cpu", "--gpu-memory 1G --sdf"}) {
+                                   "--gpu-memory 1G --backend cpu"}) {
         r = runSvo("voxelize -r 32 " + bad + " -o " + path("x.vdb"));
         EXPECT_EQ(r.code, 1) << bad << "\n" << r.out;
         EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << bad << "\n" << r.out;

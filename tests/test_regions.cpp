@@ -198,6 +198,33 @@ TEST_P(Regions, LevelSetsUdfsAndSolidsAreTheWholeGridsCutToTheBox)
     }
 }
 
+// Past a GPU memory budget, level sets and solids are computed in regions
+// and joined: the whole grid's result, value for value.
+TEST(RegionsTiles, LevelSetsAndSolidsWithinAGpuBudgetAreTheWholeGrids)
+{
+    Voxelizer v;
+    for (const TriangleMesh& mesh : {icosphere({0.1, -0.2, 0.3}, 1.0, 3), holedSphere()}) {
+        SCOPED_TRACE(mesh.source);
+        const GridSpec grid = makeGrid(mesh, GridRequest{48, 0});
+        VoxelizeStats stats;
+        VoxelizeOptions whole = onGl(&stats), tiled = onGl(&stats);
+        tiled.gpuMemory = 1 << 20; // above the surface pass's smallest, below the fields' whole band
+        const auto wholeSdf = v.levelSet(mesh, grid, {}, whole);
+        ASSERT_EQ(stats.tiles, 1u);
+        const auto tiledSdf = v.levelSet(mesh, grid, {}, tiled);
+        EXPECT_GE(stats.tiles, 2u) << "the budget cut the grid";
+        const IndexBox all{{grid.anchor[0] - 16, grid.anchor[1] - 16, grid.anchor[2] - 16},
+                           {grid.anchor[0] + 72, grid.anchor[1] + 72, grid.anchor[2] + 72}};
+        expectSameAsClipped(*wholeSdf.front(), *tiledSdf.front(), all);
+        const auto wholeSolid = v.solid(mesh, grid, whole);
+        const auto tiledSolid = v.solid(mesh, grid, tiled);
+        EXPECT_GT(stats.tiles, 1u);
+        expectSameAsClipped(*wholeSolid, *tiledSolid, all);
+        tiled.gpuMemory = 1024; // less than the mesh itself
+        EXPECT_THROW(v.levelSet(mesh, grid, {}, tiled), OutOfMemory);
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, Regions, ::testing::Values(Backend::Cpu, Backend::Raster, Backend::Compute),
                          [](const auto& info) { return std::string(nameOf(info.param)); });
 

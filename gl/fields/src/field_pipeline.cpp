@@ -83,6 +83,21 @@ std::vector<BrickCoord> forRegion(std::vector<BrickCoord> bricks, const GridSpec
     return bricks;
 }
 
+/// Refuses, before any GPU buffer is made, field work that a GPU memory
+/// budget cannot hold (VoxelizeSettings::gpuMemory; none: no check): per
+/// band brick its distances, closest triangles and masks, per triangle its
+/// corners and work items. The front door then cuts the grid into regions.
+void checkFieldBudget(const VoxelizeSettings& settings, size_t bricks, const TriangleMesh& mesh)
+{
+    if (!settings.gpuMemory) return;
+    constexpr uint64_t kBytesPerBrick = 512 * 4 * 2 + 64 * 4 + 16; // distances, closest, masks, coordinates
+    constexpr uint64_t kBytesPerTriangle = 3 * 12 + 12 + 16;        // corners, indices, work items
+    const uint64_t bytes = uint64_t(bricks) * kBytesPerBrick + uint64_t(mesh.triangles.size()) * kBytesPerTriangle;
+    if (bytes > settings.gpuMemory)
+        throw OutOfMemory(fmt::format("a GPU memory budget of {} bytes cannot hold the field's {} band bricks ({} bytes)",
+                                      settings.gpuMemory, bricks, bytes));
+}
+
 /// Winding-number signs: the number at every brick centre of the grid's box,
 /// then voxel by voxel in the band's bricks and in the bricks whose centre is
 /// within kWindingMargin of 1/2 (bricksBeyondBand, the CPU path's rule too).
@@ -322,6 +337,7 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
         stats.bandBricks = request.bricks.size();
         stats.stages.push_back({"band bricks", -1, msSince(t0)});
     }
+    checkFieldBudget(settings, request.bricks.size(), mesh);
     request.band = band;
     request.closestTriangle = ls.closestTriangle;
     request.crossings = signedField && !winding;
@@ -376,6 +392,7 @@ SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec
     SolidBricks out;
     out.grid = g;
     out.bricks = forRegion(bandBricks(surface, 1, stats), g, settings.region, !winding);
+    if (!runsOnCpu(device, settings)) checkFieldBudget(settings, out.bricks.size(), mesh);
     if (runsOnCpu(device, settings)) { // the surface voxels came from the CPU voxelizer too
         const std::vector<Vec3d> local = localPositions(mesh, g);
         if (winding) {

@@ -3,6 +3,7 @@
 // converter (svo/vdb_io/field_grids.h) makes the grids.
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <fmt/format.h>
 #include <optional>
 
@@ -10,6 +11,7 @@
 #include "svo/gl/field_pipeline.h"
 #include "svo/vdb_io/field_grids.h"
 #include "svo/vdb_io/grid_builder.h"
+#include "svo/vdb_io/join_region.h"
 #include "svo/vdb_io/vdb_file.h"
 #include "voxelizer_state.h"
 
@@ -31,6 +33,58 @@ void clipToRegion(openvdb::GridBase& grid, const std::optional<IndexBox>& region
         return openvdb::Coord(c(0), c(1), c(2));
     };
     grid.clip(openvdb::CoordBBox(coord(region->lo, 0), coord(region->hi, -1)));
+}
+
+/// The grid's index range grown by `pad` voxels, in whole leaves: every
+/// voxel a field of the grid holds (its band included) lies inside.
+IndexBox fieldBox(const GridSpec& grid, int64_t pad)
+{
+    IndexBox box;
+    for (int a = 0; a < 3; ++a) {
+        box.lo[a] = floorTo8(grid.anchor[a] - pad);
+        box.hi[a] = floorTo8(grid.anchor[a] + int64_t(grid.dims[a]) + pad + 7);
+    }
+    return box;
+}
+
+/// `run` on `box`, or, where a GPU memory budget cannot hold that, on its two
+/// halves across its wider x or y side (z columns stay whole: parity counts
+/// along them), joined; each region is exactly the whole grid's there, so
+/// the join is the whole grid's result (docs/design.md §7e).
+template <typename Run>
+openvdb::GridPtrVec inRegions(Run& run, const IndexBox& box, uint32_t& tiles)
+{
+    try {
+        openvdb::GridPtrVec out = run(box);
+        ++tiles;
+        return out;
+    } catch (const OutOfMemory&) {
+        const int axis = box.hi[0] - box.lo[0] >= box.hi[1] - box.lo[1] ? 0 : 1;
+        const int64_t leaves = (box.hi[axis] - box.lo[axis]) / 8;
+        if (leaves < 2) throw; // one column of leaves: nothing smaller to try
+        IndexBox first = box, second = box;
+        first.hi[axis] = second.lo[axis] = box.lo[axis] + 8 * (leaves / 2);
+        openvdb::GridPtrVec out = inRegions(run, first, tiles);
+        openvdb::GridPtrVec more = inRegions(run, second, tiles);
+        for (size_t i = 0; i < out.size(); ++i) vdb::joinRegion(*out[i], *more[i]);
+        return out;
+    }
+}
+
+/// `run` on the call's region (none: the whole grid); past a GPU memory
+/// budget, in regions of `box` (or of the call's region) that fit.
+template <typename Run>
+openvdb::GridPtrVec withinBudget(Run&& run, const VoxelizeOptions& options, const IndexBox& box, VoxelizeStats& stats)
+{
+    try {
+        return run(options.region);
+    } catch (const OutOfMemory&) {
+        if (!options.gpuMemory) throw; // only a budget the grid can be cut for
+    }
+    uint32_t tiles = 0;
+    openvdb::GridPtrVec out = inRegions(run, options.region ? *options.region : box, tiles);
+    stats.tiles = tiles;
+    return out;
 }
 
 /// The last stage, the result's record of what ran (each grid's metadata:
@@ -87,11 +141,20 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
     const InterruptScope interrupt(options.interrupter, "svo: computing a distance field");
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;
-    const DistanceBricks field = gl::levelSetBricks(device_, mesh, grid, ls, options, checkpoint, stats);
-    checkpoint(0.85, "level set grid");
-    const auto t0 = Clock::now();
-    openvdb::GridPtrVec out = vdb::levelSetGrids(field, ls.exteriorBand, ls.interiorBand, worldPerVoxel, xform);
-    for (auto& g : out) clipToRegion(*g, options.region);
+    Clock::time_point t0;
+    auto run = [&](const std::optional<IndexBox>& region) {
+        VoxelizeOptions part = options;
+        part.region = region;
+        stats = VoxelizeStats{};
+        const DistanceBricks field = gl::levelSetBricks(device_, mesh, grid, ls, part, checkpoint, stats);
+        checkpoint(0.85, "level set grid");
+        t0 = Clock::now();
+        openvdb::GridPtrVec out = vdb::levelSetGrids(field, ls.exteriorBand, ls.interiorBand, worldPerVoxel, xform);
+        for (auto& g : out) clipToRegion(*g, region);
+        return out;
+    };
+    const int64_t pad = int64_t(std::ceil(std::max(ls.exteriorBand, ls.interiorBand))) + 8;
+    openvdb::GridPtrVec out = withinBudget(run, options, fieldBox(grid, pad), stats);
     finishStats(stats, "level set grid", t0, out, checkpoint, options);
     return out;
 }
@@ -103,13 +166,21 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
     const InterruptScope interrupt(options.interrupter, "svo: filling a solid");
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;
-    const SolidBricks solid = gl::solidBricks(device_, mesh, grid, options, sign, checkpoint, stats);
-    checkpoint(0.8, "solid grid");
-    const auto t0 = Clock::now();
-    openvdb::MaskGrid::Ptr out = vdb::solidGrid(solid, xform);
-    clipToRegion(*out, options.region);
-    finishStats(stats, "solid grid", t0, {out}, checkpoint, options);
-    return out;
+    Clock::time_point t0;
+    auto run = [&](const std::optional<IndexBox>& region) {
+        VoxelizeOptions part = options;
+        part.region = region;
+        stats = VoxelizeStats{};
+        const SolidBricks solid = gl::solidBricks(device_, mesh, grid, part, sign, checkpoint, stats);
+        checkpoint(0.8, "solid grid");
+        t0 = Clock::now();
+        openvdb::MaskGrid::Ptr out = vdb::solidGrid(solid, xform);
+        clipToRegion(*out, region);
+        return openvdb::GridPtrVec{out};
+    };
+    const openvdb::GridPtrVec out = withinBudget(run, options, fieldBox(grid, 16), stats);
+    finishStats(stats, "solid grid", t0, out, checkpoint, options);
+    return openvdb::gridPtrCast<openvdb::MaskGrid>(out.front());
 }
 
 } // namespace svo

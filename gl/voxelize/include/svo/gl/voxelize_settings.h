@@ -33,7 +33,9 @@ struct VoxelizeSettings {
     /// after another and merged on the host: the same voxels and channels
     /// (VoxelizeStats::tiles says how many). 0: what the device reports free,
     /// less a margin (unbounded where the driver does not tell). Level sets
-    /// and solids do not tile yet: they report running out of memory instead.
+    /// and solids past a budget given here are computed in regions of the
+    /// grid and joined (the front door; docs/design.md §7e); without one,
+    /// they report running out of memory.
     uint64_t gpuMemory = 0;
     /// Only the voxels of this box of whole leaves (svo/core/region.h), in
     /// the grid's index space: exactly what the whole-grid call gives there,
