@@ -225,6 +225,57 @@ TEST(RegionsTiles, LevelSetsAndSolidsWithinAGpuBudgetAreTheWholeGrids)
     }
 }
 
+/// SVO_GL_MAX_BUFFER set for one scope: a driver that refuses buffers past
+/// `bytes` although the budget promised more.
+struct DriverRefusesBuffersPast {
+    explicit DriverRefusesBuffersPast(uint64_t bytes) { setenv("SVO_GL_MAX_BUFFER", std::to_string(bytes).c_str(), 1); }
+    ~DriverRefusesBuffersPast() { unsetenv("SVO_GL_MAX_BUFFER"); }
+};
+
+TEST(RegionsTiles, ABudgetTheDeviceCannotAllocateIsTiledNotRefused)
+{
+    Voxelizer v;
+    const TriangleMesh mesh = smallCity();
+    const GridSpec grid = makeGrid(mesh, GridRequest{200, 0});
+    VoxelizeOptions cpu;
+    cpu.backend = Backend::Cpu;
+    const auto expected = octreeKeys(v.voxelize(mesh, grid, cpu));
+    ASSERT_GT(expected.size(), 10000u);
+    // Tiled first: a scratch buffer already as large as the whole grid's
+    // pass is reused without a new allocation, so it would not be refused.
+    std::vector<std::vector<uint64_t>> tiled;
+    for (Backend backend : {Backend::Raster, Backend::Compute}) {
+        SCOPED_TRACE(nameOf(backend));
+        VoxelizeStats stats;
+        VoxelizeOptions o;
+        o.backend = backend;
+        o.stats = &stats;
+        o.gpuMemory = uint64_t(1) << 40; // far more than the driver gives
+        const DriverRefusesBuffersPast driver(256 << 10);
+        const Octree octree = v.voxelize(mesh, grid, o);
+        EXPECT_GT(stats.tiles, 1u) << "the refused allocation cut the grid";
+        EXPECT_TRUE(checkOctree(octree).empty());
+        tiled.push_back(octreeKeys(octree));
+    }
+    for (Backend backend : {Backend::Raster, Backend::Compute}) {
+        SCOPED_TRACE(nameOf(backend));
+        VoxelizeOptions o;
+        o.backend = backend;
+        const auto whole = octreeKeys(v.voxelize(mesh, grid, o));
+        const auto& keys = tiled[backend == Backend::Raster ? 0 : 1];
+        EXPECT_EQ(keys.size(), whole.size());
+        EXPECT_TRUE(keys == whole) << "the tiled voxels are the whole grid's";
+        // The GPU against the CPU reference (known: 2 voxels apart on this city, see the note on issue 43).
+        EXPECT_LE(std::max(whole.size(), expected.size()) - std::min(whole.size(), expected.size()), 2u);
+    }
+    {
+        VoxelizeOptions o = onGl();
+        o.gpuMemory = uint64_t(1) << 40;
+        const DriverRefusesBuffersPast driver(16); // not even the mesh
+        EXPECT_THROW(v.voxelize(mesh, grid, o), OutOfMemory);
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, Regions, ::testing::Values(Backend::Cpu, Backend::Raster, Backend::Compute),
                          [](const auto& info) { return std::string(nameOf(info.param)); });
 

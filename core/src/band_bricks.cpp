@@ -124,19 +124,32 @@ std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach)
 std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, const TriangleMesh& mesh,
                                             const GridSpec& g, double grow)
 {
+    return bricksNearTriangles(local, mesh, g, grow, VoxelBox{{0, 0, 0}, g.dims});
+}
+
+std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, const TriangleMesh& mesh,
+                                            const GridSpec& g, double grow, const VoxelBox& within)
+{
     std::array<uint32_t, 3> limit{};
     for (int a = 0; a < 3; ++a) limit[a] = (g.dims[a] + 7) / 8 - 1;
+    // The bricks that meet `within`, as voxel bounds: a brick is listed or not
+    // as the whole grid lists it, and a triangle far from them costs nothing.
+    std::array<double, 3> first{}, last{};
+    for (int a = 0; a < 3; ++a) {
+        first[a] = double(within.lo[a] / 8 * 8);
+        last[a] = double(std::min<uint64_t>((uint64_t(within.hi[a]) + 7) / 8 * 8, g.dims[a])) - 1;
+    }
+    if (within.empty()) return {};
     const double reach = grow * (1 + 1e-6) + 1e-6;
-    // Triangle t's centres within reach of its box, clamped to the grid
-    // (and one past it) before converting; false when none is in the grid.
+    // Triangle t's centres within reach of its box, clamped to those bricks
+    // (and one past them) before converting; false when none is in them.
     const auto boxOf = [&](size_t t, std::array<int64_t, 3>& lo, std::array<int64_t, 3>& hi) {
         const auto& f = mesh.triangles[t];
         bool any = true;
         for (int k = 0; k < 3; ++k) {
-            const double top = double(g.dims[k]);
             const double a = local[f[0]][k], b = local[f[1]][k], c = local[f[2]][k];
-            lo[k] = int64_t(std::clamp(std::ceil(std::min({a, b, c}) - reach), 0.0, top));
-            hi[k] = int64_t(std::clamp(std::floor(std::max({a, b, c}) + reach), -1.0, top - 1));
+            lo[k] = int64_t(std::clamp(std::ceil(std::min({a, b, c}) - reach), first[k], last[k] + 1));
+            hi[k] = int64_t(std::clamp(std::floor(std::max({a, b, c}) + reach), first[k] - 1, last[k]));
             any &= lo[k] <= hi[k];
         }
         return any;

@@ -1,12 +1,25 @@
 #include "svo/gl/buffer.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <fmt/format.h>
 
 #include "svo/core/error.h"
 
 namespace svo::gl {
+namespace {
+
+/// SVO_GL_MAX_BUFFER (bytes): buffers larger fail as GL_OUT_OF_MEMORY would.
+/// Drivers refuse allocations that the memory they report promised; this lets
+/// tests take that path on any driver (docs/design.md, "GPU memory").
+uint64_t maxBufferForTesting()
+{
+    const char* v = std::getenv("SVO_GL_MAX_BUFFER"); // read each time: tests set it around one call
+    return v ? std::strtoull(v, nullptr, 10) : 0;
+}
+
+} // namespace
 
 Buffer::Buffer(const char* what, uint64_t bytes, const void* data, GLbitfield flags) : bytes_(bytes)
 {
@@ -16,7 +29,8 @@ Buffer::Buffer(const char* what, uint64_t bytes, const void* data, GLbitfield fl
     glCreateBuffers(1, &n);
     h_ = Handle<detail::deleteBuffer>(n);
     glNamedBufferStorage(n, GLsizeiptr(bytes ? bytes : 4), data, flags);
-    const GLenum err = glGetError();
+    GLenum err = glGetError();
+    if (const uint64_t limit = maxBufferForTesting(); limit && bytes > limit && err == GL_NO_ERROR) err = GL_OUT_OF_MEMORY;
     if (err == GL_OUT_OF_MEMORY)
         throw OutOfMemory(fmt::format("the GPU cannot allocate {:.1f} MiB for the {}", double(bytes) / (1 << 20), what));
     if (err != GL_NO_ERROR) throw DeviceError(fmt::format("OpenGL error 0x{:04x} allocating the {}", err, what));

@@ -83,6 +83,19 @@ std::vector<BrickCoord> forRegion(std::vector<BrickCoord> bricks, const GridSpec
     return bricks;
 }
 
+/// The band's bricks that forRegion() keeps, searched only there.
+std::vector<BrickCoord> bandBricksFor(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& g,
+                                      double band, const std::optional<IndexBox>& region, bool columns)
+{
+    VoxelBox within = wholeBox(g);
+    if (region) {
+        const VoxelBox box = localBox(g, *region);
+        for (int a = 0; a < (columns ? 2 : 3); ++a) within.lo[a] = box.lo[a], within.hi[a] = box.hi[a];
+        if (box.empty()) return {};
+    }
+    return bricksNearTriangles(local, mesh, g, std::max(band, 1.0), within);
+}
+
 /// Refuses, before any GPU buffer is made, field work that a GPU memory
 /// budget cannot hold (VoxelizeSettings::gpuMemory; none: no check): per
 /// band brick its distances, closest triangles and masks, per triangle its
@@ -268,8 +281,7 @@ DistanceBricks levelSetOnCpu(const TriangleMesh& mesh, const GridSpec& g, const 
     DistanceBricks out;
     auto t0 = Clock::now();
     const std::vector<Vec3d> local = localPositions(mesh, g);
-    out.bricks = forRegion(bricksNearTriangles(local, mesh, g, std::max(band, 1.0)), g, region,
-                           signedField && !winding);
+    out.bricks = bandBricksFor(local, mesh, g, band, region, signedField && !winding);
     stats.bandBricks = out.bricks.size();
     stats.stages.push_back({"band bricks", -1, msSince(t0)});
     checkpoint(0.05, "band distance");
@@ -332,8 +344,7 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     FieldRequest request;
     {
         const auto t0 = Clock::now();
-        request.bricks = forRegion(bricksNearTriangles(localPositions(mesh, g), mesh, g, std::max(band, 1.0)), g,
-                                   settings.region, signedField && !winding);
+        request.bricks = bandBricksFor(localPositions(mesh, g), mesh, g, band, settings.region, signedField && !winding);
         stats.bandBricks = request.bricks.size();
         stats.stages.push_back({"band bricks", -1, msSince(t0)});
     }

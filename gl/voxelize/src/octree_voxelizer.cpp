@@ -118,6 +118,14 @@ public:
         return s.list <= maxEntries_ && s.bricks <= maxBricks_ && s.nodes <= maxNodes_;
     }
     bool fits(const PassSize& s) const { return withinLimits(s) && (!bytes_ || bytes(s) <= bytes_); }
+    /// After the device could not allocate a pass of size `s` (a budget can
+    /// promise more than a driver gives): the limit halves below it, so the
+    /// passes that follow are tiles of what it can.
+    void lowerBelow(const PassSize& s)
+    {
+        const uint64_t failed = bytes(s);
+        bytes_ = fixed_ + std::max<uint64_t>(1, (failed - fixed_) / 2);
+    }
     /// How many times over the budget or the limits a pass of this size is.
     double excess(const PassSize& s) const
     {
@@ -198,7 +206,7 @@ class OctreePasses {
 public:
     OctreePasses(Context& context, const TriangleMesh& mesh, const GridSpec& grid, const RasterOptions& options,
                  ListWriter& writer, const OctreeBuilder& builder, const Program* attributeProgram,
-                 const Budget& budget)
+                 Budget& budget)
         : context_(context), mesh_(mesh), grid_(grid), options_(options), writer_(writer), builder_(builder),
           attributeProgram_(attributeProgram), budget_(budget), L_(brickLevelFor(grid)),
           counter_(context.scratch("voxel counter", 2 * sizeof(uint32_t))) // entries, and wraps past 2^32
@@ -231,23 +239,30 @@ public:
             }
             auto t0 = Clock::now();
             TimerQuery drawTimer, buildTimer;
-            if (!drawn) {
-                list = &makeList(context_, size.list);
-                if (options_.attributes) triangles = &context_.scratch("triangle list", size.list * 4);
-                drawTimer.begin();
-                writer_.write(*list, counter_, size.list, triangles);
-                drawTimer.end();
+            try {
+                if (!drawn) {
+                    list = &makeList(context_, size.list);
+                    if (options_.attributes) triangles = &context_.scratch("triangle list", size.list * 4);
+                    drawTimer.begin();
+                    writer_.write(*list, counter_, size.list, triangles);
+                    drawTimer.end();
+                }
+                voxelizeWall += msSince(t0);
+                t0 = Clock::now();
+                checkpoint(0.6, "octree build");
+                OctreeInput in;
+                in.entries = list;
+                in.listCounter = &counter_;
+                in.entryCapacity = size.list;
+                buildTimer.begin();
+                build = builder_.record(grid_, in, size.nodes, size.bricks, [&] { checkpoint(0.6, "octree build"); });
+                buildTimer.end();
+            } catch (const OutOfMemory&) {
+                // More than the driver gives: a smaller budget from here on, and this box in tiles.
+                budget_.lowerBelow(size);
+                out.needed = size;
+                return out;
             }
-            voxelizeWall += msSince(t0);
-            t0 = Clock::now();
-            checkpoint(0.6, "octree build");
-            OctreeInput in;
-            in.entries = list;
-            in.listCounter = &counter_;
-            in.entryCapacity = size.list;
-            buildTimer.begin();
-            build = builder_.record(grid_, in, size.nodes, size.bricks, [&] { checkpoint(0.6, "octree build"); });
-            buildTimer.end();
             // The GPU works now; wait for it in slices so an interrupter is heard meanwhile.
             waitForGpu([&] { checkpoint(0.6, "voxelization on the GPU"); });
             OctreeBuilder::readCounts(build);
@@ -319,7 +334,7 @@ private:
     ListWriter& writer_;
     const OctreeBuilder& builder_;
     const Program* attributeProgram_;
-    const Budget& budget_;
+    Budget& budget_;
     uint32_t L_;
     const Buffer& counter_;
 };
@@ -419,7 +434,7 @@ Octree voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSp
     const OctreeBuilder builder(context);
     const Program* attributeProgram = options.attributes ? &context.program(voxelizeShaders(), {"octree_attributes.comp"}) : nullptr;
     const uint32_t L = brickLevelFor(grid);
-    const Budget budget(budgetBytes(context, options), writer->bytes(), options.attributes != 0, L,
+    Budget budget(budgetBytes(context, options), writer->bytes(), options.attributes != 0, L,
                         mesh.triangles.size(), context.shaderBufferLimit());
     const PassSize largest = budget.largest();
     if (!largest.list)
@@ -470,7 +485,12 @@ Octree voxelizeToOctree(Context& context, const TriangleMesh& mesh, const GridSp
             for (const VoxelBox& box : boxes) {
                 const Checkpoint part = checkpoint.part(0.05 + 0.8 * done / volume, 0.05 + 0.8 * (done + box.volume()) / volume);
                 // A box holds at most its parent's entries (each entry lies in one box).
-                PassSize room = largest;
+                PassSize room = budget.largest(); // lowered where the device could not allocate
+                if (!room.list)
+                    throw OutOfMemory(fmt::format("the GPU cannot allocate even the smallest pass ({}) beside the mesh "
+                                                  "({}); use a smaller mesh or another device",
+                                                  byteSize(budget.bytes(budget.sizeFor(1)) - budget.fixed()),
+                                                  byteSize(budget.fixed())));
                 if (p.needed.list < room.list) room = budget.sizeFor(p.needed.list);
                 OctreePasses::Outcome o = passes.run(box, room, part);
                 if (!o.fits) {

@@ -10,6 +10,7 @@
 #include "svo/core/grid.h"
 #include "svo/core/mesh.h"
 #include "svo/core/octree.h"
+#include "svo/core/voxel_box.h"
 #include "svo/core/vec3.h"
 
 namespace svo {
@@ -27,5 +28,12 @@ std::vector<BrickCoord> grownBricks(const Octree& octree, uint32_t reach);
 ///        the distance pass refuses too (a band far wider than the mesh's features).
 std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, const TriangleMesh& mesh,
                                             const GridSpec& g, double grow);
+
+/// @brief bricksNearTriangles() of the bricks that meet @a within only: the
+/// same bricks as the whole grid's list cut to them, without visiting the
+/// triangles far from them (a region, or a region's columns).
+/// @param within local voxels; the bricks meeting it are searched
+std::vector<BrickCoord> bricksNearTriangles(const std::vector<Vec3d>& local, const TriangleMesh& mesh,
+                                            const GridSpec& g, double grow, const VoxelBox& within);
 
 } // namespace svo
