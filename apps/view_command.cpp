@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "library_call.h"
 #include "png_file.h"
+#include "view_keys.h"
 #ifdef SVO_WITH_WINDOW
 #include "view_window.h"
 #endif
@@ -215,10 +216,13 @@ std::vector<double> parseCamera(const std::string& text)
     return cam;
 }
 
-/// The camera: --view of the grid's box, then --camera, --fov and --ortho.
+/// The camera: --view of the grid's box (the Cornell box's front: the
+/// classic view through its open side), then --camera, --fov and --ortho.
 gl::ViewCamera viewCamera(const ViewArgs& a, const GridSpec& grid, double aspect, const std::vector<double>& cam)
 {
-    gl::ViewCamera camera = gl::namedView(gl::gridWorldBox(grid), a.view, aspect);
+    const auto box = gl::gridWorldBox(grid);
+    gl::ViewCamera camera =
+        a.input.empty() && a.view == "front" ? gl::roomView(box, aspect, a.fov) : gl::namedView(box, a.view, aspect);
     if (!cam.empty()) {
         camera.eye = {cam[0], cam[1], cam[2]};
         camera.target = {cam[3], cam[4], cam[5]};
@@ -233,7 +237,8 @@ gl::ViewCamera viewCamera(const ViewArgs& a, const GridSpec& grid, double aspect
     return camera;
 }
 
-/// The octree to show: the built-in Cornell box voxelized, or the input loaded.
+/// The octree to show: the built-in Cornell box voxelized, or the input
+/// loaded (a level set or unsigned distance field: its zero crossing).
 LoadedOctree loadInput(const ViewArgs& a, const GridRequest& request, LibraryCall& call)
 {
     LoadedOctree lo;
@@ -242,7 +247,7 @@ LoadedOctree loadInput(const ViewArgs& a, const GridRequest& request, LibraryCal
         lo.kind = LoadedOctree::Kind::Mesh;
         lo.octree = call.voxelizer.voxelize(*lo.mesh, makeGrid(*lo.mesh, request), call.options);
     } else {
-        lo = loadOctree(call.voxelizer, a.input, a.gridName, request, call.options);
+        lo = loadOctree(call.voxelizer, a.input, a.gridName, request, call.options, FieldVoxels::ZeroCrossing);
     }
     if (lo.mesh) printWarnings(lo.mesh->warnings);
     printWarnings(call.stats.warnings);
@@ -293,11 +298,25 @@ void renderScreenshot(const ViewArgs& a, const LoadedOctree& lo, const gl::ViewC
     fmt::print("  {:<8} {} ({} x {}) on {}\n", "picture", a.screenshot, width, height, context.info().renderer);
 }
 
+/// The built-in Cornell box as it opens unless the flags say otherwise: its
+/// walls' colours (--color) on the voxels alone (--layers; the outlines of
+/// every level would cover the red wall with red lines). True when the
+/// colours were chosen here, so the box is voxelized with them.
+bool roomDefaults(const ViewArgs& a, const CLI::App& cmd, gl::ViewRequest& asked)
+{
+    if (!a.input.empty()) return false;
+    if (cmd.count("--layers") == 0) asked.layers.outlines = false;
+    if (cmd.count("--color") != 0) return false;
+    asked.layers.voxelColor = gl::VoxelColor::Color;
+    return true;
+}
+
 void runView(const ViewArgs& a, const CLI::App& cmd)
 {
     checkOutputKind(a);
     const auto [width, height] = parseSize(a.size);
-    const gl::ViewRequest asked = viewRequest(a);
+    gl::ViewRequest asked = viewRequest(a);
+    const bool roomColors = roomDefaults(a, cmd, asked);
     gl::namedView({Vec3d{0, 0, 0}, Vec3d{1, 1, 1}}, a.view, 1.0); // the view's name, checked before any work (--view)
     const std::vector<double> cam = parseCamera(a.camera);
     const bool window = a.screenshot.empty();
@@ -313,7 +332,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     // colours as the albedo (a mesh without colours gets no colour channel),
     // AO from the volume the normals. (The window voxelizes again with them
     // when either is turned on.)
-    backend.settings.attributes |= gl::channelsFor(asked);
+    backend.settings.attributes |= gl::channelsFor(asked) | (roomColors ? uint32_t(kColors) : 0u);
     LibraryCall call(backend, "building the octree");
     const GridRequest request = gridRequest(a.grid);
     LoadedOctree lo = loadInput(a, request, call);
@@ -325,7 +344,10 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
         throw InvalidInput(fmt::format("{}: {}", inputName(a), errorMessage(e)));
     }
     const gl::ViewCamera camera = viewCamera(a, lo.octree.grid, double(width) / double(height), cam);
-    const std::string inputLine = describeInput(inputName(a), lo, call.stats);
+    std::string inputLine = describeInput(inputName(a), lo, call.stats);
+    if (lo.fieldVoxels)
+        inputLine += fmt::format(", drawn at its zero crossing: {} of its {} active voxels",
+                                 thousands(lo.octree.voxelCount()), thousands(lo.fieldVoxels));
     if (!window) return renderScreenshot(a, lo, camera, shown, width, height, inputLine, outputs);
 #ifdef SVO_WITH_WINDOW
     ViewWindowInput in;
@@ -357,12 +379,16 @@ void addViewCommand(CLI::App& app)
     auto args = std::make_shared<ViewArgs>();
     CLI::App* cmd = app.add_subcommand(
         "view", "Draw an octree (of a mesh, .vdb or .svo; none: the Cornell box) on the GPU: voxels, node outlines, mesh");
-    cmd->add_option("input", args->input, "A mesh (voxelized first), .vdb or .svo; none: the built-in Cornell box")
+    cmd->add_option("input", args->input,
+                    "A mesh (voxelized first), .vdb, .nvdb or .svo (a level set or unsigned distance field: drawn at "
+                    "its zero crossing); none: the built-in Cornell box")
         ->check(nonEmptyMeshPath, "INPUT");
     addOutputPath(*cmd, "--screenshot", args->screenshot, "Render one frame offscreen to this PNG and exit", {".png"});
     cmd->add_option("--size", args->size, "Picture size WxH in pixels")->capture_default_str();
     cmd->add_option("--camera", args->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z[,up_x,up_y,up_z] (world units)");
-    cmd->add_option("--view", args->view, "Framed view when no --camera: front, or along an axis from +x, -x, +y, -y, +z, -z (orthographic)")
+    cmd->add_option("--view", args->view,
+                    "Framed view when no --camera: front (perspective from above-right-front; the Cornell box: "
+                    "straight through its open side), or along an axis from +x, -x, +y, -y, +z, -z (orthographic)")
         ->capture_default_str();
     // Checked as they are parsed, by the camera's rules (svo/core/camera.h).
     cmd->add_option_function<double>(
@@ -380,7 +406,8 @@ void addViewCommand(CLI::App& app)
             args->ortho = v;
         },
         "Orthographic, spanning this many world units vertically (a positive number)");
-    cmd->add_option("--layers", args->layers, "Comma-separated: voxels, outlines, bricks, mesh")->capture_default_str();
+    cmd->add_option("--layers", args->layers, "Comma-separated: voxels, outlines, bricks, mesh (the Cornell box: voxels)")
+        ->capture_default_str();
     addOptions(*cmd, args->request, {"color"});
     cmd->add_option("--levels", args->levels, "Outline levels a:b (0 = root; a, a: or :b)");
     cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
@@ -404,14 +431,13 @@ void addViewCommand(CLI::App& app)
     addOptions(*cmd, args->request.layers.light); // --specular-aperture, --gi-*, ... --gamma
     cmd->add_option("--frames", args->frames, "Window: close after this many frames (0: when closed)");
     cmd->add_option("--keys", args->keys,
-                    "Window: keys to press, one a frame from the second frame (v o m k: layers; a: colour; g r: AO on, AO "
-                    "alone; + -: resolution; b c t: "
-                    "backend, dilation, mode; f x y z: views; p: screenshot; q: quit)");
+                    "Window: keys to press, one a frame from the second frame (the window keys below)");
     addOutputPath(*cmd, "--save", args->save, "Window: write the octree shown last to this .svo, .vdb or .nvdb on exit",
                   {".svo", ".vdb", ".nvdb"});
     addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
     addOptions(*cmd, args->backend.settings, {"mode", "attributes"});
+    cmd->footer(viewKeysHelp());
     cmd->callback([args, cmd] { runView(*args, *cmd); });
 }
 

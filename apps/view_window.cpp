@@ -17,6 +17,7 @@
 #include <optional>
 
 #include "png_file.h"
+#include "view_keys.h"
 #include "svo/core/error.h"
 #include "svo/gl/context.h"
 
@@ -268,35 +269,55 @@ struct ViewerState {
         setLighting(in.layers.light.mode);
     }
 
-    /// One key, from the keyboard or the --keys script.
+    /// One key, from the keyboard or the --keys script (view_keys.h's table).
     void press(unsigned key)
     {
+        if (key >= 128) return;
+        if (const ViewKey* k = viewKeyOf(char(key))) act(k->action);
+    }
+
+    void act(ViewAction action)
+    {
         gl::ViewLayers& l = in.layers;
-        switch (key) {
-        case 'v': l.voxels = !l.voxels; break;
-        case 'o': l.outlines = !l.outlines; break;
-        case 'm': l.mesh = !l.mesh; break;
-        case 'k': l.bricks = !l.bricks; break;
-        case 'a': nextColor(); break;
-        case 'l': setLighting(gl::Illumination::Mode((int(l.light.mode) + 1) % 3)); break;
-        case 'g':
+        switch (action) {
+        case ViewAction::Voxels: l.voxels = !l.voxels; break;
+        case ViewAction::Outlines: l.outlines = !l.outlines; break;
+        case ViewAction::Mesh: l.mesh = !l.mesh; break;
+        case ViewAction::Bricks: l.bricks = !l.bricks; break;
+        case ViewAction::Color: nextColor(); break;
+        case ViewAction::Lighting: setLighting(gl::Illumination::Mode((int(l.light.mode) + 1) % 3)); break;
+        case ViewAction::AmbientOcclusion:
             l.ao.cones = l.ao.cones ? 0 : gl::AmbientOcclusion::kDefaultCones;
             if (!l.ao.cones) setAoOnly(false);
             break;
-        case 'r': setAoOnly(!l.ao.only); break;
-        case '+': case '=': revoxelize(resolution * 2); break;
-        case '-': revoxelize(std::max<int64_t>(resolution / 2, 1)); break;
-        case 'b': chosen.backend = nextValue(chosen.backend); revoxelize(resolution); break;
-        case 'c': chosen.dilation = nextValue(chosen.dilation); revoxelize(resolution); break;
-        case 't': chosen.mode = nextValue(chosen.mode); revoxelize(resolution); break;
-        case 'f': frameAll(unit(orbit.camera.target - orbit.camera.eye), orbit.camera.orthographic); break;
-        case 'x': frameAll({-1, 0, 0}, true); break;
-        case 'y': frameAll({0, -1, 0}, true); break;
-        case 'z': frameAll({0, 0, -1}, true); break;
-        case 'p': screenshot(); break;
-        case 'q': quit = true; break;
-        default: break;
+        case ViewAction::AoOnly: setAoOnly(!l.ao.only); break;
+        case ViewAction::Finer: revoxelize(resolution * 2); break;
+        case ViewAction::Coarser: revoxelize(std::max<int64_t>(resolution / 2, 1)); break;
+        case ViewAction::Backend: chosen.backend = nextValue(chosen.backend); revoxelize(resolution); break;
+        case ViewAction::Dilation: chosen.dilation = nextValue(chosen.dilation); revoxelize(resolution); break;
+        case ViewAction::Mode: chosen.mode = nextValue(chosen.mode); revoxelize(resolution); break;
+        case ViewAction::Frame: frameAll(unit(orbit.camera.target - orbit.camera.eye), orbit.camera.orthographic); break;
+        case ViewAction::AlongX: frameAll({-1, 0, 0}, true); break;
+        case ViewAction::AlongY: frameAll({0, -1, 0}, true); break;
+        case ViewAction::AlongZ: frameAll({0, 0, -1}, true); break;
+        case ViewAction::Screenshot: screenshot(); break;
+        case ViewAction::Quit: quit = true; break;
         }
+    }
+
+    /// A checkbox labelled with its key.
+    void toggle(const char* name, ViewAction a, bool& value)
+    {
+        ImGui::Checkbox(viewKeyLabel(name, a).c_str(), &value);
+    }
+
+    /// The key table (view_keys.h), folded away until opened.
+    void keysPanel()
+    {
+        if (!ImGui::CollapsingHeader("keys and mouse")) return;
+        for (const ViewKey& k : kViewKeys) ImGui::Text("%-20s %s", viewKeyNames(k).c_str(), std::string(k.does).c_str());
+        for (const auto& [what, does] : kViewMouse)
+            ImGui::Text("%-20s %s", std::string(what).c_str(), std::string(does).c_str());
     }
 
     /// The lighting controls: mode, the first light, exposure, the cones.
@@ -306,7 +327,7 @@ struct ViewerState {
         gl::Illumination& li = in.layers.light;
         static constexpr const char* kLighting[] = {"off", "direct", "direct + one bounce"};
         int m = int(li.mode);
-        if (ImGui::Combo("lighting (L)", &m, kLighting, IM_ARRAYSIZE(kLighting))) setLighting(gl::Illumination::Mode(m));
+        if (ImGui::Combo(viewKeyLabel("lighting", ViewAction::Lighting).c_str(), &m, kLighting, IM_ARRAYSIZE(kLighting))) setLighting(gl::Illumination::Mode(m));
         if (li.mode == gl::Illumination::Mode::Off) return;
         if (!li.lights.directional.empty()) {
             // The sun by where it comes from: azimuth around +y, elevation above the horizon.
@@ -355,14 +376,14 @@ struct ViewerState {
         ImGui::Text("frame %.2f ms (%.0f fps), %d x %d", frameMs, frameMs > 0 ? 1000.0 / frameMs : 0.0, width, height);
         ImGui::Separator();
         gl::ViewLayers& l = in.layers;
-        ImGui::Checkbox("voxels (V)", &l.voxels);
+        toggle("voxels", ViewAction::Voxels, l.voxels);
         ImGui::SameLine();
-        ImGui::Checkbox("outlines (O)", &l.outlines);
+        toggle("outlines", ViewAction::Outlines, l.outlines);
         ImGui::SameLine();
-        ImGui::Checkbox("bricks (K)", &l.bricks);
+        toggle("bricks", ViewAction::Bricks, l.bricks);
         if (in.loaded.mesh) {
             ImGui::SameLine();
-            ImGui::Checkbox("mesh (M)", &l.mesh);
+            toggle("mesh", ViewAction::Mesh, l.mesh);
             // Light, AO and colours on the triangles instead of the voxels (--surface).
             bool shadeMesh = l.surface == gl::Surface::Mesh;
             if (ImGui::Checkbox("shade the mesh, not the voxels", &shadeMesh)) {
@@ -371,17 +392,17 @@ struct ViewerState {
             }
         }
         static constexpr const char* kColors[] = {"flat", "normal", "colour", "triangle id"};
-        ImGui::Text("voxel colour (A): %s", kColors[int(l.voxelColor)]);
+        ImGui::Text("%s: %s", viewKeyLabel("voxel colour", ViewAction::Color).c_str(), kColors[int(l.voxelColor)]);
         if (octree.attributes.empty()) {
             ImGui::SameLine();
             ImGui::TextDisabled("(no attribute channels; --attributes)");
         }
         // Ambient occlusion, cone-traced through the volume or the octree.
-        ImGui::SliderInt("AO cones (G)", &l.ao.cones, 0, 16);
+        ImGui::SliderInt(viewKeyLabel("AO cones", ViewAction::AmbientOcclusion).c_str(), &l.ao.cones, 0, 16);
         if (l.ao.cones > 0) {
             ImGui::SameLine();
             bool only = l.ao.only;
-            if (ImGui::Checkbox("AO alone (R)", &only)) setAoOnly(only);
+            if (ImGui::Checkbox(viewKeyLabel("AO alone", ViewAction::AoOnly).c_str(), &only)) setAoOnly(only);
             float aperture = float(l.ao.apertureDegrees), offset = float(l.ao.offset), distance = float(l.ao.distance);
             if (ImGui::SliderFloat("AO aperture", &aperture, 10.0f, 120.0f, "%.0f deg")) l.ao.apertureDegrees = aperture;
             const bool volume = l.ao.source == gl::AmbientOcclusion::Source::Volume;
@@ -404,26 +425,26 @@ struct ViewerState {
             l.firstLevel = uint32_t(std::min(levels[0], levels[1]));
             l.lastLevel = uint32_t(std::max(levels[0], levels[1]));
         }
-        if (ImGui::Button("frame all (F)")) press('f');
+        if (ImGui::Button(viewKeyLabel("frame all", ViewAction::Frame).c_str())) act(ViewAction::Frame);
         ImGui::SameLine();
-        if (ImGui::Button("X")) press('x');
+        if (ImGui::Button("X")) act(ViewAction::AlongX);
         ImGui::SameLine();
-        if (ImGui::Button("Y")) press('y');
+        if (ImGui::Button("Y")) act(ViewAction::AlongY);
         ImGui::SameLine();
-        if (ImGui::Button("Z")) press('z');
+        if (ImGui::Button("Z")) act(ViewAction::AlongZ);
         ImGui::SameLine();
         ImGui::Checkbox("orthographic", &orbit.camera.orthographic);
         ImGui::SameLine();
-        if (ImGui::Button("screenshot (P)")) press('p');
+        if (ImGui::Button(viewKeyLabel("screenshot", ViewAction::Screenshot).c_str())) act(ViewAction::Screenshot);
 
         ImGui::Separator();
         if (canRevoxelize()) {
             int r = int(resolution);
-            ImGui::SliderInt("resolution (+/-)", &r, 8, 4096, "%d", ImGuiSliderFlags_Logarithmic);
+            ImGui::SliderInt(fmt::format("resolution ({}/{})", viewKeyFor(ViewAction::Finer).chars[0], viewKeyFor(ViewAction::Coarser).chars[0]).c_str(), &r, 8, 4096, "%d", ImGuiSliderFlags_Logarithmic);
             if (ImGui::IsItemDeactivatedAfterEdit()) revoxelize(r);
-            bool changed = enumCombo("backend (B)", chosen.backend);
-            changed |= enumCombo("dilation (C)", chosen.dilation);
-            changed |= enumCombo("mode (T)", chosen.mode);
+            bool changed = enumCombo(viewKeyLabel("backend", ViewAction::Backend).c_str(), chosen.backend);
+            changed |= enumCombo(viewKeyLabel("dilation", ViewAction::Dilation).c_str(), chosen.dilation);
+            changed |= enumCombo(viewKeyLabel("mode", ViewAction::Mode).c_str(), chosen.mode);
             if (changed) revoxelize(resolution);
         } else {
             ImGui::TextDisabled("re-voxelization needs a mesh input");
@@ -440,6 +461,7 @@ struct ViewerState {
             ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.3f, 1.0f), "%s", message.c_str());
             ImGui::PopTextWrapPos();
         }
+        keysPanel();
         ImGui::End();
     }
 };
@@ -497,9 +519,10 @@ ViewWindowResult runViewWindow(ViewWindowInput input, Voxelizer& voxelizer)
     });
     glfwSetKeyCallback(ws.window, [](GLFWwindow* w, int key, int, int action, int) {
         if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
-        if (key == GLFW_KEY_ESCAPE) stateOf(w)->quit = true;
-        if (key == GLFW_KEY_KP_ADD) stateOf(w)->press('+');
-        if (key == GLFW_KEY_KP_SUBTRACT) stateOf(w)->press('-');
+        // The keys that type no character: view_keys.h's "also" keys.
+        if (key == GLFW_KEY_ESCAPE) stateOf(w)->act(ViewAction::Quit);
+        if (key == GLFW_KEY_KP_ADD) stateOf(w)->act(ViewAction::Finer);
+        if (key == GLFW_KEY_KP_SUBTRACT) stateOf(w)->act(ViewAction::Coarser);
     });
     glfwSetScrollCallback(ws.window, [](GLFWwindow* w, double, double dy) {
         if (!ImGui::GetIO().WantCaptureMouse) stateOf(w)->orbit.zoom(dy);

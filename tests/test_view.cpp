@@ -4,6 +4,10 @@
 // pixels of the voxels' projection (up to a one-pixel border), node outlines
 // must lie on the boxes of the chosen level's occupied nodes, voxels and mesh
 // must hide each other by depth, and one camera must give the same bytes twice.
+// What svo view opens with: a level set at its zero crossing (against
+// OpenVDB's interior mask and erosion), an unsigned field within half a voxel
+// (an analytic plane), the Cornell box through its open front with the red
+// wall on the left and the green one on the right.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,7 +18,12 @@
 #include <set>
 #include <vector>
 
-#include "svo/gl/gl_api.h" // plain GL, through epoxy, for the reference drawing
+#include "../apps/view_keys.h" // the window's key table, header-only
+#include "svo/gl/gl_api.h"       // plain GL, through epoxy, for the reference drawing
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/LevelSetSphere.h>
+#include <openvdb/tools/LevelSetUtil.h>
+#include <openvdb/tools/Morphology.h>
 
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"
@@ -23,7 +32,10 @@
 #include "svo/core/voxel_key.h"
 #include "svo/gl/context.h"
 #include "svo/gl/octree_view.h"
+#include "svo/load_octree.h"
+#include "svo/vdb_io/zero_crossing.h"
 #include "svo/voxelizer.h"
+#include "temp_dir.h"
 
 namespace {
 
@@ -820,3 +832,194 @@ TEST(View, BadCamerasAndSizesThrow)
 }
 
 } // namespace
+
+namespace {
+
+using Coords = std::set<std::array<int64_t, 3>>;
+
+/// The voxels of a loaded octree in the file's index coordinates.
+Coords indexCoords(const svo::Octree& octree)
+{
+    Coords out;
+    for (uint64_t k : svo::octreeKeys(octree)) {
+        const auto v = svo::unpackVoxelKey(k);
+        out.insert({octree.grid.anchor[0] + v[0], octree.grid.anchor[1] + v[1], octree.grid.anchor[2] + v[2]});
+    }
+    return out;
+}
+
+template <typename TreeT>
+Coords activeCoords(const TreeT& tree)
+{
+    Coords out;
+    for (auto it = tree.cbeginValueOn(); it; ++it) {
+        if (!it.isVoxelValue()) {
+            ADD_FAILURE() << "an active tile where voxels were expected";
+            continue;
+        }
+        out.insert({it.getCoord().x(), it.getCoord().y(), it.getCoord().z()});
+    }
+    return out;
+}
+
+std::string writeGrid(const svo::test::TempDir& dir, const std::string& name, openvdb::GridBase::Ptr grid)
+{
+    openvdb::io::File file(dir.path(name));
+    file.write({grid});
+    file.close();
+    return dir.path(name);
+}
+
+} // namespace
+
+TEST(View, LevelSetIsDrawnAtItsZeroCrossing)
+{
+    openvdb::initialize();
+    const svo::test::TempDir dir("view_zero");
+    auto ls = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(6.3f, openvdb::Vec3f(0.3f, -0.2f, 0.45f), 0.5f, 3.0f);
+    ls->setName("surface");
+    const std::string path = writeGrid(dir, "sphere.vdb", ls);
+
+    // OpenVDB's answer: the interior (values below zero) less its face
+    // erosion, of the band's voxels.
+    auto interior = openvdb::tools::sdfInteriorMask(*ls);
+    auto eroded = interior->deepCopy();
+    openvdb::tools::erodeActiveValues(eroded->tree(), 1, openvdb::tools::NN_FACE, openvdb::tools::EXPAND_TILES);
+    interior->tree().topologyDifference(eroded->tree());
+    interior->tree().topologyIntersection(ls->tree());
+    interior->tree().voxelizeActiveTiles();
+    const Coords expected = activeCoords(interior->tree());
+
+    svo::Voxelizer voxelizer;
+    const svo::LoadedOctree shown =
+        svo::loadOctree(voxelizer, path, "", {}, {}, svo::FieldVoxels::ZeroCrossing);
+    EXPECT_EQ(shown.fieldVoxels, ls->activeVoxelCount());
+    const Coords got = indexCoords(shown.octree);
+    EXPECT_GT(expected.size(), 1000u);
+    EXPECT_LT(expected.size(), ls->activeVoxelCount() / 3); // a shell, not the band's six voxels across
+    EXPECT_TRUE(got == expected) << got.size() << " voxels drawn, " << expected.size() << " at the zero crossing";
+
+    // Every drawn voxel lies within a voxel's diagonal of the sphere.
+    for (const auto& c : got) {
+        const openvdb::Vec3d w = ls->indexToWorld(openvdb::Vec3d(double(c[0]), double(c[1]), double(c[2])));
+        EXPECT_LT(std::abs((w - openvdb::Vec3d(0.3, -0.2, 0.45)).length() - 6.3), 0.5 * std::sqrt(3.0) + 1e-6);
+    }
+    // Asked for the active voxels (svo info, convert), the whole band.
+    const svo::LoadedOctree band = svo::loadOctree(voxelizer, path, "", {}, {});
+    EXPECT_EQ(band.fieldVoxels, 0u);
+    EXPECT_EQ(band.octree.voxelCount(), ls->activeVoxelCount());
+}
+
+TEST(View, UnsignedFieldIsDrawnWithinHalfAVoxel)
+{
+    openvdb::initialize();
+    const svo::test::TempDir dir("view_udf");
+    // The distance to the plane z = 0.2 * h over a 11 x 11 x 7 block, h = 0.25:
+    // centres at index z = 0 are 0.2 h from it, all others 0.8 h or more.
+    const double h = 0.25;
+    auto udf = openvdb::FloatGrid::create(float(4 * h)); // beyond every value below
+    udf->setTransform(openvdb::math::Transform::createLinearTransform(h));
+    udf->setName("distance");
+    auto fog = openvdb::FloatGrid::create(0.0f);
+    fog->setTransform(udf->transform().copy());
+    fog->setGridClass(openvdb::GRID_FOG_VOLUME);
+    fog->setName("density");
+    Coords plane;
+    for (int x = -5; x <= 5; ++x)
+        for (int y = -5; y <= 5; ++y)
+            for (int z = -3; z <= 3; ++z) {
+                const float d = float(h * std::abs(z - 0.2));
+                udf->tree().setValue({x, y, z}, d);
+                fog->tree().setValue({x, y, z}, d);
+                if (z == 0) plane.insert({x, y, z});
+            }
+    EXPECT_EQ(svo::vdb::distanceKind(*udf), svo::vdb::DistanceKind::Unsigned);
+    EXPECT_EQ(svo::vdb::distanceKind(*fog), svo::vdb::DistanceKind::None);
+    svo::Voxelizer voxelizer;
+    const svo::LoadedOctree u = svo::loadOctree(voxelizer, writeGrid(dir, "udf.vdb", udf), "", {}, {},
+                                                svo::FieldVoxels::ZeroCrossing);
+    EXPECT_TRUE(indexCoords(u.octree) == plane) << indexCoords(u.octree).size() << " voxels drawn";
+    EXPECT_EQ(u.fieldVoxels, 11u * 11u * 7u);
+    // A density grid is no distance field: all its active voxels.
+    const svo::LoadedOctree f = svo::loadOctree(voxelizer, writeGrid(dir, "fog.vdb", fog), "", {}, {},
+                                                svo::FieldVoxels::ZeroCrossing);
+    EXPECT_EQ(f.fieldVoxels, 0u);
+    EXPECT_EQ(f.octree.voxelCount(), 11u * 11u * 7u);
+}
+
+TEST(View, CornellBoxOpensThroughItsOpenFront)
+{
+    const svo::TriangleMesh room = svo::cornellBox();
+    svo::VoxelizeOptions vo;
+    vo.attributes = svo::kColors;
+    const svo::Octree octree = svo::Voxelizer().voxelize(room, svo::makeGrid(room, svo::GridRequest{64, 0}), vo);
+    const int width = 160, height = 120;
+    const auto box = svo::gl::gridWorldBox(octree.grid);
+    const ViewCamera camera = svo::gl::roomView(box, double(width) / height);
+    // In front of the open side (+z), in its middle, looking along -z.
+    EXPECT_GT(camera.eye.z, box[1].z);
+    EXPECT_NEAR(camera.eye.x, 0.5 * (box[0].x + box[1].x), 1e-12);
+    EXPECT_NEAR(camera.eye.y, 0.5 * (box[0].y + box[1].y), 1e-12);
+    EXPECT_EQ(camera.target.x, camera.eye.x);
+    EXPECT_EQ(camera.target.y, camera.eye.y);
+
+    svo::gl::OctreeView view(context(), octree, &room);
+    ViewLayers layers;
+    layers.outlines = false;
+    layers.voxelColor = svo::gl::VoxelColor::Color;
+    const Image image = view.render(camera, width, height, layers);
+    // The red wall (x = -1) fills a band of the left third, the green one
+    // (x = +1) of the right third, and neither colour strays to the other
+    // side. A wall's pixel is its colour shaded by the face light: a channel
+    // at least twice each other one (the walls' reflectances differ 3 to 12
+    // times, white and the bluish grey background less than 2).
+    const auto dominant = [](const uint8_t* p, int c) {
+        return p[c] > 40 && p[c] > 2 * p[(c + 1) % 3] && p[c] > 2 * p[(c + 2) % 3];
+    };
+    size_t red[3] = {}, green[3] = {};
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const int third = 3 * x / width;
+            red[third] += dominant(image.pixel(x, y), 0);
+            green[third] += dominant(image.pixel(x, y), 1);
+        }
+    const size_t thirdPixels = size_t(width / 3) * size_t(height);
+    EXPECT_GT(red[0], thirdPixels / 8) << "red in the left third";
+    EXPECT_GT(green[2], thirdPixels / 8) << "green in the right third";
+    EXPECT_EQ(red[1] + red[2], 0u);
+    EXPECT_EQ(green[0] + green[1], 0u);
+    // The back wall, white, in the middle of the picture.
+    const uint8_t* middle = image.pixel(width / 2, height / 3);
+    EXPECT_GT(std::min({middle[0], middle[1], middle[2]}), 120) << int(middle[0]) << "," << int(middle[1]) << "," << int(middle[2]);
+
+    EXPECT_THROW(svo::gl::roomView(box, 1.0, 180.0), svo::InvalidInput);
+    EXPECT_THROW(svo::gl::roomView(box, 0.0), svo::InvalidInput);
+}
+
+// The window's key table (apps/view_keys.h), which the window presses
+// through and `svo view --help` prints: one row an action, no character in
+// two rows, letters found in either case, and every row in the help text.
+
+TEST(View, WindowKeysAreOneTable)
+{
+    using svo::app::kViewKeys;
+    std::set<char> seen;
+    std::set<int> actions;
+    const std::string help = svo::app::viewKeysHelp();
+    for (const svo::app::ViewKey& k : kViewKeys) {
+        EXPECT_TRUE(actions.insert(int(k.action)).second) << "two rows for one action: " << k.chars;
+        for (char c : k.chars) {
+            EXPECT_TRUE(seen.insert(c).second) << "'" << c << "' presses two rows";
+            EXPECT_EQ(svo::app::viewKeyOf(c), &k);
+            if (c >= 'a' && c <= 'z') {
+                EXPECT_EQ(svo::app::viewKeyOf(char(c - 'a' + 'A')), &k);
+            }
+        }
+        EXPECT_EQ(&svo::app::viewKeyFor(k.action), &k);
+        EXPECT_NE(help.find(svo::app::viewKeyNames(k)), std::string::npos) << help;
+        EXPECT_NE(help.find(std::string(k.does)), std::string::npos) << help;
+    }
+    EXPECT_EQ(actions.size(), size_t(svo::app::ViewAction::Quit) + 1); // every action has a key
+    EXPECT_EQ(svo::app::viewKeyOf('!'), nullptr);
+    EXPECT_EQ(svo::app::viewKeyLabel("voxels", svo::app::ViewAction::Voxels), "voxels (V)");
+}

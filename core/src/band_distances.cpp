@@ -1,6 +1,9 @@
 // Band distances on the CPU (svo/core/band_distances.h). Triangles are
 // binned to the bricks their grown box spans; each brick then takes its
-// triangles in one thread, so the least distance needs no atomics.
+// triangles in one thread, so the least distance needs no atomics. The
+// distance and the tests that skip centres are the shaders' own text
+// (svo/core/triangle_distance.h), so each distance is the GPU's double, bit
+// for bit (this file is compiled with -ffp-contract=off).
 #include "svo/core/band_distances.h"
 
 #include <algorithm>
@@ -11,49 +14,12 @@
 #include <tbb/parallel_for.h>
 
 #include "brick_index.h"
+#include "svo/core/triangle_distance.h"
 
 namespace svo {
 namespace {
 
-// The triangle prepared once for many centres: band_distance.glsl's
-// Triangle, with the same operations in the same order, so that each
-// distance is the GPU's double, bit for bit (no contraction: this file is
-// compiled with -ffp-contract=off).
-struct Tri {
-    Vec3d a, b, c, ab, bc, ca, n;
-    double n2, lab, lbc, lca;
-};
-
-inline double dot3(const Vec3d& u, const Vec3d& v) { return u.x * v.x + u.y * v.y + u.z * v.z; }
-
-Tri triangleOf(const Vec3d& a, const Vec3d& b, const Vec3d& c)
-{
-    Tri t;
-    t.a = a, t.b = b, t.c = c;
-    t.ab = b - a, t.bc = c - b, t.ca = a - c;
-    t.n = cross(t.ab, c - a);
-    t.n2 = dot3(t.n, t.n);
-    t.lab = dot3(t.ab, t.ab), t.lbc = dot3(t.bc, t.bc), t.lca = dot3(t.ca, t.ca);
-    return t;
-}
-
-inline double segmentDistance2(const Vec3d& p, const Vec3d& a, const Vec3d& ab, double len2)
-{
-    const double t = len2 > 0.0 ? std::min(std::max(dot3(p - a, ab) / len2, 0.0), 1.0) : 0.0;
-    const Vec3d d = p - (a + t * ab);
-    return dot3(d, d);
-}
-
-inline double triangleDistance2(const Vec3d& p, const Tri& t)
-{
-    if (t.n2 > 0.0 && dot3(cross(t.ab, p - t.a), t.n) >= 0.0 && dot3(cross(t.bc, p - t.b), t.n) >= 0.0 &&
-        dot3(cross(t.ca, p - t.c), t.n) >= 0.0) {
-        const double h = dot3(p - t.a, t.n);
-        return h * h / t.n2;
-    }
-    return std::min(segmentDistance2(p, t.a, t.ab, t.lab),
-                    std::min(segmentDistance2(p, t.b, t.bc, t.lbc), segmentDistance2(p, t.c, t.ca, t.lca)));
-}
+namespace td = triangle_distance;
 
 /// Triangle t's voxel box grown by the band and clamped to the grid, as the
 /// GPU's work items cut it (distance_field.cpp's workItems); false when empty.
@@ -159,14 +125,8 @@ BandDistances bandDistances(const std::vector<Vec3d>& local, const TriangleMesh&
                     grownBox(local, mesh, grid, t, band, lo, hi);
                     const Vec3d boxLo{std::min({A.x, B.x, C.x}), std::min({A.y, B.y, C.y}), std::min({A.z, B.z, C.z})};
                     const Vec3d boxHi{std::max({A.x, B.x, C.x}), std::max({A.y, B.y, C.y}), std::max({A.z, B.z, C.z})};
-                    const Tri tri = triangleOf(A, B, C);
-                    // The plane's slab, band_distance.glsl's slabOf: a centre
-                    // farther than the band from the plane is farther from
-                    // the triangle (widened for rounding and for needles,
-                    // whose normal is rounding noise).
-                    const double e1 = std::sqrt(dot3(B - A, B - A)), e2 = std::sqrt(dot3(C - A, C - A));
-                    const double slab = double(bandF) * std::sqrt(tri.n2) * (1.0 + 1e-6) +
-                                        1e-10 * e1 * e2 * (e1 + e2 + double(bandF));
+                    const td::svo_Triangle tri = td::svo_triangle_of(A, B, C);
+                    const td::svo_Slab slab = td::svo_slab_of(A, B, C, double(bandF));
                     for (int a = 0; a < 3; ++a) {
                         lo[a] = std::max(lo[a], org[a]) - org[a];
                         hi[a] = std::min(hi[a], org[a] + 7) - org[a];
@@ -174,28 +134,16 @@ BandDistances bandDistances(const std::vector<Vec3d>& local, const TriangleMesh&
                     for (uint32_t x = lo[0]; x <= hi[0]; ++x)
                         for (uint32_t y = lo[1]; y <= hi[1]; ++y) {
                             const double px = double(org[0] + x), py = double(org[1] + y);
-                            // The centres of this column whose distance to the
-                            // triangle's box is within the band (widened for
-                            // rounding; the exact test below decides).
-                            const double gx = std::max(std::max(boxLo.x - px, px - boxHi.x), 0.0);
-                            const double gy = std::max(std::max(boxLo.y - py, py - boxHi.y), 0.0);
-                            const double rest = band2 - gx * gx - gy * gy;
-                            if (rest < 0) continue;
-                            const double reach = std::sqrt(rest) * (1 + 1e-9) + 1e-9;
-                            double z0 = std::max(double(org[2] + lo[2]), std::ceil(boxLo.z - reach));
-                            double z1 = std::min(double(org[2] + hi[2]), std::floor(boxHi.z + reach));
-                            // ... and within the slab (band_distance.glsl's slabRun).
-                            const double h0 = tri.n.x * (px - A.x) + tri.n.y * (py - A.y) - tri.n.z * A.z;
-                            if (tri.n.z == 0.0) {
-                                if (!(std::abs(h0) <= slab)) continue;
-                            } else {
-                                const double s0 = (-slab - h0) / tri.n.z, s1 = (slab - h0) / tri.n.z;
-                                z0 = std::max(z0, std::ceil(std::min(s0, s1) - 1e-6));
-                                z1 = std::min(z1, std::floor(std::max(s0, s1) + 1e-6));
-                            }
+                            // The centres of this column near the triangle's
+                            // box, then within its plane's slab, as
+                            // band_distance_columns.comp narrows them.
+                            double z0 = double(org[2] + lo[2]), z1 = double(org[2] + hi[2]);
+                            if (!td::svo_box_run(boxLo, boxHi, px, py, band2, z0, z1) ||
+                                !td::svo_slab_run(slab, px, py, z0, z1))
+                                continue;
                             for (double pz = z0; pz <= z1; pz += 1.0) {
                                 const Vec3d p{px, py, pz};
-                                const float dd = float(std::sqrt(triangleDistance2(p, tri)));
+                                const float dd = float(std::sqrt(td::svo_prepared_distance2(p, tri)));
                                 if (dd > bandF) continue;
                                 const uint32_t v = x * 64 + y * 8 + uint32_t(pz) - org[2];
                                 if (dd < d[v]) {

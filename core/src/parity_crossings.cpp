@@ -1,5 +1,6 @@
 // Parity crossings on the CPU (svo/core/parity_crossings.h): parity_flips.comp's
-// arithmetic in the same order, a triangle per task, marks by atomic XOR.
+// column test and crossing height, one text (svo/core/column_crossing.h), a
+// triangle per task, marks by atomic XOR.
 #include "svo/core/parity_crossings.h"
 
 #include <algorithm>
@@ -9,27 +10,9 @@
 #include <tbb/parallel_for.h>
 
 #include "brick_index.h"
+#include "svo/core/column_crossing.h"
 
 namespace svo {
-namespace {
-
-struct Vec2d {
-    double x, y;
-};
-
-/// Side of the perturbed column point q + (e^2, e^3) of the directed edge
-/// p0 -> p1 (+1 left, -1 right; 0 only for an edge of zero length in projection).
-int edgeSide(Vec2d p0, Vec2d p1, Vec2d q)
-{
-    const bool swapped = p0.x > p1.x || (p0.x == p1.x && p0.y > p1.y);
-    const Vec2d a = swapped ? p1 : p0, b = swapped ? p0 : p1;
-    const double e = (b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x);
-    int s = e > 0.0 ? 1 : e < 0.0 ? -1 : 0;
-    if (s == 0) s = a.y > b.y ? 1 : a.y < b.y ? -1 : b.x > a.x ? 1 : b.x < a.x ? -1 : 0; // the e^2, then e^3 term
-    return swapped ? -s : s;
-}
-
-} // namespace
 
 ParityCrossings parityCrossings(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid,
                                 const std::vector<BrickCoord>& bricks)
@@ -58,17 +41,8 @@ ParityCrossings parityCrossings(const std::vector<Vec3d>& local, const TriangleM
             if (!any) continue;
             for (uint32_t y = lo[1]; y <= hi[1]; ++y)
                 for (uint32_t x = lo[0]; x <= hi[0]; ++x) {
-                    const Vec2d q{double(x), double(y)};
-                    const int sa = edgeSide({B.x, B.y}, {C.x, C.y}, q), sb = edgeSide({C.x, C.y}, {A.x, A.y}, q),
-                              sc = edgeSide({A.x, A.y}, {B.x, B.y}, q);
-                    if (sa == 0 || sa != sb || sb != sc) continue; // the column misses the triangle
-                    // Where it crosses: barycentric weights from the same edge functions.
-                    const double wa = (C.x - B.x) * (q.y - B.y) - (C.y - B.y) * (q.x - B.x);
-                    const double wb = (A.x - C.x) * (q.y - C.y) - (A.y - C.y) * (q.x - C.x);
-                    const double wc = (B.x - A.x) * (q.y - A.y) - (B.y - A.y) * (q.x - A.x);
-                    const double sum = wa + wb + wc;
-                    if (sum == 0.0) continue; // zero area in projection after rounding: no crossing to place
-                    const double zc = (wa * A.z + wb * B.z + wc * C.z) / sum;
+                    double zc = 0;
+                    if (!column_crossing::svo_column_crossing(A, B, C, double(x), double(y), zc)) continue;
                     const double k = std::ceil(zc); // the first centre above the crossing
                     if (k >= dimZ) continue;        // nothing above it in the grid
                     const auto kz = uint32_t(std::max(k, 0.0));

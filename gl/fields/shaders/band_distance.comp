@@ -28,12 +28,13 @@ void main()
         if (dot(gap, gap) > band2) continue; // the whole brick is beyond the band from the triangle's box
         // ... or from its plane, over the centres the box test can pass.
         dvec3 w = dvec3(uBand);
-        if (boxBeyondSlab(slabOf(A, B, C), max(brickLo, boxLo - w), min(brickHi, boxHi + w))) continue;
+        if (svo_box_beyond_slab(svo_slab_of(A, B, C, double(uBand)), max(brickLo, boxLo - w), min(brickHi, boxHi + w)))
+            continue;
         for (uint z = 0u; z < 8u; ++z) {
             dvec3 p = brickLo + dvec3(x, y, z);
             dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));
             if (dot(g, g) > band2) continue;
-            float d = float(sqrt(triangleDistance2(p, A, B, C)));
+            float d = float(sqrt(svo_triangle_distance2(p, A, B, C)));
             if (d > uBand) continue;
             uint i = 512u * brick + ((x << kKeyLeafXShift) | (y << kKeyLeafYShift) | z);
             if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));

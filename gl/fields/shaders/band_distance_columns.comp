@@ -23,20 +23,14 @@ layout(local_size_x = 8) in;
 // The triangle, its slab and its box come prepared, once for all its
 // columns, and so do the brick table's answers: the column's brick at brick
 // height `lowZ` and the one above it.
-void columnDistances(uint t, Triangle tri, Slab slab, dvec3 boxLo, dvec3 boxHi, uvec2 column, uint zLo, uint zHi,
-                     bool run, uint lowZ, uint low, uint high)
+void columnDistances(uint t, svo_Triangle tri, svo_Slab slab, dvec3 boxLo, dvec3 boxHi, uvec2 column, uint zLo,
+                     uint zHi, bool run, uint lowZ, uint low, uint high)
 {
     double band2 = double(uBand) * double(uBand);
-    if (run) {
-        dvec2 gxy = max(max(boxLo.xy - dvec2(column), dvec2(column) - boxHi.xy), dvec2(0.0LF));
-        double rest = band2 - dot(gxy, gxy);
-        if (rest < 0.0LF) return;
-        double r = sqrt(rest) * (1.0LF + 1e-9LF) + 1e-9LF;
-        double z0 = max(double(zLo), ceil(boxLo.z - r)), z1 = min(double(zHi), floor(boxHi.z + r));
-        if (z1 < z0) return;
-        zLo = uint(z0), zHi = uint(z1);
-    }
-    if (!slabRun(slab, column, zLo, zHi)) return;
+    double x = double(column.x), y = double(column.y), z0 = double(zLo), z1 = double(zHi);
+    if (run && !svo_box_run(boxLo, boxHi, x, y, band2, z0, z1)) return;
+    if (!svo_slab_run(slab, x, y, z0, z1)) return;
+    zLo = uint(z0), zHi = uint(z1);
     uvec2 l = column & kBrickMask;
     uint leaf = (l.x << kKeyLeafXShift) | (l.y << kKeyLeafYShift);
     for (uint z = zLo; z <= zHi; ++z) {
@@ -45,7 +39,7 @@ void columnDistances(uint t, Triangle tri, Slab slab, dvec3 boxLo, dvec3 boxHi, 
         dvec3 p = dvec3(column, z);
         dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));
         if (dot(g, g) > band2) continue;
-        float d = float(sqrt(triangleDistance2(p, tri)));
+        float d = float(sqrt(svo_prepared_distance2(p, tri)));
         if (d > uBand) continue;
         uint i = 512u * brick + leaf + (z & kBrickMask);
         if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));
@@ -61,8 +55,8 @@ void main()
             uvec3 lo, size;
             wholeBox(k, t, lo, size);
             dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
-            Triangle tri = triangleOf(A, B, C);
-            Slab slab = slabOf(A, B, C);
+            svo_Triangle tri = svo_triangle_of(A, B, C);
+            svo_Slab slab = svo_slab_of(A, B, C, double(uBand));
             dvec3 boxLo = min(A, min(B, C)), boxHi = max(A, max(B, C));
             // The box spans at most 2 bricks a side: their table entries,
             // looked up once instead of twice a column.
@@ -95,8 +89,8 @@ void main()
         uint x = gl_LocalInvocationID.x;
         if (x >= size.x) continue;
         dvec3 A = position(indices[3u * t]), B = position(indices[3u * t + 1u]), C = position(indices[3u * t + 2u]);
-        Triangle tri = triangleOf(A, B, C);
-        Slab slab = slabOf(A, B, C);
+        svo_Triangle tri = svo_triangle_of(A, B, C);
+        svo_Slab slab = svo_slab_of(A, B, C, double(uBand));
         dvec3 boxLo = min(A, min(B, C)), boxHi = max(A, max(B, C));
         uint brick = lookupBrick(lo >> kBrickLog2); // an item lies in one brick
         if (brick == kNoChild) continue;

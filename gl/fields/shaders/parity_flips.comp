@@ -2,54 +2,24 @@
 // Inside/outside by parity along z columns: every triangle marks where it
 // crosses each voxel column (i, j); a voxel centre is inside when an odd
 // number of crossings lie below it. The host sums the marks up each column
-// (core/parity_scan.h).
-//
-// Ties (simulation of simplicity). Each voxel centre is perturbed to
-// (i + e^2, j + e^3, k + e) for an infinitesimal e, so no centre lies on a
-// face, edge or vertex: in projection the column point misses every edge and
-// vertex (edgeSide), and a centre at the crossing's exact height counts as
-// above it, since e outweighs the crossing's own shift of order e^2. A column
-// over an edge shared by two triangles crosses exactly one of them. Each edge
-// function is evaluated with its end points in a fixed order and `precise`,
-// so the two triangles of an edge compute the same value and decide alike
-// even where double rounding is inexact.
+// (core/parity_scan.h). Which columns a triangle crosses, and where, is column_crossing.glsl's
+// (core's, one text with the CPU backend's core/src/parity_crossings.cpp),
+// ties broken by simulation of simplicity.
 layout(local_size_x = 64) in;
 #include "field_common.glsl"
+#include "field_double.glsl"
+#include "column_crossing.glsl"
 
 layout(std430, binding = SVO_BIND_FIELD_FLIPS) restrict buffer Flips { uint flips[]; };
 layout(std430, binding = SVO_BIND_FIELD_COUNTERS) restrict buffer Counters { uint missing; };
 
 uniform uint uDimZ; // local voxels along z
 
-// Side of the perturbed column point q + (e^2, e^3) of the directed edge p0 -> p1
-// (+1 left, -1 right; 0 only for an edge of zero length in projection).
-int edgeSide(dvec2 p0, dvec2 p1, dvec2 q)
-{
-    bool swapped = p0.x > p1.x || (p0.x == p1.x && p0.y > p1.y);
-    dvec2 a = swapped ? p1 : p0, b = swapped ? p0 : p1;
-    precise double e = (b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x);
-    int s = e > 0.0LF ? 1 : e < 0.0LF ? -1 : 0;
-    if (s == 0) s = a.y > b.y ? 1 : a.y < b.y ? -1 : b.x > a.x ? 1 : b.x < a.x ? -1 : 0; // the e^2, then e^3 term
-    return swapped ? -s : s;
-}
-
 // Marks where triangle t crosses one column, if it does.
 void columnCrossing(uint t, dvec3 A, dvec3 B, dvec3 C, uvec2 column)
 {
-    dvec2 q = dvec2(column);
-    int sa = edgeSide(B.xy, C.xy, q), sb = edgeSide(C.xy, A.xy, q), sc = edgeSide(A.xy, B.xy, q);
-    if (sa == 0 || sa != sb || sb != sc) return; // the column misses the triangle
-    // Where it crosses: barycentric weights from the same edge functions.
-    // `precise`: a driver that fuses multiply-adds (NVIDIA's does) would move
-    // a crossing within rounding of a centre to the other side of it, and
-    // the CPU path (core/parity_crossings.cpp), which rounds each operation,
-    // would no longer give the same signs.
-    precise double wa = (C.x - B.x) * (q.y - B.y) - (C.y - B.y) * (q.x - B.x);
-    precise double wb = (A.x - C.x) * (q.y - C.y) - (A.y - C.y) * (q.x - C.x);
-    precise double wc = (B.x - A.x) * (q.y - A.y) - (B.y - A.y) * (q.x - A.x);
-    precise double sum = wa + wb + wc;
-    if (sum == 0.0LF) return; // zero area in projection after rounding: no crossing to place
-    precise double zc = (wa * A.z + wb * B.z + wc * C.z) / sum;
+    double zc;
+    if (!svo_column_crossing(A, B, C, double(column.x), double(column.y), zc)) return;
     double k = ceil(zc); // the first centre above the crossing (a centre on it counts as above)
     if (k >= double(uDimZ)) return; // nothing above it in the grid
     uint kz = uint(max(k, 0.0LF));

@@ -245,6 +245,25 @@ ViewCamera namedView(const std::array<Vec3d, 2>& box, const std::string& name, d
                                                 fmt::format(" '{}': expected front, +x, -x, +y, -y, +z or -z", name)});
 }
 
+ViewCamera roomView(const std::array<Vec3d, 2>& box, double aspect, double fovYDegrees)
+{
+    if (!(fovYDegrees > 0 && fovYDegrees < 180) || !(aspect > 0))
+        throw InvalidInput(fmt::format("octree view: a room's view needs a field of view in (0, 180) degrees and a "
+                                       "positive aspect, not {} and {}",
+                                       fovYDegrees, aspect));
+    ViewCamera c;
+    c.orthographic = false;
+    c.fovYDegrees = fovYDegrees;
+    c.up = {0, 1, 0};
+    const Vec3d centre = 0.5 * (box[0] + box[1]);
+    // The open side's half height, or its half width seen through a narrower picture.
+    const double half = std::max(0.5 * (box[1].y - box[0].y), 0.5 * (box[1].x - box[0].x) / aspect);
+    const double back = half / std::tan(fovYDegrees * M_PI / 360.0);
+    c.eye = {centre.x, centre.y, box[1].z + back};
+    c.target = centre;
+    return c;
+}
+
 Lights defaultLights(const std::array<Vec3d, 2>& box, bool inside)
 {
     Lights l;

@@ -7,6 +7,7 @@
 #include "svo/core/octree_file.h"
 #include "svo/vdb_io/nanovdb_input.h"
 #include "svo/vdb_io/vdb_file.h"
+#include "svo/vdb_io/zero_crossing.h"
 #include "svo/voxelizer.h"
 
 namespace svo {
@@ -15,10 +16,25 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
+/// One grid of a .vdb or .nvdb file as bricks, a grid of distances narrowed
+/// to its zero crossing (fieldVoxels: the band's voxels it was taken from).
+vdb::VdbBricks readBricks(const std::string& path, bool nano, const std::string& gridName, FieldVoxels field,
+                          uint64_t& fieldVoxels)
+{
+    if (field == FieldVoxels::Active) return nano ? vdb::readNanoVdbBricks(path, gridName) : vdb::readVdbBricks(path, gridName);
+    const openvdb::GridPtrVec grids = nano ? vdb::readNanoVdbGrids(path, gridName) : vdb::readVdbGrids(path, gridName);
+    openvdb::GridBase::Ptr grid = grids.front(); // without a name, the first in name order, as readVdbBricks picks
+    for (const auto& g : grids)
+        if (g->getName() < grid->getName()) grid = g;
+    vdb::VdbBricks vb = vdb::bricksOfGrid(*grid, path);
+    if (vdb::distanceKind(*grid) != vdb::DistanceKind::None) fieldVoxels = vdb::keepZeroCrossing(*grid, vb);
+    return vb;
+}
+
 } // namespace
 
 LoadedOctree loadOctree(Voxelizer& voxelizer, const std::string& path, const std::string& gridName,
-                        const GridRequest& request, const VoxelizeOptions& options)
+                        const GridRequest& request, const VoxelizeOptions& options, FieldVoxels field)
 {
     LoadedOctree out;
     const std::string ext = std::filesystem::path(path).extension().string();
@@ -34,7 +50,7 @@ LoadedOctree loadOctree(Voxelizer& voxelizer, const std::string& path, const std
     o.stats = &stats;
     if (ext == ".vdb" || ext == ".nvdb") {
         const auto t0 = Clock::now();
-        vdb::VdbBricks vb = ext == ".vdb" ? vdb::readVdbBricks(path, gridName) : vdb::readNanoVdbBricks(path, gridName);
+        vdb::VdbBricks vb = readBricks(path, ext == ".nvdb", gridName, field, out.fieldVoxels);
         out.stages.push_back({ext == ".vdb" ? "vdb read" : "nvdb read", -1, msSince(t0)});
         out.kind = LoadedOctree::Kind::Vdb;
         out.gridName = vb.gridName;

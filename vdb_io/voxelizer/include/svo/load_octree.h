@@ -25,8 +25,19 @@ struct LoadedOctree {
     std::string gridName, gridType; ///< .vdb or .nvdb input: the grid read
     uint64_t tilesExpanded = 0;     ///< .vdb input: active tiles turned into bricks
     std::string valuesDropped;      ///< .vdb input: what the octree does not hold of the grid (vdb::valuesBeyondTopology)
+    /// .vdb or .nvdb input loaded with FieldVoxels::ZeroCrossing: the
+    /// distance field's active voxels the zero crossing was taken from (0:
+    /// none was taken, the octree holds the grid's active voxels).
+    uint64_t fieldVoxels = 0;
     std::optional<TriangleMesh> mesh; ///< mesh input: the mesh
     std::vector<StageTime> stages;  ///< reading, building or voxelizing
+};
+
+/// @brief What loadOctree keeps of a .vdb or .nvdb grid that holds distances
+/// (a level set, an unsigned distance field: svo/vdb_io/zero_crossing.h).
+enum class FieldVoxels {
+    Active,      ///< its active voxels, the whole narrow band
+    ZeroCrossing ///< the voxels at its zero crossing (what a picture shows)
 };
 
 /// @brief Reads any input as an octree, the kind chosen by the extension.
@@ -34,12 +45,14 @@ struct LoadedOctree {
 ///        (backend, interrupter, statistics)
 /// @param gridName  picks a .vdb or .nvdb grid (empty: the first)
 /// @param grid      how to voxelize a mesh
+/// @param field     what to keep of a grid of distances (other grids: their active voxels)
 /// @throw svo::IoError for a file that is missing, unreadable or damaged
 /// @throw svo::InvalidInput for a missing grid, a grid or mesh svo cannot
 ///        take, or a bad grid request
 /// @throw svo::DeviceError, svo::OutOfMemory, svo::Unsupported,
 ///        svo::Interrupted as the Voxelizer's calls
 LoadedOctree loadOctree(Voxelizer& voxelizer, const std::string& path, const std::string& gridName,
-                        const GridRequest& grid, const VoxelizeOptions& options);
+                        const GridRequest& grid, const VoxelizeOptions& options,
+                        FieldVoxels field = FieldVoxels::Active);
 
 } // namespace svo

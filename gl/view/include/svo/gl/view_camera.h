@@ -36,4 +36,16 @@ ViewCamera frameBox(const std::array<Vec3d, 2>& box, const Vec3d& direction, boo
 ///        argument() "svo::gl::namedView")
 ViewCamera namedView(const std::array<Vec3d, 2>& box, const std::string& name, double aspect);
 
+/// @brief The classic front view of a room open at +z, as the Cornell box is
+/// photographed: perspective, from the middle of the open side, looking
+/// along -z at the back wall, up +y, as far back as the open side fills the
+/// picture (its height, or its width in a picture narrower than the room),
+/// so that the floor, ceiling, back and both side walls are in sight.
+/// @param box         the room's world box (its +z side open)
+/// @param aspect      the picture's width / height
+/// @param fovYDegrees the camera's vertical field of view, in (0, 180)
+/// @throw svo::InvalidInput for a field of view outside (0, 180) or an aspect
+///        that is not positive
+ViewCamera roomView(const std::array<Vec3d, 2>& box, double aspect, double fovYDegrees = 40.0);
+
 } // namespace svo::gl
