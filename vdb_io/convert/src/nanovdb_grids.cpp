@@ -3,9 +3,9 @@
 
 #include <cmath>
 #include <map>
-#include <nanovdb/util/GridChecksum.h>
 #include <tbb/parallel_for.h>
 
+#include "svo/vdb_io/nanovdb_checksum.h"
 #include "svo/vdb_io/nanovdb_layout.h"
 
 namespace svo::vdb {
@@ -322,7 +322,7 @@ std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double ex
                                                      checksum && !flood)));
     if (flood) {
         signedFloodFill(*out.back().grid<float>());
-        if (checksum) nanovdb::updateChecksum(*out.back().grid<float>(), nanovdb::ChecksumMode::Full);
+        if (checksum) updateFullChecksum(*out.back().grid<float>());
     }
     if (field.closestTriangle)
         out.push_back(buildNanoGrid<int32_t>(closest, infoFor(lattice, "closest_triangle", nanovdb::GridClass::Unknown, checksum)));

@@ -7,8 +7,10 @@
 #include <limits>
 #include <nanovdb/util/GridChecksum.h>
 #include <tbb/parallel_for.h>
+#include <zlib.h>
 
 #include "svo/core/error.h"
+#include "svo/vdb_io/nanovdb_checksum.h"
 
 namespace svo::vdb {
 namespace {
@@ -392,8 +394,32 @@ nanovdb::GridHandle<nanovdb::HostBuffer> buildNanoGrid(const SparseVoxels<typena
         grid->setBBoxOn();
     }
     nanovdb::GridHandle<nanovdb::HostBuffer> handle(std::move(buffer));
-    if (info.checksum) nanovdb::updateChecksum(*handle.template grid<BuildT>(), nanovdb::ChecksumMode::Full);
+    if (info.checksum) updateFullChecksum(*handle.template grid<BuildT>());
     return handle;
+}
+
+template <typename BuildT>
+void updateFullChecksum(nanovdb::NanoGrid<BuildT>& grid)
+{
+    auto& tree = grid.tree();
+    if (tree.isEmpty()) return nanovdb::updateChecksum(grid, nanovdb::ChecksumMode::Full);
+    auto crc = [](const void* p, size_t n) { return uint32_t(crc32_z(0UL, static_cast<const Bytef*>(p), n)); };
+    const auto* base = reinterpret_cast<const uint8_t*>(&grid);
+    const uint64_t rootEnd = grid.memUsage() + tree.memUsage() + tree.root().memUsage();
+    const uint32_t head = crc(base + 16, rootEnd - 16); // past mMagic and mChecksum
+    const uint32_t n2 = tree.nodeCount(2), n1 = tree.nodeCount(1), n0 = tree.nodeCount(0);
+    // nanovdb::GridChecksum keeps each node's CRC in a std::uint_fast32_t and hashes that array's bytes.
+    std::vector<std::uint_fast32_t> sums(size_t(n2) + n1 + n0);
+    auto nodes = [&](const void* first, size_t size, size_t count, size_t at) {
+        tbb::parallel_for(size_t(0), count, [&, first, size, at](size_t i) {
+            sums[at + i] = crc(static_cast<const uint8_t*>(first) + i * size, size);
+        });
+    };
+    nodes(tree.template getFirstNode<2>(), sizeof(nanovdb::NanoUpper<BuildT>), n2, 0);
+    nodes(tree.template getFirstNode<1>(), sizeof(nanovdb::NanoLower<BuildT>), n1, n2);
+    nodes(tree.template getFirstNode<0>(), sizeof(nanovdb::NanoLeaf<BuildT>), n0, size_t(n2) + n1);
+    const uint32_t tail = crc(sums.data(), sums.size() * sizeof(std::uint_fast32_t));
+    grid.data()->mChecksum = uint64_t(tail) << 32 | head;
 }
 
 template nanovdb::GridHandle<nanovdb::HostBuffer> buildNanoGrid<float>(const SparseVoxels<float>&, const NanoGridInfo&);
@@ -403,5 +429,10 @@ template nanovdb::GridHandle<nanovdb::HostBuffer> buildNanoGrid<nanovdb::Vec3f>(
 template nanovdb::GridHandle<nanovdb::HostBuffer> buildNanoGrid<bool>(const SparseVoxels<bool>&, const NanoGridInfo&);
 template nanovdb::GridHandle<nanovdb::HostBuffer> buildNanoGrid<nanovdb::ValueMask>(const SparseVoxels<bool>&,
                                                                                   const NanoGridInfo&);
+template void updateFullChecksum<float>(nanovdb::NanoGrid<float>&);
+template void updateFullChecksum<int32_t>(nanovdb::NanoGrid<int32_t>&);
+template void updateFullChecksum<nanovdb::Vec3f>(nanovdb::NanoGrid<nanovdb::Vec3f>&);
+template void updateFullChecksum<bool>(nanovdb::NanoGrid<bool>&);
+template void updateFullChecksum<nanovdb::ValueMask>(nanovdb::NanoGrid<nanovdb::ValueMask>&);
 
 } // namespace svo::vdb
