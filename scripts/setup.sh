@@ -17,7 +17,7 @@ packages=(
   libvtk9-dev xvfb xauth libpng-dev libimgui-dev
   libcli11-dev libfmt-dev libgtest-dev libfast-float-dev
   pybind11-dev python3-dev python3-pytest python3-numpy python3-distributed
-  nlohmann-json3-dev libnanovdb-dev python3-openvdb libboost-python1.74-dev
+  nlohmann-json3-dev libnanovdb-dev libnanovdb-tools libblosc-dev zlib1g-dev python3-openvdb libboost-python1.74-dev
   libembree-dev
 )
 # The fuzz targets need clang and its libFuzzer runtime.

@@ -1,4 +1,5 @@
 #include "svo/vdb_io/nanovdb_output.h"
+#include "svo/vdb_io/nanovdb_file.h"
 
 #include <cerrno>
 #include <cstring>
@@ -32,6 +33,33 @@ uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids)
     checkWritable(path);
     std::vector<nanovdb::GridHandle<nanovdb::HostBuffer>> handles;
     for (const auto& g : grids) handles.push_back(toNanoVdb(g));
+    return writeNanoVdb(path, handles, NanoCodec::None);
+}
+
+bool nanoCodecAvailable(NanoCodec codec)
+{
+    switch (codec) {
+    case NanoCodec::None: return true;
+#ifdef NANOVDB_USE_ZIP
+    case NanoCodec::Zip: return true;
+#endif
+#ifdef NANOVDB_USE_BLOSC
+    case NanoCodec::Blosc: return true;
+#endif
+    default: return false;
+    }
+}
+
+uint64_t writeNanoVdb(const std::string& path, const std::vector<nanovdb::GridHandle<nanovdb::HostBuffer>>& handles,
+                      NanoCodec codec)
+{
+    if (!nanoCodecAvailable(codec))
+        throw Unsupported(fmt::format("{}: this build of svo has no {} codec for NanoVDB", path,
+                                      codec == NanoCodec::Zip ? "Zip" : "Blosc"));
+    const nanovdb::io::Codec nanoCodec = codec == NanoCodec::Zip     ? nanovdb::io::Codec::ZIP
+                                         : codec == NanoCodec::Blosc ? nanovdb::io::Codec::BLOSC
+                                                                     : nanovdb::io::Codec::NONE;
+    checkWritable(path);
     writeAtomically(path, [&](const std::string& tmp) {
         // NanoVDB's writeGrids(fileName) leaves its last bytes to the stream's
         // destructor, unchecked: svo opens, flushes and closes the stream and
@@ -40,7 +68,7 @@ uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids)
         if (!os) throw IoError(fmt::format("{}: cannot create the file: {}", path, std::strerror(errno)));
         errno = 0;
         try {
-            nanovdb::io::writeGrids<nanovdb::HostBuffer, std::vector>(os, handles);
+            nanovdb::io::writeGrids<nanovdb::HostBuffer, std::vector>(os, handles, nanoCodec);
         } catch (const std::exception& e) {
             if (os) throw IoError(fmt::format("{}: cannot write the NanoVDB file: {}", path, e.what()));
         }

@@ -1,0 +1,41 @@
+#pragma once
+/// @file nanovdb_grids.h
+/// @brief svo's sparse results (octree bricks, distance and solid bricks) as
+/// NanoVDB grids, laid out directly (svo/vdb_io/nanovdb_layout.h) with no
+/// OpenVDB tree. Each grid equals, voxel for voxel and value for value, what
+/// nanovdb::openToNanoVDB makes of the OpenVDB grid the same data gives
+/// (grid_builder.h, field_grids.h): the same names, classes, backgrounds,
+/// active voxels and values, inactive values included.
+#include <vector>
+#include <nanovdb/util/GridHandle.h>
+#include <nanovdb/util/HostBuffer.h>
+
+#include "svo/core/field_bricks.h"
+#include "svo/core/octree.h"
+#include "svo/vdb_io/grid_options.h"
+
+namespace svo::vdb {
+
+using NanoHandle = nanovdb::GridHandle<nanovdb::HostBuffer>;
+
+/// @brief An octree's voxels as NanoVDB grids, in octreeToGrids' order: the
+/// topology (ValueMask, or bool true on voxels, named grids.name), "density"
+/// (fog, 1 on voxels, background 0, class FogVolume) when asked, then the
+/// channels "normal" (Vec3f), "triangle_id" (Int32, background -1) and
+/// "color" (Vec3f) when asked and present. Transform: the octree's lattice.
+/// @param checksum whether each grid gets a full CRC32
+std::vector<NanoHandle> octreeToNanoGrids(const Octree& octree, const GridOptions& grids = {}, bool checksum = true);
+
+/// @brief A distance field as NanoVDB grids, as levelSetGrids (field_grids.h):
+/// "surface" (class LevelSet) or "distance" (class Unknown), float, background
+/// the exterior band in world units, then "closest_triangle" (Int32,
+/// background -1) when it was computed.
+/// @param lattice the grid whose transform the grids take (the caller's, not the field's padded grid)
+std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double exteriorBand, double interiorBand,
+                                          const GridSpec& lattice, bool checksum = true);
+
+/// @brief A solid as the ValueMask grid "solid", as solidGrid (field_grids.h):
+/// inside voxels active, whole bricks inside as active 8³ tiles.
+NanoHandle solidNanoGrid(const SolidBricks& solid, const GridSpec& lattice, bool checksum = true);
+
+} // namespace svo::vdb
