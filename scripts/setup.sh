@@ -16,7 +16,7 @@ packages=(
   libglfw3-dev libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libvtk9-dev xvfb xauth libpng-dev libimgui-dev
   libcli11-dev libfmt-dev libgtest-dev libfast-float-dev
-  pybind11-dev python3-dev python3-pytest python3-numpy python3-distributed
+  pybind11-dev python3-dev python3-pytest python3-numpy python3-distributed python3-venv python3-pip
   nlohmann-json3-dev libnanovdb-dev libnanovdb-tools libblosc-dev zlib1g-dev python3-openvdb libboost-python1.74-dev
   libembree-dev
 )

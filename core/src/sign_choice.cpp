@@ -16,12 +16,13 @@ SignChoice chooseSign(const TriangleMesh& mesh, const SignOptions& asked, std::v
     if (edges.closedAndOriented()) return {SignMethod::Parity, "parity: the mesh is " + edges.describe()};
     if (asked.method == SignMethod::Auto)
         return {SignMethod::Winding, "winding: the mesh is not closed (" + edges.describe() + ")"};
+    // An option the mesh cannot take (InvalidInput: asked differently, it works).
     // A hole lets a column of voxel centres cross the surface an odd number
     // of times, and parity then flips every sign beyond it: refused. Edges of
     // three or more triangles, or two running the same way, can still give
     // even crossings (two solids sharing an edge, a flipped face): warned.
     if (edges.boundary)
-        throw Unsupported(fmt::format("{}: parity signs need a mesh without holes, and this one has {}: a column of voxels "
+        throw InvalidInput(fmt::format("{}: parity signs need a mesh without holes, and this one has {}: a column of voxels "
                                 "through a hole crosses the surface an odd number of times and every sign beyond it "
                                 "would flip; use the winding sign method (or auto, which picks it for such a mesh)",
                                 mesh.source, edges.describe()));

@@ -1,17 +1,18 @@
-// svo's Python module: numpy arrays in, pyopenvdb grids and numpy arrays out.
+// svo's Python module: numpy arrays in; grids (pyopenvdb's where it imports,
+// else svo.Grid) and numpy arrays out, as svo.Result.
 // Parses, calls the library (svo/svo.h) and converts; the work is the library's.
-//
-// Grids cross into Python as the very objects python3-openvdb (pyopenvdb)
-// makes: pyopenvdb registers Boost.Python converters for OpenVDB's grid
-// pointers, and this module, linked against the same libopenvdb, uses them.
 #include <boost/python.hpp>
+#include <openvdb/io/Stream.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -22,6 +23,8 @@
 #include "svo/gl/view_request.h"
 #include "svo/core/region.h"
 #include "svo/vdb_io/join_region.h"
+#include "svo/vdb_io/vdb_file.h"
+#include "svo/result_metadata.h"
 #include "svo/svo.h"
 #ifdef SVO_WITH_VALIDATE
 #include "svo/validate/level_set_report.h"
@@ -49,32 +52,63 @@ namespace {
 // identifier ("VoxelizeOptions::dilation"), the message names the keyword
 // that sets it instead (pythonMessage).
 
-// --- grids between OpenVDB and pyopenvdb -----------------------------------
+// --- grids between OpenVDB and Python ----------------------------------------
+//
+// Where python3-openvdb (pyopenvdb) imports, grids cross as the very objects it
+// makes: it registers Boost.Python converters for OpenVDB's grid pointers, and
+// this module, linked against the same libopenvdb, uses them. Where it does
+// not (another CPython, a venv without system site packages), grids come as
+// svo.Grid, this module's own small grid type (PyGrid); Grid.to_pyopenvdb()
+// converts later where it can.
 
-void importPyopenvdb()
+/// Whether pyopenvdb imports in this interpreter: asked once, at the module's
+/// import (svo/__init__.py imports pyopenvdb first where it can).
+bool havePyopenvdb()
 {
-    try {
-        py::module_::import("pyopenvdb");
-    } catch (py::error_already_set& e) {
-        throw py::import_error(std::string("svo returns pyopenvdb grids; install python3-openvdb (") + e.what() + ")");
-    }
+    static const bool have = [] {
+        try {
+            py::module_::import("pyopenvdb");
+            return true;
+        } catch (py::error_already_set&) { // ImportError, or a pyopenvdb that fails to load
+            return false;
+        }
+    }();
+    return have;
 }
 
-py::object toPython(const openvdb::GridBase::Ptr& grid)
+/// svo.Grid: one OpenVDB grid, shared with nobody else.
+struct PyGrid {
+    openvdb::GridBase::Ptr grid;
+};
+
+/// The grid types pyopenvdb has (python3-openvdb 10: no MaskGrid, no Int32Grid).
+bool pyopenvdbHas(const openvdb::GridBase& grid)
 {
-    importPyopenvdb(); // registers the converters
+    return grid.isType<openvdb::BoolGrid>() || grid.isType<openvdb::FloatGrid>() || grid.isType<openvdb::Vec3SGrid>();
+}
+
+/// @a grid as a pyopenvdb grid (sharing it). The caller checked havePyopenvdb() and pyopenvdbHas().
+py::object toPyopenvdb(const openvdb::GridBase::Ptr& grid)
+{
     bp::object o;
     if (auto g = openvdb::gridPtrCast<openvdb::BoolGrid>(grid)) o = bp::object(g);
     else if (auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(grid)) o = bp::object(f);
     else if (auto v = openvdb::gridPtrCast<openvdb::Vec3SGrid>(grid)) o = bp::object(v);
-    else throw std::runtime_error("svo: grid type " + grid->type() + " has no pyopenvdb counterpart");
     return py::reinterpret_borrow<py::object>(o.ptr());
 }
 
-/// A pyopenvdb grid (BoolGrid, FloatGrid, Vec3SGrid) as OpenVDB's, or null.
+/// A result grid as Python gets it: pyopenvdb's where it imports and has the type, else svo.Grid.
+py::object toPython(const openvdb::GridBase::Ptr& grid)
+{
+    if (havePyopenvdb() && pyopenvdbHas(*grid)) return toPyopenvdb(grid);
+    return py::cast(PyGrid{grid});
+}
+
+/// An svo.Grid or a pyopenvdb grid (BoolGrid, FloatGrid, Vec3SGrid) as OpenVDB's, or null.
 openvdb::GridBase::Ptr fromPython(const py::handle& obj)
 {
-    importPyopenvdb();
+    if (py::isinstance<PyGrid>(obj)) return obj.cast<const PyGrid&>().grid;
+    if (!havePyopenvdb()) return nullptr;
     const bp::object o{bp::handle<>(bp::borrowed(obj.ptr()))};
     if (bp::extract<openvdb::BoolGrid::Ptr> b(o); b.check()) return b();
     if (bp::extract<openvdb::FloatGrid::Ptr> f(o); f.check()) return f();
@@ -82,12 +116,181 @@ openvdb::GridBase::Ptr fromPython(const py::handle& obj)
     return nullptr;
 }
 
+/// fromPython, or a ValueError naming @a what.
+openvdb::GridBase::Ptr gridArgument(const py::handle& obj, const std::string& what)
+{
+    const openvdb::GridBase::Ptr grid = fromPython(obj);
+    if (!grid) badValue(what + ": expected an svo.Grid or a pyopenvdb BoolGrid, FloatGrid or Vec3SGrid");
+    return grid;
+}
+
+// --- svo.Grid -------------------------------------------------------------------
+
+/// The grid types svo.Grid reads values of: every type a result has.
+using GridTypes = openvdb::TypeList<openvdb::BoolGrid, openvdb::FloatGrid, openvdb::Vec3SGrid, openvdb::Int32Grid,
+                                    openvdb::MaskGrid>;
+
+/// A grid's value as Python's: bool, float, int or (x, y, z).
+template <typename T>
+py::object valueObject(const T& v)
+{
+    if constexpr (openvdb::VecTraits<T>::IsVec) return py::make_tuple(v[0], v[1], v[2]);
+    else if constexpr (std::is_same_v<T, openvdb::ValueMask>) return py::bool_(false); // a mask's background: off
+    else return py::cast(v);
+}
+
+/// Grid.ijk and Grid.values: the active voxels (tiles expanded) in OpenVDB's
+/// tree order, (K, 3) int32, and their values, (K,) or (K, 3) of the grid's type.
+std::pair<py::array, py::array> activeArrays(const openvdb::GridBase& base)
+{
+    std::pair<py::array, py::array> out;
+    base.apply<GridTypes>([&](const auto& grid) {
+        using GridT = std::decay_t<decltype(grid)>;
+        using V = typename GridT::ValueType;
+        constexpr bool isVec = openvdb::VecTraits<V>::IsVec;
+        using Element = std::conditional_t<isVec, float, std::conditional_t<std::is_same_v<V, openvdb::ValueMask>, bool, V>>;
+        std::vector<int32_t> ijk;
+        std::vector<Element> values;
+        {
+            py::gil_scoped_release release;
+            ijk.reserve(3 * grid.activeVoxelCount());
+            for (auto it = grid.tree().cbeginValueOn(); it; ++it) {
+                openvdb::CoordBBox box;
+                it.getBoundingBox(box); // one voxel, or a whole active tile
+                for (auto c = box.begin(); c; ++c) {
+                    ijk.insert(ijk.end(), {(*c).x(), (*c).y(), (*c).z()});
+                    if constexpr (isVec) values.insert(values.end(), {(*it)[0], (*it)[1], (*it)[2]});
+                    else if constexpr (std::is_same_v<V, openvdb::ValueMask>) values.push_back(true);
+                    else values.push_back(*it);
+                }
+            }
+        }
+        const auto k = py::ssize_t(ijk.size() / 3);
+        py::array_t<int32_t> coords({k, py::ssize_t(3)});
+        std::copy(ijk.begin(), ijk.end(), coords.mutable_data());
+        py::array_t<Element> vals = isVec ? py::array_t<Element>({k, py::ssize_t(3)}) : py::array_t<Element>(k);
+        std::copy(values.begin(), values.end(), vals.mutable_data());
+        out = {coords, vals};
+    });
+    return out;
+}
+
+/// The grid's index-to-world matrix, 4x4, in OpenVDB's row-vector convention (the transform= keyword's).
+py::array_t<double> transformMatrix(const openvdb::GridBase& grid)
+{
+    const auto map = grid.transform().baseMap();
+    if (!map->isLinear()) badValue("transform: grid '" + grid.getName() + "' has a non-linear transform");
+    const openvdb::Mat4d m = map->getAffineMap()->getMat4();
+    py::array_t<double> out({4, 4});
+    auto w = out.mutable_unchecked<2>();
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) w(i, j) = m(i, j);
+    return out;
+}
+
+/// Grids to one file, the format by the extension (.vdb or .nvdb), with the library's writers (atomic).
+void writeGrids(const std::filesystem::path& path, const openvdb::GridPtrVec& grids)
+{
+    const std::string file = path.string();
+    const svo::OutputFormat format = svo::outputFormat(file); // svo::IoError for another extension: OSError
+    if (format == svo::OutputFormat::Svo)
+        badValue(file + ": a .svo file holds an octree; write grids as .vdb or .nvdb (Octree.save writes .svo)");
+    py::gil_scoped_release release;
+    if (format == svo::OutputFormat::NanoVdb) svo::vdb::writeNanoVdb(file, grids);
+    else svo::vdb::writeVdbGrids(file, grids, {}); // each grid's metadata is already on it
+}
+
+/// svo.write(path, grids): svo.Grid or pyopenvdb grids, in one file.
+void writeAny(const std::filesystem::path& path, const py::iterable& list)
+{
+    openvdb::GridPtrVec grids;
+    for (const py::handle& item : list) grids.push_back(gridArgument(item, "grids"));
+    if (grids.empty()) badValue("grids: no grid to write");
+    writeGrids(path, grids);
+}
+
+/// The grid as bytes of an OpenVDB stream, for pickling (Dask sends grids between processes).
+py::bytes gridBytes(const openvdb::GridBase::Ptr& grid)
+{
+    std::ostringstream os(std::ios_base::binary);
+    openvdb::io::Stream(os).write(openvdb::GridCPtrVec{grid});
+    return py::bytes(os.str());
+}
+
+openvdb::GridBase::Ptr gridFromBytes(const std::string& bytes)
+{
+    std::istringstream is(bytes, std::ios_base::binary);
+    const auto grids = openvdb::io::Stream(is).getGrids();
+    if (!grids || grids->size() != 1) badValue("svo.Grid: the pickled bytes hold no single grid");
+    return grids->front();
+}
+
+void bindGrid(py::module_& m)
+{
+    py::class_<PyGrid>(m, "Grid",
+                       "A grid svo made, where python3-openvdb (pyopenvdb) does not import or lacks its type: its "
+                       "name, class, transform, active voxels and values as numpy arrays, and metadata; write() "
+                       "stores it as .vdb or .nvdb, to_pyopenvdb() converts it where pyopenvdb imports.")
+        .def_property("name", [](const PyGrid& g) { return g.grid->getName(); },
+                      [](PyGrid& g, const std::string& name) { g.grid->setName(name); }, "The grid's name.")
+        .def_property_readonly("type", [](const PyGrid& g) { return g.grid->valueType(); },
+                               "The value type: 'bool', 'float', 'vec3s', 'int32' or 'mask'.")
+        .def_property_readonly("grid_class",
+                               [](const PyGrid& g) { return openvdb::GridBase::gridClassToString(g.grid->getGridClass()); },
+                               "OpenVDB's grid class: 'level set', 'fog volume' or 'unknown'.")
+        .def_property_readonly("transform", [](const PyGrid& g) { return transformMatrix(*g.grid); },
+                               "Index to world, a 4x4 matrix in OpenVDB's row-vector convention (world = [i j k 1] @ "
+                               "M), as the transform= keyword takes it.")
+        .def_property_readonly("voxel_size", [](const PyGrid& g) {
+            const openvdb::Vec3d v = g.grid->voxelSize();
+            return py::make_tuple(v[0], v[1], v[2]);
+        }, "World units per voxel along x, y, z.")
+        .def_property_readonly("background", [](const PyGrid& g) {
+            py::object out;
+            g.grid->apply<GridTypes>([&](const auto& grid) { out = valueObject(grid.background()); });
+            return out;
+        }, "The value of inactive voxels outside the active ones.")
+        .def_property_readonly("active_voxel_count", [](const PyGrid& g) { return g.grid->activeVoxelCount(); })
+        .def_property_readonly("ijk", [](const PyGrid& g) { return activeArrays(*g.grid).first; },
+                               "(K, 3) int32 index coordinates of the active voxels (tiles expanded), in OpenVDB's "
+                               "tree order. Made on each access.")
+        .def_property_readonly("values", [](const PyGrid& g) { return activeArrays(*g.grid).second; },
+                               "The active voxels' values in the order of ijk: (K,) bool, float32 or int32, or (K, 3) "
+                               "float32. Made on each access.")
+        .def_property_readonly("metadata", [](const PyGrid& g) {
+            py::dict out;
+            for (auto meta = g.grid->beginMeta(); meta != g.grid->endMeta(); ++meta)
+                out[py::str(meta->first)] = meta->second->str();
+            return out;
+        }, "The grid's metadata, each value as text (svo:source, svo:version, svo:sign, ...).")
+        .def("write", [](const PyGrid& g, const std::filesystem::path& path) { writeGrids(path, {g.grid}); },
+             py::arg("path"),
+             "Write the grid to a .vdb or .nvdb file (svo's writers: a temporary file renamed into place).")
+        .def("to_pyopenvdb", [](const PyGrid& g) {
+            if (!havePyopenvdb())
+                throw py::import_error("svo.Grid.to_pyopenvdb: pyopenvdb does not import in this interpreter (" +
+                                       py::cast<std::string>(py::module_::import("sys").attr("executable")) +
+                                       "); Debian's python3-openvdb serves /usr/bin/python3");
+            if (!pyopenvdbHas(*g.grid))
+                throw py::type_error("svo.Grid.to_pyopenvdb: pyopenvdb has no " + g.grid->valueType() +
+                                     " grid type; write() the grid to a file instead");
+            return toPyopenvdb(g.grid->deepCopyGrid());
+        }, "A pyopenvdb grid with the same voxels, values, transform and metadata (a copy).")
+        .def("__repr__", [](const PyGrid& g) {
+            return "<svo.Grid '" + g.grid->getName() + "': " + g.grid->valueType() + ", " +
+                   std::to_string(g.grid->activeVoxelCount()) + " active voxels>";
+        })
+        .def(py::pickle([](const PyGrid& g) { return gridBytes(g.grid); },
+                        [](const py::bytes& b) { return PyGrid{gridFromBytes(std::string(b))}; }));
+    m.def("write", &writeAny, py::arg("path"), py::arg("grids"),
+          "Write grids (svo.Grid or pyopenvdb grids) to one .vdb or .nvdb file with svo's writers, atomically.");
+}
+
 // --- joining regions (svo.distributed) --------------------------------------
 
 void joinRegion(const py::handle& intoObj, const py::handle& partObj)
 {
-    const openvdb::GridBase::Ptr into = fromPython(intoObj), part = fromPython(partObj);
-    if (!into || !part) badValue("_join_region: expected two pyopenvdb grids");
+    const openvdb::GridBase::Ptr into = gridArgument(intoObj, "into"), part = gridArgument(partObj, "part");
     svo::vdb::joinRegion(*into, *part);
 }
 
@@ -168,9 +371,10 @@ void toFaces(const py::handle& obj, size_t vertices, std::vector<openvdb::Vec3I>
 /// convention (world = [i j k 1] @ M, translation in the last row).
 openvdb::math::Transform::Ptr toTransform(const py::handle& obj)
 {
-    importPyopenvdb();
-    const bp::object o{bp::handle<>(bp::borrowed(obj.ptr()))};
-    if (bp::extract<openvdb::math::Transform::Ptr> t(o); t.check()) return t()->copy();
+    if (havePyopenvdb()) {
+        const bp::object o{bp::handle<>(bp::borrowed(obj.ptr()))};
+        if (bp::extract<openvdb::math::Transform::Ptr> t(o); t.check()) return t()->copy();
+    }
     const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
     if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
         badValue("transform: expected a pyopenvdb.Transform or a 4x4 matrix");
@@ -210,6 +414,8 @@ const PythonKeyword kPythonKeywords[] = {
      "voxels are cubes of its index space"},
     {"grid", [] { return py::object(py::str("bool")); },
      "'bool' (a BoolGrid 'surface', true on voxels) or 'fog' (a FloatGrid 'density', 1 on voxels)"},
+    {"report", [] { return py::object(py::bool_(false)); },
+     "Also say what the call did, as Result.report: backend, mode, sign method, voxels, GPU memory, stage times"},
     // Octree.render's own: what svo view takes in other forms (--size WxH, --layers a,b, --levels a:b,
     // --light sun:..., colours as r,g,b) or under other names (--render for lighting and ao_only).
     {"size", [] { return py::object(py::make_tuple(640, 480)); }, "(width, height) of the picture, 1 to 16384 pixels each"},
@@ -342,15 +548,16 @@ struct Call {
 const Call kDeviceCall{"Voxelizer", {"device", "gl_debug", "program_cache"}};
 const Call kVoxelizeCall{"voxelize",
                          {"resolution", "voxel_size", "transform", "grid", "backend", "mode", "conservative",
-                          "attributes", "gpu_memory", "region"}};
+                          "attributes", "gpu_memory", "region", "report"}};
 const Call kOctreeCall{"octree",
                        {"resolution", "voxel_size", "transform", "backend", "mode", "conservative", "attributes",
                         "gpu_memory", "region"}};
 const Call kLevelSetCall{"level_set",
                          {"resolution", "voxel_size", "transform", "exterior_band", "interior_band", "unsigned",
-                          "closest_triangle", "sign", "winding_accuracy", "backend", "region"}};
+                          "closest_triangle", "sign", "winding_accuracy", "backend", "region", "report"}};
 const Call kSolidCall{"solid",
-                      {"resolution", "voxel_size", "transform", "sign", "winding_accuracy", "backend", "region"}};
+                      {"resolution", "voxel_size", "transform", "sign", "winding_accuracy", "backend", "region",
+                       "report"}};
 const Call kFromGridCall{"from_grid", {"backend"}};
 const Call kRenderCall{"render",
                        {"size", "view", "layers", "levels", "color", "ao", "ao_only", "ao_source", "lighting", "lights",
@@ -617,6 +824,7 @@ struct KeyboardInterrupter : openvdb::util::NullInterrupter {
 struct Request {
     svo::TriangleMesh mesh;
     svo::GridSpec grid;
+    svo::GridRequest asked;              ///< resolution or voxel size as asked (neither: a transform)
     openvdb::math::Transform::Ptr xform; ///< the output grids' transform
 };
 
@@ -646,16 +854,18 @@ Request makeRequest(const py::handle& vertices, const py::handle& triangles, con
     r.mesh = svo::toTriangleMesh(points, tris, quads);
     r.mesh.source = "mesh";
     if (req.resolution == 0 && req.voxelSize == 0) req.resolution = svo::kDefaultResolution;
+    r.asked = req;
     r.grid = svo::makeGrid(r.mesh, req);
     r.xform = svo::vdb::makeTransform(r.grid);
     return r;
 }
 
 svo::Octree run(svo::Voxelizer& v, const Request& r, const svo::VoxelizeSettings& settings,
-                std::vector<uint64_t>* voxelList = nullptr)
+                std::vector<uint64_t>* voxelList = nullptr, svo::VoxelizeStats* stats = nullptr)
 {
     svo::VoxelizeOptions o;
     static_cast<svo::VoxelizeSettings&>(o) = settings;
+    o.stats = stats;
     KeyboardInterrupter interrupter;
     o.interrupter = &interrupter;
     try {
@@ -687,52 +897,113 @@ py::array_t<int32_t> voxelOrder(const svo::Octree& octree)
     return out;
 }
 
+/// (K, 3) float32 rows of @a values.
+py::array_t<float> vectorArray(const std::vector<svo::Vec3f>& values)
+{
+    py::array_t<float> a({py::ssize_t(values.size()), py::ssize_t(3)});
+    auto w = a.mutable_unchecked<2>();
+    for (size_t i = 0; i < values.size(); ++i)
+        w(py::ssize_t(i), 0) = values[i].x, w(py::ssize_t(i), 1) = values[i].y, w(py::ssize_t(i), 2) = values[i].z;
+    return a;
+}
+
+/// The svo:* metadata `svo voxelize` writes (svo::resultMetadata), on each of @a grids.
+void tagResult(const openvdb::GridPtrVec& grids, const Request& r, bool guardBand)
+{
+    for (const auto& [key, value] : svo::resultMetadata(r.mesh, r.grid, r.asked, guardBand))
+        for (const auto& g : grids) g->insertMeta(key, openvdb::StringMetadata(svo::vdb::validUtf8(value)));
+}
+
+/// Result.report: what the call did, in the words of `svo voxelize --json`.
+py::dict reportOf(const svo::VoxelizeStats& s, const openvdb::GridBase& main)
+{
+    py::dict d;
+    d["active_voxels"] = main.activeVoxelCount();
+    d["backend"] = s.backend;
+    d["mode"] = s.mode;
+    d["dilation"] = s.dilation;
+    d["device"] = s.device;
+    d["tiles"] = s.tiles;
+    d["gpu_bytes"] = s.gpuBytes;
+    d["epsilon"] = s.epsilon;
+    d["sign"] = s.sign;
+    d["open_columns"] = s.openColumns;
+    d["band_bricks"] = s.bandBricks;
+    d["winding_bricks"] = s.windingBricks;
+    d["warnings"] = s.warnings;
+    py::list stages;
+    for (const svo::StageTime& t : s.stages) {
+        py::dict stage;
+        stage["name"] = t.name;
+        stage["gpu_ms"] = t.gpuMs < 0 ? py::object(py::none()) : py::object(py::float_(t.gpuMs));
+        stage["wall_ms"] = t.wallMs;
+        stages.append(stage);
+    }
+    d["stages"] = stages;
+    return d;
+}
+
+/// svo.Result (svo/_result.py), what every call that makes grids returns: the
+/// main grid, every grid by name, the per-voxel arrays asked for, the report
+/// asked for; None for what was not asked.
+struct ResultParts {
+    openvdb::GridPtrVec grids; ///< the main grid first
+    py::object ijk = py::none(), normal = py::none(), color = py::none(), triangle = py::none(), report = py::none();
+};
+
+py::object makeResult(const ResultParts& p)
+{
+    py::dict byName;
+    for (const auto& g : p.grids) byName[py::str(g->getName())] = toPython(g);
+    return py::module_::import("svo._result")
+        .attr("Result")(byName[py::str(p.grids.front()->getName())], byName, p.ijk, p.normal, p.color, p.triangle,
+                        p.report);
+}
+
 py::object voxelizeWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                         const py::kwargs& kwargs)
 {
     const CallKeywords kw(kVoxelizeCall, kwargs);
     const std::string grid = kw.get<std::string>("grid");
     if (grid != "bool" && grid != "fog") badValue("grid: expected 'bool' or 'fog', got '" + grid + "'");
+    const bool wantReport = kw.get<bool>("report");
     svo::VoxelizeSettings settings;
     kw.read(settings);
-    const uint32_t channels = settings.attributes;
     const Request r = makeRequest(vertices, triangles, kw);
-    const svo::Octree octree = run(v, r, settings);
+    svo::VoxelizeStats stats;
+    const svo::Octree octree = run(v, r, settings, nullptr, &stats);
     svo::GridOptions g;
     g.topology = svo::GridOptions::Topology::Bool; // pyopenvdb has no MaskGrid
     g.fog = grid == "fog";
-    openvdb::GridPtrVec grids = svo::octreeToGrids(octree, g, r.xform);
-    if (!channels) return toPython(grids[g.fog ? 1 : 0]);
-    // With channels: a dict of grids; triangle ids (an Int32Grid, which pyopenvdb lacks) as an array.
-    py::dict out;
-    out[py::str(g.fog ? "density" : "surface")] = toPython(grids[g.fog ? 1 : 0]);
-    for (const auto& gr : grids) {
-        if (gr->getName() == "normal" || gr->getName() == "color") out[py::str(gr->getName())] = toPython(gr);
+    const openvdb::GridPtrVec all = svo::octreeToGrids(octree, g, r.xform);
+    ResultParts out;
+    out.grids.push_back(all[g.fog ? 1 : 0]);
+    // Normals and colours as grids too, for writing beside the voxels; triangle
+    // ids as an array only (pyopenvdb has no Int32Grid).
+    for (const auto& gr : all)
+        if (gr->getName() == "normal" || gr->getName() == "color") out.grids.push_back(gr);
+    if (settings.attributes) {
+        out.ijk = voxelOrder(octree); // the voxels in the order of the arrays below
+        if (settings.attributes & svo::kTriangles) {
+            py::array_t<int32_t> ids(py::ssize_t(octree.attributes.triangles.size()));
+            std::copy(octree.attributes.triangles.begin(), octree.attributes.triangles.end(), ids.mutable_data());
+            out.triangle = ids;
+        }
+        if (!octree.attributes.normals.empty()) out.normal = vectorArray(octree.attributes.normals);
+        if (!octree.attributes.colors.empty()) out.color = vectorArray(octree.attributes.colors);
     }
-    out["ijk"] = voxelOrder(octree); // the voxels in the order of the arrays below
-    auto vectors = [](const std::vector<svo::Vec3f>& values) {
-        py::array_t<float> a({py::ssize_t(values.size()), py::ssize_t(3)});
-        for (size_t i = 0; i < values.size(); ++i)
-            a.mutable_at(py::ssize_t(i), 0) = values[i].x, a.mutable_at(py::ssize_t(i), 1) = values[i].y,
-                                    a.mutable_at(py::ssize_t(i), 2) = values[i].z;
-        return a;
-    };
-    if (channels & svo::kTriangles) {
-        py::array_t<int32_t> ids(py::ssize_t(octree.attributes.triangles.size()));
-        std::copy(octree.attributes.triangles.begin(), octree.attributes.triangles.end(), ids.mutable_data());
-        out["triangle_id"] = ids;
-    }
-    if (!octree.attributes.normals.empty()) out["normal_values"] = vectors(octree.attributes.normals);
-    if (!octree.attributes.colors.empty()) out["color_values"] = vectors(octree.attributes.colors);
-    return out;
+    tagResult(out.grids, r, true);
+    if (wantReport) out.report = reportOf(stats, *out.grids.front());
+    return makeResult(out);
 }
 
 /// Runs a level-set or solid call with the GIL released and Ctrl-C heard.
 template <typename F>
-auto runField(const svo::VoxelizeSettings& settings, F call)
+auto runField(const svo::VoxelizeSettings& settings, F call, svo::VoxelizeStats* stats = nullptr)
 {
     svo::VoxelizeOptions o;
     static_cast<svo::VoxelizeSettings&>(o) = settings;
+    o.stats = stats;
     KeyboardInterrupter interrupter;
     o.interrupter = &interrupter;
     try {
@@ -744,63 +1015,84 @@ auto runField(const svo::VoxelizeSettings& settings, F call)
     }
 }
 
+/// Python's default name of a level set: its own, apart from voxelize()'s "surface"
+/// (the library names both "surface", as OpenVDB's tools do; one file may hold both).
+constexpr const char* kLevelSetName = "level_set";
+
 py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                         const py::kwargs& kwargs)
 {
     const CallKeywords kw(kLevelSetCall, kwargs);
+    const bool wantReport = kw.get<bool>("report");
     svo::LevelSetOptions ls;
     kw.read(ls);
     svo::VoxelizeSettings settings;
     kw.read(settings);
     const Request r = makeRequest(vertices, triangles, kw);
+    svo::VoxelizeStats stats;
     const openvdb::GridPtrVec grids = runField(
-        settings, [&](const svo::VoxelizeOptions& o) { return v.levelSet(r.mesh, r.grid, ls, o, r.xform); });
-    if (!ls.closestTriangle) return toPython(grids.front());
-    // pyopenvdb has no Int32Grid: the band's voxels and their triangles as arrays.
-    const auto closest = openvdb::gridPtrCast<openvdb::Int32Grid>(grids.at(1));
-    const auto n = py::ssize_t(closest->activeVoxelCount());
-    py::array_t<int32_t> ijk({n, py::ssize_t(3)});
-    py::array_t<int32_t> ids(n);
-    auto c = ijk.mutable_unchecked<2>();
-    auto id = ids.mutable_unchecked<1>();
-    py::ssize_t i = 0;
-    for (auto it = closest->cbeginValueOn(); it; ++it, ++i) {
-        const openvdb::Coord xyz = it.getCoord();
-        c(i, 0) = xyz.x(), c(i, 1) = xyz.y(), c(i, 2) = xyz.z();
-        id(i) = *it;
+        settings, [&](const svo::VoxelizeOptions& o) { return v.levelSet(r.mesh, r.grid, ls, o, r.xform); }, &stats);
+    ResultParts out;
+    out.grids.push_back(grids.front());
+    if (!ls.unsignedDistance) out.grids.front()->setName(kLevelSetName);
+    tagResult(out.grids, r, false);
+    if (ls.closestTriangle) {
+        // pyopenvdb has no Int32Grid: the band's voxels and their triangles as arrays.
+        const auto closest = openvdb::gridPtrCast<openvdb::Int32Grid>(grids.at(1));
+        const auto n = py::ssize_t(closest->activeVoxelCount());
+        py::array_t<int32_t> ijk({n, py::ssize_t(3)});
+        py::array_t<int32_t> ids(n);
+        auto c = ijk.mutable_unchecked<2>();
+        auto id = ids.mutable_unchecked<1>();
+        py::ssize_t i = 0;
+        for (auto it = closest->cbeginValueOn(); it; ++it, ++i) {
+            const openvdb::Coord xyz = it.getCoord();
+            c(i, 0) = xyz.x(), c(i, 1) = xyz.y(), c(i, 2) = xyz.z();
+            id(i) = *it;
+        }
+        out.ijk = ijk;
+        out.triangle = ids;
     }
-    return py::make_tuple(toPython(grids.front()), ijk, ids);
+    if (wantReport) out.report = reportOf(stats, *out.grids.front());
+    return makeResult(out);
 }
 
 py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                      const py::kwargs& kwargs)
 {
     const CallKeywords kw(kSolidCall, kwargs);
+    const bool wantReport = kw.get<bool>("report");
     svo::SignOptions signOptions;
     kw.read(signOptions);
     svo::VoxelizeSettings settings;
     kw.read(settings);
     const Request r = makeRequest(vertices, triangles, kw);
+    svo::VoxelizeStats stats;
     const auto mask = runField(
-        settings, [&](const svo::VoxelizeOptions& o) { return v.solid(r.mesh, r.grid, o, signOptions, r.xform); });
+        settings, [&](const svo::VoxelizeOptions& o) { return v.solid(r.mesh, r.grid, o, signOptions, r.xform); },
+        &stats);
     // pyopenvdb has no MaskGrid: the same topology as a BoolGrid, true on it.
-    auto out = openvdb::BoolGrid::create(openvdb::BoolTree::Ptr(new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
-    out->setTransform(mask->transform().copy());
+    auto solid = openvdb::BoolGrid::create(
+        openvdb::BoolTree::Ptr(new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
+    solid->setTransform(mask->transform().copy());
     // The library's svo:* metadata (svo:sign: which sign method ran and why) and the name, as it tagged them.
-    for (auto meta = mask->beginMeta(); meta != mask->endMeta(); ++meta) out->insertMeta(meta->first, *meta->second);
-    return toPython(out);
+    for (auto meta = mask->beginMeta(); meta != mask->endMeta(); ++meta) solid->insertMeta(meta->first, *meta->second);
+    ResultParts out;
+    out.grids.push_back(solid);
+    tagResult(out.grids, r, false);
+    if (wantReport) out.report = reportOf(stats, *solid);
+    return makeResult(out);
 }
 
 /// (K, 3) int32 index coordinates of a grid's active voxels, tiles expanded,
 /// in OpenVDB's tree order; any transform.
 py::array_t<int32_t> activeVoxels(const py::handle& obj)
 {
-    const openvdb::GridBase::Ptr grid = fromPython(obj);
-    if (!grid) badValue("grid: expected a pyopenvdb BoolGrid, FloatGrid or Vec3SGrid");
+    const openvdb::GridBase::Ptr grid = gridArgument(obj, "grid");
     std::vector<int32_t> coords;
     {
         py::gil_scoped_release release;
-        grid->apply<openvdb::TypeList<openvdb::BoolGrid, openvdb::FloatGrid, openvdb::Vec3SGrid>>([&](const auto& g) {
+        grid->apply<GridTypes>([&](const auto& g) {
             coords.reserve(3 * g.activeVoxelCount());
             for (auto it = g.tree().cbeginValueOn(); it; ++it) {
                 openvdb::CoordBBox box;
@@ -814,12 +1106,12 @@ py::array_t<int32_t> activeVoxels(const py::handle& obj)
     return out;
 }
 
-py::tuple readMesh(const std::string& path)
+py::tuple readMesh(const std::filesystem::path& path)
 {
     svo::TriangleMesh m;
     {
         py::gil_scoped_release release;
-        m = svo::loadMesh(path); // svo::IoError: an OSError
+        m = svo::loadMesh(path.string()); // svo::IoError: an OSError
     }
     py::array_t<double> v({py::ssize_t(m.positions.size()), py::ssize_t(3)});
     py::array_t<uint32_t> t({py::ssize_t(m.triangles.size()), py::ssize_t(3)});
@@ -1018,8 +1310,7 @@ PyOctree octreeFromGrid(const py::handle& obj, const py::kwargs& kwargs)
     const CallKeywords kw(kFromGridCall, kwargs);
     svo::VoxelizeOptions o;
     kw.read(static_cast<svo::VoxelizeSettings&>(o));
-    const openvdb::GridBase::Ptr grid = fromPython(obj);
-    if (!grid) badValue("grid: expected a pyopenvdb BoolGrid, FloatGrid or Vec3SGrid");
+    const openvdb::GridBase::Ptr grid = gridArgument(obj, "grid");
     py::gil_scoped_release release;
     svo::Voxelizer v;
     return PyOctree{v.gridToOctree(*grid, o), grid->transform().copy()};
@@ -1091,7 +1382,7 @@ py::object validateLevelSetWith(const py::handle& vertices, const py::handle& tr
 #endif
 
 /// What voxelize() does; its keywords follow, from their declarations (docstring()).
-constexpr const char* kVoxelizeDoc = R"doc(Voxelize a triangle mesh on the GPU into a pyopenvdb grid.
+constexpr const char* kVoxelizeDoc = R"doc(Voxelize a triangle mesh on the GPU into a grid.
 
 With mode "conservative" (the default) the result holds every voxel whose
 closed cube touches a triangle (the 26-separating voxelization); with "thin",
@@ -1104,10 +1395,12 @@ Args:
     triangles: (M, 3) integer array of vertex indices, or (M, 4) quads.
 
 Returns:
-    The grid; with attributes, a dict: the grid ("surface" or "density"),
-    "normal" and "color" Vec3SGrids, "ijk" ((K, 3) int32 voxel coordinates)
-    and, in the same order, "triangle_id" ((K,) int32), "normal_values" and
-    "color_values" ((K, 3) float32).
+    An svo.Result: .grid, a BoolGrid "surface" (FloatGrid "density" with
+    grid="fog"), pyopenvdb's where it imports, else an svo.Grid; .grids, every
+    grid by name ("normal" and "color" Vec3SGrids with those attributes);
+    with attributes, .ijk ((K, 3) int32 voxel coordinates) and, in the same
+    order, .triangle ((K,) int32 smallest triangle id), .normal and .color
+    ((K, 3) float32); with report=True, .report. What was not asked is None.
 
 Raises:
     ValueError: a bad array, index, transform or option.
@@ -1123,10 +1416,12 @@ Raises:
 PYBIND11_MODULE(_svo, m)
 {
     m.doc() = "svo: GPU voxelization of triangle meshes into OpenVDB grids (see help(svo.voxelize)).";
-    // svo/__init__.py imports pyopenvdb before this module is loaded: with this
-    // module loaded first, OpenVDB's grid registration crashed (whoever called
-    // it; not root-caused). Then this initialize() finds the work done.
-    importPyopenvdb();
+    m.attr("__version__") = svo::version();
+    // svo/__init__.py imports pyopenvdb, where it can, before this module is
+    // loaded: with this module loaded first, OpenVDB's grid registration
+    // crashed (whoever called it; not root-caused). Then this initialize()
+    // finds the work done; without pyopenvdb it does the work.
+    havePyopenvdb();
     openvdb::initialize();
 
     // svo's errors by type (see the top of this file). Out of memory is
@@ -1161,6 +1456,8 @@ PYBIND11_MODULE(_svo, m)
         }
     });
 
+    bindGrid(m);
+
     py::class_<svo::Voxelizer>(m, "Voxelizer",
                                "A reusable GPU voxelizer: keeps its GL context, compiled programs and buffers, so "
                                "later calls pay only for their work. Use one per thread.")
@@ -1177,17 +1474,17 @@ PYBIND11_MODULE(_svo, m)
         .def("octree", &octreeWith, py::arg("vertices"), py::arg("triangles"),
              docstring("The voxels of a mesh as an svo.Octree (as voxelize()).", kOctreeCall).c_str())
         .def("level_set", &levelSetWith, py::arg("vertices"), py::arg("triangles"),
-             docstring("A narrow-band signed distance field on the GPU, as OpenVDB's meshToLevelSet: a FloatGrid\n"
-                       "'surface' of class GRID_LEVEL_SET, world-unit distances, negative inside, exact to float\n"
-                       "rounding. unsigned=True gives unsigned distances (grid 'distance') for any mesh.\n"
-                       "closest_triangle=True returns (grid, ijk, triangle): the band's voxels, an (N, 3) int32\n"
-                       "array of index coordinates, and each one's nearest triangle, (N,) int32. The grid's\n"
+             docstring("A narrow-band signed distance field on the GPU, as OpenVDB's meshToLevelSet, in an\n"
+                       "svo.Result: .grid, a FloatGrid 'level_set' of class GRID_LEVEL_SET, world-unit distances,\n"
+                       "negative inside, exact to float rounding. unsigned=True gives unsigned distances (grid\n"
+                       "'distance') for any mesh. closest_triangle=True adds .ijk, the band's voxels ((N, 3) int32\n"
+                       "index coordinates), and .triangle, each one's nearest triangle ((N,) int32). The grid's\n"
                        "metadata 'svo:sign' says which sign method ran and why. Arrays as voxelize(); a\n"
                        "transform must have uniform scale.",
                        kLevelSetCall)
                  .c_str())
         .def("solid", &solidWith, py::arg("vertices"), py::arg("triangles"),
-             docstring("The solid a mesh bounds, as a BoolGrid 'solid': the surface voxels and every voxel\n"
+             docstring("The solid a mesh bounds, in an svo.Result whose .grid is a BoolGrid 'solid': the surface voxels and every voxel\n"
                        "whose centre is inside; regions wholly inside are active tiles; metadata 'svo:sign' as\n"
                        "level_set(). Arrays as voxelize().",
                        kSolidCall)
@@ -1225,21 +1522,22 @@ PYBIND11_MODULE(_svo, m)
             g.fog = grid == "fog";
             g.attributes = false;
             return toPython(svo::octreeToGrids(p.octree, g, p.xform)[g.fog ? 1 : 0]);
-        }, py::arg("grid") = "bool", "A pyopenvdb grid of the voxels with the octree's transform.")
+        }, py::arg("grid") = "bool", "A grid of the voxels with the octree's transform (pyopenvdb's where it imports, else svo.Grid).")
         .def("render", &renderOctree,
              docstring("A picture of the octree drawn on the GPU, as svo view --screenshot draws it: (H, W, 4) "
                        "uint8,\nrows from the top. The keywords are svo view's options of the same names (--ao-step "
                        "for\nao_step), declared once for both.",
                        kRenderCall)
                  .c_str())
-        .def("save", [](const PyOctree& p, const std::string& path) {
+        .def("save", [](const PyOctree& p, const std::filesystem::path& file) {
+            const std::string path = file.string();
             if (*p.xform != *svo::vdb::makeTransform(p.octree.grid))
                 badValue("save: a .svo file holds a uniform voxel size and a whole-voxel translation; this octree's "
                          "transform is neither, so write its grid with pyopenvdb instead");
             svo::writeOctreeFile(path, p.octree); // svo::IoError: an OSError
-        }, py::arg("path"), "Write a .svo file (versioned, checksummed), atomically.");
-    m.def("load", [](const std::string& path) {
-        svo::Octree o = svo::readOctreeFile(path); // svo::IoError: an OSError
+        }, py::arg("path"), "Write a .svo file (versioned, checksummed), atomically; path a str or os.PathLike.");
+    m.def("load", [](const std::filesystem::path& path) {
+        svo::Octree o = svo::readOctreeFile(path.string()); // svo::IoError: an OSError
         auto xform = svo::vdb::makeTransform(o.grid);
         return PyOctree{std::move(o), xform};
     }, py::arg("path"), "Read a .svo file; a damaged or inconsistent file raises OSError naming the problem.");

@@ -2,14 +2,52 @@
 
 The keywords and defaults here are checked against the module's own declarations
 (svo._options()) by python/tests/test_options.py."""
-from typing import Any, Dict, Optional, Sequence, Tuple, Union
+import os
+from typing import Any, Dict, Iterable, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
 ArrayLike = npt.ArrayLike
-Grid = Any  # a pyopenvdb BoolGrid, FloatGrid or Vec3SGrid
+PathLike = Union[str, "os.PathLike[str]"]
 Transform = Any  # a pyopenvdb.Transform, or a 4x4 matrix
+AnyGrid = Any  # a pyopenvdb BoolGrid, FloatGrid or Vec3SGrid (where pyopenvdb imports), or an svo.Grid
+
+__version__: str
+
+class Grid:
+    """A grid svo made where pyopenvdb does not import (or lacks its type)."""
+    name: str
+    @property
+    def type(self) -> str: ...
+    @property
+    def grid_class(self) -> str: ...
+    @property
+    def transform(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def voxel_size(self) -> Tuple[float, float, float]: ...
+    @property
+    def background(self) -> Any: ...
+    @property
+    def active_voxel_count(self) -> int: ...
+    @property
+    def ijk(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def values(self) -> npt.NDArray[Any]: ...
+    @property
+    def metadata(self) -> Dict[str, str]: ...
+    def write(self, path: PathLike) -> None: ...
+    def to_pyopenvdb(self) -> Any: ...
+
+class Result:
+    """What voxelize(), level_set() and solid() return (svo/_result.py)."""
+    grid: AnyGrid
+    grids: Dict[str, AnyGrid]
+    ijk: Optional[npt.NDArray[np.int32]]
+    normal: Optional[npt.NDArray[np.float32]]
+    color: Optional[npt.NDArray[np.float32]]
+    triangle: Optional[npt.NDArray[np.int32]]
+    report: Optional[Dict[str, Any]]
 
 class Voxelizer:
     def __init__(self, *, device: str = "", gl_debug: bool = False, program_cache: str = "") -> None: ...
@@ -28,7 +66,8 @@ class Voxelizer:
         attributes: Sequence[str] = (),
         gpu_memory: Optional[int] = None,
         region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
-    ) -> Union[Grid, Dict[str, Any]]: ...
+        report: bool = False,
+    ) -> Result: ...
     def octree(
         self,
         vertices: ArrayLike,
@@ -60,7 +99,8 @@ class Voxelizer:
         winding_accuracy: float = 1.5,
         backend: str = "auto",
         region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
-    ) -> Union[Grid, Tuple[Grid, npt.NDArray[np.int32], npt.NDArray[np.int32]]]: ...
+        report: bool = False,
+    ) -> Result: ...
     def solid(
         self,
         vertices: ArrayLike,
@@ -73,12 +113,13 @@ class Voxelizer:
         winding_accuracy: float = 1.5,
         backend: str = "auto",
         region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
-    ) -> Grid: ...
+        report: bool = False,
+    ) -> Result: ...
     def device(self) -> str: ...
 
 class Octree:
     @staticmethod
-    def from_grid(grid: Grid, *, backend: str = "auto") -> "Octree": ...
+    def from_grid(grid: AnyGrid, *, backend: str = "auto") -> "Octree": ...
     @property
     def nodes(self) -> npt.NDArray[np.uint32]: ...
     @property
@@ -90,7 +131,7 @@ class Octree:
     @property
     def voxel_count(self) -> int: ...
     def voxels(self) -> npt.NDArray[np.int32]: ...
-    def to_grid(self, grid: str = "bool") -> Grid: ...
+    def to_grid(self, grid: str = "bool") -> AnyGrid: ...
     def render(
         self,
         *,
@@ -121,9 +162,9 @@ class Octree:
         gi_distance: float = 0.0,
         light_volume: int = 256,
     ) -> npt.NDArray[np.uint8]: ...
-    def save(self, path: str) -> None: ...
+    def save(self, path: PathLike) -> None: ...
 
-def load(path: str) -> Octree: ...
+def load(path: PathLike) -> Octree: ...
 
 def voxelize(
     vertices: ArrayLike,
@@ -139,9 +180,11 @@ def voxelize(
     attributes: Sequence[str] = (),
     gpu_memory: Optional[int] = None,
     region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
-) -> Union[Grid, Dict[str, Any]]: ...
-def active_voxels(grid: Grid) -> npt.NDArray[np.int32]: ...
-def read_mesh(path: str) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.uint32]]: ...
+    report: bool = False,
+) -> Result: ...
+def active_voxels(grid: AnyGrid) -> npt.NDArray[np.int32]: ...
+def read_mesh(path: PathLike) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.uint32]]: ...
+def write(path: PathLike, grids: Iterable[AnyGrid]) -> None: ...
 def validate(
     vertices: ArrayLike,
     triangles: ArrayLike,

@@ -16,14 +16,13 @@ Command line: ``python3 -m svo.distributed voxelize MESH -r N [--sdf|--udf|--fil
 Not yet (issue 43): tiles balanced by the surface they hold (tiles are a
 regular lattice), the mesh partitioned to tiles (every task reads or receives
 the whole mesh), one GPU per worker, per-tile files with a JSON index for
-results larger than one host, attributes (calls that return a dict of grids),
+results larger than one host, attributes (per-voxel arrays to join),
 and a test of a worker killed in the middle of a task.
 """
 import argparse
 import math
 import os
 import sys
-import tempfile
 
 import svo
 from svo._svo import _join_region
@@ -62,12 +61,12 @@ def _call(mesh, kind, keywords, region=None):
     if region is not None:
         keywords = dict(keywords, region=region)
     if kind == "surface":
-        return v.voxelize(vertices, triangles, **keywords)
+        return v.voxelize(vertices, triangles, **keywords).grid
     if kind == "sdf":
-        return v.level_set(vertices, triangles, **keywords)
+        return v.level_set(vertices, triangles, **keywords).grid
     if kind == "udf":
-        return v.level_set(vertices, triangles, unsigned=True, **keywords)
-    return v.solid(vertices, triangles, **keywords)
+        return v.level_set(vertices, triangles, unsigned=True, **keywords).grid
+    return v.solid(vertices, triangles, **keywords).grid
 
 
 # An index box no grid reaches (OpenVDB coordinates are int32; svo keeps
@@ -144,14 +143,15 @@ def tiles(box, tile):
 
 
 def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, **keywords):
-    """Voxelize a mesh on a Dask cluster: exactly the single-process grid.
+    """Voxelize a mesh on a Dask cluster: exactly the single-process grid (the
+    main grid of the call's svo.Result, returned as the grid itself).
 
     mesh: a path every worker can read, or a (vertices, triangles) pair of
     numpy arrays (sent to the workers once). kind: "surface" (svo.voxelize),
     "sdf" (Voxelizer.level_set), "udf" (level_set unsigned=True) or "solid".
     keywords: those of that call (resolution, voxel_size, grid, backend,
-    exterior_band, sign, ...); not region, and not attributes (their dict of
-    grids is not joined yet). client: a dask.distributed Client; None starts a
+    exterior_band, sign, ...); not region, and not attributes (their arrays
+    are not joined yet). client: a dask.distributed Client; None starts a
     LocalCluster of one-thread worker processes and closes it after. tile:
     voxels per tile side, a multiple of 8 (default: about 4 tiles per worker).
     progress(done, total) is called as tiles finish.
@@ -161,7 +161,7 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, **k
     if "region" in keywords:
         raise ValueError("region: svo.distributed plans the regions itself")
     if keywords.get("attributes"):
-        raise NotImplementedError("attributes: svo.distributed does not join dicts of grids yet")
+        raise NotImplementedError("attributes: svo.distributed does not join per-voxel arrays yet")
     if kind == "udf" and "unsigned" in keywords:
         raise ValueError("unsigned: kind='udf' sets it")
     if tile is not None and (tile <= 0 or tile % 8):
@@ -274,24 +274,10 @@ def _main(argv=None):
         return 1
     if tty:
         print(file=sys.stderr)
-    _write_atomically(args.output, grid)
+    # svo's writer: a temporary file beside the output, then a rename (an
+    # interrupted run leaves no partial file); pyopenvdb grids or svo.Grid.
+    svo.write(args.output, [grid])
     return 0
-
-
-def _write_atomically(path, grid):
-    """pyopenvdb.write to a temporary file beside `path`, then a rename: an
-    interrupted run leaves no partial file."""
-    import pyopenvdb
-
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, temporary = tempfile.mkstemp(prefix=".svo-", suffix=".vdb", dir=folder)
-    os.close(fd)
-    try:
-        pyopenvdb.write(temporary, [grid])
-        os.replace(temporary, path)
-    except BaseException:
-        os.unlink(temporary)
-        raise
 
 
 if __name__ == "__main__":

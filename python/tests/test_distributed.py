@@ -75,12 +75,12 @@ def city(tmp_path_factory):
 def single(voxelizer, mesh, kind):
     v, t = svo.read_mesh(mesh) if isinstance(mesh, str) else mesh
     if kind == "surface":
-        return voxelizer.voxelize(v, t, resolution=RESOLUTION)
+        return voxelizer.voxelize(v, t, resolution=RESOLUTION).grid
     if kind == "sdf":
-        return voxelizer.level_set(v, t, resolution=RESOLUTION)
+        return voxelizer.level_set(v, t, resolution=RESOLUTION).grid
     if kind == "udf":
-        return voxelizer.level_set(v, t, resolution=RESOLUTION, unsigned=True)
-    return voxelizer.solid(v, t, resolution=RESOLUTION)
+        return voxelizer.level_set(v, t, resolution=RESOLUTION, unsigned=True).grid
+    return voxelizer.solid(v, t, resolution=RESOLUTION).grid
 
 
 def active_mask(grid):
@@ -159,7 +159,7 @@ def test_the_command_line_writes_the_same_grid(voxelizer, tmp_path):
     assert len(grids) == 1
     written = grids[0]
     assert_same_grid(written, single(voxelizer, str(mesh), "sdf"))
-    assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".svo-")] == []
+    assert [p.name for p in tmp_path.iterdir() if ".tmp-" in p.name] == []  # no temporary left
 
 
 def test_a_bad_mesh_path_fails_clearly(client, tmp_path):
@@ -206,7 +206,7 @@ def test_without_a_client_a_local_cluster_runs_and_closes(voxelizer):
     v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
     t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], dtype=np.int64)
     got = svo.distributed.voxelize((v, t), tile=8, kind="solid", resolution=16)
-    assert_same_grid(got, voxelizer.solid(v, t, resolution=16))
+    assert_same_grid(got, voxelizer.solid(v, t, resolution=16).grid)
 
 
 @pytest.mark.parametrize("kind, keywords", [("surface", {"grid": "fog"}),
@@ -215,5 +215,5 @@ def test_keywords_pass_through_to_each_tile(client, voxelizer, kind, keywords):
     v, t = open_sphere()
     got = svo.distributed.voxelize((v, t), client=client, tile=TILE, kind=kind, resolution=RESOLUTION, **keywords)
     want = (voxelizer.voxelize if kind == "surface" else voxelizer.level_set)(v, t, resolution=RESOLUTION,
-                                                                              **keywords)
+                                                                              **keywords).grid
     assert_same_grid(got, want)

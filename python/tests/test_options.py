@@ -139,3 +139,32 @@ def test_an_enum_name_is_checked_by_its_table():
     with pytest.raises(ValueError, match="conservative: expected 'auto', 'hardware', 'shader' or 'centroid', "
                                          "got 'always'"):
         svo.voxelize(*TETRAHEDRON, resolution=8, conservative="always")
+
+
+def stub_classes():
+    return {node.name: node for node in ast.parse(STUB.read_text()).body if isinstance(node, ast.ClassDef)}
+
+
+def test_the_stub_declares_every_public_name():
+    tree = ast.parse(STUB.read_text())
+    declared = {node.name for node in tree.body if isinstance(node, (ast.FunctionDef, ast.ClassDef))}
+    declared |= {node.target.id for node in tree.body if isinstance(node, ast.AnnAssign)}
+    missing = [name for name in svo.__all__ if name not in declared and name != "OutOfMemoryError"]
+    assert not missing, f"the stub lacks {missing}"
+
+
+def test_the_stubs_grid_and_result_are_the_modules():
+    classes = stub_classes()
+    grid = {item.name if isinstance(item, ast.FunctionDef) else item.target.id
+            for item in classes["Grid"].body if isinstance(item, (ast.FunctionDef, ast.AnnAssign))}
+    public = {name for name in dir(svo.Grid) if not name.startswith("_")}
+    assert grid == public
+    import dataclasses
+    result = {item.target.id for item in classes["Result"].body if isinstance(item, ast.AnnAssign)}
+    assert result == {f.name for f in dataclasses.fields(svo.Result)}
+
+
+def test_the_version_is_the_projects():
+    import re
+    cmake = (pathlib.Path(__file__).resolve().parents[2] / "CMakeLists.txt").read_text()
+    assert svo.__version__ == re.search(r"project\(svo VERSION ([0-9.]+)", cmake).group(1)

@@ -43,9 +43,14 @@ def test_equals_the_cli_voxels_and_transform(voxelizer, elephant, tmp_path):
     subprocess.run([SVO_EXE, "voxelize", elephant, "-r", "64", "-o", str(out)], check=True, capture_output=True)
     cli = pyopenvdb.read(str(out), "surface")
     vertices, triangles = svo.read_mesh(elephant)
-    grid = voxelizer.voxelize(vertices, triangles, resolution=64)
+    grid = voxelizer.voxelize(vertices, triangles, resolution=64).grid
     assert isinstance(grid, pyopenvdb.BoolGrid)
     assert grid.activeVoxelCount() == cli.activeVoxelCount() > 1000
+    # The metadata the CLI writes (the source: its file name there, "mesh" for arrays).
+    for key in ("svo:triangles", "svo:grid", "svo:voxel_size", "svo:epsilon", "svo:version", "svo:backend",
+                "svo:mode"):
+        assert grid[key] == cli[key], key
+    assert grid["svo:version"] == svo.__version__ and grid["svo:source"] == "mesh"
     assert as_set(svo.active_voxels(grid)) == as_set(svo.active_voxels(cli))
     assert grid.transform.voxelSize() == cli.transform.voxelSize()
     for ijk in [(0, 0, 0), (5, -3, 7)]:
@@ -54,14 +59,14 @@ def test_equals_the_cli_voxels_and_transform(voxelizer, elephant, tmp_path):
 
 def test_trimesh_style_inputs_and_precisions_agree(voxelizer):
     v, t = tetrahedron()
-    want = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=24)))
+    want = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=24).grid))
     # float32 vertices exactly representable, uint32/int32 faces, lists, non-contiguous views
-    assert as_set(svo.active_voxels(voxelizer.voxelize(v.astype(np.float32), t.astype(np.uint32), resolution=24))) == want
-    assert as_set(svo.active_voxels(voxelizer.voxelize(v.tolist(), t.tolist(), resolution=24))) == want
+    assert as_set(svo.active_voxels(voxelizer.voxelize(v.astype(np.float32), t.astype(np.uint32), resolution=24).grid)) == want
+    assert as_set(svo.active_voxels(voxelizer.voxelize(v.tolist(), t.tolist(), resolution=24).grid)) == want
     wide = np.zeros((4, 6))
     wide[:, ::2] = v
     assert not wide[:, ::2].flags.c_contiguous
-    assert as_set(svo.active_voxels(voxelizer.voxelize(wide[:, ::2], t, resolution=24))) == want
+    assert as_set(svo.active_voxels(voxelizer.voxelize(wide[:, ::2], t, resolution=24).grid)) == want
 
 
 def test_transform_matrix_equals_pyopenvdb_transform(voxelizer):
@@ -69,11 +74,11 @@ def test_transform_matrix_equals_pyopenvdb_transform(voxelizer):
     h = 0.05
     xform = pyopenvdb.createLinearTransform(voxelSize=h)
     m = np.diag([h, h, h, 1.0])
-    a = voxelizer.voxelize(v, t, transform=xform)
-    b = voxelizer.voxelize(v, t, transform=m)
+    a = voxelizer.voxelize(v, t, transform=xform).grid
+    b = voxelizer.voxelize(v, t, transform=m).grid
     assert as_set(svo.active_voxels(a)) == as_set(svo.active_voxels(b))
     # voxel_size h gives the same lattice
-    c = voxelizer.voxelize(v, t, voxel_size=h)
+    c = voxelizer.voxelize(v, t, voxel_size=h).grid
     assert as_set(svo.active_voxels(c)) == as_set(svo.active_voxels(a))
 
 
@@ -81,7 +86,7 @@ def test_rotated_transform_covers_every_vertex(voxelizer):
     v, t = tetrahedron()
     c, s = np.cos(0.4), np.sin(0.4)
     m = np.array([[c * 0.04, s * 0.04, 0, 0], [-s * 0.05, c * 0.05, 0, 0], [0, 0, 0.03, 0], [0.1, -0.2, 0.3, 1]])
-    grid = voxelizer.voxelize(v, t, transform=m)
+    grid = voxelizer.voxelize(v, t, transform=m).grid
     voxels = as_set(svo.active_voxels(grid))
     # Each vertex lies in (the closed cube of) the voxel nearest to its index-space position.
     inv = np.linalg.inv(m)
@@ -92,8 +97,8 @@ def test_rotated_transform_covers_every_vertex(voxelizer):
 
 def test_round_trip_through_pyopenvdb(voxelizer, tmp_path):
     v, t = tetrahedron()
-    grid = voxelizer.voxelize(v, t, resolution=32)
-    fog = voxelizer.voxelize(v, t, resolution=32, grid="fog")
+    grid = voxelizer.voxelize(v, t, resolution=32).grid
+    fog = voxelizer.voxelize(v, t, resolution=32, grid="fog").grid
     assert isinstance(fog, pyopenvdb.FloatGrid)
     assert fog.gridClass == "fog volume"
     path = str(tmp_path / "out.vdb")
@@ -106,19 +111,21 @@ def test_round_trip_through_pyopenvdb(voxelizer, tmp_path):
 def test_attribute_channels_come_as_grids_and_arrays(voxelizer):
     v, t = tetrahedron()
     out = voxelizer.voxelize(v, t, resolution=16, attributes=("normal", "triangle"))
-    ijk = out["ijk"]
-    assert as_set(ijk) == as_set(svo.active_voxels(out["surface"]))
-    assert isinstance(out["normal"], pyopenvdb.Vec3SGrid)
-    assert out["triangle_id"].shape == (len(ijk),) and out["normal_values"].shape == (len(ijk), 3)
+    ijk = out.ijk
+    assert out.grid is out.grids["surface"] and sorted(out.grids) == ["normal", "surface"]
+    assert as_set(ijk) == as_set(svo.active_voxels(out.grid))
+    assert isinstance(out.grids["normal"], pyopenvdb.Vec3SGrid)
+    assert out.triangle.shape == (len(ijk),) and out.normal.shape == (len(ijk), 3)
+    assert out.color is None and out.report is None  # not asked for
     # Pairing: each voxel's values are the normal grid's value there, and its
     # smallest triangle really touches it (the voxel lies within half a voxel
     # diagonal of that triangle's plane).
-    normals = out["normal"].getConstAccessor()
-    xform = out["surface"].transform
+    normals = out.grids["normal"].getConstAccessor()
+    xform = out.grid.transform
     for k in range(0, len(ijk), max(1, len(ijk) // 50)):
         c = tuple(int(x) for x in ijk[k])
-        assert np.allclose(normals.getValue(c), out["normal_values"][k])
-        a, b, d = v[t[out["triangle_id"][k]]]
+        assert np.allclose(normals.getValue(c), out.normal[k])
+        a, b, d = v[t[out.triangle[k]]]
         n = np.cross(b - a, d - a)
         n /= np.linalg.norm(n)
         centre = np.array(xform.indexToWorld(c))
@@ -151,7 +158,7 @@ def test_bad_input_raises_value_error_and_leaves_it_usable(voxelizer, vertices, 
     with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
         voxelizer.voxelize(vertices, triangles, **kwargs)
     v, t = tetrahedron()
-    assert voxelizer.voxelize(v, t, resolution=8).activeVoxelCount() > 0
+    assert voxelizer.voxelize(v, t, resolution=8).grid.activeVoxelCount() > 0
 
 
 def test_read_mesh_errors_are_os_errors(tmp_path):
@@ -183,26 +190,30 @@ def test_library_errors_become_python_errors_by_their_type(voxelizer, tmp_path):
     with pytest.raises(MemoryError, match="cannot hold the mesh") as caught:
         voxelizer.voxelize(v, t, resolution=16, gpu_memory=1024)
     assert isinstance(caught.value, RuntimeError) and isinstance(caught.value, svo.OutOfMemoryError)
-    # A request svo has no method for (svo::Unsupported): NotImplementedError, a RuntimeError.
-    with pytest.raises(NotImplementedError, match="parity signs need a mesh without holes") as caught:
+    # An option the mesh cannot take (svo::InvalidInput): ValueError.
+    with pytest.raises(ValueError, match="parity signs need a mesh without holes"):
         voxelizer.level_set(v, t[:3], resolution=8, sign="parity")
+    # A request svo has no method for (svo::Unsupported): NotImplementedError, a RuntimeError.
+    rotated = np.array([[0, 0.1, 0, 0], [-0.1, 0, 0, 0], [0, 0, 0.2, 0], [0, 0, 0, 1]])
+    with pytest.raises(NotImplementedError, match="uniform scale") as caught:
+        voxelizer.level_set(v, t, transform=rotated)
     assert isinstance(caught.value, RuntimeError)
     # No usable device (svo::DeviceError): RuntimeError.
     with pytest.raises(RuntimeError, match="no EGL device matches 'no-such-device'"):
         svo.Voxelizer(device="no-such-device", program_cache="off").voxelize(v, t, resolution=8)
     # KeyboardInterrupt (svo::Interrupted): test_ctrl_c_cancels_a_long_call_and_leaves_it_usable.
-    assert voxelizer.voxelize(v, t, resolution=8).activeVoxelCount() > 0
+    assert voxelizer.voxelize(v, t, resolution=8).grid.activeVoxelCount() > 0
 
 
 def test_two_threads_with_two_voxelizers():
     v, t = tetrahedron()
-    want = {r: as_set(svo.active_voxels(svo.voxelize(v, t, resolution=r))) for r in (40, 56)}
+    want = {r: as_set(svo.active_voxels(svo.voxelize(v, t, resolution=r).grid)) for r in (40, 56)}
     got = {}
 
     def work(r):
         local = svo.Voxelizer()
         for _ in range(3):
-            got[r] = as_set(svo.active_voxels(local.voxelize(v, t, resolution=r)))
+            got[r] = as_set(svo.active_voxels(local.voxelize(v, t, resolution=r).grid))
 
     threads = [threading.Thread(target=work, args=(r,)) for r in want]
     for th in threads:
@@ -214,16 +225,16 @@ def test_two_threads_with_two_voxelizers():
 
 def test_cpu_backend_is_the_reference_within_the_guard_band(voxelizer):
     v, t = tetrahedron()
-    gpu = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48)))
-    cpu = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="cpu")))
+    gpu = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48).grid))
+    cpu = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="cpu").grid))
     assert cpu <= gpu  # the GPU's guard band only adds voxels within about 1e-4 voxel of a triangle
     assert len(gpu - cpu) <= len(cpu) // 100
 
 
 def test_compute_backend_gives_the_raster_voxels(voxelizer):
     v, t = tetrahedron()
-    raster = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="raster")))
-    compute = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="compute")))
+    raster = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="raster").grid))
+    compute = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend="compute").grid))
     assert compute == raster and len(raster) > 1000
 
 
@@ -231,28 +242,28 @@ def test_a_small_gpu_memory_budget_tiles_to_the_same_voxels(voxelizer):
     v, t = tetrahedron()
     whole = voxelizer.voxelize(v, t, resolution=160, attributes=("normal", "triangle"))
     tiled = voxelizer.voxelize(v, t, resolution=160, attributes=("normal", "triangle"), gpu_memory=1 << 20)
-    assert as_set(tiled["ijk"]) == as_set(whole["ijk"]) and len(whole["ijk"]) > 10000
+    assert as_set(tiled.ijk) == as_set(whole.ijk) and len(whole.ijk) > 10000
 
     # The GPU lays bricks out in the order it allocates them, the merge in
     # canonical order: compare the channels voxel by voxel.
     def by_voxel(result, key):
-        return {tuple(p): repr(v) for p, v in zip(result["ijk"].tolist(), result[key].tolist())}
+        return {tuple(p): repr(v) for p, v in zip(result.ijk.tolist(), getattr(result, key).tolist())}
 
-    assert by_voxel(tiled, "triangle_id") == by_voxel(whole, "triangle_id")
-    assert by_voxel(tiled, "normal_values") == by_voxel(whole, "normal_values")
+    assert by_voxel(tiled, "triangle") == by_voxel(whole, "triangle")
+    assert by_voxel(tiled, "normal") == by_voxel(whole, "normal")
     with pytest.raises(RuntimeError, match="cannot hold the mesh"):
         voxelizer.voxelize(v, t, resolution=160, gpu_memory=1024)
 
 
 def test_a_region_is_the_whole_grid_cut_to_its_box(voxelizer):
     v, t = tetrahedron()
-    whole = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48)))
+    whole = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48).grid))
     box = ((8, 0, 8), (32, 24, 48))
-    part = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, region=box)))
+    part = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, region=box).grid))
     inside = {p for p in whole if all(box[0][a] <= p[a] < box[1][a] for a in range(3))}
     assert part == inside and 0 < len(inside) < len(whole)
-    sdf = voxelizer.level_set(v, t, resolution=48)
-    sdf_part = voxelizer.level_set(v, t, resolution=48, region=box)
+    sdf = voxelizer.level_set(v, t, resolution=48).grid
+    sdf_part = voxelizer.level_set(v, t, resolution=48, region=box).grid
     expected = {p for p in as_set(svo.active_voxels(sdf)) if all(box[0][a] <= p[a] < box[1][a] for a in range(3))}
     assert as_set(svo.active_voxels(sdf_part)) == expected
     acc, part_acc = sdf.getConstAccessor(), sdf_part.getConstAccessor()
@@ -265,8 +276,8 @@ def test_a_region_is_the_whole_grid_cut_to_its_box(voxelizer):
 
 def test_thin_mode_is_inside_conservative_and_equal_on_every_backend(voxelizer):
     v, t = tetrahedron()
-    conservative = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48)))
-    thin = {b: as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend=b, mode="thin")))
+    conservative = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48).grid))
+    thin = {b: as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48, backend=b, mode="thin").grid))
             for b in ("raster", "compute", "cpu")}
     assert thin["compute"] == thin["raster"]
     assert thin["cpu"] <= thin["raster"]  # the GPU's guard band only adds voxels within about 1e-4 voxel
@@ -282,14 +293,14 @@ def test_thin_plane_keeps_one_voxel_per_column(voxelizer):
     # away); x segments meet it only in those voxels, y segments never.
     v = np.array([[0.1, 0.1, 0.35], [11.9, 0.1, 6.25], [11.9, 7.9, 6.25], [0.1, 7.9, 0.35]])
     t = np.array([[0, 1, 2], [0, 2, 3]])
-    got = as_set(svo.active_voxels(voxelizer.voxelize(v, t, voxel_size=1.0, mode="thin")))
+    got = as_set(svo.active_voxels(voxelizer.voxelize(v, t, voxel_size=1.0, mode="thin").grid))
     assert got == {(i, j, (i + 1) // 2) for i in range(1, 12) for j in range(1, 8)}
 
 
 def test_octree_views_files_and_grids(voxelizer, tmp_path):
     v, t = tetrahedron()
     octree = voxelizer.octree(v, t, resolution=40)
-    grid = voxelizer.voxelize(v, t, resolution=40)
+    grid = voxelizer.voxelize(v, t, resolution=40).grid
     assert octree.voxel_count == grid.activeVoxelCount()
     assert as_set(octree.voxels()) == as_set(svo.active_voxels(grid))
     assert as_set(svo.active_voxels(octree.to_grid())) == as_set(svo.active_voxels(grid))
@@ -386,7 +397,7 @@ def test_ctrl_c_cancels_a_long_call_and_leaves_it_usable(voxelizer):
     import time
     v, t = tetrahedron()
     start = time.monotonic()
-    full = voxelizer.voxelize(v, t, resolution=1536).activeVoxelCount()
+    full = voxelizer.voxelize(v, t, resolution=1536).grid.activeVoxelCount()
     whole = time.monotonic() - start
     timer = threading.Timer(whole * 0.1, lambda: os.kill(os.getpid(), signal.SIGINT))
     start = time.monotonic()
@@ -396,7 +407,7 @@ def test_ctrl_c_cancels_a_long_call_and_leaves_it_usable(voxelizer):
         time.sleep(whole)  # only reached if the call ignored the signal
     timer.join()
     assert time.monotonic() - start < 0.6 * whole, "the call ran on after Ctrl-C"
-    assert voxelizer.voxelize(v, t, resolution=1536).activeVoxelCount() == full
+    assert voxelizer.voxelize(v, t, resolution=1536).grid.activeVoxelCount() == full
 
 
 @pytest.mark.parametrize("script, args", [
@@ -427,8 +438,8 @@ def test_level_set_of_a_tetrahedron_matches_the_analytic_distance(voxelizer):
     # plane's, and the sign follows the four planes.
     v, t = tetrahedron()
     h = 0.05
-    grid = voxelizer.level_set(v, t, voxel_size=h, exterior_band=2, interior_band=4)
-    assert grid.gridClass == pyopenvdb.GridClass.LEVEL_SET and grid.name == "surface"
+    grid = voxelizer.level_set(v, t, voxel_size=h, exterior_band=2, interior_band=4).grid
+    assert grid.gridClass == pyopenvdb.GridClass.LEVEL_SET and grid.name == "level_set"
     assert abs(grid.background - 2 * h) < 1e-7
     vertices = np.asarray(v, dtype=float)
     normals, offsets = [], []
@@ -450,7 +461,7 @@ def test_level_set_of_a_tetrahedron_matches_the_analytic_distance(voxelizer):
     assert np.all(values[deep] < 0)
     assert np.allclose(-values[deep], -plane[deep].max(axis=1), atol=1e-6)
     assert np.all(values[~inside & (plane.max(axis=1) > 1e-6)] > 0)
-    unsigned = voxelizer.level_set(v, t, voxel_size=h, unsigned=True)
+    unsigned = voxelizer.level_set(v, t, voxel_size=h, unsigned=True).grid
     assert unsigned.name == "distance" and unsigned.activeVoxelCount() > 0
 
 
@@ -461,7 +472,8 @@ def test_level_set_says_its_sign_and_gives_closest_triangles(voxelizer):
     v = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
     t = [(0, 1, 2), (0, 2, 3), (4, 5, 6), (4, 6, 7)]
     h = 0.05
-    grid, ijk, ids = voxelizer.level_set(v, t, voxel_size=h, exterior_band=2, unsigned=True, closest_triangle=True)
+    result = voxelizer.level_set(v, t, voxel_size=h, exterior_band=2, unsigned=True, closest_triangle=True)
+    grid, ijk, ids = result.grid, result.ijk, result.triangle
     assert ijk.shape == (grid.activeVoxelCount(), 3) and ids.shape == (len(ijk),)
     assert as_set(ijk) == as_set(svo.active_voxels(grid))
     z = ijk[:, 2] * h
@@ -472,10 +484,10 @@ def test_level_set_says_its_sign_and_gives_closest_triangles(voxelizer):
     assert np.allclose(values, np.minimum(np.abs(z[over]), np.abs(z[over] - 1)), atol=1e-6)
     # Which sign method ran, and why, is the grid's metadata.
     tv, tt = tetrahedron()
-    assert voxelizer.level_set(tv, tt, resolution=24)["svo:sign"].startswith("parity: the mesh is closed")
-    assert voxelizer.level_set(tv, tt[:3], resolution=24)["svo:sign"] == \
+    assert voxelizer.level_set(tv, tt, resolution=24).grid["svo:sign"].startswith("parity: the mesh is closed")
+    assert voxelizer.level_set(tv, tt[:3], resolution=24).grid["svo:sign"] == \
         "winding: the mesh is not closed (3 boundary edges)"
-    with pytest.raises(RuntimeError, match="parity signs need a mesh without holes"):
+    with pytest.raises(ValueError, match="parity signs need a mesh without holes"):
         voxelizer.level_set(tv, tt[:3], resolution=24, sign="parity")
 
 
@@ -484,8 +496,8 @@ def test_level_sets_and_solids_on_the_cpu_backend_are_the_default_backends(voxel
     # (no GPU); test_cpu_fields holds them to the GPU path bit for bit.
     v, t = tetrahedron()
     for kwargs in ({}, {"unsigned": True}, {"sign": "winding"}):
-        gpu = voxelizer.level_set(v, t, resolution=32, **kwargs)
-        cpu = voxelizer.level_set(v, t, resolution=32, backend="cpu", **kwargs)
+        gpu = voxelizer.level_set(v, t, resolution=32, **kwargs).grid
+        cpu = voxelizer.level_set(v, t, resolution=32, backend="cpu", **kwargs).grid
         ijk = svo.active_voxels(gpu)
         assert as_set(ijk) == as_set(svo.active_voxels(cpu)) and len(ijk) > 1000
         a, b = gpu.getConstAccessor(), cpu.getConstAccessor()
@@ -493,25 +505,25 @@ def test_level_sets_and_solids_on_the_cpu_backend_are_the_default_backends(voxel
         if "unsigned" not in kwargs:
             assert cpu["svo:sign"] == gpu["svo:sign"]
     open_t = t[:3]  # winding signs under auto
-    assert as_set(svo.active_voxels(voxelizer.solid(v, open_t, resolution=40, backend="cpu"))) == \
-        as_set(svo.active_voxels(voxelizer.solid(v, open_t, resolution=40)))
-    assert as_set(svo.active_voxels(voxelizer.solid(v, t, resolution=40, backend="cpu"))) == \
-        as_set(svo.active_voxels(voxelizer.solid(v, t, resolution=40)))
+    assert as_set(svo.active_voxels(voxelizer.solid(v, open_t, resolution=40, backend="cpu").grid)) == \
+        as_set(svo.active_voxels(voxelizer.solid(v, open_t, resolution=40).grid))
+    assert as_set(svo.active_voxels(voxelizer.solid(v, t, resolution=40, backend="cpu").grid)) == \
+        as_set(svo.active_voxels(voxelizer.solid(v, t, resolution=40).grid))
 
 
 def test_solid_of_a_tetrahedron_is_its_inside_and_surface(voxelizer):
     v, t = tetrahedron()
-    solid = voxelizer.solid(v, t, resolution=40)
-    surface = voxelizer.voxelize(v, t, resolution=40)
+    solid = voxelizer.solid(v, t, resolution=40).grid
+    surface = voxelizer.voxelize(v, t, resolution=40).grid
     filled, shell = as_set(svo.active_voxels(solid)), as_set(svo.active_voxels(surface))
     assert shell < filled and len(filled) > 1.5 * len(shell)
     # Three faces of four: the winding number (auto, for an open mesh) still
     # finds the inside, away from the missing face; parity is refused.
-    opened_grid = voxelizer.solid(v, t[:3], resolution=40)
+    opened_grid = voxelizer.solid(v, t[:3], resolution=40).grid
     assert opened_grid["svo:sign"] == "winding: the mesh is not closed (3 boundary edges)"
     opened = as_set(svo.active_voxels(opened_grid))
     assert opened <= filled and len(opened) > 0.8 * len(filled)
-    with pytest.raises(RuntimeError, match="parity signs need a mesh without holes"):
+    with pytest.raises(ValueError, match="parity signs need a mesh without holes"):
         voxelizer.solid(v, t[:3], resolution=40, sign="parity")
     # A bad option, named by its keyword, before any work (it was a RuntimeError from the GPU call).
     with pytest.raises(ValueError, match="winding_accuracy 0: the winding accuracy"):
@@ -687,15 +699,15 @@ def test_a_mesh_beyond_unit_voxels_voxelizes_as_the_cli_does(voxelizer, tmp_path
     out = tmp_path / "cli.vdb"
     subprocess.run([SVO_EXE, "voxelize", str(mesh), *cli_args, "-o", str(out)], check=True, capture_output=True)
     cli = pyopenvdb.read(str(out), "surface")
-    grid = voxelizer.voxelize(v, t, **kwargs)
+    grid = voxelizer.voxelize(v, t, **kwargs).grid
     assert grid.activeVoxelCount() == cli.activeVoxelCount() > 16
     assert as_set(svo.active_voxels(grid)) == as_set(svo.active_voxels(cli))
     assert grid.transform.voxelSize() == cli.transform.voxelSize()
     assert grid.transform.indexToWorld((3, 2, 1)) == cli.transform.indexToWorld((3, 2, 1))
-    assert svo.voxelize(v, t, **kwargs).activeVoxelCount() == grid.activeVoxelCount()
+    assert svo.voxelize(v, t, **kwargs).grid.activeVoxelCount() == grid.activeVoxelCount()
     assert as_set(voxelizer.octree(v, t, **kwargs).voxels()) == as_set(svo.active_voxels(cli))
     closed = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]) * 1e7
-    assert voxelizer.level_set(closed, tetrahedron()[1], **kwargs).activeVoxelCount() > 0
+    assert voxelizer.level_set(closed, tetrahedron()[1], **kwargs).grid.activeVoxelCount() > 0
 
 
 def test_a_unit_triangle_1e12_away_gives_the_voxels_at_the_origin_shifted(voxelizer):
@@ -706,8 +718,8 @@ def test_a_unit_triangle_1e12_away_gives_the_voxels_at_the_origin_shifted(voxeli
         return {tuple(c) for c in (np.array([grid.transform.indexToWorld(tuple(int(x) for x in ijk))
                                              for ijk in svo.active_voxels(grid)]))}
 
-    near = voxelizer.voxelize(v, t, resolution=16)
-    far = voxelizer.voxelize(v + offset, t, resolution=16)
+    near = voxelizer.voxelize(v, t, resolution=16).grid
+    far = voxelizer.voxelize(v + offset, t, resolution=16).grid
     assert far.activeVoxelCount() == near.activeVoxelCount() > 100
     assert {tuple(c - offset for c in p) for p in world_centres(far)} == world_centres(near)
 
@@ -749,4 +761,42 @@ def test_face_messages_name_the_shape_and_the_index_as_given(voxelizer):
     with pytest.raises(ValueError, match="refers to vertex 9223372036854775808, but there are 3 vertices"):
         voxelizer.voxelize(np.eye(3), big, resolution=8)
     ok = np.array([[0, 1, 2]], dtype=np.uint64)
-    assert voxelizer.voxelize(np.eye(3), ok, resolution=8).activeVoxelCount() > 0
+    assert voxelizer.voxelize(np.eye(3), ok, resolution=8).grid.activeVoxelCount() > 0
+
+
+def test_paths_may_be_path_like_and_kinds_have_their_own_names(voxelizer, tmp_path):
+    v, t = tetrahedron()
+    mesh = tmp_path / "tetrahedron.obj"
+    write_obj(mesh, v, t)
+    vertices, triangles = svo.read_mesh(mesh)  # a pathlib.Path
+    assert np.array_equal(vertices, v) and np.array_equal(triangles, t)
+    octree = voxelizer.octree(vertices, triangles, resolution=16)
+    octree.save(tmp_path / "t.svo")
+    assert svo.load(tmp_path / "t.svo").voxel_count == octree.voxel_count
+    # One file holds the surface, the level set and the solid: three names.
+    results = [voxelizer.voxelize(v, t, resolution=16), voxelizer.level_set(v, t, resolution=16),
+               voxelizer.solid(v, t, resolution=16)]
+    svo.write(tmp_path / "all.vdb", [r.grid for r in results])
+    grids, _ = pyopenvdb.readAll(str(tmp_path / "all.vdb"))
+    by_name = {g.name: g for g in grids}
+    assert sorted(by_name) == ["level_set", "solid", "surface"]
+    for r in results:
+        got = by_name[r.grid.name]
+        assert got.activeVoxelCount() == r.grid.activeVoxelCount() > 0
+        assert got["svo:version"] == svo.__version__
+    with pytest.raises(OSError, match="all.txt"):
+        svo.write(tmp_path / "all.txt", [results[0].grid])
+
+
+def test_every_call_returns_a_result_and_a_report_when_asked(voxelizer):
+    v, t = tetrahedron()
+    for result in (voxelizer.voxelize(v, t, resolution=16, report=True),
+                   voxelizer.level_set(v, t, resolution=16, report=True),
+                   voxelizer.solid(v, t, resolution=16, report=True)):
+        assert isinstance(result, svo.Result)
+        assert result.ijk is None and result.normal is None and result.triangle is None
+        assert result.grids == {result.grid.name: result.grid}
+        assert result.report["active_voxels"] == result.grid.activeVoxelCount() > 0
+        assert result.report["backend"] in ("raster", "compute", "cpu") and result.report["stages"]
+    assert voxelizer.voxelize(v, t, resolution=16).report is None
+    assert voxelizer.level_set(v, t, resolution=16, report=True).report["sign"].startswith("parity")

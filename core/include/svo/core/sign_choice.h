@@ -27,7 +27,7 @@ struct SignChoice {
 /// @param warnings receives the warning for parity asked on a mesh that is not closed
 /// @return the method and why
 /// @throw svo::InvalidInput for a winding accuracy that fails
-///        checkWindingAccuracy; svo::Unsupported for parity asked on a mesh with holes.
+///        checkWindingAccuracy, or parity asked on a mesh with holes.
 SignChoice chooseSign(const TriangleMesh& mesh, const SignOptions& asked, std::vector<std::string>& warnings);
 
 } // namespace svo

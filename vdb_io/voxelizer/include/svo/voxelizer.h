@@ -224,11 +224,11 @@ public:
     /// @throw svo::InvalidInput for a band that fails checkBand (NaN
     ///        included), a VoxelizeOptions::mode other than Conservative
     ///        (checkFieldMode) or a winding accuracy that fails
-    ///        checkWindingAccuracy
-    /// @throw svo::Unsupported for a transform without uniform scale, the CPU
-    ///        backend (this is GPU work), or parity signs asked for a mesh
-    ///        with holes (boundary edges: a column through a hole would flip
-    ///        every sign beyond it; winding and Auto sign such meshes)
+    ///        checkWindingAccuracy, or parity signs asked for a mesh with
+    ///        holes (boundary edges: a column through a hole would flip every
+    ///        sign beyond it; winding and Auto sign such meshes)
+    /// @throw svo::Unsupported for a transform without uniform scale, or the
+    ///        CPU backend (this is GPU work)
     template <typename PointT>
     openvdb::FloatGrid::Ptr meshToLevelSet(const std::vector<PointT>& points,
                                            const std::vector<openvdb::Vec3I>& triangles,
