@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <type_traits>
 #include <filesystem>
 #include <stdexcept>
 #include <string_view>
@@ -14,6 +16,7 @@
 #include "svo/core/city_scene.h"
 #include "svo/core/error.h"
 #include "svo/core/octree.h"
+#include "progress.h"
 #include "svo/gl/view_request.h"
 #include "svo/voxelizer.h"
 #ifdef SVO_WITH_VALIDATE
@@ -111,14 +114,24 @@ public:
         if (!wanted(info)) return;
         const std::string flag = flagOf(info);
         // Read as its declared type (CLI11 refuses what that cannot hold), then the library's rule.
-        cmd_.add_option_function<Read>(
-               flagNames(info),
-               [number, flag](Read v) {
-                   number.rule(int64_t(v), flag);
-                   number.value = Int(v);
-               },
-               help(info))
-            ->default_str(fmt::format("{}", number.value));
+        CLI::Option* option = cmd_.add_option_function<Read>(
+                                      flagNames(info),
+                                      [number, flag](Read v) {
+                                          number.rule(int64_t(v), flag);
+                                          number.value = Int(v);
+                                      },
+                                      help(info))
+                                  ->default_str(fmt::format("{}", number.value));
+        // CLI11 reads "-1" into an unsigned type as its largest value: refused instead.
+        if constexpr (std::is_unsigned_v<Read>)
+            option->check(
+                [](const std::string& text) -> std::string {
+                    const size_t first = text.find_first_not_of(" \t");
+                    if (first == std::string::npos || text[first] != '-') return "";
+                    return fmt::format("'{}' is negative; give a whole number from 0 to {}", text,
+                                       std::numeric_limits<Read>::max());
+                },
+                "NON-NEGATIVE");
     }
     void operator()(const OptionInfo& info, NamedBool choice)
     {
@@ -209,9 +222,43 @@ template void addOptions(CLI::App&, gl::AmbientOcclusion&, std::vector<std::stri
 template void addOptions(CLI::App&, gl::Illumination&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, GridRequest&, std::vector<std::string_view>, const std::string&);
 template void addOptions(CLI::App&, CityOptions&, std::vector<std::string_view>, const std::string&);
+template void addOptions(CLI::App&, OutputHabits&, std::vector<std::string_view>, const std::string&);
 #ifdef SVO_WITH_VALIDATE
 template void addOptions(CLI::App&, validate::ReportOptions&, std::vector<std::string_view>, const std::string&);
 #endif
+
+namespace {
+// The running command's habits: one command runs in a process, and its
+// progress lines and warnings are printed from deep inside calls.
+bool quietRun = false;
+bool verboseRun = false;
+} // namespace
+
+void addOutputHabits(CLI::App& cmd, OutputHabits& habits)
+{
+    addOptions(cmd, habits);
+    cmd.get_option("--quiet")->excludes("--verbose");
+    cmd.parse_complete_callback([&habits] {
+        quietRun = habits.quiet;
+        verboseRun = habits.verbose;
+        setProgressShown(!habits.quiet);
+    });
+}
+
+bool summaryShown() { return !quietRun; }
+bool reportShown() { return verboseRun; }
+
+void checkClobber(const OutputHabits& habits, const std::vector<std::string>& outputs)
+{
+    if (!habits.noClobber) return;
+    for (const auto& path : outputs) {
+        std::error_code ec;
+        if (!path.empty() && std::filesystem::exists(std::filesystem::symlink_status(path, ec)))
+            throw IoError(fmt::format("{}: exists, and --no-clobber refuses to replace it", path));
+    }
+}
+
+std::string seconds(double ms) { return ms < 1000 ? fmt::format("{:.0f} ms", ms) : fmt::format("{:.2f} s", ms / 1000); }
 
 void addBackendOptions(CLI::App& cmd, BackendArgs& a)
 {
@@ -333,6 +380,7 @@ std::string errorMessage(const std::exception& e)
 void printWarnings(const std::vector<std::string>& warnings)
 {
     // The library's warnings name no options (VoxelizeStats::warnings): printed as they are.
+    if (quietRun) return;
     for (const auto& w : warnings) fmt::print(stderr, "svo: warning: {}\n", printable(w));
 }
 

@@ -19,6 +19,7 @@
 #include "svo/gl/voxelize_stats.h"
 #include "svo/load_octree.h"
 #include "svo/vdb_io/octree_files.h"
+#include "svo/core/option_info.h"
 
 namespace CLI {
 class App;
@@ -85,6 +86,43 @@ struct OutputArgs {
     }();
 };
 void addOutputOptions(CLI::App& cmd, OutputArgs& args);
+
+/// @brief -q, -v and --no-clobber: how much a command that writes files
+/// prints, and whether it may replace an output that exists. Outputs are
+/// replaced by default, as vdb_tool replaces them; inputs never are
+/// (checkOutputs).
+struct OutputHabits {
+    bool quiet = false;     ///< -q: errors only on stderr, nothing on stdout, no progress
+    bool verbose = false;   ///< -v: the stage table instead of one summary line
+    bool noClobber = false; ///< --no-clobber: refuse, before any work, an output that exists
+};
+
+/// @brief The flags of OutputHabits, declared once for every command that writes.
+template <typename Visit>
+void forEachOption(OutputHabits& h, Visit&& visit)
+{
+    visit(OptionInfo{"OutputHabits::quiet", "quiet", "Print errors only: no summary, no warnings, no progress", "-q,--quiet"},
+          h.quiet);
+    visit(OptionInfo{"OutputHabits::verbose", "verbose",
+                     "Print the whole report (stages and their GPU and wall times) instead of one summary line",
+                     "-v,--verbose"},
+          h.verbose);
+    visit(OptionInfo{"OutputHabits::noClobber", "no_clobber",
+                     "Refuse to replace an output file that exists (by default outputs are replaced; inputs never are)"},
+          h.noClobber);
+}
+/// -q, -v (which exclude each other) and --no-clobber; the parsed flags take
+/// effect for progress lines and warnings as the command's callback starts.
+void addOutputHabits(CLI::App& cmd, OutputHabits& habits);
+/// @brief Whether the running command prints its summary (not -q).
+bool summaryShown();
+/// @brief Whether the running command prints its whole report (-v).
+bool reportShown();
+/// @brief With --no-clobber, refuses the first of @a outputs that exists
+/// (empty paths skipped): svo::IoError naming it, before any work.
+void checkClobber(const OutputHabits& habits, const std::vector<std::string>& outputs);
+/// @brief "1.23 s" or "345 ms": a run's wall time for a summary line.
+std::string seconds(double ms);
 
 /// A path option for a file svo writes. Refuses an empty path (`-o ''`), and
 /// when `extensions` are given (lower case, with the dot), a name whose

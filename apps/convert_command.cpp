@@ -8,6 +8,7 @@
 // unless --topology-only asks for the active voxels alone, which also makes
 // the old octree-built grids (--topology, --fog) from a .vdb input.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
@@ -21,6 +22,7 @@
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/load_octree.h"
 #include "svo/vdb_io/octree_files.h"
+#include "svo/vdb_io/reader_grids.h"
 #include "svo/vdb_io/vdb_file.h"
 
 namespace svo::app {
@@ -30,11 +32,15 @@ struct ConvertArgs {
     std::string input, output, gridName;
     BackendArgs backend;
     OutputArgs out;
+    OutputHabits habits; ///< -q, -v, --no-clobber
     bool topologyOnly = false;
 };
 
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
 /// .vdb or .nvdb to .vdb or .nvdb, every grid as it is.
-void copyGrids(const ConvertArgs& a, bool nanoInput)
+void copyGrids(const ConvertArgs& a, bool nanoInput, Clock::time_point start, OutputBatch& outputs)
 {
     openvdb::GridPtrVec grids;
     {
@@ -47,6 +53,16 @@ void copyGrids(const ConvertArgs& a, bool nanoInput)
         Progress p("writing " + a.output);
         if (written.format == OutputFormat::NanoVdb) written.bytes = vdb::writeNanoVdb(a.output, grids);
         else written.bytes = vdb::writeVdbGrids(a.output, grids, {}).bytes;
+    }
+    outputs.commit(); // then the report: what it says was written is in place
+    if (!reportShown()) {
+        uint64_t voxels = 0;
+        for (const auto& g : grids) voxels += g->activeVoxelCount();
+        if (summaryShown())
+            fmt::print("svo convert: wrote {} ({} grid{} as they are, {} active voxels, {:.2f} MB) in {}\n", a.output,
+                       grids.size(), grids.size() == 1 ? "" : "s", thousands(voxels), double(written.bytes) / 1e6,
+                       seconds(msSince(start)));
+        return;
     }
     fmt::print("svo convert\n");
     fmt::print("  {:<12} {} ({} grid{})\n", "input", a.input, grids.size(), grids.size() == 1 ? "" : "s");
@@ -62,6 +78,7 @@ void copyGrids(const ConvertArgs& a, bool nanoInput)
 
 void runConvert(const ConvertArgs& a, const CLI::App& cmd)
 {
+    const auto start = Clock::now();
     const std::string ext = std::filesystem::path(a.input).extension().string();
     if (ext != ".vdb" && ext != ".nvdb" && ext != ".svo")
         throw IoError(fmt::format("{}: svo convert reads .vdb, .nvdb and .svo files; voxelize meshes with svo voxelize",
@@ -69,6 +86,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
     const bool gridsInput = ext == ".vdb" || ext == ".nvdb";
     checkOutputPath(a.output);
     checkOutputs({a.input}, {a.output});
+    checkClobber(a.habits, {a.output});
     OutputBatch outputs({a.output}); // in place at the very end (atomic_file.h)
     const GridOptions grids = a.out.grids;
     const bool toSvo = outputFormat(a.output) == OutputFormat::Svo;
@@ -82,9 +100,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
             throw InvalidInput(fmt::format("{}: a {} input keeps its grids as they are; --fog and --topology make new "
                                            "grids from its active voxels, which needs --topology-only",
                                            a.input, ext));
-        copyGrids(a, ext == ".nvdb");
-        outputs.commit();
-        return;
+        return copyGrids(a, ext == ".nvdb", start, outputs);
     }
     LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo = loadOctree(call.voxelizer, a.input, a.gridName, {}, call.options);
@@ -93,20 +109,37 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
                                        "keep them, or give --topology-only to keep the active voxels alone",
                                        a.input, lo.valuesDropped, toSvo ? "a .svo file" : "an octree"));
     const std::map<std::string, std::string> meta = {{"svo:source", a.input}, {"svo:version", SVO_VERSION}};
+    // A .vdb output's triangle indices go beside it (reader_grids.h): an output too, known once the input is read.
+    if (outputFormat(a.output) == OutputFormat::Vdb && grids.attributes && !lo.octree.attributes.triangles.empty()) {
+        const std::string sidecar = vdb::triangleSidecarPath(a.output);
+        checkOutputs({a.input}, {a.output, sidecar});
+        checkClobber(a.habits, {sidecar});
+        outputs.add(sidecar);
+    }
     WriteReport written;
     {
         Progress p("writing " + a.output);
         written = writeOctree(a.output, lo.octree, grids, meta);
     }
+    outputs.commit(); // then the report: what it says was written is in place
+    if (!reportShown()) {
+        if (summaryShown())
+            fmt::print("svo convert: wrote {} ({} voxels, {:.2f} MB) in {}{}\n", a.output,
+                       thousands(lo.octree.voxelCount()), double(written.bytes) / 1e6, seconds(msSince(start)),
+                       written.sidecar.empty() ? std::string() : fmt::format("; triangle_id in {}", written.sidecar));
+        return;
+    }
     fmt::print("svo convert\n");
     fmt::print("  {:<12} {}\n", "input", describeInput(a.input, lo, call.stats));
     fmt::print("  {:<12} {}\n", "output", describeOutput(a.output, written, grids));
+    if (!written.sidecar.empty())
+        fmt::print("  {:<12} {} ({:.2f} MB; grid triangle_id, which python3-openvdb does not read)\n", "beside it",
+                   written.sidecar, double(written.sidecarBytes) / 1e6);
     fmt::print("  {:<12} {} voxels in {} bricks\n", "octree", thousands(lo.octree.voxelCount()),
                thousands(lo.octree.bricks.size()));
     fmt::print("\n  {:<20} {:>10} {:>10}\n", "stage", "GPU ms", "wall ms");
     printStages(lo.stages);
     printStages(written.stages);
-    outputs.commit();
 }
 
 } // namespace
@@ -120,6 +153,7 @@ void addConvertCommand(CLI::App& app)
     cmd->add_option("--grid", args->gridName, "Grid of the input .vdb or .nvdb (default: the first)");
     addBackendOptions(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
+    addOutputHabits(*cmd, args->habits);
     cmd->add_flag("--topology-only", args->topologyOnly,
                   "From a .vdb or .nvdb input, keep only one grid's active voxels (its values and class dropped), as an "
                   "octree written as .svo or as new grids (--topology, --fog); without it a .vdb or .nvdb input keeps "

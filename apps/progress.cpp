@@ -1,11 +1,17 @@
 #include "progress.h"
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <fmt/format.h>
 #include <unistd.h>
 
 namespace svo::app {
+namespace {
+std::atomic<bool> progressShown{true};
+} // namespace
+
+void setProgressShown(bool shown) { progressShown.store(shown); }
 
 Progress::Progress(std::string label, ProgressTiming timing)
     : label_(std::move(label)), timing_(timing), thread_([this] { run(); })
@@ -38,6 +44,7 @@ void Progress::run()
         if (f >= 0) return fmt::format("{} ... {:.0f} %, {:.1f} s", label_, 100 * f, s);
         return fmt::format("{} ... {:.1f} s", label_, s);
     };
+    if (!progressShown.load()) return;
     std::unique_lock<std::mutex> lock(mutex_);
     if (cv_.wait_for(lock, timing_.slowAfter, [this] { return done_; })) return;
     if (!tty) {

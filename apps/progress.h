@@ -15,6 +15,10 @@
 
 namespace svo::app {
 
+/// Whether Progress lines are printed at all, in the whole process (on by
+/// default; `svo -q` turns them off).
+void setProgressShown(bool shown);
+
 /// When a Progress speaks, and where.
 struct ProgressTiming {
     std::chrono::milliseconds slowAfter{1000}; ///< a step is slow, and shown, after this long

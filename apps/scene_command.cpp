@@ -1,5 +1,6 @@
 // svo scene NAME -o out.off|out.obj: the generated scenes as mesh files, for peers and benchmarks.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <fmt/format.h>
 #include <memory>
 
@@ -18,6 +19,7 @@ struct SceneArgs {
     std::string name, output;
     int level = 8;
     CityOptions city;
+    OutputHabits habits; ///< -q, -v (the summary is the whole report), --no-clobber
 };
 
 TriangleMesh makeScene(const SceneArgs& a)
@@ -32,12 +34,16 @@ void runScene(const CLI::App& cmd, const SceneArgs& a)
 {
     for (const char* flag : {"--triangles", "--seed"})
         if (a.name != "city" && cmd.count(flag)) throw InvalidInput(fmt::format("{} applies to the city scene", flag));
+    checkClobber(a.habits, {a.output});
+    const auto start = std::chrono::steady_clock::now();
     const TriangleMesh mesh = makeScene(a);
     OutputBatch outputs({a.output}); // in place at the very end (atomic_file.h)
     writeMesh(a.output, mesh);
-    fmt::print("svo scene: {} ({} triangles, {} vertices) -> {}\n", mesh.source, thousands(mesh.triangles.size()),
-               thousands(mesh.positions.size()), a.output);
     outputs.commit();
+    if (summaryShown())
+        fmt::print("svo scene: {} ({} triangles, {} vertices) -> {} in {}\n", mesh.source, thousands(mesh.triangles.size()),
+                   thousands(mesh.positions.size()), a.output,
+                   seconds(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()));
 }
 
 } // namespace
@@ -56,6 +62,7 @@ void addSceneCommand(CLI::App& app)
         ->check(CLI::Range(0, 10))
         ->capture_default_str();
     addOptions(*cmd, args->city);
+    addOutputHabits(*cmd, args->habits);
     cmd->callback([cmd, args] { runScene(*cmd, *args); });
 }
 

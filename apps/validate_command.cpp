@@ -36,6 +36,7 @@ struct ValidateArgs {
     validate::ReportOptions report; ///< --no-holes, --strict, --worst (its mode is the voxelization's)
     bool sdf = false;
     FieldArgs levelSet; ///< bands and sign, with --sdf
+    OutputHabits habits; ///< --no-clobber
 };
 
 /// Refuses options that have no meaning with (or without) --sdf, before any work.
@@ -177,6 +178,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     checkSdfArgs(a, cmd);
     const GridRequest request = gridRequest(a.grid);
     checkOutputs({a.mesh}, {a.json, a.errors}); // before any work
+    checkClobber(a.habits, {a.json, a.errors});
     OutputBatch outputs({a.json, a.errors});     // both in place together, or neither
     TriangleMesh mesh;
     {
@@ -300,6 +302,7 @@ void addValidateCommand(CLI::App& app)
     addOutputPath(*cmd, "--errors", args->errors, "Write the missed and extra voxels (and any leak path) as MaskGrids in a .vdb",
                   {".vdb"});
     addOptions(*cmd, args->report);
+    addOptions(*cmd, args->habits, {"no_clobber"}); // the report is the result: no -q or -v
     cmd->add_flag("--sdf", args->sdf,
                   "Check the level set (voxelize --sdf) instead: distances, signs and band against CGAL, beside "
                   "OpenVDB's meshToLevelSet");

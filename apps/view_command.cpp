@@ -43,6 +43,7 @@ struct ViewArgs {
     std::optional<double> ortho; ///< --ortho: the height an orthographic view spans
     GridRequest grid; ///< -r/--resolution or --voxel-size
     BackendArgs backend;
+    OutputHabits habits; ///< -q, -v, --no-clobber
 };
 
 std::vector<std::string> split(const std::string& text, char sep)
@@ -260,6 +261,8 @@ void showWindow(const ViewArgs& a, ViewWindowInput in, LibraryCall& call, const 
 {
     const ViewWindowResult r = runViewWindow(std::move(in), call.voxelizer);
     if (!a.save.empty()) writeOctree(a.save, r.octree);
+    for (const std::string& e : r.errors) fmt::print(stderr, "svo: warning: {}\n", e);
+    if (!summaryShown()) return;
     fmt::print("svo view\n");
     fmt::print("  {:<8} {}\n", "input", inputLine);
     fmt::print("  {:<8} {} voxels, {} bricks, {} levels, resolution {}\n", "octree", thousands(r.octree.voxelCount()),
@@ -267,7 +270,6 @@ void showWindow(const ViewArgs& a, ViewWindowInput in, LibraryCall& call, const 
     fmt::print("  {:<8} {} frames, {:.2f} ms a frame on {}\n", "window", r.frames, r.meanFrameMs, r.renderer);
     for (const std::string& shot : r.screenshots) fmt::print("  {:<8} {}\n", "picture", shot);
     if (!a.save.empty()) fmt::print("  {:<8} {}\n", "saved", a.save);
-    for (const std::string& e : r.errors) fmt::print(stderr, "svo: warning: {}\n", e);
 }
 #endif
 
@@ -286,6 +288,12 @@ void renderScreenshot(const ViewArgs& a, const LoadedOctree& lo, const gl::ViewC
         writePng(a.screenshot, view.render(camera, width, height, shown));
     }
     outputs.commit();
+    if (!reportShown()) {
+        if (summaryShown())
+            fmt::print("svo view: wrote {} ({} x {} picture, {} voxels) on {}\n", a.screenshot, width, height,
+                       thousands(lo.octree.voxelCount()), context.info().renderer);
+        return;
+    }
     fmt::print("svo view\n");
     fmt::print("  {:<8} {}\n", "input", inputLine);
     fmt::print("  {:<8} {} voxels, {} bricks, {} levels\n", "octree", thousands(lo.octree.voxelCount()),
@@ -323,6 +331,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd)
     if (!window) checkWritable(a.screenshot);
     if (!a.save.empty()) checkWritable(a.save);
     checkOutputs({a.input}, {a.screenshot, a.save});
+    checkClobber(a.habits, {a.screenshot, a.save});
     // The screenshot is put in place at the very end (atomic_file.h); the
     // window's own pictures (key p, --save) are written as they are taken.
     OutputBatch outputs({a.screenshot});
@@ -438,6 +447,7 @@ void addViewCommand(CLI::App& app)
     addBackendOptions(*cmd, args->backend);
     addOptions(*cmd, args->backend.settings, {"mode", "attributes"});
     cmd->footer(viewKeysHelp());
+    addOutputHabits(*cmd, args->habits);
     cmd->callback([args, cmd] { runView(*args, *cmd); });
 }
 

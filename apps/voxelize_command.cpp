@@ -18,6 +18,7 @@
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"
 #include "svo/core/mesh_io.h"
+#include "svo/vdb_io/reader_grids.h"
 #include "svo/vdb_io/vdb_file.h"
 #include "svo/voxelizer.h"
 
@@ -32,12 +33,18 @@ struct VoxelizeArgs {
     int repeat = 1;
     BackendArgs backend;
     OutputArgs out;
+    OutputHabits habits; ///< -q, -v, --no-clobber
     // Level sets, unsigned distances and solids.
     bool sdf = false;
     std::string fill = "surface";
     FieldArgs levelSet; ///< bands, sign, --udf and --closest-triangle
     bool udf() const { return levelSet.options.unsignedDistance; }
     bool field() const { return sdf || udf() || fill == "solid"; }
+    /// Whether a .vdb output gets a triangle sidecar (reader_grids.h).
+    bool triangleGrids() const
+    {
+        return field() ? levelSet.options.closestTriangle : (backend.settings.attributes & kTriangles) != 0;
+    }
 };
 
 double peakRssMb()
@@ -101,8 +108,9 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
     if (!a.field()) return;
     checkFieldMode(a.backend.voxelizeOptions()); // --mode thin: the library's rule, as svo validate --sdf checks it
     if (a.backend.settings.attributes) throw InvalidInput("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
-    if (cmd.count("--fog") || cmd.count("--topology"))
-        throw InvalidInput("--fog and --topology apply to surface voxels, not to --sdf, --udf or --fill solid");
+    if (cmd.count("--fog")) throw InvalidInput("--fog applies to surface voxels, not to --sdf, --udf or --fill solid");
+    if (cmd.count("--topology") && a.fill != "solid")
+        throw InvalidInput("--topology applies to surface voxels and --fill solid, not to --sdf or --udf");
     if (!a.output.empty() && outputFormat(a.output) != OutputFormat::Vdb)
         throw InvalidInput(fmt::format("{}: --sdf, --udf and --fill solid write OpenVDB grids; name a .vdb file", a.output));
     // A level set's band comes from the triangles, not from rasterized voxels.
@@ -165,55 +173,45 @@ auto timedRuns(LibraryCall& call, int repeat, WarmUp warmUp, const StageTime& lo
     return result;
 }
 
-/// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb.
+/// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb and put in place.
 void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& call, const TriangleMesh& mesh, const StageTime& load,
               const std::string& scene,
               const GridSpec& grid, const GridRequest& request, const std::string& output, bool timingOnly,
-              std::chrono::steady_clock::time_point start)
+              std::chrono::steady_clock::time_point start, OutputBatch& outputs)
 {
     const bool solid = a.fill == "solid";
 
     VoxelizeStats stats;
-    const openvdb::GridPtrVec grids = timedRuns(call, a.repeat, [] { return true; }, load, stats, [&] {
-        if (solid) return openvdb::GridPtrVec{call.voxelizer.solid(mesh, grid, call.options, ls.sign)};
+    const openvdb::GridPtrVec all = timedRuns(call, a.repeat, [] { return true; }, load, stats, [&] {
+        if (solid)
+            return openvdb::GridPtrVec{
+                vdb::withTopology(call.voxelizer.solid(mesh, grid, call.options, ls.sign), a.out.grids.topology)};
         return call.voxelizer.levelSet(mesh, grid, ls, call.options);
     });
+    // Closest triangles (Int32Grid) beside the output: python3-openvdb opens the output whole.
+    const auto [grids, triangles] = vdb::splitTriangleGrids(all);
+    const std::map<std::string, std::string> meta = {{"svo:source", mesh.source},
+                                                     {"svo:triangles", std::to_string(mesh.triangles.size())},
+                                                     {"svo:voxel_size", fmt::format("{}", grid.voxelSize)},
+                                                     {"svo:version", SVO_VERSION}};
     vdb::WriteStats written;
+    std::string sidecar;
     if (!timingOnly) {
         Progress p("writing " + output);
-        written = vdb::writeVdbGrids(output, grids,
-                                     {{"svo:source", mesh.source},
-                                      {"svo:triangles", std::to_string(mesh.triangles.size())},
-                                      {"svo:voxel_size", fmt::format("{}", grid.voxelSize)},
-                                      {"svo:version", SVO_VERSION}});
+        written = vdb::writeVdbGrids(output, grids, meta);
+        if (!triangles.empty()) {
+            sidecar = vdb::triangleSidecarPath(output);
+            written.sidecarBytes = vdb::writeVdbGrids(sidecar, triangles, meta).bytes;
+        }
         stats.stages.push_back({"write", -1, written.writeMs});
     }
     const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     const auto& main = *grids.front();
-    printHeading(scene, mesh, grid, request);
-    if (solid)
-        fmt::print("  {:<11} solid: inside and surface voxels\n", "grid kind");
-    else if (a.udf())
-        fmt::print("  {:<11} unsigned distance, band {} voxels\n", "grid kind", ls.exteriorBand);
-    else
-        fmt::print("  {:<11} level set, exterior band {} voxels, interior band {} voxels\n", "grid kind",
-                   ls.exteriorBand, ls.interiorBand);
-    if (!stats.sign.empty()) fmt::print("  {:<11} {}\n", "sign", stats.sign);
-    fmt::print("  {:<11} {} active ({} leaves, {} active tiles)\n", "voxels", thousands(main.activeVoxelCount()),
-               thousands(main.baseTree().leafCount()), thousands(main.baseTree().activeTileCount()));
-    fmt::print("  {:<11} {} band bricks{}, {:.1f} MB of GPU buffers\n", "work", thousands(stats.bandBricks),
-               stats.windingBricks ? fmt::format(" and {} bricks beyond it voxel by voxel", thousands(stats.windingBricks))
-                                   : std::string(),
-               double(stats.gpuBytes) / 1e6);
-    fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
-    fmt::print("  {:<11} {}\n", "output",
-               timingOnly ? std::string("none (--repeat without -o times the runs only)")
-                          : fmt::format("{} ({:.2f} MB; grids {})", output, double(written.bytes) / 1e6, [&] {
-                                std::string names;
-                                for (const auto& g : grids) names += (names.empty() ? "" : ", ") + g->getName();
-                                return names;
-                            }()));
-    printStageTable(stats.stages, wall, a.repeat, "", &stats.startup);
+    const auto gridNames = [](const openvdb::GridPtrVec& gs) {
+        std::string names;
+        for (const auto& g : gs) names += (names.empty() ? "" : ", ") + g->getName();
+        return names;
+    };
     if (!a.json.empty()) {
         nlohmann::json report = runJson(scene, mesh, grid, stats, a.repeat, wall);
         report.update(nlohmann::json{{"kind", solid ? "solid" : a.udf() ? "udf" : "sdf"},
@@ -228,6 +226,45 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
                                      {"winding_bricks", stats.windingBricks}});
         writeFileAtomically(a.json, report.dump(2) + "\n");
     }
+    outputs.commit(); // then the summary: what it says was written is in place
+    if (!reportShown()) {
+        if (summaryShown())
+            fmt::print("svo voxelize: {} ({} '{}', {} active voxels{}) in {}{}\n",
+                       timingOnly ? std::string("nothing written (--repeat without -o)")
+                                  : fmt::format("wrote {}", output),
+                       solid ? fmt::format("solid, {}", main.isType<openvdb::BoolGrid>() ? "bool" : "mask")
+                       : a.udf() ? std::string("unsigned distance")
+                                 : std::string("level set"),
+                       main.getName(), thousands(main.activeVoxelCount()),
+                       timingOnly ? std::string() : fmt::format(", {:.2f} MB", double(written.bytes) / 1e6),
+                       seconds(wall),
+                       sidecar.empty() ? std::string() : fmt::format("; {} in {}", gridNames(triangles), sidecar));
+    } else {
+        printHeading(scene, mesh, grid, request);
+        if (solid)
+            fmt::print("  {:<11} solid: inside and surface voxels ({})\n", "grid kind",
+                       main.isType<openvdb::BoolGrid>() ? "BoolGrid" : "MaskGrid");
+        else if (a.udf())
+            fmt::print("  {:<11} unsigned distance, band {} voxels\n", "grid kind", ls.exteriorBand);
+        else
+            fmt::print("  {:<11} level set, exterior band {} voxels, interior band {} voxels\n", "grid kind",
+                       ls.exteriorBand, ls.interiorBand);
+        if (!stats.sign.empty()) fmt::print("  {:<11} {}\n", "sign", stats.sign);
+        fmt::print("  {:<11} {} active ({} leaves, {} active tiles)\n", "voxels", thousands(main.activeVoxelCount()),
+                   thousands(main.baseTree().leafCount()), thousands(main.baseTree().activeTileCount()));
+        fmt::print("  {:<11} {} band bricks{}, {:.1f} MB of GPU buffers\n", "work", thousands(stats.bandBricks),
+                   stats.windingBricks ? fmt::format(" and {} bricks beyond it voxel by voxel", thousands(stats.windingBricks))
+                                       : std::string(),
+                   double(stats.gpuBytes) / 1e6);
+        fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
+        fmt::print("  {:<11} {}\n", "output",
+                   timingOnly ? std::string("none (--repeat without -o times the runs only)")
+                              : fmt::format("{} ({:.2f} MB; grids {})", output, double(written.bytes) / 1e6, gridNames(grids)));
+        if (!sidecar.empty())
+            fmt::print("  {:<11} {} ({:.2f} MB; grids {}, which python3-openvdb does not read)\n", "beside it", sidecar,
+                       double(written.sidecarBytes) / 1e6, gridNames(triangles));
+        printStageTable(stats.stages, wall, a.repeat, "", &stats.startup);
+    }
 }
 
 void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
@@ -239,6 +276,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
 
     // No output may be the input or another output: refused before any work.
     checkOutputs({a.mesh}, {a.output, a.json});
+    checkClobber(a.habits, {a.output, a.json});
     // Every output is finished in a temporary and all are put in place together
     // at the end: a failure or an interrupt before then replaces none of them.
     OutputBatch outputs({a.output, a.json});
@@ -260,19 +298,18 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     printWarnings(mesh.warnings);
     const std::string scene = a.mesh.empty() ? mesh.source : std::filesystem::path(a.mesh).stem().string();
     // --repeat without -o is a timing run and writes nothing; otherwise the
-    // default name is used, but never over a file the user did not name.
+    // default name is used, and replaced like any output (vdb_tool's habit).
     const bool timingOnly = a.repeat > 1 && a.output.empty();
     const std::string output = timingOnly ? std::string() : a.output.empty() ? scene + ".vdb" : a.output;
-    if (a.output.empty() && !timingOnly) {
-        checkOutputs({a.mesh}, {output, a.json}); // the default name is known only now
-        std::error_code ec;
-        if (std::filesystem::exists(output, ec))
-            throw IoError(fmt::format("{}: exists, and svo does not replace a file it was not told to write; give "
-                                      "-o {} to replace it",
-                                      output, output));
-    }
     if (!timingOnly) checkOutputPath(output);
+    // A .vdb output's triangle indices go beside it (reader_grids.h): an output too.
+    const std::string sidecar = !timingOnly && a.triangleGrids() && outputFormat(output) == OutputFormat::Vdb
+                                    ? vdb::triangleSidecarPath(output)
+                                    : std::string();
+    checkOutputs({a.mesh}, {output, a.json, sidecar}); // the default name is known only now
+    checkClobber(a.habits, {output, sidecar});
     outputs.add(output);
+    outputs.add(sidecar);
     if (!a.json.empty()) checkWritable(a.json);
     const GridSpec grid = makeGrid(mesh, request);
     // An OpenVDB output must be able to hold the voxel size: refused before the GPU works.
@@ -287,8 +324,8 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         }
     }
     if (a.field()) {
-        runField(a, a.levelSet.levelSetOptions(cmd), call, mesh, load, scene, grid, request, output, timingOnly, start);
-        return outputs.commit();
+        return runField(a, a.levelSet.levelSetOptions(cmd), call, mesh, load, scene, grid, request, output, timingOnly,
+                        start, outputs);
     }
     const GridOptions grids = a.out.grids;
     if (!timingOnly && outputFormat(output) == OutputFormat::Svo && (cmd.count("--fog") || cmd.count("--topology")))
@@ -317,27 +354,6 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     const double wall = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 
     const auto st = octreeStats(octree);
-    printHeading(scene, mesh, grid, request);
-    fmt::print("  {:<11} {}\n", "voxels", thousands(st.voxels));
-    fmt::print("  {:<11} {} levels, {} nodes, {} bricks, {:.2f} bytes/voxel, brick fill {:.2f}\n", "octree",
-               octree.brickLevel + 1, thousands(octree.nodes.size()), thousands(st.bricks), st.bytesPerVoxel(),
-               st.fillRatio());
-    const uint32_t ch = octree.channels();
-    if (ch)
-        fmt::print("  {:<11} {}{}{}\n", "attributes", ch & kNormals ? "normal " : "", ch & kTriangles ? "triangle_id " : "",
-                   ch & kColors ? "color" : "");
-    fmt::print("  {:<11} {}\n", "mode", stats.mode);
-    fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
-    fmt::print("  {:<11} {:.3g} voxels ({} grown by half of it on the GPU)\n", "guard band", grid.epsilon(),
-               stats.mode == "thin" ? "centre segments" : "cubes");
-    fmt::print("  {:<11} {} entries, {} overflow retries, {:.1f} MB of GPU buffers{}\n", "voxel list",
-               thousands(stats.listEntries), stats.overflowRetries, double(stats.gpuBytes) / 1e6,
-               stats.tiles > 1 ? fmt::format(", in {} tiles", stats.tiles) : std::string());
-    fmt::print("  {:<11} {}\n", "output",
-               timingOnly ? std::string("none (--repeat without -o times the runs only)")
-                          : describeOutput(output, written, grids));
-    printStageTable(stats.stages, wall, a.repeat, "voxelize stages: ", &stats.startup);
-
     if (!a.json.empty()) {
         nlohmann::json report = runJson(scene, mesh, grid, stats, a.repeat, wall);
         report.update(nlohmann::json{{"resolution", request.resolution},
@@ -355,7 +371,48 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
                                      {"tiles", stats.tiles}});
         writeFileAtomically(a.json, report.dump(2) + "\n");
     }
-    outputs.commit();
+    outputs.commit(); // then the summary: what it says was written is in place
+    if (!reportShown()) {
+        if (summaryShown())
+            fmt::print("svo voxelize: {} ({}{} voxels{}) in {}{}\n",
+                       timingOnly ? std::string("nothing written (--repeat without -o)")
+                                  : fmt::format("wrote {}", output),
+                       timingOnly                         ? std::string()
+                       : written.format == OutputFormat::Svo ? std::string("octree, ")
+                                                          : fmt::format("{} grid '{}'{}, ",
+                                                                        grids.topology == GridOptions::Topology::Bool
+                                                                            ? "bool"
+                                                                            : "mask",
+                                                                        grids.name, grids.fog ? " and 'density'" : ""),
+                       thousands(st.voxels),
+                       timingOnly ? std::string() : fmt::format(", {:.2f} MB", double(written.bytes) / 1e6),
+                       seconds(wall),
+                       written.sidecar.empty() ? std::string() : fmt::format("; triangle_id in {}", written.sidecar));
+    } else {
+        printHeading(scene, mesh, grid, request);
+        fmt::print("  {:<11} {}\n", "voxels", thousands(st.voxels));
+        fmt::print("  {:<11} {} levels, {} nodes, {} bricks, {:.2f} bytes/voxel, brick fill {:.2f}\n", "octree",
+                   octree.brickLevel + 1, thousands(octree.nodes.size()), thousands(st.bricks), st.bytesPerVoxel(),
+                   st.fillRatio());
+        const uint32_t ch = octree.channels();
+        if (ch)
+            fmt::print("  {:<11} {}{}{}\n", "attributes", ch & kNormals ? "normal " : "", ch & kTriangles ? "triangle_id " : "",
+                       ch & kColors ? "color" : "");
+        fmt::print("  {:<11} {}\n", "mode", stats.mode);
+        fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
+        fmt::print("  {:<11} {:.3g} voxels ({} grown by half of it on the GPU)\n", "guard band", grid.epsilon(),
+                   stats.mode == "thin" ? "centre segments" : "cubes");
+        fmt::print("  {:<11} {} entries, {} overflow retries, {:.1f} MB of GPU buffers{}\n", "voxel list",
+                   thousands(stats.listEntries), stats.overflowRetries, double(stats.gpuBytes) / 1e6,
+                   stats.tiles > 1 ? fmt::format(", in {} tiles", stats.tiles) : std::string());
+        fmt::print("  {:<11} {}\n", "output",
+                   timingOnly ? std::string("none (--repeat without -o times the runs only)")
+                              : describeOutput(output, written, grids));
+        if (!written.sidecar.empty())
+            fmt::print("  {:<11} {} ({:.2f} MB; grid triangle_id, which python3-openvdb does not read)\n", "beside it",
+                       written.sidecar, double(written.sidecarBytes) / 1e6);
+        printStageTable(stats.stages, wall, a.repeat, "voxelize stages: ", &stats.startup);
+    }
 }
 
 } // namespace
@@ -374,6 +431,7 @@ void addVoxelizeCommand(CLI::App& app)
     addBackendOptions(*cmd, args->backend);
     addOptions(*cmd, args->backend.settings, {"attributes", "mode", "gpu_memory", "region"});
     addOutputOptions(*cmd, args->out);
+    addOutputHabits(*cmd, args->habits);
     cmd->add_flag("--sdf", args->sdf,
                   "Write a narrow-band signed distance field (OpenVDB level set, grid 'surface') instead of voxels");
     addOptions(*cmd, args->levelSet.options, {"unsigned"}, "within the band (grid 'distance') instead of voxels");

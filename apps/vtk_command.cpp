@@ -1,5 +1,6 @@
 // svo vtk INPUT -o OUT.htg|.vtu|.vtp [--levels A..B] [--png out.png]
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
@@ -20,6 +21,7 @@ struct VtkArgs {
     GridRequest grid; ///< -r/--resolution or --voxel-size
     BackendArgs backend;
     int width = 1600;
+    OutputHabits habits; ///< -q, -v, --no-clobber
 };
 
 /// "A..B", "A..", "..B" or "A".
@@ -61,6 +63,11 @@ void runVtk(const VtkArgs& a, const CLI::App& cmd)
         checkWritable(a.output);
     }
     checkOutputs({a.input}, {a.output, a.png});
+    checkClobber(a.habits, {a.output, a.png});
+    const auto start = std::chrono::steady_clock::now();
+    const auto elapsed = [&] {
+        return seconds(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    };
     if (!a.png.empty()) {
         checkWritable(a.png);
         requireDisplay(); // before loading and voxelizing
@@ -69,11 +76,16 @@ void runVtk(const VtkArgs& a, const CLI::App& cmd)
     OutputBatch outputs({a.output, a.png}); // both in place together at the end, or neither
     LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo = call.load(a.input, a.gridName, gridRequest(a.grid));
-    fmt::print("svo vtk\n");
-    fmt::print("  {:<8} {}\n", "input", describeInput(a.input, lo, call.stats));
-    fmt::print("  {:<8} {} voxels, {} levels (bricks at {}; levels {}..{} split bricks down to voxels)\n", "octree",
-               lo.octree.voxelCount(), lo.octree.brickLevel + 1, lo.octree.brickLevel, lo.octree.brickLevel + 1,
-               lo.octree.brickLevel + 3);
+    // Printed once the outputs are in place: the report (-v), or a line per file written.
+    const bool report = reportShown();
+    std::string printed;
+    if (report) {
+        printed += "svo vtk\n";
+        printed += fmt::format("  {:<8} {}\n", "input", describeInput(a.input, lo, call.stats));
+        printed += fmt::format("  {:<8} {} voxels, {} levels (bricks at {}; levels {}..{} split bricks down to voxels)\n",
+                               "octree", lo.octree.voxelCount(), lo.octree.brickLevel + 1, lo.octree.brickLevel,
+                               lo.octree.brickLevel + 1, lo.octree.brickLevel + 3);
+    }
     if (!a.png.empty()) {
         Progress p("rendering " + a.png);
         PictureOptions po;
@@ -82,16 +94,24 @@ void runVtk(const VtkArgs& a, const CLI::App& cmd)
         po.mesh = lo.mesh ? &*lo.mesh : nullptr;
         po.outlineLevels = levels;
         vtk.renderPicture(a.png, lo.octree, po);
-        fmt::print("  {:<8} {} ({} x {})\n", "picture", a.png, po.width, po.height);
+        printed += report ? fmt::format("  {:<8} {} ({} x {})\n", "picture", a.png, po.width, po.height)
+                          : fmt::format("svo vtk: wrote {} ({} x {} picture, {} voxels) in {}\n", a.png, po.width,
+                                        po.height, thousands(lo.octree.voxelCount()), elapsed());
     }
     if (!a.output.empty()) {
         Progress p("writing " + a.output);
         if (ext == ".htg") vtk.writeHyperTreeGrid(a.output, lo.octree, levels);
         if (ext == ".vtu") vtk.writeVoxelCells(a.output, lo.octree);
         if (ext == ".vtp") vtk.writeNodeOutlines(a.output, lo.octree, levels);
-        fmt::print("  {:<8} {}\n", "output", a.output);
+        printed += report ? fmt::format("  {:<8} {}\n", "output", a.output)
+                          : fmt::format("svo vtk: wrote {} ({}, {} voxels) in {}\n", a.output,
+                                        ext == ".htg"   ? "hyper tree grid"
+                                        : ext == ".vtu" ? "voxel cells"
+                                                        : "node outlines",
+                                        thousands(lo.octree.voxelCount()), elapsed());
     }
     outputs.commit();
+    if (summaryShown()) fmt::print("{}", printed);
 }
 
 } // namespace
@@ -110,6 +130,7 @@ void addVtkCommand(CLI::App& app)
     cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
     addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
+    addOutputHabits(*cmd, args->habits);
     cmd->callback([args, cmd] { runVtk(*args, *cmd); });
 }
 

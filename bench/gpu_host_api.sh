@@ -9,6 +9,6 @@ for t in test_api test_gpu_layout test_gpu_voxelize test_gpu_octree test_validat
   [ -x "$bin/$t" ] && SVO_CGAL_MESHES="$PWD/bundle/meshes" "$bin/$t" 2>&1 | tee "$out/$t.txt" | grep -E "^\[  |FAILED|PASSED"
 done
 { "$bin/svo" validate bundle/meshes/stanford-bunny.obj -r 512; "$bin/svo" validate bundle/meshes/elephant.off -r 256;
-  "$bin/svo" voxelize bundle/meshes/stanford-bunny.obj -r 1024 --fog -o "$work/bunny.nvdb"; } 2>&1 | tee "$out/validate.txt" | grep -E "verdict|missed|error|output"
+  "$bin/svo" voxelize -v bundle/meshes/stanford-bunny.obj -r 1024 --fog -o "$work/bunny.nvdb"; } 2>&1 | tee "$out/validate.txt" | grep -E "verdict|missed|error|output"
 "$bin/svo-bench-warm-call" bundle/meshes/stanford-bunny.obj --res 256 1024 --calls 100 \
   --machine "an NVIDIA H100 host" --json "$out/warm_call.json" --md "$out/warm_call.md" 2>&1 | tail -4

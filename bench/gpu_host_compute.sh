@@ -25,7 +25,7 @@ for mesh in bunny icosphere; do
   for res in 256 512 1024 2048; do
     for backend in ${BACKENDS:-raster compute}; do
       echo "== svo $mesh $res $backend"
-      "$bin/svo" voxelize "$work/$mesh.obj" -r "$res" --backend "$backend" --repeat 5 --json "$work/r.json" 2>&1 \
+      "$bin/svo" voxelize -v "$work/$mesh.obj" -r "$res" --backend "$backend" --repeat 5 --json "$work/r.json" 2>&1 \
         | grep -E "voxels  |voxel list|upload|voxelize |octree build|readback|error"
     done
     if [ -n "$cv" ]; then

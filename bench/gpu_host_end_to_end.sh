@@ -13,7 +13,7 @@ if [ -d bundle/peers ]; then
     && cv=(--cuda-voxelizer "$work/cvb/cuda_voxelizer")
 fi
 # The first svo process on a fresh machine compiles its programs; later ones load them.
-"$bin/svo" voxelize bundle/meshes/stanford-bunny.obj -r 64 -o "$work/warm.vdb" > "$out/first_process.txt" 2>&1
+"$bin/svo" voxelize -v bundle/meshes/stanford-bunny.obj -r 64 -o "$work/warm.vdb" > "$out/first_process.txt" 2>&1
 scenes=(${SCENES:-bundle/meshes/stanford-bunny.obj icosphere bundle/meshes/spot.obj bundle/meshes/ogre.obj})
 python3 bench/end_to_end.py --svo "$bin/svo" --vdb-tool "$bin/vdb_tool" "${cv[@]}" --machine nvidia-h100 \
   --out "$out" --scenes "${scenes[@]}" --icosphere-off --res ${RES:-64 128 256 512 1024 2048} --runs "${RUNS:-3}" 2>&1 \

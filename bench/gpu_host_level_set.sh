@@ -21,7 +21,7 @@ ms() { echo $(( ($(date +%s%N) - $1) / 1000000 )); }
     name=$(basename "$mesh")
     for r in ${RES:-256 1024 2048}; do
       echo "== $name $r"
-      "$bin/svo" voxelize "$mesh" -r $r --sdf --repeat 5 --json "$out/sdf_${name}_$r.json" -o "$work/s.vdb" 2>&1 |
+      "$bin/svo" voxelize -v "$mesh" -r $r --sdf --repeat 5 --json "$out/sdf_${name}_$r.json" -o "$work/s.vdb" 2>&1 |
         grep -E "sign|voxels|band|packing|readback|level set grid|per call|total"
       "$bin/svo-mesh-to-volume" "$mesh" -r $r --level-set 3 2>&1 | tail -2
       t=$(date +%s%N); "$bin/svo" voxelize "$mesh" -r $r --sdf -o "$work/e.vdb" >/dev/null 2>&1

@@ -15,6 +15,6 @@ done 2>&1 | tee "$out/tests.txt"
 {
   echo "== what auto runs on this machine"
   for kind in "" "--sdf" "--fill solid" "--attributes normal"; do
-    "$bin/svo" voxelize .gl/meshes/stanford-bunny.obj -r 256 $kind -o "$work/x.vdb" 2>&1 | grep -E "^  backend" | sed "s|^|${kind:-surface}: |"
+    "$bin/svo" voxelize -v .gl/meshes/stanford-bunny.obj -r 256 $kind -o "$work/x.vdb" 2>&1 | grep -E "^  backend" | sed "s|^|${kind:-surface}: |"
   done
 } 2>&1 | tee "$out/auto.txt"

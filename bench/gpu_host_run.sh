@@ -32,7 +32,7 @@ for mesh in stanford-bunny ogre; do
   for res in 256 512 1024 2048; do
     for mode in hardware shader; do
       echo "== $mesh $res $mode"
-      "$svo" voxelize "bundle/meshes/$mesh.obj" -r $res --conservative $mode --repeat 5 -o "$work/out.vdb" 2>&1 \
+      "$svo" voxelize -v "bundle/meshes/$mesh.obj" -r $res --conservative $mode --repeat 5 -o "$work/out.vdb" 2>&1 \
         | grep -E "voxels  |octree  |backend|voxelize |upload|readback|octree build|vdb |total|list|error"
     done
   done

@@ -29,7 +29,7 @@ for res in ${RESOLUTIONS:-2048 4096 8192 16384}; do
     # The bunny is 0.155 units long: at 16384^3 its voxels (9.5e-6) are below the
     # smallest an OpenVDB transform takes (1.44e-5), so the octree is written as .svo.
     ext=vdb; [ "$res" -ge 16384 ] && ext=svo
-    timeout 280 "$bin/svo" voxelize "$work/bunny.obj" -r "$res" --backend compute "${args[@]}" -o "$work/b.$ext" \
+    timeout 280 "$bin/svo" voxelize -v "$work/bunny.obj" -r "$res" --backend compute "${args[@]}" -o "$work/b.$ext" \
       --json "$out/tiles_${res}_${b}.json" 2>&1 | grep -E "voxels  |voxel list|upload|voxelize |octree build|readback|merge|vdb|total|error|EGL|programs"
     rm -f "$work/b.vdb" "$work/b.svo"
   done

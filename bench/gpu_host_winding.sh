@@ -17,7 +17,7 @@ mkdir -p /work/main/build/tests/cgal_data/data/meshes && cp bundle/meshes/*.off 
   for mesh in bundle/meshes/stanford-bunny.obj bundle/meshes/spot.obj bundle/meshes/ogre.obj; do
     for r in 256 512 1024; do
       echo "== $(basename $mesh) $r"
-      timeout 120 "$bin/svo" voxelize "$mesh" -r $r --sdf --repeat 3 --json "$out/sdf_$(basename $mesh)_$r.json" 2>&1 \
+      timeout 120 "$bin/svo" voxelize -v "$mesh" -r $r --sdf --repeat 3 --json "$out/sdf_$(basename $mesh)_$r.json" 2>&1 \
         | grep -E "sign|voxels|work|band distance|winding|level set grid|total"
     done
   done

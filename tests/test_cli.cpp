@@ -19,6 +19,7 @@
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
+#include <vector>
 
 #include "svo/core/octree.h"
 #include "svo/core/octree_file.h"
@@ -167,6 +168,21 @@ bool goneSoon(pid_t pid)
 /// The number of lines in `text`.
 size_t lineCount(const std::string& text) { return size_t(std::count(text.begin(), text.end(), '\n')); }
 
+/// A file's bytes.
+std::string fileText(const std::string& file)
+{
+    std::ifstream in(file, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// The first "Number of active voxels" of `vdb_print -l` (OpenVDB's own
+/// count, tiles included, written with commas), or "none".
+std::string activeVoxels(const std::string& printed)
+{
+    std::smatch m;
+    return std::regex_search(printed, m, std::regex("Number of active voxels: +([0-9,]+)")) ? m[1].str() : "none";
+}
+
 /// "text {} text" with the number in place of {}.
 std::string fmt(const std::string& pattern, size_t n)
 {
@@ -179,7 +195,7 @@ protected:
     std::string path(const std::string& name) const { return tmp_.path(name); }
     std::string write(const std::string& name, const std::string& text) const { return tmp_.write(name, text); }
     /// Nothing but the listed files in the folder: no temporaries left behind.
-    void expectOnly(std::initializer_list<std::string> names) const
+    void expectOnly(const std::vector<std::string>& names) const
     {
         size_t n = 0;
         for (const auto& e : fs::directory_iterator(tmp_.dir())) {
@@ -194,20 +210,37 @@ protected:
 
 } // namespace
 
-TEST_F(Cli, DefaultSceneWritesAVdbAndPrintsTheTable)
+// One summary line by default (what was written, its voxels as vdb_print
+// counts them, the time), the whole table with -v, nothing with -q.
+TEST_F(Cli, DefaultSceneWritesAVdbAndPrintsOneLineOrTheTable)
 {
     const auto r = runSvo("voxelize -r 48 -o " + path("cb.vdb"));
     ASSERT_EQ(r.code, 0) << r.out;
-    EXPECT_NE(r.out.find("triangles   3,136"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("voxelize"), std::string::npos);
-    EXPECT_GT(fs::file_size(path("cb.vdb")), 100u);
-    expectOnly({"cb.vdb"});
+    EXPECT_EQ(lineCount(r.out), 1u) << r.out;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.out, m,
+                                  std::regex("^svo voxelize: wrote " + path("cb.vdb") +
+                                             R"( \(bool grid 'surface', ([0-9,]+) voxels, [0-9.]+ MB\) in [0-9.]+ m?s\n$)")))
+        << r.out;
+    EXPECT_EQ(activeVoxels(runCommand("vdb_print -l " + path("cb.vdb"))), m[1].str());
+    const auto table = runSvo("voxelize -r 48 -v -o " + path("cb.vdb"));
+    ASSERT_EQ(table.code, 0) << table.out;
+    EXPECT_NE(table.out.find("triangles   3,136"), std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("octree build"), std::string::npos) << table.out;
+    const auto quiet = runSvo("voxelize -r 48 -q -o " + path("q.vdb"));
+    ASSERT_EQ(quiet.code, 0) << quiet.out;
+    EXPECT_EQ(quiet.out, "");
+    EXPECT_EQ(fs::file_size(path("q.vdb")), fs::file_size(path("cb.vdb")));
+    const auto both = runSvo("voxelize -r 48 -q -v -o " + path("x.vdb"));
+    EXPECT_EQ(both.code, 1) << both.out;
+    EXPECT_EQ(lineCount(both.out), 1u) << both.out;
+    expectOnly({"cb.vdb", "q.vdb"});
 }
 
 TEST_F(Cli, StartUpRowsAndTheProgramCacheAcrossRuns)
 {
     const std::string cache = "SVO_PROGRAM_CACHE=" + path("programs");
-    const auto cold = runSvo("voxelize -r 24 --backend raster -o " + path("a.vdb"), cache);
+    const auto cold = runSvo("voxelize -r 24 -v --backend raster -o " + path("a.vdb"), cache);
     ASSERT_EQ(cold.code, 0) << cold.out;
     EXPECT_NE(cold.out.find("EGL set-up"), std::string::npos) << cold.out;
     if (!fs::exists(path("programs"))) {
@@ -216,7 +249,7 @@ TEST_F(Cli, StartUpRowsAndTheProgramCacheAcrossRuns)
     }
     const size_t files = size_t(std::distance(fs::directory_iterator(path("programs")), fs::directory_iterator()));
     EXPECT_NE(cold.out.find(fmt("({} compiled)", files)), std::string::npos) << cold.out;
-    const auto warm = runSvo("voxelize -r 24 --backend raster -o " + path("a.vdb"), cache);
+    const auto warm = runSvo("voxelize -r 24 -v --backend raster -o " + path("a.vdb"), cache);
     ASSERT_EQ(warm.code, 0) << warm.out;
     EXPECT_NE(warm.out.find(fmt("({} cached, 0 compiled)", files)), std::string::npos) << warm.out;
     // Mesa without its disk cache offers no binary formats: then svo keeps no cache either.
@@ -224,7 +257,7 @@ TEST_F(Cli, StartUpRowsAndTheProgramCacheAcrossRuns)
     const auto info = runSvo("glinfo", noMesaCache);
     ASSERT_EQ(info.code, 0) << info.out;
     if (info.out.find("program binary formats     0") != std::string::npos) {
-        const auto r = runSvo("voxelize -r 24 --backend raster -o " + path("b.vdb"), noMesaCache);
+        const auto r = runSvo("voxelize -r 24 -v --backend raster -o " + path("b.vdb"), noMesaCache);
         ASSERT_EQ(r.code, 0) << r.out;
         EXPECT_NE(r.out.find("no program cache"), std::string::npos) << r.out;
         EXPECT_FALSE(fs::exists(path("other")));
@@ -252,8 +285,8 @@ TEST_F(Cli, FarTriangleAsObjGivesTheVoxelsOfItsOff)
                                     "1000000000.1 1000000001.2 1000000000.3"};
     std::string off = "OFF\n3 1 0\n", obj;
     for (const auto& c : corners) off += c + "\n", obj += "v " + c + "\n";
-    const auto a = runSvo("voxelize " + write("far.off", off + "3 0 1 2\n") + " --voxel-size 0.1 -o " + path("off.vdb"));
-    const auto b = runSvo("voxelize " + write("far.obj", obj + "f 1 2 3\n") + " --voxel-size 0.1 -o " + path("obj.vdb"));
+    const auto a = runSvo("voxelize " + write("far.off", off + "3 0 1 2\n") + " -v --voxel-size 0.1 -o " + path("off.vdb"));
+    const auto b = runSvo("voxelize " + write("far.obj", obj + "f 1 2 3\n") + " -v --voxel-size 0.1 -o " + path("obj.vdb"));
     ASSERT_EQ(a.code, 0) << a.out;
     ASSERT_EQ(b.code, 0) << b.out;
     auto voxels = [](const std::string& out) {
@@ -289,7 +322,7 @@ TEST_F(Cli, BadArgumentsFailWithoutOutput)
 
 TEST_F(Cli, OctreeFilesConvertBothWaysAndReport)
 {
-    const auto v = runSvo("voxelize -r 48 -o " + path("box.svo"));
+    const auto v = runSvo("voxelize -r 48 -v -o " + path("box.svo"));
     ASSERT_EQ(v.code, 0) << v.out;
     EXPECT_NE(v.out.find("octree build"), std::string::npos) << v.out;
 
@@ -402,7 +435,7 @@ TEST_F(Cli, ThinModeVoxelizesFewerVoxelsAndValidates)
     // A closed tetrahedron, so that the hole check applies.
     const std::string mesh =
         write("tet.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
-    auto r = runSvo("voxelize " + mesh + " -r 48 --mode thin -o " + path("t.vdb") + " --json " + path("t.json"));
+    auto r = runSvo("voxelize " + mesh + " -r 48 -v --mode thin -o " + path("t.vdb") + " --json " + path("t.json"));
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find("mode        thin"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("centre segments grown by half of it"), std::string::npos) << r.out;
@@ -688,14 +721,15 @@ TEST_F(Cli, OutputsThatAreNotFilesAreWrittenThroughOrRefusedNeverReplaced)
         EXPECT_EQ(r.code, 0) << device << "\n" << r.out;
         ASSERT_TRUE(fs::is_character_file(device)) << device << " was replaced";
     }
-    // /dev/stdout, through a private link first: the JSON comes out on stdout, after the summary.
+    // /dev/stdout, through a private link first: the JSON comes out on stdout as the outputs are put in
+    // place, then the summary, which names only what is in place.
     fs::create_symlink("/proc/self/fd/1", path("stdout"));
     for (const std::string& out : {path("stdout"), std::string("/dev/stdout")}) {
         r = runSvo(run + path("b.vdb") + " --json " + out);
         EXPECT_EQ(r.code, 0) << out << "\n" << r.out;
         ASSERT_TRUE(fs::is_symlink(out)) << out << " was replaced";
         const auto summary = r.out.find("svo voxelize"), json = r.out.find("\"voxels\"");
-        EXPECT_TRUE(summary != std::string::npos && json != std::string::npos && summary < json) << out << "\n" << r.out;
+        EXPECT_TRUE(summary != std::string::npos && json != std::string::npos && json < summary) << out << "\n" << r.out;
     }
     // And through a link to a FIFO or a device, with -o.
     fs::create_symlink(privateNull ? path("null") : std::string("/dev/null"), path("null.vdb"));
@@ -703,12 +737,12 @@ TEST_F(Cli, OutputsThatAreNotFilesAreWrittenThroughOrRefusedNeverReplaced)
     EXPECT_EQ(r.code, 0) << r.out;
     EXPECT_TRUE(fs::is_symlink(path("null.vdb")));
     EXPECT_TRUE(fs::is_character_file(path("null.vdb")));
-    // /dev/stdout redirected to a file: svo writes through its own stdout, so the file holds the summary, then the JSON.
+    // /dev/stdout redirected to a file: svo writes through its own stdout, so the file holds the JSON, then the summary.
     r = runShell(std::string(SVO_EXE) + " " + run + path("c.vdb") + " --json /dev/stdout > " + path("all.txt"));
     EXPECT_EQ(r.code, 0) << r.out;
     const std::string all = text(path("all.txt"));
     const auto summary = all.find("svo voxelize"), json = all.find("\"voxels\"");
-    EXPECT_TRUE(summary != std::string::npos && json != std::string::npos && summary < json) << all;
+    EXPECT_TRUE(summary != std::string::npos && json != std::string::npos && json < summary) << all;
     EXPECT_TRUE(fs::is_symlink("/dev/stdout"));
 }
 
@@ -735,15 +769,16 @@ TEST_F(Cli, SmallMisusesAreRefusedOrDoWhatTheySay)
     // --repeat without -o times the runs and writes nothing.
     auto r = runSvo("voxelize m.off -r 16 --repeat 2");
     EXPECT_EQ(r.code, 0) << r.out;
-    EXPECT_NE(r.out.find("none (--repeat without -o"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("nothing written (--repeat without -o)"), std::string::npos) << r.out;
+    EXPECT_NE(runSvo("voxelize m.off -r 16 --repeat 2 -v").out.find("none (--repeat without -o"), std::string::npos);
     EXPECT_FALSE(fs::exists(path("m.vdb")));
-    // The default name is written once, and never over an existing file.
+    // The default name is written, and replaced like any output, as vdb_tool does.
     EXPECT_EQ(runSvo("voxelize m.off -r 16").code, 0);
     const auto first = fs::file_size(path("m.vdb"));
     r = runSvo("voxelize m.off -r 32");
-    EXPECT_EQ(r.code, 1) << r.out;
-    EXPECT_NE(r.out.find("m.vdb: exists"), std::string::npos) << r.out;
-    EXPECT_EQ(fs::file_size(path("m.vdb")), first);
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("wrote m.vdb"), std::string::npos) << r.out;
+    EXPECT_NE(fs::file_size(path("m.vdb")), first);
     fs::current_path(cwd);
     // An empty path is refused, not replaced by the default name.
     for (const std::string& args : {"voxelize " + mesh + " -r 16 -o ''", "voxelize " + mesh + " -r 16 -o x.vdb --json ''",
@@ -779,6 +814,92 @@ TEST_F(Cli, SmallMisusesAreRefusedOrDoWhatTheySay)
     expectOnly({"m.off", "m.vdb", "g.off"});
 }
 
+// Outputs are replaced, as vdb_tool replaces them; --no-clobber refuses an
+// output that exists, before any work and in one line, for every command
+// that writes, and leaves the file as it was. (Inputs are never outputs:
+// NoOutputIsEverAnInputHoweverItIsNamed.)
+TEST_F(Cli, OutputsAreReplacedUnlessNoClobberRefusesThem)
+{
+    const std::string mesh = write("m.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    ASSERT_EQ(runSvo("voxelize " + mesh + " -r 16 -o " + path("a.svo")).code, 0);
+    const auto small = fs::file_size(path("a.svo"));
+    ASSERT_EQ(runSvo("voxelize " + mesh + " -r 64 -o " + path("a.svo")).code, 0);
+    EXPECT_GT(fs::file_size(path("a.svo")), small);
+    const std::vector<std::string> kept = {"k.vdb", "k.json", "k.svo", "k.obj", "k.png", "n.triangle.vdb"};
+    for (const auto& name : kept) write(name, "earlier");
+    const std::vector<std::pair<std::string, std::string>> attempts = {
+        {"voxelize " + mesh + " -r 16 --no-clobber -o " + path("k.vdb"), "k.vdb"},
+        {"voxelize " + mesh + " -r 16 --no-clobber -o " + path("n.vdb") + " --json " + path("k.json"), "k.json"},
+        {"voxelize " + mesh + " -r 16 --attributes triangle --no-clobber -o " + path("n.vdb"), "n.triangle.vdb"},
+        {"voxelize " + mesh + " -r 16 --sdf --closest-triangle --no-clobber -o " + path("n.vdb"), "n.triangle.vdb"},
+        {"convert " + path("a.svo") + " --no-clobber -o " + path("k.svo"), "k.svo"},
+        {"scene cornell --no-clobber -o " + path("k.obj"), "k.obj"},
+        {"view " + path("a.svo") + " --size 64x48 --no-clobber --screenshot " + path("k.png"), "k.png"},
+        {"validate " + mesh + " -r 16 --no-clobber --json " + path("k.json"), "k.json"},
+        {"vtk " + path("a.svo") + " --no-clobber --png " + path("k.png"), "k.png"},
+    };
+    for (const auto& [args, refused] : attempts) {
+        const auto r = runSvo(args);
+        EXPECT_EQ(r.code, 1) << args << "\n" << r.out;
+        EXPECT_EQ(r.out, "svo: error: " + path(refused) + ": exists, and --no-clobber refuses to replace it\n") << args;
+        for (const auto& name : kept) EXPECT_EQ(fileText(path(name)), "earlier") << args << ": " << name;
+    }
+    // Without it, each is replaced.
+    const auto r = runSvo("convert " + path("a.svo") + " -o " + path("k.svo"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(fs::file_size(path("k.svo")), fs::file_size(path("a.svo")));
+    ASSERT_EQ(runSvo("scene cornell -q -o " + path("k.obj")).code, 0);
+    EXPECT_NE(fileText(path("k.obj")), "earlier");
+    std::vector<std::string> all = kept;
+    all.insert(all.end(), {"m.off", "a.svo"});
+    expectOnly(all);
+}
+
+// A .vdb written with default options opens whole in python3-openvdb, whatever
+// channels were asked for: triangle indices (Int32Grid, which it lacks) go to
+// <output>.triangle.vdb, named in the summary, which OpenVDB's vdb_print reads,
+// over the same voxels as the output.
+TEST_F(Cli, DefaultOutputsOpenWholeInPyopenvdbAndTriangleIndicesGoBeside)
+{
+    ASSERT_EQ(runSvo("scene icosphere --level 2 -o " + path("ico.off")).code, 0);
+    ASSERT_EQ(runSvo("voxelize -r 32 --attributes normal,triangle -o " + path("attr.svo")).code, 0);
+    const std::string gridsOf = "/usr/bin/python3 -c \"import pyopenvdb,sys; g,_=pyopenvdb.readAll(sys.argv[1]); "
+                                "print(' '.join(sorted(x.name+':'+x.valueTypeName for x in g)))\" ";
+    struct Case {
+        std::string args, output, grids, sidecarGrid;
+    };
+    const std::vector<Case> cases = {
+        {"voxelize -r 32 --attributes normal,triangle,color", "attr.vdb", "color:vec3s normal:vec3s surface:bool",
+         "triangle_id"},
+        {"voxelize " + path("ico.off") + " -r 32 --sdf --closest-triangle", "ls.vdb", "surface:float", "closest_triangle"},
+        {"voxelize " + path("ico.off") + " -r 32 --udf --closest-triangle", "udf.vdb", "distance:float",
+         "closest_triangle"},
+        {"convert " + path("attr.svo"), "conv.vdb", "normal:vec3s surface:bool", "triangle_id"},
+        {"voxelize " + path("ico.off") + " -r 32 --fill solid", "solid.vdb", "solid:bool", ""},
+        {"voxelize -r 32 --fog --attributes normal", "fog.vdb", "density:float normal:vec3s surface:bool", ""},
+    };
+    std::vector<std::string> files = {"ico.off", "attr.svo"};
+    for (const auto& c : cases) {
+        const auto r = runSvo(c.args + " -o " + path(c.output));
+        ASSERT_EQ(r.code, 0) << c.args << "\n" << r.out;
+        files.push_back(c.output);
+        EXPECT_EQ(runCommand(gridsOf + path(c.output)), c.grids + "\n") << c.args;
+        const std::string sidecar = c.output.substr(0, c.output.size() - 4) + ".triangle.vdb";
+        if (c.sidecarGrid.empty()) continue;
+        files.push_back(sidecar);
+        EXPECT_NE(r.out.find("; " + c.sidecarGrid + " in " + path(sidecar) + "\n"), std::string::npos) << r.out;
+        const std::string printed = runCommand("vdb_print -l " + path(sidecar)), main = runCommand("vdb_print -l " + path(c.output));
+        EXPECT_NE(printed.find("Name: " + c.sidecarGrid), std::string::npos) << printed;
+        EXPECT_NE(printed.find("Type: Tree_int32_5_4_3"), std::string::npos) << printed;
+        // The indices cover the output's voxels: its topology grid (every voxel) or its band.
+        EXPECT_EQ(activeVoxels(printed), activeVoxels(main)) << c.args << "\n" << printed << main;
+        // What the output would be refused for, had the indices stayed in it.
+        EXPECT_NE(runCommand(gridsOf + path(sidecar)).find("Tree_int32_5_4_3 is not a supported OpenVDB grid type"),
+                  std::string::npos);
+    }
+    expectOnly(files);
+}
+
 // A GPU memory budget below what the grid needs: the grid is voxelized in
 // tiles, with the voxels of the untiled run, and vdb_print reads the file.
 TEST_F(Cli, AGpuMemoryBudgetTilesTheGridToTheSameVoxels)
@@ -794,7 +915,7 @@ TEST_F(Cli, AGpuMemoryBudgetTilesTheGridToTheSameVoxels)
     // The budget asks auto for the GPU passes; the whole grid names them.
     auto r = runSvo("voxelize -r 128 --backend raster -o " + path("whole.vdb") + " --json " + path("whole.json"));
     ASSERT_EQ(r.code, 0) << r.out;
-    r = runSvo("voxelize -r 128 --gpu-memory 2.5MiB -o " + path("tiled.vdb") + " --json " + path("tiled.json"));
+    r = runSvo("voxelize -r 128 -v --gpu-memory 2.5MiB -o " + path("tiled.vdb") + " --json " + path("tiled.json"));
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find(" tiles"), std::string::npos) << r.out;
     const std::string whole = read("whole.json"), tiled = read("tiled.json");
@@ -842,19 +963,35 @@ TEST_F(Cli, AVoxelSizeOpenVdbCannotHoldIsRefusedBeforeAnyWork)
 TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)
 {
     ASSERT_EQ(runSvo("scene icosphere --level 3 -o " + path("ico.off")).code, 0);
-    const auto sdf = runSvo("voxelize " + path("ico.off") + " -r 32 --sdf --exterior-band 2 --interior-band 4 -o " +
+    const auto sdf = runSvo("voxelize " + path("ico.off") + " -r 32 -v --sdf --exterior-band 2 --interior-band 4 -o " +
                             path("ls.vdb"));
     ASSERT_EQ(sdf.code, 0) << sdf.out;
     EXPECT_NE(sdf.out.find("parity: the mesh is closed and consistently oriented"), std::string::npos) << sdf.out;
     const auto printed = runCommand("vdb_print -l " + path("ls.vdb"));
     EXPECT_NE(printed.find("class: level set"), std::string::npos) << printed;
     EXPECT_NE(printed.find("Name: surface"), std::string::npos) << printed;
+    // A solid is a BoolGrid like every other output, a MaskGrid on request:
+    // the same active voxels and tiles either way.
     const auto solid = runSvo("voxelize " + path("ico.off") + " -r 64 --fill solid -o " + path("solid.vdb"));
     ASSERT_EQ(solid.code, 0) << solid.out;
-    EXPECT_NE(runCommand("vdb_print -l " + path("solid.vdb")).find("Name: solid"), std::string::npos);
+    EXPECT_NE(solid.out.find("(solid, bool 'solid', "), std::string::npos) << solid.out;
+    const auto mask = runSvo("voxelize " + path("ico.off") + " -r 64 --fill solid --topology mask -o " + path("mask.vdb"));
+    ASSERT_EQ(mask.code, 0) << mask.out;
+    const std::string boolPrinted = runCommand("vdb_print -l " + path("solid.vdb")),
+                      maskPrinted = runCommand("vdb_print -l " + path("mask.vdb"));
+    EXPECT_NE(boolPrinted.find("Name: solid"), std::string::npos) << boolPrinted;
+    EXPECT_NE(boolPrinted.find("Type: Tree_bool_5_4_3"), std::string::npos) << boolPrinted;
+    EXPECT_NE(maskPrinted.find("Type: Tree_mask_5_4_3"), std::string::npos) << maskPrinted;
+    const std::string count = activeVoxels(boolPrinted);
+    EXPECT_EQ(activeVoxels(maskPrinted), count);
+    EXPECT_NE(solid.out.find(" " + count + " active voxels"), std::string::npos) << solid.out;
+    EXPECT_EQ(runCommand("/usr/bin/python3 -c \"import pyopenvdb,sys; g=pyopenvdb.read(sys.argv[1], 'solid'); "
+                         "print(g.valueTypeName, '{:,}'.format(g.activeVoxelCount()))\" " + path("solid.vdb")),
+              "bool " + count + "\n");
 
     for (const char* bad : {"--sdf -o x.svo", "--band 2", "--sdf --udf", "--udf --interior-band 2", "--sdf --band 2 "
                             "--exterior-band 3", "--fill solid --attributes normal", "--closest-triangle",
+                            "--sdf --topology mask", "--udf --topology bool", "--fill solid --fog",
                             "--sdf --band 0.5", "--winding-accuracy 3", "--sdf --backend raster",
                             "--udf --conservative hardware"}) {
         const auto r = runSvo("voxelize " + path("ico.off") + " " + bad + (std::string(bad).find(" -o ") == std::string::npos ? " -o " + path("bad.vdb") : std::string()));
@@ -867,11 +1004,11 @@ TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)
     EXPECT_NE(parityOnly.out.find("--winding-accuracy applies to winding-number signs"), std::string::npos)
         << parityOnly.out;
     // The built-in Cornell box is an open room: its sign comes from the winding number, and says why.
-    const auto open = runSvo("voxelize -r 16 --sdf -o " + path("cb.vdb"));
+    const auto open = runSvo("voxelize -r 16 -v --sdf -o " + path("cb.vdb"));
     EXPECT_EQ(open.code, 0) << open.out;
     EXPECT_NE(open.out.find("winding: the mesh is not closed (116 boundary edges)"), std::string::npos) << open.out;
     EXPECT_NE(runCommand("vdb_print -l " + path("cb.vdb")).find("class: level set"), std::string::npos);
-    expectOnly({"ico.off", "ls.vdb", "solid.vdb", "cb.vdb"});
+    expectOnly({"ico.off", "ls.vdb", "solid.vdb", "mask.vdb", "cb.vdb"});
 }
 
 // svo scene city: a mesh of about --triangles from --seed, the same file for
@@ -890,12 +1027,13 @@ TEST_F(Cli, SceneCityWritesAMeshThatVoxelizeReads)
         return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     };
     EXPECT_EQ(bytes("x.obj"), bytes("y.obj"));
-    const auto v = runSvo("voxelize " + path("x.obj") + " -r 128 -o " + path("x.vdb"));
+    const auto v = runSvo("voxelize " + path("x.obj") + " -r 128 -v -o " + path("x.vdb"));
     ASSERT_EQ(v.code, 0) << v.out;
     EXPECT_NE(v.out.find("triangles   " + count[1].str()), std::string::npos) << v.out;
     EXPECT_NE(runCommand("vdb_print -l " + path("x.vdb")).find("Name: surface"), std::string::npos);
     for (const char* bad : {"cornell --seed 2", "icosphere --triangles 5000", "city --triangles 999",
-                            "city --triangles 1000000001", "city --triangles 1e5"}) {
+                            "city --triangles 1000000001", "city --triangles 1e5", "city --seed -1",
+                            "city --seed=-5"}) {
         const auto b = runSvo(std::string("scene ") + bad + " -o " + path("bad.obj"));
         EXPECT_EQ(b.code, 1) << bad << ": " << b.out;
         EXPECT_EQ(std::count(b.out.begin(), b.out.end(), '\n'), 1) << bad << ": " << b.out;

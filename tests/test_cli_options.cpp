@@ -74,7 +74,7 @@ TEST(CliOptions, OrthoThatIsNotPositiveIsRefusedNotDrawnInPerspective)
     expectRefused(args + " --fov nan", "--fov nan: a field of view is between 0 and 180 degrees");
     expectRefused(args + " --fov 180", "--fov 180: a field of view");
     EXPECT_FALSE(std::filesystem::exists(dir.path("v.png")));
-    const auto ok = runSvo(args + " --ortho 2");
+    const auto ok = runSvo(args + " -v --ortho 2");
     EXPECT_EQ(ok.code, 0) << ok.out;
     EXPECT_NE(ok.out.find("orthographic 2"), std::string::npos) << ok.out;
 }
@@ -293,4 +293,28 @@ TEST(CliOptions, ViewOptionsAreCheckedByTheLibrarysRulesUnderTheirFlags)
     EXPECT_EQ(r.code, 1) << r.out;
     EXPECT_EQ(r.out, "svo: error: --light-volume 100: a volume resolution is a power of two from 8 to 2048\n");
     EXPECT_FALSE(std::filesystem::exists(dir.path("v.png")));
+}
+
+// -q, -v and --no-clobber, declared once (OutputHabits), on every command that
+// writes files; validate's report is its result, so it takes --no-clobber alone.
+TEST(CliOptions, EveryCommandThatWritesTakesTheSameOutputFlags)
+{
+    for (const char* command : {"voxelize", "convert", "scene", "vtk", "view", "validate"}) {
+        const auto r = runSvo(std::string(command) + " --help");
+        ASSERT_EQ(r.code, 0) << command << "\n" << r.out;
+        const bool all = std::string(command) != "validate";
+        EXPECT_EQ(r.out.find("  -q,--quiet ") != std::string::npos, all) << command << "\n" << r.out;
+        EXPECT_EQ(r.out.find("  -v,--verbose ") != std::string::npos, all) << command << "\n" << r.out;
+        EXPECT_NE(r.out.find("  --no-clobber "), std::string::npos) << command << "\n" << r.out;
+    }
+}
+
+// An unsigned option refuses a negative number in one line, rather than
+// reading -1 as 2^64 - 1 (CLI11's reading of it).
+TEST(CliOptions, ANegativeSeedIsRefusedNotWrapped)
+{
+    svo::test::TempDir dir("cli_options");
+    expectRefused("scene city --seed -1 -o " + dir.path("c.obj"),
+                  "--seed: '-1' is negative; give a whole number from 0 to 18446744073709551615");
+    EXPECT_FALSE(std::filesystem::exists(dir.path("c.obj")));
 }

@@ -79,7 +79,7 @@ case "$what" in
     for flags in "" "--fog" "--attributes normal"; do
       name=$(echo "auto $flags" | tr -c 'a-z\n' _)
       # shellcheck disable=SC2086 # the flags are words
-      "$svo" voxelize -r 48 $flags -o "$name.vdb" >"$name.txt" || fail "svo voxelize $flags failed: $(cat "$name.txt")"
+      "$svo" voxelize -r 48 -v $flags -o "$name.vdb" >"$name.txt" || fail "svo voxelize $flags failed: $(cat "$name.txt")"
       grep -qE "^  backend +cpu" "$name.txt" || fail "svo voxelize $flags did not say it ran on the CPU: $(cat "$name.txt")"
       # shellcheck disable=SC2086
       "$svo" voxelize -r 48 $flags --backend cpu -o "cpu_$name.vdb" >/dev/null
@@ -117,7 +117,7 @@ print(f"python: {len(auto)} voxels on the CPU; raster and compute refused")
 PY
     ;;
   no_driver)
-    "$svo" voxelize -r 32 -o auto.vdb >auto.txt || fail "svo voxelize failed: $(cat auto.txt)"
+    "$svo" voxelize -r 32 -v -o auto.vdb >auto.txt || fail "svo voxelize failed: $(cat auto.txt)"
     grep -qE "^  backend +cpu" auto.txt || fail "svo voxelize did not say it ran on the CPU: $(cat auto.txt)"
     expect_one_line_failure "cannot create a headless OpenGL 4.5 core context" "$svo" voxelize -r 16 --backend raster -o r.vdb
     # A device the caller names is not given up for the CPU.

@@ -10,6 +10,7 @@
 #include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/vdb_io/vdb_file.h"
+#include "svo/vdb_io/reader_grids.h"
 
 namespace svo {
 namespace fs = std::filesystem;
@@ -56,7 +57,10 @@ WriteReport writeOctree(const std::string& path, const Octree& octree, const Gri
         vdb::WriteOptions wo;
         static_cast<GridOptions&>(wo) = grids;
         wo.metadata = metadata;
+        if (grids.attributes && !octree.attributes.triangles.empty()) wo.triangleSidecar = vdb::triangleSidecarPath(path);
         const vdb::WriteStats ws = vdb::writeVdb(path, octree, wo);
+        report.sidecar = wo.triangleSidecar;
+        report.sidecarBytes = ws.sidecarBytes;
         report.stages.push_back({"vdb build (cpu)", -1, ws.buildMs});
         report.stages.push_back({"vdb write", -1, ws.writeMs});
         report.bytes = ws.bytes;

@@ -1,4 +1,5 @@
 #include "svo/vdb_io/vdb_file.h"
+#include "svo/vdb_io/reader_grids.h"
 
 #include <array>
 #include <cerrno>
@@ -690,6 +691,14 @@ WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOp
     stats.buildMs = msSince(t0);
 
     t0 = Clock::now();
+    if (!options.triangleSidecar.empty()) {
+        auto [kept, triangles] = splitTriangleGrids(grids);
+        if (!triangles.empty()) {
+            writeGrids(options.triangleSidecar, triangles);
+            stats.sidecarBytes = outputBytes(options.triangleSidecar);
+        }
+        grids = std::move(kept);
+    }
     writeGrids(path, grids);
     stats.bytes = outputBytes(path); // the staged temporary while an OutputBatch holds it
     stats.writeMs = msSince(t0);

@@ -34,11 +34,18 @@ struct WriteReport {
     uint64_t bytes = 0;            ///< file size
     uint64_t leaves = 0;           ///< leaves of the topology grid (.vdb, .nvdb)
     OutputFormat format = OutputFormat::Vdb; ///< the format written
+    /// A .vdb output's triangle indices, in a file of their own
+    /// (vdb::triangleSidecarPath) that python3-openvdb need not open; empty
+    /// when the octree has none.
+    std::string sidecar;
+    uint64_t sidecarBytes = 0; ///< its size
 };
 
 /// @brief Writes the octree as the extension of @a path says. GridOptions
 /// apply to .vdb and .nvdb; a .svo file holds the octree itself (its
-/// topology is not a grid type).
+/// topology is not a grid type). A .vdb output holds only grids that
+/// python3-openvdb reads: the triangle indices (Int32Grid "triangle_id") go
+/// to vdb::triangleSidecarPath(@a path) beside it (svo/vdb_io/reader_grids.h).
 /// @param metadata stored as strings on every .vdb and .nvdb grid
 /// @throw svo::IoError for another extension or a file that cannot be written
 /// @throw svo::InvalidInput for a fog grid asked of a .svo file, or a grid

@@ -26,12 +26,16 @@ std::string validUtf8(const std::string& text);
 /// @brief Which grids (GridOptions), and string metadata stored on every grid.
 struct WriteOptions : GridOptions {
     std::map<std::string, std::string> metadata; ///< name -> value (source, backend, renderer, ...)
+    /// When set, the triangle indices (Int32Grid "triangle_id") go to this
+    /// file instead, which python3-openvdb cannot read (reader_grids.h).
+    std::string triangleSidecar;
 };
 
 /// @brief What a write took and made.
 struct WriteStats {
     double buildMs = 0, writeMs = 0; ///< wall ms building the grids, writing the file
     uint64_t leaves = 0, bytes = 0;  ///< leaves (writeVdb: of the topology grid; writeVdbGrids: of all grids); the file's size
+    uint64_t sidecarBytes = 0;       ///< the size of WriteOptions::triangleSidecar, when written
 };
 
 /// @brief Writes the octree's voxels as a MaskGrid or BoolGrid (and optionally a fog
@@ -40,7 +44,9 @@ struct WriteStats {
 /// translation, so the voxels sit exactly over the mesh in world space. Leaves
 /// are copied from bricks in parallel and inserted with addLeaf.
 ///
-/// The file appears atomically (atomic_file.h).
+/// The file appears atomically (atomic_file.h), as does the triangle
+/// sidecar when WriteOptions::triangleSidecar asks for one and the octree
+/// has triangle indices.
 /// @throw svo::IoError naming the path when it cannot be written
 /// @throw svo::InvalidInput for a grid whose transform OpenVDB cannot hold
 ///        (checkVdbGrid)
