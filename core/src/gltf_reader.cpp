@@ -332,10 +332,15 @@ private:
                     out->colors[v] = {float(rgb[n * v]), float(rgb[n * v + 1]), float(rgb[n * v + 2])};
             }
             if (prim.indices >= 0) {
+                const int type = size_t(prim.indices) < model_.accessors.size()
+                                     ? model_.accessors[size_t(prim.indices)].componentType
+                                     : kComponentUInt; // accessorValues names the missing accessor
+                if (type != kComponentUByte && type != kComponentUShort && type != kComponentUInt)
+                    fail(fmt::format("{}: indices of component type {} (glTF's are unsigned integers)", where, type));
                 const std::vector<double> idx = accessorValues(prim.indices, TINYGLTF_TYPE_SCALAR, false, where + " indices");
                 corners.resize(idx.size());
                 for (size_t i = 0; i < idx.size(); ++i) {
-                    if (!(idx[i] < double(out->positions.size())))
+                    if (!(idx[i] >= 0 && idx[i] < double(out->positions.size())))
                         fail(fmt::format("{}: index {} is {}, but the primitive has {} vertices", where, i, idx[i],
                                          out->positions.size()));
                     corners[i] = uint32_t(idx[i]);
