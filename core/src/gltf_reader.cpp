@@ -350,6 +350,12 @@ private:
                 for (size_t i = 0; i < corners.size(); ++i) corners[i] = uint32_t(i);
             }
         }
+        // Every primitive decoded is placed at least once: the vertices
+        // decoded so far count against the same limit as those placed.
+        decoded_ += out->positions.size();
+        if (decoded_ > options_.maxVertices)
+            fail(fmt::format("the scene's meshes hold more than {} vertices, more than svo reads into one mesh",
+                             options_.maxVertices));
         out->baseColor = baseColor(prim.material, where);
         assemble(mode, corners, where, *out);
         slot.second = std::move(out);
@@ -506,7 +512,7 @@ private:
                          normalized, what, values);
         } else {
             // No data: zeros (then the sparse values), as glTF defines.
-            if (a.count > (size_t(1) << 24))
+            if (a.count > options_.maxVertices)
                 fail(fmt::format("{}: accessor {} has {} elements and no data", what, index, a.count));
             if (!componentSize(a.componentType)) fail(fmt::format("{}: unknown component type {}", what, a.componentType));
             values.assign(a.count * n, 0.0);
@@ -561,6 +567,8 @@ private:
         const tinygltf::Value& attributes = ext.Get("attributes");
         if (!attributes.Has("POSITION")) fail(where + ": KHR_draco_mesh_compression has no POSITION");
         const uint32_t points = dm.num_points();
+        if (decoded_ + points > options_.maxVertices)
+            fail(fmt::format("{}: Draco data of {} points, more than svo reads into one mesh", where, points));
         out.positions = dracoAttribute(dm, number(attributes.Get("POSITION"), "POSITION"), 3, false, where);
         if (attributes.Has("COLOR_0")) {
             const auto rgb = dracoAttribute(dm, number(attributes.Get("COLOR_0"), "COLOR_0"), 3, true, where);
@@ -616,6 +624,7 @@ private:
     std::map<std::pair<int, size_t>, std::pair<bool, std::unique_ptr<Primitive>>> cache_;
     std::vector<std::pair<const Primitive*, size_t>> placed_; ///< each placed primitive and its vertex count
     size_t skipped_ = 0;
+    uint64_t decoded_ = 0; ///< vertices of the primitives decoded so far
 };
 
 /// The JSON with `indices` removed from KHR_draco_mesh_compression
