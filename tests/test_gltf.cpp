@@ -88,7 +88,7 @@ protected:
         } catch (const IoError& e) {
             const std::string msg = e.what();
             EXPECT_NE(msg.find(path), std::string::npos) << msg;
-            EXPECT_NE(msg.find(what), std::string::npos) << msg;
+            EXPECT_NE(msg.find(what), std::string::npos) << msg << " (wanted: " << what << ")";
             EXPECT_EQ(msg.find('\n'), std::string::npos) << msg; // one line
         }
     }
@@ -311,7 +311,12 @@ TEST_F(Gltf, BadFilesAreOneLineErrors)
                 "gone.bin");
     expectError(tmp_.write("index.glb", glb(scene("", R"([{"mesh": 0}])",
                                                    R"({"attributes": {"POSITION": 0}, "indices": 0})"), tri)),
-                "accessor 0 is VEC3, not SCALAR");
+                "indices of component type 5126 (glTF's are unsigned integers)");
+    // Float VEC3 colours (here the positions themselves) are glTF's too.
+    const TriangleMesh colored = loadMesh(tmp_.write(
+        "color.glb", glb(scene("", R"([{"mesh": 0}])", R"({"attributes": {"POSITION": 0, "COLOR_0": 0}})"), tri)));
+    ASSERT_EQ(colored.colors.size(), 3u);
+    EXPECT_TRUE(colored.colors[1] == (Vec3f{1, 0, 0}));
     expectError(tmp_.write("count.glb", glb(fmt::format(R"({{"asset": {{"version": "2.0"}}, "scenes": [{{"nodes": [0]}}],
           "nodes": [{{"mesh": 0}}], "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}}}]}}],
           "buffers": [{{"byteLength": 36}}], "bufferViews": [{{"buffer": 0, "byteLength": 36}}],
