@@ -306,6 +306,7 @@ TEST_F(Gltf, BadFilesAreOneLineErrors)
                 "node 0 is reached twice");
     expectError(tmp_.write("short.glb", glb(scene(""), tri).substr(0, 100)), "truncated");
     expectError(tmp_.write("json.gltf", "{\"asset\": "), "not a valid glTF 2.0 file");
+    expectError(tmp_.write("v1.gltf", R"({"asset": {"version": "1.0"}, "meshes": []})"), "glTF version '1.0'; svo reads glTF 2.0");
     expectError(tmp_.write("deep.gltf", std::string(10000, '[')), "nested more than");
     expectError(tmp_.write("missing.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "gone.bin", "byteLength": 4}]})"),
                 "gone.bin");

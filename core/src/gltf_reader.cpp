@@ -153,6 +153,8 @@ public:
 
     TriangleMesh read()
     {
+        if (model_.asset.version.rfind("2.", 0) != 0)
+            fail(fmt::format("glTF version '{}'; svo reads glTF 2.0", model_.asset.version));
         checkExtensions();
         mesh_.source = path_;
         std::vector<int> roots;
