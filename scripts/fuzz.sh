@@ -18,12 +18,14 @@ cmake -S tests/fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 -DCMA
 cmake --build build-fuzz
 same_addresses=(setarch "$(uname -m)" -R)
 "${same_addresses[@]}" true 2>/dev/null || { same_addresses=(); echo "fuzz: address randomization stays on (setarch -R refused): runs may differ"; }
-for target in fuzz_octree_file fuzz_off_reader fuzz_off_binary_reader fuzz_obj_reader fuzz_ply_reader fuzz_stl_reader fuzz_vdb_reader; do
+for target in fuzz_octree_file fuzz_off_reader fuzz_off_binary_reader fuzz_obj_reader fuzz_ply_reader fuzz_stl_reader fuzz_gltf_reader fuzz_vdb_reader; do
   rm -rf "build-fuzz/corpus/$target" && mkdir -p "build-fuzz/corpus/$target"
   # The .vdb target runs about 1,000 inputs a second (OpenVDB parses each), the
   # others 20,000 to 40,000: it gets a sixth of the runs to keep CI's time.
+  # The glTF target runs about 1,500 (tinygltf parses JSON): a quarter.
   n=$runs
   [ "$target" = fuzz_vdb_reader ] && n=$(( runs / 6 > 0 ? runs / 6 : 1 ))
+  [ "$target" = fuzz_gltf_reader ] && n=$(( runs / 4 > 0 ? runs / 4 : 1 ))
   echo "fuzz: $target, $n runs, seed $seed"
   log="build-fuzz/$target.log"
   if ! "${same_addresses[@]}" "build-fuzz/$target" -seed="$seed" -runs="$n" -reload=0 -max_total_time=600 -max_len=8192 -timeout=10 -print_final_stats=1 \

@@ -18,7 +18,8 @@ packages=(
   libcli11-dev libfmt-dev libgtest-dev libfast-float-dev
   pybind11-dev python3-dev python3-pytest python3-numpy python3-distributed python3-venv python3-pip
   nlohmann-json3-dev libnanovdb-dev libnanovdb-tools libblosc-dev zlib1g-dev python3-openvdb libboost-python1.74-dev
-  libembree-dev
+  libembree-dev libtinygltf-dev libdraco-dev
+  assimp-utils assimp-testmodels
 )
 # The fuzz targets need clang and its libFuzzer runtime.
 [ "$mode" = test ] && packages+=(clang-14 libclang-rt-14-dev)

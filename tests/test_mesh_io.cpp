@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "obj_reader.h"
 #include "ply_reader.h"
@@ -275,7 +276,9 @@ TEST_F(MeshIo, ObjFaceFormsRelativeIndicesAndStatements)
     EXPECT_EQ(m.positions[1], Vec3d(1, 0, 0)); // w is not a coordinate
     EXPECT_EQ(m.positions[4], Vec3d(2, -5, 3));
     EXPECT_TRUE(m.colors.empty());
-    EXPECT_TRUE(m.warnings.empty());
+    // x.mtl is not there: its colours cannot be used, which the user is told.
+    ASSERT_EQ(m.warnings.size(), 1u);
+    EXPECT_NE(m.warnings[0].find("material library 'x.mtl' not found"), std::string::npos) << m.warnings[0];
 
     const auto c = loadMesh(write("c.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 0.5\nf 1 2 3\n"));
     ASSERT_EQ(c.colors.size(), 3u);
@@ -901,4 +904,98 @@ TEST_F(MeshIo, BinaryOffBadCountsIndicesAndKeywordsAreClearErrors)
     expectError(write("little.off", little), "(a little-endian file? svo reads binary OFF big-endian");
     // Valid, with bytes after the last face (ignored, as text after the last face is).
     EXPECT_EQ(loadMesh(write("tail.off", BinaryOff::triangle(1).i(3).i(0).i(1).i(2).i(0).i(77).bytes)).triangles.size(), 1u);
+}
+
+// OBJ materials: the diffuse colour (Kd) of each face's material becomes the
+// colour of its corners; a vertex on faces of two colours is split, keeping
+// its position, so the triangles cover what they covered.
+TEST_F(MeshIo, ObjMaterialColoursFromMtl)
+{
+    const std::string obj = "mtllib colours.mtl\n"
+                            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\n"
+                            "usemtl red\nf 1 2 3\nf 2 4 3\n"
+                            "usemtl sky blue\nf 1 3 5\n"
+                            "usemtl grey\nf 2 4 5\n";
+    write("colours.mtl", "# a comment\nnewmtl red\nKa 0 0 0\nKd 1 0 0\nnewmtl sky blue\nKd 0.25 0.5 1  # rgb\n"
+                         "newmtl grey\nKd 0.5\nmap_Kd t.png\n");
+    const std::string path = write("m.obj", obj);
+    const TriangleMesh mesh = loadMesh(path);
+    EXPECT_TRUE(mesh.warnings.empty());
+    const Vec3f red{1, 0, 0}, blue{0.25f, 0.5f, 1}, grey{0.5f, 0.5f, 0.5f};
+    const std::vector<Vec3f> expected{red, red, blue, grey};
+    const std::vector<std::array<Vec3d, 3>> corners{{Vec3d{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
+                                                    {Vec3d{1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
+                                                    {Vec3d{0, 0, 0}, {0, 1, 0}, {0, 0, 1}},
+                                                    {Vec3d{1, 0, 0}, {1, 1, 0}, {0, 0, 1}}};
+    ASSERT_EQ(mesh.triangles.size(), 4u);
+    ASSERT_EQ(mesh.colors.size(), mesh.positions.size());
+    for (size_t t = 0; t < 4; ++t)
+        for (size_t k = 0; k < 3; ++k) {
+            EXPECT_TRUE(mesh.colors[mesh.triangles[t][k]] == expected[t]) << t << " " << k;
+            EXPECT_TRUE(mesh.corners(t)[k] == corners[t][k]) << t << " " << k;
+        }
+    // Every vertex is on faces of two colours: one copy each.
+    EXPECT_EQ(mesh.positions.size(), 5u + 5u);
+
+    // Vertex colours, where every vertex has one, win over materials.
+    const TriangleMesh own = loadMesh(write("own.obj", "mtllib colours.mtl\nv 0 0 0 0 1 0\nv 1 0 0 0 1 0\nv 0 1 0 0 1 0\n"
+                                                       "usemtl red\nf 1 2 3\n"));
+    ASSERT_EQ(own.colors.size(), 3u);
+    EXPECT_TRUE(own.colors[0] == (Vec3f{0, 1, 0}));
+}
+
+TEST_F(MeshIo, ObjMaterialProblemsAreWarningsOrNamedErrors)
+{
+    const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n";
+    // A library that is not there: the geometry still reads, and the user is told.
+    const TriangleMesh gone = loadMesh(write("gone.obj", "mtllib gone.mtl\n" + body + "usemtl red\nf 1 2 3\n"));
+    EXPECT_TRUE(gone.colors.empty());
+    ASSERT_EQ(gone.warnings.size(), 1u);
+    EXPECT_NE(gone.warnings[0].find("line 1: material library 'gone.mtl' not found"), std::string::npos) << gone.warnings[0];
+    // A face before any usemtl among faces with colours: no colours, said.
+    write("a.mtl", "newmtl red\nKd 1 0 0\n");
+    const TriangleMesh part = loadMesh(write("part.obj", "mtllib a.mtl\n" + body + "f 1 2 3\nusemtl red\nf 2 4 3\n"));
+    EXPECT_TRUE(part.colors.empty());
+    ASSERT_EQ(part.warnings.size(), 1u);
+    EXPECT_NE(part.warnings[0].find("1 of 2 faces have no material colour"), std::string::npos) << part.warnings[0];
+    // A library name with a blank, and two libraries on one line.
+    write("my colours.mtl", "newmtl red\nKd 1 0 0\n");
+    write("b.mtl", "newmtl blue\nKd 0 0 1\n");
+    const TriangleMesh blank = loadMesh(write("blank.obj", "mtllib my colours.mtl\n" + body + "usemtl red\nf 1 2 3\n"));
+    EXPECT_TRUE(blank.warnings.empty());
+    ASSERT_EQ(blank.colors.size(), 4u); // the unused vertex 4 too
+    EXPECT_TRUE(blank.colors[0] == (Vec3f{1, 0, 0}));
+    const TriangleMesh two = loadMesh(write("two.obj", "mtllib a.mtl b.mtl\n" + body + "usemtl red\nf 1 2 3\nusemtl blue\nf 2 4 3\n"));
+    EXPECT_TRUE(two.warnings.empty());
+    EXPECT_EQ(two.colors.size(), 6u); // vertices 2 and 3 split
+    // A damaged library is an error naming it and its line.
+    const std::string bad = write("bad.mtl", "newmtl red\nKd 1 zero 0\n");
+    try {
+        loadMesh(write("bad.obj", "mtllib bad.mtl\n" + body + "usemtl red\nf 1 2 3\n"));
+        FAIL() << "a malformed Kd loaded";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find(bad + ": line 2: malformed number 'zero' in Kd"), std::string::npos) << e.what();
+    }
+}
+
+// Materials whose runs cross the pieces a large file is read in give what
+// one piece gives.
+TEST_F(MeshIo, ObjMaterialsInPiecesGiveWhatOnePieceGives)
+{
+    std::string obj = "mtllib m.mtl\n";
+    for (int i = 0; i < 40; ++i) obj += fmt::format("v {} {} 0\n", i, i % 3);
+    for (int i = 0; i < 38; ++i) {
+        if (i % 5 == 0) obj += i % 2 ? "usemtl a\n" : "usemtl b\n";
+        obj += fmt::format("f {} {} {}\n", i + 1, i + 2, i + 3);
+    }
+    const detail::MaterialFiles files = [](const std::string& name) -> std::optional<std::string> {
+        if (name != "m.mtl") return std::nullopt;
+        return std::string("newmtl a\nKd 1 0 0\nnewmtl b\nKd 0 1 0\n");
+    };
+    size_t pieces = 0;
+    const TriangleMesh whole = detail::readObj("m.obj", obj, size_t(1) << 30, nullptr, files);
+    const TriangleMesh cut = detail::readObj("m.obj", obj, 16, &pieces, files);
+    EXPECT_GT(pieces, 10u);
+    ASSERT_EQ(whole.colors.size(), whole.positions.size());
+    expectSameMesh(whole, cut);
 }

@@ -14,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "gltf_reader.h"
 #include "obj_reader.h"
 #include "off_reader.h"
 #include "ply_reader.h"
@@ -119,7 +120,7 @@ void writeMesh(const std::string& path, const TriangleMesh& mesh)
     });
 }
 
-const char* supportedMeshExtensions() { return ".obj, .ply, .stl, .off"; }
+const char* supportedMeshExtensions() { return ".obj, .ply, .stl, .off, .gltf, .glb"; }
 
 TriangleMesh loadMesh(const std::string& path)
 {
@@ -127,7 +128,7 @@ TriangleMesh loadMesh(const std::string& path)
     if (ext.empty())
         throw IoError(fmt::format("{}: the name has no extension, which svo needs to know the format ({})", path,
                                   supportedMeshExtensions()));
-    if (ext != "obj" && ext != "ply" && ext != "stl" && ext != "off")
+    if (ext != "obj" && ext != "ply" && ext != "stl" && ext != "off" && ext != "gltf" && ext != "glb")
         throw IoError(fmt::format("{}: unknown mesh extension '.{}' (supported: {})", path, ext,
                                   supportedMeshExtensions()));
     std::error_code ec;
@@ -146,6 +147,7 @@ TriangleMesh loadMesh(const std::string& path)
     if (ext == "obj") mesh = detail::readObj(path, bytes);
     else if (ext == "ply") mesh = detail::readPly(path, bytes);
     else if (ext == "stl") mesh = detail::readStl(path, bytes);
+    else if (ext == "gltf" || ext == "glb") mesh = detail::readGltf(path, bytes);
     else mesh = detail::readOff(path, bytes);
     try {
         validateMesh(mesh);

@@ -5,10 +5,14 @@
 #include <cmath>
 #include <tbb/parallel_for.h>
 #include <cstring>
+#include <filesystem>
 #include <fmt/format.h>
+#include <fstream>
+#include <map>
 #include <string_view>
 #include <vector>
 
+#include "mtl_reader.h"
 #include "svo/core/error.h"
 #include "text_chunks.h"
 #include "text_scan.h"
@@ -44,6 +48,10 @@ struct ObjPart {
     size_t maxIndexLine = 0; ///< counted from the piece's first line
     size_t lines = 0;
     bool relative = false; ///< a relative index, which needs the vertices before the piece
+    /// `usemtl`: the first triangle (of the piece) of each material and its name.
+    std::vector<std::pair<size_t, std::string>> materialRuns;
+    /// `mtllib`: the line (counted from the piece's first) and the file names.
+    std::vector<std::pair<size_t, std::string>> libraries;
 };
 
 /// Parses `text`, whose first line is line `firstLine` of the file, into
@@ -99,7 +107,15 @@ void parseObjPart(const std::string& path, std::string_view text, size_t firstLi
             }
             continue;
         }
-        if (keyword != "f") continue; // vt, vn, o, g, s, usemtl, mtllib, l, p, ...: not needed to voxelize
+        if (keyword == "usemtl") {
+            out.materialRuns.push_back({out.triangles.size(), std::string(statementArgument(line, keyword))});
+            continue;
+        }
+        if (keyword == "mtllib") {
+            out.libraries.push_back({statementLine - firstLine + 1, std::string(statementArgument(line, keyword))});
+            continue;
+        }
+        if (keyword != "f") continue; // vt, vn, o, g, s, l, p, ...: not needed to voxelize
         face.clear();
         for (std::string_view t = words.next(); !t.empty(); t = words.next()) {
             // v, v/vt, v//vn or v/vt/vn: only v is used.
@@ -137,8 +153,14 @@ void parseObjPart(const std::string& path, std::string_view text, size_t firstLi
     out.lines = lineNo - (firstLine - 1);
 }
 
+/// What the pieces say of materials, for the whole file: the first triangle
+/// of each `usemtl` and the absolute line of each `mtllib`.
+struct Materials {
+    std::vector<std::pair<size_t, std::string>> runs, libraries;
+};
+
 /// The checks and the assembly of the whole file from its pieces, in order.
-TriangleMesh assemble(const std::string& path, std::vector<ObjPart>& parts)
+TriangleMesh assemble(const std::string& path, std::vector<ObjPart>& parts, Materials& materials)
 {
     TriangleMesh mesh;
     mesh.source = path;
@@ -161,7 +183,11 @@ TriangleMesh assemble(const std::string& path, std::vector<ObjPart>& parts)
     mesh.positions.reserve(vertices);
     mesh.triangles.reserve(triangles);
     if (colored == vertices && colored) mesh.colors.reserve(vertices);
+    size_t lineBase = 0;
     for (ObjPart& part : parts) {
+        for (auto& run : part.materialRuns) materials.runs.push_back({mesh.triangles.size() + run.first, std::move(run.second)});
+        for (auto& lib : part.libraries) materials.libraries.push_back({lineBase + lib.first, std::move(lib.second)});
+        lineBase += part.lines;
         mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
         mesh.triangles.insert(mesh.triangles.end(), part.triangles.begin(), part.triangles.end());
         if (colored == vertices && colored) {
@@ -177,7 +203,10 @@ TriangleMesh assemble(const std::string& path, std::vector<ObjPart>& parts)
 
 } // namespace
 
-TriangleMesh readObj(const std::string& path, const std::string& bytes, size_t chunkBytes, size_t* inPieces)
+namespace {
+
+TriangleMesh readObjGeometry(const std::string& path, const std::string& bytes, size_t chunkBytes, size_t* inPieces,
+                             Materials& materials)
 {
     if (inPieces) *inPieces = 0;
     // Pieces end at line ends outside `\` continued statements.
@@ -199,14 +228,118 @@ TriangleMesh readObj(const std::string& path, const std::string& bytes, size_t c
         });
         if (!serial) {
             if (inPieces) *inPieces = parts.size();
-            return assemble(path, parts);
+            return assemble(path, parts, materials);
         }
     }
     // One piece, a relative index or an error: the file in one piece, in order.
     const uint64_t none = 0;
     std::vector<ObjPart> whole(1);
     parseObjPart(path, bytes, 1, &none, whole[0]);
-    return assemble(path, whole);
+    return assemble(path, whole, materials);
+}
+
+/// Material libraries read from the OBJ's folder.
+MaterialFiles besideTheFile(const std::string& objPath)
+{
+    const std::filesystem::path folder = std::filesystem::path(objPath).parent_path();
+    return [folder](const std::string& name) -> std::optional<std::string> {
+        const std::filesystem::path file = folder / name;
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
+        std::ifstream in(file, std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (!in && !in.eof()) return std::nullopt;
+        return bytes;
+    };
+}
+
+/// The diffuse colours (Kd) of the materials the `mtllib` statements name;
+/// a library that cannot be found is a warning.
+std::map<std::string, std::optional<Vec3f>> loadLibraries(const std::string& path, const Materials& materials,
+                                                          const MaterialFiles& files, TriangleMesh& mesh)
+{
+    std::map<std::string, std::optional<Vec3f>> kd;
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    auto load = [&](const std::string& name, const std::string& bytes) {
+        for (auto& [material, colour] : readMtl((folder / name).string(), bytes)) kd[material] = colour;
+    };
+    for (const auto& [line, names] : materials.libraries) {
+        // One name with blanks when a file has it; blank-separated names otherwise.
+        if (const auto whole = files(names)) {
+            load(names, *whole);
+            continue;
+        }
+        TextScanner words(names);
+        for (std::string_view name = words.next(); !name.empty(); name = words.next()) {
+            if (const auto bytes = files(std::string(name))) load(std::string(name), *bytes);
+            else
+                mesh.warnings.push_back(fmt::format("{}: line {}: material library {} not found; its colours are not used",
+                                                    path, line, quoted(name)));
+        }
+    }
+    return kd;
+}
+
+/// Colours from the materials' Kd where the file has no vertex colours and
+/// every face has one: a vertex shared by faces of different colours is
+/// split into one per colour (the same position, so the same voxels).
+void colorByMaterial(const std::string& path, TriangleMesh& mesh, const Materials& materials, const MaterialFiles& files)
+{
+    if (materials.runs.empty() || !mesh.colors.empty() || mesh.triangles.empty()) return;
+    const auto kd = loadLibraries(path, materials, files, mesh);
+    std::vector<Vec3f> faceColor(mesh.triangles.size());
+    size_t missing = 0, run = 0;
+    std::optional<Vec3f> color;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        for (; run < materials.runs.size() && materials.runs[run].first <= t; ++run) {
+            const auto it = kd.find(materials.runs[run].second);
+            color = it == kd.end() ? std::nullopt : it->second;
+        }
+        if (color) faceColor[t] = *color;
+        else ++missing;
+    }
+    if (missing == mesh.triangles.size()) return; // no colour to keep (a missing library was said above)
+    if (missing) {
+        mesh.warnings.push_back(fmt::format("{}: {} of {} faces have no material colour (Kd); colours are not used", path,
+                                            missing, mesh.triangles.size()));
+        return;
+    }
+    const Vec3f unused{1, 1, 1}; // vertices no face uses: any colour
+    mesh.colors.assign(mesh.positions.size(), unused);
+    std::vector<char> set(mesh.positions.size(), 0);
+    std::map<std::pair<uint32_t, std::array<float, 3>>, uint32_t> copies;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const Vec3f c = faceColor[t];
+        for (uint32_t& v : mesh.triangles[t]) {
+            if (!set[v]) {
+                set[v] = 1;
+                mesh.colors[v] = c;
+                continue;
+            }
+            if (mesh.colors[v] == c) continue;
+            const auto [it, added] = copies.insert({{v, {c.x, c.y, c.z}}, uint32_t(mesh.positions.size())});
+            if (added) {
+                if (mesh.positions.size() >= UINT32_MAX - 1)
+                    throw IoError(fmt::format("{}: more vertices than 32-bit indices address once split by material",
+                                              path));
+                const Vec3d p = mesh.positions[v];
+                mesh.positions.push_back(p);
+                mesh.colors.push_back(c);
+            }
+            v = it->second;
+        }
+    }
+}
+
+} // namespace
+
+TriangleMesh readObj(const std::string& path, const std::string& bytes, size_t chunkBytes, size_t* inPieces,
+                     const MaterialFiles& materialFiles)
+{
+    Materials materials;
+    TriangleMesh mesh = readObjGeometry(path, bytes, chunkBytes, inPieces, materials);
+    colorByMaterial(path, mesh, materials, materialFiles ? materialFiles : besideTheFile(path));
+    return mesh;
 }
 
 } // namespace svo::detail

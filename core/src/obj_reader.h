@@ -4,6 +4,8 @@
 /// (OpenMesh reads them as float) and faces that repeat a vertex are kept
 /// (OpenMesh drops them).
 #include <cstddef>
+#include <functional>
+#include <optional>
 #include <string>
 
 #include "svo/core/mesh.h"
@@ -11,17 +13,28 @@
 
 namespace svo::detail {
 
+/// A material library's bytes by the name an `mtllib` statement gives, or
+/// nullopt when there is no such file.
+using MaterialFiles = std::function<std::optional<std::string>(const std::string& name)>;
+
 /// The mesh in an OBJ file: `v x y z [w]` or `v x y z r g b` vertices, `f`
 /// faces in any of the v, v/vt, v//vn, v/vt/vn forms with absolute or
 /// negative (relative) indices, polygons fan-triangulated. Comments, blank
 /// lines, CRLF and `\` continuations are accepted; other statements (vt, vn,
-/// o, g, s, usemtl, mtllib, l, p, ...) are ignored. Throws svo::Error naming
+/// o, g, s, l, p, ...) are ignored. Colours: the vertex colours when every
+/// vertex has one; otherwise, when every face lies under a `usemtl` whose
+/// material has a diffuse colour (Kd) in an `mtllib` library, that colour
+/// (a vertex on faces of different colours is split into one per colour).
+/// A library that is not found is a warning, as are faces without a Kd
+/// among faces with one (then no colours are used); a malformed library is
+/// an error naming it. `materialFiles` reads the libraries (default: files
+/// beside `path`). Throws svo::Error naming
 /// the file and line for anything malformed or out of range. Files of more
 /// than one `chunkBytes` piece are parsed in pieces in parallel and give the
 /// same mesh, warnings and errors (an error, or a relative index, which needs
 /// the vertices before its piece, sends the file to the one-piece path).
 /// `inPieces`, when set, gets how many pieces gave the mesh (0: read as one).
 TriangleMesh readObj(const std::string& path, const std::string& bytes, size_t chunkBytes = kTextChunkBytes,
-                     size_t* inPieces = nullptr);
+                     size_t* inPieces = nullptr, const MaterialFiles& materialFiles = {});
 
 } // namespace svo::detail

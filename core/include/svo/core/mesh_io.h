@@ -1,9 +1,11 @@
 #pragma once
 /// @file mesh_io.h
-/// @brief Mesh file input: OBJ, PLY (ASCII, binary), STL (ASCII, binary) and OFF.
-/// svo reads all but binary OFF (left to OpenMesh) itself: text coordinates
-/// correctly rounded to double, binary ones at the precision they are stored
-/// in. Polygons are fan-triangulated. Faces reach us exactly as the file lists
+/// @brief Mesh file input: OBJ, PLY (ASCII, binary), STL (ASCII, binary), OFF
+/// and glTF 2.0 (.gltf, .glb). svo reads all but binary OFF (left to OpenMesh)
+/// and glTF (tinygltf, with libdraco for Draco-compressed primitives) itself:
+/// text coordinates correctly rounded to double, binary ones at the precision
+/// they are stored in. Polygons are fan-triangulated. A glTF file gives the
+/// triangles of its default scene with the node transforms applied. Faces reach us exactly as the file lists
 /// them: degenerate, duplicate and non-manifold faces are kept, since they
 /// still cover the voxels they touch.
 #include <string>
