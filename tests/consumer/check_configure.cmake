@@ -16,9 +16,9 @@ if(NOT rc EQUAL 0)
 endif()
 
 # find_package leaves <Package>_DIR in the cache once called, found or not.
-file(STRINGS "${BINARY_DIR}/CMakeCache.txt" looked_for REGEX "^(VTK|CGAL|CLI11|nlohmann_json|GTest)_DIR:")
+file(STRINGS "${BINARY_DIR}/CMakeCache.txt" looked_for REGEX "^(VTK|CGAL|CLI11|GTest)_DIR:")
 if(looked_for)
   list(JOIN looked_for "\n  " looked_for)
   message(FATAL_ERROR "the configure looked for optional packages:\n  ${looked_for}")
 endif()
-message(STATUS "configured without VTK, CGAL, CLI11, nlohmann-json or GoogleTest")
+message(STATUS "configured without VTK, CGAL, CLI11 or GoogleTest (core reads glTF through nlohmann-json)")

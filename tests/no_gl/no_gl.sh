@@ -102,8 +102,8 @@ import svo
 
 v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
 t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], dtype=np.int64)
-auto = set(map(tuple, svo.active_voxels(svo.voxelize(v, t, resolution=24)).tolist()))
-cpu = set(map(tuple, svo.active_voxels(svo.voxelize(v, t, resolution=24, backend="cpu")).tolist()))
+auto = set(map(tuple, svo.active_voxels(svo.voxelize(v, t, resolution=24).grid).tolist()))
+cpu = set(map(tuple, svo.active_voxels(svo.voxelize(v, t, resolution=24, backend="cpu").grid).tolist()))
 assert auto and auto == cpu, "auto without GL is not the CPU's voxels"
 assert svo.Voxelizer().voxelize(v, t, resolution=24, attributes=["normal"]) is not None
 for backend in ("raster", "compute"):
@@ -126,7 +126,7 @@ PY
 import numpy as np, svo
 v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
 t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], dtype=np.int64)
-assert len(svo.active_voxels(svo.voxelize(v, t, resolution=16))) > 0'
+assert len(svo.active_voxels(svo.voxelize(v, t, resolution=16).grid)) > 0'
     echo "no EGL display: voxelize on the CPU; raster and a named device refused"
     ;;
   level_set)
