@@ -18,6 +18,7 @@
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"
 #include "svo/core/mesh_io.h"
+#include "svo/vdb_io/nanovdb_file.h"
 #include "svo/vdb_io/reader_grids.h"
 #include "svo/vdb_io/vdb_file.h"
 #include "svo/voxelizer.h"
@@ -111,8 +112,8 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
     if (cmd.count("--fog")) throw InvalidInput("--fog applies to surface voxels, not to --sdf, --udf or --fill solid");
     if (cmd.count("--topology") && a.fill != "solid")
         throw InvalidInput("--topology applies to surface voxels and --fill solid, not to --sdf or --udf");
-    if (!a.output.empty() && outputFormat(a.output) != OutputFormat::Vdb)
-        throw InvalidInput(fmt::format("{}: --sdf, --udf and --fill solid write OpenVDB grids; name a .vdb file", a.output));
+    if (!a.output.empty() && outputFormat(a.output) == OutputFormat::Svo)
+        throw InvalidInput(fmt::format("{}: --sdf, --udf and --fill solid write grids; name a .vdb or .nvdb file", a.output));
     // A level set's band comes from the triangles, not from rasterized voxels.
     if ((a.sdf || a.udf()) && (cmd.count("--conservative") || a.backend.settings.backend == Backend::Raster))
         throw InvalidInput("--sdf and --udf run compute passes only: --backend raster and --conservative do not apply");
@@ -173,7 +174,28 @@ auto timedRuns(LibraryCall& call, int repeat, WarmUp warmUp, const StageTime& lo
     return result;
 }
 
-/// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb and put in place.
+/// The first grid's counts and every grid's name, from OpenVDB or NanoVDB grids.
+struct GridCounts {
+    uint64_t voxels = 0, leaves = 0, tiles = 0;
+    std::string name, names;
+    explicit GridCounts(const openvdb::GridPtrVec& grids)
+        : voxels(grids.front()->activeVoxelCount()), leaves(grids.front()->baseTree().leafCount()),
+          tiles(grids.front()->baseTree().activeTileCount()), name(grids.front()->getName())
+    {
+        for (const auto& g : grids) names += (names.empty() ? "" : ", ") + g->getName();
+    }
+    explicit GridCounts(const std::vector<vdb::NanoHandle>& grids)
+    {
+        const auto* m = grids.front().gridMetaData();
+        voxels = m->activeVoxelCount();
+        leaves = m->nodeCount(0);
+        for (uint32_t level = 1; level <= 3; ++level) tiles += m->activeTileCount(level);
+        name = m->shortGridName();
+        for (const auto& g : grids) names += (names.empty() ? "" : ", ") + std::string(g.gridMetaData()->shortGridName());
+    }
+};
+
+/// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb or .nvdb.
 void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& call, const TriangleMesh& mesh, const StageTime& load,
               const std::string& scene,
               const GridSpec& grid, const GridRequest& request, const std::string& output, bool timingOnly,
@@ -182,7 +204,16 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
     const bool solid = a.fill == "solid";
 
     VoxelizeStats stats;
+    // .nvdb: NanoVDB grids laid out from the field's bricks, no OpenVDB tree.
+    const bool nano = !timingOnly && outputFormat(output) == OutputFormat::NanoVdb;
+    std::vector<vdb::NanoHandle> nanoGrids;
     const openvdb::GridPtrVec all = timedRuns(call, a.repeat, [] { return true; }, load, stats, [&] {
+        nanoGrids.clear();
+        if (nano && solid)
+            nanoGrids.push_back(call.voxelizer.solidNanoVdb(mesh, grid, call.options, ls.sign, a.out.grids.topology));
+        else if (nano)
+            nanoGrids = call.voxelizer.levelSetNanoVdb(mesh, grid, ls, call.options);
+        if (nano) return openvdb::GridPtrVec{};
         if (solid)
             return openvdb::GridPtrVec{
                 vdb::withTopology(call.voxelizer.solid(mesh, grid, call.options, ls.sign), a.out.grids.topology)};
@@ -196,7 +227,13 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
                                                      {"svo:version", SVO_VERSION}};
     vdb::WriteStats written;
     std::string sidecar;
-    if (!timingOnly) {
+    if (nano) {
+        Progress p("writing " + output);
+        const auto t0 = std::chrono::steady_clock::now();
+        written.bytes = vdb::writeNanoVdb(output, nanoGrids);
+        written.writeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        stats.stages.push_back({"write", -1, written.writeMs});
+    } else if (!timingOnly) {
         Progress p("writing " + output);
         written = vdb::writeVdbGrids(output, grids, meta);
         if (!triangles.empty()) {
@@ -206,12 +243,8 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
         stats.stages.push_back({"write", -1, written.writeMs});
     }
     const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    const auto& main = *grids.front();
-    const auto gridNames = [](const openvdb::GridPtrVec& gs) {
-        std::string names;
-        for (const auto& g : gs) names += (names.empty() ? "" : ", ") + g->getName();
-        return names;
-    };
+    const GridCounts counts = nano ? GridCounts(nanoGrids) : GridCounts(grids);
+    const bool boolGrid = a.out.grids.topology == GridOptions::Topology::Bool;
     if (!a.json.empty()) {
         nlohmann::json report = runJson(scene, mesh, grid, stats, a.repeat, wall);
         report.update(nlohmann::json{{"kind", solid ? "solid" : a.udf() ? "udf" : "sdf"},
@@ -219,9 +252,9 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
                                      {"interior_band", ls.interiorBand},
                                      {"sign", stats.sign},
                                      {"open_columns", stats.openColumns},
-                                     {"active_voxels", main.activeVoxelCount()},
-                                     {"leaves", main.baseTree().leafCount()},
-                                     {"active_tiles", main.baseTree().activeTileCount()},
+                                     {"active_voxels", counts.voxels},
+                                     {"leaves", counts.leaves},
+                                     {"active_tiles", counts.tiles},
                                      {"band_bricks", stats.bandBricks},
                                      {"winding_bricks", stats.windingBricks}});
         writeFileAtomically(a.json, report.dump(2) + "\n");
@@ -232,26 +265,26 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
             fmt::print("svo voxelize: {} ({} '{}', {} active voxels{}) in {}{}\n",
                        timingOnly ? std::string("nothing written (--repeat without -o)")
                                   : fmt::format("wrote {}", output),
-                       solid ? fmt::format("solid, {}", main.isType<openvdb::BoolGrid>() ? "bool" : "mask")
+                       solid ? fmt::format("solid, {}", boolGrid ? "bool" : "mask")
                        : a.udf() ? std::string("unsigned distance")
                                  : std::string("level set"),
-                       main.getName(), thousands(main.activeVoxelCount()),
+                       counts.name, thousands(counts.voxels),
                        timingOnly ? std::string() : fmt::format(", {:.2f} MB", double(written.bytes) / 1e6),
                        seconds(wall),
-                       sidecar.empty() ? std::string() : fmt::format("; {} in {}", gridNames(triangles), sidecar));
+                       sidecar.empty() ? std::string() : fmt::format("; {} in {}", GridCounts(triangles).names, sidecar));
     } else {
         printHeading(scene, mesh, grid, request);
         if (solid)
             fmt::print("  {:<11} solid: inside and surface voxels ({})\n", "grid kind",
-                       main.isType<openvdb::BoolGrid>() ? "BoolGrid" : "MaskGrid");
+                       boolGrid ? "BoolGrid" : "MaskGrid");
         else if (a.udf())
             fmt::print("  {:<11} unsigned distance, band {} voxels\n", "grid kind", ls.exteriorBand);
         else
             fmt::print("  {:<11} level set, exterior band {} voxels, interior band {} voxels\n", "grid kind",
                        ls.exteriorBand, ls.interiorBand);
         if (!stats.sign.empty()) fmt::print("  {:<11} {}\n", "sign", stats.sign);
-        fmt::print("  {:<11} {} active ({} leaves, {} active tiles)\n", "voxels", thousands(main.activeVoxelCount()),
-                   thousands(main.baseTree().leafCount()), thousands(main.baseTree().activeTileCount()));
+        fmt::print("  {:<11} {} active ({} leaves, {} active tiles)\n", "voxels", thousands(counts.voxels),
+                   thousands(counts.leaves), thousands(counts.tiles));
         fmt::print("  {:<11} {} band bricks{}, {:.1f} MB of GPU buffers\n", "work", thousands(stats.bandBricks),
                    stats.windingBricks ? fmt::format(" and {} bricks beyond it voxel by voxel", thousands(stats.windingBricks))
                                        : std::string(),
@@ -259,10 +292,10 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
         fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
         fmt::print("  {:<11} {}\n", "output",
                    timingOnly ? std::string("none (--repeat without -o times the runs only)")
-                              : fmt::format("{} ({:.2f} MB; grids {})", output, double(written.bytes) / 1e6, gridNames(grids)));
+                              : fmt::format("{} ({:.2f} MB; grids {})", output, double(written.bytes) / 1e6, counts.names));
         if (!sidecar.empty())
             fmt::print("  {:<11} {} ({:.2f} MB; grids {}, which python3-openvdb does not read)\n", "beside it", sidecar,
-                       double(written.sidecarBytes) / 1e6, gridNames(triangles));
+                       double(written.sidecarBytes) / 1e6, GridCounts(triangles).names);
         printStageTable(stats.stages, wall, a.repeat, "", &stats.startup);
     }
 }

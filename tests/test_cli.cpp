@@ -958,6 +958,33 @@ TEST_F(Cli, AVoxelSizeOpenVdbCannotHoldIsRefusedBeforeAnyWork)
     expectOnly({"tiny.off", "t.svo", "t.vdb"});
 }
 
+// --sdf, --udf and --fill solid write .nvdb too, laid out from the bricks:
+// NanoVDB's own validator passes each file, and svo info reads its grid back
+// with the .vdb output's voxel count.
+TEST_F(Cli, LevelSetsAndSolidsWriteNanoVdb)
+{
+    ASSERT_EQ(runSvo("scene icosphere --level 3 -o " + path("ico.off")).code, 0);
+    for (const std::string kind : {"--sdf", "--udf", "--fill solid", "--fill solid --topology mask"}) {
+        const auto nano = runSvo("voxelize " + path("ico.off") + " -r 32 " + kind + " -o " + path("f.nvdb") + " --json " +
+                                 path("n.json"));
+        ASSERT_EQ(nano.code, 0) << kind << ": " << nano.out;
+        EXPECT_EQ(runCommand("nanovdb_validate " + path("f.nvdb") + " >/dev/null 2>&1 && echo valid"), "valid\n") << kind;
+        const auto vdb = runSvo("voxelize " + path("ico.off") + " -r 32 " + kind + " -o " + path("f.vdb") + " --json " +
+                                path("v.json"));
+        ASSERT_EQ(vdb.code, 0) << kind << ": " << vdb.out;
+        auto voxels = [&](const std::string& json) {
+            const std::string text = runCommand("cat " + path(json));
+            const auto at = text.find("\"active_voxels\": ");
+            return at == std::string::npos ? std::string() : text.substr(at, text.find_first_of(",\n", at) - at);
+        };
+        EXPECT_FALSE(voxels("n.json").empty()) << kind;
+        EXPECT_EQ(voxels("n.json"), voxels("v.json")) << kind;
+        const auto info = runSvo("info " + path("f.nvdb"));
+        EXPECT_EQ(info.code, 0) << kind << ": " << info.out;
+    }
+    expectOnly({"ico.off", "f.nvdb", "f.vdb", "n.json", "v.json"});
+}
+
 // --sdf and --fill solid write grids that OpenVDB's own vdb_print reads as a
 // level set and a solid; combinations without meaning are refused first.
 TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)

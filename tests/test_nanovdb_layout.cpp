@@ -26,6 +26,7 @@
 #include "svo/vdb_io/nanovdb_grids.h"
 #include "svo/vdb_io/nanovdb_layout.h"
 #include "svo/vdb_io/nanovdb_output.h"
+#include "svo/vdb_io/reader_grids.h"
 #include "temp_dir.h"
 
 namespace svo {
@@ -239,10 +240,13 @@ TEST_P(NanoVdbLayout, SolidsEqualNanoVdbsConverter)
         for (const auto method : {SignMethod::Parity, SignMethod::Winding}) {
             if (method == SignMethod::Parity && !closed(s.name)) continue;
             const SolidBricks b = solid(s.mesh, grid, SignOptions(method));
-            std::vector<NanoHandle> mine;
-            mine.push_back(vdb::solidNanoGrid(b, grid));
-            expectSame(mine.front(), vdb::toNanoVdb(vdb::solidGrid(b, vdb::makeTransform(grid))));
-            expectFilesRoundTrip(mine, s.name + "_solid");
+            for (const auto topology : {GridOptions::Topology::Mask, GridOptions::Topology::Bool}) {
+                std::vector<NanoHandle> mine;
+                mine.push_back(vdb::solidNanoGrid(b, grid, topology));
+                expectSame(mine.front(),
+                           vdb::toNanoVdb(vdb::withTopology(vdb::solidGrid(b, vdb::makeTransform(grid)), topology)));
+                expectFilesRoundTrip(mine, s.name + (topology == GridOptions::Topology::Bool ? "_solid_bool" : "_solid"));
+            }
         }
     }
 }

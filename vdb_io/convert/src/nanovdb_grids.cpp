@@ -329,7 +329,7 @@ std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double ex
     return out;
 }
 
-NanoHandle solidNanoGrid(const SolidBricks& solid, const GridSpec& lattice, bool checksum)
+NanoHandle solidNanoGrid(const SolidBricks& solid, const GridSpec& lattice, GridOptions::Topology topology, bool checksum)
 {
     const GridSpec& g = solid.grid;
     const FieldSigns& signs = solid.signs;
@@ -348,7 +348,15 @@ NanoHandle solidNanoGrid(const SolidBricks& solid, const GridSpec& lattice, bool
     }
     for (const BrickCoord& b : signs.insideBricks) s.tiles.push_back({brickOrigin(g, b), 1, true, true});
     fillRuns(s, g, signs.runs, true, true, false);
-    return buildNanoGrid<nanovdb::ValueMask>(s, infoFor(lattice, "solid", nanovdb::GridClass::Topology, checksum));
+    if (topology == GridOptions::Topology::Mask)
+        return buildNanoGrid<nanovdb::ValueMask>(s, infoFor(lattice, "solid", nanovdb::GridClass::Topology, checksum));
+    // NanoVDB keeps class Topology for ValueMask grids (nanovdb::isValid).
+    const NanoGridInfo info = infoFor(lattice, "solid", nanovdb::GridClass::Unknown, checksum);
+    // Bool: true exactly where active, as a topology copy of the mask gives it.
+    s.values.assign(s.masks.size() * 512, false);
+    for (size_t i = 0; i < s.masks.size(); ++i)
+        for (uint32_t v = 0; v < 512; ++v) s.values[i * 512 + v] = (s.masks[i].words[v >> 6] >> (v & 63)) & 1u;
+    return buildNanoGrid<bool>(s, info);
 }
 
 } // namespace svo::vdb

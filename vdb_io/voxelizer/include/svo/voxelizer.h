@@ -72,6 +72,7 @@
 #include "svo/gl/voxelize_stats.h"
 #include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/grid_options.h"
+#include "svo/vdb_io/nanovdb_grids.h"
 
 namespace svo {
 
@@ -271,6 +272,26 @@ public:
     /// @throw as levelSet()
     openvdb::MaskGrid::Ptr solid(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
                                  const SignOptions& sign = {}, openvdb::math::Transform::Ptr xform = nullptr);
+
+    /// @brief voxelize() as NanoVDB grids (octreeToNanoGrids): laid out from
+    /// the octree's bricks, with no OpenVDB tree.
+    /// @param grids which grids (topology type and name, fog, channels)
+    /// @throw as voxelize()
+    std::vector<vdb::NanoHandle> voxelizeNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
+                                                 const VoxelizeOptions& options = {}, const GridOptions& grids = {});
+    /// @brief levelSet() as NanoVDB grids, laid out from the field's bricks
+    /// with no OpenVDB tree (levelSetNanoGrids), on the grid's own lattice;
+    /// with a region or a GPU memory budget, levelSet()'s grids converted
+    /// (toNanoVdb). Equal, voxel for voxel and value for value, to levelSet()'s.
+    /// @throw as levelSet()
+    std::vector<vdb::NanoHandle> levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
+                                                 const LevelSetOptions& levelSet = {}, const VoxelizeOptions& options = {});
+    /// @brief solid() as the NanoVDB grid "solid" (solidNanoGrid), as levelSetNanoVdb.
+    /// @param topology ValueMask (Mask) or bool true on inside voxels (Bool), as withTopology gives
+    /// @throw as solid()
+    vdb::NanoHandle solidNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
+                                 const SignOptions& sign = {},
+                                 GridOptions::Topology topology = GridOptions::Topology::Mask);
 
     /// @brief The backend a voxelize call with @a options runs on: Backend::Auto
     /// resolved (a dilation mode's raster backend when one is asked for; else

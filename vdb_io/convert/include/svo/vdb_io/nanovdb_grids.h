@@ -34,8 +34,11 @@ std::vector<NanoHandle> octreeToNanoGrids(const Octree& octree, const GridOption
 std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double exteriorBand, double interiorBand,
                                           const GridSpec& lattice, bool checksum = true);
 
-/// @brief A solid as the ValueMask grid "solid", as solidGrid (field_grids.h):
-/// inside voxels active, whole bricks inside as active 8³ tiles.
-NanoHandle solidNanoGrid(const SolidBricks& solid, const GridSpec& lattice, bool checksum = true);
+/// @brief A solid as the grid "solid", as solidGrid (field_grids.h) and
+/// withTopology (reader_grids.h) give it: inside voxels active, whole bricks
+/// inside as active 8³ tiles.
+/// @param topology ValueMask (Mask), or bool with true on every active voxel and tile (Bool)
+NanoHandle solidNanoGrid(const SolidBricks& solid, const GridSpec& lattice,
+                         GridOptions::Topology topology = GridOptions::Topology::Mask, bool checksum = true);
 
 } // namespace svo::vdb
