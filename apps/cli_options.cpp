@@ -18,6 +18,7 @@
 #include "svo/core/octree.h"
 #include "progress.h"
 #include "svo/gl/view_request.h"
+#include "svo/vdb_io/nanovdb_file.h"
 #include "svo/voxelizer.h"
 #ifdef SVO_WITH_VALIDATE
 #include "svo/validate/report.h"
@@ -327,6 +328,16 @@ CLI::Option* addOutputPath(CLI::App& cmd, const std::string& name, std::string& 
 }
 
 void addOutputOptions(CLI::App& cmd, OutputArgs& a) { addOptions(cmd, a.grids); }
+
+void checkCodec(const OutputArgs& a, const std::string& output)
+{
+    if (a.grids.codec == vdb::NanoCodec::None) return;
+    if (output.empty() || outputFormat(output) != OutputFormat::NanoVdb)
+        throw InvalidInput(fmt::format("{}: --codec applies to .nvdb output", output.empty() ? "no output" : output));
+    if (!vdb::nanoCodecAvailable(a.grids.codec))
+        throw Unsupported(fmt::format("{}: this svo was built without the {} codec (libblosc)", output,
+                                      nameOf(a.grids.codec)));
+}
 
 std::string backendLine(const VoxelizeStats& s)
 {

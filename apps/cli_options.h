@@ -86,6 +86,10 @@ struct OutputArgs {
     }();
 };
 void addOutputOptions(CLI::App& cmd, OutputArgs& args);
+/// @brief Refuses, before any work, a --codec other than none for an output
+/// that is not .nvdb, or one this build cannot write.
+/// @throw svo::InvalidInput naming the output, or svo::Unsupported
+void checkCodec(const OutputArgs& args, const std::string& output);
 
 /// @brief -q, -v and --no-clobber: how much a command that writes files
 /// prints, and whether it may replace an output that exists. Outputs are

@@ -51,7 +51,7 @@ void copyGrids(const ConvertArgs& a, bool nanoInput, Clock::time_point start, Ou
     written.format = outputFormat(a.output);
     {
         Progress p("writing " + a.output);
-        if (written.format == OutputFormat::NanoVdb) written.bytes = vdb::writeNanoVdb(a.output, grids);
+        if (written.format == OutputFormat::NanoVdb) written.bytes = vdb::writeNanoVdb(a.output, grids, a.out.grids.codec);
         else written.bytes = vdb::writeVdbGrids(a.output, grids, {}).bytes;
     }
     outputs.commit(); // then the report: what it says was written is in place
@@ -85,6 +85,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
                                   a.input));
     const bool gridsInput = ext == ".vdb" || ext == ".nvdb";
     checkOutputPath(a.output);
+    checkCodec(a.out, a.output);
     checkOutputs({a.input}, {a.output});
     checkClobber(a.habits, {a.output});
     OutputBatch outputs({a.output}); // in place at the very end (atomic_file.h)

@@ -230,7 +230,7 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
     if (nano) {
         Progress p("writing " + output);
         const auto t0 = std::chrono::steady_clock::now();
-        written.bytes = vdb::writeNanoVdb(output, nanoGrids);
+        written.bytes = vdb::writeNanoVdb(output, nanoGrids, a.out.grids.codec);
         written.writeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         stats.stages.push_back({"write", -1, written.writeMs});
     } else if (!timingOnly) {
@@ -335,6 +335,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     const bool timingOnly = a.repeat > 1 && a.output.empty();
     const std::string output = timingOnly ? std::string() : a.output.empty() ? scene + ".vdb" : a.output;
     if (!timingOnly) checkOutputPath(output);
+    checkCodec(a.out, output);
     // A .vdb output's triangle indices go beside it (reader_grids.h): an output too.
     const std::string sidecar = !timingOnly && a.triangleGrids() && outputFormat(output) == OutputFormat::Vdb
                                     ? vdb::triangleSidecarPath(output)

@@ -107,7 +107,8 @@ def main():
                 udf_nvdb, surf_nvdb = os.path.join(tmp, "udf.nvdb"), os.path.join(tmp, "surface.nvdb")
                 udf_args = ["--udf", "--band", str(a.band)]
                 s_udf = svo_run(a, mesh, res, udf_args, udf_nvdb, tmp)
-                s_surf = svo_run(a, mesh, res, [], surf_nvdb, tmp)
+                # ValueMask topology: the harness compares mask or float grids.
+                s_surf = svo_run(a, mesh, res, ["--topology", "mask"], surf_nvdb, tmp)
                 m_top = m2g_run(a, mesh, res, a.band, False, udf_nvdb if s_udf else None, tmp)
                 m_udf = m2g_run(a, mesh, res, a.band, True, udf_nvdb if s_udf else None, tmp)
                 m_surf = m2g_run(a, mesh, res, 0.0, False, surf_nvdb if s_surf else None, tmp)

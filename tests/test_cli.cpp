@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <regex>
@@ -983,6 +984,31 @@ TEST_F(Cli, LevelSetsAndSolidsWriteNanoVdb)
         EXPECT_EQ(info.code, 0) << kind << ": " << info.out;
     }
     expectOnly({"ico.off", "f.nvdb", "f.vdb", "n.json", "v.json"});
+}
+
+// --codec compresses .nvdb output with NanoVDB's codecs: NanoVDB's validator and
+// svo info read each file, smaller than the plain one; another output refuses it.
+TEST_F(Cli, NanoVdbOutputTakesNanoVdbsCodecs)
+{
+    ASSERT_EQ(runSvo("scene icosphere --level 3 -o " + path("ico.off")).code, 0);
+    for (const std::string kind : {"", "--sdf "}) {
+        std::map<std::string, uintmax_t> sizes;
+        for (const std::string codec : {"none", "zip", "blosc"}) {
+            const std::string out = path(codec + ".nvdb");
+            const auto r = runSvo("voxelize " + path("ico.off") + " -r 48 " + kind + "--codec " + codec + " -o " + out);
+            ASSERT_EQ(r.code, 0) << kind << codec << ": " << r.out;
+            EXPECT_EQ(runCommand("nanovdb_validate " + out + " >/dev/null 2>&1 && echo valid"), "valid\n") << kind << codec;
+            const auto info = runSvo("info " + out);
+            EXPECT_EQ(info.code, 0) << kind << codec << ": " << info.out;
+            sizes[codec] = std::filesystem::file_size(out);
+        }
+        EXPECT_LT(sizes["zip"], sizes["none"]) << kind;
+        EXPECT_LT(sizes["blosc"], sizes["none"]) << kind;
+    }
+    const auto refused = runSvo("voxelize " + path("ico.off") + " -r 16 --codec zip -o " + path("x.vdb"));
+    EXPECT_NE(refused.code, 0);
+    EXPECT_NE(refused.out.find("x.vdb: --codec applies to .nvdb output"), std::string::npos) << refused.out;
+    expectOnly({"ico.off", "none.nvdb", "zip.nvdb", "blosc.nvdb"});
 }
 
 // --sdf and --fill solid write grids that OpenVDB's own vdb_print reads as a

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <gtest/gtest.h>
 #include <nanovdb/util/GridChecksum.h>
 #include <nanovdb/util/GridStats.h>
@@ -24,6 +26,7 @@
 #include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/nanovdb_file.h"
 #include "svo/vdb_io/nanovdb_grids.h"
+#include "svo/vdb_io/nanovdb_input.h"
 #include "svo/vdb_io/nanovdb_layout.h"
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/vdb_io/reader_grids.h"
@@ -114,8 +117,9 @@ void expectSameGrids(const std::vector<NanoHandle>& mine, const openvdb::GridPtr
     for (size_t i = 0; i < mine.size(); ++i) expectSame(mine[i], vdb::toNanoVdb(host[i]));
 }
 
-/// Written with each codec, read back by NanoVDB's reader (same bytes) and
-/// passed by its command-line validator.
+/// Written with each codec, read back by NanoVDB's reader (same bytes) and by
+/// svo's checked reader (same active voxels), and passed by NanoVDB's
+/// command-line validator.
 void expectFilesRoundTrip(const std::vector<NanoHandle>& grids, const std::string& stem)
 {
     test::TempDir dir("nanovdb_layout");
@@ -129,6 +133,10 @@ void expectFilesRoundTrip(const std::vector<NanoHandle>& grids, const std::strin
             ASSERT_EQ(back[i].size(), grids[i].size());
             EXPECT_EQ(0, std::memcmp(back[i].data(), grids[i].data(), grids[i].size())) << path << " grid " << i;
         }
+        const openvdb::GridPtrVec mine = vdb::readNanoVdbGrids(path);
+        ASSERT_EQ(mine.size(), grids.size());
+        for (size_t i = 0; i < grids.size(); ++i)
+            EXPECT_EQ(mine[i]->activeVoxelCount(), grids[i].gridMetaData()->activeVoxelCount()) << path << " grid " << i;
         const std::string cmd = "nanovdb_validate " + path + " > /dev/null 2>&1";
         EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
     }
@@ -303,6 +311,47 @@ TEST(NanoVdbLayoutInput, BadInputIsRefused)
     s.masks.resize(1);
     s.tiles.push_back({{0, 0, 0}, 1, 0.0f, true});
     EXPECT_THROW(vdb::buildNanoGrid<float>(s, {}), InvalidInput);
+}
+
+// A compressed file whose blocks are cut, changed or claim too much is refused
+// in one line, never read past its end (the reader is what svo info and svo
+// convert use).
+TEST(NanoVdbLayoutInput, DamagedCompressedFilesAreRefused)
+{
+    vdb::SparseVoxels<float> s;
+    s.origins = {{0, 0, 0}, {64, -8, 8}};
+    s.masks.resize(2);
+    for (auto& m : s.masks)
+        for (auto& w : m.words) w = 0x00ff00ff00ff00ffull;
+    s.values.assign(1024, 0.5f);
+    vdb::NanoGridInfo info;
+    info.name = "damaged";
+    const std::vector<NanoHandle> grids = [&] {
+        std::vector<NanoHandle> g;
+        g.push_back(vdb::buildNanoGrid<float>(s, info));
+        return g;
+    }();
+    test::TempDir dir("nanovdb_damaged");
+    for (const auto codec : {vdb::NanoCodec::Zip, vdb::NanoCodec::Blosc}) {
+        if (!vdb::nanoCodecAvailable(codec)) continue;
+        const std::string path = dir.path("d" + std::to_string(int(codec)) + ".nvdb");
+        vdb::writeNanoVdb(path, grids, codec);
+        std::ifstream in(path, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        ASSERT_EQ(vdb::readNanoVdbGridsFromBytes(bytes, "whole")[0]->activeVoxelCount(), 2u * 256u);
+        const auto refused = [&](const std::string& b, const std::string& what) {
+            try {
+                vdb::readNanoVdbGridsFromBytes(b, "x.nvdb");
+                ADD_FAILURE() << what << ": read";
+            } catch (const IoError& e) {
+                EXPECT_EQ(std::string(e.what()).rfind("x.nvdb: ", 0), 0u) << what << ": " << e.what();
+            }
+        };
+        refused(bytes.substr(0, bytes.size() - 3), "cut");
+        std::string changed = bytes;
+        changed[changed.size() - 20] ^= 0x5a; // inside the compressed data
+        refused(changed, "changed");
+    }
 }
 
 } // namespace

@@ -188,25 +188,29 @@ py::array_t<double> transformMatrix(const openvdb::GridBase& grid)
     return out;
 }
 
-/// Grids to one file, the format by the extension (.vdb or .nvdb), with the library's writers (atomic).
-void writeGrids(const std::filesystem::path& path, const openvdb::GridPtrVec& grids)
+/// Grids to one file, the format by the extension (.vdb or .nvdb), with the
+/// library's writers (atomic); @a codec names a .nvdb file's NanoVDB codec.
+void writeGrids(const std::filesystem::path& path, const openvdb::GridPtrVec& grids, const std::string& codec)
 {
     const std::string file = path.string();
     const svo::OutputFormat format = svo::outputFormat(file); // svo::IoError for another extension: OSError
     if (format == svo::OutputFormat::Svo)
         badValue(file + ": a .svo file holds an octree; write grids as .vdb or .nvdb (Octree.save writes .svo)");
+    const auto nanoCodec = svo::parse<svo::vdb::NanoCodec>(codec, "codec"); // InvalidInput: ValueError
+    if (format == svo::OutputFormat::Vdb && nanoCodec != svo::vdb::NanoCodec::None)
+        badValue(file + ": codec applies to .nvdb files; a .vdb file is compressed by OpenVDB's own settings");
     py::gil_scoped_release release;
-    if (format == svo::OutputFormat::NanoVdb) svo::vdb::writeNanoVdb(file, grids);
+    if (format == svo::OutputFormat::NanoVdb) svo::vdb::writeNanoVdb(file, grids, nanoCodec);
     else svo::vdb::writeVdbGrids(file, grids, {}); // each grid's metadata is already on it
 }
 
 /// svo.write(path, grids): svo.Grid or pyopenvdb grids, in one file.
-void writeAny(const std::filesystem::path& path, const py::iterable& list)
+void writeAny(const std::filesystem::path& path, const py::iterable& list, const std::string& codec)
 {
     openvdb::GridPtrVec grids;
     for (const py::handle& item : list) grids.push_back(gridArgument(item, "grids"));
     if (grids.empty()) badValue("grids: no grid to write");
-    writeGrids(path, grids);
+    writeGrids(path, grids, codec);
 }
 
 /// The grid as bytes of an OpenVDB stream, for pickling (Dask sends grids between processes).
@@ -263,9 +267,13 @@ void bindGrid(py::module_& m)
                 out[py::str(meta->first)] = meta->second->str();
             return out;
         }, "The grid's metadata, each value as text (svo:source, svo:version, svo:sign, ...).")
-        .def("write", [](const PyGrid& g, const std::filesystem::path& path) { writeGrids(path, {g.grid}); },
-             py::arg("path"),
-             "Write the grid to a .vdb or .nvdb file (svo's writers: a temporary file renamed into place).")
+        .def("write",
+             [](const PyGrid& g, const std::filesystem::path& path, const std::string& codec) {
+                 writeGrids(path, {g.grid}, codec);
+             },
+             py::arg("path"), py::kw_only(), py::arg("codec") = "none",
+             "Write the grid to a .vdb or .nvdb file (svo's writers: a temporary file renamed into place); codec: "
+             "a .nvdb file's NanoVDB codec, 'none', 'zip' or 'blosc'.")
         .def("to_pyopenvdb", [](const PyGrid& g) {
             if (!havePyopenvdb())
                 throw py::import_error("svo.Grid.to_pyopenvdb: pyopenvdb does not import in this interpreter (" +
@@ -282,8 +290,9 @@ void bindGrid(py::module_& m)
         })
         .def(py::pickle([](const PyGrid& g) { return gridBytes(g.grid); },
                         [](const py::bytes& b) { return PyGrid{gridFromBytes(std::string(b))}; }));
-    m.def("write", &writeAny, py::arg("path"), py::arg("grids"),
-          "Write grids (svo.Grid or pyopenvdb grids) to one .vdb or .nvdb file with svo's writers, atomically.");
+    m.def("write", &writeAny, py::arg("path"), py::arg("grids"), py::kw_only(), py::arg("codec") = "none",
+          "Write grids (svo.Grid or pyopenvdb grids) to one .vdb or .nvdb file with svo's writers, atomically; codec: "
+          "a .nvdb file's NanoVDB codec, 'none', 'zip' or 'blosc'.");
 }
 
 // --- joining regions (svo.distributed) --------------------------------------

@@ -786,6 +786,20 @@ def test_paths_may_be_path_like_and_kinds_have_their_own_names(voxelizer, tmp_pa
         assert got["svo:version"] == svo.__version__
     with pytest.raises(OSError, match="all.txt"):
         svo.write(tmp_path / "all.txt", [results[0].grid])
+    # .nvdb with each of NanoVDB's codecs: its own validator passes every file,
+    # and the compressed ones are smaller than the plain one.
+    sizes = {}
+    for codec in ("none", "zip", "blosc"):
+        path = tmp_path / f"all_{codec}.nvdb"
+        svo.write(path, [r.grid for r in results], codec=codec)
+        sizes[codec] = path.stat().st_size
+        r = subprocess.run(["nanovdb_validate", "-v", str(path)], capture_output=True, text=True)
+        assert r.returncode == 0 and "fail" not in r.stdout.lower(), r.stdout + r.stderr
+    assert sizes["zip"] < sizes["none"] and sizes["blosc"] < sizes["none"]
+    with pytest.raises(ValueError, match="codec: expected 'none', 'zip' or 'blosc', got 'lz4'"):
+        svo.write(tmp_path / "x.nvdb", [results[0].grid], codec="lz4")
+    with pytest.raises(ValueError, match="codec applies to .nvdb"):
+        svo.write(tmp_path / "x.vdb", [results[0].grid], codec="zip")
 
 
 def test_every_call_returns_a_result_and_a_report_when_asked(voxelizer):

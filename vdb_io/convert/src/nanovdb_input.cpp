@@ -17,6 +17,13 @@
 #include "svo/core/error.h"
 #include "svo/vdb_io/grid_builder.h"
 
+#ifdef NANOVDB_USE_ZIP
+#include <zlib.h>
+#endif
+#ifdef NANOVDB_USE_BLOSC
+#include <blosc.h>
+#endif
+
 namespace svo::vdb {
 namespace fs = std::filesystem;
 namespace {
@@ -39,6 +46,77 @@ struct RawGrid {
 const char* typeName(nanovdb::GridType t)
 {
     return uint32_t(t) < uint32_t(nanovdb::GridType::End) ? nanovdb::toStr(t) : "unknown";
+}
+
+/// NanoVDB's codecs, as nanovdb/util/IO.h writes them: Zip is one block,
+/// Blosc one block per GiB, each block a uint64 byte count and the data.
+/// Every count is checked against the file before it is read.
+struct CompressedBlock {
+    const char* data;
+    uint64_t bytes;
+};
+
+CompressedBlock nextBlock(const char*& at, const char* end, const std::string& name, const std::string& gn)
+{
+    uint64_t bytes = 0;
+    if (end - at < 8) damaged(name, fmt::format("{} ends inside a compressed block's size", gn));
+    std::memcpy(&bytes, at, 8);
+    at += 8;
+    if (bytes > uint64_t(end - at))
+        damaged(name, fmt::format("{}'s compressed block of {} bytes does not fit in its {} bytes", gn, bytes, end - at));
+    const CompressedBlock block{at, bytes};
+    at += bytes;
+    return block;
+}
+
+/// Decodes @a bytes (the grid's record in the file) into @a out, sized to the grid.
+void decode(nanovdb::io::Codec codec, const char* bytes, uint64_t fileSize, nanovdb::HostBuffer& out,
+            const std::string& name, const std::string& gn)
+{
+    const char* at = bytes;
+    const char* end = bytes + fileSize;
+    char* dst = reinterpret_cast<char*>(out.data());
+    const uint64_t gridSize = out.size();
+#ifdef NANOVDB_USE_ZIP
+    if (codec == nanovdb::io::Codec::ZIP) {
+        const CompressedBlock b = nextBlock(at, end, name, gn);
+        uLongf n = uLongf(gridSize);
+        if (uncompress(reinterpret_cast<Bytef*>(dst), &n, reinterpret_cast<const Bytef*>(b.data), uLong(b.bytes)) != Z_OK ||
+            n != gridSize)
+            damaged(name, fmt::format("{}'s Zip data does not decompress to its {} bytes", gn, gridSize));
+    }
+#endif
+#ifdef NANOVDB_USE_BLOSC
+    if (codec == nanovdb::io::Codec::BLOSC) {
+        constexpr uint64_t kChunk = uint64_t(1) << 30; // IO.h's block size
+        for (uint64_t done = 0; done < gridSize;) {
+            const CompressedBlock b = nextBlock(at, end, name, gn);
+            const uint64_t chunk = std::min(kChunk, gridSize - done);
+            size_t raw = 0, packed = 0, blocksize = 0;
+            if (b.bytes >= BLOSC_MIN_HEADER_LENGTH) blosc_cbuffer_sizes(b.data, &raw, &packed, &blocksize);
+            if (raw != chunk || packed != b.bytes ||
+                blosc_decompress_ctx(b.data, dst + done, size_t(chunk), 1) != int(chunk))
+                damaged(name, fmt::format("{}'s Blosc data does not decompress to its {} bytes", gn, gridSize));
+            done += chunk;
+        }
+    }
+#endif
+    if (at != end)
+        damaged(name, fmt::format("{}'s compressed data ends {} bytes before its record does", gn, end - at));
+}
+
+bool codecBuiltIn(nanovdb::io::Codec codec)
+{
+    switch (codec) {
+    case nanovdb::io::Codec::NONE: return true;
+#ifdef NANOVDB_USE_ZIP
+    case nanovdb::io::Codec::ZIP: return true;
+#endif
+#ifdef NANOVDB_USE_BLOSC
+    case nanovdb::io::Codec::BLOSC: return true;
+#endif
+    default: return false;
+    }
 }
 
 /// The segments of a whole file: headers and records inside the file, sizes
@@ -66,11 +144,11 @@ std::vector<RawGrid> splitSegments(const std::string& bytes, const std::string& 
                                       h.version.getMajor(), h.version.getMajor(), h.version.getMinor(),
                                       h.version.getPatch(), NANOVDB_MAJOR_VERSION_NUMBER));
         if (h.gridCount == 0) damaged(name, fmt::format("the segment at byte {} holds no grids", at));
-        if (h.codec == Codec::ZIP || h.codec == Codec::BLOSC)
-            throw IoError(fmt::format("{}: its grids are compressed with {}, which this svo is built without; write "
-                                      "the file uncompressed (nanovdb_convert without -z or -b)",
+        if ((h.codec == Codec::ZIP || h.codec == Codec::BLOSC) && !codecBuiltIn(h.codec))
+            throw IoError(fmt::format("{}: its grids are compressed with {}, which this svo is built without (it "
+                                      "needs libblosc at build time); write the file uncompressed or with Zip",
                                       name, nanovdb::io::toStr(h.codec)));
-        if (h.codec != Codec::NONE)
+        if (h.codec != Codec::NONE && h.codec != Codec::ZIP && h.codec != Codec::BLOSC)
             damaged(name, fmt::format("unknown compression codec {} at byte {}", uint16_t(h.codec), at + 14));
         at += sizeof(Header);
         const size_t first = grids.size();
@@ -96,16 +174,23 @@ std::vector<RawGrid> splitSegments(const std::string& bytes, const std::string& 
         for (size_t i = first; i < grids.size(); ++i) {
             RawGrid& g = grids[i];
             const std::string gn = fmt::format("grid '{}'", g.metaName);
-            if (g.meta.fileSize != g.meta.gridSize)
+            if (g.codec == Codec::NONE && g.meta.fileSize != g.meta.gridSize)
                 damaged(name, fmt::format("{} is uncompressed but its size in the file ({}) is not its size ({})", gn,
                                           g.meta.fileSize, g.meta.gridSize));
-            if (g.meta.gridSize > size - at)
-                damaged(name, fmt::format("{} needs {} bytes, the file has {} left", gn, g.meta.gridSize, size - at));
+            if (g.meta.fileSize > size - at)
+                damaged(name, fmt::format("{} needs {} bytes, the file has {} left", gn, g.meta.fileSize, size - at));
             if (g.meta.gridSize < sizeof(nanovdb::GridData) + sizeof(nanovdb::TreeData<3>))
                 damaged(name, fmt::format("{} is {} bytes, smaller than a grid's header", gn, g.meta.gridSize));
+            // No codec packs better than about 1000:1 (zlib's limit): a larger claim is damage, not a grid.
+            if (g.meta.gridSize / 1100 > g.meta.fileSize)
+                damaged(name, fmt::format("{} claims {} bytes from {} compressed bytes", gn, g.meta.gridSize,
+                                          g.meta.fileSize));
             g.buffer = nanovdb::HostBuffer::create(g.meta.gridSize);
-            std::memcpy(g.buffer.data(), bytes.data() + at, g.meta.gridSize);
-            at += g.meta.gridSize;
+            if (g.codec == Codec::NONE)
+                std::memcpy(g.buffer.data(), bytes.data() + at, g.meta.gridSize);
+            else
+                decode(g.codec, bytes.data() + at, g.meta.fileSize, g.buffer, name, gn);
+            at += g.meta.fileSize;
         }
     }
     return grids;

@@ -28,12 +28,12 @@ nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const openvdb::GridBase::Ptr&
     }
 }
 
-uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids)
+uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids, NanoCodec codec)
 {
     checkWritable(path);
     std::vector<nanovdb::GridHandle<nanovdb::HostBuffer>> handles;
     for (const auto& g : grids) handles.push_back(toNanoVdb(g));
-    return writeNanoVdb(path, handles, NanoCodec::None);
+    return writeNanoVdb(path, handles, codec);
 }
 
 bool nanoCodecAvailable(NanoCodec codec)

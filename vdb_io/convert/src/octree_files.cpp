@@ -8,7 +8,8 @@
 #include "svo/core/error.h"
 #include "svo/core/octree_file.h"
 #include "svo/vdb_io/grid_builder.h"
-#include "svo/vdb_io/nanovdb_output.h"
+#include "svo/vdb_io/nanovdb_file.h"
+#include "svo/vdb_io/nanovdb_grids.h"
 #include "svo/vdb_io/vdb_file.h"
 #include "svo/vdb_io/reader_grids.h"
 
@@ -67,15 +68,14 @@ WriteReport writeOctree(const std::string& path, const Octree& octree, const Gri
         report.leaves = ws.leaves;
         return report;
     }
+    // NanoVDB grids laid out from the bricks, no OpenVDB tree (nanovdb_grids.h).
+    // NanoVDB grids hold no string metadata: @a metadata has nowhere to go.
     checkWritable(path);
     auto t0 = Clock::now();
-    openvdb::initialize();
-    openvdb::GridPtrVec vdbGrids = octreeToGrids(octree, grids);
-    for (auto& g : vdbGrids)
-        for (const auto& [k, v] : metadata) g->insertMeta(vdb::validUtf8(k), openvdb::StringMetadata(vdb::validUtf8(v)));
-    report.stages.push_back({"vdb build (cpu)", -1, msSince(t0)});
+    const std::vector<vdb::NanoHandle> nano = vdb::octreeToNanoGrids(octree, grids);
+    report.stages.push_back({"nvdb build (cpu)", -1, msSince(t0)});
     t0 = Clock::now();
-    report.bytes = vdb::writeNanoVdb(path, vdbGrids);
+    report.bytes = vdb::writeNanoVdb(path, nano, grids.codec);
     report.stages.push_back({"nvdb write", -1, msSince(t0)});
     report.leaves = octree.bricks.size();
     return report;

@@ -1,6 +1,7 @@
 #pragma once
 /// @file grid_options.h
-/// @brief Which OpenVDB grids an octree becomes. No OpenVDB headers here.
+/// @brief Which OpenVDB or NanoVDB grids an octree becomes, and how a .nvdb
+/// file compresses them. No OpenVDB headers here.
 #include <cstdint>
 #include <string>
 
@@ -11,13 +12,25 @@ namespace svo {
 
 struct GridSpec;
 
-/// @brief Which OpenVDB grids an octree becomes, and the topology grid's name.
+namespace vdb {
+/// @brief How a .nvdb file's grids are compressed: NanoVDB's own codecs.
+enum class NanoCodec { None, Zip, Blosc };
+
+/// @brief The names of NanoCodec, as --codec takes them.
+inline constexpr EnumName<NanoCodec> kNanoCodecNames[] = {
+    {NanoCodec::None, "none"}, {NanoCodec::Zip, "zip"}, {NanoCodec::Blosc, "blosc"}};
+constexpr const auto& enumNames(NanoCodec) { return kNanoCodecNames; }
+} // namespace vdb
+
+/// @brief Which grids an octree becomes, the topology grid's name, and a
+/// .nvdb file's codec.
 struct GridOptions {
     enum class Topology { Mask, Bool }; ///< the topology grid's type
     Topology topology = Topology::Mask; ///< MaskGrid, or BoolGrid (true on active voxels)
     std::string name = "surface";       ///< name of the topology grid
     bool fog = false;                    ///< also a fog FloatGrid "density": 1 on voxels, background 0
     bool attributes = true;              ///< the octree's channels as "normal", "triangle_id", "color"
+    vdb::NanoCodec codec = vdb::NanoCodec::None; ///< a .nvdb output's compression (.vdb files are not affected)
 };
 
 /// @brief The names of GridOptions::Topology, as --topology takes them.
@@ -35,6 +48,9 @@ void forEachOption(GridOptions& g, Visit&& visit)
           g.topology);
     visit(OptionInfo{"GridOptions::fog", "fog", "Also write a fog-volume FloatGrid 'density' (.vdb and .nvdb output)"},
           g.fog);
+    visit(OptionInfo{"GridOptions::codec", "codec",
+                     "Compression of a .nvdb output's grids, NanoVDB's codecs (NanoVDB's readers decode each)"},
+          g.codec);
 }
 
 namespace vdb {

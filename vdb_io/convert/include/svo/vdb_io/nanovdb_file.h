@@ -7,10 +7,9 @@
 #include <nanovdb/util/GridHandle.h>
 #include <nanovdb/util/HostBuffer.h>
 
-namespace svo::vdb {
+#include "svo/vdb_io/grid_options.h" // NanoCodec
 
-/// @brief How a .nvdb file's grids are compressed: NanoVDB's own codecs.
-enum class NanoCodec { None, Zip, Blosc };
+namespace svo::vdb {
 
 /// @brief Whether this build of svo writes @a codec (Zip always; Blosc where
 /// libblosc was found at build time).
@@ -19,7 +18,7 @@ bool nanoCodecAvailable(NanoCodec codec);
 /// @brief Writes NanoVDB grids to one .nvdb file in NanoVDB's file format,
 /// atomically (a temporary file renamed into place), with no OpenVDB tree.
 /// @param codec NanoVDB's compression of each grid (svo's own reader,
-///        nanovdb_input.h, reads NanoCodec::None)
+///        nanovdb_input.h, reads every codec this build writes)
 /// @return the file's size in bytes
 /// @throw svo::IoError naming the path when it cannot be written
 /// @throw svo::Unsupported for a codec this build lacks (nanoCodecAvailable)

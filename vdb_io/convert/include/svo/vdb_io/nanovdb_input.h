@@ -12,9 +12,10 @@
 /// level, with the origin its parent's slot says), the root table and the
 /// grid name are checked against the grid's size before NanoVDB reads them;
 /// then NanoVDB's validator (checksum included) runs, and
-/// nanovdb::nanoToOpenVDB makes the OpenVDB grid. Only uncompressed files
-/// are read (svo is built without NanoVDB's zip and Blosc codecs), and only
-/// the grid types svo writes: float, double, int32, int64, Vec3f, Vec3d,
+/// nanovdb::nanoToOpenVDB makes the OpenVDB grid. Grids compressed with
+/// NanoVDB's codecs are decoded first (Zip always, Blosc where svo was built
+/// with libblosc), each block's size checked against the file. Only
+/// the grid types svo writes are read: float, double, int32, int64, Vec3f, Vec3d,
 /// bool and mask. Errors are one line naming the file
 /// ("x.nvdb: truncated or damaged: ...").
 ///
@@ -32,7 +33,7 @@ namespace svo::vdb {
 /// grids: type, class, name, transform and values.
 /// @param gridName the grid to read; empty for all
 /// @throw svo::IoError naming the file when it is missing, unreadable, not
-///        NanoVDB, compressed, truncated or damaged, or holds a grid type svo
+///        NanoVDB, compressed with a codec this build lacks, truncated or damaged, or holds a grid type svo
 ///        does not read
 /// @throw svo::InvalidInput when no grid is named @a gridName
 openvdb::GridPtrVec readNanoVdbGrids(const std::string& path, const std::string& gridName = {});

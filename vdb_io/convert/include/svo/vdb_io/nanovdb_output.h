@@ -11,6 +11,8 @@
 
 #include <string>
 
+#include "svo/vdb_io/grid_options.h" // NanoCodec
+
 namespace svo::vdb {
 
 /// @brief One grid in NanoVDB form (name and transform kept).
@@ -18,11 +20,12 @@ namespace svo::vdb {
 /// @throw svo::Unsupported for a grid type NanoVDB cannot hold
 nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const openvdb::GridBase::Ptr& grid);
 
-/// @brief Writes the grids to one uncompressed .nvdb file, atomically (a
-/// temporary file renamed into place).
+/// @brief Writes the grids to one .nvdb file, atomically (a temporary file
+/// renamed into place), as writeNanoVdb in nanovdb_file.h.
+/// @param codec NanoVDB's compression of each grid
 /// @return the file's size in bytes
 /// @throw svo::IoError naming the path when it cannot be written
-/// @throw svo::Unsupported as toNanoVdb
-uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids);
+/// @throw svo::Unsupported as toNanoVdb, or for a codec this build lacks
+uint64_t writeNanoVdb(const std::string& path, const openvdb::GridPtrVec& grids, NanoCodec codec = NanoCodec::None);
 
 } // namespace svo::vdb

@@ -46,7 +46,7 @@ struct WriteReport {
 /// topology is not a grid type). A .vdb output holds only grids that
 /// python3-openvdb reads: the triangle indices (Int32Grid "triangle_id") go
 /// to vdb::triangleSidecarPath(@a path) beside it (svo/vdb_io/reader_grids.h).
-/// @param metadata stored as strings on every .vdb and .nvdb grid
+/// @param metadata stored as strings on every .vdb grid (a NanoVDB grid has no place for them)
 /// @throw svo::IoError for another extension or a file that cannot be written
 /// @throw svo::InvalidInput for a fog grid asked of a .svo file, or a grid
 ///        whose transform OpenVDB cannot hold (checkVdbGrid)
