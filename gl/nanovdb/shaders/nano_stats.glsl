@@ -47,11 +47,9 @@ void storeStats(uint node, NodeStats s)
     stats[at + 6u] = s.mn, stats[at + 7u] = s.mx;
 }
 
-// The work group's reduction: each invocation's stats in shared memory, in
-// order; leaves the group's merge in slot 0.
-#ifndef NANO_GROUP
-#define NANO_GROUP 128
-#endif
+// The work group's reduction (NANO_GROUP defined by the pass): each
+// invocation's stats in shared memory, in order; returns the group's merge.
+#ifdef NANO_GROUP
 shared NodeStats groupStats[NANO_GROUP];
 
 NodeStats reduceGroup(NodeStats mine)
@@ -67,3 +65,4 @@ NodeStats reduceGroup(NodeStats mine)
     }
     return groupStats[0];
 }
+#endif

@@ -133,18 +133,22 @@ void sortAndRank(const Context& context, uint32_t n, uint32_t entries)
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
-/// Passes 4 to 6: leaves, lower nodes, upper nodes.
+/// Passes 4 to 6: leaves (and their values), lower nodes, upper nodes.
 void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bool hasValues, uint32_t background)
 {
     const uint32_t n = f.nodes[0];
     const Program& leaves = context.program(nanovdbShaders(), {"nano_leaves.comp"});
-    leaves.set("uLeafCount", n);
-    leaves.set("uType", uint32_t(kind));
-    leaves.set("uLeafAt", uint32_t(f.at[0] / 4));
-    leaves.set("uLeafWords", leafWords(kind));
-    leaves.set("uHasValues", hasValues ? 1u : 0u);
-    leaves.set("uBackground", background);
-    dispatchGroups(leaves, n);
+    const Program& values = context.program(nanovdbShaders(), {"nano_values.comp"});
+    for (const Program* p : {&leaves, &values}) {
+        p->set("uLeafCount", n);
+        p->set("uType", uint32_t(kind));
+        p->set("uLeafAt", uint32_t(f.at[0] / 4));
+        p->set("uLeafWords", leafWords(kind));
+        p->set("uHasValues", hasValues ? 1u : 0u);
+        p->set("uBackground", background);
+    }
+    dispatchGroups(leaves, (uint64_t(n) + 63) / 64);
+    if (kind != NanoKind::Mask) dispatchGroups(values, (16 * uint64_t(n) + 255) / 256); // masks hold no values
     passBarrier();
     const Program& internal = context.program(nanovdbShaders(), {"nano_internal.comp"});
     internal.set("uLeafCount", n);

@@ -8,11 +8,13 @@
 ///
 /// Passes (gl/nanovdb/shaders, docs/design.md "NanoVDB grids on the GPU"):
 /// sort keys from the origins, a bitonic sort by (upper node, lower index,
-/// leaf index), one scan that ranks lower and upper nodes, then the leaves,
-/// the lower and the upper nodes (each node's statistics an order-keeping
-/// reduction over its children, so ties resolve as the CPU's sequential
-/// fold does), and the headers, which the host writes from the upper nodes'
-/// statistics it reads back (a few words per upper node).
+/// leaf index), one scan that ranks lower and upper nodes, then the leaves
+/// (a leaf's statistics folded over its voxels in bit order) and their
+/// values, the lower and the upper nodes (a node's statistics an
+/// order-keeping reduction over its children, so ties such as -0 and +0
+/// resolve as the CPU's sequential fold does), and the headers, which the
+/// host writes from the upper nodes' statistics it reads back (a few words
+/// per upper node).
 ///
 /// Not made here: tiles (a solid's 8³ tiles stay with the CPU builder), and
 /// the checksum: the grid's checksum field says "none" (all bits set, as
