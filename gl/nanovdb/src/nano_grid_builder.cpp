@@ -182,6 +182,16 @@ void layOut(NanoTreeFacts& f, NanoKind kind)
         throw Unsupported(fmt::format("NanoVDB GPU build: a grid of {} bytes is beyond 32-bit word addressing", f.gridBytes));
 }
 
+/// A hardware driver's storage-block limit is real: past it, writes are lost without an error.
+void checkBufferLimit(const Context& context, uint64_t gridBytes, uint64_t leaves)
+{
+    const uint64_t limit = context.shaderBufferLimit();
+    const uint64_t largest = std::max(gridBytes, 2048 * leaves);
+    if (limit && largest > limit)
+        throw Unsupported(fmt::format("NanoVDB GPU build: a buffer of {} bytes exceeds the driver's shader storage limit of {}",
+                                      largest, limit));
+}
+
 /// The root's statistics: the upper nodes' merged in order, as the CPU builder folds them.
 void foldUppers(NanoTreeFacts& f, NanoKind kind, const std::vector<uint32_t>& stats)
 {
@@ -222,6 +232,57 @@ void throwOnBadLeaves(const NanoLeaves& in, const DeviceLeaves& d, const uint32_
     }
 }
 
+/// The grid of @a in.count > 0 leaves: sort, rank, size, fill, then the headers.
+NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const NanoLeaves& in, const NanoGridHeader& header,
+                               bool hostCopy)
+{
+    NanoTreeFacts f;
+    f.nodes[0] = in.count;
+    const DeviceLeaves d = deviceLeaves(context, in);
+    uint32_t entries = 1;
+    while (entries < in.count) entries <<= 1;
+    const Scratch s = bindScratch(context, d, in.count, entries);
+    sortAndRank(context, in.count, entries);
+    uint32_t counters[gpu::kNanoCountWords] = {};
+    s.counters->read(0, sizeof counters, counters);
+    checkGl("NanoVDB GPU build: sort and rank");
+    throwOnBadLeaves(in, d, counters);
+    f.nodes[1] = counters[gpu::kNanoCountLower];
+    f.nodes[2] = counters[gpu::kNanoCountUpper];
+    layOut(f, kind);
+    checkBufferLimit(context, f.gridBytes, in.count);
+    NanoGridBuffer out{Buffer("NanoVDB grid", f.gridBytes), f.gridBytes, f.nodes, {}};
+    out.grid.clearUint(0);
+    out.grid.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_GRID);
+    fillNodes(context, kind, f, d.values != nullptr, backgroundWord(kind, header.background));
+    std::vector<uint32_t> upperStats(size_t(f.nodes[2]) * gpu::kNanoStatWords);
+    s.stats->read(uint64_t(f.nodes[0] + f.nodes[1]) * gpu::kNanoStatWords * 4, upperStats.size() * 4, upperStats.data());
+    s.counters->read(0, sizeof counters, counters);
+    checkGl("NanoVDB GPU build: nodes");
+    f.voxels = uint64_t(counters[gpu::kNanoCountVoxelsHigh]) << 32 | counters[gpu::kNanoCountVoxelsLow];
+    foldUppers(f, kind, upperStats);
+    const std::vector<uint8_t> head = nanoHeader(kind, header, f);
+    out.grid.write(0, head.size(), head.data());
+    if (hostCopy) {
+        out.host.resize(f.gridBytes);
+        out.grid.readBulk(0, f.gridBytes, out.host.data());
+    }
+    checkGl("NanoVDB GPU build: headers");
+    return out;
+}
+
+/// The grid of no leaves: its headers alone.
+NanoGridBuffer emptyGrid(NanoKind kind, const NanoGridHeader& header, bool hostCopy)
+{
+    NanoTreeFacts f;
+    layOut(f, kind);
+    const std::vector<uint8_t> head = nanoHeader(kind, header, f);
+    NanoGridBuffer out{Buffer("NanoVDB grid", f.gridBytes, head.data()), f.gridBytes, f.nodes, {}};
+    if (hostCopy) out.host = head;
+    checkGl("NanoVDB GPU build: empty grid");
+    return out;
+}
+
 } // namespace
 
 NanoGridBuffer buildNanoGridGpu(const Context& context, NanoKind kind, const NanoLeaves& in, const NanoGridHeader& header,
@@ -231,47 +292,7 @@ NanoGridBuffer buildNanoGridGpu(const Context& context, NanoKind kind, const Nan
     if (in.count > (1u << 26)) // the sort's entries and the stats' words stay within 32 bits
         throw Unsupported(fmt::format("NanoVDB GPU build: {} leaves exceed one build (at most 2^26)", in.count));
     const Context::Scope scope(context);
-    NanoTreeFacts f;
-    f.nodes[0] = in.count;
-    const uint32_t background = backgroundWord(kind, header.background);
-    if (in.count) {
-        const DeviceLeaves d = deviceLeaves(context, in);
-        uint32_t entries = 1;
-        while (entries < in.count) entries <<= 1;
-        const Scratch s = bindScratch(context, d, in.count, entries);
-        sortAndRank(context, in.count, entries);
-        uint32_t counters[gpu::kNanoCountWords] = {};
-        s.counters->read(0, sizeof counters, counters);
-        checkGl("NanoVDB GPU build: sort and rank");
-        throwOnBadLeaves(in, d, counters);
-        f.nodes[1] = counters[gpu::kNanoCountLower];
-        f.nodes[2] = counters[gpu::kNanoCountUpper];
-        layOut(f, kind);
-        NanoGridBuffer out{Buffer("NanoVDB grid", f.gridBytes), f.gridBytes, f.nodes, {}};
-        out.grid.clearUint(0);
-        out.grid.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_GRID);
-        fillNodes(context, kind, f, d.values != nullptr, background);
-        std::vector<uint32_t> upperStats(size_t(f.nodes[2]) * gpu::kNanoStatWords);
-        s.stats->read(uint64_t(f.nodes[0] + f.nodes[1]) * gpu::kNanoStatWords * 4, upperStats.size() * 4, upperStats.data());
-        s.counters->read(0, sizeof counters, counters);
-        checkGl("NanoVDB GPU build: nodes");
-        f.voxels = uint64_t(counters[gpu::kNanoCountVoxelsHigh]) << 32 | counters[gpu::kNanoCountVoxelsLow];
-        foldUppers(f, kind, upperStats);
-        const std::vector<uint8_t> head = nanoHeader(kind, header, f);
-        out.grid.write(0, head.size(), head.data());
-        if (hostCopy) {
-            out.host.resize(f.gridBytes);
-            out.grid.readBulk(0, f.gridBytes, out.host.data());
-        }
-        checkGl("NanoVDB GPU build: headers");
-        return out;
-    }
-    layOut(f, kind); // an empty grid: headers only
-    const std::vector<uint8_t> head = nanoHeader(kind, header, f);
-    NanoGridBuffer out{Buffer("NanoVDB grid", f.gridBytes, head.data()), f.gridBytes, f.nodes, {}};
-    if (hostCopy) out.host = head;
-    checkGl("NanoVDB GPU build: empty grid");
-    return out;
+    return in.count ? buildFromLeaves(context, kind, in, header, hostCopy) : emptyGrid(kind, header, hostCopy);
 }
 
 } // namespace svo::gl
