@@ -82,6 +82,7 @@ int main(int argc, char** argv)
     if (res.empty()) res = {128, 256};
     const TriangleMesh m = mesh == "icosphere" ? icosphere({0, 0, 0}, 1.0, 6) : loadMesh(mesh);
     gl::Device device;
+    const gl::Context::Scope scope(device.context()); // the grids' buffers are freed in it
     fmt::print("renderer: {}\n\n", device.context().info().renderer);
     fmt::print("| mesh | N | leaves | MB | CPU layout ms | CPU layout + checksum ms | GPU from host + copy back ms | "
                "GPU on device ms |\n|---|---|---|---|---|---|---|---|\n");
@@ -124,7 +125,6 @@ int main(int argc, char** argv)
         double gpuDevice = 0;
         uint64_t bytes = 0;
         {
-            const gl::Context::Scope scope(context);
             const gl::Buffer origins("bench origins", 12 * in.origins.size(), in.origins.data());
             const gl::Buffer masks("bench masks", 64 * in.masks.size(), in.masks.data());
             const gl::Buffer values("bench values", 4 * words.size(), words.data());

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <gtest/gtest.h>
+#include <memory>
 #include <nanovdb/util/GridHandle.h>
 #include <nanovdb/util/GridValidator.h>
 #include <random>
@@ -165,12 +166,12 @@ protected:
         info.voxelSize = header.voxelSize;
         info.translation = header.translation;
         const auto cpu = vdb::buildNanoGrid<BuildT>(sparse<BuildT>(in, header.background), info);
+        gl::Context& context = device.context();
+        const gl::Context::Scope scope(context); // the grid's buffer is freed in it too
         gl::NanoGridBuffer gpu;
         gl::NanoLeaves leaves;
         leaves.count = uint32_t(in.origins.size());
         if (deviceInput) {
-            gl::Context& context = device.context();
-            const gl::Context::Scope scope(context);
             gl::Buffer origins("test origins", 12 * in.origins.size(), in.origins.data());
             gl::Buffer masks("test masks", 64 * in.masks.size(), in.masks.data());
             gl::Buffer values("test values", 4 * in.words.size(), in.words.data());
@@ -182,7 +183,7 @@ protected:
             leaves.origins = in.origins.data();
             leaves.masks = in.masks.data();
             leaves.values = in.words.empty() ? nullptr : in.words.data();
-            gpu = gl::buildNanoGridGpu(device.context(), kindOf<BuildT>(), leaves, header, true);
+            gpu = gl::buildNanoGridGpu(context, kindOf<BuildT>(), leaves, header, true);
         }
         ASSERT_EQ(gpu.bytes, cpu.size());
         ASSERT_EQ(gpu.host.size(), cpu.size());
@@ -193,6 +194,8 @@ protected:
         nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(gpu.host.size());
         std::memcpy(buffer.data(), gpu.host.data(), gpu.host.size());
         nanovdb::GridHandle<nanovdb::HostBuffer> handle(std::move(buffer));
+        ASSERT_NE(handle.template grid<BuildT>(), nullptr);
+        EXPECT_TRUE(nanovdb::isValid(*handle.template grid<BuildT>(), true, true)) << "as built, without a checksum";
         vdb::updateFullChecksum(*handle.template grid<BuildT>());
         EXPECT_EQ(0, std::memcmp(handle.data(), cpu.data(), cpu.size()))
             << header.name << ": " << firstDifference(handle.data(), cpu.data(), cpu.size());
@@ -214,11 +217,15 @@ protected:
         EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
     }
 
-    static gl::Device device;
+    // Made and freed inside main: the context's statics outlive it.
+    static void SetUpTestSuite() { devicePtr = std::make_unique<gl::Device>(); }
+    static void TearDownTestSuite() { devicePtr.reset(); }
+    static std::unique_ptr<gl::Device> devicePtr;
+    gl::Device& device = *devicePtr;
     std::vector<nanovdb::GridHandle<nanovdb::HostBuffer>> written;
 };
 
-gl::Device GpuNanoGrid::device;
+std::unique_ptr<gl::Device> GpuNanoGrid::devicePtr;
 
 /// Random leaves in a cube of side @a span (voxels) centred on the origin,
 /// so over several upper nodes and negative coordinates; some leaves empty.

@@ -62,6 +62,8 @@ struct NanoGridHeader {
 };
 
 /// @brief A grid on the device, and its bytes on the host when asked for.
+/// Like every gl::Buffer, `grid` is used and destroyed with its context
+/// current (inside a Context::Scope).
 struct NanoGridBuffer {
     Buffer grid;               ///< the whole grid at byte 0 (its buffer may be larger)
     uint64_t bytes = 0;        ///< the grid's size (GridData::mGridSize)
