@@ -1,7 +1,7 @@
 # Install layout and the svo CMake package (find_package(svo CONFIG)), with
 # GNUInstallDirs' folders (lib is lib/<multiarch> under the /usr prefix):
 #   include/svo/...              public headers of every layer
-#   lib/libsvo_core.a, libsvo_gl_{device,voxelize,fields,view}.a, libsvo_vdb_io.a, libsvo_svo.a
+#   lib/libsvo_core.a, libsvo_gl_{device,voxelize,fields,view,nanovdb}.a, libsvo_vdb_io.a, libsvo_svo.a
 #   lib/cmake/svo/               svoConfig.cmake, svoConfigVersion.cmake, svoTargets*.cmake,
 #                                svoOpenVDBModulePath.cmake
 #   bin/svo                      with SVO_BUILD_CLI
@@ -12,13 +12,14 @@ set(SVO_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/svo" CACHE STRING
     "Where svoConfig.cmake goes, relative to the install prefix")
 mark_as_advanced(SVO_INSTALL_CMAKEDIR)
 
-install(TARGETS svo_core svo_gl_device svo_gl_voxelize svo_gl_fields svo_gl_view svo_gl svo_vdb_io svo_svo
+install(TARGETS svo_core svo_gl_device svo_gl_voxelize svo_gl_fields svo_gl_view svo_gl_nanovdb svo_gl svo_vdb_io svo_svo
         EXPORT svoTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # Whole trees: overlap.h includes overlap.glsl, which is shared with the shaders.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/
                   ${PROJECT_SOURCE_DIR}/gl/device/include/ ${PROJECT_SOURCE_DIR}/gl/voxelize/include/
                   ${PROJECT_SOURCE_DIR}/gl/fields/include/ ${PROJECT_SOURCE_DIR}/gl/view/include/
+                  ${PROJECT_SOURCE_DIR}/gl/nanovdb/include/
                   ${PROJECT_SOURCE_DIR}/vdb_io/convert/include/ ${PROJECT_SOURCE_DIR}/vdb_io/voxelizer/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(EXPORT svoTargets NAMESPACE svo:: DESTINATION ${SVO_INSTALL_CMAKEDIR})

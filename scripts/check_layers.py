@@ -31,6 +31,7 @@ FOLDERS = {
     "gl/voxelize": "gl_voxelize",
     "gl/fields": "gl_fields",
     "gl/view": "gl_view",
+    "gl/nanovdb": "gl_nanovdb",
     "vdb_io/convert": "vdb_io",
     "vdb_io/voxelizer": "svo",
     "apps": "apps",
@@ -40,7 +41,8 @@ FOLDERS = {
 }
 
 # The layer diagram: what each layer may use besides itself.
-LIBRARIES = ["core", "gl_device", "gl_voxelize", "gl_fields", "gl_view", "vdb_io", "svo", "validate", "reference"]
+LIBRARIES = ["core", "gl_device", "gl_voxelize", "gl_fields", "gl_view", "gl_nanovdb", "vdb_io", "svo", "validate",
+             "reference"]
 ALLOWED = {
     "core": [],
     "validate": ["core"],
@@ -49,8 +51,9 @@ ALLOWED = {
     "gl_voxelize": ["core", "gl_device"],
     "gl_fields": ["core", "gl_device", "gl_voxelize"],
     "gl_view": ["core", "gl_device"],
+    "gl_nanovdb": ["core", "gl_device"],
     "vdb_io": ["core"],
-    "svo": ["core", "gl_device", "gl_voxelize", "gl_fields", "vdb_io"],
+    "svo": ["core", "gl_device", "gl_voxelize", "gl_fields", "gl_nanovdb", "vdb_io"],
     "apps": LIBRARIES,
     "python": LIBRARIES,
     "bench": LIBRARIES,
@@ -64,8 +67,9 @@ TARGETS = {
     "svo_gl_voxelize": ["gl_voxelize"], "svo::gl_voxelize": ["gl_voxelize"],
     "svo_gl_fields": ["gl_fields"], "svo::gl_fields": ["gl_fields"],
     "svo_gl_view": ["gl_view"], "svo::gl_view": ["gl_view"],
-    "svo_gl": ["gl_device", "gl_voxelize", "gl_fields", "gl_view"],
-    "svo::gl": ["gl_device", "gl_voxelize", "gl_fields", "gl_view"],
+    "svo_gl_nanovdb": ["gl_nanovdb"], "svo::gl_nanovdb": ["gl_nanovdb"],
+    "svo_gl": ["gl_device", "gl_voxelize", "gl_fields", "gl_view", "gl_nanovdb"],
+    "svo::gl": ["gl_device", "gl_voxelize", "gl_fields", "gl_view", "gl_nanovdb"],
     "svo_vdb_io": ["vdb_io"], "svo::vdb_io": ["vdb_io"],
     "svo_svo": ["svo"], "svo::svo": ["svo"],
     "svo_validate": ["validate"], "svo_reference": ["reference"],
@@ -76,7 +80,7 @@ NO_GL = (r"^(GL|EGL|GLFW|epoxy)/", r"OpenGL::|glfw|EGL|epoxy")
 NO_VDB = (r"^(openvdb|nanovdb)/", r"OpenVDB::")
 FORBIDDEN = {
     "core": [NO_GL, NO_VDB, (r"^CGAL/|^embree3/|^vtk", r"CGAL::|embree|VTK::")],
-    "gl_device": [NO_VDB], "gl_voxelize": [NO_VDB], "gl_fields": [NO_VDB], "gl_view": [NO_VDB],
+    "gl_device": [NO_VDB], "gl_voxelize": [NO_VDB], "gl_fields": [NO_VDB], "gl_view": [NO_VDB], "gl_nanovdb": [NO_VDB],
     "vdb_io": [NO_GL],
     "validate": [NO_GL], "reference": [NO_GL],
 }

@@ -1,0 +1,144 @@
+// A level set's NanoVDB grid laid out on the host (svo::vdb::buildNanoGrid,
+// with and without its checksum) against the GPU builder
+// (svo::gl::buildNanoGridGpu) from the same leaves: from host arrays with a
+// host copy back (what a file write needs), and from device-resident leaves
+// with the grid left on the device (the build alone).
+//   svo-bench-nanovdb-gpu MESH|icosphere [--res 128 256] [--runs 5] [--backend cpu|gpu]
+// Prints one Markdown row per resolution: medians in ms.
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <fmt/format.h>
+#include <string>
+#include <vector>
+
+#include "svo/core/default_scene.h"
+#include "svo/core/mesh_io.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/device.h"
+#include "svo/gl/field_pipeline.h"
+#include "svo/gl/nano_grid_builder.h"
+#include "svo/vdb_io/nanovdb_grids.h"
+#include "svo/vdb_io/nanovdb_layout.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+template <typename F>
+double medianMs(int runs, F&& f)
+{
+    std::vector<double> ms;
+    f(); // warm-up: programs compiled, scratch buffers grown
+    for (int r = 0; r < runs; ++r) {
+        const auto t0 = Clock::now();
+        f();
+        ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    }
+    std::sort(ms.begin(), ms.end());
+    return ms[ms.size() / 2];
+}
+
+/// A float grid's leaves as the CPU builder takes them.
+svo::vdb::SparseVoxels<float> leavesOf(const nanovdb::NanoGrid<float>& grid)
+{
+    svo::vdb::SparseVoxels<float> s;
+    s.background = grid.tree().background();
+    const auto& tree = grid.tree();
+    const auto* leaf = tree.getFirstNode<0>();
+    for (uint32_t i = 0; i < tree.nodeCount(0); ++i, ++leaf) {
+        const auto o = leaf->origin();
+        s.origins.push_back({o[0], o[1], o[2]});
+        svo::Brick b;
+        for (uint32_t w = 0; w < 8; ++w) b.words[w] = leaf->valueMask().getWord<uint64_t>(w);
+        s.masks.push_back(b);
+        for (uint32_t v = 0; v < 512; ++v) s.values.push_back(leaf->getValue(v));
+    }
+    return s;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    using namespace svo;
+    std::string mesh = "icosphere";
+    std::vector<int64_t> res;
+    int runs = 5;
+    Backend backend = Backend::Cpu;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--res") {
+            while (i + 1 < argc && argv[i + 1][0] != '-') res.push_back(std::atoll(argv[++i]));
+        } else if (a == "--runs" && i + 1 < argc) {
+            runs = std::atoi(argv[++i]);
+        } else if (a == "--backend" && i + 1 < argc) {
+            backend = std::string(argv[++i]) == "gpu" ? Backend::Compute : Backend::Cpu;
+        } else {
+            mesh = a;
+        }
+    }
+    if (res.empty()) res = {128, 256};
+    const TriangleMesh m = mesh == "icosphere" ? icosphere({0, 0, 0}, 1.0, 6) : loadMesh(mesh);
+    gl::Device device;
+    const gl::Context::Scope scope(device.context()); // the grids' buffers are freed in it
+    fmt::print("renderer: {}\n\n", device.context().info().renderer);
+    fmt::print("| mesh | N | leaves | MB | CPU layout ms | CPU layout + checksum ms | GPU from host + copy back ms | "
+               "GPU on device ms |\n|---|---|---|---|---|---|---|---|\n");
+    for (const int64_t n : res) {
+        const GridSpec grid = makeGrid(m, {n, 0.0});
+        VoxelizeSettings s;
+        s.backend = backend;
+        VoxelizeStats stats;
+        LevelSetOptions ls;
+        const DistanceBricks f = gl::levelSetBricks(device, m, grid, ls, s, Checkpoint{}, stats);
+        const auto grids = vdb::levelSetNanoGrids(f, ls.exteriorBand, ls.interiorBand, grid, false);
+        const auto* sdf = grids.front().grid<float>();
+        const vdb::SparseVoxels<float> in = leavesOf(*sdf);
+        vdb::NanoGridInfo info;
+        info.name = sdf->gridName();
+        info.gridClass = sdf->gridClass();
+        info.voxelSize = sdf->voxelSize()[0];
+        gl::NanoGridHeader header;
+        header.name = info.name;
+        header.gridClass = uint32_t(info.gridClass);
+        header.voxelSize = info.voxelSize;
+        header.background = in.background;
+        const double cpuBare = medianMs(runs, [&] {
+            info.checksum = false;
+            vdb::buildNanoGrid<float>(in, info);
+        });
+        const double cpuSum = medianMs(runs, [&] {
+            info.checksum = true;
+            vdb::buildNanoGrid<float>(in, info);
+        });
+        gl::NanoLeaves host;
+        host.count = uint32_t(in.origins.size());
+        host.origins = in.origins.data();
+        host.masks = in.masks.data();
+        std::vector<uint32_t> words(in.values.size());
+        std::memcpy(words.data(), in.values.data(), 4 * words.size());
+        host.values = words.data();
+        gl::Context& context = device.context();
+        const double gpuHost = medianMs(runs, [&] { gl::buildNanoGridGpu(context, gl::NanoKind::Float, host, header, true); });
+        double gpuDevice = 0;
+        uint64_t bytes = 0;
+        {
+            const gl::Buffer origins("bench origins", 12 * in.origins.size(), in.origins.data());
+            const gl::Buffer masks("bench masks", 64 * in.masks.size(), in.masks.data());
+            const gl::Buffer values("bench values", 4 * words.size(), words.data());
+            gl::NanoLeaves dev;
+            dev.count = host.count;
+            dev.originBuffer = &origins;
+            dev.maskBuffer = &masks;
+            dev.valueBuffer = &values;
+            gpuDevice = medianMs(runs, [&] {
+                bytes = gl::buildNanoGridGpu(context, gl::NanoKind::Float, dev, header).bytes; // reads back the headers' few words: synchronous
+            });
+        }
+        fmt::print("| {} | {} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} |\n", mesh, n, in.origins.size(),
+                   double(bytes) / 1e6, cpuBare, cpuSum, gpuHost, gpuDevice);
+    }
+    return 0;
+}

@@ -1,0 +1,97 @@
+#pragma once
+/// @file nano_grid_builder.h
+/// @brief NanoVDB grids built on the GPU from sparse 8³ leaves, byte for byte
+/// the grid that the CPU layout builder (svo::vdb::buildNanoGrid,
+/// svo/vdb_io/nanovdb_layout.h) makes from the same leaves: the same
+/// breadth-first order (root tiles by origin, nodes by parent and index in
+/// it), masks, child offsets, bounding boxes and minimum/maximum statistics.
+///
+/// Passes (gl/nanovdb/shaders, docs/design.md "NanoVDB grids on the GPU"):
+/// sort keys from the origins, a bitonic sort by (upper node, lower index,
+/// leaf index), one scan that ranks lower and upper nodes, then the leaves
+/// (a leaf's statistics folded over its voxels in bit order) and their
+/// values, the lower and the upper nodes (a node's statistics an
+/// order-keeping reduction over its children, so ties such as -0 and +0
+/// resolve as the CPU's sequential fold does), and the headers, which the
+/// host writes from the upper nodes' statistics it reads back (a few words
+/// per upper node).
+///
+/// Not made here: tiles (a solid's 8³ tiles stay with the CPU builder), and
+/// the checksum: the grid's checksum field says "none" (all bits set, as
+/// nanovdb::ChecksumMode::Disable leaves it); svo::vdb::updateFullChecksum
+/// on the host copy gives nanovdb::ChecksumMode::Full's.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "svo/core/octree.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/context.h"
+
+namespace svo::gl {
+
+/// @brief The grid's value type (nanovdb::GridType): Float and Int32 carry
+/// 512 values per leaf and min/max statistics; Mask (ValueMask, topology
+/// only) and Bool carry none.
+enum class NanoKind : uint32_t { Float = 1, Int32 = 4, Mask = 8, Bool = 11 };
+
+/// @brief The leaves, in any order, on the host or on the device.
+struct NanoLeaves {
+    uint32_t count = 0; ///< number of leaves
+    /// Host input (used when `origins` is set): per leaf its origin (a
+    /// multiple of 8, unique), its active voxels in OpenVDB's bit order, and
+    /// optionally 512 value words (float or int32 bits; Bool: non-zero is on).
+    const std::array<int32_t, 3>* origins = nullptr;
+    const Brick* masks = nullptr;
+    const uint32_t* values = nullptr;
+    /// Device input (used when `origins` is null): the same, 3 ints, 16 uints
+    /// and 512 words per leaf; `valueBuffer` may be null.
+    const Buffer* originBuffer = nullptr;
+    const Buffer* maskBuffer = nullptr;
+    const Buffer* valueBuffer = nullptr;
+};
+
+/// @brief What a grid holds besides its voxels (svo::vdb::NanoGridInfo's facts).
+struct NanoGridHeader {
+    std::string name;                                 ///< at most 255 bytes
+    uint32_t gridClass = 0;                           ///< nanovdb::GridClass (Mask grids: Topology whatever is given)
+    double voxelSize = 1.0;                           ///< index -> world scale
+    std::array<double, 3> translation{0.0, 0.0, 0.0}; ///< world position of index (0, 0, 0)
+    double background = 0.0;                          ///< converted to the kind's value (Bool: non-zero is true)
+};
+
+/// @brief A grid on the device, and its bytes on the host when asked for.
+/// Like every gl::Buffer, `grid` is used and destroyed with its context
+/// current (inside a Context::Scope).
+struct NanoGridBuffer {
+    Buffer grid;               ///< the whole grid at byte 0 (its buffer may be larger)
+    uint64_t bytes = 0;        ///< the grid's size (GridData::mGridSize)
+    std::array<uint32_t, 3> nodes{0, 0, 0}; ///< leaves, lower and upper nodes
+    std::vector<uint8_t> host; ///< the grid's bytes, when asked for
+};
+
+/// @brief The 32-bit word a grid of @a kind stores for @a background: float
+/// or int32 bits, 1 or 0 for Bool and Mask (a bool's byte).
+/// @param kind       the value type
+/// @param background the background, as NanoGridHeader holds it
+/// @return the word
+uint32_t backgroundWord(NanoKind kind, double background);
+
+/// @brief Builds a NanoVDB grid of one kind from leaves on the GPU.
+/// @param context    a GL 4.5 context (made current here)
+/// @param kind       the value type
+/// @param leaves     the leaves (host or device)
+/// @param header     name, class, transform and background
+/// @param hostCopy   also read the grid back into NanoGridBuffer::host
+/// @return the grid, with every byte svo::vdb::buildNanoGrid writes for the
+///         same leaves but the checksum (see the file comment)
+/// @throw svo::InvalidInput for a leaf origin that is not a multiple of 8, a
+///        repeated leaf, a name of 256 bytes or more, or inconsistent leaves
+///        (missing masks, device buffers too small)
+/// @throw svo::Unsupported for a grid beyond 32-bit word addressing (16 GiB)
+/// @throw svo::OutOfMemory or svo::DeviceError on a GL error
+NanoGridBuffer buildNanoGridGpu(const Context& context, NanoKind kind, const NanoLeaves& leaves,
+                                const NanoGridHeader& header, bool hostCopy = false);
+
+} // namespace svo::gl

@@ -1,0 +1,70 @@
+#version 450 core
+// Pass 3, one work group: over the sorted leaves, which start a new lower
+// or upper node; their ranks (exclusive prefix sums of those starts), each
+// node's first child, the node counts, and a repeated leaf if any.
+layout(local_size_x = 1024) in;
+#include "nano_common.glsl"
+
+shared uint partialUpper[1024];
+shared uint partialLower[1024];
+
+bool sameWords(uint a, uint b, uint words)
+{
+    for (uint w = 0u; w < words; ++w)
+        if (sortWord(a, w) != sortWord(b, w)) return false;
+    return true;
+}
+
+bool startsUpper(uint i) { return i == 0u || !sameWords(i, i - 1u, 3u); }
+bool startsLower(uint i) { return startsUpper(i) || lowerIndexOf(i) != lowerIndexOf(i - 1u); }
+
+// The inclusive scan of the group's partial sums, in place.
+void scanGroup(uint t)
+{
+    for (uint offset = 1u; offset < 1024u; offset <<= 1u) {
+        uint u = t >= offset ? partialUpper[t - offset] : 0u;
+        uint l = t >= offset ? partialLower[t - offset] : 0u;
+        memoryBarrierShared();
+        barrier();
+        partialUpper[t] += u;
+        partialLower[t] += l;
+        memoryBarrierShared();
+        barrier();
+    }
+}
+
+void main()
+{
+    uint t = gl_LocalInvocationID.x;
+    uint per = (uLeafCount + 1023u) / 1024u;
+    uint begin = min(t * per, uLeafCount), end = min(begin + per, uLeafCount);
+    uint uppers = 0u, lowers = 0u;
+    for (uint i = begin; i < end; ++i) {
+        if (startsUpper(i)) ++uppers;
+        if (startsLower(i)) ++lowers;
+        if (i > 0u && sameWords(i, i - 1u, 4u)) atomicMax(counters[kNanoCountRepeated], inputLeaf(i) + 1u);
+    }
+    partialUpper[t] = uppers;
+    partialLower[t] = lowers;
+    memoryBarrierShared();
+    barrier();
+    scanGroup(t);
+    uint upper = partialUpper[t] - uppers, lower = partialLower[t] - lowers; // before this range
+    for (uint i = begin; i < end; ++i) {
+        if (startsUpper(i)) {
+            ranks[upperFirstLowerAt(upper)] = lower;
+            ++upper;
+        }
+        if (startsLower(i)) {
+            ranks[lowerFirstLeafAt(lower)] = i;
+            ++lower;
+        }
+        ranks[lowerRankAt(i)] = lower - 1u;
+        ranks[upperRankAt(i)] = upper - 1u;
+    }
+    if (t != 1023u) return;
+    counters[kNanoCountUpper] = upper;
+    counters[kNanoCountLower] = lower;
+    ranks[lowerFirstLeafAt(lower)] = uLeafCount;
+    ranks[upperFirstLowerAt(upper)] = lower;
+}

@@ -1,0 +1,31 @@
+#version 450 core
+// Pass 4b, an invocation per 32 voxels of a sorted leaf: Float and Int32
+// leaves' values (given, else the background); Boolean leaves' value bits
+// (given values that are not 0, else the active voxels).
+layout(local_size_x = 256) in;
+#include "nano_common.glsl"
+
+uniform uint uType;       // kNanoType*
+uniform uint uLeafAt;     // the first leaf's word in the grid
+uniform uint uLeafWords;  // words per leaf
+uniform uint uHasValues;  // 1: values[] holds 512 words per leaf
+uniform uint uBackground; // the background's bits
+
+void main()
+{
+    uint g = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 256u + gl_GlobalInvocationID.x;
+    uint i = g >> 4u, w = g & 15u;
+    if (i >= uLeafCount) return;
+    uint leaf = inputLeaf(i), at = uLeafAt + i * uLeafWords;
+    if (uType == kNanoTypeBool) {
+        uint bits = masks[leaf * 16u + w];
+        if (uHasValues != 0u) {
+            bits = 0u;
+            for (uint b = 0u; b < 32u; ++b) bits |= values[leaf * 512u + 32u * w + b] != 0u ? 1u << b : 0u;
+        }
+        grid[at + kNanoLeafBoolValues + w] = bits;
+        return;
+    }
+    for (uint b = 0u; b < 32u; ++b)
+        grid[at + kNanoLeafValues + 32u * w + b] = uHasValues != 0u ? values[leaf * 512u + 32u * w + b] : uBackground;
+}

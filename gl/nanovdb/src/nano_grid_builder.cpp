@@ -1,0 +1,298 @@
+// NanoVDB grids built on the GPU (svo/gl/nano_grid_builder.h): the passes
+// run in order, the host reads back twice (the node counts, to size the
+// grid; the upper nodes' statistics, for the headers) and writes the headers.
+#include "svo/gl/nano_grid_builder.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fmt/format.h>
+
+#include "nano_header.h"
+#include "nano_layout.h"
+#include "nanovdb_shaders.h"
+#include "svo/core/error.h"
+#include "svo/gl/gl_api.h"
+#include "svo/gl/program.h"
+
+namespace svo::gl {
+namespace {
+
+void passBarrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); }
+
+/// Dispatches @a groups work groups as a 2D grid (at most 65535 along x).
+void dispatchGroups(const Program& p, uint64_t groups)
+{
+    if (!groups) return;
+    const uint64_t x = std::min<uint64_t>(groups, 65535);
+    p.dispatch(uint32_t(x), uint32_t((groups + x - 1) / x));
+}
+
+uint32_t leafWords(NanoKind kind)
+{
+    switch (kind) {
+    case NanoKind::Mask: return gpu::kNanoLeafWordsMask;
+    case NanoKind::Bool: return gpu::kNanoLeafWordsBool;
+    default: return gpu::kNanoLeafWordsValue;
+    }
+}
+
+/// The leaves' buffers on the device: the caller's, or uploads of the host arrays.
+struct DeviceLeaves {
+    const Buffer* origins = nullptr;
+    const Buffer* masks = nullptr;
+    const Buffer* values = nullptr; // null: no values
+};
+
+void checkLeaves(const NanoLeaves& in, const NanoGridHeader& header)
+{
+    if (header.name.size() >= 256)
+        throw InvalidInput(fmt::format("NanoVDB GPU build: grid name of {} bytes; NanoVDB holds at most 255", header.name.size()));
+    if (!in.count) return;
+    if (in.origins) {
+        if (!in.masks) throw InvalidInput("NanoVDB GPU build: leaf origins without masks");
+        return;
+    }
+    if (!in.originBuffer || !in.maskBuffer) throw InvalidInput("NanoVDB GPU build: no leaf origins or masks given");
+    const uint64_t n = in.count;
+    if (in.originBuffer->bytes() < 12 * n || in.maskBuffer->bytes() < 64 * n ||
+        (in.valueBuffer && in.valueBuffer->bytes() < 2048 * n))
+        throw InvalidInput(fmt::format("NanoVDB GPU build: device buffers too small for {} leaves", n));
+}
+
+DeviceLeaves deviceLeaves(const Context& context, const NanoLeaves& in)
+{
+    if (!in.origins) return {in.originBuffer, in.maskBuffer, in.valueBuffer};
+    const uint64_t n = in.count;
+    DeviceLeaves d;
+    d.origins = &context.scratch("nanovdb leaf origins", 12 * n);
+    d.masks = &context.scratch("nanovdb leaf masks", 64 * n);
+    d.origins->write(0, 12 * n, in.origins);
+    d.masks->write(0, 64 * n, in.masks);
+    if (in.values) {
+        d.values = &context.scratch("nanovdb leaf values", 2048 * n);
+        d.values->write(0, 2048 * n, in.values);
+    }
+    return d;
+}
+
+/// The origin of input leaf @a i, for messages.
+std::array<int32_t, 3> originOf(const NanoLeaves& in, const DeviceLeaves& d, uint32_t i)
+{
+    std::array<int32_t, 3> o{};
+    if (in.origins) return in.origins[i];
+    d.origins->read(12 * uint64_t(i), 12, o.data());
+    return o;
+}
+
+/// Scratch buffers of one build, bound to their slots.
+struct Scratch {
+    const Buffer* sort;
+    const Buffer* ranks;
+    const Buffer* stats;
+    const Buffer* counters;
+};
+
+Scratch bindScratch(const Context& context, const DeviceLeaves& d, uint64_t n, uint64_t entries)
+{
+    Scratch s;
+    s.sort = &context.scratch("nanovdb sort", entries * gpu::kNanoSortWords * 4);
+    s.ranks = &context.scratch("nanovdb ranks", (4 * n + 2) * 4);
+    s.stats = &context.scratch("nanovdb stats", 3 * n * gpu::kNanoStatWords * 4);
+    s.counters = &context.scratch("nanovdb counters", gpu::kNanoCountWords * 4);
+    s.counters->clearUint(0, gpu::kNanoCountWords * 4);
+    d.origins->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_ORIGINS);
+    d.masks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_MASKS);
+    (d.values ? d.values : d.masks)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_VALUES); // bound, unread without values
+    s.sort->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_SORT);
+    s.ranks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_RANKS);
+    s.stats->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_STATS);
+    s.counters->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_COUNTERS);
+    return s;
+}
+
+/// Passes 1 to 3: sort entries, the bitonic sort, the node ranks and counts.
+void sortAndRank(const Context& context, uint32_t n, uint32_t entries)
+{
+    const Program& keys = context.program(nanovdbShaders(), {"nano_keys.comp"});
+    keys.set("uLeafCount", n);
+    keys.set("uEntries", entries);
+    dispatchGroups(keys, (entries + 255) / 256);
+    passBarrier();
+    const Program& sort = context.program(nanovdbShaders(), {"nano_sort.comp"});
+    sort.set("uEntries", entries);
+    for (uint32_t k = 2; k <= entries; k <<= 1)
+        for (uint32_t j = k >> 1; j > 0; j >>= 1) {
+            sort.set("uK", k);
+            sort.set("uJ", j);
+            dispatchGroups(sort, (entries + 255) / 256);
+            passBarrier();
+        }
+    const Program& scan = context.program(nanovdbShaders(), {"nano_scan.comp"});
+    scan.set("uLeafCount", n);
+    scan.dispatch(1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+/// Passes 4 to 6: leaves (and their values), lower nodes, upper nodes.
+void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bool hasValues, uint32_t background)
+{
+    const uint32_t n = f.nodes[0];
+    const Program& leaves = context.program(nanovdbShaders(), {"nano_leaves.comp"});
+    const Program& values = context.program(nanovdbShaders(), {"nano_values.comp"});
+    for (const Program* p : {&leaves, &values}) {
+        p->set("uLeafCount", n);
+        p->set("uType", uint32_t(kind));
+        p->set("uLeafAt", uint32_t(f.at[0] / 4));
+        p->set("uLeafWords", leafWords(kind));
+        p->set("uHasValues", hasValues ? 1u : 0u);
+        p->set("uBackground", background);
+    }
+    dispatchGroups(leaves, (uint64_t(n) + 63) / 64);
+    if (kind != NanoKind::Mask) dispatchGroups(values, (16 * uint64_t(n) + 255) / 256); // masks hold no values
+    passBarrier();
+    const Program& internal = context.program(nanovdbShaders(), {"nano_internal.comp"});
+    internal.set("uLeafCount", n);
+    internal.set("uType", uint32_t(kind));
+    internal.set("uBackground", background);
+    internal.set("uRootAt", uint32_t(f.at[3] / 4));
+    for (uint32_t upper = 0; upper < 2; ++upper) {
+        internal.set("uUpper", upper);
+        internal.set("uNodeCount", f.nodes[1 + upper]);
+        internal.set("uNodeAt", uint32_t(f.at[1 + upper] / 4));
+        internal.set("uChildAt", uint32_t(f.at[upper] / 4));
+        internal.set("uChildWords", upper ? gpu::kNanoLowerWords : leafWords(kind));
+        internal.set("uStatsAt", upper ? n + f.nodes[1] : n);
+        internal.set("uChildStatsAt", upper ? n : 0u);
+        dispatchGroups(internal, f.nodes[1 + upper]);
+        passBarrier();
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+/// Byte offsets of each level, breadth-first after the headers, as the CPU builder places them.
+void layOut(NanoTreeFacts& f, NanoKind kind)
+{
+    const uint64_t rootAt = gpu::kNanoGridBytes + gpu::kNanoTreeBytes;
+    const uint64_t upperAt = rootAt + gpu::kNanoRootBytes + uint64_t(gpu::kNanoTileBytes) * f.nodes[2];
+    const uint64_t lowerAt = upperAt + uint64_t(gpu::kNanoUpperWords) * 4 * f.nodes[2];
+    const uint64_t leafAt = lowerAt + uint64_t(gpu::kNanoLowerWords) * 4 * f.nodes[1];
+    f.at = {leafAt, lowerAt, upperAt, rootAt};
+    f.gridBytes = leafAt + uint64_t(leafWords(kind)) * 4 * f.nodes[0];
+    if (f.gridBytes / 4 >= (uint64_t(1) << 32))
+        throw Unsupported(fmt::format("NanoVDB GPU build: a grid of {} bytes is beyond 32-bit word addressing", f.gridBytes));
+}
+
+/// A hardware driver's storage-block limit is real: past it, writes are lost without an error.
+void checkBufferLimit(const Context& context, uint64_t gridBytes, uint64_t leaves)
+{
+    const uint64_t limit = context.shaderBufferLimit();
+    const uint64_t largest = std::max(gridBytes, 2048 * leaves);
+    if (limit && largest > limit)
+        throw Unsupported(fmt::format("NanoVDB GPU build: a buffer of {} bytes exceeds the driver's shader storage limit of {}",
+                                      largest, limit));
+}
+
+/// The root's statistics: the upper nodes' merged in order, as the CPU builder folds them.
+void foldUppers(NanoTreeFacts& f, NanoKind kind, const std::vector<uint32_t>& stats)
+{
+    auto less = [kind](uint32_t a, uint32_t b) {
+        if (kind != NanoKind::Float) return int32_t(a) < int32_t(b);
+        float x, y;
+        std::memcpy(&x, &a, 4);
+        std::memcpy(&y, &b, 4);
+        return x < y;
+    };
+    for (uint32_t u = 0; u < f.nodes[2]; ++u) {
+        const uint32_t* s = stats.data() + size_t(u) * gpu::kNanoStatWords;
+        if (int32_t(s[0]) > int32_t(s[3])) continue; // nothing active
+        if (!f.any) {
+            f.any = true;
+            for (size_t i = 0; i < 6; ++i) f.bbox[i] = int32_t(s[i]);
+            f.minimum = s[6], f.maximum = s[7];
+            continue;
+        }
+        for (size_t i = 0; i < 3; ++i) {
+            f.bbox[i] = std::min(f.bbox[i], int32_t(s[i]));
+            f.bbox[3 + i] = std::max(f.bbox[3 + i], int32_t(s[3 + i]));
+        }
+        if (less(s[6], f.minimum)) f.minimum = s[6];
+        if (less(f.maximum, s[7])) f.maximum = s[7];
+    }
+}
+
+void throwOnBadLeaves(const NanoLeaves& in, const DeviceLeaves& d, const uint32_t* counters)
+{
+    if (uint32_t bad = counters[gpu::kNanoCountMisaligned]) {
+        const auto o = originOf(in, d, bad - 1);
+        throw InvalidInput(fmt::format("NanoVDB GPU build: leaf origin ({}, {}, {}) is not a multiple of 8", o[0], o[1], o[2]));
+    }
+    if (uint32_t twice = counters[gpu::kNanoCountRepeated]) {
+        const auto o = originOf(in, d, twice - 1);
+        throw InvalidInput(fmt::format("NanoVDB GPU build: leaf ({}, {}, {}) given twice", o[0], o[1], o[2]));
+    }
+}
+
+/// The grid of @a in.count > 0 leaves: sort, rank, size, fill, then the headers.
+NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const NanoLeaves& in, const NanoGridHeader& header,
+                               bool hostCopy)
+{
+    NanoTreeFacts f;
+    f.nodes[0] = in.count;
+    const DeviceLeaves d = deviceLeaves(context, in);
+    uint32_t entries = 1;
+    while (entries < in.count) entries <<= 1;
+    const Scratch s = bindScratch(context, d, in.count, entries);
+    sortAndRank(context, in.count, entries);
+    uint32_t counters[gpu::kNanoCountWords] = {};
+    s.counters->read(0, sizeof counters, counters);
+    checkGl("NanoVDB GPU build: sort and rank");
+    throwOnBadLeaves(in, d, counters);
+    f.nodes[1] = counters[gpu::kNanoCountLower];
+    f.nodes[2] = counters[gpu::kNanoCountUpper];
+    layOut(f, kind);
+    checkBufferLimit(context, f.gridBytes, in.count);
+    NanoGridBuffer out{Buffer("NanoVDB grid", f.gridBytes), f.gridBytes, f.nodes, {}};
+    out.grid.clearUint(0);
+    out.grid.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_GRID);
+    fillNodes(context, kind, f, d.values != nullptr, backgroundWord(kind, header.background));
+    std::vector<uint32_t> upperStats(size_t(f.nodes[2]) * gpu::kNanoStatWords);
+    s.stats->read(uint64_t(f.nodes[0] + f.nodes[1]) * gpu::kNanoStatWords * 4, upperStats.size() * 4, upperStats.data());
+    s.counters->read(0, sizeof counters, counters);
+    checkGl("NanoVDB GPU build: nodes");
+    f.voxels = uint64_t(counters[gpu::kNanoCountVoxelsHigh]) << 32 | counters[gpu::kNanoCountVoxelsLow];
+    foldUppers(f, kind, upperStats);
+    const std::vector<uint8_t> head = nanoHeader(kind, header, f);
+    out.grid.write(0, head.size(), head.data());
+    if (hostCopy) {
+        out.host.resize(f.gridBytes);
+        out.grid.readBulk(0, f.gridBytes, out.host.data());
+    }
+    checkGl("NanoVDB GPU build: headers");
+    return out;
+}
+
+/// The grid of no leaves: its headers alone.
+NanoGridBuffer emptyGrid(NanoKind kind, const NanoGridHeader& header, bool hostCopy)
+{
+    NanoTreeFacts f;
+    layOut(f, kind);
+    const std::vector<uint8_t> head = nanoHeader(kind, header, f);
+    NanoGridBuffer out{Buffer("NanoVDB grid", f.gridBytes, head.data()), f.gridBytes, f.nodes, {}};
+    if (hostCopy) out.host = head;
+    checkGl("NanoVDB GPU build: empty grid");
+    return out;
+}
+
+} // namespace
+
+NanoGridBuffer buildNanoGridGpu(const Context& context, NanoKind kind, const NanoLeaves& in, const NanoGridHeader& header,
+                                bool hostCopy)
+{
+    checkLeaves(in, header);
+    if (in.count > (1u << 26)) // the sort's entries and the stats' words stay within 32 bits
+        throw Unsupported(fmt::format("NanoVDB GPU build: {} leaves exceed one build (at most 2^26)", in.count));
+    const Context::Scope scope(context);
+    return in.count ? buildFromLeaves(context, kind, in, header, hostCopy) : emptyGrid(kind, header, hostCopy);
+}
+
+} // namespace svo::gl

@@ -1,0 +1,28 @@
+#pragma once
+/// @file nano_header.h (internal)
+/// @brief The bytes of a NanoVDB grid's GridData, TreeData and RootData
+/// (without its tiles), which the host writes once the GPU passes have
+/// counted the nodes and merged the upper nodes' statistics.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "svo/gl/nano_grid_builder.h"
+
+namespace svo::gl {
+
+/// @brief The tree facts the header holds.
+struct NanoTreeFacts {
+    std::array<uint32_t, 3> nodes{0, 0, 0}; ///< leaves, lower, upper nodes
+    std::array<uint64_t, 4> at{0, 0, 0, 0}; ///< byte offsets of the first leaf, lower, upper node and the root
+    uint64_t gridBytes = 0;
+    uint64_t voxels = 0;
+    bool any = false;                       ///< some voxel is active
+    std::array<int32_t, 6> bbox{};          ///< index box of active voxels (min, max), when any
+    uint32_t minimum = 0, maximum = 0;      ///< value bits, when any (Float, Int32)
+};
+
+/// @brief The header bytes: kNanoGridBytes + kNanoTreeBytes + kNanoRootBytes.
+std::vector<uint8_t> nanoHeader(NanoKind kind, const NanoGridHeader& header, const NanoTreeFacts& tree);
+
+} // namespace svo::gl

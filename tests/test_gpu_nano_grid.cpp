@@ -1,0 +1,418 @@
+// NanoVDB grids built on the GPU (svo/gl/nano_grid_builder.h) against the CPU
+// layout builder (svo::vdb::buildNanoGrid, itself proven against
+// nanovdb::openToNanoVDB by test_nanovdb_layout): the whole grid, byte for
+// byte, once the host copy gets its checksum (svo::vdb::updateFullChecksum);
+// and against NanoVDB's own host code: nanovdb::isValid (full checksum), a
+// ReadAccessor voxel for voxel against the input, and nanovdb_validate on
+// the written .nvdb. Runs on every GL 4.5 device, llvmpipe included.
+#include <algorithm>
+#include <cstddef>
+#include <cstdlib>
+#include <cstring>
+#include <gtest/gtest.h>
+#include <memory>
+#include <nanovdb/util/GridHandle.h>
+#include <nanovdb/util/GridValidator.h>
+#include <random>
+
+#include "nano_layout.h"
+#include "scenes.h"
+#include "svo/core/error.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/device.h"
+#include "svo/gl/field_pipeline.h"
+#include "svo/gl/nano_grid_builder.h"
+#include "svo/gl/voxelize_pipeline.h"
+#include "svo/vdb_io/nanovdb_checksum.h"
+#include "svo/vdb_io/nanovdb_file.h"
+#include "svo/vdb_io/nanovdb_grids.h"
+#include "svo/vdb_io/nanovdb_layout.h"
+#include "temp_dir.h"
+
+namespace svo {
+namespace {
+
+// The shared layout's facts against NanoVDB's own structs.
+using FloatGrid = nanovdb::NanoGrid<float>;
+static_assert(sizeof(nanovdb::GridData) == gpu::kNanoGridBytes);
+static_assert(sizeof(nanovdb::NanoTree<float>::DataType) == gpu::kNanoTreeBytes);
+static_assert(sizeof(nanovdb::NanoRoot<float>::DataType) == gpu::kNanoRootBytes);
+static_assert(sizeof(nanovdb::NanoRoot<nanovdb::ValueMask>::DataType) == gpu::kNanoRootBytes);
+static_assert(sizeof(nanovdb::NanoRoot<bool>::DataType) == gpu::kNanoRootBytes);
+static_assert(sizeof(nanovdb::NanoRoot<float>::DataType::Tile) == gpu::kNanoTileBytes);
+using LowerData = nanovdb::NanoLower<float>::DataType;
+using UpperData = nanovdb::NanoUpper<float>::DataType;
+static_assert(offsetof(LowerData, mFlags) == 4 * gpu::kNanoNodeFlags);
+static_assert(offsetof(LowerData, mValueMask) == 4 * gpu::kNanoNodeValueMask);
+static_assert(offsetof(LowerData, mChildMask) == 4 * gpu::kNanoLowerChildMask);
+static_assert(offsetof(LowerData, mMinimum) == 4 * gpu::kNanoLowerMinimum);
+static_assert(offsetof(LowerData, mTable) == 4 * gpu::kNanoLowerTable);
+static_assert(sizeof(nanovdb::NanoLower<float>) == 4 * gpu::kNanoLowerWords);
+static_assert(sizeof(nanovdb::NanoLower<nanovdb::ValueMask>) == 4 * gpu::kNanoLowerWords);
+static_assert(sizeof(nanovdb::NanoLower<bool>) == 4 * gpu::kNanoLowerWords);
+static_assert(offsetof(UpperData, mChildMask) == 4 * gpu::kNanoUpperChildMask);
+static_assert(offsetof(UpperData, mMinimum) == 4 * gpu::kNanoUpperMinimum);
+static_assert(offsetof(UpperData, mTable) == 4 * gpu::kNanoUpperTable);
+static_assert(sizeof(nanovdb::NanoUpper<float>) == 4 * gpu::kNanoUpperWords);
+static_assert(sizeof(nanovdb::NanoUpper<int32_t>) == 4 * gpu::kNanoUpperWords);
+using LeafData = nanovdb::NanoLeaf<float>::DataType;
+static_assert(offsetof(LeafData, mFlags) == 4 * gpu::kNanoLeafDifFlags + 3);
+static_assert(offsetof(LeafData, mValueMask) == 4 * gpu::kNanoLeafValueMask);
+static_assert(offsetof(LeafData, mMinimum) == 4 * gpu::kNanoLeafMinimum);
+static_assert(offsetof(LeafData, mValues) == 4 * gpu::kNanoLeafValues);
+static_assert(offsetof(nanovdb::NanoLeaf<bool>::DataType, mValues) == 4 * gpu::kNanoLeafBoolValues);
+static_assert(sizeof(nanovdb::NanoLeaf<float>) == 4 * gpu::kNanoLeafWordsValue);
+static_assert(sizeof(nanovdb::NanoLeaf<int32_t>) == 4 * gpu::kNanoLeafWordsValue);
+static_assert(sizeof(nanovdb::NanoLeaf<nanovdb::ValueMask>) == 4 * gpu::kNanoLeafWordsMask);
+static_assert(sizeof(nanovdb::NanoLeaf<bool>) == 4 * gpu::kNanoLeafWordsBool);
+static_assert(uint32_t(nanovdb::GridType::Float) == gpu::kNanoTypeFloat &&
+              uint32_t(nanovdb::GridType::Int32) == gpu::kNanoTypeInt32 &&
+              uint32_t(nanovdb::GridType::Mask) == gpu::kNanoTypeMask &&
+              uint32_t(nanovdb::GridType::Boolean) == gpu::kNanoTypeBool);
+
+/// Leaves as both builders take them: value words for the GPU, typed values for the CPU.
+struct Leaves {
+    std::vector<std::array<int32_t, 3>> origins;
+    std::vector<Brick> masks;
+    std::vector<uint32_t> words; // 512 per leaf, or empty
+};
+
+template <typename BuildT>
+using ValueOf = typename nanovdb::BuildToValueMap<BuildT>::Type;
+
+template <typename BuildT>
+constexpr gl::NanoKind kindOf()
+{
+    if constexpr (std::is_same_v<BuildT, float>) return gl::NanoKind::Float;
+    else if constexpr (std::is_same_v<BuildT, int32_t>) return gl::NanoKind::Int32;
+    else if constexpr (std::is_same_v<BuildT, bool>) return gl::NanoKind::Bool;
+    else return gl::NanoKind::Mask;
+}
+
+template <typename BuildT>
+ValueOf<BuildT> fromWord(uint32_t w)
+{
+    if constexpr (std::is_same_v<BuildT, float>) {
+        float f;
+        std::memcpy(&f, &w, 4);
+        return f;
+    } else if constexpr (std::is_same_v<BuildT, int32_t>) {
+        return int32_t(w);
+    } else {
+        return w != 0;
+    }
+}
+
+template <typename BuildT>
+vdb::SparseVoxels<ValueOf<BuildT>> sparse(const Leaves& in, double background)
+{
+    vdb::SparseVoxels<ValueOf<BuildT>> s;
+    s.background = fromWord<BuildT>(gl::backgroundWord(kindOf<BuildT>(), background));
+    s.origins = in.origins;
+    s.masks = in.masks;
+    for (uint32_t w : in.words) s.values.push_back(fromWord<BuildT>(w));
+    return s;
+}
+
+/// NanoVDB's own host code reads the grid: valid with its full checksum, and
+/// every input voxel where the input puts it, with its value; the voxels
+/// just outside each leaf's neighbourhood hold the background.
+template <typename BuildT>
+void expectNanoVdbReads(const nanovdb::GridHandle<nanovdb::HostBuffer>& h, const Leaves& in, double background)
+{
+    const auto* grid = h.template grid<BuildT>();
+    ASSERT_NE(grid, nullptr);
+    EXPECT_TRUE(nanovdb::isValid(*grid, true, true));
+    auto acc = grid->getAccessor();
+    const auto bg = fromWord<BuildT>(gl::backgroundWord(kindOf<BuildT>(), background));
+    uint64_t wrong = 0, active = 0;
+    for (size_t i = 0; i < in.origins.size(); ++i)
+        for (uint32_t v = 0; v < 512; ++v) {
+            const auto& o = in.origins[i];
+            const nanovdb::Coord c(o[0] + int32_t(v >> 6), o[1] + int32_t((v >> 3) & 7), o[2] + int32_t(v & 7));
+            const bool on = (in.masks[i].words[v >> 6] >> (v & 63)) & 1u;
+            active += on;
+            bool ok = acc.isActive(c) == on;
+            if constexpr (!std::is_same_v<BuildT, nanovdb::ValueMask>) {
+                const auto want = std::is_same_v<BuildT, bool> && in.words.empty()
+                                      ? ValueOf<BuildT>(on)
+                                      : in.words.empty() ? bg : fromWord<BuildT>(in.words[i * 512 + v]);
+                const ValueOf<BuildT> got = acc.getValue(c);
+                ok = ok && std::memcmp(&want, &got, sizeof want) == 0;
+            }
+            if (!ok && ++wrong <= 3) ADD_FAILURE() << "voxel (" << c[0] << ", " << c[1] << ", " << c[2] << ") differs";
+        }
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_EQ(grid->activeVoxelCount(), active);
+}
+
+/// The first differing byte past the checksum (which differs whenever another byte does), else the checksum.
+std::string firstDifference(const uint8_t* a, const uint8_t* b, size_t n)
+{
+    for (size_t i = 16; i < n; ++i)
+        if (a[i] != b[i]) return "byte " + std::to_string(i) + ": " + std::to_string(a[i]) + " vs " + std::to_string(b[i]);
+    return "the checksum alone";
+}
+
+class GpuNanoGrid : public ::testing::Test {
+protected:
+    /// Builds the grid both ways and holds them to each other and to NanoVDB.
+    template <typename BuildT>
+    void expectSameAsCpu(const Leaves& in, const gl::NanoGridHeader& header, bool deviceInput = false)
+    {
+        vdb::NanoGridInfo info;
+        info.name = header.name;
+        info.gridClass = nanovdb::GridClass(header.gridClass);
+        info.voxelSize = header.voxelSize;
+        info.translation = header.translation;
+        const auto cpu = vdb::buildNanoGrid<BuildT>(sparse<BuildT>(in, header.background), info);
+        gl::Context& context = device.context();
+        const gl::Context::Scope scope(context); // the grid's buffer is freed in it too
+        gl::NanoGridBuffer gpu;
+        gl::NanoLeaves leaves;
+        leaves.count = uint32_t(in.origins.size());
+        if (deviceInput) {
+            gl::Buffer origins("test origins", 12 * in.origins.size(), in.origins.data());
+            gl::Buffer masks("test masks", 64 * in.masks.size(), in.masks.data());
+            gl::Buffer values("test values", 4 * in.words.size(), in.words.data());
+            leaves.originBuffer = &origins;
+            leaves.maskBuffer = &masks;
+            leaves.valueBuffer = in.words.empty() ? nullptr : &values;
+            gpu = gl::buildNanoGridGpu(context, kindOf<BuildT>(), leaves, header, true);
+        } else {
+            leaves.origins = in.origins.data();
+            leaves.masks = in.masks.data();
+            leaves.values = in.words.empty() ? nullptr : in.words.data();
+            gpu = gl::buildNanoGridGpu(context, kindOf<BuildT>(), leaves, header, true);
+        }
+        ASSERT_EQ(gpu.bytes, cpu.size());
+        ASSERT_EQ(gpu.host.size(), cpu.size());
+        // No checksum from the GPU: NanoVDB's "none", then the CPU's full one on the host copy.
+        uint64_t none = 0;
+        std::memcpy(&none, gpu.host.data() + 8, 8);
+        EXPECT_EQ(none, ~uint64_t(0));
+        nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(gpu.host.size());
+        std::memcpy(buffer.data(), gpu.host.data(), gpu.host.size());
+        nanovdb::GridHandle<nanovdb::HostBuffer> handle(std::move(buffer));
+        ASSERT_NE(handle.template grid<BuildT>(), nullptr);
+        EXPECT_TRUE(nanovdb::isValid(*handle.template grid<BuildT>(), true, true)) << "as built, without a checksum";
+        vdb::updateFullChecksum(*handle.template grid<BuildT>());
+        EXPECT_EQ(0, std::memcmp(handle.data(), cpu.data(), cpu.size()))
+            << header.name << ": " << firstDifference(handle.data(), cpu.data(), cpu.size());
+        EXPECT_EQ(gpu.nodes[0], in.origins.size());
+        expectNanoVdbReads<BuildT>(handle, in, header.background);
+        if (HasFailure()) return;
+        written.push_back(std::move(handle));
+    }
+
+    /// The grids built so far, written as one .nvdb and passed by NanoVDB's validator.
+    void TearDown() override
+    {
+        if (written.empty() || HasFailure()) return;
+        test::TempDir dir("gpu_nano_grid");
+        const std::string path = dir.path("grids.nvdb");
+        vdb::writeNanoVdb(path, written);
+        if (std::system("command -v nanovdb_validate > /dev/null 2>&1") != 0) return; // not installed
+        const std::string cmd = "nanovdb_validate " + path + " > /dev/null 2>&1";
+        EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    }
+
+    // Made and freed inside main: the context's statics outlive it.
+    static void SetUpTestSuite() { devicePtr = std::make_unique<gl::Device>(); }
+    static void TearDownTestSuite() { devicePtr.reset(); }
+    static std::unique_ptr<gl::Device> devicePtr;
+    gl::Device& device = *devicePtr;
+    std::vector<nanovdb::GridHandle<nanovdb::HostBuffer>> written;
+};
+
+std::unique_ptr<gl::Device> GpuNanoGrid::devicePtr;
+
+/// Random leaves in a cube of side @a span (voxels) centred on the origin,
+/// so over several upper nodes and negative coordinates; some leaves empty.
+Leaves randomLeaves(uint32_t count, int32_t span, bool values, uint32_t seed, bool intValues = false)
+{
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int32_t> coord(-span / 16, span / 16 - 1);
+    Leaves in;
+    std::vector<std::array<int32_t, 3>> seen;
+    while (in.origins.size() < count) {
+        const std::array<int32_t, 3> o{coord(rng) * 8, coord(rng) * 8, coord(rng) * 8};
+        if (std::find(seen.begin(), seen.end(), o) != seen.end()) continue;
+        seen.push_back(o);
+        in.origins.push_back(o);
+        Brick b;
+        const uint32_t kind = rng() % 5; // empty, one voxel, sparse, dense, full
+        for (uint32_t w = 0; w < 8; ++w) {
+            const uint64_t r = uint64_t(rng()) << 32 | rng();
+            b.words[w] = kind == 0 ? 0 : kind == 2 ? r & (r >> 7) : kind == 3 ? r : kind == 4 ? ~uint64_t(0) : 0;
+        }
+        if (kind == 1) b.words[rng() % 8] = uint64_t(1) << (rng() % 64);
+        in.masks.push_back(b);
+    }
+    if (!values) return in;
+    // Some leaves hold only signed zeros, equal but of different bits: the
+    // first of equals in the CPU's order must win, in leaves and in nodes.
+    // Others hold few distinct values, or any.
+    const float pool[] = {0.0f, -0.0f, 1.5f, -2.25f, 3.0f, -3.0f, 0.125f, 7.0f};
+    for (uint32_t leaf = 0; leaf < count; ++leaf) {
+        const uint32_t mode = rng() % 3;
+        for (uint32_t v = 0; v < 512; ++v) {
+            uint32_t w;
+            if (intValues) w = uint32_t(int32_t(rng() % 64) - 32);
+            else if (mode < 2) std::memcpy(&w, &pool[rng() % (mode == 0 ? 2 : 8)], 4);
+            else {
+                const float f = std::uniform_real_distribution<float>(-100.0f, 100.0f)(rng);
+                std::memcpy(&w, &f, 4);
+            }
+            in.words.push_back(w);
+        }
+    }
+    return in;
+}
+
+gl::NanoGridHeader header(const std::string& name, uint32_t gridClass, double background)
+{
+    gl::NanoGridHeader h;
+    h.name = name;
+    h.gridClass = gridClass;
+    h.voxelSize = 0.037;
+    h.translation = {-1.25, 0.5, 3.0 / 7.0};
+    h.background = background;
+    return h;
+}
+
+TEST_F(GpuNanoGrid, RandomFloatLeavesEqualTheCpuBuilder)
+{
+    for (const uint32_t count : {1u, 2u, 37u, 300u}) {
+        SCOPED_TRACE(count);
+        expectSameAsCpu<float>(randomLeaves(count, 1024, true, count), header("sdf", 1, 0.2));
+        expectSameAsCpu<float>(randomLeaves(count, 9000, true, count + 1), header("fog", 2, 0.0));
+        expectSameAsCpu<float>(randomLeaves(count, 300, false, count + 2), header("background only", 0, -3.5));
+    }
+}
+
+TEST_F(GpuNanoGrid, DeviceInputEqualsTheCpuBuilder)
+{
+    expectSameAsCpu<float>(randomLeaves(200, 2048, true, 7), header("udf", 0, 2.5), true);
+    expectSameAsCpu<nanovdb::ValueMask>(randomLeaves(200, 2048, false, 8), header("topology", 0, 0.0), true);
+}
+
+TEST_F(GpuNanoGrid, MaskBoolAndInt32LeavesEqualTheCpuBuilder)
+{
+    for (const uint32_t count : {1u, 50u, 400u}) {
+        SCOPED_TRACE(count);
+        expectSameAsCpu<nanovdb::ValueMask>(randomLeaves(count, 5000, false, 10 * count), header("topology", 6, 0.0));
+        expectSameAsCpu<bool>(randomLeaves(count, 5000, false, 10 * count + 1), header("mask", 0, 0.0));
+        expectSameAsCpu<bool>(randomLeaves(count, 700, true, 10 * count + 2, true), header("bools", 0, 1.0));
+        expectSameAsCpu<int32_t>(randomLeaves(count, 3000, true, 10 * count + 3, true), header("closest", 0, -1.0));
+    }
+}
+
+TEST_F(GpuNanoGrid, NoLeavesGiveAnEmptyGrid)
+{
+    expectSameAsCpu<float>(Leaves{}, header("empty", 1, 3.0));
+    expectSameAsCpu<nanovdb::ValueMask>(Leaves{}, header("empty", 6, 0.0));
+}
+
+TEST_F(GpuNanoGrid, BadLeavesAreRefused)
+{
+    Leaves in = randomLeaves(20, 512, false, 3);
+    gl::NanoLeaves leaves;
+    leaves.count = uint32_t(in.origins.size());
+    leaves.origins = in.origins.data();
+    leaves.masks = in.masks.data();
+    in.origins[5] = in.origins[11];
+    EXPECT_THROW(gl::buildNanoGridGpu(device.context(), gl::NanoKind::Mask, leaves, header("twice", 0, 0.0)), InvalidInput);
+    in.origins[5] = {8, 4, 0};
+    EXPECT_THROW(gl::buildNanoGridGpu(device.context(), gl::NanoKind::Mask, leaves, header("odd", 0, 0.0)), InvalidInput);
+    EXPECT_THROW(gl::buildNanoGridGpu(device.context(), gl::NanoKind::Mask, leaves, header(std::string(256, 'n'), 0, 0.0)),
+                 InvalidInput);
+}
+
+/// The leaves of a NanoVDB grid, shuffled (the GPU sorts them).
+template <typename BuildT>
+Leaves leavesOf(const nanovdb::NanoGrid<BuildT>& grid, bool values, uint32_t seed)
+{
+    Leaves in;
+    const auto& tree = grid.tree();
+    const auto* leaf = tree.template getFirstNode<0>();
+    for (uint32_t i = 0; i < tree.nodeCount(0); ++i, ++leaf) {
+        const auto o = leaf->origin();
+        in.origins.push_back({o[0], o[1], o[2]});
+        Brick b;
+        for (uint32_t w = 0; w < 8; ++w) b.words[w] = leaf->valueMask().template getWord<uint64_t>(w);
+        in.masks.push_back(b);
+        if (values)
+            for (uint32_t v = 0; v < 512; ++v) {
+                const auto value = leaf->getValue(v);
+                uint32_t w = 0;
+                std::memcpy(&w, &value, sizeof value);
+                in.words.push_back(w);
+            }
+    }
+    // The same permutation for origins, masks and values.
+    std::vector<uint32_t> order(in.origins.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), std::mt19937(seed));
+    Leaves out;
+    for (uint32_t i : order) {
+        out.origins.push_back(in.origins[i]);
+        out.masks.push_back(in.masks[i]);
+        if (values) out.words.insert(out.words.end(), in.words.begin() + 512 * i, in.words.begin() + 512 * (i + 1));
+    }
+    return out;
+}
+
+template <typename BuildT>
+gl::NanoGridHeader headerOf(const nanovdb::NanoGrid<BuildT>& grid)
+{
+    gl::NanoGridHeader h;
+    h.name = grid.gridName();
+    h.gridClass = uint32_t(grid.gridClass());
+    h.voxelSize = grid.voxelSize()[0];
+    for (int i = 0; i < 3; ++i) h.translation[size_t(i)] = grid.map().mVecD[i];
+    if constexpr (!std::is_same_v<BuildT, nanovdb::ValueMask>) h.background = double(grid.tree().background());
+    return h;
+}
+
+/// A mesh's octree (the GL voxelizer) and its distance bricks: the CPU
+/// builder's grids of them (vdb_io's nanovdb_grids.h), rebuilt on the GPU
+/// from their leaves.
+TEST_F(GpuNanoGrid, MeshGridsEqualTheCpuBuilder)
+{
+    const TriangleMesh mesh = test::sphere({0.3, -0.2, 0.1}, 1.0, 48, 24);
+    const GridSpec grid = makeGrid(mesh, {96, 0.0});
+    VoxelizeSettings settings;
+    settings.backend = Backend::Raster;
+    settings.attributes = kNormals | kTriangles;
+    VoxelizeStats stats;
+    const Octree octree = gl::voxelizeMesh(device, mesh, grid, settings, Checkpoint{}, stats);
+    GridOptions fog;
+    fog.fog = true;
+    const auto surface = vdb::octreeToNanoGrids(octree, fog);
+    ASSERT_GE(surface.size(), 2u);
+    const auto* topology = surface[0].grid<nanovdb::ValueMask>();
+    const auto* density = surface[1].grid<float>();
+    ASSERT_NE(topology, nullptr);
+    ASSERT_NE(density, nullptr);
+    ASSERT_GT(topology->tree().nodeCount(0), 100u);
+    expectSameAsCpu<nanovdb::ValueMask>(leavesOf(*topology, false, 1), headerOf(*topology));
+    expectSameAsCpu<float>(leavesOf(*density, true, 2), headerOf(*density));
+
+    LevelSetOptions ls;
+    ls.sign = SignOptions(SignMethod::Winding);
+    ls.closestTriangle = true;
+    ls.interiorBand = 2.0;
+    const DistanceBricks field = gl::levelSetBricks(device, mesh, grid, ls, settings, Checkpoint{}, stats);
+    const auto levelSet = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
+    ASSERT_EQ(levelSet.size(), 2u);
+    const auto* sdf = levelSet[0].grid<float>();
+    const auto* closest = levelSet[1].grid<int32_t>();
+    ASSERT_NE(sdf, nullptr);
+    ASSERT_NE(closest, nullptr);
+    expectSameAsCpu<float>(leavesOf(*sdf, true, 3), headerOf(*sdf));
+    expectSameAsCpu<int32_t>(leavesOf(*closest, true, 4), headerOf(*closest));
+}
+
+} // namespace
+} // namespace svo
