@@ -351,23 +351,35 @@ TEST(Winding, PiecesTileTheirTriangles)
     EXPECT_EQ(none.positions, p);
 }
 
-// Large triangles (a box with one face missing, 60 voxels a side: its
-// faces are cut into pieces of at most 8 voxels): the winding number the
-// walk sums at every brick centre, on the GPU, against every original
-// triangle's exact solid angle. Whole, the box's 10 triangles make leaves
-// that every centre opens, so every solid angle is exact (error 7e-7); in
-// pieces the far field takes over a few pieces away, and the error is the
-// far field's, as on a fine mesh (the icosphere above: 0.0035): measured
-// 0.0074 RMS, 0.022 at most, and of the third order in beta still.
+// Large triangles among small ones (a box with one face missing, 60
+// voxels a side, and a sphere of 1,280 triangles inside it: the box's faces
+// are cut into pieces, the sphere's triangles kept whole): the winding
+// number the walk sums at every brick centre, on the GPU, against every
+// original triangle's exact solid angle. Whole, the box's 10 triangles
+// make leaves that every centre opens, so their solid angles are all
+// exact; in pieces the far field takes over a few pieces away, and the
+// error is the far field's, as on a fine mesh (the icosphere above: 0.0035
+// RMS), and of the third order in beta still. Measured on llvmpipe: RMS
+// 0.0023 whole, 0.0080 in pieces (at most 0.011 and 0.052), 0.00021 in
+// pieces at beta 3. A box alone is left whole.
 TEST(Winding, PiecesKeepTheFarFieldAccurate)
 {
     TriangleMesh open = box({0, 0, 0}, {1, 1, 1});
     open.triangles.erase(open.triangles.begin() + 2, open.triangles.begin() + 4);
+    {
+        const GridSpec grid = makeGrid(open, GridRequest{60, 0});
+        const WindingTree alone = buildWindingTree(gl::localPositions(open, grid), open.triangles);
+        EXPECT_EQ(alone.triangles, open.triangles);
+    }
+    const TriangleMesh ball = icosphere({0.5, 0.5, 0.5}, 0.3, 3);
+    const auto base = uint32_t(open.positions.size());
+    open.positions.insert(open.positions.end(), ball.positions.begin(), ball.positions.end());
+    for (auto t : ball.triangles) open.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
     const GridSpec grid = makeGrid(open, GridRequest{60, 0});
     const std::vector<Vec3d> local = gl::localPositions(open, grid);
     const WindingTree cut = buildWindingTree(local, open.triangles);
     const WindingTree whole = buildWindingTree(local, open.triangles, INFINITY);
-    EXPECT_GT(cut.triangles.size(), 20 * open.triangles.size());
+    EXPECT_GT(cut.triangles.size(), open.triangles.size() + 200);
     EXPECT_EQ(whole.triangles.size(), open.triangles.size());
     gl::Context context;
     gl::WindingRequest request;
@@ -390,11 +402,14 @@ TEST(Winding, PiecesKeepTheFarFieldAccurate)
     const auto [rmsWhole, maxWhole] = errors(whole, 1.5);
     const auto [rms1, max1] = errors(cut, 1.5);
     const auto [rms2, max2] = errors(cut, 3.0);
-    std::cout << "[ winding  ] open box, rms (max) error at beta 1.5 whole: " << rmsWhole << " (" << maxWhole
+    std::cout << "[ winding  ] open box and sphere, rms (max) error at beta 1.5 whole: " << rmsWhole << " (" << maxWhole
               << "), in pieces: " << rms1 << " (" << max1 << "), in pieces at beta 3: " << rms2 << " (" << max2 << ")\n";
     EXPECT_LT(rms1, 1e-2);
-    EXPECT_LT(max1, 5e-2);
+    EXPECT_LT(max1, 0.1);
     EXPECT_GT(rms1 / rms2, 6.0);
+    // What the pieces cost in accuracy, a larger beta buys back.
+    EXPECT_LT(rms2, rmsWhole);
+    EXPECT_LT(max2, maxWhole);
 }
 
 // Winding-number walks diverge, so they cannot be cut to fit that limit: a

@@ -12,8 +12,8 @@
 /// instead of adding; no method based on the triangles alone can tell.
 ///
 /// The tree is built over pieces of the triangles (winding_pieces.h: those
-/// with an edge longer than kWindingPieceEdge are cut, so that no leaf is
-/// large because one of its triangles is). It is a bounding-volume
+/// with an edge much longer than most triangles' are cut, so that no leaf
+/// is large because one of its triangles is). It is a bounding-volume
 /// hierarchy split at the median along the longest axis of the pieces'
 /// centroids, with at most kWindingLeafSize pieces a leaf. Every node keeps its triangles' far field expanded to
 /// second order about c, their area-weighted centroid (Barill et al. 2018):
@@ -42,10 +42,16 @@ namespace svo {
 
 /// Triangles in one leaf of the winding tree, at most.
 inline constexpr uint32_t kWindingLeafSize = 8;
-/// The longest edge of a piece of the tree, in the positions' units (svo
-/// builds the tree in local voxels): shorter pieces make more nodes to
-/// visit, longer ones more exact solid angles.
+/// The longest edge of a piece of the tree, at least, in the positions'
+/// units (svo builds the tree in local voxels): shorter pieces make more
+/// nodes to visit, longer ones more exact solid angles.
 inline constexpr double kWindingPieceEdge = 8.0;
+/// ... and at least this many times the median of the triangles' longest
+/// edges: large triangles among small ones are cut (their leaves would be
+/// opened from afar, the small triangles in them evaluated exactly), a mesh
+/// of triangles of one size is left whole (a single triangle spanning the
+/// grid is cheapest whole: one exact solid angle a point).
+inline constexpr double kWindingPieceMedians = 4.0;
 /// The most pieces a tree is built over, per triangle (at least 2^20 in
 /// all): past it the pieces are cut twice as long, and so on.
 inline constexpr size_t kWindingPiecesPerTriangle = 4;
@@ -72,7 +78,8 @@ struct WindingTree {
 };
 
 /// Builds the tree for triangles over `positions` (any frame; svo uses
-/// local voxel coordinates), cut into pieces of edges at most @a pieceEdge
+/// local voxel coordinates), cut into pieces of edges at most the larger of
+/// @a pieceEdge and kWindingPieceMedians times the median longest edge
 /// (within the budget of kWindingPiecesPerTriangle). Degenerate triangles
 /// are kept (their area vector is zero, their solid angle zero).
 /// @param pieceEdge the longest edge of a piece; infinity keeps the triangles whole
