@@ -98,8 +98,6 @@ inline float farTerm(float dx, float dy, float dz, float d2, const float* e)
 /// What every walk reads.
 struct Walk {
     const WindingTree& tree;
-    const std::vector<Vec3d>& local;
-    const TriangleMesh& mesh;
     float beta2;
 
     /// Whether node n is farther than beta radii from qf; if so adds its term.
@@ -116,8 +114,9 @@ struct Walk {
 
     float triangleAt(uint32_t t, const Vec3d& q) const
     {
-        const auto& f = mesh.triangles[t];
-        return solidAngle(local[f[0]] - q, local[f[1]] - q, local[f[2]] - q);
+        const auto& f = tree.triangles[t];
+        const auto& p = tree.positions;
+        return solidAngle(p[f[0]] - q, p[f[1]] - q, p[f[2]] - q);
     }
 
     /// The winding number at q (winding_number.comp's windingNumber).
@@ -145,10 +144,12 @@ struct Walk {
 
     /// The inside voxels of the brick at `origin`: one walk for its 512
     /// centres, each node visited for the mask of centres whose own walk
-    /// reaches it, in the order their own walks would visit it. A node
-    /// reached by many centres is evaluated for all 512 in one loop the
-    /// compiler vectorizes (the same IEEE operations, lane by lane; centres
-    /// not in the mask add 0, which leaves a sum as it is).
+    /// reaches it, in the order their own walks would visit it. The centres
+    /// of a mask are gathered into a list first, and a node's far terms or
+    /// a leaf triangle's solid angles are computed over the list in one loop
+    /// the compiler vectorizes (the same IEEE operations, lane by lane), then
+    /// added to each centre's sum: only the centres whose walk reaches a
+    /// node pay for it. A node that all 512 reach skips the list.
     // AVX2 where the CPU has it: twice the lanes, the same IEEE operations
     // (no FMA: -ffp-contract=off), so the same bits.
     __attribute__((target_clones("avx2", "default"))) Brick brick(const std::array<uint32_t, 3>& origin) const
@@ -160,7 +161,12 @@ struct Walk {
         Entry stack[2 * kWalkStack + 2];
         alignas(64) float sum[512] = {};
         alignas(64) float qx[512], qy[512], qz[512];
-        alignas(64) int32_t reached[512], farAt[512];
+        // The gathered centres of the node at hand: their index, coordinates
+        // (float for far terms, double for solid angles) and term.
+        alignas(64) uint32_t lane[512];
+        alignas(64) float gx[512], gy[512], gz[512], term[512];
+        alignas(64) double hx[512], hy[512], hz[512];
+        alignas(64) int32_t isFar[512];
         for (uint32_t v = 0; v < 512; ++v) {
             qx[v] = float(origin[0] + (v >> 6));
             qy[v] = float(origin[1] + ((v >> 3) & 7));
@@ -169,63 +175,66 @@ struct Walk {
         uint32_t top = 1;
         stack[0].node = 0;
         std::fill(stack[0].mask, stack[0].mask + 8, ~uint64_t(0));
-        const auto centre = [&](uint32_t v) {
-            return Vec3d{double(origin[0] + (v >> 6)), double(origin[1] + ((v >> 3) & 7)), double(origin[2] + (v & 7))};
-        };
         while (top > 0) {
             const Entry e = stack[--top];
+            const float* cr = &tree.nodes[size_t(kWindingNodeFloats) * e.node];
+            const float* ex = cr + 4;
+            const float reach2 = beta2 * cr[3] * cr[3];
             uint64_t near[8] = {};
-            bool anyNear = false;
-            uint32_t count = 0;
-            for (int w = 0; w < 8; ++w) count += uint32_t(__builtin_popcountll(e.mask[w]));
-            if (count >= 96) {
-                const float* cr = &tree.nodes[size_t(kWindingNodeFloats) * e.node];
-                const float* ex = cr + 4;
-                const float reach2 = beta2 * cr[3] * cr[3];
-                for (uint32_t v = 0; v < 512; ++v) reached[v] = -int32_t((e.mask[v >> 6] >> (v & 63)) & 1);
+            uint32_t nearCount = 0;
+            bool full = true;
+            for (int w = 0; w < 8; ++w) full &= e.mask[w] == ~uint64_t(0);
+            if (full) {
+                // Every centre reached (the tree's upper levels): no list to
+                // gather; the centres that are near add 0.
                 for (uint32_t v = 0; v < 512; ++v) {
                     const float dx = cr[0] - qx[v], dy = cr[1] - qy[v], dz = cr[2] - qz[v];
                     const float d2 = dx * dx + dy * dy + dz * dz;
-                    const bool isFar = d2 > reach2;
+                    isFar[v] = d2 > reach2 ? -1 : 0;
                     const float t = farTerm(dx, dy, dz, d2, ex);
-                    farAt[v] = isFar ? -1 : 0;
-                    sum[v] += (reached[v] & farAt[v]) ? t : 0.0f;
+                    sum[v] += isFar[v] ? t : 0.0f;
                 }
                 for (uint32_t v = 0; v < 512; ++v)
-                    if (reached[v] & ~farAt[v]) near[v >> 6] |= uint64_t(1) << (v & 63), anyNear = true;
+                    if (!isFar[v]) near[v >> 6] |= uint64_t(1) << (v & 63), lane[nearCount++] = v;
             } else {
+                uint32_t count = 0;
                 for (int w = 0; w < 8; ++w)
                     for (uint64_t m = e.mask[w]; m; m &= m - 1) {
                         const uint32_t v = uint32_t(64 * w + __builtin_ctzll(m));
-                        if (!far(e.node, qx[v], qy[v], qz[v], sum[v])) near[w] |= m & -m, anyNear = true;
+                        lane[count] = v, gx[count] = qx[v], gy[count] = qy[v], gz[count] = qz[v];
+                        ++count;
                     }
+                for (uint32_t i = 0; i < count; ++i) {
+                    const float dx = cr[0] - gx[i], dy = cr[1] - gy[i], dz = cr[2] - gz[i];
+                    const float d2 = dx * dx + dy * dy + dz * dz;
+                    isFar[i] = d2 > reach2 ? -1 : 0;
+                    term[i] = farTerm(dx, dy, dz, d2, ex);
+                }
+                // The near centres, compacted in place (in mask order still).
+                for (uint32_t i = 0; i < count; ++i) {
+                    const uint32_t v = lane[i];
+                    if (isFar[i]) {
+                        sum[v] += term[i];
+                    } else {
+                        near[v >> 6] |= uint64_t(1) << (v & 63);
+                        lane[nearCount++] = v;
+                    }
+                }
             }
-            if (!anyNear) continue;
+            if (nearCount == 0) continue;
             const uint32_t l0 = tree.links[2 * size_t(e.node)], l1 = tree.links[2 * size_t(e.node) + 1];
             if (l1 & gpu::kWindingLeaf) {
+                for (uint32_t i = 0; i < nearCount; ++i)
+                    hx[i] = double(qx[lane[i]]), hy[i] = double(qy[lane[i]]), hz[i] = double(qz[lane[i]]);
                 const uint32_t last = l0 + (l1 & ~gpu::kWindingLeaf);
-                uint32_t nearCount = 0;
-                for (int w = 0; w < 8; ++w) nearCount += uint32_t(__builtin_popcountll(near[w]));
-                const bool dense = nearCount >= 96;
-                if (dense)
-                    for (uint32_t v = 0; v < 512; ++v) reached[v] = -int32_t((near[v >> 6] >> (v & 63)) & 1);
-                for (uint32_t i = l0; i < last; ++i) {
-                    const auto& f = mesh.triangles[tree.order[i]];
-                    const Vec3d &a = local[f[0]], &b = local[f[1]], &c = local[f[2]];
-                    if (dense) { // all 512 centres in one vectorized loop, 0 added where not near
-                        for (uint32_t v = 0; v < 512; ++v) {
-                            const Vec3d q{double(qx[v]), double(qy[v]), double(qz[v])};
-                            const float t = solidAngle(a - q, b - q, c - q);
-                            sum[v] += reached[v] ? t : 0.0f;
-                        }
-                        continue;
+                for (uint32_t j = l0; j < last; ++j) {
+                    const auto& f = tree.triangles[tree.order[j]];
+                    const Vec3d a = tree.positions[f[0]], b = tree.positions[f[1]], c = tree.positions[f[2]];
+                    for (uint32_t i = 0; i < nearCount; ++i) {
+                        const Vec3d q{hx[i], hy[i], hz[i]};
+                        term[i] = solidAngle(a - q, b - q, c - q);
                     }
-                    for (int w = 0; w < 8; ++w)
-                        for (uint64_t m = near[w]; m; m &= m - 1) {
-                            const uint32_t v = uint32_t(64 * w + __builtin_ctzll(m));
-                            const Vec3d q = centre(v);
-                            sum[v] += solidAngle(a - q, b - q, c - q);
-                        }
+                    for (uint32_t i = 0; i < nearCount; ++i) sum[lane[i]] += term[i];
                 }
             } else {
                 stack[top].node = l0;
@@ -258,12 +267,11 @@ void checkDepth(const WindingTree& tree)
 
 } // namespace
 
-std::vector<float> windingAtBrickCentres(const WindingTree& tree, const std::vector<Vec3d>& local,
-                                         const TriangleMesh& mesh, const GridSpec& grid, double beta,
+std::vector<float> windingAtBrickCentres(const WindingTree& tree, const GridSpec& grid, double beta,
                                          const Checkpoint& checkpoint)
 {
     checkDepth(tree);
-    const Walk walk{tree, local, mesh, beta2Of(beta)};
+    const Walk walk{tree, beta2Of(beta)};
     std::array<uint64_t, 3> d{};
     for (int a = 0; a < 3; ++a) d[a] = (grid.dims[a] + 7) / 8;
     const uint64_t n = d[0] * d[1] * d[2];
@@ -286,11 +294,11 @@ std::vector<float> windingAtBrickCentres(const WindingTree& tree, const std::vec
     return out;
 }
 
-std::vector<Brick> windingInside(const WindingTree& tree, const std::vector<Vec3d>& local, const TriangleMesh& mesh,
-                                 const std::vector<BrickCoord>& bricks, double beta, const Checkpoint& checkpoint)
+std::vector<Brick> windingInside(const WindingTree& tree, const std::vector<BrickCoord>& bricks, double beta,
+                                 const Checkpoint& checkpoint)
 {
     checkDepth(tree);
-    const Walk walk{tree, local, mesh, beta2Of(beta)};
+    const Walk walk{tree, beta2Of(beta)};
     std::vector<Brick> out(bricks.size());
     constexpr size_t kBatch = 256;
     for (size_t first = 0; first < bricks.size(); first += kBatch) {

@@ -13,6 +13,7 @@
 
 #include "svo/core/error.h"
 #include "svo/core/gpu_layout.h"
+#include "svo/core/winding_pieces.h"
 
 static_assert(svo::kWindingNodeFloats == 4 * svo::gpu::kWindingNodeVec4s);
 
@@ -177,14 +178,42 @@ struct Builder {
     }
 };
 
+/// The longest edge of a piece: at least `least`, and kWindingPieceMedians
+/// times the median of the triangles' longest edges.
+double pieceEdgeFor(const std::vector<Vec3d>& p, const std::vector<std::array<uint32_t, 3>>& t, double least)
+{
+    if (!(least < INFINITY)) return least;
+    std::vector<double> longest(t.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, t.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const Vec3d &a = p[t[i][0]], &b = p[t[i][1]], &c = p[t[i][2]];
+            longest[i] = std::sqrt(std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)}));
+        }
+    });
+    const auto middle = longest.begin() + std::ptrdiff_t(longest.size() / 2);
+    std::nth_element(longest.begin(), middle, longest.end());
+    return std::max(least, kWindingPieceMedians * *middle);
+}
+
 } // namespace
 
-WindingTree buildWindingTree(const std::vector<Vec3d>& positions, const std::vector<std::array<uint32_t, 3>>& triangles)
+WindingTree buildWindingTree(const std::vector<Vec3d>& input, const std::vector<std::array<uint32_t, 3>>& faces,
+                             double pieceEdge)
 {
-    if (triangles.empty()) throw InvalidInput("a winding tree needs at least one triangle");
-    if (triangles.size() >= (size_t(1) << 31))
-        throw Unsupported(fmt::format("{} triangles are more than a winding tree holds (2^31)", triangles.size()));
+    if (faces.empty()) throw InvalidInput("a winding tree needs at least one triangle");
+    if (faces.size() >= (size_t(1) << 31))
+        throw Unsupported(fmt::format("{} triangles are more than a winding tree holds (2^31)", faces.size()));
     WindingTree tree;
+    {
+        const size_t budget = std::min(std::max(faces.size() * kWindingPiecesPerTriangle, size_t(1) << 20),
+                                       (size_t(1) << 31) - 1);
+        WindingPieces pieces = cutLongTriangles(input, faces, pieceEdgeFor(input, faces, pieceEdge), budget);
+        tree.positions = std::move(pieces.positions);
+        tree.triangles = std::move(pieces.triangles);
+        tree.pieceEdge = pieces.edge;
+    }
+    const std::vector<Vec3d>& positions = tree.positions;
+    const std::vector<std::array<uint32_t, 3>>& triangles = tree.triangles;
     Builder b{positions, triangles, std::vector<Vec3d>(triangles.size()), tree};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {

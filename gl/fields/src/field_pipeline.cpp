@@ -126,7 +126,7 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     coarse.beta = beta;
     coarse.checkpoint = checkpoint.part(0.0, 0.3);
     RunStats centresReport;
-    WindingResult centres = computeWinding(context, mesh, g, tree, coarse, &centresReport);
+    WindingResult centres = computeWinding(context, g, tree, coarse, &centresReport);
     for (auto& st : centresReport.stages) stats.stages.push_back(std::move(st));
 
     FieldSigns signs;
@@ -140,7 +140,7 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     fine.checkpoint = checkpoint.part(0.3, 1.0);
     stats.windingBricks = beyond.voxelwise.size();
     RunStats voxelsReport;
-    WindingResult voxels = computeWinding(context, mesh, g, tree, fine, &voxelsReport);
+    WindingResult voxels = computeWinding(context, g, tree, fine, &voxelsReport);
     for (auto& st : voxelsReport.stages) stats.stages.push_back(std::move(st));
     stats.gpuBytes = std::max({stats.gpuBytes, centresReport.gpuBytes, voxelsReport.gpuBytes});
     signs.inside.assign(voxels.inside.begin(), voxels.inside.begin() + std::ptrdiff_t(band.size()));
@@ -158,7 +158,7 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
     const WindingTree tree = buildWindingTree(local, mesh.triangles);
     stats.stages.push_back({"winding tree", -1, msSince(t0)});
     t0 = Clock::now();
-    const std::vector<float> centres = windingAtBrickCentres(tree, local, mesh, g, beta, checkpoint.part(0.0, 0.3));
+    const std::vector<float> centres = windingAtBrickCentres(tree, g, beta, checkpoint.part(0.0, 0.3));
     stats.stages.push_back({"winding bricks (cpu)", -1, msSince(t0)});
     t0 = Clock::now();
     const std::array<uint32_t, 3> dims{(g.dims[0] + 7) / 8, (g.dims[1] + 7) / 8, (g.dims[2] + 7) / 8};
@@ -169,7 +169,7 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
     std::vector<BrickCoord> fine = band;
     fine.insert(fine.end(), beyond.voxelwise.begin(), beyond.voxelwise.end());
     stats.windingBricks = beyond.voxelwise.size();
-    std::vector<Brick> inside = windingInside(tree, local, mesh, fine, beta, checkpoint.part(0.3, 1.0));
+    std::vector<Brick> inside = windingInside(tree, fine, beta, checkpoint.part(0.3, 1.0));
     stats.stages.push_back({"winding voxels (cpu)", -1, msSince(t0)});
     signs.inside.assign(inside.begin(), inside.begin() + std::ptrdiff_t(band.size()));
     for (size_t i = band.size(); i < fine.size(); ++i)

@@ -26,8 +26,7 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 
 } // namespace
 
-WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
-                             const WindingTree& tree, const WindingRequest& request, RunStats* report)
+WindingResult computeWinding(Context& context, const GridSpec& grid, const WindingTree& tree, const WindingRequest& request, RunStats* report)
 {
     if (!(request.beta > 0)) throw InvalidInput(fmt::format("a winding accuracy (beta) of {}: it must be positive", request.beta));
     if (tree.depth + 1 > gpu::kWindingStack)
@@ -46,14 +45,13 @@ WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const G
     request.checkpoint(0.0, "winding upload");
 
     auto t0 = Clock::now();
-    const std::vector<Vec3d> local = localPositions(mesh, grid);
     std::vector<uint32_t> brickWords(std::max<uint64_t>(nb, 1) * 3, 0);
     for (uint64_t i = 0; i < nb; ++i)
         for (int a = 0; a < 3; ++a) brickWords[3 * i + a] = request.bricks[i][a];
     TimerQuery uploadTimer;
     uploadTimer.begin();
-    const Buffer positions("winding positions", local.size() * sizeof(Vec3d), local.data());
-    const Buffer indices("winding indices", mesh.triangles.size() * 12, mesh.triangles.data());
+    const Buffer positions("winding positions", tree.positions.size() * sizeof(Vec3d), tree.positions.data());
+    const Buffer indices("winding indices", tree.triangles.size() * 12, tree.triangles.data());
     const Buffer nodes("winding nodes", tree.nodes.size() * 4, tree.nodes.data());
     const Buffer links("winding links", tree.links.size() * 4, tree.links.data());
     const Buffer order("winding order", tree.order.size() * 4, tree.order.data());

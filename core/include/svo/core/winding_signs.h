@@ -40,14 +40,13 @@ inline constexpr float kWindingMargin = 0.25f;
 
 /// @brief The winding number at the centre of every brick of @a grid's box
 /// (brick b's centre is 8 b + 3.5 in local coordinates), on the CPU.
-/// @param tree  built from @a local and the mesh's triangles (buildWindingTree)
-/// @param local the mesh's positions in @a grid's local frame (localPositions)
+/// @param tree  built from the mesh's positions in @a grid's local frame
+///              (localPositions) and its triangles (buildWindingTree)
 /// @param beta  the far-field threshold (SignOptions::windingAccuracy)
 /// @param checkpoint polled on the calling thread between batches
 /// @return x-fastest over the box of ceil(dims / 8) bricks
 /// @throw svo::Unsupported for a box of more than 2^31 bricks; svo::Interrupted.
-std::vector<float> windingAtBrickCentres(const WindingTree& tree, const std::vector<Vec3d>& local,
-                                         const TriangleMesh& mesh, const GridSpec& grid, double beta,
+std::vector<float> windingAtBrickCentres(const WindingTree& tree, const GridSpec& grid, double beta,
                                          const Checkpoint& checkpoint);
 
 /// @brief Per brick of a list, the voxels whose centre's winding number is
@@ -55,8 +54,8 @@ std::vector<float> windingAtBrickCentres(const WindingTree& tree, const std::vec
 /// @param bricks brick coordinates (local voxel coordinate / 8)
 /// @return per brick, in list order, the inside voxels (bit order of Brick)
 /// @throw svo::Interrupted from the checkpoint.
-std::vector<Brick> windingInside(const WindingTree& tree, const std::vector<Vec3d>& local, const TriangleMesh& mesh,
-                                 const std::vector<BrickCoord>& bricks, double beta, const Checkpoint& checkpoint);
+std::vector<Brick> windingInside(const WindingTree& tree, const std::vector<BrickCoord>& bricks, double beta,
+                                 const Checkpoint& checkpoint);
 
 /// What the bricks beyond a band take from their centres' winding numbers.
 struct BricksBeyondBand {

@@ -11,9 +11,11 @@
 /// overlapping parts. Triangles with inconsistent orientation subtract
 /// instead of adding; no method based on the triangles alone can tell.
 ///
-/// The tree is a bounding-volume hierarchy split at the median along the
-/// longest axis of the triangles' centroids, with at most kWindingLeafSize
-/// triangles a leaf. Every node keeps its triangles' far field expanded to
+/// The tree is built over pieces of the triangles (winding_pieces.h: those
+/// with an edge much longer than most triangles' are cut, so that no leaf
+/// is large because one of its triangles is). It is a bounding-volume
+/// hierarchy split at the median along the longest axis of the pieces'
+/// centroids, with at most kWindingLeafSize pieces a leaf. Every node keeps its triangles' far field expanded to
 /// second order about c, their area-weighted centroid (Barill et al. 2018):
 /// the sum N of their area vectors (half the cross product, pointing out),
 /// the first moments C_ij = sum of a_i o_j and the second moments
@@ -40,6 +42,19 @@ namespace svo {
 
 /// Triangles in one leaf of the winding tree, at most.
 inline constexpr uint32_t kWindingLeafSize = 8;
+/// The longest edge of a piece of the tree, at least, in the positions'
+/// units (svo builds the tree in local voxels): shorter pieces make more
+/// nodes to visit, longer ones more exact solid angles.
+inline constexpr double kWindingPieceEdge = 8.0;
+/// ... and at least this many times the median of the triangles' longest
+/// edges: large triangles among small ones are cut (their leaves would be
+/// opened from afar, the small triangles in them evaluated exactly), a mesh
+/// of triangles of one size is left whole (a single triangle spanning the
+/// grid is cheapest whole: one exact solid angle a point).
+inline constexpr double kWindingPieceMedians = 4.0;
+/// The most pieces a tree is built over, per triangle (at least 2^20 in
+/// all): past it the pieces are cut twice as long, and so on.
+inline constexpr size_t kWindingPiecesPerTriangle = 4;
 /// Floats per node of WindingTree::nodes.
 inline constexpr uint32_t kWindingNodeFloats = 36;
 
@@ -52,17 +67,26 @@ struct WindingTree {
     /// 2 uints per node. Inner node: the two children. Leaf: the first entry
     /// of `order`, and the count with the top bit set.
     std::vector<uint32_t> links;
-    /// Triangle indices in leaf order.
+    /// Indices into `triangles` in leaf order.
     std::vector<uint32_t> order;
+    /// The pieces the tree holds (cutLongTriangles): the input positions,
+    /// then the corners the cuts added, and three indices into them each.
+    std::vector<Vec3d> positions;
+    std::vector<std::array<uint32_t, 3>> triangles;
+    double pieceEdge = 0; ///< the longest edge the pieces were cut to
     uint32_t depth = 0; ///< levels below the root
 };
 
 /// Builds the tree for triangles over `positions` (any frame; svo uses
-/// local voxel coordinates). Degenerate triangles are kept (their area vector
-/// is zero, their solid angle zero).
-/// @throw svo::InvalidInput when there are no triangles, svo::Unsupported for more than 2^31.
+/// local voxel coordinates), cut into pieces of edges at most the larger of
+/// @a pieceEdge and kWindingPieceMedians times the median longest edge
+/// (within the budget of kWindingPiecesPerTriangle). Degenerate triangles
+/// are kept (their area vector is zero, their solid angle zero).
+/// @param pieceEdge the longest edge of a piece; infinity keeps the triangles whole
+/// @throw svo::InvalidInput when there are no triangles, svo::Unsupported for more than 2^31 pieces.
 WindingTree buildWindingTree(const std::vector<Vec3d>& positions,
-                             const std::vector<std::array<uint32_t, 3>>& triangles);
+                             const std::vector<std::array<uint32_t, 3>>& triangles,
+                             double pieceEdge = kWindingPieceEdge);
 
 /// The signed solid angle of triangle abc seen from q, over 4 pi (van
 /// Oosterom and Strackee's formula, in double): in (-1/2, 1/2], 0 when q lies

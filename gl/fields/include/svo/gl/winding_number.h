@@ -29,7 +29,8 @@ namespace svo::gl {
 /// @brief Runs on @a context for a mesh on @a grid (both checked by the
 /// caller).
 /// @param tree    the winding tree built from the mesh in the grid's local
-///        frame (localPositions)
+///        frame (localPositions): it holds the triangles (their pieces) the
+///        walks read
 /// @param request the bricks to classify voxel by voxel, whether to evaluate
 ///        every brick centre too, and the accuracy
 /// @param report  when set, receives the stages (upload, each evaluation) and
@@ -41,8 +42,8 @@ namespace svo::gl {
 ///        svo::DeviceError or svo::OutOfMemory for a GPU buffer that cannot be
 ///        allocated or a walk the driver cut short; svo::Interrupted from the
 ///        checkpoint.
-WindingResult computeWinding(Context& context, const TriangleMesh& mesh, const GridSpec& grid,
-                             const WindingTree& tree, const WindingRequest& request, RunStats* report = nullptr);
+WindingResult computeWinding(Context& context, const GridSpec& grid, const WindingTree& tree,
+                             const WindingRequest& request, RunStats* report = nullptr);
 
 /// The mesh's positions in the grid's local voxel frame (double): what the
 /// tree is built from (svo/core/local_positions.h).
