@@ -20,6 +20,7 @@ results larger than one host, attributes (per-voxel arrays to join),
 and a test of a worker killed in the middle of a task.
 """
 import argparse
+import json
 import math
 import os
 import sys
@@ -102,11 +103,31 @@ def _plan_task(mesh, kind, keywords):
     return (box_lo, box_hi), empty
 
 
-def _tile_task(mesh, kind, keywords, box):
+def _tile_task(mesh, kind, keywords, box, output_dir=None):
     try:
-        return _call(mesh, kind, keywords, region=box)
+        grid = _call(mesh, kind, keywords, region=box)
+        if output_dir is None:
+            return grid
+        return _write_tile(grid, output_dir, box)
     except Exception as e:  # the job's error must say which tile
         raise TileError(f"tile {box[0]}..{box[1]}: {type(e).__name__}: {e}") from e
+
+
+def tile_file_name(box):
+    """The file of the tile whose box starts at box[0]: tile_X_Y_Z.vdb (index coordinates)."""
+    return "tile_{}_{}_{}.vdb".format(*box[0])
+
+
+def _write_tile(grid, output_dir, box):
+    """The tile's grid to its own .vdb in output_dir (svo's writer: a temporary
+    file renamed into place, so a killed task leaves no partial file), or no
+    file when the grid holds nothing but background. Its entry in the index."""
+    entry = {"box": [list(box[0]), list(box[1])], "file": None, "active_voxels": int(grid.activeVoxelCount())}
+    if not grid.empty():
+        os.makedirs(output_dir, exist_ok=True)  # a worker on another host may see the folder first
+        entry["file"] = tile_file_name(box)
+        svo.write(os.path.join(output_dir, entry["file"]), [grid])
+    return entry
 
 
 # --- planning ----------------------------------------------------------------
@@ -142,7 +163,7 @@ def tiles(box, tile):
 # --- the call ------------------------------------------------------------------
 
 
-def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, **keywords):
+def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, output_dir=None, **keywords):
     """Voxelize a mesh on a Dask cluster: exactly the single-process grid (the
     main grid of the call's svo.Result, returned as the grid itself).
 
@@ -155,6 +176,12 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, **k
     LocalCluster of one-thread worker processes and closes it after. tile:
     voxels per tile side, a multiple of 8 (default: about 4 tiles per worker).
     progress(done, total) is called as tiles finish.
+
+    output_dir: instead of one grid on the client, each worker writes its
+    tiles to this folder (one .vdb per tile that holds more than background,
+    named by tile_file_name), and the client writes index.json last; returns
+    the index (a dict, see write_index). The folder must be one every worker
+    and the client can write (a shared file system).
     """
     if kind not in KINDS:
         raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
@@ -172,11 +199,11 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, **k
         # The dashboard on a free port: a second cluster on the machine is no error.
         with LocalCluster(processes=True, threads_per_worker=1, dashboard_address=":0") as cluster, \
                 Client(cluster) as own:
-            return _run(own, mesh, kind, tile, progress, keywords)
-    return _run(client, mesh, kind, tile, progress, keywords)
+            return _run(own, mesh, kind, tile, progress, output_dir, keywords)
+    return _run(client, mesh, kind, tile, progress, output_dir, keywords)
 
 
-def _run(client, mesh, kind, tile, progress, keywords):
+def _run(client, mesh, kind, tile, progress, output_dir, keywords):
     from distributed import as_completed
 
     if not isinstance(mesh, (str, os.PathLike)):
@@ -190,7 +217,16 @@ def _run(client, mesh, kind, tile, progress, keywords):
     if tile is None:
         tile = default_tile(box, len(client.scheduler_info()["workers"]))
     boxes = tiles(box, tile)
-    futures = [client.submit(_tile_task, mesh, kind, keywords, b, pure=False) for b in boxes]
+    if output_dir is not None:
+        output_dir = os.path.abspath(os.fspath(output_dir))
+        os.makedirs(output_dir, exist_ok=True)
+        # An index left by an earlier job would name files this one replaces:
+        # until this job's index is written, the folder holds no index.
+        index_path = os.path.join(output_dir, INDEX_NAME)
+        if os.path.exists(index_path):
+            os.remove(index_path)
+    futures = [client.submit(_tile_task, mesh, kind, keywords, b, output_dir, pure=False) for b in boxes]
+    entries = []
     done = 0
     if progress:
         progress(done, len(boxes))
@@ -198,7 +234,10 @@ def _run(client, mesh, kind, tile, progress, keywords):
         # Joined as they arrive, so the client holds one tile's grid at a time
         # besides the result.
         for future in as_completed(futures):
-            _join_region(grid, future.result())
+            if output_dir is None:
+                _join_region(grid, future.result())
+            else:
+                entries.append(future.result())
             future.release()
             done += 1
             if progress:
@@ -207,7 +246,84 @@ def _run(client, mesh, kind, tile, progress, keywords):
         # One call for all: a failed tile (or Ctrl-C) stops the tiles still queued.
         client.cancel(futures)
         raise
-    return grid
+    if output_dir is None:
+        return grid
+    return write_index(output_dir, grid, kind, box, entries)
+
+
+# --- per-tile output -----------------------------------------------------------
+
+INDEX_NAME = "index.json"
+INDEX_FORMAT = "svo.distributed.tiles"
+
+
+def _transform_matrix(xform):
+    """A linear transform's 4x4 matrix in OpenVDB's row-vector convention
+    (world = [i j k 1] M), from where it maps the index origin and unit steps."""
+    o = xform.indexToWorld((0.0, 0.0, 0.0))
+    rows = []
+    for axis in range(3):
+        p = xform.indexToWorld(tuple(1.0 if a == axis else 0.0 for a in range(3)))
+        rows.append([p[a] - o[a] for a in range(3)] + [0.0])
+    rows.append(list(o) + [1.0])
+    return rows
+
+
+def _json_value(value):
+    if isinstance(value, (bool, int, float, str)) or value is None:
+        return value
+    if isinstance(value, (tuple, list)):
+        return [_json_value(v) for v in value]
+    return str(value)
+
+
+def write_index(output_dir, grid, kind, box, entries):
+    """Write output_dir/index.json (a temporary file renamed into place, after
+    every tile's file): what a reader needs to put the tiles together.
+
+    Keys: format ("svo.distributed.tiles"), format_version (1), svo_version,
+    kind, box (the planned box [lo, hi) in index space), grids (one entry per
+    grid each file holds: name, type, class, background, voxel_size,
+    transform as a 4x4 row-vector matrix, metadata), tiles (each tile's box
+    [lo, hi), its file relative to the folder, or null where the tile holds
+    only background, and its active voxels, in the order of their boxes), and
+    active_voxels (the sum). grid: the empty grid of the plan (transform,
+    class, name, metadata). Returns the index as a dict.
+    """
+    if hasattr(grid, "gridClass"):  # pyopenvdb
+        kind_of_grid = {"type": grid.valueTypeName, "class": grid.gridClass,
+                        "voxel_size": list(grid.transform.voxelSize()),
+                        "transform": _transform_matrix(grid.transform)}
+    else:  # svo.Grid
+        kind_of_grid = {"type": grid.type, "class": grid.grid_class, "voxel_size": list(grid.voxel_size),
+                        "transform": [[float(x) for x in row] for row in grid.transform]}
+    g = {"name": grid.name, **kind_of_grid, "background": _json_value(grid.background),
+         "metadata": {k: _json_value(v) for k, v in dict(grid.metadata).items()}}
+    entries = sorted(entries, key=lambda e: (e["box"][0], e["box"][1]))
+    index = {
+        "format": INDEX_FORMAT,
+        "format_version": 1,
+        "svo_version": svo.__version__,
+        "kind": kind,
+        "box": [list(box[0]), list(box[1])],
+        "grids": [g],
+        "tiles": entries,
+        "active_voxels": sum(e["active_voxels"] for e in entries),
+    }
+    path = os.path.join(output_dir, INDEX_NAME)
+    tmp = f"{path}.tmp-{os.getpid()}"
+    try:
+        with open(tmp, "w") as f:
+            json.dump(index, f, indent=1)
+            f.write("\n")
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
+    return index
 
 
 # --- command line ------------------------------------------------------------
@@ -233,7 +349,10 @@ def _main(argv=None):
     where = p.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=2, help="local cluster worker processes (default 2)")
     where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://host:8786")
-    p.add_argument("-o", "--output", required=True, help="the .vdb file (written atomically)")
+    out = p.add_mutually_exclusive_group(required=True)
+    out.add_argument("-o", "--output", help="the .vdb file (written atomically)")
+    out.add_argument("--tiles-dir", help="a folder every worker can write: one .vdb per tile, written by the "
+                     "workers, and index.json naming them, written last")
     args = parser.parse_args(argv)
 
     kind = "sdf" if args.sdf else "udf" if args.udf else "solid" if args.fill else "surface"
@@ -261,12 +380,14 @@ def _main(argv=None):
     try:
         if args.scheduler:
             with Client(args.scheduler) as client:
-                grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report, **keywords)
+                grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report,
+                                output_dir=args.tiles_dir, **keywords)
         else:
             with LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
                               dashboard_address=":0") as cluster, Client(cluster) as client:
                 print(f"dashboard: {client.dashboard_link}", file=sys.stderr, flush=True)
-                grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report, **keywords)
+                grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report,
+                                output_dir=args.tiles_dir, **keywords)
     except Exception as e:
         if tty:
             print(file=sys.stderr)
@@ -274,6 +395,8 @@ def _main(argv=None):
         return 1
     if tty:
         print(file=sys.stderr)
+    if args.tiles_dir:
+        return 0  # the workers wrote the tiles, voxelize the index
     # svo's writer: a temporary file beside the output, then a rename (an
     # interrupted run leaves no partial file); pyopenvdb grids or svo.Grid.
     svo.write(args.output, [grid])

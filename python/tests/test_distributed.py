@@ -1,6 +1,8 @@
 """svo.distributed against the single-process call: the tiles joined are the
 whole grid, voxel for voxel and value for value (inactive values too)."""
+import json
 import os
+import shutil
 import subprocess
 import sys
 
@@ -217,3 +219,80 @@ def test_keywords_pass_through_to_each_tile(client, voxelizer, kind, keywords):
     want = (voxelizer.voxelize if kind == "surface" else voxelizer.level_set)(v, t, resolution=RESOLUTION,
                                                                               **keywords).grid
     assert_same_grid(got, want)
+
+
+# --- per-tile output (output_dir, --tiles-dir) -------------------------------
+
+
+def read_one_grid(path):
+    grids, _ = pyopenvdb.readAll(str(path))
+    assert len(grids) == 1
+    return grids[0]
+
+
+def assert_tiles_are_the_single_grid(folder, index, want):
+    """Each tile's file, read by pyopenvdb (and opened by vdb_print where it is
+    installed), is the single-process grid cut to the tile's box; a tile
+    without a file holds only background; together they hold every voxel."""
+    assert index == json.loads((folder / "index.json").read_text())
+    assert index["svo_version"] == svo.__version__ and index["format"] == "svo.distributed.tiles"
+    (g,) = index["grids"]
+    assert (g["name"], g["class"], g["type"]) == (want.name, want.gridClass, want.valueTypeName)
+    assert g["background"] == want.background and g["voxel_size"] == list(want.transform.voxelSize())
+    world = np.array([1.0, 2.0, 3.0, 1.0]) @ np.array(g["transform"])
+    assert np.allclose(world[:3], want.transform.indexToWorld((1, 2, 3)), rtol=0, atol=1e-12)
+    files = [t["file"] for t in index["tiles"] if t["file"]]
+    assert len(files) >= 2 and len(set(files)) == len(files)
+    assert sorted(p.name for p in folder.iterdir()) == sorted(files + ["index.json"])  # no temporary left
+    if shutil.which("vdb_print"):
+        r = subprocess.run(["vdb_print", *[str(folder / f) for f in files]], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        assert r.stdout.count(want.name) == len(files)
+    mask = active_mask(want)
+    union = set()
+    for t in index["tiles"]:
+        lo, hi = tuple(t["box"][0]), tuple(t["box"][1])
+        inside = {v for v in mask if all(lo[a] <= v[a] < hi[a] for a in range(3))}
+        if t["file"] is None:
+            assert not inside and t["active_voxels"] == 0
+            assert (values(want, lo, hi) == want.background).all()
+            continue
+        got = read_one_grid(folder / t["file"])
+        assert type(got) is type(want) and (got.name, got.gridClass) == (want.name, want.gridClass)
+        assert got.background == want.background
+        assert got.transform.indexToWorld((1, 2, 3)) == want.transform.indexToWorld((1, 2, 3))
+        tile_mask = active_mask(got)
+        assert tile_mask == inside and got.activeVoxelCount() == t["active_voxels"]
+        assert np.array_equal(values(got, lo, hi), values(want, lo, hi))
+        union |= tile_mask
+    assert union == mask and index["active_voxels"] == want.activeVoxelCount()
+    # Nothing of the single grid lies outside the tiles' boxes.
+    lo, hi = want.evalLeafBoundingBox()
+    assert all(index["box"][0][a] <= lo[a] and hi[a] < index["box"][1][a] for a in range(3))
+
+
+@pytest.mark.parametrize("kind, shape", [("surface", "open"), ("sdf", "closed"), ("sdf", "open"), ("solid", "closed")])
+def test_per_tile_files_are_the_single_process_grid(client, voxelizer, tmp_path, kind, shape):
+    mesh = icosphere() if shape == "closed" else open_sphere()
+    folder = tmp_path / "tiles"
+    index = svo.distributed.voxelize(mesh, client=client, tile=TILE, kind=kind, resolution=RESOLUTION,
+                                     output_dir=folder)
+    assert len(index["tiles"]) >= 8
+    assert_tiles_are_the_single_grid(folder, index, single(voxelizer, mesh, kind))
+
+
+def test_the_command_line_writes_tiles_and_an_index(voxelizer, tmp_path):
+    v, t = open_sphere()
+    mesh = tmp_path / "open.obj"
+    with open(mesh, "w") as f:
+        f.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in t.tolist())
+    folder = tmp_path / "tiles"
+    folder.mkdir()
+    (folder / "index.json").write_text("{}")  # an earlier job's index: replaced
+    r = run_cli("voxelize", str(mesh), "-r", str(RESOLUTION), "--udf", "--tile", "16", "--workers", "1",
+                "--tiles-dir", str(folder))
+    assert r.returncode == 0, r.stderr
+    index = json.loads((folder / "index.json").read_text())
+    assert index["kind"] == "udf"
+    assert_tiles_are_the_single_grid(folder, index, single(voxelizer, str(mesh), "udf"))
