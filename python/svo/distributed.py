@@ -248,6 +248,11 @@ def _run(client, mesh, kind, tile, progress, output_dir, keywords):
         raise
     if output_dir is None:
         return grid
+    # A worker killed while svo's writer wrote a tile leaves its temporary
+    # file (the tile's own name + ".tmp-" + 8 hex digits); the task ran again.
+    for name in os.listdir(output_dir):
+        if name.startswith("tile_") and ".vdb.tmp-" in name:
+            os.remove(os.path.join(output_dir, name))
     return write_index(output_dir, grid, kind, box, entries)
 
 

@@ -296,3 +296,74 @@ def test_the_command_line_writes_tiles_and_an_index(voxelizer, tmp_path):
     index = json.loads((folder / "index.json").read_text())
     assert index["kind"] == "udf"
     assert_tiles_are_the_single_grid(folder, index, single(voxelizer, str(mesh), "udf"))
+
+
+# --- a worker killed in the middle of a task ---------------------------------
+
+
+@pytest.mark.parametrize("mesh_as", ["arrays", "file"])
+def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, mesh_as):
+    """The first tile task to run kills its worker process (SIGKILL, no
+    clean-up) while the task is on the worker's thread; the scheduler gives
+    the lost task to a worker again and the job's result is unchanged: one
+    grid from arrays, per-tile files from a mesh file."""
+    marker = tmp_path / "killed"
+
+    class KillOnce(distributed.WorkerPlugin):
+        # Defined here, so that Dask pickles it by value: the workers cannot import this file.
+        name = "svo-test-kill-once"
+
+        def __init__(self, marker):
+            self.marker = str(marker)
+
+        def transition(self, key, start, finish, **kwargs):
+            if finish != "executing" or not str(key).startswith("_tile_task"):
+                return
+            try:  # the first tile task of the job, on whichever worker; never again
+                fd = os.open(self.marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+            except FileExistsError:
+                return
+            import signal
+            import threading
+            import time
+
+            def kill_in_task():
+                deadline = time.monotonic() + 30
+                while time.monotonic() < deadline:
+                    for frame in sys._current_frames().values():
+                        while frame is not None and frame.f_code.co_name != "_tile_task":
+                            frame = frame.f_back
+                        if frame is not None:  # the task's thread is inside _tile_task
+                            os.write(fd, f"{key} {os.getpid()}".encode())
+                            os.close(fd)
+                            os.kill(os.getpid(), signal.SIGKILL)
+                    time.sleep(0.001)
+
+            threading.Thread(target=kill_in_task, daemon=True).start()
+
+    mesh = open_sphere()
+    if mesh_as == "file":
+        path = tmp_path / "open.obj"
+        with open(path, "w") as f:
+            f.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in mesh[0].tolist())
+            f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in mesh[1].tolist())
+        mesh = str(path)
+    folder = tmp_path / "tiles" if mesh_as == "file" else None
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
+        # Both workers up before the arrays are scattered: each then holds them,
+        # and the one left alive serves them to the killed one's successor.
+        c.wait_for_workers(2)
+        pids = set(c.run(os.getpid).values())
+        c.register_worker_plugin(KillOnce(marker))
+        got = svo.distributed.voxelize(mesh, client=c, tile=TILE, kind="sdf", resolution=RESOLUTION,
+                                       output_dir=folder)
+        killed_key, killed_pid = marker.read_text().split()
+        assert killed_key.startswith("_tile_task") and int(killed_pid) in pids
+        c.wait_for_workers(2)
+        assert int(killed_pid) not in set(c.run(os.getpid).values())  # the nanny started a new process
+    want = single(voxelizer, mesh, "sdf")
+    if folder is None:
+        assert_same_grid(got, want)
+    else:
+        assert_tiles_are_the_single_grid(folder, got, want)
