@@ -25,6 +25,8 @@ import math
 import os
 import sys
 
+import numpy as np
+
 import svo
 from svo._svo import _join_region
 
@@ -76,9 +78,10 @@ def _call(mesh, kind, keywords, region=None):
 _NOWHERE = ((2**30, 2**30, 2**30), (2**30 + 8, 2**30 + 8, 2**30 + 8))
 
 
-def _plan_task(mesh, kind, keywords):
-    """The index box that holds every value of the whole grid that is not
-    background, and an empty grid with its transform and metadata."""
+def _plan_task(mesh, kind, keywords, tile=None, workers=1):
+    """The tiles: boxes of whole leaves that cover every value of the whole
+    grid that is not background (see plan_tiles); the box they cover; an
+    empty grid with the grid's transform and metadata."""
     vertices, triangles = _mesh_arrays(mesh)
     empty = _call((vertices, triangles), kind, keywords, region=_NOWHERE)
     xform = empty.transform
@@ -100,7 +103,11 @@ def _plan_task(mesh, kind, keywords):
         margin += math.ceil(max(keywords.get("exterior_band", 3.0), keywords.get("interior_band", 3.0))) + 8
     box_lo = tuple(_floor8(math.floor(lo[a]) - margin) for a in range(3))
     box_hi = tuple(_ceil8(math.ceil(hi[a]) + margin + 1) for a in range(3))
-    return (box_lo, box_hi), empty
+    box = (box_lo, box_hi)
+    if tile is not None:
+        return tiles(box, tile), box, empty
+    leaves, weights = surface_weights(vertices, triangles, _matrix(xform))
+    return plan_tiles(box, default_tile(box, workers), leaves, weights, parts=8 * max(1, workers)), box, empty
 
 
 def _tile_task(mesh, kind, keywords, box, output_dir=None):
@@ -151,13 +158,78 @@ def default_tile(box, workers):
 
 
 def tiles(box, tile):
-    """The box cut into boxes of `tile` voxels a side (the last of each axis shorter)."""
+    """The box cut by the lattice of `tile` voxels a side whose cells start at
+    multiples of `tile` (so tiles of 128 are OpenVDB's internal nodes), cells
+    clipped to the box."""
     if tile <= 0 or tile % 8:
         raise ValueError(f"tile must be a positive multiple of 8, got {tile}")
     lo, hi = box
-    starts = [range(lo[a], hi[a], tile) for a in range(3)]
-    return [((x, y, z), (min(x + tile, hi[0]), min(y + tile, hi[1]), min(z + tile, hi[2])))
-            for x in starts[0] for y in starts[1] for z in starts[2]]
+    starts = [range(lo[a] // tile * tile, hi[a], tile) for a in range(3)]
+    return [(tuple(max(c[a], lo[a]) for a in range(3)), tuple(min(c[a] + tile, hi[a]) for a in range(3)))
+            for c in ((x, y, z) for x in starts[0] for y in starts[1] for z in starts[2])]
+
+
+def _matrix(xform):
+    """A pyopenvdb transform's 4x4 matrix (row vectors), or svo.Grid's own."""
+    if hasattr(xform, "indexToWorld"):
+        return np.array(_transform_matrix(xform))
+    return np.asarray(xform, dtype=np.float64)
+
+
+def surface_weights(vertices, triangles, matrix, chunk=1 << 20):
+    """How much work each leaf's part of the surface makes: the origins of the
+    leaves (8³ voxels, (L, 3) int64) that hold a triangle's centroid in index
+    space, and per leaf the sum over those triangles of 1 + the triangle's
+    area in voxels (the per-triangle work and about the voxels it covers).
+    matrix: the grid's 4x4 index-to-world matrix (row vectors)."""
+    vertices = np.asarray(vertices, dtype=np.float64)
+    triangles = np.asarray(triangles)
+    to_index = np.linalg.inv(matrix[:3, :3])
+    leaves, weights = [], []
+    for start in range(0, len(triangles), chunk):  # bounded memory for large meshes
+        corners = (vertices[triangles[start:start + chunk]] - matrix[3, :3]) @ to_index  # (n, 3, 3)
+        area = 0.5 * np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
+        keys, inverse = np.unique(np.floor(corners.mean(axis=1) / 8).astype(np.int64), axis=0,
+                                  return_inverse=True)
+        leaves.append(keys)
+        weights.append(np.bincount(inverse.ravel(), weights=1.0 + area, minlength=len(keys)))
+    if not leaves:
+        return np.zeros((0, 3), dtype=np.int64), np.zeros(0)
+    keys, inverse = np.unique(np.concatenate(leaves), axis=0, return_inverse=True)
+    return keys * 8, np.bincount(inverse.ravel(), weights=np.concatenate(weights), minlength=len(keys))
+
+
+def plan_tiles(box, tile, leaves, weights, parts, levels=3):
+    """Tiles balanced by the surface they hold: the lattice of `tile` (see
+    tiles), each cell whose leaves weigh more than 1/parts of the whole split
+    in eight (halves of whole leaves), recursively, at most `levels` times.
+    leaves, weights: see surface_weights. The tiles cover the box once; a
+    tile with no surface stays whole (its call is cheap: the region culls
+    the triangles away, or only fills an inside)."""
+    leaves = np.asarray(leaves, dtype=np.int64).reshape(-1, 3)
+    weights = np.asarray(weights, dtype=np.float64)
+    target = weights.sum() / max(1, parts)
+    out = []
+
+    def split(b, sel, level):
+        lo, hi = b
+        if level >= levels or weights[sel].sum() <= target or all(hi[a] - lo[a] <= 8 for a in range(3)):
+            out.append(b)
+            return
+        cuts = [(lo[a], lo[a] + _ceil8((hi[a] - lo[a]) // 2), hi[a]) if hi[a] - lo[a] > 8 else (lo[a], hi[a])
+                for a in range(3)]
+        for x0, x1 in zip(cuts[0], cuts[0][1:]):
+            for y0, y1 in zip(cuts[1], cuts[1][1:]):
+                for z0, z1 in zip(cuts[2], cuts[2][1:]):
+                    c = ((x0, y0, z0), (x1, y1, z1))
+                    p = leaves[sel]
+                    inside = np.all((p >= c[0]) & (p < c[1]), axis=1)
+                    split(c, sel[inside], level + 1)
+
+    for b in tiles(box, tile):
+        inside = np.all((leaves >= b[0]) & (leaves < b[1]), axis=1)
+        split(b, np.flatnonzero(inside), 0)
+    return sorted(out)
 
 
 # --- the call ------------------------------------------------------------------
@@ -174,7 +246,9 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
     exterior_band, sign, ...); not region, and not attributes (their arrays
     are not joined yet). client: a dask.distributed Client; None starts a
     LocalCluster of one-thread worker processes and closes it after. tile:
-    voxels per tile side, a multiple of 8 (default: about 4 tiles per worker).
+    voxels per tile side, a multiple of 8, for a lattice of equal tiles
+    (default: tiles balanced by the surface they hold, plan_tiles, from a
+    lattice of default_tile).
     progress(done, total) is called as tiles finish.
 
     output_dir: instead of one grid on the client, each worker writes its
@@ -213,10 +287,8 @@ def _run(client, mesh, kind, tile, progress, output_dir, keywords):
         mesh = os.fspath(mesh)
     # On a worker: a path is read where the tiles will read it (svo's reader
     # errors name the file), and the client needs no GL context.
-    box, grid = client.submit(_plan_task, mesh, kind, keywords, pure=False).result()
-    if tile is None:
-        tile = default_tile(box, len(client.scheduler_info()["workers"]))
-    boxes = tiles(box, tile)
+    workers = len(client.scheduler_info()["workers"])
+    boxes, box, grid = client.submit(_plan_task, mesh, kind, keywords, tile, workers, pure=False).result()
     if output_dir is not None:
         output_dir = os.path.abspath(os.fspath(output_dir))
         os.makedirs(output_dir, exist_ok=True)

@@ -367,3 +367,65 @@ def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, mesh_as)
         assert_same_grid(got, want)
     else:
         assert_tiles_are_the_single_grid(folder, got, want)
+
+
+# --- tiles balanced by the surface they hold ---------------------------------
+
+
+def test_balanced_tiles_split_where_the_surface_is():
+    box = ((-64, -64, 0), (64, 72, 128))
+    rng = np.random.default_rng(7)
+    # A dense cluster of surface in one corner leaf block, a thin spread elsewhere.
+    dense = rng.integers(0, 4, size=(200, 3)) * 8
+    sparse = rng.integers(-8, 8, size=(40, 3)) * 8 + np.array([0, 0, 64])
+    leaves = np.concatenate([dense, sparse])
+    weights = np.concatenate([np.full(200, 10.0), np.ones(40)])
+    keep = np.all((leaves >= box[0]) & (leaves < box[1]), axis=1)
+    leaves, weights = leaves[keep], weights[keep]
+    parts = svo.distributed.plan_tiles(box, 64, leaves, weights, parts=16)
+    covered = np.zeros((128, 136, 128), dtype=int)
+    target = weights.sum() / 16
+    for lo, hi in parts:
+        assert all(c % 8 == 0 for c in lo + hi)
+        assert all(lo[a] // 64 == (hi[a] - 1) // 64 for a in range(3))  # inside one cell of the lattice
+        covered[lo[0] + 64:hi[0] + 64, lo[1] + 64:hi[1] + 64, lo[2]:hi[2]] += 1
+        held = weights[np.all((leaves >= lo) & (leaves < hi), axis=1)].sum()
+        side = max(hi[a] - lo[a] for a in range(3))
+        assert held <= target or side <= 8  # split three times from 64: 8
+    assert (covered == 1).all()
+    sides = {lo: max(hi[a] - lo[a] for a in range(3)) for lo, hi in parts}
+    assert sides[(0, 0, 0)] == 8 and max(sides.values()) == 64  # small at the cluster, whole cells elsewhere
+    # No surface: the lattice itself.
+    assert svo.distributed.plan_tiles(box, 64, np.zeros((0, 3)), np.zeros(0), parts=16) == \
+        sorted(svo.distributed.tiles(box, 64))
+
+
+def test_surface_weights_put_triangles_in_their_leaves():
+    v = np.array([[0.5, 0.5, 0.5], [2, 0.5, 0.5], [0.5, 2, 0.5], [20, 20, 20], [21, 20, 20], [20, 21, 20]])
+    t = np.array([[0, 1, 2], [3, 4, 5], [3, 5, 4]])
+    m = np.diag([0.25, 0.25, 0.25, 1.0])  # 4 voxels per unit
+    m[3, :3] = (-1.0, 0.0, 0.0)
+    leaves, weights = svo.distributed.surface_weights(v, t, m)
+    # Index = ((x + 1) * 4, y * 4, z * 4): the first triangle (6,2,2) (12,2,2) (6,8,2), centroid (8,4,2),
+    # legs of 6; the other two (84,80,80) (88,80,80) (84,84,80), centroid (85.3,81.3,80), legs of 4.
+    assert leaves.tolist() == [[8, 0, 0], [80, 80, 80]]
+    assert np.allclose(weights, [1 + 0.5 * 6 * 6, 2 * (1 + 0.5 * 4 * 4)])
+
+
+def two_spheres():
+    """A fine small sphere inside the box of a coarse big one, apart: most of the surface in one corner."""
+    big_v, big_t = icosphere(1)
+    small_v, small_t = icosphere(3)
+    v = np.concatenate([big_v, small_v * 0.3 + 1.4])
+    return v, np.concatenate([big_t, small_t + len(big_v)])
+
+
+@pytest.mark.parametrize("kind", ["surface", "sdf"])
+def test_balanced_tiles_give_the_single_process_grid(client, voxelizer, kind):
+    mesh = two_spheres()
+    boxes, box, _ = client.submit(svo.distributed._plan_task, mesh, kind, {"resolution": RESOLUTION}, None, 2,
+                                  pure=False).result()
+    sides = [max(hi[a] - lo[a] for a in range(3)) for lo, hi in boxes]
+    assert min(sides) < max(sides)  # not a lattice
+    got = svo.distributed.voxelize(mesh, client=client, kind=kind, resolution=RESOLUTION)
+    assert_same_grid(got, single(voxelizer, mesh, kind))
