@@ -235,7 +235,32 @@ def plan_tiles(box, tile, leaves, weights, parts, levels=3):
 # --- the call ------------------------------------------------------------------
 
 
-def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, output_dir=None, **keywords):
+def local_cluster(workers=2, devices=None):
+    """A Dask cluster on this machine for svo: one-thread worker processes
+    (one GL context each), the dashboard on a free port.
+
+    devices: one worker per entry, each with SVO_EGL_DEVICE set to it (an
+    EGL device index, or auto/hardware/software, as Voxelizer(device=...)
+    takes), so that each worker voxelizes on its own GPU; workers is then
+    ignored. None: `workers` workers on the device svo picks by default.
+    Use it as a context manager, or close() it.
+    """
+    from distributed import LocalCluster, Nanny, Scheduler, SpecCluster
+
+    if devices is None:
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0")
+    devices = [str(d) for d in devices]
+    if not devices:
+        raise ValueError("devices: give at least one EGL device")
+    # The library reads SVO_EGL_DEVICE where the Voxelizer is given no device
+    # (svo/gl/device_options.h); the nanny sets it in the worker's process.
+    spec = {i: {"cls": Nanny, "options": {"nthreads": 1, "env": {"SVO_EGL_DEVICE": d}}}
+            for i, d in enumerate(devices)}
+    return SpecCluster(workers=spec, scheduler={"cls": Scheduler, "options": {"dashboard_address": ":0"}})
+
+
+def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, output_dir=None, devices=None,
+             **keywords):
     """Voxelize a mesh on a Dask cluster: exactly the single-process grid (the
     main grid of the call's svo.Result, returned as the grid itself).
 
@@ -245,7 +270,8 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
     keywords: those of that call (resolution, voxel_size, grid, backend,
     exterior_band, sign, ...); not region, and not attributes (their arrays
     are not joined yet). client: a dask.distributed Client; None starts a
-    LocalCluster of one-thread worker processes and closes it after. tile:
+    LocalCluster of one-thread worker processes (one per entry of devices,
+    each on its EGL device: see local_cluster) and closes it after. tile:
     voxels per tile side, a multiple of 8, for a lattice of equal tiles
     (default: tiles balanced by the surface they hold, plan_tiles, from a
     lattice of default_tile).
@@ -267,11 +293,15 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
         raise ValueError("unsigned: kind='udf' sets it")
     if tile is not None and (tile <= 0 or tile % 8):
         raise ValueError(f"tile must be a positive multiple of 8, got {tile}")
+    if client is not None and devices is not None:
+        raise ValueError("devices: only for the local cluster voxelize starts (client=None); "
+                         "on a cluster of your own, start each worker with SVO_EGL_DEVICE set")
     if client is None:
-        from distributed import Client, LocalCluster
+        from dask.system import CPU_COUNT
+        from distributed import Client
 
         # The dashboard on a free port: a second cluster on the machine is no error.
-        with LocalCluster(processes=True, threads_per_worker=1, dashboard_address=":0") as cluster, \
+        with local_cluster(workers=CPU_COUNT, devices=devices) as cluster, \
                 Client(cluster) as own:
             return _run(own, mesh, kind, tile, progress, output_dir, keywords)
     return _run(client, mesh, kind, tile, progress, output_dir, keywords)
@@ -426,6 +456,8 @@ def _main(argv=None):
     where = p.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=2, help="local cluster worker processes (default 2)")
     where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://host:8786")
+    where.add_argument("--devices", help="a local cluster of one worker per EGL device, e.g. 0,1,2,3 "
+                       "(each worker's SVO_EGL_DEVICE)")
     out = p.add_mutually_exclusive_group(required=True)
     out.add_argument("-o", "--output", help="the .vdb file (written atomically)")
     out.add_argument("--tiles-dir", help="a folder every worker can write: one .vdb per tile, written by the "
@@ -452,7 +484,7 @@ def _main(argv=None):
         print(f"\rtiles {done}/{total}" if tty else f"tiles {done}/{total}", end="" if tty else "\n",
               file=sys.stderr, flush=True)
 
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
     try:
         if args.scheduler:
@@ -460,8 +492,8 @@ def _main(argv=None):
                 grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report,
                                 output_dir=args.tiles_dir, **keywords)
         else:
-            with LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
-                              dashboard_address=":0") as cluster, Client(cluster) as client:
+            devices = args.devices.split(",") if args.devices else None
+            with local_cluster(workers=args.workers, devices=devices) as cluster, Client(cluster) as client:
                 print(f"dashboard: {client.dashboard_link}", file=sys.stderr, flush=True)
                 grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report,
                                 output_dir=args.tiles_dir, **keywords)

@@ -290,7 +290,7 @@ def test_the_command_line_writes_tiles_and_an_index(voxelizer, tmp_path):
     folder = tmp_path / "tiles"
     folder.mkdir()
     (folder / "index.json").write_text("{}")  # an earlier job's index: replaced
-    r = run_cli("voxelize", str(mesh), "-r", str(RESOLUTION), "--udf", "--tile", "16", "--workers", "1",
+    r = run_cli("voxelize", str(mesh), "-r", str(RESOLUTION), "--udf", "--tile", "16", "--devices", "software",
                 "--tiles-dir", str(folder))
     assert r.returncode == 0, r.stderr
     index = json.loads((folder / "index.json").read_text())
@@ -429,3 +429,31 @@ def test_balanced_tiles_give_the_single_process_grid(client, voxelizer, kind):
     assert min(sides) < max(sides)  # not a lattice
     got = svo.distributed.voxelize(mesh, client=client, kind=kind, resolution=RESOLUTION)
     assert_same_grid(got, single(voxelizer, mesh, kind))
+
+
+# --- one EGL device per worker -----------------------------------------------
+
+
+def test_each_worker_of_a_local_cluster_has_its_own_device(voxelizer):
+    # CI has one (software) EGL device; a device no machine has proves that
+    # the worker's Voxelizer reads the device its worker was given.
+    with svo.distributed.local_cluster(devices=["software", "99"]) as cluster, distributed.Client(cluster) as c:
+        c.wait_for_workers(2)
+        given = c.run(lambda: os.environ.get("SVO_EGL_DEVICE"))
+        assert sorted(given.values()) == ["99", "software"]
+        good = next(w for w, d in given.items() if d == "software")
+        bad = next(w for w, d in given.items() if d == "99")
+        assert "software" in c.submit(lambda: svo.Voxelizer().device(), workers=[good], pure=False).result()
+        v, t = icosphere()
+        with pytest.raises(svo.distributed.TileError, match="no EGL device matches '99'"):
+            c.submit(svo.distributed._tile_task, (v, t), "surface", {"resolution": 16, "backend": "raster"},
+                     ((0, 0, 0), (8, 8, 8)), workers=[bad], pure=False).result()
+        got = c.submit(svo.distributed._tile_task, (v, t), "surface", {"resolution": RESOLUTION, "backend": "raster"},
+                       ((16, -8, -8), (24, 8, 8)), workers=[good], pure=False).result()
+    want = voxelizer.voxelize(v, t, resolution=RESOLUTION, backend="raster", region=((16, -8, -8), (24, 8, 8))).grid
+    assert active_mask(got) == active_mask(want) and got.activeVoxelCount() > 0
+
+
+def test_devices_only_for_the_local_cluster(client):
+    with pytest.raises(ValueError, match="SVO_EGL_DEVICE"):
+        svo.distributed.voxelize(icosphere(), client=client, devices=[0])
