@@ -52,9 +52,12 @@ def _voxelizer():
 
 
 def _mesh_arrays(mesh):
-    """A path read with svo's readers, or the (vertices, triangles) pair itself."""
+    """A path read with svo's readers, a tile's part of the mesh (a dict, see
+    _partitioned), or the (vertices, triangles) pair itself."""
     if isinstance(mesh, (str, os.PathLike)):
         return svo.read_mesh(os.fspath(mesh))
+    if isinstance(mesh, dict):
+        return _tile_mesh(mesh["pieces"], mesh["bounding"])
     return mesh
 
 
@@ -78,10 +81,9 @@ def _call(mesh, kind, keywords, region=None):
 _NOWHERE = ((2**30, 2**30, 2**30), (2**30 + 8, 2**30 + 8, 2**30 + 8))
 
 
-def _plan_task(mesh, kind, keywords, tile=None, workers=1):
-    """The tiles: boxes of whole leaves that cover every value of the whole
-    grid that is not background (see plan_tiles); the box they cover; an
-    empty grid with the grid's transform and metadata."""
+def _box_task(mesh, kind, keywords):
+    """The index box that holds every value of the whole grid that is not
+    background, and an empty grid with the grid's transform and metadata."""
     vertices, triangles = _mesh_arrays(mesh)
     empty = _call((vertices, triangles), kind, keywords, region=_NOWHERE)
     xform = empty.transform
@@ -100,19 +102,33 @@ def _plan_task(mesh, kind, keywords, tile=None, workers=1):
     # voxel); a level set's band leaves reach its band and one leaf further.
     margin = 2
     if kind in ("sdf", "udf"):
-        margin += math.ceil(max(keywords.get("exterior_band", 3.0), keywords.get("interior_band", 3.0))) + 8
+        margin += _band(keywords) + 8
     box_lo = tuple(_floor8(math.floor(lo[a]) - margin) for a in range(3))
     box_hi = tuple(_ceil8(math.ceil(hi[a]) + margin + 1) for a in range(3))
-    box = (box_lo, box_hi)
+    return (box_lo, box_hi), empty
+
+
+def _band(keywords):
+    return math.ceil(max(keywords.get("exterior_band", 3.0), keywords.get("interior_band", 3.0)))
+
+
+def _plan_task(mesh, kind, keywords, tile=None, workers=1):
+    """The tiles: boxes of whole leaves that cover every value of the whole
+    grid that is not background (see plan_tiles); the box they cover; an
+    empty grid with the grid's transform and metadata."""
+    vertices, triangles = mesh = _mesh_arrays(mesh)
+    box, empty = _box_task(mesh, kind, keywords)
     if tile is not None:
         return tiles(box, tile), box, empty
-    leaves, weights = surface_weights(vertices, triangles, _matrix(xform))
+    leaves, weights = surface_weights(vertices, triangles, _matrix(empty.transform))
     return plan_tiles(box, default_tile(box, workers), leaves, weights, parts=8 * max(1, workers)), box, empty
 
 
-def _tile_task(mesh, kind, keywords, box, output_dir=None):
+def _tile_task(mesh, kind, keywords, box, output_dir=None, metadata=None):
     try:
         grid = _call(mesh, kind, keywords, region=box)
+        for key, value in (metadata or {}).items():  # what a part of the mesh says of the whole
+            grid[key] = value
         if output_dir is None:
             return grid
         return _write_tile(grid, output_dir, box)
@@ -232,6 +248,119 @@ def plan_tiles(box, tile, leaves, weights, parts, levels=3):
     return sorted(out)
 
 
+# --- the mesh partitioned to tiles -------------------------------------------
+#
+# Kinds whose value at a voxel depends only on the triangles near it: a
+# surface's (the triangles that touch the voxel's cube, grown by the guard
+# band) and an unsigned field's (the triangles within the band). A level set's
+# and a solid's signs depend on triangles far away (design §7e), so those
+# tasks keep the whole mesh. The rest of a call that depends on the whole
+# mesh is its box: the voxel size (from resolution), the local frame and the
+# guard band (svo/core/grid.h). Each tile's part therefore also holds the
+# triangles that hold the lowest and highest vertex along each axis (at most
+# six, "bounding"): the part's box is the mesh's, and those triangles are
+# the mesh's own, so where the region reaches them they are right too.
+# svo:triangles, the one piece of metadata that counts the mesh, is set to
+# the whole mesh's count.
+
+PARTITIONED_KINDS = ("surface", "udf")
+
+
+def _bounding_triangles(vertices, triangles, chunk=1 << 20):
+    """The (sorted, unique) indices of triangles that hold the lowest and the
+    highest vertex along each axis of those the triangles use."""
+    best = [[math.inf, -1], [-math.inf, -1]] * 3  # per axis: lowest, highest (value, triangle)
+    for start in range(0, len(triangles), chunk):
+        corners = vertices[triangles[start:start + chunk]]  # (n, 3, 3)
+        for a in range(3):
+            c = corners[:, :, a]
+            i, j = np.unravel_index(np.argmin(c), c.shape)[0], np.unravel_index(np.argmax(c), c.shape)[0]
+            if c[i].min() < best[2 * a][0]:
+                best[2 * a] = [c[i].min(), start + i]
+            if c[j].max() > best[2 * a + 1][0]:
+                best[2 * a + 1] = [c[j].max(), start + j]
+    return np.unique([t for _, t in best])
+
+
+def _chunk_weights(chunk, matrix):
+    _, corners = chunk
+    return surface_weights(corners.reshape(-1, 3), np.arange(3 * len(corners)).reshape(-1, 3), matrix)
+
+
+def _partition_task(chunk, matrix, boxes, margin):
+    """Per tile box, the chunk's triangles whose index-space box grown by
+    `margin` voxels meets the tile's voxels: (their indices in the mesh, their
+    corners), or None."""
+    index, corners = chunk
+    ijk = (corners - matrix[3, :3]) @ np.linalg.inv(matrix[:3, :3])
+    lo, hi = ijk.min(axis=1) - margin, ijk.max(axis=1) + margin
+    out = []
+    for b_lo, b_hi in boxes:
+        meets = np.all((hi >= np.array(b_lo)) & (lo <= np.array(b_hi) - 1), axis=1)
+        out.append((index[meets], corners[meets]) if meets.any() else None)
+    return out
+
+
+def _hold(data):
+    """Arrays as a task's result. Scattered data has no recipe: lost with the
+    workers that hold it (Dask's memory manager keeps one replica of what no
+    task needs where it is), it fails every task that needs it. A task's
+    result is made again from its arguments, which the scheduler keeps."""
+    return data
+
+
+def _pick(parts, i):
+    return parts[i]
+
+
+def _tile_mesh(pieces, bounding):
+    """A tile's mesh from its pieces and the bounding triangles: as a soup in
+    the mesh's order (each triangle once)."""
+    pieces = [p for p in pieces if p is not None] + [bounding]
+    index, first = np.unique(np.concatenate([i for i, _ in pieces]), return_index=True)
+    corners = np.concatenate([c for _, c in pieces])[first]
+    return corners.reshape(-1, 3), np.arange(3 * len(index), dtype=np.int64).reshape(-1, 3)
+
+
+def _partitioned(client, vertices, triangles, kind, tile, workers, keywords):
+    """Plan and partition a mesh of arrays: the tiles, the box, the plan's
+    grid, each tile's mesh (a dict of futures) and the metadata to set."""
+    vertices = np.asarray(vertices, dtype=np.float64)
+    triangles = np.asarray(triangles, dtype=np.int64)
+    count = len(triangles)
+    bound = _bounding_triangles(vertices, triangles)
+    bounding = (bound, vertices[triangles[bound]])
+    # The plan's call sees only the bounding triangles: the same box, so the
+    # same transform and frame.
+    box, grid = client.submit(_box_task, _tile_mesh([], bounding), kind, keywords, pure=False).result()
+    metadata = {"svo:triangles": str(count)}
+    for key, value in metadata.items():
+        grid[key] = value
+    matrix = _matrix(grid.transform)
+    # One chunk per worker; each a task's result, not scattered data, so that
+    # the scheduler can make it again when its worker is lost (see _hold).
+    n = max(1, min(workers, count))
+    bounds = np.linspace(0, count, n + 1).astype(np.int64)
+    chunks = [client.submit(_hold, (np.arange(a, b), vertices[triangles[a:b]]), pure=False)
+              for a, b in zip(bounds, bounds[1:])]
+    if tile is not None:
+        boxes = tiles(box, tile)
+    else:
+        parts = client.gather([client.submit(_chunk_weights, c, matrix, pure=False) for c in chunks])
+        keys, inverse = np.unique(np.concatenate([p[0] for p in parts]), axis=0, return_inverse=True)
+        weights = np.bincount(inverse.ravel(), weights=np.concatenate([p[1] for p in parts]), minlength=len(keys))
+        boxes = plan_tiles(box, default_tile(box, workers), keys, weights, parts=8 * max(1, workers))
+    # A surface voxel depends on the triangles that touch its cube grown by
+    # the guard band (half a voxel and a little); an unsigned distance within
+    # the band on those within the band of its centre (bricksNearTriangles'
+    # reach), a value beyond it is the background whatever lies there.
+    margin = 2 + (_band(keywords) if kind == "udf" else 0)
+    split = [client.submit(_partition_task, c, matrix, boxes, margin, pure=False) for c in chunks]
+    meshes = [{"pieces": [client.submit(_pick, s, i, pure=False) for s in split], "bounding": bounding}
+              for i in range(len(boxes))]
+    return boxes, box, grid, meshes, metadata
+
+
 # --- the call ------------------------------------------------------------------
 
 
@@ -260,7 +389,7 @@ def local_cluster(workers=2, devices=None):
 
 
 def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, output_dir=None, devices=None,
-             **keywords):
+             partition=True, **keywords):
     """Voxelize a mesh on a Dask cluster: exactly the single-process grid (the
     main grid of the call's svo.Result, returned as the grid itself).
 
@@ -276,6 +405,11 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
     (default: tiles balanced by the surface they hold, plan_tiles, from a
     lattice of default_tile).
     progress(done, total) is called as tiles finish.
+
+    partition: for a surface or an unsigned field of arrays, each tile task
+    gets only the triangles near its box (cut in parallel on the workers);
+    False sends every task the whole mesh. Level sets and solids always
+    have the whole mesh (their signs depend on triangles far away).
 
     output_dir: instead of one grid on the client, each worker writes its
     tiles to this folder (one .vdb per tile that holds more than background,
@@ -303,22 +437,26 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
         # The dashboard on a free port: a second cluster on the machine is no error.
         with local_cluster(workers=CPU_COUNT, devices=devices) as cluster, \
                 Client(cluster) as own:
-            return _run(own, mesh, kind, tile, progress, output_dir, keywords)
-    return _run(client, mesh, kind, tile, progress, output_dir, keywords)
+            return _run(own, mesh, kind, tile, progress, output_dir, partition, keywords)
+    return _run(client, mesh, kind, tile, progress, output_dir, partition, keywords)
 
 
-def _run(client, mesh, kind, tile, progress, output_dir, keywords):
+def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords):
     from distributed import as_completed
 
-    if not isinstance(mesh, (str, os.PathLike)):
-        vertices, triangles = mesh
-        mesh = client.scatter((vertices, triangles), broadcast=True)
-    else:
-        mesh = os.fspath(mesh)
-    # On a worker: a path is read where the tiles will read it (svo's reader
-    # errors name the file), and the client needs no GL context.
     workers = len(client.scheduler_info()["workers"])
-    boxes, box, grid = client.submit(_plan_task, mesh, kind, keywords, tile, workers, pure=False).result()
+    metadata = None
+    if not isinstance(mesh, (str, os.PathLike)) and kind in PARTITIONED_KINDS and partition:
+        boxes, box, grid, meshes, metadata = _partitioned(client, *mesh, kind, tile, workers, keywords)
+    else:
+        if not isinstance(mesh, (str, os.PathLike)):
+            mesh = client.submit(_hold, tuple(mesh), pure=False)
+        else:
+            mesh = os.fspath(mesh)
+        # On a worker: a path is read where the tiles will read it (svo's reader
+        # errors name the file), and the client needs no GL context.
+        boxes, box, grid = client.submit(_plan_task, mesh, kind, keywords, tile, workers, pure=False).result()
+        meshes = [mesh] * len(boxes)
     if output_dir is not None:
         output_dir = os.path.abspath(os.fspath(output_dir))
         os.makedirs(output_dir, exist_ok=True)
@@ -327,7 +465,8 @@ def _run(client, mesh, kind, tile, progress, output_dir, keywords):
         index_path = os.path.join(output_dir, INDEX_NAME)
         if os.path.exists(index_path):
             os.remove(index_path)
-    futures = [client.submit(_tile_task, mesh, kind, keywords, b, output_dir, pure=False) for b in boxes]
+    futures = [client.submit(_tile_task, m, kind, keywords, b, output_dir, metadata, pure=False)
+               for m, b in zip(meshes, boxes)]
     entries = []
     done = 0
     if progress:

@@ -301,8 +301,8 @@ def test_the_command_line_writes_tiles_and_an_index(voxelizer, tmp_path):
 # --- a worker killed in the middle of a task ---------------------------------
 
 
-@pytest.mark.parametrize("mesh_as", ["arrays", "file"])
-def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, mesh_as):
+@pytest.mark.parametrize("mesh_as, kind", [("arrays", "surface"), ("arrays", "sdf"), ("file", "sdf")])
+def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, mesh_as, kind):
     """The first tile task to run kills its worker process (SIGKILL, no
     clean-up) while the task is on the worker's thread; the scheduler gives
     the lost task to a worker again and the job's result is unchanged: one
@@ -351,18 +351,18 @@ def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, mesh_as)
     folder = tmp_path / "tiles" if mesh_as == "file" else None
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
-        # Both workers up before the arrays are scattered: each then holds them,
-        # and the one left alive serves them to the killed one's successor.
         c.wait_for_workers(2)
         pids = set(c.run(os.getpid).values())
         c.register_worker_plugin(KillOnce(marker))
-        got = svo.distributed.voxelize(mesh, client=c, tile=TILE, kind="sdf", resolution=RESOLUTION,
+        # A surface of arrays: tasks get their part of the mesh (chunks the
+        # workers cut); a level set: the whole mesh (arrays held by a task, or a file).
+        got = svo.distributed.voxelize(mesh, client=c, tile=TILE, kind=kind, resolution=RESOLUTION,
                                        output_dir=folder)
         killed_key, killed_pid = marker.read_text().split()
         assert killed_key.startswith("_tile_task") and int(killed_pid) in pids
         c.wait_for_workers(2)
         assert int(killed_pid) not in set(c.run(os.getpid).values())  # the nanny started a new process
-    want = single(voxelizer, mesh, "sdf")
+    want = single(voxelizer, mesh, kind)
     if folder is None:
         assert_same_grid(got, want)
     else:
@@ -457,3 +457,30 @@ def test_each_worker_of_a_local_cluster_has_its_own_device(voxelizer):
 def test_devices_only_for_the_local_cluster(client):
     with pytest.raises(ValueError, match="SVO_EGL_DEVICE"):
         svo.distributed.voxelize(icosphere(), client=client, devices=[0])
+
+
+# --- the mesh partitioned to tiles -------------------------------------------
+
+
+@pytest.mark.parametrize("kind", ["surface", "udf"])
+def test_each_tile_task_gets_only_the_triangles_near_it(client, voxelizer, kind):
+    v, t = icosphere(3)
+    boxes, _, _, meshes, metadata = svo.distributed._partitioned(client, v, t, kind, TILE, 2,
+                                                                 {"resolution": RESOLUTION})
+    assert metadata == {"svo:triangles": str(len(t))}
+    counts, seen = [], set()
+    for m in meshes:
+        pieces = [p for p in client.gather(m["pieces"]) if p is not None]
+        index = set(np.concatenate([i for i, _ in pieces]).tolist()) if pieces else set()
+        counts.append(len(index))
+        seen |= index
+        for i, corners in pieces:  # each piece is the mesh's own triangles
+            assert np.array_equal(corners, v[t[i]])
+    assert seen == set(range(len(t)))  # every triangle reaches a tile
+    assert max(counts) < len(t) / (4 if kind == "surface" else 2) and len(boxes) >= 8
+    # And the parts give the whole grid (the bounding triangles fix its box).
+    got = svo.distributed.voxelize((v, t), client=client, tile=TILE, kind=kind, resolution=RESOLUTION)
+    assert_same_grid(got, single(voxelizer, (v, t), kind))
+    whole = svo.distributed.voxelize((v, t), client=client, tile=TILE, kind=kind, resolution=RESOLUTION,
+                                     partition=False)
+    assert_same_grid(whole, got)
