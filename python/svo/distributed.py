@@ -10,20 +10,28 @@ joined are the single-process grid: same voxels, same values, same inactive
 values. Tiles are boxes of whole leaves, so no two share a leaf and joining
 them moves nodes (svo._svo._join_region).
 
-Command line: ``python3 -m svo.distributed voxelize MESH -r N [--sdf|--udf|--fill solid]
-[--tile N] [--workers N | --scheduler ADDRESS] -o OUT.vdb``.
+Tiles are planned by the surface they hold (plan_tiles) on a lattice
+aligned to the tile size; a surface or unsigned field of arrays is cut to
+the tiles on the workers, so each task gets only its triangles; with
+output_dir, the workers write one .vdb per tile and the client an
+index.json (write_index) instead of joining; local_cluster(devices=...)
+gives each worker its own EGL device (SVO_EGL_DEVICE). A worker lost in a
+task costs only that task, which Dask runs again.
 
-Not yet (issue 43): tiles balanced by the surface they hold (tiles are a
-regular lattice), the mesh partitioned to tiles (every task reads or receives
-the whole mesh), one GPU per worker, per-tile files with a JSON index for
-results larger than one host, attributes (per-voxel arrays to join),
-and a test of a worker killed in the middle of a task.
+Command line: ``python3 -m svo.distributed voxelize MESH -r N [--sdf|--udf|--fill solid]
+[--tile N] [--workers N | --devices 0,1 | --scheduler ADDRESS] (-o OUT.vdb | --tiles-dir DIR)``.
+
+Not yet (issue 43): attributes (per-voxel arrays to join), level sets and
+solids partitioned to tiles (their signs need the whole mesh, or whole
+columns), the estimated time left in progress, a reader that joins a tile
+folder, the city benchmark.
 """
 import argparse
 import json
 import math
 import os
 import sys
+import warnings
 
 import numpy as np
 
@@ -120,8 +128,19 @@ def _plan_task(mesh, kind, keywords, tile=None, workers=1):
     box, empty = _box_task(mesh, kind, keywords)
     if tile is not None:
         return tiles(box, tile), box, empty
+    if workers <= 1:
+        return [box], box, empty
     leaves, weights = surface_weights(vertices, triangles, _matrix(empty.transform))
-    return plan_tiles(box, default_tile(box, workers), leaves, weights, parts=8 * max(1, workers)), box, empty
+    return _balanced(box, workers, leaves, weights), box, empty
+
+
+def _balanced(box, workers, leaves, weights):
+    """The default plan for several workers. Each region call has a fixed
+    cost (on the 2-core machine's CPU backend 40-100 ms: the whole mesh's
+    triangles culled, the octree and grid made), so a worker gets about 4
+    tiles, enough for Dask to even out their costs; one worker gets the
+    whole box (see _plan_task)."""
+    return plan_tiles(box, default_tile(box, workers), leaves, weights, parts=4 * workers)
 
 
 def _tile_task(mesh, kind, keywords, box, output_dir=None, metadata=None):
@@ -309,6 +328,13 @@ def _hold(data):
     return data
 
 
+def _submit_held(client, data):
+    with warnings.catch_warnings():
+        # Dask's advice to scatter large arguments instead: see _hold for why not.
+        warnings.filterwarnings("ignore", message="Large object of size")
+        return client.submit(_hold, data, pure=False)
+
+
 def _pick(parts, i):
     return parts[i]
 
@@ -341,15 +367,16 @@ def _partitioned(client, vertices, triangles, kind, tile, workers, keywords):
     # the scheduler can make it again when its worker is lost (see _hold).
     n = max(1, min(workers, count))
     bounds = np.linspace(0, count, n + 1).astype(np.int64)
-    chunks = [client.submit(_hold, (np.arange(a, b), vertices[triangles[a:b]]), pure=False)
-              for a, b in zip(bounds, bounds[1:])]
+    chunks = [_submit_held(client, (np.arange(a, b), vertices[triangles[a:b]])) for a, b in zip(bounds, bounds[1:])]
     if tile is not None:
         boxes = tiles(box, tile)
+    elif workers <= 1:
+        boxes = [box]
     else:
         parts = client.gather([client.submit(_chunk_weights, c, matrix, pure=False) for c in chunks])
         keys, inverse = np.unique(np.concatenate([p[0] for p in parts]), axis=0, return_inverse=True)
         weights = np.bincount(inverse.ravel(), weights=np.concatenate([p[1] for p in parts]), minlength=len(keys))
-        boxes = plan_tiles(box, default_tile(box, workers), keys, weights, parts=8 * max(1, workers))
+        boxes = _balanced(box, workers, keys, weights)
     # A surface voxel depends on the triangles that touch its cube grown by
     # the guard band (half a voxel and a little); an unsigned distance within
     # the band on those within the band of its centre (bricksNearTriangles'
@@ -450,7 +477,7 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords):
         boxes, box, grid, meshes, metadata = _partitioned(client, *mesh, kind, tile, workers, keywords)
     else:
         if not isinstance(mesh, (str, os.PathLike)):
-            mesh = client.submit(_hold, tuple(mesh), pure=False)
+            mesh = _submit_held(client, tuple(mesh))
         else:
             mesh = os.fspath(mesh)
         # On a worker: a path is read where the tiles will read it (svo's reader
