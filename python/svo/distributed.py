@@ -193,13 +193,15 @@ def default_tile(box, workers):
 
 
 def tiles(box, tile):
-    """The box cut by the lattice of `tile` voxels a side whose cells start at
-    multiples of `tile` (so tiles of 128 are OpenVDB's internal nodes), cells
-    clipped to the box."""
+    """The box cut by the lattice of `tile` voxels a side, cells clipped to
+    the box. A tile that is a multiple of 128 starts its cells at a multiple
+    of 128, so they are whole OpenVDB internal nodes (and the box is cut
+    into few cells); any other at a multiple of `tile`."""
     if tile <= 0 or tile % 8:
         raise ValueError(f"tile must be a positive multiple of 8, got {tile}")
     lo, hi = box
-    starts = [range(lo[a] // tile * tile, hi[a], tile) for a in range(3)]
+    align = 128 if tile % 128 == 0 else tile
+    starts = [range(lo[a] // align * align, hi[a], tile) for a in range(3)]
     return [(tuple(max(c[a], lo[a]) for a in range(3)), tuple(min(c[a] + tile, hi[a]) for a in range(3)))
             for c in ((x, y, z) for x in starts[0] for y in starts[1] for z in starts[2])]
 

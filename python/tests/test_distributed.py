@@ -199,6 +199,11 @@ def test_tiles_cover_the_box_once_in_whole_leaves():
         assert all(c % 8 == 0 for c in lo + hi)
         covered[lo[0] + 40:hi[0] + 40, lo[1] + 16:hi[1] + 16, lo[2] - 8:hi[2] - 8] += 1
     assert (covered == 1).all()
+    # Tiles of a multiple of 128: cut at multiples of 128 (internal nodes), few of them.
+    box = ((-200, 8, 0), (312, 136, 64))
+    parts = svo.distributed.tiles(box, 256)
+    assert sorted({lo[0] for lo, _ in parts}) == [-200, 0, 256]
+    assert all(hi[0] in (0, 256, 312) and lo[1:] == (8, 0) and hi[1:] == (136, 64) for lo, hi in parts)
     # About 4 tiles per worker; from 128 up, whole OpenVDB internal nodes.
     assert svo.distributed.default_tile(((0, 0, 0), (64, 64, 64)), 2) == 32  # 8 tiles of 32³
     assert svo.distributed.default_tile(((0, 0, 0), (2048, 2048, 2048)), 4) == 896  # 812 rounded up to 128s
