@@ -330,6 +330,16 @@ def _hold(data):
     return data
 
 
+def _metadata_settable():
+    """Whether grids are pyopenvdb's, whose metadata a part's call can correct
+    (svo.Grid's is read-only): elsewhere tasks get the whole mesh."""
+    try:
+        import pyopenvdb  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
 def _submit_held(client, data):
     with warnings.catch_warnings():
         # Dask's advice to scatter large arguments instead: see _hold for why not.
@@ -423,7 +433,8 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
     main grid of the call's svo.Result, returned as the grid itself).
 
     mesh: a path every worker can read, or a (vertices, triangles) pair of
-    numpy arrays (sent to the workers once). kind: "surface" (svo.voxelize),
+    numpy arrays (held by tasks, see _hold: they pass through the scheduler
+    once). kind: "surface" (svo.voxelize),
     "sdf" (Voxelizer.level_set), "udf" (level_set unsigned=True) or "solid".
     keywords: those of that call (resolution, voxel_size, grid, backend,
     exterior_band, sign, ...); not region, and not attributes (their arrays
@@ -475,7 +486,7 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords):
 
     workers = len(client.scheduler_info()["workers"])
     metadata = None
-    if not isinstance(mesh, (str, os.PathLike)) and kind in PARTITIONED_KINDS and partition:
+    if not isinstance(mesh, (str, os.PathLike)) and kind in PARTITIONED_KINDS and partition and _metadata_settable():
         boxes, box, grid, meshes, metadata = _partitioned(client, *mesh, kind, tile, workers, keywords)
     else:
         if not isinstance(mesh, (str, os.PathLike)):
