@@ -10,19 +10,30 @@ joined are the single-process grid: same voxels, same values, same inactive
 values. Tiles are boxes of whole leaves, so no two share a leaf and joining
 them moves nodes (svo._svo._join_region).
 
-Command line: ``python3 -m svo.distributed voxelize MESH -r N [--sdf|--udf|--fill solid]
-[--tile N] [--workers N | --scheduler ADDRESS] -o OUT.vdb``.
+Tiles are planned by the surface they hold (plan_tiles) on a lattice
+aligned to the tile size; a surface or unsigned field of arrays is cut to
+the tiles on the workers, so each task gets only its triangles; with
+output_dir, the workers write one .vdb per tile and the client an
+index.json (write_index) instead of joining; local_cluster(devices=...)
+gives each worker its own EGL device (SVO_EGL_DEVICE). A worker lost in a
+task costs only that task, which Dask runs again.
 
-Not yet (issue 43): tiles balanced by the surface they hold (tiles are a
-regular lattice), the mesh partitioned to tiles (every task reads or receives
-the whole mesh), one GPU per worker, per-tile files with a JSON index for
-results larger than one host, attributes (per-voxel arrays to join),
-and a test of a worker killed in the middle of a task.
+Command line: ``python3 -m svo.distributed voxelize MESH -r N [--sdf|--udf|--fill solid]
+[--tile N] [--workers N | --devices 0,1 | --scheduler ADDRESS] (-o OUT.vdb | --tiles-dir DIR)``.
+
+Not yet (issue 43): attributes (per-voxel arrays to join), level sets and
+solids partitioned to tiles (their signs need the whole mesh, or whole
+columns), the estimated time left in progress, a reader that joins a tile
+folder, the city benchmark.
 """
 import argparse
+import json
 import math
 import os
 import sys
+import warnings
+
+import numpy as np
 
 import svo
 from svo._svo import _join_region
@@ -49,9 +60,12 @@ def _voxelizer():
 
 
 def _mesh_arrays(mesh):
-    """A path read with svo's readers, or the (vertices, triangles) pair itself."""
+    """A path read with svo's readers, a tile's part of the mesh (a dict, see
+    _partitioned), or the (vertices, triangles) pair itself."""
     if isinstance(mesh, (str, os.PathLike)):
         return svo.read_mesh(os.fspath(mesh))
+    if isinstance(mesh, dict):
+        return _tile_mesh(mesh["pieces"], mesh["bounding"])
     return mesh
 
 
@@ -75,9 +89,9 @@ def _call(mesh, kind, keywords, region=None):
 _NOWHERE = ((2**30, 2**30, 2**30), (2**30 + 8, 2**30 + 8, 2**30 + 8))
 
 
-def _plan_task(mesh, kind, keywords):
+def _box_task(mesh, kind, keywords):
     """The index box that holds every value of the whole grid that is not
-    background, and an empty grid with its transform and metadata."""
+    background, and an empty grid with the grid's transform and metadata."""
     vertices, triangles = _mesh_arrays(mesh)
     empty = _call((vertices, triangles), kind, keywords, region=_NOWHERE)
     xform = empty.transform
@@ -96,17 +110,66 @@ def _plan_task(mesh, kind, keywords):
     # voxel); a level set's band leaves reach its band and one leaf further.
     margin = 2
     if kind in ("sdf", "udf"):
-        margin += math.ceil(max(keywords.get("exterior_band", 3.0), keywords.get("interior_band", 3.0))) + 8
+        margin += _band(keywords) + 8
     box_lo = tuple(_floor8(math.floor(lo[a]) - margin) for a in range(3))
     box_hi = tuple(_ceil8(math.ceil(hi[a]) + margin + 1) for a in range(3))
     return (box_lo, box_hi), empty
 
 
-def _tile_task(mesh, kind, keywords, box):
+def _band(keywords):
+    return math.ceil(max(keywords.get("exterior_band", 3.0), keywords.get("interior_band", 3.0)))
+
+
+def _plan_task(mesh, kind, keywords, tile=None, workers=1):
+    """The tiles: boxes of whole leaves that cover every value of the whole
+    grid that is not background (see plan_tiles); the box they cover; an
+    empty grid with the grid's transform and metadata."""
+    vertices, triangles = mesh = _mesh_arrays(mesh)
+    box, empty = _box_task(mesh, kind, keywords)
+    if tile is not None:
+        return tiles(box, tile), box, empty
+    if workers <= 1:
+        return [box], box, empty
+    leaves, weights = surface_weights(vertices, triangles, _matrix(empty.transform))
+    return _balanced(box, workers, leaves, weights), box, empty
+
+
+def _balanced(box, workers, leaves, weights):
+    """The default plan for several workers. Each region call has a fixed
+    cost (on the 2-core machine's CPU backend 40-100 ms: the whole mesh's
+    triangles culled, the octree and grid made), so a worker gets about 4
+    tiles, enough for Dask to even out their costs; one worker gets the
+    whole box (see _plan_task)."""
+    return plan_tiles(box, default_tile(box, workers), leaves, weights, parts=4 * workers)
+
+
+def _tile_task(mesh, kind, keywords, box, output_dir=None, metadata=None):
     try:
-        return _call(mesh, kind, keywords, region=box)
+        grid = _call(mesh, kind, keywords, region=box)
+        for key, value in (metadata or {}).items():  # what a part of the mesh says of the whole
+            grid[key] = value
+        if output_dir is None:
+            return grid
+        return _write_tile(grid, output_dir, box)
     except Exception as e:  # the job's error must say which tile
         raise TileError(f"tile {box[0]}..{box[1]}: {type(e).__name__}: {e}") from e
+
+
+def tile_file_name(box):
+    """The file of the tile whose box starts at box[0]: tile_X_Y_Z.vdb (index coordinates)."""
+    return "tile_{}_{}_{}.vdb".format(*box[0])
+
+
+def _write_tile(grid, output_dir, box):
+    """The tile's grid to its own .vdb in output_dir (svo's writer: a temporary
+    file renamed into place, so a killed task leaves no partial file), or no
+    file when the grid holds nothing but background. Its entry in the index."""
+    entry = {"box": [list(box[0]), list(box[1])], "file": None, "active_voxels": int(grid.activeVoxelCount())}
+    if not grid.empty():
+        os.makedirs(output_dir, exist_ok=True)  # a worker on another host may see the folder first
+        entry["file"] = tile_file_name(box)
+        svo.write(os.path.join(output_dir, entry["file"]), [grid])
+    return entry
 
 
 # --- planning ----------------------------------------------------------------
@@ -130,31 +193,269 @@ def default_tile(box, workers):
 
 
 def tiles(box, tile):
-    """The box cut into boxes of `tile` voxels a side (the last of each axis shorter)."""
+    """The box cut by the lattice of `tile` voxels a side, cells clipped to
+    the box. A tile that is a multiple of 128 starts its cells at a multiple
+    of 128, so they are whole OpenVDB internal nodes (and the box is cut
+    into few cells); any other at a multiple of `tile`."""
     if tile <= 0 or tile % 8:
         raise ValueError(f"tile must be a positive multiple of 8, got {tile}")
     lo, hi = box
-    starts = [range(lo[a], hi[a], tile) for a in range(3)]
-    return [((x, y, z), (min(x + tile, hi[0]), min(y + tile, hi[1]), min(z + tile, hi[2])))
-            for x in starts[0] for y in starts[1] for z in starts[2]]
+    align = 128 if tile % 128 == 0 else tile
+    starts = [range(lo[a] // align * align, hi[a], tile) for a in range(3)]
+    return [(tuple(max(c[a], lo[a]) for a in range(3)), tuple(min(c[a] + tile, hi[a]) for a in range(3)))
+            for c in ((x, y, z) for x in starts[0] for y in starts[1] for z in starts[2])]
+
+
+def _matrix(xform):
+    """A pyopenvdb transform's 4x4 matrix (row vectors), or svo.Grid's own."""
+    if hasattr(xform, "indexToWorld"):
+        return np.array(_transform_matrix(xform))
+    return np.asarray(xform, dtype=np.float64)
+
+
+def surface_weights(vertices, triangles, matrix, chunk=1 << 20):
+    """How much work each leaf's part of the surface makes: the origins of the
+    leaves (8³ voxels, (L, 3) int64) that hold a triangle's centroid in index
+    space, and per leaf the sum over those triangles of 1 + the triangle's
+    area in voxels (the per-triangle work and about the voxels it covers).
+    matrix: the grid's 4x4 index-to-world matrix (row vectors)."""
+    vertices = np.asarray(vertices, dtype=np.float64)
+    triangles = np.asarray(triangles)
+    to_index = np.linalg.inv(matrix[:3, :3])
+    leaves, weights = [], []
+    for start in range(0, len(triangles), chunk):  # bounded memory for large meshes
+        corners = (vertices[triangles[start:start + chunk]] - matrix[3, :3]) @ to_index  # (n, 3, 3)
+        area = 0.5 * np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
+        keys, inverse = np.unique(np.floor(corners.mean(axis=1) / 8).astype(np.int64), axis=0,
+                                  return_inverse=True)
+        leaves.append(keys)
+        weights.append(np.bincount(inverse.ravel(), weights=1.0 + area, minlength=len(keys)))
+    if not leaves:
+        return np.zeros((0, 3), dtype=np.int64), np.zeros(0)
+    keys, inverse = np.unique(np.concatenate(leaves), axis=0, return_inverse=True)
+    return keys * 8, np.bincount(inverse.ravel(), weights=np.concatenate(weights), minlength=len(keys))
+
+
+def plan_tiles(box, tile, leaves, weights, parts, levels=3):
+    """Tiles balanced by the surface they hold: the lattice of `tile` (see
+    tiles), each cell whose leaves weigh more than 1/parts of the whole split
+    in eight (halves of whole leaves), recursively, at most `levels` times.
+    leaves, weights: see surface_weights. The tiles cover the box once; a
+    tile with no surface stays whole (its call is cheap: the region culls
+    the triangles away, or only fills an inside)."""
+    leaves = np.asarray(leaves, dtype=np.int64).reshape(-1, 3)
+    weights = np.asarray(weights, dtype=np.float64)
+    target = weights.sum() / max(1, parts)
+    out = []
+
+    def split(b, sel, level):
+        lo, hi = b
+        if level >= levels or weights[sel].sum() <= target or all(hi[a] - lo[a] <= 8 for a in range(3)):
+            out.append(b)
+            return
+        cuts = [(lo[a], lo[a] + _ceil8((hi[a] - lo[a]) // 2), hi[a]) if hi[a] - lo[a] > 8 else (lo[a], hi[a])
+                for a in range(3)]
+        for x0, x1 in zip(cuts[0], cuts[0][1:]):
+            for y0, y1 in zip(cuts[1], cuts[1][1:]):
+                for z0, z1 in zip(cuts[2], cuts[2][1:]):
+                    c = ((x0, y0, z0), (x1, y1, z1))
+                    p = leaves[sel]
+                    inside = np.all((p >= c[0]) & (p < c[1]), axis=1)
+                    split(c, sel[inside], level + 1)
+
+    for b in tiles(box, tile):
+        inside = np.all((leaves >= b[0]) & (leaves < b[1]), axis=1)
+        split(b, np.flatnonzero(inside), 0)
+    return sorted(out)
+
+
+# --- the mesh partitioned to tiles -------------------------------------------
+#
+# Kinds whose value at a voxel depends only on the triangles near it: a
+# surface's (the triangles that touch the voxel's cube, grown by the guard
+# band) and an unsigned field's (the triangles within the band). A level set's
+# and a solid's signs depend on triangles far away (design §7e), so those
+# tasks keep the whole mesh. The rest of a call that depends on the whole
+# mesh is its box: the voxel size (from resolution), the local frame and the
+# guard band (svo/core/grid.h). Each tile's part therefore also holds the
+# triangles that hold the lowest and highest vertex along each axis (at most
+# six, "bounding"): the part's box is the mesh's, and those triangles are
+# the mesh's own, so where the region reaches them they are right too.
+# svo:triangles, the one piece of metadata that counts the mesh, is set to
+# the whole mesh's count.
+
+PARTITIONED_KINDS = ("surface", "udf")
+
+
+def _bounding_triangles(vertices, triangles, chunk=1 << 20):
+    """The (sorted, unique) indices of triangles that hold the lowest and the
+    highest vertex along each axis of those the triangles use."""
+    best = [[math.inf, -1], [-math.inf, -1]] * 3  # per axis: lowest, highest (value, triangle)
+    for start in range(0, len(triangles), chunk):
+        corners = vertices[triangles[start:start + chunk]]  # (n, 3, 3)
+        for a in range(3):
+            c = corners[:, :, a]
+            i, j = np.unravel_index(np.argmin(c), c.shape)[0], np.unravel_index(np.argmax(c), c.shape)[0]
+            if c[i].min() < best[2 * a][0]:
+                best[2 * a] = [c[i].min(), start + i]
+            if c[j].max() > best[2 * a + 1][0]:
+                best[2 * a + 1] = [c[j].max(), start + j]
+    return np.unique([t for _, t in best])
+
+
+def _chunk_weights(chunk, matrix):
+    _, corners = chunk
+    return surface_weights(corners.reshape(-1, 3), np.arange(3 * len(corners)).reshape(-1, 3), matrix)
+
+
+def _partition_task(chunk, matrix, boxes, margin):
+    """Per tile box, the chunk's triangles whose index-space box grown by
+    `margin` voxels meets the tile's voxels: (their indices in the mesh, their
+    corners), or None."""
+    index, corners = chunk
+    ijk = (corners - matrix[3, :3]) @ np.linalg.inv(matrix[:3, :3])
+    lo, hi = ijk.min(axis=1) - margin, ijk.max(axis=1) + margin
+    out = []
+    for b_lo, b_hi in boxes:
+        meets = np.all((hi >= np.array(b_lo)) & (lo <= np.array(b_hi) - 1), axis=1)
+        out.append((index[meets], corners[meets]) if meets.any() else None)
+    return out
+
+
+def _hold(data):
+    """Arrays as a task's result. Scattered data has no recipe: lost with the
+    workers that hold it (Dask's memory manager keeps one replica of what no
+    task needs where it is), it fails every task that needs it. A task's
+    result is made again from its arguments, which the scheduler keeps."""
+    return data
+
+
+def _metadata_settable():
+    """Whether grids are pyopenvdb's, whose metadata a part's call can correct
+    (svo.Grid's is read-only): elsewhere tasks get the whole mesh."""
+    try:
+        import pyopenvdb  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def _submit_held(client, data):
+    with warnings.catch_warnings():
+        # Dask's advice to scatter large arguments instead: see _hold for why not.
+        warnings.filterwarnings("ignore", message="Large object of size")
+        return client.submit(_hold, data, pure=False)
+
+
+def _pick(parts, i):
+    return parts[i]
+
+
+def _tile_mesh(pieces, bounding):
+    """A tile's mesh from its pieces and the bounding triangles: as a soup in
+    the mesh's order (each triangle once)."""
+    pieces = [p for p in pieces if p is not None] + [bounding]
+    index, first = np.unique(np.concatenate([i for i, _ in pieces]), return_index=True)
+    corners = np.concatenate([c for _, c in pieces])[first]
+    return corners.reshape(-1, 3), np.arange(3 * len(index), dtype=np.int64).reshape(-1, 3)
+
+
+def _partitioned(client, vertices, triangles, kind, tile, workers, keywords):
+    """Plan and partition a mesh of arrays: the tiles, the box, the plan's
+    grid, each tile's mesh (a dict of futures) and the metadata to set."""
+    vertices = np.asarray(vertices, dtype=np.float64)
+    triangles = np.asarray(triangles, dtype=np.int64)
+    count = len(triangles)
+    bound = _bounding_triangles(vertices, triangles)
+    bounding = (bound, vertices[triangles[bound]])
+    # The plan's call sees only the bounding triangles: the same box, so the
+    # same transform and frame.
+    box, grid = client.submit(_box_task, _tile_mesh([], bounding), kind, keywords, pure=False).result()
+    metadata = {"svo:triangles": str(count)}
+    for key, value in metadata.items():
+        grid[key] = value
+    matrix = _matrix(grid.transform)
+    # One chunk per worker; each a task's result, not scattered data, so that
+    # the scheduler can make it again when its worker is lost (see _hold).
+    n = max(1, min(workers, count))
+    bounds = np.linspace(0, count, n + 1).astype(np.int64)
+    chunks = [_submit_held(client, (np.arange(a, b), vertices[triangles[a:b]])) for a, b in zip(bounds, bounds[1:])]
+    if tile is not None:
+        boxes = tiles(box, tile)
+    elif workers <= 1:
+        boxes = [box]
+    else:
+        parts = client.gather([client.submit(_chunk_weights, c, matrix, pure=False) for c in chunks])
+        keys, inverse = np.unique(np.concatenate([p[0] for p in parts]), axis=0, return_inverse=True)
+        weights = np.bincount(inverse.ravel(), weights=np.concatenate([p[1] for p in parts]), minlength=len(keys))
+        boxes = _balanced(box, workers, keys, weights)
+    # A surface voxel depends on the triangles that touch its cube grown by
+    # the guard band (half a voxel and a little); an unsigned distance within
+    # the band on those within the band of its centre (bricksNearTriangles'
+    # reach), a value beyond it is the background whatever lies there.
+    margin = 2 + (_band(keywords) if kind == "udf" else 0)
+    split = [client.submit(_partition_task, c, matrix, boxes, margin, pure=False) for c in chunks]
+    meshes = [{"pieces": [client.submit(_pick, s, i, pure=False) for s in split], "bounding": bounding}
+              for i in range(len(boxes))]
+    return boxes, box, grid, meshes, metadata
 
 
 # --- the call ------------------------------------------------------------------
 
 
-def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, **keywords):
+def local_cluster(workers=2, devices=None):
+    """A Dask cluster on this machine for svo: one-thread worker processes
+    (one GL context each), the dashboard on a free port.
+
+    devices: one worker per entry, each with SVO_EGL_DEVICE set to it (an
+    EGL device index, or auto/hardware/software, as Voxelizer(device=...)
+    takes), so that each worker voxelizes on its own GPU; workers is then
+    ignored. None: `workers` workers on the device svo picks by default.
+    Use it as a context manager, or close() it.
+    """
+    from distributed import LocalCluster, Nanny, Scheduler, SpecCluster
+
+    if devices is None:
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0")
+    devices = [str(d) for d in devices]
+    if not devices:
+        raise ValueError("devices: give at least one EGL device")
+    # The library reads SVO_EGL_DEVICE where the Voxelizer is given no device
+    # (svo/gl/device_options.h); the nanny sets it in the worker's process.
+    spec = {i: {"cls": Nanny, "options": {"nthreads": 1, "env": {"SVO_EGL_DEVICE": d}}}
+            for i, d in enumerate(devices)}
+    return SpecCluster(workers=spec, scheduler={"cls": Scheduler, "options": {"dashboard_address": ":0"}})
+
+
+def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, output_dir=None, devices=None,
+             partition=True, **keywords):
     """Voxelize a mesh on a Dask cluster: exactly the single-process grid (the
     main grid of the call's svo.Result, returned as the grid itself).
 
     mesh: a path every worker can read, or a (vertices, triangles) pair of
-    numpy arrays (sent to the workers once). kind: "surface" (svo.voxelize),
+    numpy arrays (held by tasks, see _hold: they pass through the scheduler
+    once). kind: "surface" (svo.voxelize),
     "sdf" (Voxelizer.level_set), "udf" (level_set unsigned=True) or "solid".
     keywords: those of that call (resolution, voxel_size, grid, backend,
     exterior_band, sign, ...); not region, and not attributes (their arrays
     are not joined yet). client: a dask.distributed Client; None starts a
-    LocalCluster of one-thread worker processes and closes it after. tile:
-    voxels per tile side, a multiple of 8 (default: about 4 tiles per worker).
+    LocalCluster of one-thread worker processes (one per entry of devices,
+    each on its EGL device: see local_cluster) and closes it after. tile:
+    voxels per tile side, a multiple of 8, for a lattice of equal tiles
+    (default: tiles balanced by the surface they hold, plan_tiles, from a
+    lattice of default_tile).
     progress(done, total) is called as tiles finish.
+
+    partition: for a surface or an unsigned field of arrays, each tile task
+    gets only the triangles near its box (cut in parallel on the workers);
+    False sends every task the whole mesh. Level sets and solids always
+    have the whole mesh (their signs depend on triangles far away).
+
+    output_dir: instead of one grid on the client, each worker writes its
+    tiles to this folder (one .vdb per tile that holds more than background,
+    named by tile_file_name), and the client writes index.json last; returns
+    the index (a dict, see write_index). The folder must be one every worker
+    and the client can write (a shared file system).
     """
     if kind not in KINDS:
         raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
@@ -166,31 +467,47 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, **k
         raise ValueError("unsigned: kind='udf' sets it")
     if tile is not None and (tile <= 0 or tile % 8):
         raise ValueError(f"tile must be a positive multiple of 8, got {tile}")
+    if client is not None and devices is not None:
+        raise ValueError("devices: only for the local cluster voxelize starts (client=None); "
+                         "on a cluster of your own, start each worker with SVO_EGL_DEVICE set")
     if client is None:
-        from distributed import Client, LocalCluster
+        from dask.system import CPU_COUNT
+        from distributed import Client
 
         # The dashboard on a free port: a second cluster on the machine is no error.
-        with LocalCluster(processes=True, threads_per_worker=1, dashboard_address=":0") as cluster, \
+        with local_cluster(workers=CPU_COUNT, devices=devices) as cluster, \
                 Client(cluster) as own:
-            return _run(own, mesh, kind, tile, progress, keywords)
-    return _run(client, mesh, kind, tile, progress, keywords)
+            return _run(own, mesh, kind, tile, progress, output_dir, partition, keywords)
+    return _run(client, mesh, kind, tile, progress, output_dir, partition, keywords)
 
 
-def _run(client, mesh, kind, tile, progress, keywords):
+def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords):
     from distributed import as_completed
 
-    if not isinstance(mesh, (str, os.PathLike)):
-        vertices, triangles = mesh
-        mesh = client.scatter((vertices, triangles), broadcast=True)
+    workers = len(client.scheduler_info()["workers"])
+    metadata = None
+    if not isinstance(mesh, (str, os.PathLike)) and kind in PARTITIONED_KINDS and partition and _metadata_settable():
+        boxes, box, grid, meshes, metadata = _partitioned(client, *mesh, kind, tile, workers, keywords)
     else:
-        mesh = os.fspath(mesh)
-    # On a worker: a path is read where the tiles will read it (svo's reader
-    # errors name the file), and the client needs no GL context.
-    box, grid = client.submit(_plan_task, mesh, kind, keywords, pure=False).result()
-    if tile is None:
-        tile = default_tile(box, len(client.scheduler_info()["workers"]))
-    boxes = tiles(box, tile)
-    futures = [client.submit(_tile_task, mesh, kind, keywords, b, pure=False) for b in boxes]
+        if not isinstance(mesh, (str, os.PathLike)):
+            mesh = _submit_held(client, tuple(mesh))
+        else:
+            mesh = os.fspath(mesh)
+        # On a worker: a path is read where the tiles will read it (svo's reader
+        # errors name the file), and the client needs no GL context.
+        boxes, box, grid = client.submit(_plan_task, mesh, kind, keywords, tile, workers, pure=False).result()
+        meshes = [mesh] * len(boxes)
+    if output_dir is not None:
+        output_dir = os.path.abspath(os.fspath(output_dir))
+        os.makedirs(output_dir, exist_ok=True)
+        # An index left by an earlier job would name files this one replaces:
+        # until this job's index is written, the folder holds no index.
+        index_path = os.path.join(output_dir, INDEX_NAME)
+        if os.path.exists(index_path):
+            os.remove(index_path)
+    futures = [client.submit(_tile_task, m, kind, keywords, b, output_dir, metadata, pure=False)
+               for m, b in zip(meshes, boxes)]
+    entries = []
     done = 0
     if progress:
         progress(done, len(boxes))
@@ -198,7 +515,10 @@ def _run(client, mesh, kind, tile, progress, keywords):
         # Joined as they arrive, so the client holds one tile's grid at a time
         # besides the result.
         for future in as_completed(futures):
-            _join_region(grid, future.result())
+            if output_dir is None:
+                _join_region(grid, future.result())
+            else:
+                entries.append(future.result())
             future.release()
             done += 1
             if progress:
@@ -207,7 +527,89 @@ def _run(client, mesh, kind, tile, progress, keywords):
         # One call for all: a failed tile (or Ctrl-C) stops the tiles still queued.
         client.cancel(futures)
         raise
-    return grid
+    if output_dir is None:
+        return grid
+    # A worker killed while svo's writer wrote a tile leaves its temporary
+    # file (the tile's own name + ".tmp-" + 8 hex digits); the task ran again.
+    for name in os.listdir(output_dir):
+        if name.startswith("tile_") and ".vdb.tmp-" in name:
+            os.remove(os.path.join(output_dir, name))
+    return write_index(output_dir, grid, kind, box, entries)
+
+
+# --- per-tile output -----------------------------------------------------------
+
+INDEX_NAME = "index.json"
+INDEX_FORMAT = "svo.distributed.tiles"
+
+
+def _transform_matrix(xform):
+    """A linear transform's 4x4 matrix in OpenVDB's row-vector convention
+    (world = [i j k 1] M), from where it maps the index origin and unit steps."""
+    o = xform.indexToWorld((0.0, 0.0, 0.0))
+    rows = []
+    for axis in range(3):
+        p = xform.indexToWorld(tuple(1.0 if a == axis else 0.0 for a in range(3)))
+        rows.append([p[a] - o[a] for a in range(3)] + [0.0])
+    rows.append(list(o) + [1.0])
+    return rows
+
+
+def _json_value(value):
+    if isinstance(value, (bool, int, float, str)) or value is None:
+        return value
+    if isinstance(value, (tuple, list)):
+        return [_json_value(v) for v in value]
+    return str(value)
+
+
+def write_index(output_dir, grid, kind, box, entries):
+    """Write output_dir/index.json (a temporary file renamed into place, after
+    every tile's file): what a reader needs to put the tiles together.
+
+    Keys: format ("svo.distributed.tiles"), format_version (1), svo_version,
+    kind, box (the planned box [lo, hi) in index space), grids (one entry per
+    grid each file holds: name, type, class, background, voxel_size,
+    transform as a 4x4 row-vector matrix, metadata), tiles (each tile's box
+    [lo, hi), its file relative to the folder, or null where the tile holds
+    only background, and its active voxels, in the order of their boxes), and
+    active_voxels (the sum). grid: the empty grid of the plan (transform,
+    class, name, metadata). Returns the index as a dict.
+    """
+    if hasattr(grid, "gridClass"):  # pyopenvdb
+        kind_of_grid = {"type": grid.valueTypeName, "class": grid.gridClass,
+                        "voxel_size": list(grid.transform.voxelSize()),
+                        "transform": _transform_matrix(grid.transform)}
+    else:  # svo.Grid
+        kind_of_grid = {"type": grid.type, "class": grid.grid_class, "voxel_size": list(grid.voxel_size),
+                        "transform": [[float(x) for x in row] for row in grid.transform]}
+    g = {"name": grid.name, **kind_of_grid, "background": _json_value(grid.background),
+         "metadata": {k: _json_value(v) for k, v in dict(grid.metadata).items()}}
+    entries = sorted(entries, key=lambda e: (e["box"][0], e["box"][1]))
+    index = {
+        "format": INDEX_FORMAT,
+        "format_version": 1,
+        "svo_version": svo.__version__,
+        "kind": kind,
+        "box": [list(box[0]), list(box[1])],
+        "grids": [g],
+        "tiles": entries,
+        "active_voxels": sum(e["active_voxels"] for e in entries),
+    }
+    path = os.path.join(output_dir, INDEX_NAME)
+    tmp = f"{path}.tmp-{os.getpid()}"
+    try:
+        with open(tmp, "w") as f:
+            json.dump(index, f, indent=1)
+            f.write("\n")
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
+    return index
 
 
 # --- command line ------------------------------------------------------------
@@ -233,7 +635,12 @@ def _main(argv=None):
     where = p.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=2, help="local cluster worker processes (default 2)")
     where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://host:8786")
-    p.add_argument("-o", "--output", required=True, help="the .vdb file (written atomically)")
+    where.add_argument("--devices", help="a local cluster of one worker per EGL device, e.g. 0,1,2,3 "
+                       "(each worker's SVO_EGL_DEVICE)")
+    out = p.add_mutually_exclusive_group(required=True)
+    out.add_argument("-o", "--output", help="the .vdb file (written atomically)")
+    out.add_argument("--tiles-dir", help="a folder every worker can write: one .vdb per tile, written by the "
+                     "workers, and index.json naming them, written last")
     args = parser.parse_args(argv)
 
     kind = "sdf" if args.sdf else "udf" if args.udf else "solid" if args.fill else "surface"
@@ -256,17 +663,19 @@ def _main(argv=None):
         print(f"\rtiles {done}/{total}" if tty else f"tiles {done}/{total}", end="" if tty else "\n",
               file=sys.stderr, flush=True)
 
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
     try:
         if args.scheduler:
             with Client(args.scheduler) as client:
-                grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report, **keywords)
+                grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report,
+                                output_dir=args.tiles_dir, **keywords)
         else:
-            with LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
-                              dashboard_address=":0") as cluster, Client(cluster) as client:
+            devices = args.devices.split(",") if args.devices else None
+            with local_cluster(workers=args.workers, devices=devices) as cluster, Client(cluster) as client:
                 print(f"dashboard: {client.dashboard_link}", file=sys.stderr, flush=True)
-                grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report, **keywords)
+                grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report,
+                                output_dir=args.tiles_dir, **keywords)
     except Exception as e:
         if tty:
             print(file=sys.stderr)
@@ -274,6 +683,8 @@ def _main(argv=None):
         return 1
     if tty:
         print(file=sys.stderr)
+    if args.tiles_dir:
+        return 0  # the workers wrote the tiles, voxelize the index
     # svo's writer: a temporary file beside the output, then a rename (an
     # interrupted run leaves no partial file); pyopenvdb grids or svo.Grid.
     svo.write(args.output, [grid])

@@ -1,6 +1,8 @@
 """svo.distributed against the single-process call: the tiles joined are the
 whole grid, voxel for voxel and value for value (inactive values too)."""
+import json
 import os
+import shutil
 import subprocess
 import sys
 
@@ -197,6 +199,11 @@ def test_tiles_cover_the_box_once_in_whole_leaves():
         assert all(c % 8 == 0 for c in lo + hi)
         covered[lo[0] + 40:hi[0] + 40, lo[1] + 16:hi[1] + 16, lo[2] - 8:hi[2] - 8] += 1
     assert (covered == 1).all()
+    # Tiles of a multiple of 128: cut at multiples of 128 (internal nodes), few of them.
+    box = ((-200, 8, 0), (312, 136, 64))
+    parts = svo.distributed.tiles(box, 256)
+    assert sorted({lo[0] for lo, _ in parts}) == [-200, 0, 256]
+    assert all(hi[0] in (0, 256, 312) and lo[1:] == (8, 0) and hi[1:] == (136, 64) for lo, hi in parts)
     # About 4 tiles per worker; from 128 up, whole OpenVDB internal nodes.
     assert svo.distributed.default_tile(((0, 0, 0), (64, 64, 64)), 2) == 32  # 8 tiles of 32³
     assert svo.distributed.default_tile(((0, 0, 0), (2048, 2048, 2048)), 4) == 896  # 812 rounded up to 128s
@@ -217,3 +224,268 @@ def test_keywords_pass_through_to_each_tile(client, voxelizer, kind, keywords):
     want = (voxelizer.voxelize if kind == "surface" else voxelizer.level_set)(v, t, resolution=RESOLUTION,
                                                                               **keywords).grid
     assert_same_grid(got, want)
+
+
+# --- per-tile output (output_dir, --tiles-dir) -------------------------------
+
+
+def read_one_grid(path):
+    grids, _ = pyopenvdb.readAll(str(path))
+    assert len(grids) == 1
+    return grids[0]
+
+
+def assert_tiles_are_the_single_grid(folder, index, want):
+    """Each tile's file, read by pyopenvdb (and opened by vdb_print where it is
+    installed), is the single-process grid cut to the tile's box; a tile
+    without a file holds only background; together they hold every voxel."""
+    assert index == json.loads((folder / "index.json").read_text())
+    assert index["svo_version"] == svo.__version__ and index["format"] == "svo.distributed.tiles"
+    (g,) = index["grids"]
+    assert (g["name"], g["class"], g["type"]) == (want.name, want.gridClass, want.valueTypeName)
+    assert g["background"] == want.background and g["voxel_size"] == list(want.transform.voxelSize())
+    world = np.array([1.0, 2.0, 3.0, 1.0]) @ np.array(g["transform"])
+    assert np.allclose(world[:3], want.transform.indexToWorld((1, 2, 3)), rtol=0, atol=1e-12)
+    files = [t["file"] for t in index["tiles"] if t["file"]]
+    assert len(files) >= 2 and len(set(files)) == len(files)
+    assert sorted(p.name for p in folder.iterdir()) == sorted(files + ["index.json"])  # no temporary left
+    if shutil.which("vdb_print"):
+        r = subprocess.run(["vdb_print", *[str(folder / f) for f in files]], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        assert r.stdout.count(want.name) == len(files)
+    mask = active_mask(want)
+    union = set()
+    for t in index["tiles"]:
+        lo, hi = tuple(t["box"][0]), tuple(t["box"][1])
+        inside = {v for v in mask if all(lo[a] <= v[a] < hi[a] for a in range(3))}
+        if t["file"] is None:
+            assert not inside and t["active_voxels"] == 0
+            assert (values(want, lo, hi) == want.background).all()
+            continue
+        got = read_one_grid(folder / t["file"])
+        assert type(got) is type(want) and (got.name, got.gridClass) == (want.name, want.gridClass)
+        assert got.background == want.background
+        assert got.transform.indexToWorld((1, 2, 3)) == want.transform.indexToWorld((1, 2, 3))
+        tile_mask = active_mask(got)
+        assert tile_mask == inside and got.activeVoxelCount() == t["active_voxels"]
+        assert np.array_equal(values(got, lo, hi), values(want, lo, hi))
+        union |= tile_mask
+    assert union == mask and index["active_voxels"] == want.activeVoxelCount()
+    # Nothing of the single grid lies outside the tiles' boxes.
+    lo, hi = want.evalLeafBoundingBox()
+    assert all(index["box"][0][a] <= lo[a] and hi[a] < index["box"][1][a] for a in range(3))
+
+
+@pytest.mark.parametrize("kind, shape", [("surface", "open"), ("sdf", "closed"), ("sdf", "open"), ("solid", "closed")])
+def test_per_tile_files_are_the_single_process_grid(client, voxelizer, tmp_path, kind, shape):
+    mesh = icosphere() if shape == "closed" else open_sphere()
+    folder = tmp_path / "tiles"
+    index = svo.distributed.voxelize(mesh, client=client, tile=TILE, kind=kind, resolution=RESOLUTION,
+                                     output_dir=folder)
+    assert len(index["tiles"]) >= 8
+    assert_tiles_are_the_single_grid(folder, index, single(voxelizer, mesh, kind))
+
+
+def test_the_command_line_writes_tiles_and_an_index(voxelizer, tmp_path):
+    v, t = open_sphere()
+    mesh = tmp_path / "open.obj"
+    with open(mesh, "w") as f:
+        f.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in t.tolist())
+    folder = tmp_path / "tiles"
+    folder.mkdir()
+    (folder / "index.json").write_text("{}")  # an earlier job's index: replaced
+    r = run_cli("voxelize", str(mesh), "-r", str(RESOLUTION), "--udf", "--tile", "16", "--devices", "software",
+                "--tiles-dir", str(folder))
+    assert r.returncode == 0, r.stderr
+    index = json.loads((folder / "index.json").read_text())
+    assert index["kind"] == "udf"
+    assert_tiles_are_the_single_grid(folder, index, single(voxelizer, str(mesh), "udf"))
+
+
+# --- a worker killed in the middle of a task ---------------------------------
+
+
+@pytest.mark.parametrize("mesh_as, kind", [("arrays", "surface"), ("arrays", "sdf"), ("file", "sdf")])
+def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, mesh_as, kind):
+    """The first tile task to run kills its worker process (SIGKILL, no
+    clean-up) while the task is on the worker's thread; the scheduler gives
+    the lost task to a worker again and the job's result is unchanged: one
+    grid from arrays, per-tile files from a mesh file."""
+    marker = tmp_path / "killed"
+
+    class KillOnce(distributed.WorkerPlugin):
+        # Defined here, so that Dask pickles it by value: the workers cannot import this file.
+        name = "svo-test-kill-once"
+
+        def __init__(self, marker):
+            self.marker = str(marker)
+
+        def transition(self, key, start, finish, **kwargs):
+            if finish != "executing" or not str(key).startswith("_tile_task"):
+                return
+            try:  # the first tile task of the job, on whichever worker; never again
+                fd = os.open(self.marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+            except FileExistsError:
+                return
+            import signal
+            import threading
+            import time
+
+            def kill_in_task():
+                deadline = time.monotonic() + 30
+                while time.monotonic() < deadline:
+                    for frame in sys._current_frames().values():
+                        while frame is not None and frame.f_code.co_name != "_tile_task":
+                            frame = frame.f_back
+                        if frame is not None:  # the task's thread is inside _tile_task
+                            os.write(fd, f"{key} {os.getpid()}".encode())
+                            os.close(fd)
+                            os.kill(os.getpid(), signal.SIGKILL)
+                    time.sleep(0.001)
+
+            threading.Thread(target=kill_in_task, daemon=True).start()
+
+    mesh = open_sphere()
+    if mesh_as == "file":
+        path = tmp_path / "open.obj"
+        with open(path, "w") as f:
+            f.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in mesh[0].tolist())
+            f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in mesh[1].tolist())
+        mesh = str(path)
+    folder = tmp_path / "tiles" if mesh_as == "file" else None
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
+        c.wait_for_workers(2)
+        pids = set(c.run(os.getpid).values())
+        c.register_worker_plugin(KillOnce(marker))
+        # A surface of arrays: tasks get their part of the mesh (chunks the
+        # workers cut); a level set: the whole mesh (arrays held by a task, or a file).
+        got = svo.distributed.voxelize(mesh, client=c, tile=TILE, kind=kind, resolution=RESOLUTION,
+                                       output_dir=folder)
+        killed_key, killed_pid = marker.read_text().split()
+        assert killed_key.startswith("_tile_task") and int(killed_pid) in pids
+        c.wait_for_workers(2)
+        assert int(killed_pid) not in set(c.run(os.getpid).values())  # the nanny started a new process
+    want = single(voxelizer, mesh, kind)
+    if folder is None:
+        assert_same_grid(got, want)
+    else:
+        assert_tiles_are_the_single_grid(folder, got, want)
+
+
+# --- tiles balanced by the surface they hold ---------------------------------
+
+
+def test_balanced_tiles_split_where_the_surface_is():
+    box = ((-64, -64, 0), (64, 72, 128))
+    rng = np.random.default_rng(7)
+    # A dense cluster of surface in one corner leaf block, a thin spread elsewhere.
+    dense = rng.integers(0, 4, size=(200, 3)) * 8
+    sparse = rng.integers(-8, 8, size=(40, 3)) * 8 + np.array([0, 0, 64])
+    leaves = np.concatenate([dense, sparse])
+    weights = np.concatenate([np.full(200, 10.0), np.ones(40)])
+    keep = np.all((leaves >= box[0]) & (leaves < box[1]), axis=1)
+    leaves, weights = leaves[keep], weights[keep]
+    parts = svo.distributed.plan_tiles(box, 64, leaves, weights, parts=16)
+    covered = np.zeros((128, 136, 128), dtype=int)
+    target = weights.sum() / 16
+    for lo, hi in parts:
+        assert all(c % 8 == 0 for c in lo + hi)
+        assert all(lo[a] // 64 == (hi[a] - 1) // 64 for a in range(3))  # inside one cell of the lattice
+        covered[lo[0] + 64:hi[0] + 64, lo[1] + 64:hi[1] + 64, lo[2]:hi[2]] += 1
+        held = weights[np.all((leaves >= lo) & (leaves < hi), axis=1)].sum()
+        side = max(hi[a] - lo[a] for a in range(3))
+        assert held <= target or side <= 8  # split three times from 64: 8
+    assert (covered == 1).all()
+    sides = {lo: max(hi[a] - lo[a] for a in range(3)) for lo, hi in parts}
+    assert sides[(0, 0, 0)] == 8 and max(sides.values()) == 64  # small at the cluster, whole cells elsewhere
+    # No surface: the lattice itself.
+    assert svo.distributed.plan_tiles(box, 64, np.zeros((0, 3)), np.zeros(0), parts=16) == \
+        sorted(svo.distributed.tiles(box, 64))
+
+
+def test_surface_weights_put_triangles_in_their_leaves():
+    v = np.array([[0.5, 0.5, 0.5], [2, 0.5, 0.5], [0.5, 2, 0.5], [20, 20, 20], [21, 20, 20], [20, 21, 20]])
+    t = np.array([[0, 1, 2], [3, 4, 5], [3, 5, 4]])
+    m = np.diag([0.25, 0.25, 0.25, 1.0])  # 4 voxels per unit
+    m[3, :3] = (-1.0, 0.0, 0.0)
+    leaves, weights = svo.distributed.surface_weights(v, t, m)
+    # Index = ((x + 1) * 4, y * 4, z * 4): the first triangle (6,2,2) (12,2,2) (6,8,2), centroid (8,4,2),
+    # legs of 6; the other two (84,80,80) (88,80,80) (84,84,80), centroid (85.3,81.3,80), legs of 4.
+    assert leaves.tolist() == [[8, 0, 0], [80, 80, 80]]
+    assert np.allclose(weights, [1 + 0.5 * 6 * 6, 2 * (1 + 0.5 * 4 * 4)])
+
+
+def two_spheres():
+    """A fine small sphere inside the box of a coarse big one, apart: most of the surface in one corner."""
+    big_v, big_t = icosphere(1)
+    small_v, small_t = icosphere(3)
+    v = np.concatenate([big_v, small_v * 0.3 + 1.4])
+    return v, np.concatenate([big_t, small_t + len(big_v)])
+
+
+@pytest.mark.parametrize("kind", ["surface", "sdf"])
+def test_balanced_tiles_give_the_single_process_grid(client, voxelizer, kind):
+    mesh = two_spheres()
+    boxes, box, _ = client.submit(svo.distributed._plan_task, mesh, kind, {"resolution": RESOLUTION}, None, 2,
+                                  pure=False).result()
+    sides = [max(hi[a] - lo[a] for a in range(3)) for lo, hi in boxes]
+    assert min(sides) < max(sides)  # not a lattice
+    got = svo.distributed.voxelize(mesh, client=client, kind=kind, resolution=RESOLUTION)
+    assert_same_grid(got, single(voxelizer, mesh, kind))
+
+
+# --- one EGL device per worker -----------------------------------------------
+
+
+def test_each_worker_of_a_local_cluster_has_its_own_device(voxelizer):
+    # CI has one (software) EGL device; a device no machine has proves that
+    # the worker's Voxelizer reads the device its worker was given.
+    with svo.distributed.local_cluster(devices=["software", "99"]) as cluster, distributed.Client(cluster) as c:
+        c.wait_for_workers(2)
+        given = c.run(lambda: os.environ.get("SVO_EGL_DEVICE"))
+        assert sorted(given.values()) == ["99", "software"]
+        good = next(w for w, d in given.items() if d == "software")
+        bad = next(w for w, d in given.items() if d == "99")
+        assert "software" in c.submit(lambda: svo.Voxelizer().device(), workers=[good], pure=False).result()
+        v, t = icosphere()
+        with pytest.raises(svo.distributed.TileError, match="no EGL device matches '99'"):
+            c.submit(svo.distributed._tile_task, (v, t), "surface", {"resolution": 16, "backend": "raster"},
+                     ((0, 0, 0), (8, 8, 8)), workers=[bad], pure=False).result()
+        got = c.submit(svo.distributed._tile_task, (v, t), "surface", {"resolution": RESOLUTION, "backend": "raster"},
+                       ((16, -8, -8), (24, 8, 8)), workers=[good], pure=False).result()
+    want = voxelizer.voxelize(v, t, resolution=RESOLUTION, backend="raster", region=((16, -8, -8), (24, 8, 8))).grid
+    assert active_mask(got) == active_mask(want) and got.activeVoxelCount() > 0
+
+
+def test_devices_only_for_the_local_cluster(client):
+    with pytest.raises(ValueError, match="SVO_EGL_DEVICE"):
+        svo.distributed.voxelize(icosphere(), client=client, devices=[0])
+
+
+# --- the mesh partitioned to tiles -------------------------------------------
+
+
+@pytest.mark.parametrize("kind", ["surface", "udf"])
+def test_each_tile_task_gets_only_the_triangles_near_it(client, voxelizer, kind):
+    v, t = icosphere(3)
+    boxes, _, _, meshes, metadata = svo.distributed._partitioned(client, v, t, kind, TILE, 2,
+                                                                 {"resolution": RESOLUTION})
+    assert metadata == {"svo:triangles": str(len(t))}
+    counts, seen = [], set()
+    for m in meshes:
+        pieces = [p for p in client.gather(m["pieces"]) if p is not None]
+        index = set(np.concatenate([i for i, _ in pieces]).tolist()) if pieces else set()
+        counts.append(len(index))
+        seen |= index
+        for i, corners in pieces:  # each piece is the mesh's own triangles
+            assert np.array_equal(corners, v[t[i]])
+    assert seen == set(range(len(t)))  # every triangle reaches a tile
+    assert max(counts) < len(t) / (4 if kind == "surface" else 2) and len(boxes) >= 8
+    # And the parts give the whole grid (the bounding triangles fix its box).
+    got = svo.distributed.voxelize((v, t), client=client, tile=TILE, kind=kind, resolution=RESOLUTION)
+    assert_same_grid(got, single(voxelizer, (v, t), kind))
+    whole = svo.distributed.voxelize((v, t), client=client, tile=TILE, kind=kind, resolution=RESOLUTION,
+                                     partition=False)
+    assert_same_grid(whole, got)
