@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# On the GPU host: the GPU NanoVDB builder (gl::buildNanoGridGpu) byte for
+# byte against the CPU layout (test_gpu_nano_grid), the CPU layout against
+# NanoVDB's converter with nanovdb_validate in the bundle (test_nanovdb_layout),
+# the winding suites after the tree of pieces (test_level_set, test_cpu_fields),
+# and the builder's timing (svo-bench-nanovdb-gpu) on the bunny.
+#   bash scripts/bundle.sh build bundle/svo-bundle.tar.gz build/tests/test_gpu_nano_grid \
+#     build/tests/test_nanovdb_layout build/tests/test_level_set build/tests/test_cpu_fields \
+#     build/bin/svo-bench-nanovdb-gpu /usr/bin/nanovdb_validate
+#   OUT=dir [RES="256 512 1024 2048"] bash bench/gpu_host_nano_builder.sh
+set -uo pipefail
+source "$(dirname "$0")/gpu_host_env.sh"
+export PATH="$bin:$PATH" SVO_CGAL_MESHES=$PWD/.gl/meshes
+mkdir -p /work/main/build/tests/cgal_data/data && ln -sfn "$PWD/.gl/meshes" /work/main/build/tests/cgal_data/data/meshes
+for t in test_gpu_nano_grid test_nanovdb_layout test_level_set test_cpu_fields; do
+  [ -x "$bin/$t" ] || continue
+  echo "== $t"
+  "$bin/$t" --gtest_brief=1 2>&1 | tail -25
+done 2>&1 | tee "$out/tests.txt"
+"$bin/svo-bench-nanovdb-gpu" bundle/meshes/stanford-bunny.obj --res ${RES:-256 512 1024 2048} --runs 5 --backend gpu \
+  2>&1 | tee "$out/gpu_builder.md"
