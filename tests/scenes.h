@@ -50,6 +50,30 @@ inline TriangleMesh box(Vec3d lo, Vec3d hi)
     return m;
 }
 
+/// An open box (the closed box [0,1]x[0,0.5]x[0,0.8] less three of its
+/// twelve triangles) and 40 needles beside it: triangles whose corners lie
+/// on one slanted line as rounding leaves them, or 1e-9 off it. The box's
+/// triangles come first (indices 0-8).
+inline TriangleMesh boxAndNeedles()
+{
+    TriangleMesh open = box({0, 0, 0}, {1, 0.5, 0.8});
+    open.triangles.resize(9);
+    uint32_t seed = 12345;
+    const auto next = [&] { return double(seed = seed * 1664525u + 1013904223u) / 4294967296.0; };
+    for (int k = 0; k < 40; ++k) {
+        const Vec3d from{1.2 + 0.5 * next(), 0.8 * next(), 0.8 * next()};
+        const Vec3d along{next() - 0.5, next() - 0.5, next() - 0.5};
+        const double off = k % 2 ? 1e-9 : 0.0;
+        const auto first = uint32_t(open.positions.size());
+        open.positions.push_back(from + Vec3d{0, off, 0});
+        open.positions.push_back(from + (0.6 + 0.3 * next()) * along);
+        open.positions.push_back(from + (0.1 + 0.4 * next()) * along + Vec3d{0, 0, off});
+        open.triangles.push_back({first, first + 1, first + 2});
+    }
+    open.source = "open box and needles";
+    return open;
+}
+
 /// A UV sphere of radius r at centre c.
 inline TriangleMesh sphere(Vec3d c, double r, int slices, int stacks)
 {

@@ -324,27 +324,6 @@ LevelSetOptions options(double exterior, double interior, SignMethod method = Si
     return ls;
 }
 
-/// The open box and needles of test_level_set's unsigned test.
-TriangleMesh boxAndNeedles()
-{
-    TriangleMesh open = box({0, 0, 0}, {1, 0.5, 0.8});
-    open.triangles.resize(9);
-    uint32_t seed = 12345;
-    const auto next = [&] { return double(seed = seed * 1664525u + 1013904223u) / 4294967296.0; };
-    for (int k = 0; k < 40; ++k) {
-        const Vec3d from{1.2 + 0.5 * next(), 0.8 * next(), 0.8 * next()};
-        const Vec3d along{next() - 0.5, next() - 0.5, next() - 0.5};
-        const double off = k % 2 ? 1e-9 : 0.0;
-        const auto first = uint32_t(open.positions.size());
-        open.positions.push_back(from + Vec3d{0, off, 0});
-        open.positions.push_back(from + (0.6 + 0.3 * next()) * along);
-        open.positions.push_back(from + (0.1 + 0.4 * next()) * along + Vec3d{0, 0, off});
-        open.triangles.push_back({first, first + 1, first + 2});
-    }
-    open.source = "open box and needles";
-    return open;
-}
-
 // Closed meshes: parity under auto, and winding as asked; closest triangles.
 TEST(CpuFields, ClosedMeshLevelSetsAreTheGpusBitForBit)
 {

@@ -272,6 +272,31 @@ TEST(Winding, BothWalksGiveTheSameBits)
     }
 }
 
+/// The winding numbers the GPU walk over @a tree sums at every brick centre
+/// of @a grid at @a beta, against the exact solid angles of every triangle:
+/// the error's root mean square and maximum.
+std::pair<double, double> brickCentreErrors(gl::Context& context, const GridSpec& grid,
+                                            const std::vector<Vec3d>& local,
+                                            const std::vector<std::array<uint32_t, 3>>& triangles,
+                                            const WindingTree& tree, double beta)
+{
+    gl::WindingRequest request;
+    request.perBrick = true;
+    request.beta = beta;
+    const gl::WindingResult r = gl::computeWinding(context, grid, tree, request);
+    const auto& d = r.brickDims;
+    double sum = 0, largest = 0;
+    for (uint32_t z = 0; z < d[2]; ++z)
+        for (uint32_t y = 0; y < d[1]; ++y)
+            for (uint32_t x = 0; x < d[0]; ++x) {
+                const Vec3d q{8.0 * x + 3.5, 8.0 * y + 3.5, 8.0 * z + 3.5};
+                const double e =
+                    r.perBrick[x + size_t(d[0]) * (y + size_t(d[1]) * z)] - windingNumber(local, triangles, q);
+                sum += e * e, largest = std::max(largest, std::abs(e));
+            }
+    return {std::sqrt(sum / (double(d[0]) * d[1] * d[2])), largest};
+}
+
 // The far field's accuracy, against every triangle's exact solid angle: the
 // winding number at the brick centres of an open mesh (a sphere with a hole
 // and flipped faces, so that numbers take every value), at beta and 2 beta.
@@ -286,23 +311,7 @@ TEST(Winding, FarFieldErrorIsOfTheThirdOrder)
     const std::vector<Vec3d> local = gl::localPositions(mesh, grid);
     const WindingTree tree = buildWindingTree(local, mesh.triangles);
     gl::Context context;
-    gl::WindingRequest request;
-    request.perBrick = true;
-    auto rms = [&](double beta) {
-        request.beta = beta;
-        const gl::WindingResult r = gl::computeWinding(context, grid, tree, request);
-        const auto& d = r.brickDims;
-        double sum = 0;
-        for (uint32_t z = 0; z < d[2]; ++z)
-            for (uint32_t y = 0; y < d[1]; ++y)
-                for (uint32_t x = 0; x < d[0]; ++x) {
-                    const Vec3d q{8.0 * x + 3.5, 8.0 * y + 3.5, 8.0 * z + 3.5};
-                    const double e = r.perBrick[x + size_t(d[0]) * (y + size_t(d[1]) * z)] -
-                                     windingNumber(local, mesh.triangles, q);
-                    sum += e * e;
-                }
-        return std::sqrt(sum / (double(d[0]) * d[1] * d[2]));
-    };
+    auto rms = [&](double beta) { return brickCentreErrors(context, grid, local, mesh.triangles, tree, beta).first; };
     const double e1 = rms(1.5), e2 = rms(3.0), e4 = rms(6.0);
     std::cout << "[ winding  ] rms far-field error at beta 1.5, 3, 6: " << e1 << ", " << e2 << ", " << e4 << "\n";
     EXPECT_GT(e1 / e2, 6.0);
@@ -382,22 +391,8 @@ TEST(Winding, PiecesKeepTheFarFieldAccurate)
     EXPECT_GT(cut.triangles.size(), open.triangles.size() + 200);
     EXPECT_EQ(whole.triangles.size(), open.triangles.size());
     gl::Context context;
-    gl::WindingRequest request;
-    request.perBrick = true;
     auto errors = [&](const WindingTree& tree, double beta) {
-        request.beta = beta;
-        const gl::WindingResult r = gl::computeWinding(context, grid, tree, request);
-        const auto& d = r.brickDims;
-        double sum = 0, largest = 0;
-        for (uint32_t z = 0; z < d[2]; ++z)
-            for (uint32_t y = 0; y < d[1]; ++y)
-                for (uint32_t x = 0; x < d[0]; ++x) {
-                    const Vec3d q{8.0 * x + 3.5, 8.0 * y + 3.5, 8.0 * z + 3.5};
-                    const double e = r.perBrick[x + size_t(d[0]) * (y + size_t(d[1]) * z)] -
-                                     windingNumber(local, open.triangles, q);
-                    sum += e * e, largest = std::max(largest, std::abs(e));
-                }
-        return std::pair{std::sqrt(sum / (double(d[0]) * d[1] * d[2])), largest};
+        return brickCentreErrors(context, grid, local, open.triangles, tree, beta);
     };
     const auto [rmsWhole, maxWhole] = errors(whole, 1.5);
     const auto [rms1, max1] = errors(cut, 1.5);
@@ -907,22 +902,9 @@ TEST(LevelSet, OpenMeshesTakeWindingUnderAutoAndAreRefusedUnderParity)
 // plane slabs must not drop a needle's centres either.
 TEST(LevelSet, UnsignedDistancesOfAnOpenMeshMatchCgalWithClosestTriangles)
 {
-    TriangleMesh open = box({0, 0, 0}, {1, 0.5, 0.8});
-    open.triangles.resize(9);
-    open.source = "open box";
-    const TriangleMesh boxOnly = open;
-    uint32_t seed = 12345;
-    const auto next = [&] { return double(seed = seed * 1664525u + 1013904223u) / 4294967296.0; };
-    for (int k = 0; k < 40; ++k) {
-        const Vec3d from{1.2 + 0.5 * next(), 0.8 * next(), 0.8 * next()};
-        const Vec3d along{next() - 0.5, next() - 0.5, next() - 0.5};
-        const double off = k % 2 ? 1e-9 : 0.0;
-        const auto first = uint32_t(open.positions.size());
-        open.positions.push_back(from + Vec3d{0, off, 0});
-        open.positions.push_back(from + (0.6 + 0.3 * next()) * along);
-        open.positions.push_back(from + (0.1 + 0.4 * next()) * along + Vec3d{0, 0, off});
-        open.triangles.push_back({first, first + 1, first + 2});
-    }
+    const TriangleMesh open = boxAndNeedles();
+    TriangleMesh boxOnly = open; // the box's triangles (the needles' corners stay, unused)
+    boxOnly.triangles.resize(9);
     const GridSpec grid = makeGrid(open, GridRequest{24, 0});
     LevelSetOptions ls;
     ls.unsignedDistance = true;

@@ -104,6 +104,42 @@ void finishStats(VoxelizeStats& stats, const char* stage, Clock::time_point t0, 
     if (options.stats) *options.stats = std::move(stats);
 }
 
+/// What a field call is called in progress and statistics, and the box its
+/// regions are cut from past a GPU memory budget.
+struct FieldCall {
+    const char* task;  ///< the interrupter's task name
+    const char* stage; ///< the grid stage's name
+    double stageAt;    ///< the share of the work done when the grid stage starts
+    IndexBox box;      ///< every voxel the field can hold (fieldBox)
+};
+
+/// One field call: `bricks(options, checkpoint, stats)` computes the field
+/// on the call's region (or each budget region), `grids(field)` turns it into
+/// grids, which are cut to the region, joined, and handed out with the last
+/// stage's record.
+template <typename Bricks, typename Grids>
+openvdb::GridPtrVec runFieldCall(const FieldCall& call, const VoxelizeOptions& options, Bricks&& bricks, Grids&& grids)
+{
+    const InterruptScope interrupt(options.interrupter, call.task);
+    const Checkpoint checkpoint = interrupt.checkpoint();
+    VoxelizeStats stats;
+    Clock::time_point t0;
+    auto run = [&](const std::optional<IndexBox>& region) {
+        VoxelizeOptions part = options;
+        part.region = region;
+        stats = VoxelizeStats{};
+        const auto field = bricks(part, checkpoint, stats);
+        checkpoint(call.stageAt, call.stage);
+        t0 = Clock::now();
+        openvdb::GridPtrVec out = grids(field);
+        for (auto& g : out) clipToRegion(*g, region);
+        return out;
+    };
+    openvdb::GridPtrVec out = withinBudget(run, options, call.box, stats);
+    finishStats(stats, call.stage, t0, out, checkpoint, options);
+    return out;
+}
+
 } // namespace
 
 namespace detail {
@@ -138,48 +174,29 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
                                                const LevelSetOptions& ls, const VoxelizeOptions& options,
                                                openvdb::math::Transform::Ptr xform, double worldPerVoxel)
 {
-    const InterruptScope interrupt(options.interrupter, "svo: computing a distance field");
-    const Checkpoint checkpoint = interrupt.checkpoint();
-    VoxelizeStats stats;
-    Clock::time_point t0;
-    auto run = [&](const std::optional<IndexBox>& region) {
-        VoxelizeOptions part = options;
-        part.region = region;
-        stats = VoxelizeStats{};
-        const DistanceBricks field = gl::levelSetBricks(device_, mesh, grid, ls, part, checkpoint, stats);
-        checkpoint(0.85, "level set grid");
-        t0 = Clock::now();
-        openvdb::GridPtrVec out = vdb::levelSetGrids(field, ls.exteriorBand, ls.interiorBand, worldPerVoxel, xform);
-        for (auto& g : out) clipToRegion(*g, region);
-        return out;
-    };
     const int64_t pad = int64_t(std::ceil(std::max(ls.exteriorBand, ls.interiorBand))) + 8;
-    openvdb::GridPtrVec out = withinBudget(run, options, fieldBox(grid, pad), stats);
-    finishStats(stats, "level set grid", t0, out, checkpoint, options);
-    return out;
+    const FieldCall call{"svo: computing a distance field", "level set grid", 0.85, fieldBox(grid, pad)};
+    return runFieldCall(
+        call, options,
+        [&](const VoxelizeOptions& part, const Checkpoint& checkpoint, VoxelizeStats& stats) {
+            return gl::levelSetBricks(device_, mesh, grid, ls, part, checkpoint, stats);
+        },
+        [&](const DistanceBricks& field) {
+            return vdb::levelSetGrids(field, ls.exteriorBand, ls.interiorBand, worldPerVoxel, xform);
+        });
 }
 
 openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const GridSpec& grid,
                                                const VoxelizeOptions& options, const SignOptions& sign,
                                                openvdb::math::Transform::Ptr xform)
 {
-    const InterruptScope interrupt(options.interrupter, "svo: filling a solid");
-    const Checkpoint checkpoint = interrupt.checkpoint();
-    VoxelizeStats stats;
-    Clock::time_point t0;
-    auto run = [&](const std::optional<IndexBox>& region) {
-        VoxelizeOptions part = options;
-        part.region = region;
-        stats = VoxelizeStats{};
-        const SolidBricks solid = gl::solidBricks(device_, mesh, grid, part, sign, checkpoint, stats);
-        checkpoint(0.8, "solid grid");
-        t0 = Clock::now();
-        openvdb::MaskGrid::Ptr out = vdb::solidGrid(solid, xform);
-        clipToRegion(*out, region);
-        return openvdb::GridPtrVec{out};
-    };
-    const openvdb::GridPtrVec out = withinBudget(run, options, fieldBox(grid, 16), stats);
-    finishStats(stats, "solid grid", t0, out, checkpoint, options);
+    const FieldCall call{"svo: filling a solid", "solid grid", 0.8, fieldBox(grid, 16)};
+    const openvdb::GridPtrVec out = runFieldCall(
+        call, options,
+        [&](const VoxelizeOptions& part, const Checkpoint& checkpoint, VoxelizeStats& stats) {
+            return gl::solidBricks(device_, mesh, grid, part, sign, checkpoint, stats);
+        },
+        [&](const SolidBricks& solid) { return openvdb::GridPtrVec{vdb::solidGrid(solid, xform)}; });
     return openvdb::gridPtrCast<openvdb::MaskGrid>(out.front());
 }
 
