@@ -67,6 +67,43 @@ def write_off(path, vertices, triangles):
     return path
 
 
+def svo_metadata(grid):
+    return {k: v for k, v in grid.metadata.items() if k.startswith("svo:")}
+
+
+CALLS = {
+    "surface": ([], lambda vz, v, t, **kw: vz.voxelize(v, t, **kw)),
+    "sdf": (["--sdf"], lambda vz, v, t, **kw: vz.level_set(v, t, **kw)),
+    "udf": (["--udf"], lambda vz, v, t, **kw: vz.level_set(v, t, unsigned=True, **kw)),
+    "solid": (["--fill", "solid"], lambda vz, v, t, **kw: vz.solid(v, t, **kw)),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(CALLS))
+@pytest.mark.parametrize("grid_flags, grid_kw", [(["-r", "24"], {"resolution": 24}),
+                                                 (["--voxel-size", "0.0625"], {"voxel_size": 0.0625})])
+def test_the_cli_and_python_tag_the_same_result_alike(voxelizer, tmp_path, kind, grid_flags, grid_kw):
+    # Both front ends call svo::resultMetadata: every svo:* key and value is the
+    # same but svo:source, the mesh file's path there and "mesh" for arrays.
+    flags, call = CALLS[kind]
+    v, t = tetrahedron()
+    mesh = write_off(tmp_path / "tet.off", v, t)
+    out = tmp_path / "cli.vdb"
+    subprocess.run([SVO_EXE, "voxelize", str(mesh), *grid_flags, *flags, "-o", str(out)], check=True,
+                   capture_output=True)
+    grids, _ = pyopenvdb.readAll(str(out))
+    assert len(grids) == 1
+    cli = svo_metadata(grids[0])
+    ours = svo_metadata(call(voxelizer, *svo.read_mesh(mesh), **grid_kw).grid)
+    assert cli.pop("svo:source") == str(mesh) and ours.pop("svo:source") == "mesh"
+    assert ours == cli
+    # What each says: the request, the voxel size as given, the mesh's triangles.
+    assert cli["svo:grid"] == ("resolution 24" if "resolution" in grid_kw else "voxel size 0.0625")
+    assert float(cli["svo:voxel_size"]) == (0.0625 if "voxel_size" in grid_kw else 1 / 24)
+    assert cli["svo:triangles"] == "4" and cli["svo:version"] == svo.__version__
+    assert ("svo:epsilon" in cli) == (kind == "surface")  # a guard band decides surface voxels only
+
+
 def test_read_mesh_names_and_reads_every_format_svo_reads(tmp_path):
     for ext in (".obj", ".ply", ".stl", ".off", ".gltf", ".glb"):
         assert ext in svo.read_mesh.__doc__
