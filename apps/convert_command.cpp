@@ -16,11 +16,13 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "library_call.h"
+#include "stale_sidecar.h"
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 #include "svo/vdb_io/nanovdb_input.h"
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/load_octree.h"
+#include "svo/result_metadata.h"
 #include "svo/vdb_io/octree_files.h"
 #include "svo/vdb_io/reader_grids.h"
 #include "svo/vdb_io/vdb_file.h"
@@ -55,13 +57,14 @@ void copyGrids(const ConvertArgs& a, bool nanoInput, Clock::time_point start, Ou
         else written.bytes = vdb::writeVdbGrids(a.output, grids, {}).bytes;
     }
     outputs.commit(); // then the report: what it says was written is in place
+    const std::string removed = removeStaleSidecar(a.output, {a.input}, a.habits);
     if (!reportShown()) {
         uint64_t voxels = 0;
         for (const auto& g : grids) voxels += g->activeVoxelCount();
         if (summaryShown())
-            fmt::print("svo convert: wrote {} ({} grid{} as they are, {} active voxels, {:.2f} MB) in {}\n", a.output,
+            fmt::print("svo convert: wrote {} ({} grid{} as they are, {} active voxels, {:.2f} MB) in {}{}\n", a.output,
                        grids.size(), grids.size() == 1 ? "" : "s", thousands(voxels), double(written.bytes) / 1e6,
-                       seconds(msSince(start)));
+                       seconds(msSince(start)), staleSidecarNote(removed, a.output));
         return;
     }
     fmt::print("svo convert\n");
@@ -74,6 +77,7 @@ void copyGrids(const ConvertArgs& a, bool nanoInput, Clock::time_point start, Ou
                    cls == openvdb::GRID_UNKNOWN ? "" : ", " + openvdb::GridBase::gridClassToString(cls),
                    thousands(g->activeVoxelCount()));
     }
+    if (!removed.empty()) fmt::print("  {:<12} {}\n", "removed", staleSidecarText(removed, a.output));
 }
 
 void runConvert(const ConvertArgs& a, const CLI::App& cmd)
@@ -109,7 +113,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
         throw InvalidInput(fmt::format("{}: {} would be lost: {} holds only which voxels are active; write .vdb or .nvdb to "
                                        "keep them, or give --topology-only to keep the active voxels alone",
                                        a.input, lo.valuesDropped, toSvo ? "a .svo file" : "an octree"));
-    const std::map<std::string, std::string> meta = {{"svo:source", a.input}, {"svo:version", SVO_VERSION}};
+    const std::map<std::string, std::string> meta = sourceMetadata(a.input);
     // A .vdb output's triangle indices go beside it (reader_grids.h): an output too, known once the input is read.
     if (outputFormat(a.output) == OutputFormat::Vdb && grids.attributes && !lo.octree.attributes.triangles.empty()) {
         const std::string sidecar = vdb::triangleSidecarPath(a.output);
@@ -123,11 +127,13 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
         written = writeOctree(a.output, lo.octree, grids, meta);
     }
     outputs.commit(); // then the report: what it says was written is in place
+    const std::string removed = written.sidecar.empty() ? removeStaleSidecar(a.output, {a.input}, a.habits) : std::string();
     if (!reportShown()) {
         if (summaryShown())
-            fmt::print("svo convert: wrote {} ({} voxels, {:.2f} MB) in {}{}\n", a.output,
+            fmt::print("svo convert: wrote {} ({} voxels, {:.2f} MB) in {}{}{}\n", a.output,
                        thousands(lo.octree.voxelCount()), double(written.bytes) / 1e6, seconds(msSince(start)),
-                       written.sidecar.empty() ? std::string() : fmt::format("; triangle_id in {}", written.sidecar));
+                       written.sidecar.empty() ? std::string() : fmt::format("; triangle_id in {}", written.sidecar),
+                       staleSidecarNote(removed, a.output));
         return;
     }
     fmt::print("svo convert\n");
@@ -136,6 +142,7 @@ void runConvert(const ConvertArgs& a, const CLI::App& cmd)
     if (!written.sidecar.empty())
         fmt::print("  {:<12} {} ({:.2f} MB; grid triangle_id, which python3-openvdb does not read)\n", "beside it",
                    written.sidecar, double(written.sidecarBytes) / 1e6);
+    if (!removed.empty()) fmt::print("  {:<12} {}\n", "removed", staleSidecarText(removed, a.output));
     fmt::print("  {:<12} {} voxels in {} bricks\n", "octree", thousands(lo.octree.voxelCount()),
                thousands(lo.octree.bricks.size()));
     fmt::print("\n  {:<20} {:>10} {:>10}\n", "stage", "GPU ms", "wall ms");

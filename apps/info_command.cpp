@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "library_call.h"
 #include "svo/vdb_io/nanovdb_input.h"
+#include "svo/core/mesh_io.h"
 
 namespace svo::app {
 namespace {
@@ -58,7 +59,9 @@ void addInfoCommand(CLI::App& app)
 {
     auto args = std::make_shared<InfoArgs>();
     CLI::App* cmd = app.add_subcommand("info", "Print the octree of a .svo, .vdb, .nvdb or mesh file: levels, nodes, bricks, bytes (and a .nvdb's grids)");
-    cmd->add_option("input", args->input, "A .svo, .vdb, .nvdb or mesh file")->required();
+    cmd->add_option("input", args->input,
+                    fmt::format("A .svo, .vdb, .nvdb or mesh file ({})", supportedMeshExtensions()))
+        ->required();
     cmd->add_option("--grid", args->gridName, "Grid of a .vdb or .nvdb input (default: the first)");
     addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);

@@ -1,16 +1,18 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <string>
 
 #include "cli_options.h"
 #include "commands.h"
 #include "svo/core/error.h"
+#include "svo/result_metadata.h"
 #include "interrupt_cleanup.h"
 
 int main(int argc, char** argv)
 {
     CLI::App app{"svo: voxelize triangle meshes on the GPU (OpenGL 4.5) into sparse voxel octrees and OpenVDB grids"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "svo " SVO_VERSION);
+    app.set_version_flag("--version", std::string("svo ") + svo::version()); // the one version (result_metadata.h)
     svo::app::addVoxelizeCommand(app);
     svo::app::addConvertCommand(app);
     svo::app::addInfoCommand(app);

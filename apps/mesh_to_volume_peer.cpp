@@ -19,7 +19,7 @@ int main(int argc, char** argv)
     CLI::App app{"OpenVDB meshToVolume on svo's grid, for benchmarks"};
     std::string path;
     int64_t resolution = 256;
-    app.add_option("mesh", path, "Mesh file")->required();
+    app.add_option("mesh", path, fmt::format("Mesh file ({})", svo::supportedMeshExtensions()))->required();
     app.add_option("-r,--resolution", resolution, "Voxels along the longest bounding-box side")->capture_default_str();
     float levelSet = 0;
     app.add_option("--level-set", levelSet, "Time meshToLevelSet with this half width (voxels) instead");

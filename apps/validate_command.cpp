@@ -23,7 +23,9 @@
 #include "svo/validate/hole_check.h"
 #include "svo/validate/level_set_report.h"
 #include "svo/validate/report.h"
+#include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/vdb_file.h"
+#include "svo/result_metadata.h"
 #include "svo/voxelizer.h"
 
 namespace svo::app {
@@ -37,11 +39,14 @@ struct ValidateArgs {
     bool sdf = false;
     FieldArgs levelSet; ///< bands and sign, with --sdf
     OutputHabits habits; ///< --no-clobber
+    OutputArgs out;      ///< --topology of the --errors grids: bool by default, as every output
 };
 
 /// Refuses options that have no meaning with (or without) --sdf, before any work.
 void checkSdfArgs(const ValidateArgs& a, const CLI::App& cmd)
 {
+    if (cmd.count("--topology") && !cmd.count("--errors"))
+        throw InvalidInput("--topology applies to --errors (the grid type of the missed and extra voxels)");
     if (!a.sdf) {
         if (bandsGiven(cmd)) throw InvalidInput("--band, --exterior-band and --interior-band apply to --sdf");
         if (cmd.count("--sign")) throw InvalidInput("--sign applies to --sdf");
@@ -260,7 +265,7 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
     fmt::print("  {:<12} validation {:.2f} s, voxelization {:.3f} GPU ms\n", "time", validateSeconds, gpuMs);
 
     if (!a.errors.empty()) {
-        std::vector<std::pair<std::string, Octree>> grids = {{"missed", buildOctree(grid, c.missedExact)},
+        std::vector<std::pair<std::string, Octree>> named = {{"missed", buildOctree(grid, c.missedExact)},
                                                              {"extra", buildOctree(grid, c.extra)}};
         if (holes.leak) {
             std::vector<uint64_t> path;
@@ -270,10 +275,20 @@ void runValidate(const ValidateArgs& a, const CLI::App& cmd)
                     p[2] < grid.anchor[2] + grid.dims[2])
                     path.push_back(packVoxelKey(uint32_t(p[0] - grid.anchor[0]), uint32_t(p[1] - grid.anchor[1]),
                                                 uint32_t(p[2] - grid.anchor[2])));
-            grids.emplace_back("leak_path", buildOctree(grid, path));
+            named.emplace_back("leak_path", buildOctree(grid, path));
         }
-        vdb::writeVdbMasks(a.errors, grids, {{"svo:source", mesh.source}});
-        fmt::print("  {:<12} {} (grids missed, extra{})\n", "errors", a.errors, holes.leak ? ", leak_path" : "");
+        // Each set as the topology grid of every other output (BoolGrid unless --topology mask),
+        // tagged as `svo voxelize` tags its grids.
+        openvdb::GridPtrVec grids;
+        for (const auto& [name, voxels] : named) {
+            GridOptions g = a.out.grids;
+            g.name = name;
+            g.attributes = false;
+            grids.push_back(vdb::octreeToGrids(voxels, g).front());
+        }
+        vdb::writeVdbGrids(a.errors, grids, resultMetadata(mesh, grid, request, true));
+        fmt::print("  {:<12} {} ({} grids missed, extra{})\n", "errors", a.errors,
+                   a.out.grids.topology == GridOptions::Topology::Bool ? "bool" : "mask", holes.leak ? ", leak_path" : "");
     }
 
     if (!a.json.empty())
@@ -299,8 +314,10 @@ void addValidateCommand(CLI::App& app)
     addBackendOptions(*cmd, args->backend);
     addOptions(*cmd, args->backend.settings, {"mode"});
     addOutputPath(*cmd, "--json", args->json, "Write the report as JSON");
-    addOutputPath(*cmd, "--errors", args->errors, "Write the missed and extra voxels (and any leak path) as MaskGrids in a .vdb",
+    addOutputPath(*cmd, "--errors", args->errors,
+                  "Write the missed and extra voxels (and any leak path) as grids in a .vdb, of the --topology type",
                   {".vdb"});
+    addOptions(*cmd, args->out.grids, {"topology"}, "for --errors");
     addOptions(*cmd, args->report);
     addOptions(*cmd, args->habits, {"no_clobber"}); // the report is the result: no -q or -v
     cmd->add_flag("--sdf", args->sdf,

@@ -25,6 +25,7 @@
 #include "svo/gl/view_request.h"
 #include "svo/load_octree.h"
 #include "svo/vdb_io/octree_files.h"
+#include "svo/core/mesh_io.h"
 
 namespace svo::app {
 namespace {
@@ -389,8 +390,9 @@ void addViewCommand(CLI::App& app)
     CLI::App* cmd = app.add_subcommand(
         "view", "Draw an octree (of a mesh, .vdb or .svo; none: the Cornell box) on the GPU: voxels, node outlines, mesh");
     cmd->add_option("input", args->input,
-                    "A mesh (voxelized first), .vdb, .nvdb or .svo (a level set or unsigned distance field: drawn at "
-                    "its zero crossing); none: the built-in Cornell box")
+                    fmt::format("A mesh ({}; voxelized first), .vdb, .nvdb or .svo (a level set or unsigned distance "
+                                "field: drawn at its zero crossing); none: the built-in Cornell box",
+                                supportedMeshExtensions()))
         ->check(nonEmptyMeshPath, "INPUT");
     addOutputPath(*cmd, "--screenshot", args->screenshot, "Render one frame offscreen to this PNG and exit", {".png"});
     cmd->add_option("--size", args->size, "Picture size WxH in pixels")->capture_default_str();

@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "library_call.h"
 #include "progress.h"
+#include "stale_sidecar.h"
 #include "svo/core/atomic_file.h"
 #include "svo/core/default_scene.h"
 #include "svo/core/error.h"
@@ -21,6 +22,7 @@
 #include "svo/vdb_io/nanovdb_file.h"
 #include "svo/vdb_io/reader_grids.h"
 #include "svo/vdb_io/vdb_file.h"
+#include "svo/result_metadata.h"
 #include "svo/voxelizer.h"
 
 namespace svo::app {
@@ -221,10 +223,8 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
     });
     // Closest triangles (Int32Grid) beside the output: python3-openvdb opens the output whole.
     const auto [grids, triangles] = vdb::splitTriangleGrids(all);
-    const std::map<std::string, std::string> meta = {{"svo:source", mesh.source},
-                                                     {"svo:triangles", std::to_string(mesh.triangles.size())},
-                                                     {"svo:voxel_size", fmt::format("{}", grid.voxelSize)},
-                                                     {"svo:version", SVO_VERSION}};
+    // Python's level_set() and solid() tag theirs the same (no guard band: a field's voxels are not a surface's).
+    const std::map<std::string, std::string> meta = resultMetadata(mesh, grid, request, false);
     vdb::WriteStats written;
     std::string sidecar;
     if (nano) {
@@ -238,6 +238,7 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
         written = vdb::writeVdbGrids(output, grids, meta);
         if (!triangles.empty()) {
             sidecar = vdb::triangleSidecarPath(output);
+            vdb::markTriangleSidecar(triangles, output);
             written.sidecarBytes = vdb::writeVdbGrids(sidecar, triangles, meta).bytes;
         }
         stats.stages.push_back({"write", -1, written.writeMs});
@@ -260,9 +261,10 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
         writeFileAtomically(a.json, report.dump(2) + "\n");
     }
     outputs.commit(); // then the summary: what it says was written is in place
+    const std::string removed = timingOnly || !sidecar.empty() ? std::string() : removeStaleSidecar(output, {a.mesh}, a.habits);
     if (!reportShown()) {
         if (summaryShown())
-            fmt::print("svo voxelize: {} ({} '{}', {} active voxels{}) in {}{}\n",
+            fmt::print("svo voxelize: {} ({} '{}', {} active voxels{}) in {}{}{}\n",
                        timingOnly ? std::string("nothing written (--repeat without -o)")
                                   : fmt::format("wrote {}", output),
                        solid ? fmt::format("solid, {}", boolGrid ? "bool" : "mask")
@@ -271,7 +273,8 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
                        counts.name, thousands(counts.voxels),
                        timingOnly ? std::string() : fmt::format(", {:.2f} MB", double(written.bytes) / 1e6),
                        seconds(wall),
-                       sidecar.empty() ? std::string() : fmt::format("; {} in {}", GridCounts(triangles).names, sidecar));
+                       sidecar.empty() ? std::string() : fmt::format("; {} in {}", GridCounts(triangles).names, sidecar),
+                       staleSidecarNote(removed, output));
     } else {
         printHeading(scene, mesh, grid, request);
         if (solid)
@@ -296,6 +299,7 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
         if (!sidecar.empty())
             fmt::print("  {:<11} {} ({:.2f} MB; grids {}, which python3-openvdb does not read)\n", "beside it", sidecar,
                        double(written.sidecarBytes) / 1e6, GridCounts(triangles).names);
+        if (!removed.empty()) fmt::print("  {:<11} {}\n", "removed", staleSidecarText(removed, output));
         printStageTable(stats.stages, wall, a.repeat, "", &stats.startup);
     }
 }
@@ -371,14 +375,8 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         call, a.repeat, [&] { return call.voxelizer.backendFor(call.options) != Backend::Cpu; }, load, stats,
         [&] { return call.voxelizer.voxelize(mesh, grid, call.options); });
 
-    const std::map<std::string, std::string> meta = {
-        {"svo:source", mesh.source},
-        {"svo:triangles", std::to_string(mesh.triangles.size())},
-        {"svo:grid", request.voxelSize > 0 ? fmt::format("voxel size {}", grid.voxelSize)
-                                           : fmt::format("resolution {}", request.resolution)},
-        {"svo:voxel_size", fmt::format("{}", grid.voxelSize)},
-        {"svo:epsilon", fmt::format("{:.3g}", grid.epsilon())},
-        {"svo:version", SVO_VERSION}};
+    // Python's voxelize() tags its grids the same.
+    const std::map<std::string, std::string> meta = resultMetadata(mesh, grid, request, true);
     WriteReport written;
     if (!timingOnly) {
         Progress p("writing " + output);
@@ -406,9 +404,11 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         writeFileAtomically(a.json, report.dump(2) + "\n");
     }
     outputs.commit(); // then the summary: what it says was written is in place
+    const std::string removed =
+        timingOnly || !written.sidecar.empty() ? std::string() : removeStaleSidecar(output, {a.mesh}, a.habits);
     if (!reportShown()) {
         if (summaryShown())
-            fmt::print("svo voxelize: {} ({}{} voxels{}) in {}{}\n",
+            fmt::print("svo voxelize: {} ({}{} voxels{}) in {}{}{}\n",
                        timingOnly ? std::string("nothing written (--repeat without -o)")
                                   : fmt::format("wrote {}", output),
                        timingOnly                         ? std::string()
@@ -421,7 +421,8 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
                        thousands(st.voxels),
                        timingOnly ? std::string() : fmt::format(", {:.2f} MB", double(written.bytes) / 1e6),
                        seconds(wall),
-                       written.sidecar.empty() ? std::string() : fmt::format("; triangle_id in {}", written.sidecar));
+                       written.sidecar.empty() ? std::string() : fmt::format("; triangle_id in {}", written.sidecar),
+                       staleSidecarNote(removed, output));
     } else {
         printHeading(scene, mesh, grid, request);
         fmt::print("  {:<11} {}\n", "voxels", thousands(st.voxels));
@@ -445,6 +446,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         if (!written.sidecar.empty())
             fmt::print("  {:<11} {} ({:.2f} MB; grid triangle_id, which python3-openvdb does not read)\n", "beside it",
                        written.sidecar, double(written.sidecarBytes) / 1e6);
+        if (!removed.empty()) fmt::print("  {:<11} {}\n", "removed", staleSidecarText(removed, output));
         printStageTable(stats.stages, wall, a.repeat, "voxelize stages: ", &stats.startup);
     }
 }

@@ -12,6 +12,7 @@
 #include "svo/core/error.h"
 #include "vtk_export.h"
 #include "xvfb.h"
+#include "svo/core/mesh_io.h"
 
 namespace svo::app {
 namespace {
@@ -120,7 +121,9 @@ void addVtkCommand(CLI::App& app)
 {
     auto args = std::make_shared<VtkArgs>();
     CLI::App* cmd = app.add_subcommand("vtk", "Write an octree (of a mesh, .vdb or .svo) for VTK/ParaView, or a picture");
-    cmd->add_option("input", args->input, "A mesh (voxelized first), .vdb or .svo")->required();
+    cmd->add_option("input", args->input,
+                    fmt::format("A mesh ({}; voxelized first), .vdb or .svo", supportedMeshExtensions()))
+        ->required();
     addOutputPath(*cmd, "-o,--output", args->output, ".htg hyper tree grid, .vtu voxel cells, or .vtp node outlines");
     cmd->add_option("--levels", args->levels, "Levels A..B: deepest level of the .htg, outline levels of .vtp/--png");
     addOutputPath(*cmd, "--png", args->png, "Also render voxels, outlines and mesh to a PNG (uses Xvfb if no DISPLAY)", {".png"});

@@ -392,6 +392,52 @@ TEST_F(Cli, ValidatePassesAndWritesItsReports)
     expectOnly({"v.json", "e.vdb"});
 }
 
+// svo validate --errors writes BoolGrids, as every svo output, which
+// python3-openvdb reads (a MaskGrid with --topology mask). Their voxels are the
+// errors: the missed voxels are none of the voxelization's (svo voxelize with
+// the same options) and all of the CPU reference's; the extra ones are all
+// the voxelization's; their counts are the report's.
+TEST_F(Cli, ValidateErrorsAreBoolGridsOfTheMissedAndExtraVoxels)
+{
+    const std::string options = " -r 64 --conservative centroid ";
+    const auto r = runSvo("validate" + options + "--no-holes --errors " + path("e.vdb"));
+    ASSERT_EQ(r.code, 3) << r.out; // the centroid push misses voxels (ValidateFailsWithExitCode3OnMissedVoxels)
+    EXPECT_NE(r.out.find("errors       " + path("e.vdb") + " (bool grids missed, extra)"), std::string::npos) << r.out;
+    auto count = [&](const std::string& row) {
+        std::smatch m;
+        return std::regex_search(r.out, m, std::regex("\n  " + row + " +([0-9,]+)")) ? m[1].str() : "none";
+    };
+    const std::string missed = count(R"(missed \(E\))"), extra = count("extra");
+    ASSERT_NE(missed, "0");
+    ASSERT_EQ(runSvo("voxelize" + options + "-o " + path("v.vdb")).code, 0);
+    ASSERT_EQ(runSvo("voxelize -r 64 --backend cpu -o " + path("cpu.vdb")).code, 0);
+    // Each grid: its name, type, voxels, how many the voxelization has, and (missed) how many the CPU reference has.
+    const std::string script = write("errors.py", R"(import sys, pyopenvdb
+grids, _ = pyopenvdb.readAll(sys.argv[1])
+tested = pyopenvdb.read(sys.argv[2], "surface").getConstAccessor()
+cpu = pyopenvdb.read(sys.argv[3], "surface").getConstAccessor()
+for g in sorted(grids, key=lambda g: g.name):
+    ijk = [(x, y, z) for v in g.citerOnValues() for x in range(v["min"][0], v["max"][0] + 1)
+           for y in range(v["min"][1], v["max"][1] + 1) for z in range(v["min"][2], v["max"][2] + 1)]
+    print(g.name, g.valueTypeName, len(ijk), sum(tested.isValueOn(c) for c in ijk),
+          sum(cpu.isValueOn(c) for c in ijk) if g.name == "missed" else "-", g["svo:grid"])
+)");
+    const auto plain = [](const std::string& n) { return std::regex_replace(n, std::regex(","), ""); };
+    EXPECT_EQ(runCommand("/usr/bin/python3 " + script + " " + path("e.vdb") + " " + path("v.vdb") + " " + path("cpu.vdb")),
+              "extra bool " + plain(extra) + " " + plain(extra) + " - resolution 64\n" + "missed bool " + plain(missed) +
+                  " 0 " + plain(missed) + " resolution 64\n");
+    // --topology mask: the same voxels as a MaskGrid; --topology without --errors is refused.
+    const auto mask = runSvo("validate" + options + "--no-holes --topology mask --errors " + path("m.vdb"));
+    ASSERT_EQ(mask.code, 3) << mask.out;
+    const std::string printed = runCommand("vdb_print -l " + path("m.vdb"));
+    EXPECT_NE(printed.find("Type: Tree_mask_5_4_3"), std::string::npos) << printed;
+    EXPECT_EQ(printed.find("Type: Tree_bool_5_4_3"), std::string::npos) << printed;
+    const auto refused = runSvo("validate -r 16 --topology mask");
+    EXPECT_EQ(refused.code, 1) << refused.out;
+    EXPECT_EQ(refused.out, "svo: error: --topology applies to --errors (the grid type of the missed and extra voxels)\n");
+    expectOnly({"e.vdb", "m.vdb", "v.vdb", "cpu.vdb", "errors.py"});
+}
+
 // --sdf, --udf and --fill solid run on the CPU with --backend cpu: the same
 // active voxels and sign method as the default backend's (test_cpu_fields
 // compares the fields voxel for voxel).
@@ -898,6 +944,91 @@ TEST_F(Cli, DefaultOutputsOpenWholeInPyopenvdbAndTriangleIndicesGoBeside)
         EXPECT_NE(runCommand(gridsOf + path(sidecar)).find("Tree_int32_5_4_3 is not a supported OpenVDB grid type"),
                   std::string::npos);
     }
+    expectOnly(files);
+}
+
+// A run that writes out.vdb without triangle indices removes the
+// out.triangle.vdb an earlier run wrote beside it (it holds the indices of an
+// output that is gone) and says so in its summary; only a file svo marked as
+// out.vdb's sidecar (metadata svo:sidecar_of), never an input, never another
+// output's, never with --no-clobber (a warning says it was left).
+TEST_F(Cli, AStaleTriangleSidecarIsRemovedOnlyWhenItIsTheOutputsOwn)
+{
+    const std::string mesh = write("m.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    ASSERT_EQ(runSvo("voxelize " + mesh + " -r 16 --attributes triangle -o " + path("attr.svo")).code, 0);
+    ASSERT_EQ(runSvo("voxelize " + mesh + " -r 16 -o " + path("plain.svo")).code, 0);
+    const std::string m = "voxelize " + mesh + " -r 16 ";
+    struct Case {
+        std::string withIndices, without;
+    };
+    // Surface voxels, level sets and unsigned distances, convert; the later run of another kind, or -v.
+    const std::vector<Case> cases = {
+        {m + "--attributes normal,triangle", m},
+        {m + "--sdf --closest-triangle", m + "--sdf"},
+        {m + "--udf --closest-triangle", m + "--fill solid"},
+        {m + "--attributes triangle", m + "--sdf -v"},
+        {"convert " + path("attr.svo"), "convert " + path("plain.svo")},
+        {"convert " + path("attr.svo"), "convert " + path("plain.svo") + " -v"},
+    };
+    std::vector<std::string> files = {"m.off", "attr.svo", "plain.svo"};
+    for (size_t i = 0; i < cases.size(); ++i) {
+        const std::string out = path("o" + std::to_string(i) + ".vdb"), sidecar = path("o" + std::to_string(i) + ".triangle.vdb");
+        files.push_back("o" + std::to_string(i) + ".vdb");
+        ASSERT_EQ(runSvo(cases[i].withIndices + " -o " + out).code, 0) << cases[i].withIndices;
+        ASSERT_TRUE(fs::exists(sidecar)) << cases[i].withIndices;
+        const auto r = runSvo(cases[i].without + " -o " + out);
+        ASSERT_EQ(r.code, 0) << cases[i].without << "\n" << r.out;
+        EXPECT_FALSE(fs::exists(sidecar)) << cases[i].without;
+        const std::string said = sidecar + ", the triangle indices of an earlier o" + std::to_string(i) + ".vdb";
+        if (cases[i].without.find(" -v") == std::string::npos) {
+            EXPECT_EQ(lineCount(r.out), 1u) << r.out;
+            EXPECT_NE(r.out.find("; removed " + said + "\n"), std::string::npos) << r.out;
+        } else {
+            EXPECT_NE(r.out.find("  removed" + std::string(cases[i].without.rfind("convert", 0) == 0 ? 6 : 5, ' ') +
+                                 said + "\n"),
+                      std::string::npos)
+                << r.out;
+        }
+    }
+
+    // s.triangle.vdb, written for s.vdb; OpenVDB's vdb_print reads the mark.
+    ASSERT_EQ(runSvo(m + "--attributes triangle -o " + path("s.vdb")).code, 0);
+    const std::string own = path("s.triangle.vdb");
+    EXPECT_NE(runCommand("vdb_print -l -m " + own).find("svo:sidecar_of: s.vdb"), std::string::npos)
+        << runCommand("vdb_print -l -m " + own);
+    const std::string ownBytes = fileText(own);
+    // Kept: for another output (t.vdb, u.vdb, s.svo, s.nvdb), as a link, not svo's, an input, or --no-clobber.
+    fs::copy_file(own, path("t.triangle.vdb"));
+    fs::create_symlink(own, path("u.triangle.vdb"));
+    write("f.triangle.vdb", "not svo's");
+    files.insert(files.end(), {"s.vdb", "s.triangle.vdb", "t.vdb", "t.triangle.vdb", "u.vdb", "u.triangle.vdb", "f.vdb",
+                               "f.triangle.vdb", "s.svo", "s.nvdb"});
+    for (const std::string& args : {m + "-o " + path("t.vdb"), m + "-o " + path("u.vdb"), m + "-o " + path("f.vdb"),
+                                    m + "-o " + path("s.svo"), m + "-o " + path("s.nvdb"),
+                                    "convert " + own + " -o " + path("s.vdb")}) {
+        const auto r = runSvo(args);
+        ASSERT_EQ(r.code, 0) << args << "\n" << r.out;
+        EXPECT_EQ(r.out.find("removed"), std::string::npos) << args << "\n" << r.out;
+        EXPECT_EQ(fileText(own), ownBytes) << args;
+    }
+    EXPECT_EQ(fileText(path("t.triangle.vdb")), ownBytes);
+    EXPECT_EQ(fileText(path("f.triangle.vdb")), "not svo's");
+    EXPECT_TRUE(fs::is_symlink(path("u.triangle.vdb")));
+    fs::remove(path("s.vdb"));
+    const auto kept = runSvo(m + "--no-clobber -o " + path("s.vdb"));
+    ASSERT_EQ(kept.code, 0) << kept.out;
+    EXPECT_NE(kept.out.find("svo: warning: " + own + ": left in place (--no-clobber)"), std::string::npos) << kept.out;
+    EXPECT_EQ(fileText(own), ownBytes);
+    // A later run with indices replaces them, and -q says nothing of a removal.
+    const auto again = runSvo("voxelize " + mesh + " -r 20 --attributes triangle -o " + path("s.vdb"));
+    ASSERT_EQ(again.code, 0) << again.out;
+    EXPECT_NE(again.out.find("; triangle_id in " + own + "\n"), std::string::npos) << again.out;
+    EXPECT_NE(activeVoxels(runCommand("vdb_print -l " + own)), activeVoxels(runCommand("vdb_print -l " + path("t.triangle.vdb"))));
+    const auto quiet = runSvo(m + "-q -o " + path("s.vdb"));
+    EXPECT_EQ(quiet.code, 0);
+    EXPECT_EQ(quiet.out, "");
+    EXPECT_FALSE(fs::exists(own));
+    files.erase(std::find(files.begin(), files.end(), "s.triangle.vdb"));
     expectOnly(files);
 }
 

@@ -309,6 +309,26 @@ TEST(CliOptions, EveryCommandThatWritesTakesTheSameOutputFlags)
     }
 }
 
+// Every command that reads a mesh names the formats svo reads, glTF among
+// them (the list is svo::supportedMeshExtensions's, written once).
+TEST(CliOptions, EveryCommandThatReadsAMeshListsItsFormats)
+{
+    for (const char* command : {"voxelize", "validate", "info", "view", "vtk"}) {
+        const auto r = runSvo(std::string(command) + " --help");
+        ASSERT_EQ(r.code, 0) << command << "\n" << r.out;
+        // CLI11 wraps long help lines: the list as one line, whatever the wrapping.
+        std::string text;
+        for (char c : r.out) {
+            if (c == '\n' || c == ' ') {
+                if (!text.empty() && text.back() != ' ') text += ' ';
+            } else {
+                text += c;
+            }
+        }
+        EXPECT_NE(text.find(".obj, .ply, .stl, .off, .gltf, .glb"), std::string::npos) << command << "\n" << r.out;
+    }
+}
+
 // An unsigned option refuses a negative number in one line, rather than
 // reading -1 as 2^64 - 1 (CLI11's reading of it).
 TEST(CliOptions, ANegativeSeedIsRefusedNotWrapped)

@@ -1591,7 +1591,10 @@ PYBIND11_MODULE(_svo, m)
     m.def("active_voxels", &activeVoxels, py::arg("grid"),
           "The index coordinates of a grid's active voxels (tiles expanded) as a (K, 3) int32 array, in "
           "OpenVDB's tree order; any transform.");
-    m.def("read_mesh", &readMesh, py::arg("path"),
-          "Read an OBJ, PLY, STL or OFF mesh with svo's readers: (vertices float64 (N, 3), triangles uint32 (M, 3)). "
-          "Raises OSError naming the file and the problem.");
+    // The formats as the readers list them (svo::supportedMeshExtensions), written once; kept for the process.
+    static const std::string readMeshDoc =
+        std::string("Read a mesh file (") + svo::supportedMeshExtensions() +
+        ") with svo's readers: (vertices float64 (N, 3), triangles uint32 (M, 3)); a glTF file gives its default "
+        "scene's triangles with the node transforms applied. Raises OSError naming the file and the problem.";
+    m.def("read_mesh", &readMesh, py::arg("path"), readMeshDoc.c_str());
 }

@@ -1,5 +1,7 @@
 """The Python module against independent references: the svo CLI's .vdb read
 back by pyopenvdb, pyopenvdb's own reader, and exact identities."""
+import base64
+import json
 import os
 import subprocess
 import threading
@@ -55,6 +57,75 @@ def test_equals_the_cli_voxels_and_transform(voxelizer, elephant, tmp_path):
     assert grid.transform.voxelSize() == cli.transform.voxelSize()
     for ijk in [(0, 0, 0), (5, -3, 7)]:
         assert grid.transform.indexToWorld(ijk) == cli.transform.indexToWorld(ijk)
+
+
+def write_off(path, vertices, triangles):
+    lines = ["OFF", f"{len(vertices)} {len(triangles)} 0"]
+    lines += [" ".join(repr(float(x)) for x in p) for p in vertices]
+    lines += ["3 " + " ".join(str(int(i)) for i in t) for t in triangles]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def svo_metadata(grid):
+    return {k: v for k, v in grid.metadata.items() if k.startswith("svo:")}
+
+
+CALLS = {
+    "surface": ([], lambda vz, v, t, **kw: vz.voxelize(v, t, **kw)),
+    "sdf": (["--sdf"], lambda vz, v, t, **kw: vz.level_set(v, t, **kw)),
+    "udf": (["--udf"], lambda vz, v, t, **kw: vz.level_set(v, t, unsigned=True, **kw)),
+    "solid": (["--fill", "solid"], lambda vz, v, t, **kw: vz.solid(v, t, **kw)),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(CALLS))
+@pytest.mark.parametrize("grid_flags, grid_kw", [(["-r", "24"], {"resolution": 24}),
+                                                 (["--voxel-size", "0.0625"], {"voxel_size": 0.0625})])
+def test_the_cli_and_python_tag_the_same_result_alike(voxelizer, tmp_path, kind, grid_flags, grid_kw):
+    # Both front ends call svo::resultMetadata: every svo:* key and value is the
+    # same but svo:source, the mesh file's path there and "mesh" for arrays.
+    flags, call = CALLS[kind]
+    v, t = tetrahedron()
+    mesh = write_off(tmp_path / "tet.off", v, t)
+    out = tmp_path / "cli.vdb"
+    subprocess.run([SVO_EXE, "voxelize", str(mesh), *grid_flags, *flags, "-o", str(out)], check=True,
+                   capture_output=True)
+    grids, _ = pyopenvdb.readAll(str(out))
+    assert len(grids) == 1
+    cli = svo_metadata(grids[0])
+    ours = svo_metadata(call(voxelizer, *svo.read_mesh(mesh), **grid_kw).grid)
+    assert cli.pop("svo:source") == str(mesh) and ours.pop("svo:source") == "mesh"
+    assert ours == cli
+    # What each says: the request, the voxel size as given, the mesh's triangles.
+    assert cli["svo:grid"] == ("resolution 24" if "resolution" in grid_kw else "voxel size 0.0625")
+    assert float(cli["svo:voxel_size"]) == (0.0625 if "voxel_size" in grid_kw else 1 / 24)
+    assert cli["svo:triangles"] == "4" and cli["svo:version"] == svo.__version__
+    assert ("svo:epsilon" in cli) == (kind == "surface")  # a guard band decides surface voxels only
+
+
+def test_read_mesh_names_and_reads_every_format_svo_reads(tmp_path):
+    for ext in (".obj", ".ply", ".stl", ".off", ".gltf", ".glb"):
+        assert ext in svo.read_mesh.__doc__
+    # A glTF file (positions float32, indices uint16, one embedded buffer) reads
+    # as the same triangles as its OFF.
+    v, t = tetrahedron()
+    data = v.astype("<f4").tobytes() + t.astype("<u2").tobytes()
+    gltf = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "buffers": [{"byteLength": len(data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                        {"buffer": 0, "byteOffset": 48, "byteLength": 24}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 1]},
+                      {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}],
+    }
+    (tmp_path / "tet.gltf").write_text(json.dumps(gltf))
+    gv, gt = svo.read_mesh(tmp_path / "tet.gltf")
+    ov, ot = svo.read_mesh(write_off(tmp_path / "tet.off", v, t))
+    assert np.array_equal(gv[gt], ov[ot]) and len(gt) == 4
 
 
 def test_trimesh_style_inputs_and_precisions_agree(voxelizer):

@@ -2,6 +2,7 @@
 #include "svo/vdb_io/reader_grids.h"
 
 #include <filesystem>
+#include <openvdb/io/File.h>
 
 namespace svo::vdb {
 
@@ -10,6 +11,40 @@ std::string triangleSidecarPath(const std::string& path)
     std::filesystem::path p(path);
     p.replace_extension(".triangle.vdb");
     return p.string();
+}
+
+namespace {
+/// The key of markTriangleSidecar, read by isTriangleSidecarOf.
+constexpr const char* kSidecarOf = "svo:sidecar_of";
+} // namespace
+
+void markTriangleSidecar(const openvdb::GridPtrVec& sidecarGrids, const std::string& output)
+{
+    const std::string name = std::filesystem::path(output).filename().string();
+    for (const auto& g : sidecarGrids) g->insertMeta(kSidecarOf, openvdb::StringMetadata(name));
+}
+
+bool isTriangleSidecarOf(const std::string& output)
+{
+    const std::string path = triangleSidecarPath(output);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(path, ec))) return false;
+    try {
+        openvdb::initialize();
+        openvdb::io::File file(path);
+        file.open(/*delayLoad=*/false);
+        const openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
+        file.close();
+        const std::string name = std::filesystem::path(output).filename().string();
+        if (!grids || grids->empty()) return false;
+        for (const auto& g : *grids) {
+            const auto mark = g->getMetadata<openvdb::StringMetadata>(kSidecarOf);
+            if (!g->isType<openvdb::Int32Grid>() || !mark || mark->value() != name) return false;
+        }
+        return true;
+    } catch (const std::exception&) {
+        return false; // not a .vdb file, or one OpenVDB cannot read: not svo's sidecar
+    }
 }
 
 bool pyopenvdbReads(const openvdb::GridBase& grid)

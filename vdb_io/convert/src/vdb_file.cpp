@@ -694,6 +694,7 @@ WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOp
     if (!options.triangleSidecar.empty()) {
         auto [kept, triangles] = splitTriangleGrids(grids);
         if (!triangles.empty()) {
+            markTriangleSidecar(triangles, path);
             writeGrids(options.triangleSidecar, triangles);
             stats.sidecarBytes = outputBytes(options.triangleSidecar);
         }

@@ -7,17 +7,20 @@ namespace svo {
 
 const char* version() { return SVO_VERSION; }
 
+std::map<std::string, std::string> sourceMetadata(const std::string& source)
+{
+    return {{"svo:source", source}, {"svo:version", SVO_VERSION}};
+}
+
 std::map<std::string, std::string> resultMetadata(const TriangleMesh& mesh, const GridSpec& grid,
                                                   const GridRequest& request, bool guardBand)
 {
-    std::map<std::string, std::string> out = {
-        {"svo:source", mesh.source},
-        {"svo:triangles", std::to_string(mesh.triangles.size())},
-        {"svo:grid", request.voxelSize > 0    ? fmt::format("voxel size {}", grid.voxelSize)
-                     : request.resolution > 0 ? fmt::format("resolution {}", request.resolution)
-                                              : std::string("transform")},
-        {"svo:voxel_size", fmt::format("{}", grid.voxelSize)},
-        {"svo:version", SVO_VERSION}};
+    std::map<std::string, std::string> out = sourceMetadata(mesh.source);
+    out["svo:triangles"] = std::to_string(mesh.triangles.size());
+    out["svo:grid"] = request.voxelSize > 0    ? fmt::format("voxel size {}", grid.voxelSize)
+                      : request.resolution > 0 ? fmt::format("resolution {}", request.resolution)
+                                               : std::string("transform");
+    out["svo:voxel_size"] = fmt::format("{}", grid.voxelSize);
     if (guardBand) out["svo:epsilon"] = fmt::format("{:.3g}", grid.epsilon());
     return out;
 }

@@ -7,7 +7,7 @@
 ///   svo/mesh_to_volume.h     one-off free functions (svo::meshToMask, ...)
 ///   svo/vdb_io/grid_builder.h octrees <-> OpenVDB grids (octreeToGrids, gridToBricks)
 ///   svo/vdb_io/octree_files.h reading and writing .svo, .vdb and .nvdb files
-///   svo/core/mesh_io.h       mesh files (OBJ, PLY, STL, OFF) in double precision
+///   svo/core/mesh_io.h       mesh files (OBJ, PLY, STL, OFF, glTF) in double precision
 ///   svo/core/octree.h        the linear octree: layout, traversal, checks
 ///   svo/core/voxel_key.h     voxel keys (octreeKeys) and their local coordinates
 ///   svo/core/error.h         svo::Error and its kinds (InvalidInput, IoError, ..., Interrupted)

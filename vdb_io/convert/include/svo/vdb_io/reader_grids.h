@@ -22,6 +22,22 @@ namespace svo::vdb {
 /// @return the sidecar's path
 std::string triangleSidecarPath(const std::string& path);
 
+/// @brief Marks @a sidecarGrids as the triangle indices of @a output:
+/// metadata "svo:sidecar_of", the output's file name (no folder), by which a
+/// later run that writes @a output without them knows the sidecar as the
+/// stale one of an earlier run (isTriangleSidecarOf).
+/// @param sidecarGrids the grids written to triangleSidecarPath(@a output)
+/// @param output the .vdb output they belong to
+void markTriangleSidecar(const openvdb::GridPtrVec& sidecarGrids, const std::string& output);
+
+/// @brief Whether the file at triangleSidecarPath(@a output) is a sidecar svo
+/// wrote for @a output: a regular file (not a link) that OpenVDB opens, whose
+/// grids, one or more, are all Int32Grids marked by markTriangleSidecar with
+/// @a output's file name. Reads the grids' metadata only.
+/// @param output a .vdb output
+/// @return false for a missing, unreadable or foreign file; never throws
+bool isTriangleSidecarOf(const std::string& output);
+
 /// @brief Whether python3-openvdb reads a grid of this type (bool, float, Vec3s).
 /// @param grid any grid
 /// @return true for BoolGrid, FloatGrid and Vec3SGrid
