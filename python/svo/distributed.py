@@ -25,8 +25,8 @@ Command line: ``python3 -m svo.distributed voxelize MESH -r N [--sdf|--udf|--fil
 
 Not yet (issue 43): attributes (per-voxel arrays to join), level sets and
 solids partitioned to tiles (their signs need the whole mesh, or whole
-columns), the estimated time left in progress, a reader that joins a tile
-folder, the city benchmark.
+columns), the estimated time left in progress, the city benchmark.
+read_tiles joins a tile folder back into one grid.
 """
 import argparse
 import json
@@ -746,6 +746,84 @@ def write_index(output_dir, grid, kind, box, entries):
             os.remove(tmp)
         raise
     return index
+
+
+class TilesError(ValueError):
+    """A folder that is not one finished job's tiles; the message names the
+    folder and the problem."""
+
+
+def read_tiles(path):
+    """The grid of a tile folder (voxelize(output_dir=...), --tiles-dir), as
+    voxelize without output_dir returns it: the tiles joined
+    (svo._svo._join_region) after the index is checked: its format and
+    format_version (1), one grid, every tile's box of whole leaves and no
+    two overlapping, every named file there, each file one grid of the
+    index's name, type, class and voxel size whose active voxels, as many
+    as the index says, lie in its box. The files' own statistics (file_*,
+    which OpenVDB's reader adds) are not kept. Needs pyopenvdb.
+    @throw TilesError naming the folder and what is wrong."""
+    import pyopenvdb
+
+    path = os.fspath(path)
+
+    def bad(problem):
+        raise TilesError(f"{path}: {problem}")
+
+    try:
+        with open(os.path.join(path, INDEX_NAME)) as f:
+            index = json.load(f)
+    except FileNotFoundError:
+        bad(f"no {INDEX_NAME} (not a tile folder, or its job has not finished)")
+    except (OSError, ValueError) as e:
+        bad(f"{INDEX_NAME} cannot be read: {e}")
+    if not isinstance(index, dict) or index.get("format") != INDEX_FORMAT:
+        bad(f"{INDEX_NAME} is not an {INDEX_FORMAT} index")
+    if index.get("format_version") != 1:
+        bad(f"{INDEX_NAME} has format_version {index.get('format_version')!r}; this svo "
+            f"({svo.__version__}) reads 1")
+    if len(index.get("grids", [])) != 1:
+        bad(f"{INDEX_NAME} names {len(index.get('grids', []))} grids per file; svo.distributed writes 1")
+    g, tiles = index["grids"][0], index.get("tiles", [])
+    lo = np.array([t["box"][0] for t in tiles], dtype=np.int64).reshape(-1, 3)
+    hi = np.array([t["box"][1] for t in tiles], dtype=np.int64).reshape(-1, 3)
+    for i in np.flatnonzero(np.any(lo % 8, axis=1) | np.any(hi % 8, axis=1) | np.any(hi <= lo, axis=1)):
+        bad(f"tile box {tiles[i]['box']} is not a box of whole leaves")
+    for i in range(len(tiles)):  # pairwise, vectorised per tile
+        meets = np.all((lo[i] < hi[i + 1:]) & (lo[i + 1:] < hi[i]), axis=1)
+        if meets.any():
+            bad(f"tile boxes {tiles[i]['box']} and {tiles[i + 1 + int(np.argmax(meets))]['box']} overlap")
+    missing = [t["file"] for t in tiles if t["file"] and not os.path.isfile(os.path.join(path, t["file"]))]
+    if missing:
+        bad(f"{len(missing)} tile files named in {INDEX_NAME} are missing, e.g. {missing[0]}")
+    grid = None
+    for t, box_lo, box_hi in zip(tiles, lo, hi):
+        if not t["file"]:
+            continue
+        file = os.path.join(path, t["file"])
+        grids, _ = pyopenvdb.readAll(file)
+        part = grids[0] if len(grids) == 1 else None
+        if part is None or (part.name, part.valueTypeName, part.gridClass) != (g["name"], g["type"], g["class"]) \
+                or list(part.transform.voxelSize()) != g["voxel_size"]:
+            bad(f"{t['file']} is not one grid {g['name']!r} ({g['type']}, {g['class']}, voxel size "
+                f"{g['voxel_size']}) as {INDEX_NAME} says")
+        if part.activeVoxelCount() != t["active_voxels"]:
+            bad(f"{t['file']} has {part.activeVoxelCount()} active voxels, {INDEX_NAME} {t['active_voxels']}")
+        if part.activeVoxelCount():
+            v_lo, v_hi = part.evalActiveVoxelBoundingBox()
+            if np.any(np.array(v_lo) < box_lo) or np.any(np.array(v_hi) >= box_hi):
+                bad(f"{t['file']} has active voxels outside its box {t['box']}")
+        if grid is None:
+            grid = part
+            for key in [k for k in dict(grid.metadata) if k.startswith("file_")]:
+                del grid[key]
+        else:
+            _join_region(grid, part)
+    if grid is None:
+        bad("no tile has a file: the grid holds only background")
+    if grid.activeVoxelCount() != index.get("active_voxels"):
+        bad(f"the tiles hold {grid.activeVoxelCount()} active voxels, {INDEX_NAME} {index.get('active_voxels')}")
+    return grid
 
 
 # --- command line ------------------------------------------------------------

@@ -283,7 +283,33 @@ def test_per_tile_files_are_the_single_process_grid(client, voxelizer, tmp_path,
     index = svo.distributed.voxelize(mesh, client=client, tile=TILE, kind=kind, resolution=RESOLUTION,
                                      output_dir=folder)
     assert len(index["tiles"]) >= 8
-    assert_tiles_are_the_single_grid(folder, index, single(voxelizer, mesh, kind))
+    want = single(voxelizer, mesh, kind)
+    assert_tiles_are_the_single_grid(folder, index, want)
+    assert_same_grid(svo.distributed.read_tiles(folder), want)  # the folder read back and joined
+
+
+def test_a_bad_tile_folder_is_refused(client, tmp_path):
+    folder = tmp_path / "tiles"
+    svo.distributed.voxelize(open_sphere(), client=client, tile=TILE, kind="sdf", resolution=RESOLUTION,
+                             output_dir=folder)
+    good = json.loads((folder / "index.json").read_text())
+
+    def refused(index, match):
+        (folder / "index.json").write_text(json.dumps(index))
+        with pytest.raises(svo.distributed.TilesError, match=match):
+            svo.distributed.read_tiles(folder)
+
+    refused(dict(good, format_version=2), "format_version 2")
+    tiles = [dict(t) for t in good["tiles"]]
+    tiles[1]["box"] = [[c - 8 for c in tiles[1]["box"][0]], tiles[1]["box"][1]]
+    refused(dict(good, tiles=tiles), "overlap|whole leaves")
+    tiles = [dict(t) for t in good["tiles"]]
+    named = next(t for t in tiles if t["file"])
+    named["file"] = "tile_gone.vdb"
+    refused(dict(good, tiles=tiles), "missing, e.g. tile_gone.vdb")
+    (folder / "index.json").unlink()
+    with pytest.raises(svo.distributed.TilesError, match="no index.json"):
+        svo.distributed.read_tiles(folder)
 
 
 def test_the_command_line_writes_tiles_and_an_index(voxelizer, tmp_path):
@@ -395,6 +421,16 @@ def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, capsys, 
         assert_same_grid(got, want)
     else:
         assert_tiles_are_the_single_grid(folder, got, want)
+
+
+def test_a_cluster_without_workers_fails_in_time():
+    # Every task would wait for a worker forever: the job's first wait is bounded.
+    with distributed.LocalCluster(n_workers=0, processes=True, dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as c:
+        with pytest.raises(svo.distributed.JobTimeout, match="no worker joined the cluster in 2 s"):
+            svo.distributed.voxelize(icosphere(), client=c, resolution=RESOLUTION, timeout=2)
+    with pytest.raises(ValueError, match="timeout"):
+        svo.distributed.voxelize(icosphere(), client=c, timeout=0)
 
 
 # --- tiles balanced by the surface they hold ---------------------------------
