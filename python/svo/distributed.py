@@ -16,15 +16,17 @@ the tiles on the workers, so each task gets only its triangles; with
 output_dir, the workers write one .vdb per tile and the client an
 index.json (write_index) instead of joining; local_cluster(devices=...)
 gives each worker its own EGL device (SVO_EGL_DEVICE). A worker lost in a
-task costs only that task, which Dask runs again.
+task costs only that task, which Dask runs again (tasks are placed so that
+Dask's scheduler never queues them: see _placement), and every wait is
+bounded (timeout=, JobTimeout).
 
 Command line: ``python3 -m svo.distributed voxelize MESH -r N [--sdf|--udf|--fill solid]
-[--tile N] [--workers N | --devices 0,1 | --scheduler ADDRESS] (-o OUT.vdb | --tiles-dir DIR)``.
+[--tile N] [--timeout S] [--workers N | --devices 0,1 | --scheduler ADDRESS] (-o OUT.vdb | --tiles-dir DIR)``.
 
 Not yet (issue 43): attributes (per-voxel arrays to join), level sets and
 solids partitioned to tiles (their signs need the whole mesh, or whole
-columns), the estimated time left in progress, a reader that joins a tile
-folder, the city benchmark.
+columns), the estimated time left in progress, the city benchmark.
+read_tiles joins a tile folder back into one grid.
 """
 import argparse
 import json
@@ -340,11 +342,42 @@ def _metadata_settable():
     return True
 
 
-def _submit_held(client, data):
+def _placement(client):
+    """Where the job's tasks may run: the hosts of the workers the cluster has
+    now, loosely (allow_other_workers: a worker on another host that joins
+    later runs them too, by stealing or when no such host is left).
+
+    Why any restriction: Dask's scheduler queues "root-ish" tasks (a large
+    group whose few dependencies are under 5 keys: svo's tiles of a mesh held
+    in one task, a partitioned mesh's picks), and when the only worker
+    holding such a dependency dies, Dask (2022.11 up to 2024.6.0, fixed by
+    dask/distributed#8703) leaves the queued tasks queued on a dependency no
+    longer in memory: they are later sent to a worker that cannot get it, and
+    the job waits forever (issue 43: a worker killed in a tile task). Dask
+    never queues a task that has worker restrictions, so these tasks are
+    scheduled as Dask did before queuing (placed at once, balanced by work
+    stealing), the path a lost dependency is recomputed on.
+
+    Hosts, not worker addresses: a task Dask left without a worker (all
+    workers gone at once, as a one-worker cluster's restart) runs again only
+    on a worker its restriction names (the scheduler does not apply
+    allow_other_workers there), and a restarted worker has a new address but
+    the same host."""
+    from distributed.comm import get_address_host
+
+    hosts = sorted({get_address_host(a) for a in client.scheduler_info()["workers"]})
+    return {"workers": hosts, "allow_other_workers": True}
+
+
+def _submit(client, place, fn, *args):
+    return client.submit(fn, *args, pure=False, **place)
+
+
+def _submit_held(client, place, data):
     with warnings.catch_warnings():
         # Dask's advice to scatter large arguments instead: see _hold for why not.
         warnings.filterwarnings("ignore", message="Large object of size")
-        return client.submit(_hold, data, pure=False)
+        return _submit(client, place, _hold, data)
 
 
 def _pick(parts, i):
@@ -360,9 +393,12 @@ def _tile_mesh(pieces, bounding):
     return corners.reshape(-1, 3), np.arange(3 * len(index), dtype=np.int64).reshape(-1, 3)
 
 
-def _partitioned(client, vertices, triangles, kind, tile, workers, keywords):
+def _partitioned(client, vertices, triangles, kind, tile, workers, keywords, place=None, timeout=None):
     """Plan and partition a mesh of arrays: the tiles, the box, the plan's
-    grid, each tile's mesh (a dict of futures) and the metadata to set."""
+    grid, each tile's mesh (a dict of futures) and the metadata to set.
+    place: see _placement; timeout: seconds to wait for the plan."""
+    if place is None:
+        place = _placement(client)
     vertices = np.asarray(vertices, dtype=np.float64)
     triangles = np.asarray(triangles, dtype=np.int64)
     count = len(triangles)
@@ -370,7 +406,8 @@ def _partitioned(client, vertices, triangles, kind, tile, workers, keywords):
     bounding = (bound, vertices[triangles[bound]])
     # The plan's call sees only the bounding triangles: the same box, so the
     # same transform and frame.
-    box, grid = client.submit(_box_task, _tile_mesh([], bounding), kind, keywords, pure=False).result()
+    box, grid = _wait_result(_submit(client, place, _box_task, _tile_mesh([], bounding), kind, keywords),
+                             timeout, "the plan (the grid's box)")
     metadata = {"svo:triangles": str(count)}
     for key, value in metadata.items():
         grid[key] = value
@@ -379,13 +416,15 @@ def _partitioned(client, vertices, triangles, kind, tile, workers, keywords):
     # the scheduler can make it again when its worker is lost (see _hold).
     n = max(1, min(workers, count))
     bounds = np.linspace(0, count, n + 1).astype(np.int64)
-    chunks = [_submit_held(client, (np.arange(a, b), vertices[triangles[a:b]])) for a, b in zip(bounds, bounds[1:])]
+    chunks = [_submit_held(client, place, (np.arange(a, b), vertices[triangles[a:b]]))
+              for a, b in zip(bounds, bounds[1:])]
     if tile is not None:
         boxes = tiles(box, tile)
     elif workers <= 1:
         boxes = [box]
     else:
-        parts = client.gather([client.submit(_chunk_weights, c, matrix, pure=False) for c in chunks])
+        parts = [_wait_result(_submit(client, place, _chunk_weights, c, matrix), timeout, "the plan (weights)")
+                 for c in chunks]
         keys, inverse = np.unique(np.concatenate([p[0] for p in parts]), axis=0, return_inverse=True)
         weights = np.bincount(inverse.ravel(), weights=np.concatenate([p[1] for p in parts]), minlength=len(keys))
         boxes = _balanced(box, workers, keys, weights)
@@ -394,8 +433,8 @@ def _partitioned(client, vertices, triangles, kind, tile, workers, keywords):
     # the band on those within the band of its centre (bricksNearTriangles'
     # reach), a value beyond it is the background whatever lies there.
     margin = 2 + (_band(keywords) if kind == "udf" else 0)
-    split = [client.submit(_partition_task, c, matrix, boxes, margin, pure=False) for c in chunks]
-    meshes = [{"pieces": [client.submit(_pick, s, i, pure=False) for s in split], "bounding": bounding}
+    split = [_submit(client, place, _partition_task, c, matrix, boxes, margin) for c in chunks]
+    meshes = [{"pieces": [_submit(client, place, _pick, s, i) for s in split], "bounding": bounding}
               for i in range(len(boxes))]
     return boxes, box, grid, meshes, metadata
 
@@ -427,8 +466,11 @@ def local_cluster(workers=2, devices=None):
     return SpecCluster(workers=spec, scheduler={"cls": Scheduler, "options": {"dashboard_address": ":0"}})
 
 
+DEFAULT_TIMEOUT = 3600
+
+
 def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, output_dir=None, devices=None,
-             partition=True, **keywords):
+             partition=True, timeout=DEFAULT_TIMEOUT, **keywords):
     """Voxelize a mesh on a Dask cluster: exactly the single-process grid (the
     main grid of the call's svo.Result, returned as the grid itself).
 
@@ -456,6 +498,14 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
     named by tile_file_name), and the client writes index.json last; returns
     the index (a dict, see write_index). The folder must be one every worker
     and the client can write (a shared file system).
+
+    timeout: seconds any one wait of the job may last (for a first worker,
+    for the plan, for the next tile to finish; default an hour); past it the
+    job's tasks are cancelled and svo.distributed.JobTimeout (a
+    TimeoutError) says what it waited for and the scheduler's view of the
+    tiles left. None: no bound. A worker that dies in a task costs that
+    task (Dask runs it again); a task whose workers die more often than
+    Dask's allowed-failures raises TileError naming the tile.
     """
     if kind not in KINDS:
         raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
@@ -467,6 +517,8 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
         raise ValueError("unsigned: kind='udf' sets it")
     if tile is not None and (tile <= 0 or tile % 8):
         raise ValueError(f"tile must be a positive multiple of 8, got {tile}")
+    if timeout is not None and not timeout > 0:
+        raise ValueError(f"timeout must be a positive number of seconds or None, got {timeout!r}")
     if client is not None and devices is not None:
         raise ValueError("devices: only for the local cluster voxelize starts (client=None); "
                          "on a cluster of your own, start each worker with SVO_EGL_DEVICE set")
@@ -477,25 +529,66 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
         # The dashboard on a free port: a second cluster on the machine is no error.
         with local_cluster(workers=CPU_COUNT, devices=devices) as cluster, \
                 Client(cluster) as own:
-            return _run(own, mesh, kind, tile, progress, output_dir, partition, keywords)
-    return _run(client, mesh, kind, tile, progress, output_dir, partition, keywords)
+            return _run(own, mesh, kind, tile, progress, output_dir, partition, keywords, timeout)
+    return _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, timeout)
 
 
-def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords):
-    from distributed import as_completed
+class JobTimeout(TimeoutError):
+    """A wait of the job ran past its timeout (no worker, no plan, no tile
+    finished in time); the message says which wait and what was left."""
 
-    workers = len(client.scheduler_info()["workers"])
+
+def _wait_for_workers(client, timeout):
+    """The number of workers, once there is one: a cluster without workers
+    would leave every task waiting."""
+    from distributed import TimeoutError as DaskTimeout
+
+    try:
+        client.wait_for_workers(1, timeout=timeout)
+    except (DaskTimeout, TimeoutError) as e:
+        raise JobTimeout(f"svo.distributed: no worker joined the cluster in {timeout} s "
+                         f"(scheduler {client.scheduler.address})") from e
+    return len(client.scheduler_info()["workers"])
+
+
+def _wait_result(future, timeout, what):
+    from distributed import TimeoutError as DaskTimeout
+
+    try:
+        return future.result(timeout=timeout)
+    except (DaskTimeout, TimeoutError) as e:
+        if future.done():  # the task's own TimeoutError, not the wait's
+            raise
+        future.cancel()
+        raise JobTimeout(f"svo.distributed: {what} did not finish in {timeout} s") from e
+
+
+def _killed_worker():
+    try:
+        from distributed import KilledWorker
+    except ImportError:  # older Dask: only in distributed.scheduler
+        from distributed.scheduler import KilledWorker
+    return KilledWorker
+
+
+def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, timeout=None):
+    import queue
+
+    workers = _wait_for_workers(client, timeout)
+    place = _placement(client)
     metadata = None
     if not isinstance(mesh, (str, os.PathLike)) and kind in PARTITIONED_KINDS and partition and _metadata_settable():
-        boxes, box, grid, meshes, metadata = _partitioned(client, *mesh, kind, tile, workers, keywords)
+        boxes, box, grid, meshes, metadata = _partitioned(client, *mesh, kind, tile, workers, keywords, place,
+                                                          timeout)
     else:
         if not isinstance(mesh, (str, os.PathLike)):
-            mesh = _submit_held(client, tuple(mesh))
+            mesh = _submit_held(client, place, tuple(mesh))
         else:
             mesh = os.fspath(mesh)
         # On a worker: a path is read where the tiles will read it (svo's reader
         # errors name the file), and the client needs no GL context.
-        boxes, box, grid = client.submit(_plan_task, mesh, kind, keywords, tile, workers, pure=False).result()
+        boxes, box, grid = _wait_result(_submit(client, place, _plan_task, mesh, kind, keywords, tile, workers),
+                                        timeout, "the plan")
         meshes = [mesh] * len(boxes)
     if output_dir is not None:
         output_dir = os.path.abspath(os.fspath(output_dir))
@@ -505,8 +598,14 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords):
         index_path = os.path.join(output_dir, INDEX_NAME)
         if os.path.exists(index_path):
             os.remove(index_path)
-    futures = [client.submit(_tile_task, m, kind, keywords, b, output_dir, metadata, pure=False)
+    futures = [_submit(client, place, _tile_task, m, kind, keywords, b, output_dir, metadata)
                for m, b in zip(meshes, boxes)]
+    box_of = {f.key: b for f, b in zip(futures, boxes)}
+    # Finished tiles arrive on a queue (Dask calls back from its own thread),
+    # so that the wait for the next one is bounded.
+    finished = queue.Queue()
+    for f in futures:
+        f.add_done_callback(finished.put)
     entries = []
     done = 0
     if progress:
@@ -514,11 +613,25 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords):
     try:
         # Joined as they arrive, so the client holds one tile's grid at a time
         # besides the result.
-        for future in as_completed(futures):
+        while done < len(futures):
+            try:
+                future = finished.get(timeout=timeout)
+            except queue.Empty:
+                raise JobTimeout(_stalled(client, futures, box_of, timeout)) from None
+            lo, hi = box_of[future.key]
+            try:
+                # Done, but a result lost with its worker before it came is made again.
+                result = _wait_result(future, timeout, f"tile {lo}..{hi} (made again: its result was lost)")
+            except _killed_worker() as e:
+                # Dask's allowed-failures: the task was on a worker that died that many times.
+                raise TileError(f"tile {lo}..{hi}: a worker died while it held the task, more times than "
+                                f"Dask's distributed.scheduler.allowed-failures "
+                                f"({getattr(e, 'allowed_failures', '?')}) allows") from e
             if output_dir is None:
-                _join_region(grid, future.result())
+                _join_region(grid, result)
             else:
-                entries.append(future.result())
+                entries.append(result)
+            del result
             future.release()
             done += 1
             if progress:
@@ -535,6 +648,29 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords):
         if name.startswith("tile_") and ".vdb.tmp-" in name:
             os.remove(os.path.join(output_dir, name))
     return write_index(output_dir, grid, kind, box, entries)
+
+
+def _stalled(client, futures, box_of, timeout):
+    """The message of a job no tile of which finished in `timeout` seconds:
+    the tiles still out and the scheduler's view of them."""
+    left = [f for f in futures if not f.done()]
+    try:
+        states = client.run_on_scheduler(_task_states, [f.key for f in left])
+    except Exception as e:  # the scheduler itself may be what is stuck
+        states = f"(the scheduler did not answer: {type(e).__name__}: {e})"
+    first = box_of[left[0].key] if left else None
+    return (f"svo.distributed: no tile finished in {timeout} s; {len(left)} of {len(futures)} tiles left "
+            f"(the first at {first}); the scheduler's task states: {states}; "
+            f"workers: {len(client.scheduler_info()['workers'])}")
+
+
+def _task_states(keys, dask_scheduler=None):
+    counts = {}
+    for key in keys:
+        ts = dask_scheduler.tasks.get(key)
+        state = ts.state if ts is not None else "forgotten"
+        counts[state] = counts.get(state, 0) + 1
+    return counts
 
 
 # --- per-tile output -----------------------------------------------------------
@@ -612,6 +748,84 @@ def write_index(output_dir, grid, kind, box, entries):
     return index
 
 
+class TilesError(ValueError):
+    """A folder that is not one finished job's tiles; the message names the
+    folder and the problem."""
+
+
+def read_tiles(path):
+    """The grid of a tile folder (voxelize(output_dir=...), --tiles-dir), as
+    voxelize without output_dir returns it: the tiles joined
+    (svo._svo._join_region) after the index is checked: its format and
+    format_version (1), one grid, every tile's box of whole leaves and no
+    two overlapping, every named file there, each file one grid of the
+    index's name, type, class and voxel size whose active voxels, as many
+    as the index says, lie in its box. The files' own statistics (file_*,
+    which OpenVDB's reader adds) are not kept. Needs pyopenvdb.
+    @throw TilesError naming the folder and what is wrong."""
+    import pyopenvdb
+
+    path = os.fspath(path)
+
+    def bad(problem):
+        raise TilesError(f"{path}: {problem}")
+
+    try:
+        with open(os.path.join(path, INDEX_NAME)) as f:
+            index = json.load(f)
+    except FileNotFoundError:
+        bad(f"no {INDEX_NAME} (not a tile folder, or its job has not finished)")
+    except (OSError, ValueError) as e:
+        bad(f"{INDEX_NAME} cannot be read: {e}")
+    if not isinstance(index, dict) or index.get("format") != INDEX_FORMAT:
+        bad(f"{INDEX_NAME} is not an {INDEX_FORMAT} index")
+    if index.get("format_version") != 1:
+        bad(f"{INDEX_NAME} has format_version {index.get('format_version')!r}; this svo "
+            f"({svo.__version__}) reads 1")
+    if len(index.get("grids", [])) != 1:
+        bad(f"{INDEX_NAME} names {len(index.get('grids', []))} grids per file; svo.distributed writes 1")
+    g, tiles = index["grids"][0], index.get("tiles", [])
+    lo = np.array([t["box"][0] for t in tiles], dtype=np.int64).reshape(-1, 3)
+    hi = np.array([t["box"][1] for t in tiles], dtype=np.int64).reshape(-1, 3)
+    for i in np.flatnonzero(np.any(lo % 8, axis=1) | np.any(hi % 8, axis=1) | np.any(hi <= lo, axis=1)):
+        bad(f"tile box {tiles[i]['box']} is not a box of whole leaves")
+    for i in range(len(tiles)):  # pairwise, vectorised per tile
+        meets = np.all((lo[i] < hi[i + 1:]) & (lo[i + 1:] < hi[i]), axis=1)
+        if meets.any():
+            bad(f"tile boxes {tiles[i]['box']} and {tiles[i + 1 + int(np.argmax(meets))]['box']} overlap")
+    missing = [t["file"] for t in tiles if t["file"] and not os.path.isfile(os.path.join(path, t["file"]))]
+    if missing:
+        bad(f"{len(missing)} tile files named in {INDEX_NAME} are missing, e.g. {missing[0]}")
+    grid = None
+    for t, box_lo, box_hi in zip(tiles, lo, hi):
+        if not t["file"]:
+            continue
+        file = os.path.join(path, t["file"])
+        grids, _ = pyopenvdb.readAll(file)
+        part = grids[0] if len(grids) == 1 else None
+        if part is None or (part.name, part.valueTypeName, part.gridClass) != (g["name"], g["type"], g["class"]) \
+                or list(part.transform.voxelSize()) != g["voxel_size"]:
+            bad(f"{t['file']} is not one grid {g['name']!r} ({g['type']}, {g['class']}, voxel size "
+                f"{g['voxel_size']}) as {INDEX_NAME} says")
+        if part.activeVoxelCount() != t["active_voxels"]:
+            bad(f"{t['file']} has {part.activeVoxelCount()} active voxels, {INDEX_NAME} {t['active_voxels']}")
+        if part.activeVoxelCount():
+            v_lo, v_hi = part.evalActiveVoxelBoundingBox()
+            if np.any(np.array(v_lo) < box_lo) or np.any(np.array(v_hi) >= box_hi):
+                bad(f"{t['file']} has active voxels outside its box {t['box']}")
+        if grid is None:
+            grid = part
+            for key in [k for k in dict(grid.metadata) if k.startswith("file_")]:
+                del grid[key]
+        else:
+            _join_region(grid, part)
+    if grid is None:
+        bad("no tile has a file: the grid holds only background")
+    if grid.activeVoxelCount() != index.get("active_voxels"):
+        bad(f"the tiles hold {grid.activeVoxelCount()} active voxels, {INDEX_NAME} {index.get('active_voxels')}")
+    return grid
+
+
 # --- command line ------------------------------------------------------------
 
 
@@ -620,7 +834,8 @@ def _main(argv=None):
                                      description="Voxelize a mesh on a Dask cluster, in tiles.")
     commands = parser.add_subparsers(dest="command", required=True)
     p = commands.add_parser("voxelize", help="a mesh file to one .vdb grid")
-    p.add_argument("mesh", help="OBJ, PLY, STL or OFF; every worker must be able to read this path")
+    p.add_argument("mesh", help="OBJ, PLY, STL, OFF or glTF (.gltf, .glb); every worker must be able to "
+                   "read this path")
     size = p.add_mutually_exclusive_group()
     size.add_argument("-r", "--resolution", type=int, help="voxels along the longest side of the mesh's box")
     size.add_argument("--voxel-size", type=float, help="world units per voxel")
@@ -632,6 +847,9 @@ def _main(argv=None):
     p.add_argument("--band", type=float, help="level set half width in voxels, both sides (default 3)")
     p.add_argument("--backend", help="svo's backend (auto, raster, compute, cpu)")
     p.add_argument("--tile", type=int, help="voxels per tile side, a multiple of 8 (default: ~4 tiles per worker)")
+    p.add_argument("--timeout", type=float, default=DEFAULT_TIMEOUT,
+                   help=f"seconds any one wait may last: for a worker, the plan, the next tile (default "
+                        f"{DEFAULT_TIMEOUT}); past it the job stops with an error")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=2, help="local cluster worker processes (default 2)")
     where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://host:8786")
@@ -669,13 +887,13 @@ def _main(argv=None):
         if args.scheduler:
             with Client(args.scheduler) as client:
                 grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report,
-                                output_dir=args.tiles_dir, **keywords)
+                                output_dir=args.tiles_dir, timeout=args.timeout, **keywords)
         else:
             devices = args.devices.split(",") if args.devices else None
             with local_cluster(workers=args.workers, devices=devices) as cluster, Client(cluster) as client:
                 print(f"dashboard: {client.dashboard_link}", file=sys.stderr, flush=True)
                 grid = voxelize(args.mesh, client=client, tile=args.tile, kind=kind, progress=report,
-                                output_dir=args.tiles_dir, **keywords)
+                                output_dir=args.tiles_dir, timeout=args.timeout, **keywords)
     except Exception as e:
         if tty:
             print(file=sys.stderr)

@@ -283,7 +283,33 @@ def test_per_tile_files_are_the_single_process_grid(client, voxelizer, tmp_path,
     index = svo.distributed.voxelize(mesh, client=client, tile=TILE, kind=kind, resolution=RESOLUTION,
                                      output_dir=folder)
     assert len(index["tiles"]) >= 8
-    assert_tiles_are_the_single_grid(folder, index, single(voxelizer, mesh, kind))
+    want = single(voxelizer, mesh, kind)
+    assert_tiles_are_the_single_grid(folder, index, want)
+    assert_same_grid(svo.distributed.read_tiles(folder), want)  # the folder read back and joined
+
+
+def test_a_bad_tile_folder_is_refused(client, tmp_path):
+    folder = tmp_path / "tiles"
+    svo.distributed.voxelize(open_sphere(), client=client, tile=TILE, kind="sdf", resolution=RESOLUTION,
+                             output_dir=folder)
+    good = json.loads((folder / "index.json").read_text())
+
+    def refused(index, match):
+        (folder / "index.json").write_text(json.dumps(index))
+        with pytest.raises(svo.distributed.TilesError, match=match):
+            svo.distributed.read_tiles(folder)
+
+    refused(dict(good, format_version=2), "format_version 2")
+    tiles = [dict(t) for t in good["tiles"]]
+    tiles[1]["box"] = [[c - 8 for c in tiles[1]["box"][0]], tiles[1]["box"][1]]
+    refused(dict(good, tiles=tiles), "overlap|whole leaves")
+    tiles = [dict(t) for t in good["tiles"]]
+    named = next(t for t in tiles if t["file"])
+    named["file"] = "tile_gone.vdb"
+    refused(dict(good, tiles=tiles), "missing, e.g. tile_gone.vdb")
+    (folder / "index.json").unlink()
+    with pytest.raises(svo.distributed.TilesError, match="no index.json"):
+        svo.distributed.read_tiles(folder)
 
 
 def test_the_command_line_writes_tiles_and_an_index(voxelizer, tmp_path):
@@ -301,6 +327,110 @@ def test_the_command_line_writes_tiles_and_an_index(voxelizer, tmp_path):
     index = json.loads((folder / "index.json").read_text())
     assert index["kind"] == "udf"
     assert_tiles_are_the_single_grid(folder, index, single(voxelizer, str(mesh), "udf"))
+
+
+
+# --- a worker killed in the middle of a task ---------------------------------
+
+
+# Bounds of the killed-worker test (seconds): the job's waits (svo.distributed's
+# timeout), a worker's start, and the whole test (a last resort: faulthandler
+# prints every thread's stack to the real stderr and ends the run rather than
+# let it hang).
+KILL_JOB_TIMEOUT = 120
+KILL_WORKER_TIMEOUT = 60
+KILL_TEST_LIMIT = 420
+
+
+@pytest.mark.parametrize("mesh_as, kind, workers", [("arrays", "surface", 2), ("arrays", "sdf", 2), ("file", "sdf", 2),
+                                                    ("arrays", "sdf", 1), ("arrays", "surface", 1)])
+def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, capsys, mesh_as, kind, workers):
+    """The first tile task to run kills its worker process (SIGKILL, no
+    clean-up) while the task is on the worker's thread; the scheduler gives
+    the lost task to a worker again and the job's result is unchanged: one
+    grid from arrays, per-tile files from a mesh file. With one worker the
+    mesh's only copy (a task's result) dies with it: Dask must make it again
+    (before svo placed its tasks, Dask 2022.12's queue stranded the tiles
+    there and the job waited forever: issue 43)."""
+    import faulthandler
+
+    marker = tmp_path / "killed"
+
+    class KillOnce(distributed.WorkerPlugin):
+        # Defined here, so that Dask pickles it by value: the workers cannot import this file.
+        name = "svo-test-kill-once"
+
+        def __init__(self, marker):
+            self.marker = str(marker)
+
+        def transition(self, key, start, finish, **kwargs):
+            if finish != "executing" or not str(key).startswith("_tile_task"):
+                return
+            try:  # the first tile task of the job, on whichever worker; never again
+                fd = os.open(self.marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+            except FileExistsError:
+                return
+            import signal
+            import threading
+            import time
+
+            def kill_in_task():
+                deadline = time.monotonic() + 30
+                while time.monotonic() < deadline:
+                    for frame in sys._current_frames().values():
+                        while frame is not None and frame.f_code.co_name != "_tile_task":
+                            frame = frame.f_back
+                        if frame is not None:  # the task's thread is inside _tile_task
+                            os.write(fd, f"{key} {os.getpid()}".encode())
+                            os.close(fd)
+                            os.kill(os.getpid(), signal.SIGKILL)
+                    time.sleep(0.001)
+
+            threading.Thread(target=kill_in_task, daemon=True).start()
+
+    mesh = open_sphere()
+    if mesh_as == "file":
+        path = tmp_path / "open.obj"
+        with open(path, "w") as f:
+            f.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in mesh[0].tolist())
+            f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in mesh[1].tolist())
+        mesh = str(path)
+    folder = tmp_path / "tiles" if mesh_as == "file" else None
+    with capsys.disabled():  # pytest captures fd 2: keep a copy of the real one for the stacks
+        stderr = os.fdopen(os.dup(2), "w")
+    faulthandler.dump_traceback_later(KILL_TEST_LIMIT, exit=True, file=stderr)
+    try:
+        with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                      dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
+            c.wait_for_workers(workers, timeout=KILL_WORKER_TIMEOUT)
+            pids = set(c.run(os.getpid).values())
+            c.register_worker_plugin(KillOnce(marker))
+            # A surface of arrays: tasks get their part of the mesh (chunks the
+            # workers cut); a level set: the whole mesh (arrays held by a task, or a file).
+            got = svo.distributed.voxelize(mesh, client=c, tile=TILE, kind=kind, resolution=RESOLUTION,
+                                           output_dir=folder, timeout=KILL_JOB_TIMEOUT)
+            killed_key, killed_pid = marker.read_text().split()
+            assert killed_key.startswith("_tile_task") and int(killed_pid) in pids
+            c.wait_for_workers(workers, timeout=KILL_WORKER_TIMEOUT)
+            assert int(killed_pid) not in set(c.run(os.getpid).values())  # the nanny started a new process
+    finally:
+        faulthandler.cancel_dump_traceback_later()
+        stderr.close()
+    want = single(voxelizer, mesh, kind)
+    if folder is None:
+        assert_same_grid(got, want)
+    else:
+        assert_tiles_are_the_single_grid(folder, got, want)
+
+
+def test_a_cluster_without_workers_fails_in_time():
+    # Every task would wait for a worker forever: the job's first wait is bounded.
+    with distributed.LocalCluster(n_workers=0, processes=True, dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as c:
+        with pytest.raises(svo.distributed.JobTimeout, match="no worker joined the cluster in 2 s"):
+            svo.distributed.voxelize(icosphere(), client=c, resolution=RESOLUTION, timeout=2)
+    with pytest.raises(ValueError, match="timeout"):
+        svo.distributed.voxelize(icosphere(), client=c, timeout=0)
 
 
 # --- tiles balanced by the surface they hold ---------------------------------
