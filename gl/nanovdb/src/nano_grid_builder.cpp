@@ -134,7 +134,8 @@ void sortAndRank(const Context& context, uint32_t n, uint32_t entries)
 }
 
 /// Passes 4 to 6: leaves (and their values), lower nodes, upper nodes.
-void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bool hasValues, uint32_t background)
+void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bool hasValues, uint32_t background,
+               const std::optional<uint32_t>& active)
 {
     const uint32_t n = f.nodes[0];
     const Program& leaves = context.program(nanovdbShaders(), {"nano_leaves.comp"});
@@ -146,6 +147,8 @@ void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bo
         p->set("uLeafWords", leafWords(kind));
         p->set("uHasValues", hasValues ? 1u : 0u);
         p->set("uBackground", background);
+        p->set("uHasActive", active && !hasValues ? 1u : 0u);
+        p->set("uActive", active.value_or(background));
     }
     dispatchGroups(leaves, (uint64_t(n) + 63) / 64);
     if (kind != NanoKind::Mask) dispatchGroups(values, (16 * uint64_t(n) + 255) / 256); // masks hold no values
@@ -254,7 +257,7 @@ NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const Nano
     NanoGridBuffer out{Buffer("NanoVDB grid", f.gridBytes), f.gridBytes, f.nodes, {}};
     out.grid.clearUint(0);
     out.grid.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_GRID);
-    fillNodes(context, kind, f, d.values != nullptr, backgroundWord(kind, header.background));
+    fillNodes(context, kind, f, d.values != nullptr, backgroundWord(kind, header.background), in.activeWord);
     std::vector<uint32_t> upperStats(size_t(f.nodes[2]) * gpu::kNanoStatWords);
     s.stats->read(uint64_t(f.nodes[0] + f.nodes[1]) * gpu::kNanoStatWords * 4, upperStats.size() * 4, upperStats.data());
     s.counters->read(0, sizeof counters, counters);

@@ -22,6 +22,7 @@
 /// on the host copy gives nanovdb::ChecksumMode::Full's.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,10 @@ struct NanoLeaves {
     const Buffer* originBuffer = nullptr;
     const Buffer* maskBuffer = nullptr;
     const Buffer* valueBuffer = nullptr;
+    /// Float and Int32 leaves without values: when set, the word every
+    /// active voxel holds (a fog volume's 1.0f bits), the background the
+    /// others; when not, every voxel holds the background.
+    std::optional<uint32_t> activeWord;
 };
 
 /// @brief What a grid holds besides its voxels (svo::vdb::NanoGridInfo's facts).
