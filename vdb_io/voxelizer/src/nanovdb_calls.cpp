@@ -3,12 +3,16 @@
 // OpenVDB tree between them; an unsigned field on a GL backend built on the
 // GPU from leaves that never leave it (svo/gl/nano_grid_builder.h).
 #include <cstring>
+#include <fmt/format.h>
+
+#include "svo/core/error.h"
 
 #include "svo/gl/field_pipeline.h"
 #include "svo/gl/nano_grid_builder.h"
 #include "svo/gl/timer_query.h"
 #include "svo/gl/voxelize_pipeline.h"
 #include "svo/vdb_io/nanovdb_checksum.h"
+#include "svo/vdb_io/nanovdb_layout.h"
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/vdb_io/reader_grids.h" // withTopology
 #include "svo/voxelizer.h"
@@ -56,15 +60,27 @@ std::vector<vdb::NanoHandle> nanoCall(const TriangleMesh& mesh, const GridSpec& 
     return out;
 }
 
-/// A grid of the device's leaves built on the GPU, read back and given its
-/// full checksum on the host, each step a stage of `stats`.
+/// A grid built on the GPU, read back and given its full checksum on the
+/// host, each step a stage of `stats`. A grid past the builder's limits (a
+/// shader storage block, 2^26 leaves, 16 GiB: svo::Unsupported, thrown
+/// before the grid is made) is laid out by `onHost()` instead, with a warning.
+template <typename OnHost>
 vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const gl::NanoLeaves& leaves,
-                           const gl::NanoGridHeader& header, VoxelizeStats& stats)
+                           const gl::NanoGridHeader& header, VoxelizeStats& stats, OnHost&& onHost)
 {
     auto t0 = Clock::now();
     gl::TimerQuery timer;
     timer.begin();
-    const gl::NanoGridBuffer built = gl::buildNanoGridGpu(context, kind, leaves, header);
+    gl::NanoGridBuffer built;
+    try {
+        built = gl::buildNanoGridGpu(context, kind, leaves, header);
+    } catch (const Unsupported& e) {
+        stats.warnings.push_back(fmt::format("{}; grid \"{}\" laid out on the CPU instead", e.what(), header.name));
+        t0 = Clock::now();
+        vdb::NanoHandle out = onHost();
+        stats.stages.push_back({"nanovdb grid (cpu)", -1, msSince(t0)});
+        return out;
+    }
     timer.end();
     stats.stages.push_back({"nanovdb grid (gpu)", timer.milliseconds(), msSince(t0)});
     t0 = Clock::now();
@@ -81,6 +97,31 @@ vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const 
     }
     stats.stages.push_back({"nanovdb checksum", -1, msSince(t0)});
     return out;
+}
+
+/// The CPU layout of device leaves read back (float or int32 values): the
+/// grid the GPU builder makes of them, with its checksum.
+template <typename V>
+vdb::NanoHandle laidOutOnHost(const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header, V background)
+{
+    static_assert(sizeof(V) == 4, "value words");
+    vdb::SparseVoxels<V> s;
+    s.background = background;
+    const uint64_t n = leaves.count;
+    s.origins.resize(n);
+    s.masks.resize(n);
+    s.values.resize(512 * n);
+    if (n) {
+        leaves.originBuffer->readBulk(0, 12 * n, s.origins.data());
+        leaves.maskBuffer->readBulk(0, 64 * n, s.masks.data());
+        leaves.valueBuffer->readBulk(0, 2048 * n, s.values.data());
+    }
+    vdb::NanoGridInfo info;
+    info.name = header.name;
+    info.gridClass = nanovdb::GridClass(header.gridClass);
+    info.voxelSize = header.voxelSize;
+    info.translation = header.translation;
+    return vdb::buildNanoGrid<V>(s, info);
 }
 
 /// An unsigned field's grids on the GPU: its band's leaves stay on the
@@ -106,12 +147,15 @@ std::vector<vdb::NanoHandle> unsignedGridsOnGpu(gl::Device& device, const Triang
     header.translation = grid.translation();
     header.background = double(float(ls.exteriorBand * grid.voxelSize));
     std::vector<vdb::NanoHandle> out;
-    out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats));
+    const float background = float(header.background);
+    out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats,
+                             [&] { return laidOutOnHost<float>(leaves, header, background); }));
     if (field.leaves.closest) {
         leaves.valueBuffer = field.leaves.closest;
         header.name = "closest_triangle";
         header.background = -1.0;
-        out.push_back(builtOnGpu(context, gl::NanoKind::Int32, leaves, header, stats));
+        out.push_back(builtOnGpu(context, gl::NanoKind::Int32, leaves, header, stats,
+                                 [&] { return laidOutOnHost<int32_t>(leaves, header, -1); }));
     }
     return out;
 }
@@ -145,8 +189,16 @@ std::vector<vdb::NanoHandle> surfaceGridsOnGpu(const gl::Context& context, const
     const bool mask = grids.topology == GridOptions::Topology::Mask;
     // NanoVDB keeps class Topology for ValueMask grids (nanovdb::isValid); bool grids are Unknown.
     header.gridClass = uint32_t(mask ? nanovdb::GridClass::Topology : nanovdb::GridClass::Unknown);
+    // Past the builder's limits: octreeToNanoGrids' grid of that kind.
+    auto onHost = [&](bool fog) {
+        GridOptions one = grids;
+        one.fog = fog;
+        one.attributes = false;
+        return [&o, one, fog] { return std::move(vdb::octreeToNanoGrids(o, one)[fog ? 1 : 0]); };
+    };
     std::vector<vdb::NanoHandle> out;
-    out.push_back(builtOnGpu(context, mask ? gl::NanoKind::Mask : gl::NanoKind::Bool, leaves, header, stats));
+    out.push_back(builtOnGpu(context, mask ? gl::NanoKind::Mask : gl::NanoKind::Bool, leaves, header, stats,
+                             onHost(false)));
     if (grids.fog) {
         const float one = 1.0f;
         uint32_t word = 0;
@@ -154,7 +206,7 @@ std::vector<vdb::NanoHandle> surfaceGridsOnGpu(const gl::Context& context, const
         leaves.activeWord = word;
         header.name = "density";
         header.gridClass = uint32_t(nanovdb::GridClass::FogVolume);
-        out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats));
+        out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats, onHost(true)));
     }
     t0 = Clock::now();
     std::vector<vdb::NanoHandle> channels = vdb::octreeChannelNanoGrids(o, grids);
