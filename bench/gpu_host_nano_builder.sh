@@ -5,7 +5,7 @@
 # the winding suites after the tree of pieces (test_level_set, test_cpu_fields),
 # the builder's timing (svo-bench-nanovdb-gpu) on the bunny, and the front
 # door's .nvdb on it (svo voxelize --udf / surfaces -o x.nvdb -v: the stages
-# "band leaves", "nanovdb grid (gpu)", "nanovdb readback", "nanovdb checksum";
+# "band leaves", "nanovdb grid (gpu)" (build and checksum), "nanovdb readback";
 # expected figures: bench/nanovdb_expected.md, "the front door on the GPU builder").
 #   bash scripts/bundle.sh build bundle/svo-bundle.tar.gz build/tests/test_gpu_nano_grid \
 #     build/tests/test_nanovdb_layout build/tests/test_level_set build/tests/test_cpu_fields \

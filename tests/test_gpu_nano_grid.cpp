@@ -1,7 +1,8 @@
 // NanoVDB grids built on the GPU (svo/gl/nano_grid_builder.h) against the CPU
 // layout builder (svo::vdb::buildNanoGrid, itself proven against
 // nanovdb::openToNanoVDB by test_nanovdb_layout): the whole grid, byte for
-// byte, once the host copy gets its checksum (svo::vdb::updateFullChecksum);
+// byte, once the host copy gets its checksum (svo::vdb::updateFullChecksum),
+// and with the checksum made on the GPU (NanoGridHeader::checksum);
 // and against NanoVDB's own host code: nanovdb::isValid (full checksum), a
 // ReadAccessor voxel for voxel against the input, and nanovdb_validate on
 // the written .nvdb. Then the front door (svo::Voxelizer) on a GL backend,
@@ -203,6 +204,24 @@ protected:
         EXPECT_EQ(0, std::memcmp(handle.data(), cpu.data(), cpu.size()))
             << header.name << ": " << firstDifference(handle.data(), cpu.data(), cpu.size());
         EXPECT_EQ(gpu.nodes[0], in.origins.size());
+        // The checksum made on the GPU (NanoGridHeader::checksum): the whole grid as is.
+        if (!deviceInput) {
+            gl::NanoGridHeader summed = header;
+            summed.checksum = true;
+            const gl::NanoGridBuffer withSum = gl::buildNanoGridGpu(context, kindOf<BuildT>(), leaves, summed, true);
+            ASSERT_EQ(withSum.host.size(), cpu.size());
+            if (in.origins.empty()) {
+                std::memcpy(&none, withSum.host.data() + 8, 8);
+                EXPECT_EQ(none, ~uint64_t(0)) << "no leaves: no checksum from the GPU";
+            } else {
+                EXPECT_EQ(0, std::memcmp(withSum.host.data(), cpu.data(), cpu.size()))
+                    << header.name << " (checksum on the GPU): " << firstDifference(withSum.host.data(), cpu.data(), cpu.size());
+                uint64_t a = 0, b = 0;
+                std::memcpy(&a, withSum.host.data() + 8, 8);
+                std::memcpy(&b, cpu.data() + 8, 8);
+                EXPECT_EQ(a, b) << header.name << ": checksums";
+            }
+        }
         expectNanoVdbReads<BuildT>(handle, in, header.background);
         if (HasFailure()) return;
         written.push_back(std::move(handle));

@@ -60,8 +60,8 @@ std::vector<vdb::NanoHandle> nanoCall(const TriangleMesh& mesh, const GridSpec& 
     return out;
 }
 
-/// A grid built on the GPU, read back and given its full checksum on the
-/// host, each step a stage of `stats`. A grid past the builder's limits (a
+/// A grid built on the GPU with its full checksum (a grid of no leaves gets
+/// it on the host), read back, each step a stage of `stats`. A grid past the builder's limits (a
 /// shader storage block, 2^26 leaves, 16 GiB: svo::Unsupported, thrown
 /// before the grid is made) is laid out by `onHost()` instead, with a warning.
 template <typename OnHost>
@@ -72,8 +72,10 @@ vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const 
     gl::TimerQuery timer;
     timer.begin();
     gl::NanoGridBuffer built;
+    gl::NanoGridHeader withChecksum = header;
+    withChecksum.checksum = true;
     try {
-        built = gl::buildNanoGridGpu(context, kind, leaves, header);
+        built = gl::buildNanoGridGpu(context, kind, leaves, withChecksum);
     } catch (const Unsupported& e) {
         stats.warnings.push_back(fmt::format("{}; grid \"{}\" laid out on the CPU instead", e.what(), header.name));
         t0 = Clock::now();
@@ -88,6 +90,9 @@ vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const 
     built.grid.readBulk(0, built.bytes, buffer.data());
     vdb::NanoHandle out(std::move(buffer));
     stats.stages.push_back({"nanovdb readback", -1, msSince(t0)});
+    uint64_t checksum = 0;
+    std::memcpy(&checksum, out.data() + 8, 8);
+    if (checksum != ~uint64_t(0)) return out;
     t0 = Clock::now();
     switch (kind) {
     case gl::NanoKind::Float: vdb::updateFullChecksum(*out.grid<float>()); break;
