@@ -532,6 +532,28 @@ TEST_F(GpuNanoGrid, FrontDoorUnsignedFieldsEqualTheCpuLayout)
             VoxelizeOptions cpuOptions;
             cpuOptions.backend = Backend::Cpu;
             expectSameBytes(voxelizer.levelSetNanoVdb(mesh, grid, ls, cpuOptions), cpu, written);
+            // The grids left on the GPU: the same bytes, read in the callback (the context current there).
+            VoxelizeStats deviceStats;
+            options.stats = &deviceStats;
+            size_t calls = 0;
+            voxelizer.unsignedFieldNanoVdbOnDevice(mesh, grid, ls, options, [&](const std::vector<gl::NanoGridBuffer>& grids) {
+                ++calls;
+                ASSERT_EQ(grids.size(), cpu.size());
+                for (size_t i = 0; i < grids.size(); ++i) {
+                    ASSERT_EQ(grids[i].bytes, cpu[i].size());
+                    EXPECT_TRUE(glIsBuffer(grids[i].grid.id())) << "a GL buffer of the current context";
+                    std::vector<uint8_t> bytes(grids[i].bytes);
+                    grids[i].grid.readBulk(0, bytes.size(), bytes.data());
+                    EXPECT_EQ(0, std::memcmp(bytes.data(), cpu[i].data(), bytes.size()))
+                        << "on the device: " << firstDifference(bytes.data(), cpu[i].data(), bytes.size());
+                }
+            });
+            EXPECT_EQ(calls, 1u);
+            EXPECT_EQ(deviceStats.voxels, udf->activeVoxelCount());
+            EXPECT_EQ(deviceStats.bricks, udf->tree().nodeCount(0));
+            EXPECT_THROW(voxelizer.unsignedFieldNanoVdbOnDevice(mesh, grid, ls, cpuOptions,
+                                                                [](const std::vector<gl::NanoGridBuffer>&) {}),
+                         Unsupported);
         }
 }
 

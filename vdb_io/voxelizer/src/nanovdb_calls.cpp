@@ -129,6 +129,29 @@ vdb::NanoHandle laidOutOnHost(const gl::NanoLeaves& leaves, const gl::NanoGridHe
     return vdb::buildNanoGrid<V>(s, info);
 }
 
+/// The device field's leaves as the builder takes them (values: the distances).
+gl::NanoLeaves leavesOf(const gl::DeviceField& field)
+{
+    gl::NanoLeaves leaves;
+    leaves.count = field.leaves.count;
+    leaves.originBuffer = field.leaves.origins;
+    leaves.maskBuffer = field.leaves.masks;
+    leaves.valueBuffer = field.leaves.values;
+    return leaves;
+}
+
+/// The "distance" grid's header, as levelSetNanoGrids makes it.
+gl::NanoGridHeader distanceHeader(const GridSpec& grid, const LevelSetOptions& ls)
+{
+    gl::NanoGridHeader header;
+    header.name = "distance";
+    header.gridClass = uint32_t(nanovdb::GridClass::Unknown);
+    header.voxelSize = grid.voxelSize;
+    header.translation = grid.translation();
+    header.background = double(float(ls.exteriorBand * grid.voxelSize));
+    return header;
+}
+
 /// An unsigned field's grids on the GPU: its band's leaves stay on the
 /// device (gl::unsignedFieldLeaves) and the builder lays out the grids
 /// levelSetNanoGrids lays out on the host, byte for byte.
@@ -140,17 +163,8 @@ std::vector<vdb::NanoHandle> unsignedGridsOnGpu(gl::Device& device, const Triang
     checkpoint(0.85, "nanovdb grid");
     const gl::Context& context = device.context();
     const gl::Context::Scope scope(context); // the leaves' scratch buffers and the grids' buffers
-    gl::NanoLeaves leaves;
-    leaves.count = field.leaves.count;
-    leaves.originBuffer = field.leaves.origins;
-    leaves.maskBuffer = field.leaves.masks;
-    leaves.valueBuffer = field.leaves.values;
-    gl::NanoGridHeader header;
-    header.name = "distance";
-    header.gridClass = uint32_t(nanovdb::GridClass::Unknown);
-    header.voxelSize = grid.voxelSize;
-    header.translation = grid.translation();
-    header.background = double(float(ls.exteriorBand * grid.voxelSize));
+    gl::NanoLeaves leaves = leavesOf(field);
+    gl::NanoGridHeader header = distanceHeader(grid, ls);
     std::vector<vdb::NanoHandle> out;
     const float background = float(header.background);
     out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats,
@@ -262,6 +276,59 @@ vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec
         return grids;
     });
     return std::move(out.front());
+}
+
+void Voxelizer::unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
+                                             const VoxelizeOptions& options,
+                                             const std::function<void(const std::vector<gl::NanoGridBuffer>&)>& use)
+{
+    if (viaOpenVdb(options) || !gl::unsignedFieldOnDevice(device_, ls, options))
+        throw Unsupported("a NanoVDB grid stays on the GPU only for an unsigned distance field on a GL backend, "
+                          "without a region or a GPU memory budget");
+    validateMesh(mesh);
+    checkGrid(grid, mesh.source);
+    vdb::checkVdbGrid(grid, "grid");
+    const InterruptScope interrupt(options.interrupter, "svo: computing a distance field");
+    const Checkpoint checkpoint = interrupt.checkpoint();
+    VoxelizeStats stats;
+    const gl::DeviceField field = gl::unsignedFieldLeaves(device_, mesh, grid, ls, options, checkpoint, stats);
+    checkpoint(0.85, "nanovdb grid");
+    const gl::Context& context = device_.context();
+    const gl::Context::Scope scope(context); // the grids are made, used and freed in it
+    gl::NanoLeaves leaves = leavesOf(field);
+    gl::NanoGridHeader header = distanceHeader(grid, ls);
+    header.checksum = true;
+    const auto t0 = Clock::now();
+    gl::TimerQuery timer;
+    timer.begin();
+    std::vector<gl::NanoGridBuffer> grids;
+    grids.push_back(gl::buildNanoGridGpu(context, gl::NanoKind::Float, leaves, header));
+    if (field.leaves.closest) {
+        leaves.valueBuffer = field.leaves.closest;
+        header.name = "closest_triangle";
+        header.background = -1.0;
+        grids.push_back(gl::buildNanoGridGpu(context, gl::NanoKind::Int32, leaves, header));
+    }
+    timer.end();
+    stats.stages.push_back({"nanovdb grid (gpu)", timer.milliseconds(), msSince(t0)});
+    for (auto& g : grids) // a grid of no leaves: its checksum from its headers, which the host holds
+        if (!g.nodes[0]) {
+            std::vector<uint8_t> bytes(g.bytes);
+            g.grid.read(0, g.bytes, bytes.data());
+            nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(g.bytes);
+            std::memcpy(buffer.data(), bytes.data(), g.bytes);
+            vdb::NanoHandle h(std::move(buffer));
+            if (h.grid<float>()) vdb::updateFullChecksum(*h.grid<float>());
+            else vdb::updateFullChecksum(*h.grid<int32_t>());
+            g.grid.write(0, g.bytes, h.data());
+        }
+    stats.bricks = grids.front().nodes[0];
+    alignas(64) uint8_t head[sizeof(nanovdb::GridData) + sizeof(nanovdb::NanoTree<float>::DataType)];
+    grids.front().grid.read(0, sizeof head, head);
+    stats.voxels = reinterpret_cast<const nanovdb::NanoGrid<float>*>(head)->activeVoxelCount();
+    use(grids);
+    checkpoint(1.0, "finish");
+    if (options.stats) *options.stats = std::move(stats);
 }
 
 } // namespace svo
