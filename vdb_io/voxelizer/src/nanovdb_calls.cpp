@@ -60,10 +60,31 @@ std::vector<vdb::NanoHandle> nanoCall(const TriangleMesh& mesh, const GridSpec& 
     return out;
 }
 
+/// Gives @a h NanoVDB's full checksum on the host.
+void fullChecksum(vdb::NanoHandle& h, gl::NanoKind kind)
+{
+    switch (kind) {
+    case gl::NanoKind::Float: return vdb::updateFullChecksum(*h.grid<float>());
+    case gl::NanoKind::Int32: return vdb::updateFullChecksum(*h.grid<int32_t>());
+    case gl::NanoKind::Mask: return vdb::updateFullChecksum(*h.grid<nanovdb::ValueMask>());
+    case gl::NanoKind::Bool: return vdb::updateFullChecksum(*h.grid<bool>());
+    }
+}
+
+/// Whether the grid at @a bytes says "none" for its checksum (the GPU
+/// builder's grid of no leaves).
+bool noChecksum(const uint8_t* bytes)
+{
+    uint64_t checksum = 0;
+    std::memcpy(&checksum, bytes + 8, 8);
+    return checksum == ~uint64_t(0);
+}
+
 /// A grid built on the GPU with its full checksum (a grid of no leaves gets
-/// it on the host), read back, each step a stage of `stats`. A grid past the builder's limits (a
-/// shader storage block, 2^26 leaves, 16 GiB: svo::Unsupported, thrown
-/// before the grid is made) is laid out by `onHost()` instead, with a warning.
+/// it on the host), read back, each step a stage of `stats`. A grid past
+/// the builder's limits (a shader storage block, 2^26 leaves, 16 GiB:
+/// svo::Unsupported, thrown before the grid is made) is laid out by
+/// `onHost()` instead, with a warning.
 template <typename OnHost>
 vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const gl::NanoLeaves& leaves,
                            const gl::NanoGridHeader& header, VoxelizeStats& stats, OnHost&& onHost)
@@ -90,16 +111,9 @@ vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const 
     built.grid.readBulk(0, built.bytes, buffer.data());
     vdb::NanoHandle out(std::move(buffer));
     stats.stages.push_back({"nanovdb readback", -1, msSince(t0)});
-    uint64_t checksum = 0;
-    std::memcpy(&checksum, out.data() + 8, 8);
-    if (checksum != ~uint64_t(0)) return out;
+    if (!noChecksum(out.data())) return out;
     t0 = Clock::now();
-    switch (kind) {
-    case gl::NanoKind::Float: vdb::updateFullChecksum(*out.grid<float>()); break;
-    case gl::NanoKind::Int32: vdb::updateFullChecksum(*out.grid<int32_t>()); break;
-    case gl::NanoKind::Mask: vdb::updateFullChecksum(*out.grid<nanovdb::ValueMask>()); break;
-    case gl::NanoKind::Bool: vdb::updateFullChecksum(*out.grid<bool>()); break;
-    }
+    fullChecksum(out, kind);
     stats.stages.push_back({"nanovdb checksum", -1, msSince(t0)});
     return out;
 }
@@ -311,17 +325,15 @@ void Voxelizer::unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const Gri
     }
     timer.end();
     stats.stages.push_back({"nanovdb grid (gpu)", timer.milliseconds(), msSince(t0)});
-    for (auto& g : grids) // a grid of no leaves: its checksum from its headers, which the host holds
-        if (!g.nodes[0]) {
-            std::vector<uint8_t> bytes(g.bytes);
-            g.grid.read(0, g.bytes, bytes.data());
-            nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(g.bytes);
-            std::memcpy(buffer.data(), bytes.data(), g.bytes);
-            vdb::NanoHandle h(std::move(buffer));
-            if (h.grid<float>()) vdb::updateFullChecksum(*h.grid<float>());
-            else vdb::updateFullChecksum(*h.grid<int32_t>());
-            g.grid.write(0, g.bytes, h.data());
-        }
+    for (size_t i = 0; i < grids.size(); ++i) { // a grid of no leaves: the checksum of its headers, here
+        const gl::NanoGridBuffer& g = grids[i];
+        if (g.nodes[0]) continue;
+        nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(g.bytes);
+        g.grid.read(0, g.bytes, buffer.data());
+        vdb::NanoHandle h(std::move(buffer));
+        fullChecksum(h, i == 0 ? gl::NanoKind::Float : gl::NanoKind::Int32);
+        g.grid.write(0, g.bytes, h.data());
+    }
     stats.bricks = grids.front().nodes[0];
     alignas(64) uint8_t head[sizeof(nanovdb::GridData) + sizeof(nanovdb::NanoTree<float>::DataType)];
     grids.front().grid.read(0, sizeof head, head);
