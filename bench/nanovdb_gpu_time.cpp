@@ -2,7 +2,14 @@
 // with and without its checksum) against the GPU builder
 // (svo::gl::buildNanoGridGpu) from the same leaves: from host arrays with a
 // host copy back (what a file write needs), and from device-resident leaves
-// with the grid left on the device (the build alone).
+// with the grid left on the device (the build alone). Then a surface's
+// topology and fog grids as svo::Voxelizer::voxelizeNanoVdb makes them on a
+// GL backend (masks uploaded, built with their checksums, read back)
+// against the CPU layout (octreeToNanoGrids) of the same octree. Last, an
+// unsigned field (band 3) as Voxelizer::levelSetNanoVdb makes it: before
+// (the band read back, levelSetNanoGrids with its checksum) and now on a GL
+// backend (gl::unsignedFieldLeaves, the GPU builder with the checksum, the
+// grid read back): the field passes included, so the difference is the gain.
 //   svo-bench-nanovdb-gpu MESH|icosphere [--res 128 256] [--runs 5] [--backend cpu|gpu]
 // Prints one Markdown row per resolution: medians in ms.
 #include <algorithm>
@@ -19,6 +26,7 @@
 #include "svo/gl/device.h"
 #include "svo/gl/field_pipeline.h"
 #include "svo/gl/nano_grid_builder.h"
+#include "svo/gl/voxelize_pipeline.h"
 #include "svo/vdb_io/nanovdb_grids.h"
 #include "svo/vdb_io/nanovdb_layout.h"
 
@@ -56,6 +64,44 @@ svo::vdb::SparseVoxels<float> leavesOf(const nanovdb::NanoGrid<float>& grid)
         for (uint32_t v = 0; v < 512; ++v) s.values.push_back(leaf->getValue(v));
     }
     return s;
+}
+
+/// The GPU path of voxelizeNanoVdb for the topology (ValueMask) and fog of
+/// an octree: the leaves gathered and uploaded, both grids built with their
+/// checksums and read back. Returns the bytes of both.
+uint64_t surfaceOnGpu(const svo::gl::Context& context, const svo::Octree& o)
+{
+    using namespace svo;
+    const std::vector<BrickRef> refs = occupiedBricks(o);
+    std::vector<std::array<int32_t, 3>> origins(refs.size());
+    std::vector<Brick> masks(refs.size());
+    for (size_t i = 0; i < refs.size(); ++i) {
+        const auto g = o.grid.toGlobal(refs[i].origin);
+        origins[i] = {int32_t(g[0]), int32_t(g[1]), int32_t(g[2])};
+        masks[i] = o.bricks[refs[i].index];
+    }
+    gl::NanoLeaves leaves;
+    leaves.count = uint32_t(refs.size());
+    leaves.origins = origins.data();
+    leaves.masks = masks.data();
+    gl::NanoGridHeader header;
+    header.name = "surface";
+    header.gridClass = uint32_t(nanovdb::GridClass::Topology);
+    header.voxelSize = o.grid.voxelSize;
+    header.checksum = true; // on the GPU, as the front door asks
+    uint64_t bytes = 0;
+    auto build = [&](gl::NanoKind kind) {
+        const gl::NanoGridBuffer g = gl::buildNanoGridGpu(context, kind, leaves, header);
+        nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(g.bytes);
+        g.grid.readBulk(0, g.bytes, buffer.data());
+        bytes += g.bytes;
+    };
+    build(gl::NanoKind::Mask);
+    leaves.activeWord = 0x3F800000u; // 1.0f
+    header.name = "density";
+    header.gridClass = uint32_t(nanovdb::GridClass::FogVolume);
+    build(gl::NanoKind::Float);
+    return bytes;
 }
 
 } // namespace
@@ -139,6 +185,60 @@ int main(int argc, char** argv)
         }
         fmt::print("| {} | {} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} |\n", mesh, n, in.origins.size(),
                    double(bytes) / 1e6, cpuBare, cpuSum, gpuHost, gpuDevice);
+    }
+    fmt::print("\n| mesh | N | leaves | MB (mask + fog) | CPU layout + checksum ms | GPU from host, checksum on the GPU, copy back ms |\n"
+               "|---|---|---|---|---|---|\n");
+    for (const int64_t n : res) {
+        const GridSpec grid = makeGrid(m, {n, 0.0});
+        VoxelizeSettings s;
+        s.backend = backend == Backend::Cpu ? Backend::Cpu : Backend::Compute;
+        VoxelizeStats stats;
+        const Octree octree = gl::voxelizeMesh(device, m, grid, s, Checkpoint{}, stats);
+        GridOptions fog;
+        fog.fog = true;
+        fog.attributes = false;
+        const double cpu = medianMs(runs, [&] { vdb::octreeToNanoGrids(octree, fog); });
+        uint64_t bytes = 0;
+        const double gpu = medianMs(runs, [&] { bytes = surfaceOnGpu(device.context(), octree); });
+        fmt::print("| {} | {} | {} | {:.1f} | {:.1f} | {:.1f} |\n", mesh, n, occupiedBricks(octree).size(),
+                   double(bytes) / 1e6, cpu, gpu);
+    }
+    if (backend == Backend::Cpu) return 0; // the device path needs a GL backend
+    fmt::print("\n| mesh | N | leaves | MB | UDF before: field + readback + CPU layout ms | UDF now: field + GPU build and "
+               "checksum + readback ms |\n|---|---|---|---|---|---|\n");
+    for (const int64_t n : res) {
+        const GridSpec grid = makeGrid(m, {n, 0.0});
+        VoxelizeSettings s;
+        s.backend = Backend::Compute;
+        LevelSetOptions ls;
+        ls.unsignedDistance = true;
+        uint64_t leaves = 0, bytes = 0;
+        const double before = medianMs(runs, [&] {
+            VoxelizeStats stats;
+            const DistanceBricks f = gl::levelSetBricks(device, m, grid, ls, s, Checkpoint{}, stats);
+            vdb::levelSetNanoGrids(f, ls.exteriorBand, ls.interiorBand, grid);
+        });
+        const double now = medianMs(runs, [&] {
+            VoxelizeStats stats;
+            const gl::DeviceField f = gl::unsignedFieldLeaves(device, m, grid, ls, s, Checkpoint{}, stats);
+            gl::NanoLeaves in;
+            in.count = f.leaves.count;
+            in.originBuffer = f.leaves.origins;
+            in.maskBuffer = f.leaves.masks;
+            in.valueBuffer = f.leaves.values;
+            gl::NanoGridHeader header;
+            header.name = "distance";
+            header.voxelSize = grid.voxelSize;
+            header.translation = grid.translation();
+            header.background = double(float(ls.exteriorBand * grid.voxelSize));
+            header.checksum = true;
+            const gl::NanoGridBuffer g = gl::buildNanoGridGpu(device.context(), gl::NanoKind::Float, in, header);
+            nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(g.bytes);
+            g.grid.readBulk(0, g.bytes, buffer.data());
+            leaves = in.count;
+            bytes = g.bytes;
+        });
+        fmt::print("| {} | {} | {} | {:.1f} | {:.1f} | {:.1f} |\n", mesh, n, leaves, double(bytes) / 1e6, before, now);
     }
     return 0;
 }

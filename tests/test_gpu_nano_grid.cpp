@@ -1,10 +1,13 @@
 // NanoVDB grids built on the GPU (svo/gl/nano_grid_builder.h) against the CPU
 // layout builder (svo::vdb::buildNanoGrid, itself proven against
 // nanovdb::openToNanoVDB by test_nanovdb_layout): the whole grid, byte for
-// byte, once the host copy gets its checksum (svo::vdb::updateFullChecksum);
+// byte, once the host copy gets its checksum (svo::vdb::updateFullChecksum),
+// and with the checksum made on the GPU (NanoGridHeader::checksum);
 // and against NanoVDB's own host code: nanovdb::isValid (full checksum), a
 // ReadAccessor voxel for voxel against the input, and nanovdb_validate on
-// the written .nvdb. Runs on every GL 4.5 device, llvmpipe included.
+// the written .nvdb. Then the front door (svo::Voxelizer) on a GL backend,
+// whose unsigned fields and surfaces take the GPU builder: the same bytes as
+// the CPU layout of the same data. Runs on every GL 4.5 device, llvmpipe included.
 #include <algorithm>
 #include <cstddef>
 #include <cstdlib>
@@ -27,6 +30,7 @@
 #include "svo/vdb_io/nanovdb_file.h"
 #include "svo/vdb_io/nanovdb_grids.h"
 #include "svo/vdb_io/nanovdb_layout.h"
+#include "svo/voxelizer.h"
 #include "temp_dir.h"
 
 namespace svo {
@@ -200,6 +204,24 @@ protected:
         EXPECT_EQ(0, std::memcmp(handle.data(), cpu.data(), cpu.size()))
             << header.name << ": " << firstDifference(handle.data(), cpu.data(), cpu.size());
         EXPECT_EQ(gpu.nodes[0], in.origins.size());
+        // The checksum made on the GPU (NanoGridHeader::checksum): the whole grid as is.
+        if (!deviceInput) {
+            gl::NanoGridHeader summed = header;
+            summed.checksum = true;
+            const gl::NanoGridBuffer withSum = gl::buildNanoGridGpu(context, kindOf<BuildT>(), leaves, summed, true);
+            ASSERT_EQ(withSum.host.size(), cpu.size());
+            if (in.origins.empty()) {
+                std::memcpy(&none, withSum.host.data() + 8, 8);
+                EXPECT_EQ(none, ~uint64_t(0)) << "no leaves: no checksum from the GPU";
+            } else {
+                EXPECT_EQ(0, std::memcmp(withSum.host.data(), cpu.data(), cpu.size()))
+                    << header.name << " (checksum on the GPU): " << firstDifference(withSum.host.data(), cpu.data(), cpu.size());
+                uint64_t a = 0, b = 0;
+                std::memcpy(&a, withSum.host.data() + 8, 8);
+                std::memcpy(&b, cpu.data() + 8, 8);
+                EXPECT_EQ(a, b) << header.name << ": checksums";
+            }
+        }
         expectNanoVdbReads<BuildT>(handle, in, header.background);
         if (HasFailure()) return;
         written.push_back(std::move(handle));
@@ -412,6 +434,169 @@ TEST_F(GpuNanoGrid, MeshGridsEqualTheCpuBuilder)
     ASSERT_NE(closest, nullptr);
     expectSameAsCpu<float>(leavesOf(*sdf, true, 3), headerOf(*sdf));
     expectSameAsCpu<int32_t>(leavesOf(*closest, true, 4), headerOf(*closest));
+}
+
+
+/// Whether `stats` holds a stage named `name`.
+bool hasStage(const VoxelizeStats& stats, const std::string& name)
+{
+    return std::any_of(stats.stages.begin(), stats.stages.end(), [&](const StageTime& s) { return s.name == name; });
+}
+
+/// The same grids, byte for byte (checksums included), each valid with its
+/// full checksum; the GPU's kept for nanovdb_validate.
+void expectSameBytes(const std::vector<vdb::NanoHandle>& gpu, const std::vector<vdb::NanoHandle>& cpu,
+                     std::vector<nanovdb::GridHandle<nanovdb::HostBuffer>>& written)
+{
+    ASSERT_EQ(gpu.size(), cpu.size());
+    for (size_t i = 0; i < gpu.size(); ++i) {
+        const std::string name = cpu[i].gridMetaData()->shortGridName();
+        ASSERT_EQ(gpu[i].size(), cpu[i].size()) << name;
+        EXPECT_EQ(0, std::memcmp(gpu[i].data(), cpu[i].data(), cpu[i].size()))
+            << name << ": " << firstDifference(gpu[i].data(), cpu[i].data(), cpu[i].size());
+        uint64_t checksum = 0;
+        std::memcpy(&checksum, gpu[i].data() + 8, 8);
+        EXPECT_NE(checksum, ~uint64_t(0)) << name << ": no checksum";
+    }
+    for (const auto& h : gpu) {
+        nanovdb::HostBuffer b = nanovdb::HostBuffer::create(h.size());
+        std::memcpy(b.data(), h.data(), h.size());
+        written.emplace_back(std::move(b));
+    }
+}
+
+/// The front door's scenes (test_nanovdb_layout's closed and open meshes).
+std::vector<std::pair<std::string, TriangleMesh>> frontDoorScenes()
+{
+    return {{"sphere", test::sphere({0.3, -0.2, 0.1}, 1.0, 48, 24)}, {"box", test::box({-1, -0.5, -0.25}, {1, 0.5, 0.25})}};
+}
+
+/// An unsigned field through the front door on a GL backend: its band stays
+/// on the device and the GPU builder lays it out ("band leaves", "nanovdb
+/// grid (gpu)"), giving the bytes the CPU layout (levelSetNanoGrids) gives
+/// of the same call's bricks read back (levelSetBricks, the old path); and
+/// NanoVDB's accessor reads each band voxel's distance in world units, the
+/// background elsewhere.
+TEST_F(GpuNanoGrid, FrontDoorUnsignedFieldsEqualTheCpuLayout)
+{
+    Voxelizer voxelizer;
+    for (const auto& [name, mesh] : frontDoorScenes())
+        for (const bool closest : {false, true}) {
+            SCOPED_TRACE(name + (closest ? " with closest triangles" : ""));
+            // A voxel size that is no power of two, so world distances round.
+            const GridSpec grid = makeGrid(mesh, {60, 0.0});
+            LevelSetOptions ls;
+            ls.unsignedDistance = true;
+            ls.exteriorBand = 2.5;
+            ls.closestTriangle = closest;
+            VoxelizeOptions options;
+            options.backend = Backend::Compute;
+            VoxelizeStats stats;
+            options.stats = &stats;
+            const auto gpu = voxelizer.levelSetNanoVdb(mesh, grid, ls, options);
+            EXPECT_TRUE(hasStage(stats, "band leaves"));
+            EXPECT_TRUE(hasStage(stats, "nanovdb grid (gpu)"));
+            EXPECT_FALSE(hasStage(stats, "band packing"));
+            VoxelizeSettings settings;
+            settings.backend = Backend::Compute;
+            VoxelizeStats oldStats;
+            const DistanceBricks field = gl::levelSetBricks(device, mesh, grid, ls, settings, Checkpoint{}, oldStats);
+            const auto cpu = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
+            expectSameBytes(gpu, cpu, written);
+            ASSERT_EQ(gpu.size(), closest ? 2u : 1u);
+            const auto* udf = gpu[0].grid<float>();
+            ASSERT_NE(udf, nullptr);
+            EXPECT_TRUE(nanovdb::isValid(*udf, true, true));
+            EXPECT_EQ(stats.voxels, udf->activeVoxelCount());
+            ASSERT_GT(udf->activeVoxelCount(), 1000u);
+            auto acc = udf->getAccessor();
+            const float background = float(ls.exteriorBand * grid.voxelSize);
+            uint64_t wrong = 0, active = 0;
+            for (size_t b = 0; b < field.bricks.size(); ++b) {
+                uint32_t packed = field.offsets[b];
+                for (uint32_t v = 0; v < 512; ++v) {
+                    if (!((field.near[b].words[v >> 6] >> (v & 63)) & 1u)) continue;
+                    const nanovdb::Coord c(int32_t(field.grid.anchor[0] + 8 * field.bricks[b][0] + (v >> 6)),
+                                           int32_t(field.grid.anchor[1] + 8 * field.bricks[b][1] + ((v >> 3) & 7)),
+                                           int32_t(field.grid.anchor[2] + 8 * field.bricks[b][2] + (v & 7)));
+                    const float want = float(double(field.distances[packed++]) * grid.voxelSize);
+                    ++active;
+                    if ((!acc.isActive(c) || acc.getValue(c) != want) && ++wrong <= 3)
+                        ADD_FAILURE() << "voxel (" << c[0] << ", " << c[1] << ", " << c[2] << ")";
+                }
+            }
+            EXPECT_EQ(wrong, 0u);
+            EXPECT_EQ(active, udf->activeVoxelCount());
+            EXPECT_EQ(acc.getValue(nanovdb::Coord(1 << 20)), background);
+            // The CPU backend's field is the same field (field_pipeline.h): the same bytes again.
+            VoxelizeOptions cpuOptions;
+            cpuOptions.backend = Backend::Cpu;
+            expectSameBytes(voxelizer.levelSetNanoVdb(mesh, grid, ls, cpuOptions), cpu, written);
+            // The grids left on the GPU: the same bytes, read in the callback (the context current there).
+            VoxelizeStats deviceStats;
+            options.stats = &deviceStats;
+            size_t calls = 0;
+            voxelizer.unsignedFieldNanoVdbOnDevice(mesh, grid, ls, options, [&](const std::vector<gl::NanoGridBuffer>& grids) {
+                ++calls;
+                ASSERT_EQ(grids.size(), cpu.size());
+                for (size_t i = 0; i < grids.size(); ++i) {
+                    ASSERT_EQ(grids[i].bytes, cpu[i].size());
+                    EXPECT_TRUE(glIsBuffer(grids[i].grid.id())) << "a GL buffer of the current context";
+                    std::vector<uint8_t> bytes(grids[i].bytes);
+                    grids[i].grid.readBulk(0, bytes.size(), bytes.data());
+                    EXPECT_EQ(0, std::memcmp(bytes.data(), cpu[i].data(), bytes.size()))
+                        << "on the device: " << firstDifference(bytes.data(), cpu[i].data(), bytes.size());
+                }
+            });
+            EXPECT_EQ(calls, 1u);
+            EXPECT_EQ(deviceStats.voxels, udf->activeVoxelCount());
+            EXPECT_EQ(deviceStats.bricks, udf->tree().nodeCount(0));
+            EXPECT_THROW(voxelizer.unsignedFieldNanoVdbOnDevice(mesh, grid, ls, cpuOptions,
+                                                                [](const std::vector<gl::NanoGridBuffer>&) {}),
+                         Unsupported);
+        }
+}
+
+/// Surfaces through the front door on the GL backends: the topology (mask or
+/// bool) and the fog built on the GPU, the channels on the host, the bytes
+/// octreeToNanoGrids lays out from the same call's octree.
+TEST_F(GpuNanoGrid, FrontDoorSurfacesEqualTheCpuLayout)
+{
+    Voxelizer voxelizer;
+    for (const auto& [name, mesh] : frontDoorScenes())
+        for (const Backend backend : {Backend::Compute, Backend::Raster})
+            for (const auto topology : {GridOptions::Topology::Mask, GridOptions::Topology::Bool}) {
+                SCOPED_TRACE(name + (backend == Backend::Compute ? " compute" : " raster") +
+                             (topology == GridOptions::Topology::Mask ? " mask" : " bool"));
+                const GridSpec grid = makeGrid(mesh, {72, 0.0});
+                VoxelizeOptions options;
+                options.backend = backend;
+                options.attributes = kNormals | kTriangles;
+                VoxelizeStats stats;
+                options.stats = &stats;
+                GridOptions grids;
+                grids.topology = topology;
+                grids.fog = true;
+                const auto gpu = voxelizer.voxelizeNanoVdb(mesh, grid, options, grids);
+                EXPECT_TRUE(hasStage(stats, "nanovdb grid (gpu)"));
+                options.stats = nullptr;
+                const auto cpu = vdb::octreeToNanoGrids(voxelizer.voxelize(mesh, grid, options), grids);
+                ASSERT_EQ(cpu.size(), 4u); // topology, density, normal, triangle_id
+                expectSameBytes(gpu, cpu, written);
+                if (topology == GridOptions::Topology::Mask) {
+                    ASSERT_NE(gpu[0].grid<nanovdb::ValueMask>(), nullptr);
+                    EXPECT_TRUE(nanovdb::isValid(*gpu[0].grid<nanovdb::ValueMask>(), true, true));
+                } else {
+                    ASSERT_NE(gpu[0].grid<bool>(), nullptr);
+                    EXPECT_TRUE(nanovdb::isValid(*gpu[0].grid<bool>(), true, true));
+                }
+                const auto* fog = gpu[1].grid<float>();
+                ASSERT_NE(fog, nullptr);
+                EXPECT_TRUE(nanovdb::isValid(*fog, true, true));
+                EXPECT_EQ(fog->activeVoxelCount(), gpu[0].gridMetaData()->activeVoxelCount());
+                EXPECT_EQ(fog->tree().root().minimum(), 1.0f);
+                EXPECT_EQ(fog->tree().root().maximum(), 1.0f);
+            }
 }
 
 } // namespace

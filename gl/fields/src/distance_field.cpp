@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <fmt/format.h>
 #include <limits>
 #include <tbb/blocked_range.h>
@@ -346,6 +347,54 @@ PackedBand packBand(const Context& context, const FieldBuffers& buffers, const F
     return packed;
 }
 
+/// An unsigned field's band as leaves on the device (band_leaves.comp), in
+/// place of packBand, timed into `stats`; the count is read with the field's
+/// counters (readField). Every pass's slots are bound again after.
+FieldLeaves bandLeaves(const Context& context, const FieldBuffers& buffers, const GridSpec& grid,
+                       const FieldRequest& request, uint32_t tableMask, RunStats& stats)
+{
+    const uint64_t nb = std::max<uint64_t>(request.bricks.size(), 1);
+    for (int a = 0; a < 3; ++a)
+        if (grid.anchor[a] < std::numeric_limits<int32_t>::min() ||
+            grid.anchor[a] + int64_t(grid.dims[a]) > std::numeric_limits<int32_t>::max())
+            throw Unsupported("the field's grid reaches beyond 32-bit index coordinates");
+    FieldLeaves leaves;
+    leaves.origins = &context.scratch("band leaf origins", nb * 12);
+    leaves.masks = &context.scratch("band leaf masks", nb * sizeof(Brick));
+    leaves.values = &context.scratch("band leaf values", nb * 2048);
+    if (buffers.closest) leaves.closest = &context.scratch("band leaf closest", nb * 2048);
+    leaves.origins->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_LEAVES_ORIGINS);
+    leaves.masks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_LEAVES_MASKS);
+    leaves.values->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_LEAVES_VALUES);
+    // Bound, unused, without closest triangles.
+    (leaves.closest ? leaves.closest : leaves.values)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_LEAVES_CLOSEST);
+    (buffers.closest ? buffers.closest : buffers.distances)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_CLOSEST);
+    const auto w0 = Clock::now();
+    TimerQuery timer;
+    timer.begin();
+    const Program& program = context.program(fieldsShaders(), {"band_leaves.comp"});
+    uint32_t scale[2];
+    std::memcpy(scale, &request.leafScale, 8);
+    uint32_t background = 0;
+    std::memcpy(&background, &request.leafBackground, 4);
+    program.set("uBand", float(request.band));
+    program.set("uScale", std::vector<uint32_t>{scale[0], scale[1]});
+    program.set("uBackground", background);
+    program.set("uAnchor", int(grid.anchor[0]), int(grid.anchor[1]), int(grid.anchor[2]));
+    program.set("uClosest", buffers.closest ? 1u : 0u);
+    // A workgroup a table slot, its threads looping 1 + 8 + 16 + 8 times.
+    const uint64_t slots = uint64_t(tableMask) + 1;
+    dispatchLooping(program, slots, uint32_t(std::min<uint64_t>(slots, context.info().software ? 256 : 65535)),
+                    context.info().loopLimit, 96, "uSlotFirst", "uSlots");
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    timer.end();
+    checkGl("band leaves");
+    waitForGpu([&] { request.checkpoint(0.5, "distance field"); });
+    stats.stages.push_back({"band leaves", timer.milliseconds(), msSince(w0)});
+    buffers.bindAll();
+    return leaves;
+}
+
 /// The GPU bytes the passes held: the uploads, the per-brick buffers and the larger item list.
 uint64_t fieldGpuBytes(const FieldBuffers& buffers, const FieldItems& w, uint64_t nb)
 {
@@ -363,9 +412,10 @@ void readField(const FieldBuffers& buffers, const PackedBand& packed, uint64_t n
     const auto t0 = Clock::now();
     TimerQuery readTimer;
     readTimer.begin();
-    uint32_t count[2] = {0, 0}; // lost crossings, packed band values
-    buffers.counters.read(0, 8, count);
-    if (buffers.distances) {
+    uint32_t count[3] = {0, 0, 0}; // lost crossings, packed band values, band leaves
+    buffers.counters.read(0, 12, count);
+    result.leaves.count = count[2];
+    if (packed.masks) {
         result.bandMasks.resize(nb);
         packed.masks->readBulk(0, nb * sizeof(Brick), result.bandMasks.data());
         result.bandOffsets.resize(nb);
@@ -398,6 +448,8 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     RunStats stats;
     const uint64_t nb = request.bricks.size();
     const bool distances = request.band > 0;
+    if (request.deviceLeaves && request.crossings)
+        throw InvalidInput("internal error: band leaves on the device are for unsigned fields (no crossings)");
     request.checkpoint(0.0, "field upload");
 
     // Upload: local double positions, indices, items, the brick table.
@@ -418,7 +470,10 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
 
     const FieldPasses passes{context, mesh, request, tableMask, stats};
     if (distances) passes.distances(items, smallTriangles, buffers.closest != nullptr);
-    const PackedBand packed = distances ? packBand(context, buffers, request, smallTriangles, stats) : PackedBand{};
+    const bool leaves = distances && request.deviceLeaves;
+    const PackedBand packed =
+        distances && !leaves ? packBand(context, buffers, request, smallTriangles, stats) : PackedBand{};
+    if (leaves) result.leaves = bandLeaves(context, buffers, grid, request, tableMask, stats);
     if (request.crossings) passes.crossings(grid, items);
     stats.stages.front().gpuMs = uploadTimer.milliseconds();
     stats.gpuBytes = fieldGpuBytes(buffers, items, nb);

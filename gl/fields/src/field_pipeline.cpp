@@ -306,31 +306,68 @@ DistanceBricks levelSetOnCpu(const TriangleMesh& mesh, const GridSpec& g, const 
     return out;
 }
 
+/// What a level set's passes start from: the checked options, the sign
+/// method, the band and the grid padded by it (recorded in `stats`).
+struct FieldSetup {
+    SignChoice sign;
+    bool signedField = true, winding = false;
+    double band = 0;
+    GridSpec g;
+};
+
+FieldSetup setUpField(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
+                      const VoxelizeSettings& settings, VoxelizeStats& stats)
+{
+    FieldSetup f;
+    f.signedField = !ls.unsignedDistance;
+    checkLevelSetOptions(ls);
+    checkFieldMode(settings);
+    if (settings.region) checkRegion(*settings.region);
+    if (f.signedField) f.sign = chooseSign(mesh, ls.sign, stats.warnings);
+    f.winding = f.signedField && f.sign.method == SignMethod::Winding;
+    f.band = f.signedField ? std::max(ls.exteriorBand, ls.interiorBand) : ls.exteriorBand;
+    // Every voxel within `band` of a triangle is within reach (Chebyshev) of
+    // the triangle's box; the first centre above a crossing is within 1.
+    const uint32_t reach = std::max<uint32_t>(1, uint32_t(std::floor(f.band + 0.5)));
+    f.g = padded(grid, reach + 1, mesh.source);
+    stats.grid = f.g;
+    stats.epsilon = f.g.epsilon();
+    stats.sign = f.sign.why;
+    return f;
+}
+
+/// The GPU passes' request: the band's bricks (timed into `stats`), checked
+/// against the GPU memory budget, and what to compute.
+FieldRequest bandRequest(const TriangleMesh& mesh, const FieldSetup& f, const LevelSetOptions& ls,
+                         const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    FieldRequest request;
+    const auto t0 = Clock::now();
+    request.bricks = bandBricksFor(localPositions(mesh, f.g), mesh, f.g, f.band, settings.region,
+                                   f.signedField && !f.winding);
+    stats.bandBricks = request.bricks.size();
+    stats.stages.push_back({"band bricks", -1, msSince(t0)});
+    checkFieldBudget(settings, request.bricks.size(), mesh);
+    request.band = f.band;
+    request.closestTriangle = ls.closestTriangle;
+    request.crossings = f.signedField && !f.winding;
+    request.checkpoint = checkpoint.part(0.3, f.winding ? 0.55 : 0.85);
+    return request;
+}
+
 } // namespace
 
 DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
                               const LevelSetOptions& ls, const VoxelizeSettings& settings,
                               const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
-    const bool signedField = !ls.unsignedDistance;
-    checkLevelSetOptions(ls);
-    checkFieldMode(settings);
-    if (settings.region) checkRegion(*settings.region);
-    SignChoice sign;
-    if (signedField) sign = chooseSign(mesh, ls.sign, stats.warnings);
-    const bool winding = signedField && sign.method == SignMethod::Winding;
-    const double band = signedField ? std::max(ls.exteriorBand, ls.interiorBand) : ls.exteriorBand;
-    // Every voxel within `band` of a triangle is within reach (Chebyshev) of
-    // the triangle's box; the first centre above a crossing is within 1.
-    const uint32_t reach = std::max<uint32_t>(1, uint32_t(std::floor(band + 0.5)));
-    const GridSpec g = padded(grid, reach + 1, mesh.source);
-    stats.grid = g;
-    stats.epsilon = g.epsilon();
-    stats.sign = sign.why;
+    const FieldSetup f = setUpField(mesh, grid, ls, settings, stats);
+    const bool signedField = f.signedField, winding = f.winding;
+    const GridSpec& g = f.g;
     checkpoint(0.0, "band bricks");
     if (runsOnCpu(device, settings)) { // no GL context is made
         describeBackend(device, Backend::Cpu, stats);
-        DistanceBricks out = levelSetOnCpu(mesh, g, ls, sign, band, settings.region, checkpoint, stats);
+        DistanceBricks out = levelSetOnCpu(mesh, g, ls, f.sign, f.band, settings.region, checkpoint, stats);
         noteOpenColumns(stats, out.signs.openColumns, "signs above its last crossing count as outside");
         out.grid = g;
         out.closestTriangle = ls.closestTriangle;
@@ -341,18 +378,7 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     }
     describeBackend(device, Backend::Compute, stats); // compute passes only, whatever the backend asked
 
-    FieldRequest request;
-    {
-        const auto t0 = Clock::now();
-        request.bricks = bandBricksFor(localPositions(mesh, g), mesh, g, band, settings.region, signedField && !winding);
-        stats.bandBricks = request.bricks.size();
-        stats.stages.push_back({"band bricks", -1, msSince(t0)});
-    }
-    checkFieldBudget(settings, request.bricks.size(), mesh);
-    request.band = band;
-    request.closestTriangle = ls.closestTriangle;
-    request.crossings = signedField && !winding;
-    request.checkpoint = checkpoint.part(0.3, winding ? 0.55 : 0.85);
+    FieldRequest request = bandRequest(mesh, f, ls, settings, checkpoint, stats);
     FieldResult field = fieldPass(device.context(), mesh, g, request, settings.region.has_value(), stats);
     DistanceBricks out;
     if (winding) {
@@ -376,6 +402,29 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     out.winding = winding;
     out.region = settings.region.has_value();
     return out;
+}
+
+bool unsignedFieldOnDevice(Device& device, const LevelSetOptions& ls, const VoxelizeSettings& settings)
+{
+    return ls.unsignedDistance && !settings.region && !runsOnCpu(device, settings);
+}
+
+DeviceField unsignedFieldLeaves(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
+                                const LevelSetOptions& ls, const VoxelizeSettings& settings,
+                                const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    if (!unsignedFieldOnDevice(device, ls, settings))
+        throw InvalidInput("internal error: band leaves on the device need an unsigned field without a region on a GL backend");
+    const FieldSetup f = setUpField(mesh, grid, ls, settings, stats);
+    checkpoint(0.0, "band bricks");
+    describeBackend(device, Backend::Compute, stats);
+    FieldRequest request = bandRequest(mesh, f, ls, settings, checkpoint, stats);
+    request.deviceLeaves = true;
+    request.leafScale = grid.voxelSize;
+    request.leafBackground = float(ls.exteriorBand * grid.voxelSize); // as levelSetNanoGrids
+    FieldResult field = fieldPass(device.context(), mesh, f.g, request, false, stats);
+    stats.startup = device.takeStartup(stats.warnings);
+    return {f.g, field.leaves};
 }
 
 SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid,

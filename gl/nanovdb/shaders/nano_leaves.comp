@@ -11,6 +11,8 @@ uniform uint uLeafAt;     // the first leaf's word in the grid
 uniform uint uLeafWords;  // words per leaf
 uniform uint uHasValues;  // 1: values[] holds 512 words per leaf
 uniform uint uBackground; // the background's bits
+uniform uint uHasActive;  // 1 (without values): active voxels hold uActive
+uniform uint uActive;     // their value's bits
 
 void main()
 {
@@ -25,7 +27,7 @@ void main()
         count += bitCount(word);
         for (uint bits = word; bits != 0u; bits &= bits - 1u) {
             uint v = 32u * w + uint(findLSB(bits));
-            uint value = uHasValues != 0u ? values[leaf * 512u + v] : uBackground;
+            uint value = uHasValues != 0u ? values[leaf * 512u + v] : uHasActive != 0u ? uActive : uBackground;
             ivec3 c = origin + ivec3(v >> 6u, (v >> 3u) & 7u, v & 7u);
             s = merge(s, NodeStats(c, c, value, value));
         }

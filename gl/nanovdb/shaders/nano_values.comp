@@ -1,6 +1,6 @@
 #version 450 core
 // Pass 4b, an invocation per 32 voxels of a sorted leaf: Float and Int32
-// leaves' values (given, else the background); Boolean leaves' value bits
+// leaves' values (given; else uActive where active, when set, and the background); Boolean leaves' value bits
 // (given values that are not 0, else the active voxels).
 layout(local_size_x = 256) in;
 #include "nano_common.glsl"
@@ -10,6 +10,8 @@ uniform uint uLeafAt;     // the first leaf's word in the grid
 uniform uint uLeafWords;  // words per leaf
 uniform uint uHasValues;  // 1: values[] holds 512 words per leaf
 uniform uint uBackground; // the background's bits
+uniform uint uHasActive;  // 1 (without values): active voxels hold uActive
+uniform uint uActive;     // their value's bits
 
 void main()
 {
@@ -26,6 +28,9 @@ void main()
         grid[at + kNanoLeafBoolValues + w] = bits;
         return;
     }
+    uint on = uHasActive != 0u ? masks[leaf * 16u + w] : 0u;
     for (uint b = 0u; b < 32u; ++b)
-        grid[at + kNanoLeafValues + 32u * w + b] = uHasValues != 0u ? values[leaf * 512u + 32u * w + b] : uBackground;
+        grid[at + kNanoLeafValues + 32u * w + b] = uHasValues != 0u                 ? values[leaf * 512u + 32u * w + b]
+                                                   : (on & (1u << b)) != 0u ? uActive
+                                                                            : uBackground;
 }

@@ -134,7 +134,8 @@ void sortAndRank(const Context& context, uint32_t n, uint32_t entries)
 }
 
 /// Passes 4 to 6: leaves (and their values), lower nodes, upper nodes.
-void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bool hasValues, uint32_t background)
+void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bool hasValues, uint32_t background,
+               const std::optional<uint32_t>& active)
 {
     const uint32_t n = f.nodes[0];
     const Program& leaves = context.program(nanovdbShaders(), {"nano_leaves.comp"});
@@ -146,6 +147,8 @@ void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bo
         p->set("uLeafWords", leafWords(kind));
         p->set("uHasValues", hasValues ? 1u : 0u);
         p->set("uBackground", background);
+        p->set("uHasActive", active && !hasValues ? 1u : 0u);
+        p->set("uActive", active.value_or(background));
     }
     dispatchGroups(leaves, (uint64_t(n) + 63) / 64);
     if (kind != NanoKind::Mask) dispatchGroups(values, (16 * uint64_t(n) + 255) / 256); // masks hold no values
@@ -220,6 +223,51 @@ void foldUppers(NanoTreeFacts& f, NanoKind kind, const std::vector<uint32_t>& st
     }
 }
 
+/// NanoVDB's full checksum of the grid in @a grid: the CRC-32 of the
+/// headers and the root's tiles past the checksum field (the host's
+/// @a head, the tiles read back), and the CRC-32 of the nodes' CRC-32s
+/// (upper, lower, leaf nodes in buffer order, from nano_crc.comp, each held
+/// in a std::uint_fast32_t as nanovdb::GridChecksum holds it); written into
+/// the grid and into @a head.
+void checksumOnGpu(const Context& context, NanoKind kind, const NanoTreeFacts& f, const Buffer& stats,
+                   const Buffer& grid, std::vector<uint8_t>& head)
+{
+    const Program& crc = context.program(nanovdbShaders(), {"nano_crc.comp"});
+    const uint64_t loopLimit = context.info().loopLimit;
+    uint32_t sumAt = 0;
+    for (int level = 2; level >= 0; --level) {
+        const uint32_t count = f.nodes[size_t(level)];
+        const uint32_t words = level == 2 ? gpu::kNanoUpperWords : level == 1 ? gpu::kNanoLowerWords : leafWords(kind);
+        // The table (36 iterations) and a chunk of words stay under the loop limit.
+        const uint32_t chunk = loopLimit ? uint32_t(std::min<uint64_t>(words, loopLimit / 2)) : words;
+        crc.set("uNodeAt", uint32_t(f.at[size_t(level)] / 4));
+        crc.set("uNodeWords", words);
+        crc.set("uNodeCount", count);
+        crc.set("uSumAt", sumAt);
+        for (uint32_t from = 0; from < words; from += chunk) {
+            const uint32_t to = std::min(words, from + chunk);
+            crc.set("uFrom", from);
+            crc.set("uTo", to);
+            crc.set("uFirst", from == 0 ? 1u : 0u);
+            crc.set("uLast", to == words ? 1u : 0u);
+            dispatchGroups(crc, (uint64_t(count) + 63) / 64);
+            passBarrier();
+        }
+        sumAt += count;
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<uint32_t> nodeCrcs(sumAt);
+    stats.readBulk(0, uint64_t(sumAt) * 4, nodeCrcs.data());
+    const uint64_t tilesAt = head.size(), rootEnd = f.at[2];
+    std::vector<uint8_t> tiles(rootEnd - tilesAt);
+    if (!tiles.empty()) grid.read(tilesAt, tiles.size(), tiles.data());
+    const uint32_t headCrc = crc32Of(tiles.data(), tiles.size(), crc32Of(head.data() + 16, head.size() - 16));
+    const std::vector<std::uint_fast32_t> sums(nodeCrcs.begin(), nodeCrcs.end());
+    const uint64_t checksum = uint64_t(crc32Of(sums.data(), sums.size() * sizeof(std::uint_fast32_t))) << 32 | headCrc;
+    std::memcpy(head.data() + 8, &checksum, 8);
+    grid.write(8, 8, &checksum);
+}
+
 void throwOnBadLeaves(const NanoLeaves& in, const DeviceLeaves& d, const uint32_t* counters)
 {
     if (uint32_t bad = counters[gpu::kNanoCountMisaligned]) {
@@ -254,15 +302,16 @@ NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const Nano
     NanoGridBuffer out{Buffer("NanoVDB grid", f.gridBytes), f.gridBytes, f.nodes, {}};
     out.grid.clearUint(0);
     out.grid.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_GRID);
-    fillNodes(context, kind, f, d.values != nullptr, backgroundWord(kind, header.background));
+    fillNodes(context, kind, f, d.values != nullptr, backgroundWord(kind, header.background), in.activeWord);
     std::vector<uint32_t> upperStats(size_t(f.nodes[2]) * gpu::kNanoStatWords);
     s.stats->read(uint64_t(f.nodes[0] + f.nodes[1]) * gpu::kNanoStatWords * 4, upperStats.size() * 4, upperStats.data());
     s.counters->read(0, sizeof counters, counters);
     checkGl("NanoVDB GPU build: nodes");
     f.voxels = uint64_t(counters[gpu::kNanoCountVoxelsHigh]) << 32 | counters[gpu::kNanoCountVoxelsLow];
     foldUppers(f, kind, upperStats);
-    const std::vector<uint8_t> head = nanoHeader(kind, header, f);
+    std::vector<uint8_t> head = nanoHeader(kind, header, f);
     out.grid.write(0, head.size(), head.data());
+    if (header.checksum) checksumOnGpu(context, kind, f, *s.stats, out.grid, head);
     if (hostCopy) {
         out.host.resize(f.gridBytes);
         out.grid.readBulk(0, f.gridBytes, out.host.data());

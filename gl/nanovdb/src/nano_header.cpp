@@ -148,4 +148,21 @@ std::vector<uint8_t> nanoHeader(NanoKind kind, const NanoGridHeader& header, con
     return b;
 }
 
+uint32_t crc32Of(const void* bytes, size_t n, uint32_t crc)
+{
+    static const std::array<uint32_t, 256> table = [] {
+        std::array<uint32_t, 256> t{};
+        for (uint32_t e = 0; e < 256; ++e) {
+            uint32_t c = e;
+            for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+            t[e] = c;
+        }
+        return t;
+    }();
+    const auto* p = static_cast<const uint8_t*>(bytes);
+    crc = ~crc;
+    for (size_t i = 0; i < n; ++i) crc = table[(crc ^ p[i]) & 0xFFu] ^ (crc >> 8);
+    return ~crc;
+}
+
 } // namespace svo::gl

@@ -4,6 +4,7 @@
 /// (without its tiles), which the host writes once the GPU passes have
 /// counted the nodes and merged the upper nodes' statistics.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -24,5 +25,9 @@ struct NanoTreeFacts {
 
 /// @brief The header bytes: kNanoGridBytes + kNanoTreeBytes + kNanoRootBytes.
 std::vector<uint8_t> nanoHeader(NanoKind kind, const NanoGridHeader& header, const NanoTreeFacts& tree);
+
+/// @brief zlib's CRC-32 (crc32_z) of @a n bytes, continuing from @a crc
+/// (0 to start), the CRC NanoVDB's checksum uses.
+uint32_t crc32Of(const void* bytes, size_t n, uint32_t crc = 0);
 
 } // namespace svo::gl

@@ -224,6 +224,14 @@ std::vector<NanoHandle> octreeToNanoGrids(const Octree& o, const GridOptions& op
     if (options.fog)
         out.push_back(buildNanoGrid<float>(octreeLeaves<float>(o, 0.0f, true, [](uint32_t, uint32_t) { return 1.0f; }),
                                            infoFor(g, "density", nanovdb::GridClass::FogVolume, checksum)));
+    for (auto& channel : octreeChannelNanoGrids(o, options, checksum)) out.push_back(std::move(channel));
+    return out;
+}
+
+std::vector<NanoHandle> octreeChannelNanoGrids(const Octree& o, const GridOptions& options, bool checksum)
+{
+    std::vector<NanoHandle> out;
+    const GridSpec& g = o.grid;
     if (!options.attributes) return out;
     const std::vector<uint64_t> offsets = brickVoxelOffsets(o);
     const VoxelAttributes& a = o.attributes;

@@ -1,6 +1,18 @@
 // NanoVDB grids from the front door (svo/voxelizer.h): the field passes'
 // bricks laid out as NanoVDB grids (svo/vdb_io/nanovdb_grids.h), with no
-// OpenVDB tree between them.
+// OpenVDB tree between them; an unsigned field on a GL backend built on the
+// GPU from leaves that never leave it (svo/gl/nano_grid_builder.h).
+#include <cstring>
+#include <fmt/format.h>
+
+#include "svo/core/error.h"
+
+#include "svo/gl/field_pipeline.h"
+#include "svo/gl/nano_grid_builder.h"
+#include "svo/gl/timer_query.h"
+#include "svo/gl/voxelize_pipeline.h"
+#include "svo/vdb_io/nanovdb_checksum.h"
+#include "svo/vdb_io/nanovdb_layout.h"
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/vdb_io/reader_grids.h" // withTopology
 #include "svo/voxelizer.h"
@@ -25,16 +37,215 @@ std::vector<vdb::NanoHandle> converted(const openvdb::GridPtrVec& grids)
     return out;
 }
 
-/// The last stage and the counts, then the statistics handed out.
-void finish(VoxelizeStats& stats, const char* stage, Clock::time_point t0, const vdb::NanoHandle& main,
-            const Checkpoint& checkpoint, const VoxelizeOptions& options)
+/// The bracket of levelSetNanoVdb and solidNanoVdb: the checks (the same
+/// transform rule as levelSet()), the interrupter, then `make(checkpoint,
+/// stats)` (the field and its grids, its stages recorded), the counts of
+/// its first grid and the statistics handed out.
+template <typename Make>
+std::vector<vdb::NanoHandle> nanoCall(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                                      const char* what, Make&& make)
 {
-    stats.stages.push_back({stage, -1, msSince(t0)});
-    const auto* grid = main.gridMetaData();
-    stats.voxels = grid ? grid->activeVoxelCount() : 0;
-    stats.bricks = grid ? grid->nodeCount(0) : 0;
+    validateMesh(mesh);
+    checkGrid(grid, mesh.source);
+    vdb::checkVdbGrid(grid, "grid");
+    const InterruptScope interrupt(options.interrupter, what);
+    const Checkpoint checkpoint = interrupt.checkpoint();
+    VoxelizeStats stats;
+    std::vector<vdb::NanoHandle> out = make(checkpoint, stats);
+    const auto* main = out.front().gridMetaData();
+    stats.voxels = main ? main->activeVoxelCount() : 0;
+    stats.bricks = main ? main->nodeCount(0) : 0;
     checkpoint(1.0, "finish");
     if (options.stats) *options.stats = std::move(stats);
+    return out;
+}
+
+/// Gives @a h NanoVDB's full checksum on the host.
+void fullChecksum(vdb::NanoHandle& h, gl::NanoKind kind)
+{
+    switch (kind) {
+    case gl::NanoKind::Float: return vdb::updateFullChecksum(*h.grid<float>());
+    case gl::NanoKind::Int32: return vdb::updateFullChecksum(*h.grid<int32_t>());
+    case gl::NanoKind::Mask: return vdb::updateFullChecksum(*h.grid<nanovdb::ValueMask>());
+    case gl::NanoKind::Bool: return vdb::updateFullChecksum(*h.grid<bool>());
+    }
+}
+
+/// Whether the grid at @a bytes says "none" for its checksum (the GPU
+/// builder's grid of no leaves).
+bool noChecksum(const uint8_t* bytes)
+{
+    uint64_t checksum = 0;
+    std::memcpy(&checksum, bytes + 8, 8);
+    return checksum == ~uint64_t(0);
+}
+
+/// A grid built on the GPU with its full checksum (a grid of no leaves gets
+/// it on the host), read back, each step a stage of `stats`. A grid past
+/// the builder's limits (a shader storage block, 2^26 leaves, 16 GiB:
+/// svo::Unsupported, thrown before the grid is made) is laid out by
+/// `onHost()` instead, with a warning.
+template <typename OnHost>
+vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const gl::NanoLeaves& leaves,
+                           const gl::NanoGridHeader& header, VoxelizeStats& stats, OnHost&& onHost)
+{
+    auto t0 = Clock::now();
+    gl::TimerQuery timer;
+    timer.begin();
+    gl::NanoGridBuffer built;
+    gl::NanoGridHeader withChecksum = header;
+    withChecksum.checksum = true;
+    try {
+        built = gl::buildNanoGridGpu(context, kind, leaves, withChecksum);
+    } catch (const Unsupported& e) {
+        stats.warnings.push_back(fmt::format("{}; grid \"{}\" laid out on the CPU instead", e.what(), header.name));
+        t0 = Clock::now();
+        vdb::NanoHandle out = onHost();
+        stats.stages.push_back({"nanovdb grid (cpu)", -1, msSince(t0)});
+        return out;
+    }
+    timer.end();
+    stats.stages.push_back({"nanovdb grid (gpu)", timer.milliseconds(), msSince(t0)});
+    t0 = Clock::now();
+    nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(built.bytes);
+    built.grid.readBulk(0, built.bytes, buffer.data());
+    vdb::NanoHandle out(std::move(buffer));
+    stats.stages.push_back({"nanovdb readback", -1, msSince(t0)});
+    if (!noChecksum(out.data())) return out;
+    t0 = Clock::now();
+    fullChecksum(out, kind);
+    stats.stages.push_back({"nanovdb checksum", -1, msSince(t0)});
+    return out;
+}
+
+/// The CPU layout of device leaves read back (float or int32 values): the
+/// grid the GPU builder makes of them, with its checksum.
+template <typename V>
+vdb::NanoHandle laidOutOnHost(const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header, V background)
+{
+    static_assert(sizeof(V) == 4, "value words");
+    vdb::SparseVoxels<V> s;
+    s.background = background;
+    const uint64_t n = leaves.count;
+    s.origins.resize(n);
+    s.masks.resize(n);
+    s.values.resize(512 * n);
+    if (n) {
+        leaves.originBuffer->readBulk(0, 12 * n, s.origins.data());
+        leaves.maskBuffer->readBulk(0, 64 * n, s.masks.data());
+        leaves.valueBuffer->readBulk(0, 2048 * n, s.values.data());
+    }
+    vdb::NanoGridInfo info;
+    info.name = header.name;
+    info.gridClass = nanovdb::GridClass(header.gridClass);
+    info.voxelSize = header.voxelSize;
+    info.translation = header.translation;
+    return vdb::buildNanoGrid<V>(s, info);
+}
+
+/// The device field's leaves as the builder takes them (values: the distances).
+gl::NanoLeaves leavesOf(const gl::DeviceField& field)
+{
+    gl::NanoLeaves leaves;
+    leaves.count = field.leaves.count;
+    leaves.originBuffer = field.leaves.origins;
+    leaves.maskBuffer = field.leaves.masks;
+    leaves.valueBuffer = field.leaves.values;
+    return leaves;
+}
+
+/// The "distance" grid's header, as levelSetNanoGrids makes it.
+gl::NanoGridHeader distanceHeader(const GridSpec& grid, const LevelSetOptions& ls)
+{
+    gl::NanoGridHeader header;
+    header.name = "distance";
+    header.gridClass = uint32_t(nanovdb::GridClass::Unknown);
+    header.voxelSize = grid.voxelSize;
+    header.translation = grid.translation();
+    header.background = double(float(ls.exteriorBand * grid.voxelSize));
+    return header;
+}
+
+/// An unsigned field's grids on the GPU: its band's leaves stay on the
+/// device (gl::unsignedFieldLeaves) and the builder lays out the grids
+/// levelSetNanoGrids lays out on the host, byte for byte.
+std::vector<vdb::NanoHandle> unsignedGridsOnGpu(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
+                                                const LevelSetOptions& ls, const VoxelizeOptions& options,
+                                                const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    const gl::DeviceField field = gl::unsignedFieldLeaves(device, mesh, grid, ls, options, checkpoint, stats);
+    checkpoint(0.85, "nanovdb grid");
+    const gl::Context& context = device.context();
+    const gl::Context::Scope scope(context); // the leaves' scratch buffers and the grids' buffers
+    gl::NanoLeaves leaves = leavesOf(field);
+    gl::NanoGridHeader header = distanceHeader(grid, ls);
+    std::vector<vdb::NanoHandle> out;
+    const float background = float(header.background);
+    out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats,
+                             [&] { return laidOutOnHost<float>(leaves, header, background); }));
+    if (field.leaves.closest) {
+        leaves.valueBuffer = field.leaves.closest;
+        header.name = "closest_triangle";
+        header.background = -1.0;
+        out.push_back(builtOnGpu(context, gl::NanoKind::Int32, leaves, header, stats,
+                                 [&] { return laidOutOnHost<int32_t>(leaves, header, -1); }));
+    }
+    return out;
+}
+
+/// An octree's grids with the topology and fog built on the GPU from its
+/// bricks (uploaded: 76 bytes a leaf), byte for byte octreeToNanoGrids'; the
+/// channel grids (Vec3f and per-voxel values the builder does not take) on
+/// the host. Stages are added to `stats`.
+std::vector<vdb::NanoHandle> surfaceGridsOnGpu(const gl::Context& context, const Octree& o, const GridOptions& grids,
+                                               VoxelizeStats& stats)
+{
+    auto t0 = Clock::now();
+    const std::vector<BrickRef> refs = occupiedBricks(o);
+    std::vector<std::array<int32_t, 3>> origins(refs.size());
+    std::vector<Brick> masks(refs.size());
+    for (size_t i = 0; i < refs.size(); ++i) {
+        const auto g = o.grid.toGlobal(refs[i].origin);
+        origins[i] = {int32_t(g[0]), int32_t(g[1]), int32_t(g[2])};
+        masks[i] = o.bricks[refs[i].index];
+    }
+    stats.stages.push_back({"nanovdb leaves", -1, msSince(t0)});
+    const gl::Context::Scope scope(context);
+    gl::NanoLeaves leaves;
+    leaves.count = uint32_t(refs.size());
+    leaves.origins = origins.data();
+    leaves.masks = masks.data();
+    gl::NanoGridHeader header;
+    header.name = grids.name;
+    header.voxelSize = o.grid.voxelSize;
+    header.translation = o.grid.translation();
+    const bool mask = grids.topology == GridOptions::Topology::Mask;
+    // NanoVDB keeps class Topology for ValueMask grids (nanovdb::isValid); bool grids are Unknown.
+    header.gridClass = uint32_t(mask ? nanovdb::GridClass::Topology : nanovdb::GridClass::Unknown);
+    // Past the builder's limits: octreeToNanoGrids' grid of that kind.
+    auto onHost = [&](bool fog) {
+        GridOptions one = grids;
+        one.fog = fog;
+        one.attributes = false;
+        return [&o, one, fog] { return std::move(vdb::octreeToNanoGrids(o, one)[fog ? 1 : 0]); };
+    };
+    std::vector<vdb::NanoHandle> out;
+    out.push_back(builtOnGpu(context, mask ? gl::NanoKind::Mask : gl::NanoKind::Bool, leaves, header, stats,
+                             onHost(false)));
+    if (grids.fog) {
+        const float one = 1.0f;
+        uint32_t word = 0;
+        std::memcpy(&word, &one, 4);
+        leaves.activeWord = word;
+        header.name = "density";
+        header.gridClass = uint32_t(nanovdb::GridClass::FogVolume);
+        out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats, onHost(true)));
+    }
+    t0 = Clock::now();
+    std::vector<vdb::NanoHandle> channels = vdb::octreeChannelNanoGrids(o, grids);
+    if (!channels.empty()) stats.stages.push_back({"nanovdb channels", -1, msSince(t0)});
+    for (auto& c : channels) out.push_back(std::move(c));
+    return out;
 }
 
 } // namespace
@@ -42,43 +253,94 @@ void finish(VoxelizeStats& stats, const char* stage, Clock::time_point t0, const
 std::vector<vdb::NanoHandle> Voxelizer::voxelizeNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                         const VoxelizeOptions& options, const GridOptions& grids)
 {
-    return vdb::octreeToNanoGrids(voxelize(mesh, grid, options), grids);
+    const Octree octree = voxelize(mesh, grid, options);
+    // The voxelization ran on a GL backend (the test runsOnCpu makes for level sets and solids).
+    if (gl::runsOnCpu(device_, options)) return vdb::octreeToNanoGrids(octree, grids);
+    VoxelizeStats local;
+    return surfaceGridsOnGpu(device_.context(), octree, grids, options.stats ? *options.stats : local);
 }
 
 std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                         const LevelSetOptions& ls, const VoxelizeOptions& options)
 {
     if (viaOpenVdb(options)) return converted(levelSet(mesh, grid, ls, options));
-    validateMesh(mesh);
-    checkGrid(grid, mesh.source);
-    vdb::checkVdbGrid(grid, "grid"); // the same transform rule as levelSet()
-    const InterruptScope interrupt(options.interrupter, "svo: computing a distance field");
-    const Checkpoint checkpoint = interrupt.checkpoint();
-    VoxelizeStats stats;
-    const DistanceBricks field = gl::levelSetBricks(device_, mesh, grid, ls, options, checkpoint, stats);
-    checkpoint(0.85, "nanovdb grid");
-    const auto t0 = Clock::now();
-    std::vector<vdb::NanoHandle> out = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
-    finish(stats, "nanovdb grid", t0, out.front(), checkpoint, options);
-    return out;
+    return nanoCall(mesh, grid, options, "svo: computing a distance field", [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+        if (gl::unsignedFieldOnDevice(device_, ls, options))
+            return unsignedGridsOnGpu(device_, mesh, grid, ls, options, checkpoint, stats);
+        const DistanceBricks field = gl::levelSetBricks(device_, mesh, grid, ls, options, checkpoint, stats);
+        checkpoint(0.85, "nanovdb grid");
+        const auto t0 = Clock::now();
+        std::vector<vdb::NanoHandle> out = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
+        stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
+        return out;
+    });
 }
 
 vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                                         const SignOptions& sign, GridOptions::Topology topology)
 {
     if (viaOpenVdb(options)) return vdb::toNanoVdb(vdb::withTopology(solid(mesh, grid, options, sign), topology));
+    auto out = nanoCall(mesh, grid, options, "svo: filling a solid", [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+        const SolidBricks bricks = gl::solidBricks(device_, mesh, grid, options, sign, checkpoint, stats);
+        checkpoint(0.8, "nanovdb grid");
+        const auto t0 = Clock::now();
+        std::vector<vdb::NanoHandle> grids;
+        grids.push_back(vdb::solidNanoGrid(bricks, grid, topology));
+        stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
+        return grids;
+    });
+    return std::move(out.front());
+}
+
+void Voxelizer::unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
+                                             const VoxelizeOptions& options,
+                                             const std::function<void(const std::vector<gl::NanoGridBuffer>&)>& use)
+{
+    if (viaOpenVdb(options) || !gl::unsignedFieldOnDevice(device_, ls, options))
+        throw Unsupported("a NanoVDB grid stays on the GPU only for an unsigned distance field on a GL backend, "
+                          "without a region or a GPU memory budget");
     validateMesh(mesh);
     checkGrid(grid, mesh.source);
     vdb::checkVdbGrid(grid, "grid");
-    const InterruptScope interrupt(options.interrupter, "svo: filling a solid");
+    const InterruptScope interrupt(options.interrupter, "svo: computing a distance field");
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;
-    const SolidBricks solidBricks = gl::solidBricks(device_, mesh, grid, options, sign, checkpoint, stats);
-    checkpoint(0.8, "nanovdb grid");
+    const gl::DeviceField field = gl::unsignedFieldLeaves(device_, mesh, grid, ls, options, checkpoint, stats);
+    checkpoint(0.85, "nanovdb grid");
+    const gl::Context& context = device_.context();
+    const gl::Context::Scope scope(context); // the grids are made, used and freed in it
+    gl::NanoLeaves leaves = leavesOf(field);
+    gl::NanoGridHeader header = distanceHeader(grid, ls);
+    header.checksum = true;
     const auto t0 = Clock::now();
-    vdb::NanoHandle out = vdb::solidNanoGrid(solidBricks, grid, topology);
-    finish(stats, "nanovdb grid", t0, out, checkpoint, options);
-    return out;
+    gl::TimerQuery timer;
+    timer.begin();
+    std::vector<gl::NanoGridBuffer> grids;
+    grids.push_back(gl::buildNanoGridGpu(context, gl::NanoKind::Float, leaves, header));
+    if (field.leaves.closest) {
+        leaves.valueBuffer = field.leaves.closest;
+        header.name = "closest_triangle";
+        header.background = -1.0;
+        grids.push_back(gl::buildNanoGridGpu(context, gl::NanoKind::Int32, leaves, header));
+    }
+    timer.end();
+    stats.stages.push_back({"nanovdb grid (gpu)", timer.milliseconds(), msSince(t0)});
+    for (size_t i = 0; i < grids.size(); ++i) { // a grid of no leaves: the checksum of its headers, here
+        const gl::NanoGridBuffer& g = grids[i];
+        if (g.nodes[0]) continue;
+        nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(g.bytes);
+        g.grid.read(0, g.bytes, buffer.data());
+        vdb::NanoHandle h(std::move(buffer));
+        fullChecksum(h, i == 0 ? gl::NanoKind::Float : gl::NanoKind::Int32);
+        g.grid.write(0, g.bytes, h.data());
+    }
+    stats.bricks = grids.front().nodes[0];
+    alignas(64) uint8_t head[sizeof(nanovdb::GridData) + sizeof(nanovdb::NanoTree<float>::DataType)];
+    grids.front().grid.read(0, sizeof head, head);
+    stats.voxels = reinterpret_cast<const nanovdb::NanoGrid<float>*>(head)->activeVoxelCount();
+    use(grids);
+    checkpoint(1.0, "finish");
+    if (options.stats) *options.stats = std::move(stats);
 }
 
 } // namespace svo

@@ -58,6 +58,7 @@
 #include <openvdb/util/Util.h> // INVALID_IDX
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,6 +69,7 @@
 #include "svo/core/voxelization.h"
 #include "svo/gl/device.h"            // gl::Device, DeviceOptions, StartupStats
 #include "svo/gl/field_pipeline.h"    // SignMethod, SignOptions, LevelSetOptions and their rules
+#include "svo/gl/nano_grid_builder.h" // gl::NanoGridBuffer
 #include "svo/gl/voxelize_settings.h" // Backend, Dilation, VoxelizeSettings
 #include "svo/gl/voxelize_stats.h"
 #include "svo/vdb_io/grid_builder.h"
@@ -283,9 +285,27 @@ public:
     /// with no OpenVDB tree (levelSetNanoGrids), on the grid's own lattice;
     /// with a region or a GPU memory budget, levelSet()'s grids converted
     /// (toNanoVdb). Equal, voxel for voxel and value for value, to levelSet()'s.
+    /// An unsigned field on a GL backend is laid out on the GPU
+    /// (gl::buildNanoGridGpu, the band never read back), the same bytes.
     /// @throw as levelSet()
     std::vector<vdb::NanoHandle> levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                  const LevelSetOptions& levelSet = {}, const VoxelizeOptions& options = {});
+    /// @brief An unsigned field's grids left on the GPU: levelSetNanoVdb's
+    /// grids ("distance", then "closest_triangle" when asked), byte for byte
+    /// with their full checksums, each in a GL buffer of this Voxelizer's
+    /// context (gl::NanoGridBuffer: the buffer, the grid's bytes), handed to
+    /// @a use while that context is current: bind them, copy them, register
+    /// them with CUDA-GL interop or read them back there. They are freed
+    /// when @a use returns; the context the thread had current before is
+    /// current again after the call, as after every call.
+    /// @param use called once, on this thread, with the grids
+    /// @throw svo::Unsupported unless the call can keep the grid on the GPU
+    ///        (LevelSetOptions::unsignedDistance, a GL backend, no region or
+    ///        GPU memory budget), or for a grid past the GPU builder's limits;
+    ///        otherwise as levelSet(), and whatever @a use throws
+    void unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& levelSet,
+                                      const VoxelizeOptions& options,
+                                      const std::function<void(const std::vector<gl::NanoGridBuffer>&)>& use);
     /// @brief solid() as the NanoVDB grid "solid" (solidNanoGrid), as levelSetNanoVdb.
     /// @param topology ValueMask (Mask) or bool true on inside voxels (Bool), as withTopology gives
     /// @throw as solid()

@@ -27,6 +27,8 @@ public:
     /// @brief Binds the buffer to indexed binding @a index of @a target
     /// (GL_SHADER_STORAGE_BUFFER, GL_ATOMIC_COUNTER_BUFFER, ...).
     void bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, h_.get()); }
+    /// @brief The GL name, for a caller's own GL calls (or CUDA-GL interop) in this buffer's context.
+    GLuint id() const { return h_.get(); }
     /// @brief Binds the buffer to @a target (GL_DISPATCH_INDIRECT_BUFFER, ...).
     void bind(GLenum target) const { glBindBuffer(target, h_.get()); }
     /// @brief Copies @a bytes from byte @a offset into @a out, waiting for the

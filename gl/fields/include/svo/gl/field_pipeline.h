@@ -14,6 +14,7 @@
 #include "svo/core/interrupt.h"
 #include "svo/core/mesh.h"
 #include "svo/gl/device.h"
+#include "svo/gl/field_result.h"
 #include "svo/gl/voxelize_settings.h"
 #include "svo/gl/voxelize_stats.h"
 
@@ -46,6 +47,33 @@ namespace gl {
 DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
                               const LevelSetOptions& levelSet, const VoxelizeSettings& settings,
                               const Checkpoint& checkpoint, VoxelizeStats& stats);
+
+/// @brief Whether unsignedFieldLeaves takes a call: an unsigned field
+/// (LevelSetOptions::unsignedDistance) without a region, on a GL backend
+/// (the compute or raster backends, or Auto on a hardware GPU; not
+/// Backend::Cpu, nor Auto on a software renderer).
+/// @param device may make its GL context, to see the renderer
+bool unsignedFieldOnDevice(Device& device, const LevelSetOptions& levelSet, const VoxelizeSettings& settings);
+
+/// @brief An unsigned field's band left on the device as NanoVDB leaves.
+struct DeviceField {
+    GridSpec grid;      ///< the field's grid: the mesh's padded by the band, as levelSetBricks gives it
+    FieldLeaves leaves; ///< the device's leaves (field_result.h: the buffers' lifetime)
+};
+
+/// @brief levelSetBricks for an unsigned field on the GPU, its band left on
+/// the device as the leaves of the grid svo::vdb::levelSetNanoGrids lays out
+/// from levelSetBricks' result: the bricks with a voxel nearer than the
+/// exterior band, the distances in world units (voxel size @a grid's), the
+/// exterior band in world units beyond (band_leaves.comp). Only the leaf
+/// count is read back. Feed them to svo::gl::buildNanoGridGpu.
+/// @param checkpoint polled between stages with the fraction done (to 0.85)
+/// @param stats      receives the stages ("band leaves" in place of "band
+///        packing"), counts, warnings
+/// @throw as levelSetBricks; svo::InvalidInput where unsignedFieldOnDevice is false
+DeviceField unsignedFieldLeaves(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
+                                const LevelSetOptions& levelSet, const VoxelizeSettings& settings,
+                                const Checkpoint& checkpoint, VoxelizeStats& stats);
 
 /// @brief The solid a checked mesh bounds on a checked grid: every voxel whose
 /// centre is inside, plus the surface voxels (conservative, as voxelizeMesh);

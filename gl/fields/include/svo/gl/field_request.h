@@ -24,6 +24,12 @@ struct FieldRequest {
     bool crossings = true;       ///< the parity crossings
     FieldWork work = FieldWork::Auto; ///< how the distance pass cuts its work
     Checkpoint checkpoint;            ///< polled while the passes run; throws svo::Interrupted to stop
+    /// Unsigned fields (no crossings): leave the band on the device as
+    /// NanoVDB leaves (FieldResult::leaves, band_leaves.comp) instead of
+    /// packing it and reading it back; only the leaf count comes back.
+    bool deviceLeaves = false;
+    double leafScale = 1.0;      ///< world units per voxel: a leaf's value is float(double(distance) * leafScale)
+    float leafBackground = 0.0f; ///< the value of a leaf's voxels beyond the band
 };
 
 } // namespace svo::gl

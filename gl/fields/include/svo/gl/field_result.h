@@ -9,6 +9,22 @@
 
 namespace svo::gl {
 
+class Buffer;
+
+/// @brief An unsigned field's band as NanoVDB leaves on the device
+/// (FieldRequest::deviceLeaves), in no fixed order, as svo::gl::NanoLeaves
+/// takes them: 3 ints (the origin in index space), 16 uints (the voxels
+/// nearer than the band, OpenVDB's bit order) and 512 value words per leaf.
+/// The buffers are the context's scratch buffers: valid, with the context
+/// current, until the next computeField on it.
+struct FieldLeaves {
+    uint32_t count = 0;              ///< the bricks with a voxel nearer than the band
+    const Buffer* origins = nullptr; ///< 3 ints per leaf
+    const Buffer* masks = nullptr;   ///< 16 uints per leaf
+    const Buffer* values = nullptr;  ///< 512 floats per leaf: the distance in world units, else the background
+    const Buffer* closest = nullptr; ///< 512 ints per leaf: the closest triangle, else -1; null unless computed
+};
+
 /// @brief What computeField gives back, for the bricks of its request in their order.
 struct FieldResult {
     /// Per brick: the voxels nearer than the band (distances < band).
@@ -23,6 +39,7 @@ struct FieldResult {
     /// Per brick: bit set where an odd number of crossings mark that voxel.
     std::vector<Brick> crossings;
     uint64_t lostCrossings = 0; ///< crossings whose voxel is in no requested brick (a caller's error)
+    FieldLeaves leaves;         ///< with FieldRequest::deviceLeaves (then bandMasks, bandOffsets, distances and closest stay empty)
 };
 
 } // namespace svo::gl

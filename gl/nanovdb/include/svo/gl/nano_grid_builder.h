@@ -16,12 +16,15 @@
 /// host writes from the upper nodes' statistics it reads back (a few words
 /// per upper node).
 ///
-/// Not made here: tiles (a solid's 8³ tiles stay with the CPU builder), and
-/// the checksum: the grid's checksum field says "none" (all bits set, as
-/// nanovdb::ChecksumMode::Disable leaves it); svo::vdb::updateFullChecksum
-/// on the host copy gives nanovdb::ChecksumMode::Full's.
+/// Not made here: tiles (a solid's 8³ tiles stay with the CPU builder). The
+/// checksum only when NanoGridHeader::checksum asks (nano_crc.comp, a CRC
+/// per node); otherwise the grid's checksum field says "none" (all bits
+/// set, as nanovdb::ChecksumMode::Disable leaves it) and
+/// svo::vdb::updateFullChecksum on the host copy gives
+/// nanovdb::ChecksumMode::Full's.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +53,10 @@ struct NanoLeaves {
     const Buffer* originBuffer = nullptr;
     const Buffer* maskBuffer = nullptr;
     const Buffer* valueBuffer = nullptr;
+    /// Float and Int32 leaves without values: when set, the word every
+    /// active voxel holds (a fog volume's 1.0f bits), the background the
+    /// others; when not, every voxel holds the background.
+    std::optional<uint32_t> activeWord;
 };
 
 /// @brief What a grid holds besides its voxels (svo::vdb::NanoGridInfo's facts).
@@ -59,6 +66,10 @@ struct NanoGridHeader {
     double voxelSize = 1.0;                           ///< index -> world scale
     std::array<double, 3> translation{0.0, 0.0, 0.0}; ///< world position of index (0, 0, 0)
     double background = 0.0;                          ///< converted to the kind's value (Bool: non-zero is true)
+    /// NanoVDB's full checksum (nanovdb::ChecksumMode::Full), the nodes'
+    /// CRCs on the GPU, the headers' and the list's on the host; else (and
+    /// for a grid of no leaves) the checksum field says "none".
+    bool checksum = false;
 };
 
 /// @brief A grid on the device, and its bytes on the host when asked for.
@@ -85,7 +96,7 @@ uint32_t backgroundWord(NanoKind kind, double background);
 /// @param header     name, class, transform and background
 /// @param hostCopy   also read the grid back into NanoGridBuffer::host
 /// @return the grid, with every byte svo::vdb::buildNanoGrid writes for the
-///         same leaves but the checksum (see the file comment)
+///         same leaves, the checksum only when the header asks (see the file comment)
 /// @throw svo::InvalidInput for a leaf origin that is not a multiple of 8, a
 ///        repeated leaf, a name of 256 bytes or more, or inconsistent leaves
 ///        (missing masks, device buffers too small)

@@ -26,6 +26,12 @@ using NanoHandle = nanovdb::GridHandle<nanovdb::HostBuffer>;
 /// @param checksum whether each grid gets a full CRC32
 std::vector<NanoHandle> octreeToNanoGrids(const Octree& octree, const GridOptions& grids = {}, bool checksum = true);
 
+/// @brief The channel grids of octreeToNanoGrids alone ("normal",
+/// "triangle_id", "color"), for callers that lay out the topology and fog
+/// elsewhere (on the GPU: svo::Voxelizer::voxelizeNanoVdb).
+/// @param checksum whether each grid gets a full CRC32
+std::vector<NanoHandle> octreeChannelNanoGrids(const Octree& octree, const GridOptions& grids = {}, bool checksum = true);
+
 /// @brief A distance field as NanoVDB grids, as levelSetGrids (field_grids.h):
 /// "surface" (class LevelSet) or "distance" (class Unknown), float, background
 /// the exterior band in world units, then "closest_triangle" (Int32,
