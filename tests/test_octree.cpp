@@ -139,6 +139,26 @@ TEST(Octree, BrickBitsUseOpenVdbLeafOrder)
     EXPECT_EQ(o.nodes[0].childMask, 2u);
 }
 
+TEST(Octree, LeavesHoldEveryVoxelInGlobalIndexSpace)
+{
+    const GridSpec g = test::gridOf(100, 3, 250); // anchor (-64, 8, 1024)
+    const auto keys = test::randomVoxels(g, 5000, 7);
+    std::set<std::array<int64_t, 3>> want;
+    for (uint64_t k : keys) want.insert(g.toGlobal(unpackVoxelKey(k)));
+    const OctreeLeaves leaves = octreeLeaves(buildOctree(g, keys));
+    ASSERT_EQ(leaves.origins.size(), leaves.masks.size());
+    std::set<std::array<int64_t, 3>> got;
+    for (size_t i = 0; i < leaves.origins.size(); ++i) {
+        const auto& o = leaves.origins[i];
+        for (int a = 0; a < 3; ++a) EXPECT_EQ(o[size_t(a)] % 8, 0);
+        EXPECT_NE(leaves.masks[i].count(), 0u) << "an empty leaf";
+        for (uint32_t v = 0; v < 512; ++v) // OpenVDB's leaf order: x major, z minor
+            if ((leaves.masks[i].words[v >> 6] >> (v & 63)) & 1u)
+                got.insert({o[0] + int64_t(v >> 6), o[1] + int64_t((v >> 3) & 7), o[2] + int64_t(v & 7)});
+    }
+    EXPECT_EQ(got, want);
+}
+
 TEST(Octree, BricksMergeAndCanonicalOrderIsUnique)
 {
     const GridSpec g = test::gridOf(40, 40, 40);

@@ -297,6 +297,20 @@ std::vector<BrickRef> occupiedBricks(const Octree& o)
     return out;
 }
 
+OctreeLeaves octreeLeaves(const Octree& o)
+{
+    const std::vector<BrickRef> refs = occupiedBricks(o);
+    OctreeLeaves out;
+    out.origins.resize(refs.size());
+    out.masks.resize(refs.size());
+    for (size_t i = 0; i < refs.size(); ++i) {
+        const auto g = o.grid.toGlobal(refs[i].origin);
+        out.origins[i] = {int32_t(g[0]), int32_t(g[1]), int32_t(g[2])};
+        out.masks[i] = o.bricks[refs[i].index];
+    }
+    return out;
+}
+
 std::vector<uint64_t> octreeKeys(const Octree& o)
 {
     auto refs = occupiedBricks(o);

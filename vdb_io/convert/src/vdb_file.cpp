@@ -706,21 +706,6 @@ WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOp
     return stats;
 }
 
-void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::string, Octree>>& named,
-                   const std::map<std::string, std::string>& metadata)
-{
-    checkWritable(path);
-    openvdb::initialize();
-    openvdb::GridPtrVec grids;
-    for (const auto& [name, octree] : named) {
-        auto g = buildMaskGrid(octree);
-        g->setName(name);
-        for (const auto& [k, v] : metadata) g->insertMeta(validUtf8(k), openvdb::StringMetadata(validUtf8(v)));
-        grids.push_back(g);
-    }
-    writeGrids(path, grids);
-}
-
 WriteStats writeVdbGrids(const std::string& path, const openvdb::GridPtrVec& grids,
                          const std::map<std::string, std::string>& metadata)
 {

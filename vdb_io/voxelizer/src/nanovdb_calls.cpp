@@ -193,20 +193,13 @@ std::vector<vdb::NanoHandle> surfaceGridsOnGpu(const gl::Context& context, const
                                                VoxelizeStats& stats)
 {
     auto t0 = Clock::now();
-    const std::vector<BrickRef> refs = occupiedBricks(o);
-    std::vector<std::array<int32_t, 3>> origins(refs.size());
-    std::vector<Brick> masks(refs.size());
-    for (size_t i = 0; i < refs.size(); ++i) {
-        const auto g = o.grid.toGlobal(refs[i].origin);
-        origins[i] = {int32_t(g[0]), int32_t(g[1]), int32_t(g[2])};
-        masks[i] = o.bricks[refs[i].index];
-    }
+    const OctreeLeaves bricks = octreeLeaves(o);
     stats.stages.push_back({"nanovdb leaves", -1, msSince(t0)});
     const gl::Context::Scope scope(context);
     gl::NanoLeaves leaves;
-    leaves.count = uint32_t(refs.size());
-    leaves.origins = origins.data();
-    leaves.masks = masks.data();
+    leaves.count = uint32_t(bricks.origins.size());
+    leaves.origins = bricks.origins.data();
+    leaves.masks = bricks.masks.data();
     gl::NanoGridHeader header;
     header.name = grids.name;
     header.voxelSize = o.grid.voxelSize;

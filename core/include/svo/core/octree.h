@@ -139,6 +139,15 @@ struct BrickRef {
 /// @brief Every occupied brick, in traversal (Morton) order.
 std::vector<BrickRef> occupiedBricks(const Octree& octree);
 
+/// @brief Every occupied brick as an 8³ leaf of index space, in traversal
+/// (Morton) order: what a sparse grid's builder takes.
+struct OctreeLeaves {
+    std::vector<std::array<int32_t, 3>> origins; ///< global index coordinates, multiples of 8
+    std::vector<Brick> masks;                    ///< the brick's voxels, one bit each
+};
+/// @brief The octree's occupied bricks as leaves (occupiedBricks, made global).
+OctreeLeaves octreeLeaves(const Octree& octree);
+
 /// @brief The voxel keys of an octree, sorted (brick-major) and unique.
 std::vector<uint64_t> octreeKeys(const Octree& octree);
 

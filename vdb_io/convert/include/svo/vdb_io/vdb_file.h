@@ -52,13 +52,6 @@ struct WriteStats {
 ///        (checkVdbGrid)
 WriteStats writeVdb(const std::string& path, const Octree& octree, const WriteOptions& options);
 
-/// @brief Several octrees of one grid as named MaskGrids in one file (e.g. the
-/// missed and extra voxels of a validation), written atomically.
-/// @param metadata stored as strings on every grid
-/// @throw as writeVdb
-void writeVdbMasks(const std::string& path, const std::vector<std::pair<std::string, Octree>>& grids,
-                   const std::map<std::string, std::string>& metadata);
-
 /// @brief Any grids to one .vdb file, each given @a metadata as strings,
 /// written atomically.
 /// @throw svo::IoError naming the path when it cannot be written
