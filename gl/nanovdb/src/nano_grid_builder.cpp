@@ -223,6 +223,47 @@ void foldUppers(NanoTreeFacts& f, NanoKind kind, const std::vector<uint32_t>& st
     }
 }
 
+/// a·b mod CRC-32's polynomial, both reflected (bit 31 is x^0), as nano_crc.comp's mulMod.
+uint32_t crcMulMod(uint32_t a, uint32_t b)
+{
+    uint32_t p = 0;
+    for (int i = 31; i >= 0; --i) {
+        if ((a >> i) & 1u) p ^= b;
+        b = (b >> 1) ^ ((b & 1u) ? 0xEDB88320u : 0u);
+    }
+    return p;
+}
+
+/// x^(8·2^e) mod P: the CRC register's shift past 2^e zero bytes.
+uint32_t crcShiftPow2(uint32_t e)
+{
+    uint32_t x = 0x00800000u; // x^8: one byte
+    for (uint32_t i = 0; i < e; ++i) x = crcMulMod(x, x);
+    return x;
+}
+
+/// How nano_crc.comp cuts a node of @a words: slices of @a slice words (the
+/// fewest up to 16 that cover small nodes with one group), @a blocks[k]
+/// registers per node after dispatch k (the last is 1).
+struct CrcPlan {
+    uint32_t slice = 1;
+    std::vector<uint32_t> blocks;
+};
+
+CrcPlan crcPlan(uint32_t words)
+{
+    CrcPlan plan;
+    while (plan.slice < 16 && 64 * plan.slice < words) plan.slice <<= 1;
+    uint32_t per = (words + 64 * plan.slice - 1) / (64 * plan.slice);
+    plan.blocks.push_back(per);
+    while (per > 1) plan.blocks.push_back(per = (per + 63) / 64);
+    return plan;
+}
+
+/// The most loop iterations one nano_crc.comp invocation takes (the table
+/// 36, a slice twice 16, the tree 6 · 33), with room.
+constexpr uint64_t kCrcLoopIterations = 300;
+
 /// NanoVDB's full checksum of the grid in @a grid: the CRC-32 of the
 /// headers and the root's tiles past the checksum field (the host's
 /// @a head, the tiles read back), and the CRC-32 of the nodes' CRC-32s
@@ -232,26 +273,50 @@ void foldUppers(NanoTreeFacts& f, NanoKind kind, const std::vector<uint32_t>& st
 void checksumOnGpu(const Context& context, NanoKind kind, const NanoTreeFacts& f, const Buffer& stats,
                    const Buffer& grid, std::vector<uint8_t>& head)
 {
-    const Program& crc = context.program(nanovdbShaders(), {"nano_crc.comp"});
     const uint64_t loopLimit = context.info().loopLimit;
+    if (loopLimit && loopLimit < kCrcLoopIterations)
+        throw Unsupported(fmt::format("NanoVDB GPU checksum: the driver's loop limit of {} is under the {} iterations it needs",
+                                      loopLimit, kCrcLoopIterations));
+    const Program& crc = context.program(nanovdbShaders(), {"nano_crc.comp"});
+    auto wordsOf = [&](size_t level) {
+        return level == 2 ? gpu::kNanoUpperWords : level == 1 ? gpu::kNanoLowerWords : leafWords(kind);
+    };
+    uint64_t regWords = 1;
+    for (size_t level = 0; level < 3; ++level) {
+        const CrcPlan plan = crcPlan(wordsOf(level));
+        uint64_t sum = 0;
+        for (size_t k = 0; k + 1 < plan.blocks.size(); ++k) sum += uint64_t(f.nodes[level]) * plan.blocks[k];
+        regWords = std::max(regWords, sum);
+    }
+    context.scratch("nanovdb crc registers", regWords * 4).bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_SORT);
     uint32_t sumAt = 0;
     for (int level = 2; level >= 0; --level) {
         const uint32_t count = f.nodes[size_t(level)];
-        const uint32_t words = level == 2 ? gpu::kNanoUpperWords : level == 1 ? gpu::kNanoLowerWords : leafWords(kind);
-        // The table (36 iterations) and a chunk of words stay under the loop limit.
-        const uint32_t chunk = loopLimit ? uint32_t(std::min<uint64_t>(words, loopLimit / 2)) : words;
+        const uint32_t words = wordsOf(size_t(level));
+        const CrcPlan plan = crcPlan(words);
+        uint32_t pieceLog2 = 2; // log2 of a piece's bytes: a word, then a slice, then blocks of 64
+        for (uint32_t s = plan.slice; s > 1; s >>= 1) ++pieceLog2;
+        crc.set("uNodeCount", count);
         crc.set("uNodeAt", uint32_t(f.at[size_t(level)] / 4));
         crc.set("uNodeWords", words);
-        crc.set("uNodeCount", count);
-        crc.set("uSumAt", sumAt);
-        for (uint32_t from = 0; from < words; from += chunk) {
-            const uint32_t to = std::min(words, from + chunk);
-            crc.set("uFrom", from);
-            crc.set("uTo", to);
-            crc.set("uFirst", from == 0 ? 1u : 0u);
-            crc.set("uLast", to == words ? 1u : 0u);
-            dispatchGroups(crc, (uint64_t(count) + 63) / 64);
+        crc.set("uSliceWords", plan.slice);
+        uint32_t inAt = 0, outAt = 0;
+        for (size_t k = 0; k < plan.blocks.size(); ++k) {
+            const bool last = k + 1 == plan.blocks.size();
+            std::vector<uint32_t> shifts(6);
+            for (uint32_t j = 0; j < 6; ++j) shifts[j] = crcShiftPow2(pieceLog2 + j);
+            crc.set("uShift", shifts);
+            crc.set("uFromGrid", k == 0 ? 1u : 0u);
+            crc.set("uInAt", inAt);
+            crc.set("uInPer", k == 0 ? 0u : plan.blocks[k - 1]);
+            crc.set("uOutPer", plan.blocks[k]);
+            crc.set("uOutAt", last ? sumAt : outAt);
+            crc.set("uLast", last ? 1u : 0u);
+            dispatchGroups(crc, uint64_t(count) * plan.blocks[k]);
             passBarrier();
+            inAt = outAt;
+            outAt += count * plan.blocks[k];
+            pieceLog2 += 6;
         }
         sumAt += count;
     }
