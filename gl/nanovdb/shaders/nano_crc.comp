@@ -8,21 +8,21 @@
 // R unchanged, and starting from all bits set equals inverting the stream's
 // first four bytes. So each node is seen front-padded with zeros to whole
 // blocks of 64 pieces; a work group takes one block of one node, each
-// invocation one piece, and folds the 64 registers in a binary tree in
-// shared memory (step j shifts the left half by uShift[j] = x^(8·piece
-// bytes·2^j)). The first dispatch's pieces are slices of uSliceWords grid
-// words (read into shared memory coalesced); further dispatches fold the
-// blocks' registers (regs[]) 64 at a time, until one block is the node: then
-// ~R is its CRC, written to stats[]. The host hashes the headers and the
+// invocation one piece, whose register it shifts to the block's end
+// (uShiftBy[t]) before the group xors all 64. The first dispatch's pieces
+// are slices of uSliceWords grid words (read into shared memory coalesced,
+// CRC'd with the table the host put at regs[0, 256)); further dispatches fold
+// the blocks' registers (regs[]) 64 at a time, until one block is the node:
+// then ~R is its CRC, written to stats[]. The host hashes the headers and the
 // list of node CRCs (nano_grid_builder.cpp). An invocation's loops take
-// about 270 iterations in all, whatever the node's size.
+// about 110 iterations in all, whatever the node's size.
 layout(local_size_x = 64) in;
 #include "gpu_layout.h"
 #include "nano_layout.h"
 
 layout(std430, binding = SVO_BIND_NANO_GRID) readonly buffer Grid { uint grid[]; };
 layout(std430, binding = SVO_BIND_NANO_STATS) buffer Stats { uint stats[]; };
-// The blocks' registers; the sort keys' slot, free by this pass.
+// The CRC table (256 words), then the blocks' registers; the sort keys' slot, free by this pass.
 layout(std430, binding = SVO_BIND_NANO_SORT) buffer Registers { uint regs[]; };
 
 uniform uint uNodeCount;  // nodes of the level
@@ -30,12 +30,12 @@ uniform uint uOutPer;     // blocks (work groups) per node in this dispatch
 uniform uint uFromGrid;   // 1: pieces are slices of the grid; 0: registers in regs[]
 uniform uint uNodeAt;     // grid: the level's first node's word
 uniform uint uNodeWords;  // grid: words per node
-uniform uint uSliceWords; // grid: words per slice, a power of two up to 16
+uniform uint uSliceWords; // grid: words per slice, 1 to 16
 uniform uint uInAt;       // registers: the first one's index in regs[]
 uniform uint uInPer;      // registers: per node
 uniform uint uOutAt;      // where the blocks' registers go in regs[], or (uLast) the CRCs in stats[]
 uniform uint uLast;       // 1: one block per node, the node's CRC
-uniform uint uShift[6];   // x^(8·piece bytes·2^j) mod P, reflected
+uniform uint uShiftBy[64]; // x^(8·piece bytes·(63 - t)) mod P, reflected: piece t to the block's end
 
 const uint kPoly = 0xEDB88320u;
 
@@ -57,11 +57,7 @@ uint mulMod(uint a, uint b)
 // The register of this invocation's slice: the block's words staged coalesced, then table CRC from 0.
 uint sliceRegister(uint node, uint block, uint t)
 {
-    for (uint e = t; e < 256u; e += 64u) {
-        uint c = e;
-        for (uint k = 0u; k < 8u; ++k) c = (c & 1u) != 0u ? kPoly ^ (c >> 1u) : c >> 1u;
-        sTable[e] = c;
-    }
+    for (uint e = t; e < 256u; e += 64u) sTable[e] = regs[e];
     uint s = uSliceWords, stride = s | 1u;
     uint pad = uOutPer * 64u * s - uNodeWords; // zero words before the node
     uint at = uNodeAt + node * uNodeWords;
@@ -100,11 +96,10 @@ void main()
         uint p = block * 64u + t;
         r = p >= pad ? regs[uInAt + node * uInPer + p - pad] : 0u;
     }
-    sRegs[t] = r;
+    sRegs[t] = r == 0u ? 0u : mulMod(r, uShiftBy[t]);
     barrier();
-    for (uint j = 0u; j < 6u; ++j) {
-        uint span = 1u << j;
-        if ((t & (2u * span - 1u)) == 0u) sRegs[t] = mulMod(sRegs[t], uShift[j]) ^ sRegs[t + span];
+    for (uint span = 32u; span > 0u; span >>= 1u) {
+        if (t < span) sRegs[t] ^= sRegs[t + span];
         barrier();
     }
     if (t != 0u) return;

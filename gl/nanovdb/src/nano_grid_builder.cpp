@@ -234,16 +234,37 @@ uint32_t crcMulMod(uint32_t a, uint32_t b)
     return p;
 }
 
-/// x^(8·2^e) mod P: the CRC register's shift past 2^e zero bytes.
-uint32_t crcShiftPow2(uint32_t e)
+/// x^(8·n) mod P: the CRC register's shift past n zero bytes.
+uint32_t crcShift(uint64_t n)
 {
-    uint32_t x = 0x00800000u; // x^8: one byte
-    for (uint32_t i = 0; i < e; ++i) x = crcMulMod(x, x);
-    return x;
+    uint32_t r = 0x80000000u, x = 0x00800000u; // 1; x^8 (a byte)
+    for (; n; n >>= 1, x = crcMulMod(x, x))
+        if (n & 1) r = crcMulMod(r, x);
+    return r;
 }
 
-/// How nano_crc.comp cuts a node of @a words: slices of @a slice words (the
-/// fewest up to 16 that cover small nodes with one group), @a blocks[k]
+/// nano_crc.comp's shifts of a block's 64 pieces of @a pieceBytes each to its end.
+std::vector<uint32_t> crcShiftsToEnd(uint64_t pieceBytes)
+{
+    std::vector<uint32_t> shifts(64);
+    for (uint32_t t = 0; t < 64; ++t) shifts[t] = crcShift(pieceBytes * (63 - t));
+    return shifts;
+}
+
+/// CRC-32's byte table (reflected 0xEDB88320), for nano_crc.comp.
+std::vector<uint32_t> crcTable()
+{
+    std::vector<uint32_t> table(256);
+    for (uint32_t e = 0; e < 256; ++e) {
+        uint32_t c = e;
+        for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+        table[e] = c;
+    }
+    return table;
+}
+
+/// How nano_crc.comp cuts a node of @a words: blocks of 64 slices of @a
+/// slice words (at most 16, as few blocks as that allows), @a blocks[k]
 /// registers per node after dispatch k (the last is 1).
 struct CrcPlan {
     uint32_t slice = 1;
@@ -253,16 +274,16 @@ struct CrcPlan {
 CrcPlan crcPlan(uint32_t words)
 {
     CrcPlan plan;
-    while (plan.slice < 16 && 64 * plan.slice < words) plan.slice <<= 1;
-    uint32_t per = (words + 64 * plan.slice - 1) / (64 * plan.slice);
+    uint32_t per = (words + 1023) / 1024;
+    plan.slice = (words + 64 * per - 1) / (64 * per);
     plan.blocks.push_back(per);
     while (per > 1) plan.blocks.push_back(per = (per + 63) / 64);
     return plan;
 }
 
 /// The most loop iterations one nano_crc.comp invocation takes (the table
-/// 36, a slice twice 16, the tree 6 · 33), with room.
-constexpr uint64_t kCrcLoopIterations = 300;
+/// 4, a slice twice 16, the shift 32, the xors 6), with room.
+constexpr uint64_t kCrcLoopIterations = 128;
 
 /// NanoVDB's full checksum of the grid in @a grid: the CRC-32 of the
 /// headers and the root's tiles past the checksum field (the host's
@@ -281,31 +302,30 @@ void checksumOnGpu(const Context& context, NanoKind kind, const NanoTreeFacts& f
     auto wordsOf = [&](size_t level) {
         return level == 2 ? gpu::kNanoUpperWords : level == 1 ? gpu::kNanoLowerWords : leafWords(kind);
     };
-    uint64_t regWords = 1;
+    uint64_t regWords = 256; // the table, then the most registers a level's folds keep
     for (size_t level = 0; level < 3; ++level) {
         const CrcPlan plan = crcPlan(wordsOf(level));
-        uint64_t sum = 0;
+        uint64_t sum = 256;
         for (size_t k = 0; k + 1 < plan.blocks.size(); ++k) sum += uint64_t(f.nodes[level]) * plan.blocks[k];
         regWords = std::max(regWords, sum);
     }
-    context.scratch("nanovdb crc registers", regWords * 4).bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_SORT);
+    const Buffer& regs = context.scratch("nanovdb crc registers", regWords * 4);
+    regs.write(0, 256 * 4, crcTable().data());
+    regs.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_SORT);
     uint32_t sumAt = 0;
     for (int level = 2; level >= 0; --level) {
         const uint32_t count = f.nodes[size_t(level)];
         const uint32_t words = wordsOf(size_t(level));
         const CrcPlan plan = crcPlan(words);
-        uint32_t pieceLog2 = 2; // log2 of a piece's bytes: a word, then a slice, then blocks of 64
-        for (uint32_t s = plan.slice; s > 1; s >>= 1) ++pieceLog2;
         crc.set("uNodeCount", count);
         crc.set("uNodeAt", uint32_t(f.at[size_t(level)] / 4));
         crc.set("uNodeWords", words);
         crc.set("uSliceWords", plan.slice);
-        uint32_t inAt = 0, outAt = 0;
+        uint64_t pieceBytes = 4 * plan.slice;
+        uint32_t inAt = 0, outAt = 256;
         for (size_t k = 0; k < plan.blocks.size(); ++k) {
             const bool last = k + 1 == plan.blocks.size();
-            std::vector<uint32_t> shifts(6);
-            for (uint32_t j = 0; j < 6; ++j) shifts[j] = crcShiftPow2(pieceLog2 + j);
-            crc.set("uShift", shifts);
+            crc.set("uShiftBy", crcShiftsToEnd(pieceBytes));
             crc.set("uFromGrid", k == 0 ? 1u : 0u);
             crc.set("uInAt", inAt);
             crc.set("uInPer", k == 0 ? 0u : plan.blocks[k - 1]);
@@ -316,7 +336,7 @@ void checksumOnGpu(const Context& context, NanoKind kind, const NanoTreeFacts& f
             passBarrier();
             inAt = outAt;
             outAt += count * plan.blocks[k];
-            pieceLog2 += 6;
+            pieceBytes *= 64;
         }
         sumAt += count;
     }
