@@ -243,11 +243,11 @@ uint32_t crcShift(uint64_t n)
     return r;
 }
 
-/// nano_crc.comp's shifts of a block's 64 pieces of @a pieceBytes each to its end.
-std::vector<uint32_t> crcShiftsToEnd(uint64_t pieceBytes)
+/// nano_crc.comp's shifts of a block's @a pieces pieces of @a pieceBytes each to its end (64 values).
+std::vector<uint32_t> crcShiftsToEnd(uint32_t pieces, uint64_t pieceBytes)
 {
-    std::vector<uint32_t> shifts(64);
-    for (uint32_t t = 0; t < 64; ++t) shifts[t] = crcShift(pieceBytes * (63 - t));
+    std::vector<uint32_t> shifts(64, 0);
+    for (uint32_t t = 0; t < pieces; ++t) shifts[t] = crcShift(pieceBytes * (pieces - 1 - t));
     return shifts;
 }
 
@@ -263,10 +263,13 @@ std::vector<uint32_t> crcTable()
     return table;
 }
 
-/// How nano_crc.comp cuts a node of @a words: blocks of 64 slices of @a
-/// slice words (at most 16, as few blocks as that allows), @a blocks[k]
-/// registers per node after dispatch k (the last is 1).
+/// How nano_crc.comp cuts a node of @a words: blocks of @a pieces slices of
+/// @a slice words (odd, against shared-memory bank conflicts; at most 33, as
+/// few blocks as that allows; at least 16 words where the node has them, so
+/// that a slice's table CRC outweighs its shift); @a blocks[k] registers per
+/// node after dispatch k (the last is 1; further dispatches take 64 pieces).
 struct CrcPlan {
+    uint32_t pieces = 64;
     uint32_t slice = 1;
     std::vector<uint32_t> blocks;
 };
@@ -274,15 +277,17 @@ struct CrcPlan {
 CrcPlan crcPlan(uint32_t words)
 {
     CrcPlan plan;
-    uint32_t per = (words + 1023) / 1024;
-    plan.slice = (words + 64 * per - 1) / (64 * per);
+    while (plan.pieces > 1 && plan.pieces * 16 > words) plan.pieces >>= 1;
+    uint32_t per = (words + plan.pieces * 33 - 1) / (plan.pieces * 33);
+    plan.slice = (words + plan.pieces * per - 1) / (plan.pieces * per);
+    plan.slice |= 1;
     plan.blocks.push_back(per);
     while (per > 1) plan.blocks.push_back(per = (per + 63) / 64);
     return plan;
 }
 
 /// The most loop iterations one nano_crc.comp invocation takes (the table
-/// 4, a slice twice 16, the shift 32, the xors 6), with room.
+/// 4, a slice twice 33, the shift 32, the xors 7 + 7: 116).
 constexpr uint64_t kCrcLoopIterations = 128;
 
 /// NanoVDB's full checksum of the grid in @a grid: the CRC-32 of the
@@ -325,18 +330,21 @@ void checksumOnGpu(const Context& context, NanoKind kind, const NanoTreeFacts& f
         uint32_t inAt = 0, outAt = 256;
         for (size_t k = 0; k < plan.blocks.size(); ++k) {
             const bool last = k + 1 == plan.blocks.size();
-            crc.set("uShiftBy", crcShiftsToEnd(pieceBytes));
+            const uint32_t pieces = k == 0 ? plan.pieces : 64;
+            crc.set("uPieces", pieces);
+            crc.set("uShiftBy", crcShiftsToEnd(pieces, pieceBytes));
             crc.set("uFromGrid", k == 0 ? 1u : 0u);
             crc.set("uInAt", inAt);
             crc.set("uInPer", k == 0 ? 0u : plan.blocks[k - 1]);
             crc.set("uOutPer", plan.blocks[k]);
             crc.set("uOutAt", last ? sumAt : outAt);
             crc.set("uLast", last ? 1u : 0u);
-            dispatchGroups(crc, uint64_t(count) * plan.blocks[k]);
+            const uint64_t blocks = uint64_t(count) * plan.blocks[k];
+            dispatchGroups(crc, (blocks * pieces + 63) / 64);
             passBarrier();
             inAt = outAt;
-            outAt += count * plan.blocks[k];
-            pieceBytes *= 64;
+            outAt += uint32_t(blocks);
+            pieceBytes *= pieces;
         }
         sumAt += count;
     }
