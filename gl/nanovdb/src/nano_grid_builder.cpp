@@ -223,6 +223,73 @@ void foldUppers(NanoTreeFacts& f, NanoKind kind, const std::vector<uint32_t>& st
     }
 }
 
+/// a·b mod CRC-32's polynomial, both reflected (bit 31 is x^0), as nano_crc.comp's mulMod.
+uint32_t crcMulMod(uint32_t a, uint32_t b)
+{
+    uint32_t p = 0;
+    for (int i = 31; i >= 0; --i) {
+        if ((a >> i) & 1u) p ^= b;
+        b = (b >> 1) ^ ((b & 1u) ? 0xEDB88320u : 0u);
+    }
+    return p;
+}
+
+/// x^(8·n) mod P: the CRC register's shift past n zero bytes.
+uint32_t crcShift(uint64_t n)
+{
+    uint32_t r = 0x80000000u, x = 0x00800000u; // 1; x^8 (a byte)
+    for (; n; n >>= 1, x = crcMulMod(x, x))
+        if (n & 1) r = crcMulMod(r, x);
+    return r;
+}
+
+/// nano_crc.comp's shifts of a block's @a pieces pieces of @a pieceBytes each to its end (64 values).
+std::vector<uint32_t> crcShiftsToEnd(uint32_t pieces, uint64_t pieceBytes)
+{
+    std::vector<uint32_t> shifts(64, 0);
+    for (uint32_t t = 0; t < pieces; ++t) shifts[t] = crcShift(pieceBytes * (pieces - 1 - t));
+    return shifts;
+}
+
+/// CRC-32's byte table (reflected 0xEDB88320), for nano_crc.comp.
+std::vector<uint32_t> crcTable()
+{
+    std::vector<uint32_t> table(256);
+    for (uint32_t e = 0; e < 256; ++e) {
+        uint32_t c = e;
+        for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+        table[e] = c;
+    }
+    return table;
+}
+
+/// How nano_crc.comp cuts a node of @a words: blocks of @a pieces slices of
+/// @a slice words (odd, against shared-memory bank conflicts; at most 33, as
+/// few blocks as that allows; at least 16 words where the node has them, so
+/// that a slice's table CRC outweighs its shift); @a blocks[k] registers per
+/// node after dispatch k (the last is 1; further dispatches take 64 pieces).
+struct CrcPlan {
+    uint32_t pieces = 64;
+    uint32_t slice = 1;
+    std::vector<uint32_t> blocks;
+};
+
+CrcPlan crcPlan(uint32_t words)
+{
+    CrcPlan plan;
+    while (plan.pieces > 1 && plan.pieces * 16 > words) plan.pieces >>= 1;
+    uint32_t per = (words + plan.pieces * 33 - 1) / (plan.pieces * 33);
+    plan.slice = (words + plan.pieces * per - 1) / (plan.pieces * per);
+    plan.slice |= 1;
+    plan.blocks.push_back(per);
+    while (per > 1) plan.blocks.push_back(per = (per + 63) / 64);
+    return plan;
+}
+
+/// The most loop iterations one nano_crc.comp invocation takes (the table
+/// 4, a slice twice 33, the shift 32, the xors 7 + 7: 116).
+constexpr uint64_t kCrcLoopIterations = 128;
+
 /// NanoVDB's full checksum of the grid in @a grid: the CRC-32 of the
 /// headers and the root's tiles past the checksum field (the host's
 /// @a head, the tiles read back), and the CRC-32 of the nodes' CRC-32s
@@ -232,26 +299,52 @@ void foldUppers(NanoTreeFacts& f, NanoKind kind, const std::vector<uint32_t>& st
 void checksumOnGpu(const Context& context, NanoKind kind, const NanoTreeFacts& f, const Buffer& stats,
                    const Buffer& grid, std::vector<uint8_t>& head)
 {
-    const Program& crc = context.program(nanovdbShaders(), {"nano_crc.comp"});
     const uint64_t loopLimit = context.info().loopLimit;
+    if (loopLimit && loopLimit < kCrcLoopIterations)
+        throw Unsupported(fmt::format("NanoVDB GPU checksum: the driver's loop limit of {} is under the {} iterations it needs",
+                                      loopLimit, kCrcLoopIterations));
+    const Program& crc = context.program(nanovdbShaders(), {"nano_crc.comp"});
+    auto wordsOf = [&](size_t level) {
+        return level == 2 ? gpu::kNanoUpperWords : level == 1 ? gpu::kNanoLowerWords : leafWords(kind);
+    };
+    uint64_t regWords = 256; // the table, then the most registers a level's folds keep
+    for (size_t level = 0; level < 3; ++level) {
+        const CrcPlan plan = crcPlan(wordsOf(level));
+        uint64_t sum = 256;
+        for (size_t k = 0; k + 1 < plan.blocks.size(); ++k) sum += uint64_t(f.nodes[level]) * plan.blocks[k];
+        regWords = std::max(regWords, sum);
+    }
+    const Buffer& regs = context.scratch("nanovdb crc registers", regWords * 4);
+    regs.write(0, 256 * 4, crcTable().data());
+    regs.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_SORT);
     uint32_t sumAt = 0;
     for (int level = 2; level >= 0; --level) {
         const uint32_t count = f.nodes[size_t(level)];
-        const uint32_t words = level == 2 ? gpu::kNanoUpperWords : level == 1 ? gpu::kNanoLowerWords : leafWords(kind);
-        // The table (36 iterations) and a chunk of words stay under the loop limit.
-        const uint32_t chunk = loopLimit ? uint32_t(std::min<uint64_t>(words, loopLimit / 2)) : words;
+        const uint32_t words = wordsOf(size_t(level));
+        const CrcPlan plan = crcPlan(words);
+        crc.set("uNodeCount", count);
         crc.set("uNodeAt", uint32_t(f.at[size_t(level)] / 4));
         crc.set("uNodeWords", words);
-        crc.set("uNodeCount", count);
-        crc.set("uSumAt", sumAt);
-        for (uint32_t from = 0; from < words; from += chunk) {
-            const uint32_t to = std::min(words, from + chunk);
-            crc.set("uFrom", from);
-            crc.set("uTo", to);
-            crc.set("uFirst", from == 0 ? 1u : 0u);
-            crc.set("uLast", to == words ? 1u : 0u);
-            dispatchGroups(crc, (uint64_t(count) + 63) / 64);
+        crc.set("uSliceWords", plan.slice);
+        uint64_t pieceBytes = 4 * plan.slice;
+        uint32_t inAt = 0, outAt = 256;
+        for (size_t k = 0; k < plan.blocks.size(); ++k) {
+            const bool last = k + 1 == plan.blocks.size();
+            const uint32_t pieces = k == 0 ? plan.pieces : 64;
+            crc.set("uPieces", pieces);
+            crc.set("uShiftBy", crcShiftsToEnd(pieces, pieceBytes));
+            crc.set("uFromGrid", k == 0 ? 1u : 0u);
+            crc.set("uInAt", inAt);
+            crc.set("uInPer", k == 0 ? 0u : plan.blocks[k - 1]);
+            crc.set("uOutPer", plan.blocks[k]);
+            crc.set("uOutAt", last ? sumAt : outAt);
+            crc.set("uLast", last ? 1u : 0u);
+            const uint64_t blocks = uint64_t(count) * plan.blocks[k];
+            dispatchGroups(crc, (blocks * pieces + 63) / 64);
             passBarrier();
+            inAt = outAt;
+            outAt += uint32_t(blocks);
+            pieceBytes *= pieces;
         }
         sumAt += count;
     }
