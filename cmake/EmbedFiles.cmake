@@ -4,8 +4,8 @@
 # shaders live as .glsl files beside the code that runs them but ship inside
 # the binary. Each GL layer embeds its own shaders under its own function.
 function(svo_embed_files target ns fn)
-  set(out "${CMAKE_CURRENT_BINARY_DIR}/${target}_embedded.cpp")
-  set(script "${CMAKE_CURRENT_BINARY_DIR}/${target}_embed.cmake")
+  set(out "${CMAKE_CURRENT_BINARY_DIR}/${target}_${fn}.cpp")
+  set(script "${CMAKE_CURRENT_BINARY_DIR}/${target}_${fn}.cmake")
   file(WRITE "${script}" "
 set(content \"// Generated from shader files; edit those instead.\\n#include <map>\\n#include <string>\\nnamespace ${ns} {\\nconst std::map<std::string, std::string>& ${fn}() {\\n  static const std::map<std::string, std::string> files = {\\n\")
 foreach(f \${FILES})

@@ -2,7 +2,7 @@
 // point and the octree build state computed by shaders and compared with the
 // CPU. Then the shader plumbing: #include expansion with #line directives,
 // compiler errors traced to the file and line they come from, and uniforms
-// that do not exist.
+// that do not exist; and fillWords, the device layer's own shader.
 #include <array>
 #include <cstdint>
 #include <gtest/gtest.h>
@@ -19,6 +19,7 @@
 #include "svo/core/voxel_key.h"
 #include "svo/gl/context.h"
 #include "svo/gl/buffer.h"
+#include "svo/gl/fill_words.h"
 #include "svo/gl/gl_api.h"
 #include "svo/gl/program.h"
 #include "svo/gl/shader_source.h"
@@ -280,6 +281,31 @@ TEST(ShaderSource, IncludesAreWrappedInLineDirectives)
         EXPECT_EQ(s.lines[k].file, expected[k].first) << "line " << k + 1;
         EXPECT_EQ(s.lines[k].line, expected[k].second) << "line " << k + 1;
     }
+}
+
+TEST_F(GpuLayout, FillWordsSetsTheWordsAskedAndKeepsBindingZero)
+{
+    // 1 M + 3 words: more than one row of work groups' worth of x, and a tail.
+    const uint64_t words = (uint64_t(1) << 20) + 3;
+    const std::vector<uint32_t> before(words + 5, 0xA5A5A5A5u);
+    const Buffer target("fill target", 4 * before.size(), before.data());
+    const Buffer bound("bound at 0", 64);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, bound.id(), 16, 32);
+    fillWords(*context_, target, 0x7F800000u, 4 * words);
+    const std::vector<uint32_t> after = readBack<uint32_t>(target, before.size());
+    for (uint64_t i = 0; i < after.size(); ++i)
+        ASSERT_EQ(after[i], i < words ? 0x7F800000u : 0xA5A5A5A5u) << "word " << i;
+    GLint name = 0;
+    GLint64 at = 0, size = 0;
+    glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, 0, &name);
+    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, 0, &at);
+    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, 0, &size);
+    EXPECT_EQ(GLuint(name), bound.id());
+    EXPECT_EQ(at, 16);
+    EXPECT_EQ(size, 32);
+    EXPECT_THROW(fillWords(*context_, target, 0, 6), InvalidInput);              // not whole words
+    EXPECT_THROW(fillWords(*context_, target, 0, target.bytes() + 4), InvalidInput); // past the end
+    checkGl("fillWords test");
 }
 
 TEST(ShaderSource, CyclesAndUnknownFilesAreErrors)

@@ -546,6 +546,12 @@ uint64_t Context::shaderBufferLimit() const
     return impl_->info.software ? 0 : impl_->info.maxStorageBlock;
 }
 
+void Context::releaseScratch(const char* what) const
+{
+    const Scope scope(*this);
+    impl_->scratch.erase(what);
+}
+
 uint64_t Context::scratchBytes() const
 {
     uint64_t n = 0;

@@ -13,6 +13,7 @@
 
 #include "svo/gl/buffer.h"
 #include "svo/gl/dispatch_looping.h"
+#include "svo/gl/fill_words.h"
 #include "svo/gl/gl_api.h"
 #include "svo/gl/program.h"
 #include "svo/gl/timer_query.h"
@@ -180,11 +181,12 @@ struct FieldBuffers {
         counters.clearUint(0);
         const uint32_t none = 0xFFFFFFFFu, inf = 0x7F800000u; // float +inf
         if (request.band > 0) {
+            // Filled by a shader, not cleared: see fill_words.h.
             distances = &context.scratch("field distances", std::max<uint64_t>(nb, 1) * 512 * 4);
-            distances->clearUint(inf, nb * 512 * 4);
+            fillWords(context, *distances, inf, nb * 512 * 4);
             if (request.closestTriangle) {
                 closest = &context.scratch("field closest triangles", std::max<uint64_t>(nb, 1) * 512 * 4);
-                closest->clearUint(none, nb * 512 * 4);
+                fillWords(context, *closest, none, nb * 512 * 4);
             }
         }
         if (request.crossings) {
@@ -480,6 +482,10 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     request.checkpoint(0.8, "field readback");
 
     readField(buffers, packed, nb, result, stats);
+    if (leaves) { // the leaves hold the band now: the per-brick field's memory goes to what the caller builds next
+        context.releaseScratch("field distances");
+        context.releaseScratch("field closest triangles");
+    }
     if (report) *report = std::move(stats);
     return result;
 }

@@ -73,8 +73,7 @@ void fullChecksum(vdb::NanoHandle& h, gl::NanoKind kind)
 
 /// A grid built on the GPU, read back, and given its full checksum on the
 /// host, each step a stage of `stats`. The host hashes the copy it has to
-/// read anyway: on an H200 that took 34 ms for a 747 MB grid, where
-/// nano_crc.comp took 1.1 s (bench/results/nvidia-h200/nanovdb). A grid past
+/// read anyway (docs/design.md compares it with the GPU's checksum). A grid past
 /// the builder's limits (a shader storage block, 2^26 leaves, 16 GiB:
 /// svo::Unsupported, thrown before the grid is made) is laid out by
 /// `onHost()` instead, with a warning.
@@ -321,7 +320,7 @@ void Voxelizer::unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const Gri
     }
     stats.bricks = grids.front().nodes[0];
     alignas(64) uint8_t head[sizeof(nanovdb::GridData) + sizeof(nanovdb::NanoTree<float>::DataType)];
-    grids.front().grid.read(0, sizeof head, head);
+    grids.front().grid.readBulk(0, sizeof head, head); // read() can copy the whole grid on some drivers
     stats.voxels = reinterpret_cast<const nanovdb::NanoGrid<float>*>(head)->activeVoxelCount();
     use(grids);
     checkpoint(1.0, "finish");

@@ -122,6 +122,10 @@ public:
     const Buffer& scratch(const char* what, uint64_t bytes) const;
     /// @brief Frees every scratch buffer (call inside a Scope, or it makes one).
     void releaseScratch() const;
+    /// @brief Frees the scratch buffer named @a what, if there is one: a large
+    /// buffer no longer needed, so that what the caller allocates next does
+    /// not add to it (call inside a Scope, or it makes one).
+    void releaseScratch(const char* what) const;
     /// @brief Bytes of scratch buffers held.
     uint64_t scratchBytes() const;
     /// @brief Bytes of memory the device has free now: video memory where the

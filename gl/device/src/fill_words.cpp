@@ -1,0 +1,43 @@
+#include "svo/gl/fill_words.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+#include "svo/core/error.h"
+#include "svo/gl/buffer.h"
+#include "svo/gl/context.h"
+#include "svo/gl/program.h"
+
+namespace svo::gl {
+
+// This layer's shaders, embedded by svo_embed_files (gl/device/CMakeLists.txt).
+const ShaderFiles& deviceShaders();
+
+void fillWords(const Context& context, const Buffer& buffer, uint32_t value, uint64_t bytes)
+{
+    if (bytes % 4 || bytes > buffer.bytes() || bytes / 4 >= (uint64_t(1) << 32))
+        throw InvalidInput(fmt::format("fillWords: {} bytes in a buffer of {}", bytes, buffer.bytes()));
+    if (!bytes) return;
+    const Context::Scope scope(context);
+    GLint was = 0;
+    GLint64 wasAt = 0, wasSize = 0;
+    glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, 0, &was);
+    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, 0, &wasAt);
+    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, 0, &wasSize);
+    const Program& fill = context.program(deviceShaders(), {"fill_words.comp"});
+    fill.set("uValue", value);
+    buffer.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    const uint64_t words = bytes / 4; // under 2^32 (checked above): one 2D dispatch
+    fill.set("uWords", uint32_t(words));
+    const uint64_t groups = (words + 255) / 256;
+    const uint64_t x = std::min<uint64_t>(groups, 65535);
+    fill.dispatch(uint32_t(x), uint32_t((groups + x - 1) / x));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT |
+                    GL_COMMAND_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+    if (wasSize > 0)
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, GLuint(was), GLintptr(wasAt), GLsizeiptr(wasSize));
+    else
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, GLuint(was));
+}
+
+} // namespace svo::gl
