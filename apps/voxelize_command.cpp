@@ -378,7 +378,18 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     // Python's voxelize() tags its grids the same.
     const std::map<std::string, std::string> meta = resultMetadata(mesh, grid, request, true);
     WriteReport written;
-    if (!timingOnly) {
+    if (!timingOnly && outputFormat(output) == OutputFormat::NanoVdb) {
+        // Laid out by the Voxelizer: on the GPU where the voxels were made there.
+        Progress p("writing " + output);
+        VoxelizeOptions nano = call.options;
+        nano.stats = &stats;
+        const std::vector<vdb::NanoHandle> handles = call.voxelizer.octreeNanoVdb(octree, grids, nano);
+        const auto t0 = Clock::now();
+        written.format = OutputFormat::NanoVdb;
+        written.bytes = vdb::writeNanoVdb(output, handles, grids.codec);
+        written.leaves = octree.bricks.size();
+        written.stages.push_back({"nvdb write", -1, std::chrono::duration<double, std::milli>(Clock::now() - t0).count()});
+    } else if (!timingOnly) {
         Progress p("writing " + output);
         written = writeOctree(output, octree, grids, meta);
     }

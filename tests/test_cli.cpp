@@ -1117,6 +1117,25 @@ TEST_F(Cli, LevelSetsAndSolidsWriteNanoVdb)
     expectOnly({"ico.off", "f.nvdb", "f.vdb", "n.json", "v.json"});
 }
 
+// A surface's .nvdb on a GL backend is laid out by the GPU builder (the -v
+// stages say so): the same bytes as the CPU backend's CPU layout, fog
+// included, and NanoVDB's validator passes it.
+TEST_F(Cli, SurfaceNanoVdbOnTheGpuIsTheCpuLayoutsBytes)
+{
+    ASSERT_EQ(runSvo("scene icosphere --level 3 -o " + path("ico.off")).code, 0);
+    for (const std::string kind : {"", "--fog ", "--topology mask "}) {
+        const auto gpu = runSvo("voxelize " + path("ico.off") + " -r 40 -v --backend compute " + kind + "-o " + path("g.nvdb"));
+        ASSERT_EQ(gpu.code, 0) << kind << gpu.out;
+        EXPECT_NE(gpu.out.find("nanovdb grid (gpu)"), std::string::npos) << kind << gpu.out;
+        const auto cpu = runSvo("voxelize " + path("ico.off") + " -r 40 -v --backend cpu " + kind + "-o " + path("c.nvdb"));
+        ASSERT_EQ(cpu.code, 0) << kind << cpu.out;
+        EXPECT_NE(cpu.out.find("nvdb build (cpu)"), std::string::npos) << kind << cpu.out;
+        EXPECT_EQ(runCommand("cmp " + path("g.nvdb") + " " + path("c.nvdb") + " && echo same"), "same\n") << kind;
+        EXPECT_EQ(runCommand("nanovdb_validate " + path("g.nvdb") + " >/dev/null 2>&1 && echo valid"), "valid\n") << kind;
+    }
+    expectOnly({"ico.off", "g.nvdb", "c.nvdb"});
+}
+
 // --codec compresses .nvdb output with NanoVDB's codecs: NanoVDB's validator and
 // svo info read each file, smaller than the plain one; another output refuses it.
 TEST_F(Cli, NanoVdbOutputTakesNanoVdbsCodecs)

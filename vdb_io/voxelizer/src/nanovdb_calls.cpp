@@ -237,11 +237,20 @@ std::vector<vdb::NanoHandle> surfaceGridsOnGpu(const gl::Context& context, const
 std::vector<vdb::NanoHandle> Voxelizer::voxelizeNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                         const VoxelizeOptions& options, const GridOptions& grids)
 {
-    const Octree octree = voxelize(mesh, grid, options);
-    // The voxelization ran on a GL backend (the test runsOnCpu makes for level sets and solids).
-    if (gl::runsOnCpu(device_, options)) return vdb::octreeToNanoGrids(octree, grids);
+    return octreeNanoVdb(voxelize(mesh, grid, options), grids, options);
+}
+
+std::vector<vdb::NanoHandle> Voxelizer::octreeNanoVdb(const Octree& octree, const GridOptions& grids,
+                                                      const VoxelizeOptions& options)
+{
     VoxelizeStats local;
-    return surfaceGridsOnGpu(device_.context(), octree, grids, options.stats ? *options.stats : local);
+    VoxelizeStats& stats = options.stats ? *options.stats : local;
+    // On a GL backend (the test runsOnCpu makes for level sets and solids).
+    if (!gl::runsOnCpu(device_, options)) return surfaceGridsOnGpu(device_.context(), octree, grids, stats);
+    const auto t0 = Clock::now();
+    std::vector<vdb::NanoHandle> out = vdb::octreeToNanoGrids(octree, grids);
+    stats.stages.push_back({"nvdb build (cpu)", -1, msSince(t0)});
+    return out;
 }
 
 std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,

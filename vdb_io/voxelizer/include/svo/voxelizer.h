@@ -281,6 +281,15 @@ public:
     /// @throw as voxelize()
     std::vector<vdb::NanoHandle> voxelizeNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                  const VoxelizeOptions& options = {}, const GridOptions& grids = {});
+    /// @brief An octree from voxelize() as NanoVDB grids, the same bytes as
+    /// vdb::octreeToNanoGrids: the topology and fog laid out on the GPU
+    /// where @a options' backend runs on a GL device, the channels on the host.
+    /// @param octree  voxelize()'s result
+    /// @param grids   which grids (topology type and name, fog, channels)
+    /// @param options the backend (as given to voxelize()); its stats, if any, get the stages
+    /// @throw svo::DeviceError or svo::OutOfMemory from the GPU
+    std::vector<vdb::NanoHandle> octreeNanoVdb(const Octree& octree, const GridOptions& grids = {},
+                                               const VoxelizeOptions& options = {});
     /// @brief levelSet() as NanoVDB grids, laid out from the field's bricks
     /// with no OpenVDB tree (levelSetNanoGrids), on the grid's own lattice;
     /// with a region or a GPU memory budget, levelSet()'s grids converted
