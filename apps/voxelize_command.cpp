@@ -383,7 +383,9 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
         Progress p("writing " + output);
         VoxelizeOptions nano = call.options;
         nano.stats = &stats;
+        const size_t warned = stats.warnings.size();
         const std::vector<vdb::NanoHandle> handles = call.voxelizer.octreeNanoVdb(octree, grids, nano);
+        printWarnings(std::vector<std::string>(stats.warnings.begin() + std::ptrdiff_t(warned), stats.warnings.end()));
         const auto t0 = Clock::now();
         written.format = OutputFormat::NanoVdb;
         written.bytes = vdb::writeNanoVdb(output, handles, grids.codec);

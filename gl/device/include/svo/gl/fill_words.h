@@ -4,8 +4,8 @@
 /// compute shader, in place of glClearNamedBufferSubData.
 ///
 /// Why: on NVIDIA's driver a clear of memory that nothing has written yet
-/// runs far slower than a shader's writes to it (docs/design.md, "GPU
-/// memory"), and a fresh process's buffers are all such memory.
+/// runs far slower than a shader's writes to it (docs/design.md, "Fresh
+/// memory and readbacks"), and a fresh process's buffers are all such memory.
 #include <cstdint>
 
 namespace svo::gl {
