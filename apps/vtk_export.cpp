@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include <vtkActor.h>
+#include <vtkAutoInit.h>
 #include <vtkBitArray.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
@@ -36,6 +37,13 @@
 #include "svo/core/error.h"
 #include "svo/core/voxel_key.h"
 #include "xvfb.h"
+
+// The object factories that give vtkRenderWindow and its interactor their
+// OpenGL classes, registered when the module loads (what VTK's CMake
+// vtk_module_autoinit would arrange, done here so that the module builds the
+// same against VTK's package or against its headers alone).
+VTK_MODULE_INIT(vtkRenderingOpenGL2);
+VTK_MODULE_INIT(vtkInteractionStyle);
 
 namespace svo::app {
 namespace {

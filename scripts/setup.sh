@@ -2,7 +2,8 @@
 # svo setup on Debian 12: install dependencies, build, then run a job.
 #   bash scripts/setup.sh run    # build, then `svo voxelize` on the built-in scene
 #   bash scripts/setup.sh test   # build, then the whole test suite through ctest, then the fuzzers
-#                                #   (SVO_FUZZ_RUNS per target, default 600000; 0 skips them)
+#                                #   (SVO_FUZZ_RUNS per target, default 600000; 0 skips them;
+#                                #   SVO_CTEST_ARGS adds ctest arguments, such as -L vtk)
 # Idempotent: packages already present are skipped by apt, and the build is incremental.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,31 +24,49 @@ packages=(
 )
 # The fuzz targets need clang and its libFuzzer runtime.
 [ "$mode" = test ] && packages+=(clang-14 libclang-rt-14-dev)
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+# ParaView's Python (python3-paraview) conflicts with python3-vtk9, which
+# libvtk9-dev depends on. Beside it, `svo vtk` is built against VTK's headers
+# unpacked from libvtk9-dev (below) and libvtk9.1's libraries, which do not
+# conflict (cmake/svoVTK.cmake).
+beside_paraview=false
+if installed python3-paraview; then
+  beside_paraview=true
+  packages=("${packages[@]/#libvtk9-dev/libvtk9.1}")
+fi
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
 missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
+for p in "${packages[@]}"; do installed "$p" || missing+=("$p"); done
 if ((${#missing[@]})); then
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
   echo "setup: installing ${missing[*]}"
   $sudo apt-get update -q
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
+
+# unpack PACKAGE[=VERSION] FOLDER DEST: copies FOLDER of the package's files
+# into DEST, without installing the package.
+unpack() {
+  local tmp
+  tmp=$(mktemp -d)
+  (cd "$tmp" && { apt-get download -q "$1" || { $sudo apt-get update -q && apt-get download -q "$1"; }; } &&
+     dpkg-deb -x ./*.deb root)
+  $sudo mkdir -p "$3"
+  $sudo cp -r "$tmp/root/$2/." "$3/"
+  rm -rf "$tmp"
+}
 
 # Dear ImGui's GLFW and OpenGL 3 backends ship as sources under /usr/share/doc,
 # which minimal images leave out (dpkg path-exclude): unpack them from the
 # package into /usr/local/share/svo/imgui-backends then.
 if [ ! -f /usr/share/doc/libimgui-dev/examples/backends/imgui_impl_glfw.cpp ] &&
    [ ! -f /usr/local/share/svo/imgui-backends/imgui_impl_glfw.cpp ]; then
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  tmp=$(mktemp -d)
-  (cd "$tmp" && apt-get download -q libimgui-dev && dpkg-deb -x libimgui-dev_*.deb root)
-  $sudo mkdir -p /usr/local/share/svo/imgui-backends
-  $sudo cp "$tmp"/root/usr/share/doc/libimgui-dev/examples/backends/imgui_impl_{glfw,opengl3}.cpp \
-    /usr/local/share/svo/imgui-backends/
-  rm -rf "$tmp"
+  unpack libimgui-dev usr/share/doc/libimgui-dev/examples/backends /usr/local/share/svo/imgui-backends
+fi
+# VTK's headers beside ParaView, of the very version of the installed libraries.
+if $beside_paraview && [ ! -f /usr/local/share/svo/vtk-9.1/include/vtkVersionMacros.h ]; then
+  unpack "libvtk9-dev=$(dpkg-query -W -f='${Version}' libvtk9.1)" usr/include/vtk-9.1 \
+    /usr/local/share/svo/vtk-9.1/include
 fi
 
 # The layer diagram (docs/design.md) before anything is built: a dependency
@@ -66,7 +85,9 @@ case "$mode" in
   run)
     "$build/bin/svo" voxelize -o "${SVO_OUTPUT:-cornell_box.vdb}" ;;
   test)
-    ctest --test-dir "$build" --output-on-failure --timeout 1500
+    # SVO_CTEST_ARGS: extra ctest arguments, such as a label (-L vtk).
+    # shellcheck disable=SC2086
+    ctest --test-dir "$build" --output-on-failure --timeout 1500 ${SVO_CTEST_ARGS:-}
     runs=${SVO_FUZZ_RUNS:-600000}
     [ "$runs" = 0 ] || bash scripts/fuzz.sh "$runs" ;;
   build) ;;
