@@ -5,7 +5,8 @@
 # (../shared/peers/nanovdb: CUDA and headers only), then both tools convert the
 # same OBJ files at the same voxel size. Needs the bundle (scripts/bundle.sh),
 # bundle/meshes and bundle/peers.
-#   OUT=dir [RES="256 ... 4096"] [RUNS=5] [ARCH=sm_90] bash bench/gpu_host_nanovdb.sh
+#   OUT=dir [RES="256 ... 4096"] [RUNS=5] [ARCH=sm_90] [MESHES="bunny icosphere ..."] bash bench/gpu_host_nanovdb.sh
+# MESHES picks among bunny icosphere spot ogre rocker-arm fandisk (default: all six).
 set -uo pipefail
 source "$(dirname "$0")/gpu_host_env.sh"
 m2g="$work/m2g"
@@ -20,8 +21,15 @@ fi
 # Fill svo's program cache first (a fresh machine compiles every program once).
 "$bin/svo" voxelize bundle/meshes/stanford-bunny.obj -r 64 --udf -o "$work/warm.nvdb" >/dev/null 2>&1
 "$bin/svo" voxelize bundle/meshes/stanford-bunny.obj -r 64 -o "$work/warm.nvdb" >/dev/null 2>&1
+meshes=()
+for m in ${MESHES:-bunny icosphere spot ogre rocker-arm fandisk}; do
+  case "$m" in
+    bunny) meshes+=(bundle/meshes/stanford-bunny.obj) ;;
+    icosphere) meshes+=("$work/icosphere.obj") ;;
+    *) meshes+=("bundle/meshes/$m.obj") ;;
+  esac
+done
 gpu=$(nvidia-smi --query-gpu=name --format=csv,noheader | head -1)
 python3 bench/nanovdb_peers.py --svo "$bin/svo" --m2g "$m2g" --res ${RES:-256 512 1024 2048 4096} --runs "${RUNS:-5}" \
   --md "$out/nanovdb_peers.md" --json "$out/nanovdb_peers.jsonl" --title "svo NanoVDB output against MeshToGrid on $gpu" \
-  bundle/meshes/stanford-bunny.obj "$work/icosphere.obj" bundle/meshes/spot.obj bundle/meshes/ogre.obj \
-  bundle/meshes/rocker-arm.obj bundle/meshes/fandisk.obj 2>&1 | tee "$out/nanovdb_peers.txt"
+  "${meshes[@]}" 2>&1 | tee "$out/nanovdb_peers.txt"

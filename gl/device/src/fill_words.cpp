@@ -1,6 +1,5 @@
 #include "svo/gl/fill_words.h"
 
-#include <algorithm>
 #include <fmt/format.h>
 
 #include "svo/core/error.h"
@@ -29,9 +28,7 @@ void fillWords(const Context& context, const Buffer& buffer, uint32_t value, uin
     buffer.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
     const uint64_t words = bytes / 4; // under 2^32 (checked above): one 2D dispatch
     fill.set("uWords", uint32_t(words));
-    const uint64_t groups = (words + 255) / 256;
-    const uint64_t x = std::min<uint64_t>(groups, 65535);
-    fill.dispatch(uint32_t(x), uint32_t((groups + x - 1) / x));
+    fill.dispatchRows((words + 255) / 256);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT |
                     GL_COMMAND_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
     if (wasSize > 0)

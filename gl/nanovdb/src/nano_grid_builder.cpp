@@ -20,14 +20,6 @@ namespace {
 
 void passBarrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); }
 
-/// Dispatches @a groups work groups as a 2D grid (at most 65535 along x).
-void dispatchGroups(const Program& p, uint64_t groups)
-{
-    if (!groups) return;
-    const uint64_t x = std::min<uint64_t>(groups, 65535);
-    p.dispatch(uint32_t(x), uint32_t((groups + x - 1) / x));
-}
-
 uint32_t leafWords(NanoKind kind)
 {
     switch (kind) {
@@ -117,7 +109,7 @@ void sortAndRank(const Context& context, uint32_t n, uint32_t entries)
     const Program& keys = context.program(nanovdbShaders(), {"nano_keys.comp"});
     keys.set("uLeafCount", n);
     keys.set("uEntries", entries);
-    dispatchGroups(keys, (entries + 255) / 256);
+    keys.dispatchRows((entries + 255) / 256);
     passBarrier();
     const Program& sort = context.program(nanovdbShaders(), {"nano_sort.comp"});
     sort.set("uEntries", entries);
@@ -125,7 +117,7 @@ void sortAndRank(const Context& context, uint32_t n, uint32_t entries)
         for (uint32_t j = k >> 1; j > 0; j >>= 1) {
             sort.set("uK", k);
             sort.set("uJ", j);
-            dispatchGroups(sort, (entries + 255) / 256);
+            sort.dispatchRows((entries + 255) / 256);
             passBarrier();
         }
     const Program& scan = context.program(nanovdbShaders(), {"nano_scan.comp"});
@@ -151,8 +143,8 @@ void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bo
         p->set("uHasActive", active && !hasValues ? 1u : 0u);
         p->set("uActive", active.value_or(background));
     }
-    dispatchGroups(leaves, (uint64_t(n) + 63) / 64);
-    if (kind != NanoKind::Mask) dispatchGroups(values, (16 * uint64_t(n) + 255) / 256); // masks hold no values
+    leaves.dispatchRows((uint64_t(n) + 63) / 64);
+    if (kind != NanoKind::Mask) values.dispatchRows((16 * uint64_t(n) + 255) / 256); // masks hold no values
     passBarrier();
     const Program& internal = context.program(nanovdbShaders(), {"nano_internal.comp"});
     internal.set("uLeafCount", n);
@@ -167,7 +159,7 @@ void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bo
         internal.set("uChildWords", upper ? gpu::kNanoLowerWords : leafWords(kind));
         internal.set("uStatsAt", upper ? n + f.nodes[1] : n);
         internal.set("uChildStatsAt", upper ? n : 0u);
-        dispatchGroups(internal, f.nodes[1 + upper]);
+        internal.dispatchRows(f.nodes[1 + upper]);
         passBarrier();
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -341,7 +333,7 @@ void checksumOnGpu(const Context& context, NanoKind kind, const NanoTreeFacts& f
             crc.set("uOutAt", last ? sumAt : outAt);
             crc.set("uLast", last ? 1u : 0u);
             const uint64_t blocks = uint64_t(count) * plan.blocks[k];
-            dispatchGroups(crc, (blocks * pieces + 63) / 64);
+            crc.dispatchRows((blocks * pieces + 63) / 64);
             passBarrier();
             inAt = outAt;
             outAt += uint32_t(blocks);
@@ -354,7 +346,7 @@ void checksumOnGpu(const Context& context, NanoKind kind, const NanoTreeFacts& f
     stats.readBulk(0, uint64_t(sumAt) * 4, nodeCrcs.data());
     const uint64_t tilesAt = head.size(), rootEnd = f.at[2];
     std::vector<uint8_t> tiles(rootEnd - tilesAt);
-    grid.readBulk(tilesAt, tiles.size(), tiles.data()); // not read(): on the H200 that took 0.5 s from a 747 MB grid
+    grid.read(tilesAt, tiles.size(), tiles.data());
     const uint32_t headCrc = crc32Of(tiles.data(), tiles.size(), crc32Of(head.data() + 16, head.size() - 16));
     const std::vector<std::uint_fast32_t> sums(nodeCrcs.begin(), nodeCrcs.end());
     const uint64_t checksum = uint64_t(crc32Of(sums.data(), sums.size() * sizeof(std::uint_fast32_t))) << 32 | headCrc;

@@ -10,7 +10,7 @@
 namespace svo::gl {
 
 /// @brief An immutable-storage buffer (glNamedBufferStorage). Calls need a
-/// current Context; only the constructor and readBulk() check for errors.
+/// current Context; only the constructor and the reads check for errors.
 class Buffer {
 public:
     /// @brief An empty buffer with no GL name.
@@ -32,11 +32,13 @@ public:
     /// @brief Binds the buffer to @a target (GL_DISPATCH_INDIRECT_BUFFER, ...).
     void bind(GLenum target) const { glBindBuffer(target, h_.get()); }
     /// @brief Copies @a bytes from byte @a offset into @a out, waiting for the
-    /// GPU: for small reads (counters), through glGetNamedBufferSubData.
-    void read(uint64_t offset, uint64_t bytes, void* out) const
-    {
-        glGetNamedBufferSubData(h_.get(), GLintptr(offset), GLsizeiptr(bytes), out);
-    }
+    /// GPU: for small reads (counters), through glGetNamedBufferSubData; from
+    /// a large buffer through readBulk() instead, since some drivers read a
+    /// few bytes of a large buffer as slowly as the whole of it
+    /// (docs/design.md, "Fresh memory and readbacks").
+    /// @throw svo::OutOfMemory or svo::DeviceError as readBulk(), from a
+    ///        large buffer only
+    void read(uint64_t offset, uint64_t bytes, void* out) const;
     /// @brief Copies @a bytes from byte @a offset into @a out, for bulk reads:
     /// a GPU copy into a host-visible staging buffer, then a mapped memcpy, in
     /// chunks of at most 64 MiB. Some drivers serve glGetNamedBufferSubData

@@ -97,6 +97,17 @@ public:
         use();
         glDispatchCompute(x, y, 1);
     }
+    /// @brief Dispatches @a groups work groups, as many rows of up to 65535
+    /// along x as they need (the most one dimension takes); the shader
+    /// flattens them as gl_WorkGroupID.x + gl_NumWorkGroups.x *
+    /// gl_WorkGroupID.y and skips the ids of the last row past @a groups.
+    /// Nothing runs for 0.
+    void dispatchRows(uint64_t groups) const
+    {
+        if (!groups) return;
+        const uint64_t x = groups < 65535 ? groups : 65535;
+        dispatch(uint32_t(x), uint32_t((groups + x - 1) / x));
+    }
     /// @brief Dispatches a compute program with group counts read on the GPU
     /// from @a args at byte @a offset (glDispatchComputeIndirect).
     void dispatchIndirect(const Buffer& args, uint64_t offset) const
