@@ -7,6 +7,7 @@
 // outside it.
 #include <gtest/gtest.h>
 #include <map>
+#include <nanovdb/NanoVDB.h>
 #include <openvdb/openvdb.h>
 
 #include "gl_backend.h"
@@ -274,6 +275,61 @@ TEST(RegionsTiles, ABudgetTheDeviceCannotAllocateIsTiledNotRefused)
         const DriverRefusesBuffersPast driver(16); // not even the mesh
         EXPECT_THROW(v.voxelize(mesh, grid, o), OutOfMemory);
     }
+}
+
+/// SVO_GL_MAX_STORAGE_BLOCK set for one scope: a driver whose shaders address
+/// no more than `bytes` of one buffer (GL_MAX_SHADER_STORAGE_BLOCK_SIZE).
+struct ShadersAddressNoMoreThan {
+    explicit ShadersAddressNoMoreThan(uint64_t bytes)
+    {
+        setenv("SVO_GL_MAX_STORAGE_BLOCK", std::to_string(bytes).c_str(), 1);
+    }
+    ~ShadersAddressNoMoreThan() { unsetenv("SVO_GL_MAX_STORAGE_BLOCK"); }
+};
+
+// Past what one shader buffer holds (the 4096³ bunny's band on an H200),
+// level sets, UDFs and solids are computed in regions with no budget given:
+// the whole grid's result, value for value; the NanoVDB calls too, with a
+// warning that says so.
+TEST(RegionsTiles, FieldsPastOneShaderBufferAreCutIntoRegions)
+{
+    Voxelizer v;
+    const TriangleMesh mesh = holedSphere(); // open: winding-number signs
+    const GridSpec grid = makeGrid(mesh, GridRequest{48, 0});
+    VoxelizeStats stats;
+    const VoxelizeOptions o = onGl(&stats);
+    LevelSetOptions udf;
+    udf.unsignedDistance = true;
+    const auto wholeSdf = v.levelSet(mesh, grid, {}, o);
+    const auto wholeUdf = v.levelSet(mesh, grid, udf, o);
+    const auto wholeSolid = v.solid(mesh, grid, o);
+    ASSERT_EQ(stats.tiles, 1u);
+    const IndexBox all{{grid.anchor[0] - 16, grid.anchor[1] - 16, grid.anchor[2] - 16},
+                       {grid.anchor[0] + 72, grid.anchor[1] + 72, grid.anchor[2] + 72}};
+    const ShadersAddressNoMoreThan driver(64 << 10); // 32 bricks of distances; the band has hundreds
+    expectSameAsClipped(*wholeSdf.front(), *v.levelSet(mesh, grid, {}, o).front(), all);
+    EXPECT_GE(stats.tiles, 2u) << "the limit cut the grid";
+    expectSameAsClipped(*wholeUdf.front(), *v.levelSet(mesh, grid, udf, o).front(), all);
+    EXPECT_GE(stats.tiles, 2u);
+    expectSameAsClipped(*wholeSolid, *v.solid(mesh, grid, o), all);
+    EXPECT_GE(stats.tiles, 2u);
+
+    const auto nano = v.levelSetNanoVdb(mesh, grid, udf, o);
+    EXPECT_GE(stats.tiles, 2u);
+    ASSERT_EQ(stats.warnings.size(), 1u);
+    EXPECT_NE(stats.warnings.front().find("regions"), std::string::npos) << stats.warnings.front();
+    const auto* distances = nano.front().grid<float>();
+    ASSERT_NE(distances, nullptr);
+    const auto& want = static_cast<const openvdb::FloatGrid&>(*wholeUdf.front());
+    EXPECT_EQ(distances->activeVoxelCount(), want.activeVoxelCount());
+    const auto acc = distances->getAccessor();
+    uint64_t differ = 0;
+    for (auto it = want.cbeginValueOn(); it; ++it) {
+        const openvdb::Coord c = it.getCoord();
+        const nanovdb::Coord n(c.x(), c.y(), c.z());
+        differ += !acc.isActive(n) || acc.getValue(n) != *it;
+    }
+    EXPECT_EQ(differ, 0u) << "voxels of the NanoVDB grid that are not the whole grid's";
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Regions, ::testing::Values(Backend::Cpu, Backend::Raster, Backend::Compute),

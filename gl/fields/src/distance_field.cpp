@@ -143,7 +143,8 @@ FieldItems fieldItems(const std::vector<Vec3d>& local, const TriangleMesh& mesh,
 }
 
 /// Refuses work no pass holds, and arrays no shader buffer holds
-/// (Context::shaderBufferLimit): refused, never cut short.
+/// (Context::shaderBufferLimit): refused, never cut short; the band's arrays
+/// as a BufferLimit, since a smaller region of the grid fits.
 void checkFieldLimits(const Context& context, const TriangleMesh& mesh, const FieldRequest& request,
                       const FieldItems& w)
 {
@@ -159,10 +160,17 @@ void checkFieldLimits(const Context& context, const TriangleMesh& mesh, const Fi
                                       "grid or a narrower band",
                                       nb));
     const uint64_t block = context.shaderBufferLimit();
-    const uint64_t largest = std::max({distances ? nb * 512 * 4 : 0, request.crossings ? nb * sizeof(Brick) : 0,
-                                       uint64_t(mesh.positions.size()) * sizeof(Vec3d)});
-    if (block && largest > block)
-        throw DeviceError(fmt::format("the band's {} bricks need {} bytes in one GPU buffer, more than the {} a shader "
+    if (!block) return;
+    const uint64_t corners = uint64_t(mesh.positions.size()) * sizeof(Vec3d);
+    if (corners > block)
+        throw DeviceError(fmt::format("the mesh's {} corners need {} bytes in one GPU buffer, more than the {} a shader "
+                                      "addresses",
+                                      mesh.positions.size(), corners, block));
+    // The band's arrays shrink with the grid: a BufferLimit, which the front
+    // door answers with smaller regions.
+    const uint64_t largest = std::max(distances ? nb * 512 * 4 : 0, request.crossings ? nb * sizeof(Brick) : 0);
+    if (largest > block)
+        throw BufferLimit(fmt::format("the band's {} bricks need {} bytes in one GPU buffer, more than the {} a shader "
                                       "addresses; use a coarser grid or a narrower band",
                                       nb, largest, block));
 }

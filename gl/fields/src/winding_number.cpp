@@ -59,10 +59,16 @@ WindingResult computeWinding(Context& context, const GridSpec& grid, const Windi
     // The results, then one word a walk sets when it stopped at the driver's loop limit.
     const uint64_t resultBytes = std::max<uint64_t>(std::max(nb * sizeof(Brick), request.perBrick ? boxBricks * 4 : 0), 4);
     const uint64_t outBytes = resultBytes + 4;
-    // One shader buffer holds each array (Context::shaderBufferLimit): refused, never cut short.
+    // One shader buffer holds each array (Context::shaderBufferLimit): refused,
+    // never cut short. The grid's brick centres do not shrink in a region; the
+    // band's bricks do (a BufferLimit, which the front door answers with regions).
     const uint64_t block = context.shaderBufferLimit();
+    if (block && request.perBrick && boxBricks * 4 + 4 > block)
+        throw DeviceError(fmt::format("winding numbers at the grid's {} brick centres need {} bytes in one GPU buffer, "
+                                      "more than the {} a shader addresses; use a coarser grid",
+                                      boxBricks, boxBricks * 4 + 4, block));
     if (block && std::max(outBytes, brickWords.size() * 4) > block)
-        throw DeviceError(fmt::format("winding numbers for {} bricks need {} bytes in one GPU buffer, more than the {} a "
+        throw BufferLimit(fmt::format("winding numbers for {} bricks need {} bytes in one GPU buffer, more than the {} a "
                                       "shader addresses; use a coarser grid",
                                       nb, std::max(outBytes, brickWords.size() * 4), block));
     const Buffer& out = context.scratch("winding output", outBytes);

@@ -72,12 +72,15 @@ openvdb::GridPtrVec inRegions(Run& run, const IndexBox& box, uint32_t& tiles)
 }
 
 /// `run` on the call's region (none: the whole grid); past a GPU memory
-/// budget, in regions of `box` (or of the call's region) that fit.
+/// budget, or past what one shader buffer holds, in regions of `box` (or of
+/// the call's region) that fit.
 template <typename Run>
 openvdb::GridPtrVec withinBudget(Run&& run, const VoxelizeOptions& options, const IndexBox& box, VoxelizeStats& stats)
 {
     try {
         return run(options.region);
+    } catch (const BufferLimit&) {
+        // A driver's per-buffer limit: smaller regions fit, budget or not.
     } catch (const OutOfMemory&) {
         if (!options.gpuMemory) throw; // only a budget the grid can be cut for
     }

@@ -37,6 +37,18 @@ std::vector<vdb::NanoHandle> converted(const openvdb::GridPtrVec& grids)
     return out;
 }
 
+/// Where one shader buffer cannot hold the whole grid's field (BufferLimit),
+/// the NanoVDB calls take the OpenVDB route, which cuts the grid into regions
+/// (level_set.cpp), then convert; the warning says so.
+void warnPastOneBuffer(const VoxelizeOptions& options)
+{
+    if (options.stats)
+        options.stats->warnings.push_back(
+            fmt::format("one GPU buffer does not hold the whole grid's field: computed in {} regions, joined, and laid "
+                        "out as NanoVDB on the host",
+                        options.stats->tiles));
+}
+
 /// The bracket of levelSetNanoVdb and solidNanoVdb: the checks (the same
 /// transform rule as levelSet()), the interrupter, then `make(checkpoint,
 /// stats)` (the field and its grids, its stages recorded), the counts of
@@ -257,7 +269,7 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
                                                         const LevelSetOptions& ls, const VoxelizeOptions& options)
 {
     if (viaOpenVdb(options)) return converted(levelSet(mesh, grid, ls, options));
-    return nanoCall(mesh, grid, options, "svo: computing a distance field", [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+    auto make = [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
         if (gl::unsignedFieldOnDevice(device_, ls, options))
             return unsignedGridsOnGpu(device_, mesh, grid, ls, options, checkpoint, stats);
         const DistanceBricks field = gl::levelSetBricks(device_, mesh, grid, ls, options, checkpoint, stats);
@@ -266,14 +278,22 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
         std::vector<vdb::NanoHandle> out = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
         stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
         return out;
-    });
+    };
+    try {
+        return nanoCall(mesh, grid, options, "svo: computing a distance field", make);
+    } catch (const BufferLimit&) {
+        std::vector<vdb::NanoHandle> out = converted(levelSet(mesh, grid, ls, options));
+        warnPastOneBuffer(options);
+        return out;
+    }
 }
 
 vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                                         const SignOptions& sign, GridOptions::Topology topology)
 {
-    if (viaOpenVdb(options)) return vdb::toNanoVdb(vdb::withTopology(solid(mesh, grid, options, sign), topology));
-    auto out = nanoCall(mesh, grid, options, "svo: filling a solid", [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+    auto viaRegions = [&] { return vdb::toNanoVdb(vdb::withTopology(solid(mesh, grid, options, sign), topology)); };
+    if (viaOpenVdb(options)) return viaRegions();
+    auto make = [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
         const SolidBricks bricks = gl::solidBricks(device_, mesh, grid, options, sign, checkpoint, stats);
         checkpoint(0.8, "nanovdb grid");
         const auto t0 = Clock::now();
@@ -281,8 +301,14 @@ vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec
         grids.push_back(vdb::solidNanoGrid(bricks, grid, topology));
         stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
         return grids;
-    });
-    return std::move(out.front());
+    };
+    try {
+        return std::move(nanoCall(mesh, grid, options, "svo: filling a solid", make).front());
+    } catch (const BufferLimit&) {
+        vdb::NanoHandle out = viaRegions();
+        warnPastOneBuffer(options);
+        return out;
+    }
 }
 
 void Voxelizer::unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,

@@ -20,6 +20,7 @@
 /// | IoError      | a file cannot be read, is damaged, cannot be written  | OSError           |
 /// | DeviceError  | no usable GPU or driver, a GL failure, a GPU limit    | RuntimeError      |
 /// | OutOfMemory  | host or GPU memory (or the GPU budget) is exhausted   | MemoryError       |
+/// | BufferLimit  | (an OutOfMemory) one GPU buffer cannot hold an array  | MemoryError       |
 /// | Unsupported  | a request svo has no method for, found while working  | NotImplementedError |
 /// | Interrupted  | the caller's interrupter asked to stop                | KeyboardInterrupt |
 #include <functional>
@@ -148,6 +149,15 @@ public:
 class OutOfMemory : public Error {
 public:
     using Error::Error;
+};
+
+/// @brief One GPU buffer cannot hold an array of the work, past the bytes a
+/// shader addresses (GL_MAX_SHADER_STORAGE_BLOCK_SIZE) though memory may
+/// remain: the same work cut into smaller regions fits. An OutOfMemory, so a
+/// caller that does not cut its work handles both alike.
+class BufferLimit : public OutOfMemory {
+public:
+    using OutOfMemory::OutOfMemory;
 };
 
 /// @brief A well-formed request svo has no method for, found while the work

@@ -140,7 +140,8 @@ public:
     /// reports a small limit but addresses whole buffers (docs/design.md says
     /// what was measured).
     /// @return info().maxStorageBlock, or 0 (no limit but the buffer's) on a
-    ///         CPU rasterizer
+    ///         CPU rasterizer; SVO_GL_MAX_STORAGE_BLOCK (bytes), where set,
+    ///         lowers it (for tests)
     uint64_t shaderBufferLimit() const;
 
 private:
