@@ -25,14 +25,16 @@ Command line: ``python3 -m svo.distributed voxelize MESH -r N [--sdf|--udf|--fil
 
 Not yet (issue 43): attributes (per-voxel arrays to join), level sets and
 solids partitioned to tiles (their signs need the whole mesh, or whole
-columns), the estimated time left in progress, the city benchmark.
+columns), the city benchmark.
 read_tiles joins a tile folder back into one grid.
 """
 import argparse
 import json
 import math
 import os
+import inspect
 import sys
+import time
 import warnings
 
 import numpy as np
@@ -486,7 +488,10 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
     voxels per tile side, a multiple of 8, for a lattice of equal tiles
     (default: tiles balanced by the surface they hold, plan_tiles, from a
     lattice of default_tile).
-    progress(done, total) is called as tiles finish.
+    progress(done, total) is called as tiles finish; a callback that takes a
+    third argument also gets the estimated seconds left (None until a tile
+    has finished: the time so far over the tiles done, times the tiles left;
+    tiles are planned to hold equal surface, so they take about as long).
 
     partition: for a surface or an unsigned field of arrays, each tile task
     gets only the triangles near its box (cut in parallel on the workers);
@@ -571,6 +576,37 @@ def _killed_worker():
     return KilledWorker
 
 
+class _Progress:
+    """Calls progress(done, total[, seconds_left]) (see voxelize): the
+    estimate is the time since the tiles were submitted over the tiles done,
+    times the tiles left. Workers run tiles side by side, so that rate is
+    the cluster's, not one worker's."""
+
+    def __init__(self, callback, total):
+        self.callback, self.total, self.start = callback, total, time.monotonic()
+        self.with_time = callback is not None and _takes_three(callback)
+
+    def __call__(self, done):
+        if self.callback is None:
+            return
+        if not self.with_time:
+            self.callback(done, self.total)
+            return
+        elapsed = time.monotonic() - self.start
+        left = elapsed / done * (self.total - done) if done else None
+        self.callback(done, self.total, left)
+
+
+def _takes_three(callback):
+    """Whether callback takes a third positional argument."""
+    try:
+        parameters = inspect.signature(callback).parameters.values()
+    except (TypeError, ValueError):  # a builtin without a signature: the documented two
+        return False
+    positional = [p for p in parameters if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+    return len(positional) >= 3 or any(p.kind == p.VAR_POSITIONAL for p in parameters)
+
+
 def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, timeout=None):
     import queue
 
@@ -608,8 +644,8 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
         f.add_done_callback(finished.put)
     entries = []
     done = 0
-    if progress:
-        progress(done, len(boxes))
+    report = _Progress(progress, len(boxes))
+    report(done)
     try:
         # Joined as they arrive, so the client holds one tile's grid at a time
         # besides the result.
@@ -634,8 +670,7 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
             del result
             future.release()
             done += 1
-            if progress:
-                progress(done, len(boxes))
+            report(done)
     except BaseException:
         # One call for all: a failed tile (or Ctrl-C) stops the tiles still queued.
         client.cancel(futures)
@@ -876,10 +911,10 @@ def _main(argv=None):
 
     tty = sys.stderr.isatty()
 
-    def report(done, total):
+    def report(done, total, left):
         # A terminal gets one line rewritten; a log gets a line per update.
-        print(f"\rtiles {done}/{total}" if tty else f"tiles {done}/{total}", end="" if tty else "\n",
-              file=sys.stderr, flush=True)
+        line = f"tiles {done}/{total}" + (f", about {left:.0f} s left" if left is not None and done < total else "")
+        print(f"\r{line}\033[K" if tty else line, end="" if tty else "\n", file=sys.stderr, flush=True)
 
     from distributed import Client
 

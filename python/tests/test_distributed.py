@@ -2,6 +2,7 @@
 whole grid, voxel for voxel and value for value (inactive values too)."""
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -132,6 +133,18 @@ def test_tiles_joined_are_the_single_process_grid(client, voxelizer, shape, kind
     assert_same_grid(got, single(voxelizer, mesh, kind))
 
 
+def test_progress_with_a_third_argument_gets_the_time_left(client):
+    calls = []
+    svo.distributed.voxelize(icosphere(), client=client, tile=TILE, kind="udf", resolution=RESOLUTION,
+                             progress=lambda done, total, left: calls.append((done, total, left)))
+    total = calls[-1][1]
+    assert total >= 8 and [c[:2] for c in calls] == [(done, total) for done in range(total + 1)]
+    # None before any tile is done (nothing to estimate from), then the
+    # seconds left, none once all are done.
+    assert calls[0][2] is None and calls[-1][2] == 0.0
+    assert all(isinstance(left, float) and left >= 0.0 for _, _, left in calls[1:])
+
+
 @pytest.mark.parametrize("kind", KINDS)
 def test_a_mesh_file_every_worker_reads(client, voxelizer, city, kind):
     got = svo.distributed.voxelize(city, client=client, tile=24, kind=kind, resolution=RESOLUTION)
@@ -156,7 +169,10 @@ def test_the_command_line_writes_the_same_grid(voxelizer, tmp_path):
     assert r.returncode == 0, r.stderr
     lines = [line for line in r.stderr.splitlines() if line.startswith("tiles ")]
     total = int(lines[0].split("/")[1])
-    assert total >= 8 and lines == [f"tiles {done}/{total}" for done in range(total + 1)]  # not a tty: a line each
+    assert total >= 8 and len(lines) == total + 1  # not a tty: a line each
+    for done, line in enumerate(lines):  # the time left from the first tile done until the last
+        pattern = rf"tiles {done}/{total}" + (r", about \d+ s left" if 0 < done < total else "")
+        assert re.fullmatch(pattern, line), line
     grids, _ = pyopenvdb.readAll(str(out))
     assert len(grids) == 1
     written = grids[0]
