@@ -308,6 +308,29 @@ TEST_F(GpuLayout, FillWordsSetsTheWordsAskedAndKeepsBindingZero)
     checkGl("fillWords test");
 }
 
+TEST_F(GpuLayout, LentScratchIsReusedWhenGivenBackAndNeverShared)
+{
+    const char* name = "lent scratch test";
+    Buffer first = context_->lendScratch(name, 1000);
+    ASSERT_GE(first.bytes(), 1000u);
+    const GLuint id = first.id();
+    // While lent, the context holds none: a second lend is another buffer.
+    Buffer second = context_->lendScratch(name, 500);
+    EXPECT_NE(second.id(), id);
+    context_->returnScratch(name, std::move(first));
+    context_->returnScratch(name, std::move(second)); // smaller than the one held: freed
+    // Given back, it serves any size it holds, and the context holds it no more.
+    Buffer again = context_->lendScratch(name, 800);
+    EXPECT_EQ(again.id(), id);
+    EXPECT_EQ(context_->lendScratch(name, 10).id() == id, false);
+    context_->returnScratch(name, std::move(again));
+    // A larger request frees it and makes one of that size.
+    const Buffer larger = context_->lendScratch(name, 4000);
+    EXPECT_GE(larger.bytes(), 4000u);
+    context_->releaseScratch(name);
+    checkGl("lent scratch test");
+}
+
 TEST(ShaderSource, CyclesAndUnknownFilesAreErrors)
 {
     EXPECT_THROW(shaderSource("a.glsl", {{"a.glsl", "#include \"b.glsl\"\n"}, {"b.glsl", "#include \"a.glsl\"\n"}}),

@@ -523,6 +523,26 @@ const Buffer& Context::scratch(const char* what, uint64_t bytes) const
     return b;
 }
 
+Buffer Context::lendScratch(const char* what, uint64_t bytes) const
+{
+    const Scope scope(*this);
+    const auto held = impl_->scratch.find(what);
+    if (held != impl_->scratch.end()) {
+        Buffer b = std::move(held->second);
+        impl_->scratch.erase(held);
+        if (b.bytes() >= bytes && b.bytes() > 0) return b;
+    } // a smaller one is freed before the new one is made
+    return Buffer(what, std::max<uint64_t>(bytes, 1));
+}
+
+void Context::returnScratch(const char* what, Buffer&& buffer) const
+{
+    const Scope scope(*this);
+    Buffer& held = impl_->scratch[what];
+    if (buffer.bytes() > held.bytes()) held = std::move(buffer);
+    else buffer = Buffer();
+}
+
 void Context::releaseScratch() const
 {
     const Scope scope(*this);

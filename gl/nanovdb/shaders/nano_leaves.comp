@@ -1,9 +1,15 @@
 #version 450 core
-// Pass 4, an invocation per sorted leaf: the leaf's origin, bounding box,
-// flags, value mask and statistics, folded over its active voxels in bit
-// order as the CPU builder folds them; its statistics for its parent; the
-// active voxel count. (The values themselves: nano_values.comp.)
-layout(local_size_x = 64) in;
+// Pass 4, a work group per sorted leaf, 8 voxels an invocation: the leaf's
+// origin, bounding box, flags, value mask and statistics, folded over its
+// active voxels in bit order as the CPU builder folds them (an invocation
+// folds its 8, the group merges them in order: nano_stats.glsl); its
+// statistics for its parent; the active voxel count. (The values
+// themselves: nano_values.comp.) A group a leaf, not an invocation a leaf:
+// an invocation's loop over a whole leaf ran 8x slower on an H200 when the
+// leaves came in the band's hash order (each invocation of a warp reading
+// its own 2 KB, far from the others').
+#define NANO_GROUP 64
+layout(local_size_x = NANO_GROUP) in;
 #include "nano_common.glsl"
 #include "nano_stats.glsl"
 
@@ -16,22 +22,23 @@ uniform uint uActive;     // their value's bits
 
 void main()
 {
-    uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u + gl_GlobalInvocationID.x;
-    if (i >= uLeafCount) return;
-    uint leaf = inputLeaf(i), at = uLeafAt + i * uLeafWords, count = 0u;
+    uint i = groupIndex();
+    if (i >= uLeafCount) return; // the whole group: no barrier is left waiting
+    uint t = gl_LocalInvocationIndex, leaf = inputLeaf(i), at = uLeafAt + i * uLeafWords;
     ivec3 origin = ivec3(origins[3u * leaf], origins[3u * leaf + 1u], origins[3u * leaf + 2u]);
+    uint word = masks[leaf * 16u + (t >> 2u)];
+    if ((t & 3u) == 0u) grid[at + kNanoLeafValueMask + (t >> 2u)] = word;
     NodeStats s = emptyStats();
-    for (uint w = 0u; w < 16u; ++w) {
-        uint word = masks[leaf * 16u + w];
-        grid[at + kNanoLeafValueMask + w] = word;
-        count += bitCount(word);
-        for (uint bits = word; bits != 0u; bits &= bits - 1u) {
-            uint v = 32u * w + uint(findLSB(bits));
-            uint value = uHasValues != 0u ? values[leaf * 512u + v] : uHasActive != 0u ? uActive : uBackground;
-            ivec3 c = origin + ivec3(v >> 6u, (v >> 3u) & 7u, v & 7u);
-            s = merge(s, NodeStats(c, c, value, value));
-        }
+    for (uint bits = (word >> (8u * (t & 3u))) & 0xFFu; bits != 0u; bits &= bits - 1u) {
+        uint v = 8u * t + uint(findLSB(bits));
+        uint value = uHasValues != 0u ? values[leaf * 512u + v] : uHasActive != 0u ? uActive : uBackground;
+        ivec3 c = origin + ivec3(v >> 6u, (v >> 3u) & 7u, v & 7u);
+        s = merge(s, NodeStats(c, c, value, value));
     }
+    s = reduceGroup(s);
+    if (t != 0u) return;
+    uint count = 0u;
+    for (uint w = 0u; w < 16u; ++w) count += bitCount(masks[leaf * 16u + w]);
     storeStats(i, s);
     uint before = atomicAdd(counters[kNanoCountVoxelsLow], count);
     if (before + count < before) atomicAdd(counters[kNanoCountVoxelsHigh], 1u);

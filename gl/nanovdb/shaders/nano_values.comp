@@ -1,5 +1,5 @@
 #version 450 core
-// Pass 4b, an invocation per 32 voxels of a sorted leaf: Float and Int32
+// Pass 4b, 16 invocations per sorted leaf, 32 voxels each: Float and Int32
 // leaves' values (given; else uActive where active, when set, and the background); Boolean leaves' value bits
 // (given values that are not 0, else the active voxels).
 layout(local_size_x = 256) in;
@@ -28,9 +28,12 @@ void main()
         grid[at + kNanoLeafBoolValues + w] = bits;
         return;
     }
-    uint on = uHasActive != 0u ? masks[leaf * 16u + w] : 0u;
-    for (uint b = 0u; b < 32u; ++b)
-        grid[at + kNanoLeafValues + 32u * w + b] = uHasValues != 0u                 ? values[leaf * 512u + 32u * w + b]
-                                                   : (on & (1u << b)) != 0u ? uActive
-                                                                            : uBackground;
+    // Word k = 16 b + w: the 16 invocations of a leaf read and write 16
+    // consecutive words at each step (one run of 64 bytes, not 16 runs 128
+    // bytes apart).
+    for (uint b = 0u; b < 32u; ++b) {
+        uint k = 16u * b + w;
+        bool on = uHasActive != 0u && (masks[leaf * 16u + (k >> 5u)] & (1u << (k & 31u))) != 0u;
+        grid[at + kNanoLeafValues + k] = uHasValues != 0u ? values[leaf * 512u + k] : on ? uActive : uBackground;
+    }
 }

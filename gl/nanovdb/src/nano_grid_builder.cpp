@@ -143,7 +143,7 @@ void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bo
         p->set("uHasActive", active && !hasValues ? 1u : 0u);
         p->set("uActive", active.value_or(background));
     }
-    leaves.dispatchRows((uint64_t(n) + 63) / 64);
+    leaves.dispatchRows(n); // a group a leaf
     if (kind != NanoKind::Mask) values.dispatchRows((16 * uint64_t(n) + 255) / 256); // masks hold no values
     passBarrier();
     const Program& internal = context.program(nanovdbShaders(), {"nano_internal.comp"});
@@ -385,7 +385,7 @@ NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const Nano
     f.nodes[2] = counters[gpu::kNanoCountUpper];
     layOut(f, kind);
     checkBufferLimit(context, f.gridBytes, in.count);
-    NanoGridBuffer out{Buffer("NanoVDB grid", f.gridBytes), f.gridBytes, f.nodes, {}};
+    NanoGridBuffer out{context.lendScratch(kNanoGridScratch, f.gridBytes), f.gridBytes, f.nodes, {}};
     fillWords(context, out.grid, 0, f.gridBytes); // not a clear: see fill_words.h
     out.grid.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_GRID);
     fillNodes(context, kind, f, d.values != nullptr, backgroundWord(kind, header.background), in.activeWord);

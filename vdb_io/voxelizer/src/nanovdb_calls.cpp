@@ -113,6 +113,7 @@ vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const 
     t0 = Clock::now();
     nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(built.bytes);
     built.grid.readBulk(0, built.bytes, buffer.data());
+    context.returnScratch(gl::kNanoGridScratch, std::move(built.grid)); // the next grid's memory
     vdb::NanoHandle out(std::move(buffer));
     stats.stages.push_back({"nanovdb readback", -1, msSince(t0)});
     t0 = Clock::now();
@@ -358,6 +359,7 @@ void Voxelizer::unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const Gri
     grids.front().grid.readBulk(0, sizeof head, head); // read() can copy the whole grid on some drivers
     stats.voxels = reinterpret_cast<const nanovdb::NanoGrid<float>*>(head)->activeVoxelCount();
     use(grids);
+    for (gl::NanoGridBuffer& g : grids) context.returnScratch(gl::kNanoGridScratch, std::move(g.grid));
     checkpoint(1.0, "finish");
     if (options.stats) *options.stats = std::move(stats);
 }

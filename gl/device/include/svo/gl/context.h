@@ -120,6 +120,20 @@ public:
     /// @param what names the buffer, and so which scratch buffer is meant
     /// @throw svo::OutOfMemory or svo::DeviceError as Buffer's constructor
     const Buffer& scratch(const char* what, uint64_t bytes) const;
+    /// @brief The scratch buffer named @a what, taken out of the context for
+    /// a result the caller owns for a while (a grid it reads back, or hands
+    /// on): when it holds at least @a bytes it is reused, else a new buffer
+    /// of @a bytes is made. Give it back with returnScratch(). Reused memory
+    /// is what makes a warm call cheap: a driver may commit a new buffer's
+    /// memory only when it is first written, at a cost per page.
+    /// @param what  names the buffer, as for scratch()
+    /// @param bytes the least size
+    /// @return a buffer of at least @a bytes; contents undefined
+    /// @throw svo::OutOfMemory or svo::DeviceError as Buffer's constructor
+    Buffer lendScratch(const char* what, uint64_t bytes) const;
+    /// @brief Keeps @a buffer as the scratch buffer named @a what when it is
+    /// larger than the one held (or none is), else frees it.
+    void returnScratch(const char* what, Buffer&& buffer) const;
     /// @brief Frees every scratch buffer (call inside a Scope, or it makes one).
     void releaseScratch() const;
     /// @brief Frees the scratch buffer named @a what, if there is one: a large

@@ -72,6 +72,11 @@ struct NanoGridHeader {
     bool checksum = false;
 };
 
+/// @brief The context's scratch buffer (Context::lendScratch) that a grid
+/// of leaves is laid out in. A caller done with a grid gives its buffer
+/// back (Context::returnScratch) so that the next grid reuses its memory.
+inline constexpr const char* kNanoGridScratch = "nanovdb grid";
+
 /// @brief A grid on the device, and its bytes on the host when asked for.
 /// Like every gl::Buffer, `grid` is used and destroyed with its context
 /// current (inside a Context::Scope).
@@ -96,7 +101,8 @@ uint32_t backgroundWord(NanoKind kind, double background);
 /// @param header     name, class, transform and background
 /// @param hostCopy   also read the grid back into NanoGridBuffer::host
 /// @return the grid, with every byte svo::vdb::buildNanoGrid writes for the
-///         same leaves, the checksum only when the header asks (see the file comment)
+///         same leaves, the checksum only when the header asks (see the file
+///         comment); a grid of leaves in the buffer lent as kNanoGridScratch
 /// @throw svo::InvalidInput for a leaf origin that is not a multiple of 8, a
 ///        repeated leaf, a name of 256 bytes or more, or inconsistent leaves
 ///        (missing masks, device buffers too small)
