@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "svo/core/default_scene.h"
+#include "svo/core/error.h"
 #include "svo/core/mesh_io.h"
 #include "svo/gl/buffer.h"
 #include "svo/gl/device.h"
@@ -99,7 +100,7 @@ uint64_t surfaceOnGpu(const svo::gl::Context& context, const svo::Octree& o)
 
 } // namespace
 
-int main(int argc, char** argv)
+int run(int argc, char** argv)
 {
     using namespace svo;
     std::string mesh = "icosphere";
@@ -114,6 +115,11 @@ int main(int argc, char** argv)
             runs = std::atoi(argv[++i]);
         } else if (a == "--backend" && i + 1 < argc) {
             backend = std::string(argv[++i]) == "gpu" ? Backend::Compute : Backend::Cpu;
+        } else if (a == "-h" || a == "--help") {
+            fmt::print("usage: svo-bench-nanovdb-gpu MESH|icosphere [--res 128 256] [--runs 5] [--backend cpu|gpu]\n");
+            return 0;
+        } else if (a[0] == '-') {
+            throw svo::InvalidInput(fmt::format("unknown option {} (see --help)", a));
         } else {
             mesh = a;
         }
@@ -238,4 +244,14 @@ int main(int argc, char** argv)
         fmt::print("| {} | {} | {} | {:.1f} | {:.1f} | {:.1f} |\n", mesh, n, leaves, double(bytes) / 1e6, before, now);
     }
     return 0;
+}
+
+int main(int argc, char** argv)
+{
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) { // one line, not std::terminate
+        fmt::print(stderr, "svo-bench-nanovdb-gpu: {}\n", e.what());
+        return 1;
+    }
 }

@@ -63,10 +63,17 @@ if [ ! -f /usr/share/doc/libimgui-dev/examples/backends/imgui_impl_glfw.cpp ] &&
    [ ! -f /usr/local/share/svo/imgui-backends/imgui_impl_glfw.cpp ]; then
   unpack libimgui-dev usr/share/doc/libimgui-dev/examples/backends /usr/local/share/svo/imgui-backends
 fi
-# VTK's headers beside ParaView, of the very version of the installed libraries.
-if $beside_paraview && [ ! -f /usr/local/share/svo/vtk-9.1/include/vtkVersionMacros.h ]; then
-  unpack "libvtk9-dev=$(dpkg-query -W -f='${Version}' libvtk9.1)" usr/include/vtk-9.1 \
-    /usr/local/share/svo/vtk-9.1/include
+# VTK's headers beside ParaView, of the very version of the installed
+# libraries: unpacked again when libvtk9.1 has changed since (the version
+# they came with is kept beside them).
+if $beside_paraview; then
+  vtk_version=$(dpkg-query -W -f='${Version}' libvtk9.1)
+  vtk_headers=/usr/local/share/svo/vtk-9.1
+  if [ "$(cat "$vtk_headers/version" 2>/dev/null)" != "$vtk_version" ]; then
+    $sudo rm -rf "$vtk_headers/include"
+    unpack "libvtk9-dev=$vtk_version" usr/include/vtk-9.1 "$vtk_headers/include"
+    echo "$vtk_version" | $sudo tee "$vtk_headers/version" >/dev/null
+  fi
 fi
 
 # The layer diagram (docs/design.md) before anything is built: a dependency
