@@ -279,8 +279,9 @@ struct FieldPasses {
             context.program(fieldsShaders(), {smallTriangles ? "band_distance_columns.comp" : "band_distance.comp"});
         program.set("uBand", float(request.band));
         program.set("uPass", 0u);
-        // band_distance.comp: 64 threads, an item's thread loops 1 + 32
-        // (triangleOfItem's search) + 8 (its column) times and probes the
+        // band_distance.comp: 64 threads, an item's thread loops 1 + 64
+        // (triangleOfItemFrom's gallop and search; the run's first item
+        // searches all triangles, 32) + 8 (its column) times and probes the
         // brick table once, a short probe at half load. The columns: 8
         // threads (one SIMD vector of llvmpipe, which runs a workgroup's
         // vectors one after another, each through the whole loop), an item's
