@@ -322,7 +322,7 @@ TEST_F(GpuLayout, LentScratchIsReusedWhenGivenBackAndNeverShared)
     // Given back, it serves any size it holds, and the context holds it no more.
     Buffer again = context_->lendScratch(name, 800);
     EXPECT_EQ(again.id(), id);
-    EXPECT_EQ(context_->lendScratch(name, 10).id() == id, false);
+    EXPECT_NE(context_->lendScratch(name, 10).id(), id);
     context_->returnScratch(name, std::move(again));
     // A larger request frees it and makes one of that size.
     const Buffer larger = context_->lendScratch(name, 4000);
