@@ -12,6 +12,7 @@ import pyopenvdb
 import pytest
 
 distributed = pytest.importorskip("distributed")  # CI installs python3-distributed (scripts/setup.sh)
+import dask  # noqa: E402  (comes with distributed)
 
 import svo  # noqa: E402
 import svo.distributed  # noqa: E402
@@ -358,32 +359,24 @@ KILL_WORKER_TIMEOUT = 60
 KILL_TEST_LIMIT = 420
 
 
-@pytest.mark.parametrize("mesh_as, kind, workers", [("arrays", "surface", 2), ("arrays", "sdf", 2), ("file", "sdf", 2),
-                                                    ("arrays", "sdf", 1), ("arrays", "surface", 1)])
-def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, capsys, mesh_as, kind, workers):
-    """The first tile task to run kills its worker process (SIGKILL, no
-    clean-up) while the task is on the worker's thread; the scheduler gives
-    the lost task to a worker again and the job's result is unchanged: one
-    grid from arrays, per-tile files from a mesh file. With one worker the
-    mesh's only copy (a task's result) dies with it: Dask must make it again
-    (before svo placed its tasks, Dask 2022.12's queue stranded the tiles
-    there and the job waited forever: issue 43)."""
-    import faulthandler
+def tile_task_killer(marker, once):
+    """A worker plugin that kills its worker process (SIGKILL, no clean-up)
+    while a tile task is on the worker's thread: the job's first tile task
+    only (once), or every one. Each kill appends "key pid" to `marker`. The
+    class is made inside this function so that Dask pickles it by value: the
+    workers cannot import this file."""
 
-    marker = tmp_path / "killed"
+    class KillInTileTask(distributed.WorkerPlugin):
+        name = "svo-test-kill"
 
-    class KillOnce(distributed.WorkerPlugin):
-        # Defined here, so that Dask pickles it by value: the workers cannot import this file.
-        name = "svo-test-kill-once"
-
-        def __init__(self, marker):
-            self.marker = str(marker)
+        def __init__(self, marker, once):
+            self.marker, self.once = str(marker), once
 
         def transition(self, key, start, finish, **kwargs):
             if finish != "executing" or not str(key).startswith("_tile_task"):
                 return
-            try:  # the first tile task of the job, on whichever worker; never again
-                fd = os.open(self.marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+            try:  # once: the first tile task of the job, on whichever worker; never again
+                fd = os.open(self.marker, os.O_CREAT | os.O_WRONLY | (os.O_EXCL if self.once else os.O_APPEND))
             except FileExistsError:
                 return
             import signal
@@ -397,13 +390,29 @@ def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, capsys, 
                         while frame is not None and frame.f_code.co_name != "_tile_task":
                             frame = frame.f_back
                         if frame is not None:  # the task's thread is inside _tile_task
-                            os.write(fd, f"{key} {os.getpid()}".encode())
+                            os.write(fd, f"{key} {os.getpid()}\n".encode())
                             os.close(fd)
                             os.kill(os.getpid(), signal.SIGKILL)
                     time.sleep(0.001)
 
             threading.Thread(target=kill_in_task, daemon=True).start()
 
+    return KillInTileTask(marker, once)
+
+
+@pytest.mark.parametrize("mesh_as, kind, workers", [("arrays", "surface", 2), ("arrays", "sdf", 2), ("file", "sdf", 2),
+                                                    ("arrays", "sdf", 1), ("arrays", "surface", 1)])
+def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, capsys, mesh_as, kind, workers):
+    """The first tile task to run kills its worker process (SIGKILL, no
+    clean-up) while the task is on the worker's thread; the scheduler gives
+    the lost task to a worker again and the job's result is unchanged: one
+    grid from arrays, per-tile files from a mesh file. With one worker the
+    mesh's only copy (a task's result) dies with it: Dask must make it again
+    (before svo placed its tasks, Dask 2022.12's queue stranded the tiles
+    there and the job waited forever: issue 43)."""
+    import faulthandler
+
+    marker = tmp_path / "killed"
     mesh = open_sphere()
     if mesh_as == "file":
         path = tmp_path / "open.obj"
@@ -420,7 +429,7 @@ def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, capsys, 
                                       dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
             c.wait_for_workers(workers, timeout=KILL_WORKER_TIMEOUT)
             pids = set(c.run(os.getpid).values())
-            c.register_worker_plugin(KillOnce(marker))
+            c.register_worker_plugin(tile_task_killer(marker, once=True))
             # A surface of arrays: tasks get their part of the mesh (chunks the
             # workers cut); a level set: the whole mesh (arrays held by a task, or a file).
             got = svo.distributed.voxelize(mesh, client=c, tile=TILE, kind=kind, resolution=RESOLUTION,
@@ -437,6 +446,31 @@ def test_a_worker_killed_in_a_task_changes_nothing(voxelizer, tmp_path, capsys, 
         assert_same_grid(got, want)
     else:
         assert_tiles_are_the_single_grid(folder, got, want)
+
+
+def test_a_tile_whose_workers_keep_dying_fails_the_job_naming_it(tmp_path):
+    """Every tile task kills its worker: past Dask's allowed-failures (1
+    here) the job stops with a TileError naming a tile, in bounded time, and
+    writes no output."""
+    v, t = open_sphere()
+    path = tmp_path / "open.obj"
+    with open(path, "w") as f:
+        f.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
+        f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in t.tolist())
+    marker, folder = tmp_path / "killed", tmp_path / "tiles"
+    with dask.config.set({"distributed.scheduler.allowed-failures": 1}), \
+            distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
+                                     dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
+        c.wait_for_workers(1, timeout=KILL_WORKER_TIMEOUT)
+        c.register_worker_plugin(tile_task_killer(marker, once=False))
+        with pytest.raises(svo.distributed.TileError,
+                           match=r"tile \(.*\)\.\.\(.*\): a worker died while it held the task, more times than "
+                                 r"Dask's distributed\.scheduler\.allowed-failures \(1\) allows"):
+            svo.distributed.voxelize(str(path), client=c, tile=TILE, kind="udf", resolution=RESOLUTION,
+                                     output_dir=folder, timeout=KILL_JOB_TIMEOUT)
+    kills = marker.read_text().split("\n")[:-1]
+    assert len(kills) >= 2 and all(k.startswith("_tile_task") for k in kills)  # the task ran twice, died twice
+    assert not (folder / "index.json").exists()
 
 
 def test_a_cluster_without_workers_fails_in_time():
