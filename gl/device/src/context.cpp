@@ -512,14 +512,25 @@ const Program& Context::program(const ShaderFiles& library, std::initializer_lis
 
 const ProgramStats& Context::programStats() const { return impl_->programStats; }
 
+namespace {
+
+/// A new scratch buffer of at least @a bytes, in whole 64 KiB grains so that
+/// slightly larger requests later reuse it.
+Buffer newScratch(const char* what, uint64_t bytes)
+{
+    const uint64_t grain = uint64_t(1) << 16;
+    return Buffer(what, std::max<uint64_t>((bytes + grain - 1) / grain * grain, grain));
+}
+
+} // namespace
+
 const Buffer& Context::scratch(const char* what, uint64_t bytes) const
 {
     Buffer& b = impl_->scratch[what];
     if (b.bytes() >= bytes && b.bytes() > 0) return b;
     const Scope scope(*this);
     b = Buffer(); // free the old buffer before the larger one is allocated
-    const uint64_t grain = uint64_t(1) << 16;
-    b = Buffer(what, std::max<uint64_t>((bytes + grain - 1) / grain * grain, grain));
+    b = newScratch(what, bytes);
     return b;
 }
 
@@ -532,7 +543,7 @@ Buffer Context::lendScratch(const char* what, uint64_t bytes) const
         impl_->scratch.erase(held);
         if (b.bytes() >= bytes && b.bytes() > 0) return b;
     } // a smaller one is freed before the new one is made
-    return Buffer(what, std::max<uint64_t>(bytes, 1));
+    return newScratch(what, bytes);
 }
 
 void Context::returnScratch(const char* what, Buffer&& buffer) const
