@@ -257,7 +257,8 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
                                      {"leaves", counts.leaves},
                                      {"active_tiles", counts.tiles},
                                      {"band_bricks", stats.bandBricks},
-                                     {"winding_bricks", stats.windingBricks}});
+                                     {"winding_bricks", stats.windingBricks},
+                                     {"winding_walks", stats.windingWalks}});
         writeFileAtomically(a.json, report.dump(2) + "\n");
     }
     outputs.commit(); // then the summary: what it says was written is in place
@@ -288,9 +289,11 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
         if (!stats.sign.empty()) fmt::print("  {:<11} {}\n", "sign", stats.sign);
         fmt::print("  {:<11} {} active ({} leaves, {} active tiles)\n", "voxels", thousands(counts.voxels),
                    thousands(counts.leaves), thousands(counts.tiles));
-        fmt::print("  {:<11} {} band bricks{}, {:.1f} MB of GPU buffers\n", "work", thousands(stats.bandBricks),
+        fmt::print("  {:<11} {} band bricks{}{}, {:.1f} MB of GPU buffers\n", "work", thousands(stats.bandBricks),
                    stats.windingBricks ? fmt::format(" and {} bricks beyond it voxel by voxel", thousands(stats.windingBricks))
                                        : std::string(),
+                   stats.windingWalks ? fmt::format(", winding numbers walked at {} centres", thousands(stats.windingWalks))
+                                      : std::string(),
                    double(stats.gpuBytes) / 1e6);
         fmt::print("  {:<11} {}\n", "backend", backendLine(stats));
         fmt::print("  {:<11} {}\n", "output",

@@ -7,6 +7,7 @@
 #
 #   bench/cpu_fields.sh [MESH:RES ...]      (default: the cases below)
 #   SVO=build/bin/svo RUNS=3 BAND=3 bench/cpu_fields.sh
+#   LLVMPIPE=0 bench/cpu_fields.sh    (leaves out the default backend's column)
 #
 # Prints a Markdown table; svo's stages (wall ms) of the last CPU run per case
 # follow it.
@@ -15,6 +16,7 @@ SVO=${SVO:-build/bin/svo}
 VDB_TOOL=${VDB_TOOL:-/usr/bin/vdb_tool}
 RUNS=${RUNS:-3}
 BAND=${BAND:-3}
+LLVMPIPE=${LLVMPIPE:-1}
 MESHES=${MESHES:-../shared/meshes}
 CASES=("$@")
 [ ${#CASES[@]} -gt 0 ] || CASES=("$MESHES/japanese-temple.obj:256" "$MESHES/stanford-bunny.obj:256"
@@ -45,9 +47,13 @@ for c in "${CASES[@]}"; do
     "$SVO" voxelize "$mesh" -r "$res" --sdf --band "$BAND" --backend cpu -o "$TMP/cpu.vdb" --json "$TMP/cpu.json" >/dev/null
     read -r size sign < <(python3 -c "import json, sys; j = json.load(open(sys.argv[1])); print(repr(j['voxel_size']), j['sign'].split(':')[0])" "$TMP/cpu.json")
     read -r cw cr < <(median "$SVO" voxelize "$mesh" -r "$res" --sdf --band "$BAND" --backend cpu -o "$TMP/cpu.vdb" --json "$TMP/cpu.json")
-    read -r gw gr < <(median "$SVO" voxelize "$mesh" -r "$res" --sdf --band "$BAND" -o "$TMP/gpu.vdb")
+    if [ "$LLVMPIPE" = 1 ]; then
+        read -r gw gr < <(median "$SVO" voxelize "$mesh" -r "$res" --sdf --band "$BAND" -o "$TMP/gpu.vdb")
+    else
+        gw=nan gr=-
+    fi
     read -r pw pr < <(median "$VDB_TOOL" -read "$mesh" -mesh2ls "voxel=$size" "width=$BAND" -write "$TMP/peer.vdb")
-    ratio() { python3 -c "import sys; a, b = map(float, sys.argv[1:]); print(f'{a / b:.2f}')" "$1" "$2"; }
+    ratio() { python3 -c "import math, sys; a, b = map(float, sys.argv[1:]); print('-' if math.isnan(a / b) else f'{a / b:.2f}')" "$1" "$2"; }
     echo "| $name | ${res}³ | $sign | $cw, $cr | $gw, $gr | $pw, $pr | $(ratio "$gw" "$cw") | $(ratio "$pw" "$cw") |"
     STAGES+="$name ${res}³ (voxel size $size), --backend cpu stages (wall ms): "
     STAGES+=$(python3 -c "import json, sys; print(', '.join(f\"{s['name']} {s['wall_ms']:.0f}\" for s in json.load(open(sys.argv[1]))['stages']))" "$TMP/cpu.json")

@@ -18,8 +18,10 @@
 #include "stability_scenes.h"
 #include "svo/core/mesh_io.h"
 #include "svo/core/cpu_voxelizer.h"
+#include "svo/core/band_bricks.h"
 #include "svo/core/local_positions.h"
 #include "svo/core/voxel_key.h"
+#include "svo/core/winding_columns.h"
 #include "svo/core/winding_signs.h"
 #include "svo/gl/device.h"
 #include "svo/gl/field_pipeline.h"
@@ -449,6 +451,99 @@ TEST(CpuFields, StabilityScenesAreTheGpus)
         expectSameLevelSet(device, mesh, grid, options(2, 3, SignMethod::Auto, true));
         expectSameSolid(device, mesh, grid);
     }
+}
+
+/// The CPU's climb up the columns (windingInsideAlongColumns) gives every
+/// centre of `bricks` the side the walk at every centre (windingInside)
+/// gives it, but for WindingTies (a centre on the surface, where the climb
+/// takes the crossings' side of it and the walk either); returns the centres walked.
+uint64_t expectClimbIsTheWalk(const TriangleMesh& mesh, const GridSpec& grid, double beta,
+                              std::vector<BrickCoord> bricks = {})
+{
+    const std::vector<Vec3d> local = localPositions(mesh, grid);
+    if (bricks.empty()) bricks = bricksNearTriangles(local, mesh, grid, 3.0);
+    const WindingTree tree = buildWindingTree(local, mesh.triangles);
+    const std::vector<Brick> walked = windingInside(tree, bricks, beta, Checkpoint{});
+    uint64_t centres = 0;
+    const std::vector<Brick> climbed =
+        windingInsideAlongColumns(tree, bricks, windingColumns(local, mesh, grid, bricks), beta, Checkpoint{}, &centres);
+    FieldSigns a, b;
+    a.inside = walked, b.inside = climbed;
+    WindingTies ties{local, &mesh};
+    expectSameSigns(a, b, bricks, &ties);
+    std::cout << "[ cpu fields ] " << mesh.source << ", beta " << beta << ": climbed " << bricks.size() * 512
+              << " centres, walked " << centres << ", " << ties.seen << " differ on the surface\n";
+    return centres;
+}
+
+/// `mesh` as a soup: three vertices of its own per triangle (the same positions).
+TriangleMesh soup(const TriangleMesh& mesh)
+{
+    TriangleMesh out;
+    out.source = mesh.source + " as a soup";
+    for (const auto& t : mesh.triangles) {
+        const auto base = uint32_t(out.positions.size());
+        for (uint32_t k : t) out.positions.push_back(mesh.positions[k]);
+        out.triangles.push_back({base, base + 1, base + 2});
+    }
+    return out;
+}
+
+// Winding signs on the CPU climb each column of a run of bricks from its
+// lowest centres (walked) by the signed crossings and a bound on the
+// boundary's field, and walk only where that does not decide: the same
+// sides as a walk at every centre, on open, flipped, overlapping, welded
+// and unwelded meshes, sheets, ties on voxel centres, a brick list out of
+// order with gaps, and at several accuracies (beta 1: nothing decided by a
+// climb, every centre walked).
+TEST(CpuFields, ClimbingColumnsGivesTheWalksSides)
+{
+    const TriangleMesh closed = named(icosphere({0.1, -0.2, 0.3}, 1.0, 3), "icosphere 3");
+    const TriangleMesh two = joined(closed, icosphere({0.7, -0.2, 0.3}, 0.8, 3), "two spheres");
+    const TriangleMesh messy = holedAndFlipped(two, 0.6);
+    TriangleMesh openBox = box({0, 0, 0}, {1, 1, 1});
+    openBox.triangles.erase(openBox.triangles.begin() + 2, openBox.triangles.begin() + 4);
+    openBox.source = "open box";
+    TriangleMesh sheet;
+    sheet.source = "a tilted square sheet";
+    sheet.positions = {{0, 0, 0}, {1, 0, 0.3}, {1, 1, 0.5}, {0, 1, 0.2}};
+    sheet.triangles = {{0, 1, 2}, {0, 2, 3}};
+    for (const TriangleMesh* m : std::vector<const TriangleMesh*>{&closed, &two, &messy, &openBox, &sheet}) {
+        SCOPED_TRACE(m->source);
+        const GridSpec grid = makeGrid(*m, GridRequest{48, 0});
+        const uint64_t walked = expectClimbIsTheWalk(*m, grid, 1.5);
+        // A closed mesh has no boundary: its columns climb by crossings alone.
+        if (m == &closed || m == &two) {
+            EXPECT_LT(walked, bricksNearTriangles(localPositions(*m, grid), *m, grid, 3.0).size() * 512 / 4);
+        }
+    }
+    expectClimbIsTheWalk(soup(messy), makeGrid(messy, GridRequest{40, 0}), 1.5);
+    expectClimbIsTheWalk(messy, makeGrid(messy, GridRequest{40, 0}), 3.0);
+    expectClimbIsTheWalk(messy, makeGrid(messy, GridRequest{40, 0}), 1e300);
+    EXPECT_EQ(expectClimbIsTheWalk(messy, makeGrid(messy, GridRequest{32, 0}), 1.0),
+              bricksNearTriangles(localPositions(messy, makeGrid(messy, GridRequest{32, 0})), messy,
+                                  makeGrid(messy, GridRequest{32, 0}), 3.0).size() * 512);
+    {
+        // Out of order, every third brick left out: runs start past each gap.
+        const GridSpec grid = makeGrid(messy, GridRequest{48, 0});
+        std::vector<BrickCoord> bricks = bricksNearTriangles(localPositions(messy, grid), messy, grid, 3.0), some;
+        for (size_t i = 0; i < bricks.size(); ++i)
+            if (i % 3) some.push_back(bricks[i]);
+        std::reverse(some.begin(), some.end());
+        expectClimbIsTheWalk(messy, grid, 1.5, some);
+    }
+    expectClimbIsTheWalk(octahedron(), makeGrid(octahedron(), GridRequest{16, 0}), 1.5);
+    for (const Scene& s : stabilityScenes()) {
+        if (s.group == "scale" || s.group == "grid size") continue;
+        SCOPED_TRACE(s.group + ": " + s.name);
+        expectClimbIsTheWalk(named(s.mesh, s.name), makeGrid(s.mesh, s.grid), 1.5);
+    }
+#ifdef SVO_CGAL_MESHES
+    for (const char* name : {"cube-ouvert.off", "bunny00.off", "elephant.off"}) {
+        const TriangleMesh m = loadMesh(std::string(SVO_CGAL_MESHES) + "/" + name);
+        expectClimbIsTheWalk(m, makeGrid(m, GridRequest{64, 0}), 1.5);
+    }
+#endif
 }
 
 // The CPU path makes no GL context, polls the checkpoint with the fraction

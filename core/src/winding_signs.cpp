@@ -6,11 +6,14 @@
 #include "svo/core/winding_signs.h"
 
 #include <algorithm>
+#include <atomic>
+#include <memory>
 #include <cmath>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include "svo/core/error.h"
 #include "svo/core/gpu_layout.h"
@@ -142,8 +145,9 @@ struct Walk {
         return sum * kInvFourPi;
     }
 
-    /// The inside voxels of the brick at `origin`: one walk for its 512
-    /// centres, each node visited for the mask of centres whose own walk
+    /// The winding numbers (times 4 pi) of the centres of the brick at
+    /// `origin` that `mask` selects, in `sum` (the others 0): one walk for
+    /// them all, each node visited for the mask of centres whose own walk
     /// reaches it, in the order their own walks would visit it. The centres
     /// of a mask are gathered into a list first, and a node's far terms or
     /// a leaf triangle's solid angles are computed over the list in one loop
@@ -152,14 +156,14 @@ struct Walk {
     /// node pay for it. A node that all 512 reach skips the list.
     // AVX2 where the CPU has it: twice the lanes, the same IEEE operations
     // (no FMA: -ffp-contract=off), so the same bits.
-    __attribute__((target_clones("avx2", "default"))) Brick brick(const std::array<uint32_t, 3>& origin) const
+    __attribute__((target_clones("avx2", "default"))) void sums(const std::array<uint32_t, 3>& origin,
+                                                                const Brick& mask, float* sum) const
     {
         struct Entry {
             uint32_t node;
             uint64_t mask[8];
         };
         Entry stack[2 * kWalkStack + 2];
-        alignas(64) float sum[512] = {};
         alignas(64) float qx[512], qy[512], qz[512];
         // The gathered centres of the node at hand: their index, coordinates
         // (float for far terms, double for solid angles) and term.
@@ -167,14 +171,16 @@ struct Walk {
         alignas(64) float gx[512], gy[512], gz[512], term[512];
         alignas(64) double hx[512], hy[512], hz[512];
         alignas(64) int32_t isFar[512];
+        std::fill(sum, sum + 512, 0.0f);
         for (uint32_t v = 0; v < 512; ++v) {
             qx[v] = float(origin[0] + (v >> 6));
             qy[v] = float(origin[1] + ((v >> 3) & 7));
             qz[v] = float(origin[2] + (v & 7));
         }
+        if (mask.count() == 0) return;
         uint32_t top = 1;
         stack[0].node = 0;
-        std::fill(stack[0].mask, stack[0].mask + 8, ~uint64_t(0));
+        std::copy(mask.words, mask.words + 8, stack[0].mask);
         while (top > 0) {
             const Entry e = stack[--top];
             const float* cr = &tree.nodes[size_t(kWindingNodeFloats) * e.node];
@@ -243,6 +249,15 @@ struct Walk {
                 std::copy(near, near + 8, stack[top++].mask);
             }
         }
+    }
+
+    /// The inside voxels of the brick at `origin`: all 512 centres walked.
+    Brick brick(const std::array<uint32_t, 3>& origin) const
+    {
+        Brick all;
+        std::fill(all.words, all.words + 8, ~uint64_t(0));
+        alignas(64) float sum[512];
+        sums(origin, all, sum);
         Brick inside;
         for (uint32_t v = 0; v < 512; ++v)
             if (sum[v] * kInvFourPi >= 0.5f) inside.words[v >> 6] |= uint64_t(1) << (v & 63);
@@ -309,6 +324,157 @@ std::vector<Brick> windingInside(const WindingTree& tree, const std::vector<Bric
         });
         checkpoint(double(last) / double(bricks.size()), "winding per voxel");
     }
+    return out;
+}
+
+namespace {
+
+/// The winding numbers of one run of bricks stacked in z, climbed from the
+/// centres of its lowest layer (walked) by windingColumns' jumps and slopes;
+/// the centres the climb cannot decide are walked.
+class Climb {
+public:
+    Climb(const Walk& walk, const WindingColumns& columns, float allowance)
+        : walk_(walk), columns_(columns), allowance_(allowance)
+    {
+    }
+
+    /// Classifies bricks[run[0]], bricks[run[1]], ... (z rising by one).
+    /// @return the centres walked
+    uint64_t run(const std::vector<BrickCoord>& bricks, const uint32_t* run, size_t count, std::vector<Brick>& inside)
+    {
+        uint64_t walked = 0;
+        for (size_t k = 0; k < count; ++k) {
+            const uint32_t i = run[k];
+            const std::array<uint32_t, 3> origin{8 * bricks[i][0], 8 * bricks[i][1], 8 * bricks[i][2]};
+            jumpsOf(i);
+            Brick known, walk, out;
+            if (k == 0) // the lowest layer anchors every column
+                for (uint32_t x = 0; x < 8; ++x) walk.words[x] = 0x0101010101010101ull;
+            // Rounds: walk what the last climb could not decide, then climb
+            // again from every walked centre. Past a centre it cannot decide
+            // a climb goes on as if the walk will find the number it expected
+            // there, marking where it would walk next: most columns need one
+            // round, not one per centre.
+            do {
+                if (walk.count()) {
+                    walk_.sums(origin, walk, sum_);
+                    walked += walk.count();
+                    for (uint32_t w = 0; w < 8; ++w) {
+                        for (uint64_t m = walk.words[w]; m; m &= m - 1) {
+                            const uint32_t v = 64 * w + uint32_t(__builtin_ctzll(m));
+                            exact_[v] = double(sum_[v] * kInvFourPi);
+                            inside_[v] = sum_[v] * kInvFourPi >= 0.5f;
+                        }
+                        known.words[w] |= walk.words[w];
+                    }
+                }
+                walk = Brick{};
+                out = Brick{};
+                for (uint32_t c = 0; c < 64; ++c) climb(i, c, known, walk, out);
+            } while (walk.count());
+            std::copy(topValue_, topValue_ + 64, value_);
+            std::copy(topDoubt_, topDoubt_ + 64, doubt_);
+            inside[i] = out;
+        }
+        return walked;
+    }
+
+private:
+    /// Climbs column c of brick i from the brick below (value_, doubt_), or
+    /// from its known centres: sets the inside voxels decided, marks in
+    /// `walk` those to walk, and keeps the number and doubt at its top (for
+    /// the brick above, once a round marks nothing).
+    void climb(uint32_t i, uint32_t c, const Brick& known, Brick& walk, Brick& out)
+    {
+        const double slope = columns_.slopeAt(i, c);
+        double value = value_[c], doubt = doubt_[c];
+        bool expected = false; // past a centre marked this round
+        for (uint32_t z = 0; z < 8; ++z) {
+            const uint32_t v = 8 * c + z;
+            const uint64_t bit = uint64_t(1) << (v & 63);
+            if (known.words[v >> 6] & bit) {
+                value = exact_[v], doubt = 0.0, expected = false;
+                if (inside_[v]) out.words[v >> 6] |= bit;
+                continue;
+            }
+            value += jump_[v];
+            doubt += slope;
+            if (std::abs(value - 0.5) > doubt + 2.0 * allowance_) {
+                if (!expected && value >= 0.5) out.words[v >> 6] |= bit;
+                continue;
+            }
+            walk.words[v >> 6] |= bit;
+            doubt = 0.0, expected = true;
+        }
+        topValue_[c] = value, topDoubt_[c] = doubt;
+    }
+
+
+    void jumpsOf(uint32_t i)
+    {
+        std::fill(jump_, jump_ + 512, 0);
+        for (uint32_t j = columns_.first[i]; j < columns_.first[i + 1]; ++j) jump_[columns_.jumps[j].voxel] = columns_.jumps[j].jump;
+    }
+
+    const Walk& walk_;
+    const WindingColumns& columns_;
+    float allowance_;
+    alignas(64) float sum_[512];
+    double exact_[512];
+    bool inside_[512];
+    int32_t jump_[512];
+    double value_[64], doubt_[64];       // per column, entering the brick from below
+    double topValue_[64], topDoubt_[64]; // ... and at its top
+};
+
+} // namespace
+
+float windingWalkError(double beta)
+{
+    const double scaled = 0.1 * std::pow(1.5 / beta, 3.0);
+    return float(std::clamp(scaled, 1e-3, 0.5));
+}
+
+std::vector<Brick> windingInsideAlongColumns(const WindingTree& tree, const std::vector<BrickCoord>& bricks,
+                                             const WindingColumns& columns, double beta, const Checkpoint& checkpoint,
+                                             uint64_t* walked)
+{
+    checkDepth(tree);
+    if (columns.slope.size() != bricks.size() || columns.columnsAt.size() != bricks.size() ||
+        columns.first.size() != bricks.size() + 1)
+        throw InvalidInput(fmt::format("windingInsideAlongColumns: {} bricks but columns for {}", bricks.size(),
+                                       columns.slope.size()));
+    const Walk walk{tree, beta2Of(beta)};
+    // Runs: bricks of one brick column with consecutive z, lowest first.
+    std::vector<uint32_t> order(bricks.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    tbb::parallel_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return bricks[a] < bricks[b]; });
+    std::vector<size_t> runStart;
+    for (size_t n = 0; n < order.size(); ++n) {
+        const auto &p = bricks[order[n]], &q = n ? bricks[order[n - 1]] : p;
+        if (n == 0 || p[0] != q[0] || p[1] != q[1] || p[2] != q[2] + 1) runStart.push_back(n);
+    }
+    runStart.push_back(order.size());
+    std::vector<Brick> out(bricks.size());
+    std::atomic<uint64_t> centres{0};
+    const float allowance = windingWalkError(beta);
+    tbb::enumerable_thread_specific<std::unique_ptr<Climb>> climbs(
+        [&] { return std::make_unique<Climb>(walk, columns, allowance); });
+    const size_t runs = runStart.size() - 1;
+    constexpr size_t kBatch = 256;
+    for (size_t first = 0; first < runs; first += kBatch) {
+        const size_t last = std::min(runs, first + kBatch);
+        tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 1), [&](const tbb::blocked_range<size_t>& r) {
+            Climb& climb = *climbs.local();
+            uint64_t here = 0;
+            for (size_t k = r.begin(); k != r.end(); ++k)
+                here += climb.run(bricks, order.data() + runStart[k], runStart[k + 1] - runStart[k], out);
+            centres += here;
+        });
+        checkpoint(double(last) / double(runs), "winding per voxel");
+    }
+    if (walked) *walked = centres;
     return out;
 }
 

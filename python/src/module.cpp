@@ -939,6 +939,7 @@ py::dict reportOf(const svo::VoxelizeStats& s, const openvdb::GridBase& main)
     d["open_columns"] = s.openColumns;
     d["band_bricks"] = s.bandBricks;
     d["winding_bricks"] = s.windingBricks;
+    d["winding_walks"] = s.windingWalks;
     d["warnings"] = s.warnings;
     py::list stages;
     for (const svo::StageTime& t : s.stages) {

@@ -139,6 +139,7 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     fine.beta = beta;
     fine.checkpoint = checkpoint.part(0.3, 1.0);
     stats.windingBricks = beyond.voxelwise.size();
+    stats.windingWalks = 512 * uint64_t(fine.bricks.size());
     RunStats voxelsReport;
     WindingResult voxels = computeWinding(context, g, tree, fine, &voxelsReport);
     for (auto& st : voxelsReport.stages) stats.stages.push_back(std::move(st));
@@ -149,7 +150,9 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     return signs;
 }
 
-/// The same on the CPU (svo/core/winding_signs.h): the same tree, rule and sums.
+/// The same on the CPU (svo/core/winding_signs.h): the same tree, rule and
+/// sums, walked where climbing a column from its lowest centres does not
+/// decide (windingInsideAlongColumns).
 FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& local, const GridSpec& g,
                            const std::vector<BrickCoord>& band, double beta, const std::optional<IndexBox>& region,
                            const Checkpoint& checkpoint, VoxelizeStats& stats)
@@ -169,7 +172,11 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
     std::vector<BrickCoord> fine = band;
     fine.insert(fine.end(), beyond.voxelwise.begin(), beyond.voxelwise.end());
     stats.windingBricks = beyond.voxelwise.size();
-    std::vector<Brick> inside = windingInside(tree, fine, beta, checkpoint.part(0.3, 1.0));
+    const WindingColumns columns = windingColumns(local, mesh, g, fine);
+    stats.stages.push_back({"winding columns (cpu)", -1, msSince(t0)});
+    t0 = Clock::now();
+    std::vector<Brick> inside =
+        windingInsideAlongColumns(tree, fine, columns, beta, checkpoint.part(0.3, 1.0), &stats.windingWalks);
     stats.stages.push_back({"winding voxels (cpu)", -1, msSince(t0)});
     signs.inside.assign(inside.begin(), inside.begin() + std::ptrdiff_t(band.size()));
     for (size_t i = band.size(); i < fine.size(); ++i)

@@ -1,0 +1,67 @@
+#pragma once
+/// @file winding_columns.h
+/// @brief What carries a winding number up a voxel column without a walk of
+/// the tree at every centre (the CPU's winding signs, winding_signs.h).
+///
+/// Off the surface the winding number w of a mesh is smooth, and it jumps by
+/// exactly +-1 where a path crosses a triangle. Between two centres of one
+/// z column, then, w(upper) = w(lower) + J + C: J the signed crossings of
+/// the segment (the parity pass's crossings, column_crossing.h, with the
+/// orientation of each triangle), C the smooth change. The gradient of the
+/// smooth part is the Biot-Savart integral over the mesh's boundary (the
+/// edges whose triangles do not cancel: holes and open shells; a closed
+/// mesh has none, and w is piecewise constant), so
+///   |dw/dz| <= sum over boundary edges e of |m_e| len_e / (4 pi dist(p, e)^2),
+/// with m_e the edge's multiplicity. A brick's slope bounds this over its
+/// centres and the segment that enters it from the brick below; near the
+/// boundary, each of its columns has its own.
+#include <cstdint>
+#include <vector>
+
+#include "svo/core/field_bricks.h"
+#include "svo/core/grid.h"
+#include "svo/core/mesh.h"
+#include "svo/core/vec3.h"
+
+namespace svo {
+
+/// What winding numbers need to climb the columns of a list of bricks.
+struct WindingColumns {
+    /// Per brick (list order) a range of `jumps`: [first[i], first[i + 1]).
+    std::vector<uint32_t> first;
+    /// Where a column's winding number jumps: at voxel `voxel` (bit order of
+    /// Brick) by `jump` from the centre below it (the sum of the crossings
+    /// between the two; a crossing below the grid is at the column's voxel 0).
+    struct Jump {
+        uint16_t voxel;
+        int16_t jump;
+    };
+    std::vector<Jump> jumps;
+    /// Per brick, an upper bound on |dw/dz| off the surface over the brick's
+    /// centres and one voxel below them, in winding number per voxel;
+    /// +infinity where the mesh's boundary meets that box.
+    std::vector<float> slope;
+    /// Per brick near the boundary, the same bound for each of its 64 voxel
+    /// columns (column x * 8 + y): at columnSlope[columnsAt[brick] + column];
+    /// kWholeBrick where the brick's slope holds for every column.
+    static constexpr uint32_t kWholeBrick = 0xffffffffu;
+    std::vector<uint32_t> columnsAt;
+    std::vector<float> columnSlope;
+
+    /// @brief The bound for column @a column (x * 8 + y) of brick @a brick.
+    float slopeAt(size_t brick, uint32_t column) const
+    {
+        const uint32_t at = columnsAt[brick];
+        return at == kWholeBrick ? slope[brick] : columnSlope[size_t(at) + column];
+    }
+};
+
+/// @brief The signed crossings and slopes of @a bricks, on the CPU with TBB.
+/// @param local  the mesh's positions in @a grid's local frame (localPositions)
+/// @param bricks unique brick coordinates
+/// @return per brick, its jumps and slope
+/// @throw std::bad_alloc.
+WindingColumns windingColumns(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid,
+                              const std::vector<BrickCoord>& bricks);
+
+} // namespace svo

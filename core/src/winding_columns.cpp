@@ -1,0 +1,355 @@
+// Signed column crossings and boundary slopes for the CPU's winding signs
+// (svo/core/winding_columns.h).
+#include "svo/core/winding_columns.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+#include <tuple>
+
+#include "brick_index.h"
+#include "svo/core/column_crossing.h"
+
+namespace svo {
+namespace {
+
+constexpr double kInvFourPi = 0.0795774715459476679;
+
+struct Crossing {
+    uint32_t brick;
+    uint16_t voxel;
+    int16_t jump;
+};
+
+/// Every crossing of a listed brick's column, from the parity pass's test
+/// (the same columns, heights and ties): the winding number rises by 1
+/// through a triangle facing down (-z) and falls through one facing up.
+std::vector<Crossing> crossingsOf(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid,
+                                  const BrickIndex& index)
+{
+    tbb::enumerable_thread_specific<std::vector<Crossing>> found;
+    const double dimZ = double(grid.dims[2]);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangles.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+        auto& out = found.local();
+        for (size_t t = r.begin(); t != r.end(); ++t) {
+            const auto& f = mesh.triangles[t];
+            const Vec3d &A = local[f[0]], &B = local[f[1]], &C = local[f[2]];
+            uint32_t lo[2], hi[2];
+            bool any = true;
+            for (int a = 0; a < 2 && any; ++a) {
+                const double first = std::max(std::ceil(std::min({A[a], B[a], C[a]})), 0.0);
+                const double last = std::min(std::floor(std::max({A[a], B[a], C[a]})), double(grid.dims[a]) - 1);
+                any = first <= last;
+                if (any) lo[a] = uint32_t(first), hi[a] = uint32_t(last);
+            }
+            if (!any) continue;
+            for (uint32_t y = lo[1]; y <= hi[1]; ++y)
+                for (uint32_t x = lo[0]; x <= hi[0]; ++x) {
+                    double zc = 0;
+                    if (!column_crossing::svo_column_crossing(A, B, C, double(x), double(y), zc)) continue;
+                    const double k = std::ceil(zc);
+                    if (k >= dimZ) continue;
+                    const auto kz = uint32_t(std::max(k, 0.0));
+                    const uint32_t i = index.find({x >> 3, y >> 3, kz >> 3});
+                    if (i == BrickIndex::kNone) continue; // between no two centres the caller climbs
+                    // Left of every edge in projection: counter-clockwise, facing up.
+                    const int side = column_crossing::svo_edge_side(B, C, double(x), double(y));
+                    const auto bit = uint16_t(((x & 7) << 6) | ((y & 7) << 3) | (kz & 7));
+                    out.push_back({i, bit, int16_t(side > 0 ? -1 : 1)});
+                }
+        }
+    });
+    std::vector<Crossing> all;
+    for (auto& part : found) all.insert(all.end(), part.begin(), part.end());
+    tbb::parallel_sort(all.begin(), all.end(), [](const Crossing& a, const Crossing& b) {
+        return std::tie(a.brick, a.voxel) < std::tie(b.brick, b.voxel);
+    });
+    return all;
+}
+
+/// A boundary edge from a to b, m times (the sum of its triangles'
+/// orientations: +1 for each a -> b, -1 for each b -> a).
+struct Edge {
+    Vec3d a, b;
+    int64_t m;
+};
+
+/// The edges of the mesh whose triangles' orientations do not cancel,
+/// vertices joined by exact position (a mesh stored as separate triangles
+/// has the same boundary as its welded self).
+std::vector<Edge> boundaryEdges(const std::vector<Vec3d>& local, const TriangleMesh& mesh)
+{
+    std::vector<uint32_t> order(local.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    const auto key = [&](uint32_t i) { return std::make_tuple(local[i].x, local[i].y, local[i].z); };
+    tbb::parallel_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+    std::vector<uint32_t> id(local.size());
+    for (size_t n = 0; n < order.size(); ++n)
+        id[order[n]] = n > 0 && key(order[n]) == key(order[n - 1]) ? id[order[n - 1]] : uint32_t(n);
+
+    // Each directed edge a -> b adds +1 to the undirected edge (min, max) if a < b, else -1.
+    std::vector<std::pair<uint64_t, int32_t>> directed;
+    directed.reserve(3 * mesh.triangles.size());
+    for (const auto& f : mesh.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = id[f[k]], b = id[f[(k + 1) % 3]];
+            if (a == b) continue;
+            directed.push_back({(uint64_t(std::min(a, b)) << 32) | std::max(a, b), a < b ? 1 : -1});
+        }
+    tbb::parallel_sort(directed.begin(), directed.end());
+    std::vector<Edge> out;
+    for (size_t n = 0; n < directed.size();) {
+        size_t m = n;
+        int64_t sum = 0;
+        for (; m < directed.size() && directed[m].first == directed[n].first; ++m) sum += directed[m].second;
+        if (sum != 0)
+            out.push_back({local[order[directed[n].first >> 32]], local[order[directed[n].first & 0xffffffffu]], sum});
+        n = m;
+    }
+    return out;
+}
+
+struct Box {
+    Vec3d lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+    void add(const Vec3d& p)
+    {
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+    }
+};
+
+/// The gaps between two boxes along x, y and z (0 where they overlap).
+Vec3d gaps(const Box& u, const Box& v)
+{
+    Vec3d g;
+    for (int a = 0; a < 3; ++a) g[a] = std::max({0.0, u.lo[a] - v.hi[a], v.lo[a] - u.hi[a]});
+    return g;
+}
+
+/// A bound on |r_xy| / |r|^3 over r = p - x, p and x in boxes with these
+/// gaps: largest at the smallest vertical gap and at the horizontal gap
+/// rho, or at rho = gap / sqrt 2 when rho may be that small. Infinity when
+/// the boxes meet.
+double zKernel(const Vec3d& g)
+{
+    const double rho = std::sqrt(g.x * g.x + g.y * g.y);
+    if (rho == 0 && g.z == 0) return INFINITY;
+    const double r2 = rho * rho + g.z * g.z;
+    if (rho * rho * 2 >= g.z * g.z) return rho / (r2 * std::sqrt(r2));
+    return 0.3849001794597505 / (g.z * g.z); // (1/sqrt 2) / (3/2)^(3/2)
+}
+
+/// A bounding-volume tree over the boundary edges that bounds |dw/dz| over
+/// a box: the field's z component is (1/4 pi) sum_e m_e int_e (dl x r)_z / |r|^3,
+/// r = p - x (Biot-Savart), and (dl x r)_z is at most |dl_xy| |r_xy|. A node
+/// far from the box bounds its edges at once, the lesser of
+///  - direct: sum |m| |e_xy| times zKernel of the node's box, and
+///  - moment: |N_xy| zKernel of its centre plus W R 2 / (d - R)^3, with N
+///    the sum of m (b - a) (0 for whole loops), W the sum of |m| |e|, R the
+///    radius of its ball about c and d the box's distance from c: the field
+///    at p is N x K(p - c) plus, for each dl, K's change from c to x, at
+///    most R sup |grad K| = R 2 / |r|^3 (K(r) = r / |r|^3).
+/// Otherwise its children are bounded, or a leaf's edges one by one.
+class BoundaryTree {
+public:
+    explicit BoundaryTree(std::vector<Edge> edges) : edges_(std::move(edges))
+    {
+        if (!edges_.empty()) build(0, uint32_t(edges_.size()));
+    }
+
+    bool empty() const { return edges_.empty(); }
+
+    /// The bound on |dw/dz| (times 4 pi) over the box from the nodes far
+    /// enough to bound at once; the edges of the others go to @a near.
+    double farBound(const Box& box, std::vector<const Edge*>& near) const { return nodeBound(0, box, near); }
+
+    /// An edge's part of the bound over a box (times 4 pi); infinity where it meets the box.
+    static double edgeBound(const Edge& e, const Box& box)
+    {
+        const Vec3d d = e.b - e.a;
+        const double xy = double(std::abs(e.m)) * std::sqrt(d.x * d.x + d.y * d.y);
+        if (xy == 0) return 0; // along z: no field about z
+        Box edge;
+        edge.add(e.a), edge.add(e.b);
+        return xy * zKernel(gaps(box, edge));
+    }
+
+private:
+    static constexpr uint32_t kLeaf = 4;
+    /// A node's part of the bound below this (times 4 pi) is taken as it is.
+    static constexpr double kEnough = 1e-2;
+
+    struct Node {
+        Box box;
+        Vec3d c, n; // centre, sum of m (b - a)
+        double r = 0, weight = 0, weightXY = 0;
+        uint32_t first = 0, count = 0; // edges
+        uint32_t left = 0, right = 0;  // children (0: a leaf)
+    };
+
+    uint32_t build(uint32_t first, uint32_t count)
+    {
+        const auto index = uint32_t(nodes_.size());
+        nodes_.emplace_back();
+        Node node;
+        node.first = first, node.count = count;
+        for (uint32_t i = first; i < first + count; ++i) {
+            const Edge& e = edges_[i];
+            node.box.add(e.a), node.box.add(e.b);
+            const Vec3d d = e.b - e.a;
+            node.n = node.n + double(e.m) * d;
+            node.weight += double(std::abs(e.m)) * std::sqrt(dot(d, d));
+            node.weightXY += double(std::abs(e.m)) * std::sqrt(d.x * d.x + d.y * d.y);
+        }
+        node.c = 0.5 * (node.box.lo + node.box.hi);
+        for (uint32_t i = first; i < first + count; ++i)
+            for (const Vec3d& p : {edges_[i].a, edges_[i].b}) node.r = std::max(node.r, std::sqrt(dot(p - node.c, p - node.c)));
+        if (count > kLeaf) {
+            int axis = 0;
+            for (int a = 1; a < 3; ++a)
+                if (node.box.hi[a] - node.box.lo[a] > node.box.hi[axis] - node.box.lo[axis]) axis = a;
+            const uint32_t half = count / 2;
+            std::nth_element(edges_.begin() + first, edges_.begin() + first + half, edges_.begin() + first + count,
+                             [axis](const Edge& u, const Edge& v) { return u.a[axis] + u.b[axis] < v.a[axis] + v.b[axis]; });
+            node.left = build(first, half);
+            node.right = build(first + half, count - half);
+        }
+        nodes_[index] = node;
+        return index;
+    }
+
+    double nodeBound(uint32_t i, const Box& box, std::vector<const Edge*>& near) const
+    {
+        const Node& node = nodes_[i];
+        if (node.weightXY == 0) return 0; // only edges along z
+        double best = node.weightXY * zKernel(gaps(box, node.box));
+        Box centre;
+        centre.add(node.c);
+        const Vec3d g = gaps(box, centre);
+        const double d = std::sqrt(dot(g, g));
+        if (d > node.r) {
+            const double nxy = std::sqrt(node.n.x * node.n.x + node.n.y * node.n.y);
+            const double far = d - node.r;
+            best = std::min(best, nxy * zKernel(g) + node.weight * node.r * 2.0 / (far * far * far));
+        }
+        if (best < kEnough) return best;
+        if (node.left == 0) {
+            for (uint32_t k = node.first; k < node.first + node.count; ++k) near.push_back(&edges_[k]);
+            return 0;
+        }
+        return nodeBound(node.left, box, near) + nodeBound(node.right, box, near);
+    }
+
+    std::vector<Edge> edges_;
+    std::vector<Node> nodes_;
+};
+
+/// The bounds of the columns of a square of the brick's footprint, from
+/// x0, y0 and `size` wide: the near edges (near[from..]) bounded over each
+/// quarter, those small there added to its far part, the rest carried down.
+void columnBounds(double x0, double y0, double z0, uint32_t size, double far, std::vector<const Edge*>& near,
+                  size_t from, std::array<float, 64>& out);
+
+/// A bound (times 4 pi) in winding number per voxel, rounded up to a float.
+float roundUp(double bound)
+{
+    const double b = bound * kInvFourPi * (1 + 1e-9);
+    float s = float(b);
+    if (double(s) < b) s = std::nextafter(s, INFINITY);
+    return s;
+}
+
+void columnBounds(double x0, double y0, double z0, uint32_t size, double far, std::vector<const Edge*>& near,
+                  size_t from, std::array<float, 64>& out)
+{
+    // An edge's part below this (times 4 pi) is added to the square's far part.
+    constexpr double kSmall = 1e-3;
+    const size_t end = near.size();
+    for (uint32_t q = 0; q < 4; ++q) {
+        const uint32_t half = size / 2;
+        const double qx = x0 + (q & 1) * half, qy = y0 + (q >> 1) * half;
+        Box box;
+        box.add({qx, qy, z0 - 1}), box.add({qx + half - 1, qy + half - 1, z0 + 7});
+        double part = far;
+        for (size_t k = from; k < end; ++k) {
+            const double b = BoundaryTree::edgeBound(*near[k], box);
+            if (half > 1 && b < kSmall) part += b;
+            else if (half > 1) near.push_back(near[k]);
+            else part += b;
+        }
+        if (half > 1) columnBounds(qx, qy, z0, half, part, near, end, out);
+        else out[(uint32_t(qx) & 7) * 8 + (uint32_t(qy) & 7)] = roundUp(part);
+        near.resize(end);
+    }
+}
+
+} // namespace
+
+WindingColumns windingColumns(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid,
+                              const std::vector<BrickCoord>& bricks)
+{
+    std::array<uint32_t, 3> limit{};
+    for (int a = 0; a < 3; ++a) limit[a] = (grid.dims[a] + 7) / 8;
+    WindingColumns out;
+    out.slope.assign(bricks.size(), 0.0f);
+    std::vector<uint32_t> overflow;
+
+    // Jumps: the crossings of each voxel summed (int16; a brick whose sum
+    // would overflow is left to the walk by an infinite slope).
+    const std::vector<Crossing> crossings = crossingsOf(local, mesh, grid, BrickIndex(bricks, limit));
+    out.first.assign(bricks.size() + 1, 0);
+    for (size_t n = 0; n < crossings.size();) {
+        size_t m = n;
+        int32_t sum = 0;
+        for (; m < crossings.size() && crossings[m].brick == crossings[n].brick && crossings[m].voxel == crossings[n].voxel; ++m)
+            sum += crossings[m].jump;
+        if (std::abs(sum) > std::numeric_limits<int16_t>::max()) overflow.push_back(crossings[n].brick);
+        else if (sum != 0) {
+            out.jumps.push_back({crossings[n].voxel, int16_t(sum)});
+            ++out.first[crossings[n].brick + 1];
+        }
+        n = m;
+    }
+    for (size_t i = 0; i < bricks.size(); ++i) out.first[i + 1] += out.first[i];
+
+    out.columnsAt.assign(bricks.size(), WindingColumns::kWholeBrick);
+    const BoundaryTree boundary(boundaryEdges(local, mesh));
+    if (!boundary.empty()) {
+        // Bricks in chunks, each chunk's column slopes kept in its order.
+        constexpr size_t kChunk = 256;
+        std::vector<std::vector<std::pair<uint32_t, std::array<float, 64>>>> perChunk((bricks.size() + kChunk - 1) / kChunk);
+        tbb::parallel_for(size_t(0), perChunk.size(), [&](size_t chunk) {
+            std::vector<const Edge*> near;
+            for (size_t i = chunk * kChunk; i < std::min(bricks.size(), (chunk + 1) * kChunk); ++i) {
+                const auto& b = bricks[i];
+                const double x0 = 8.0 * b[0], y0 = 8.0 * b[1], z0 = 8.0 * b[2];
+                Box box;
+                box.add({x0, y0, z0 - 1}), box.add({x0 + 7, y0 + 7, z0 + 7});
+                near.clear();
+                const double far = boundary.farBound(box, near);
+                if (near.empty()) {
+                    out.slope[i] = roundUp(far);
+                    continue;
+                }
+                std::array<float, 64> columns;
+                columnBounds(x0, y0, z0, 8, far, near, 0, columns);
+                out.slope[i] = *std::max_element(columns.begin(), columns.end());
+                perChunk[chunk].push_back({uint32_t(i), columns});
+            }
+        });
+        for (const auto& chunk : perChunk)
+            for (const auto& [i, columns] : chunk) {
+                out.columnsAt[i] = uint32_t(out.columnSlope.size());
+                out.columnSlope.insert(out.columnSlope.end(), columns.begin(), columns.end());
+            }
+    }
+    // A brick whose jumps overflowed is walked whole.
+    for (uint32_t i : overflow) out.slope[i] = INFINITY, out.columnsAt[i] = WindingColumns::kWholeBrick;
+    return out;
+}
+
+} // namespace svo
