@@ -466,6 +466,23 @@ TEST_F(Cli, FieldsRunOnTheCpuBackend)
         EXPECT_NE(field(cpu, "active_voxels"), "") << cpu;
         EXPECT_EQ(field(cpu, "active_voxels"), field(gpu, "active_voxels"));
         EXPECT_EQ(field(cpu, "sign"), field(gpu, "sign"));
+        // Winding numbers: the GPU passes (compute: not the CPU that auto
+        // picks on llvmpipe) walk the tree at every centre of their bricks,
+        // the CPU climbs this closed mesh's columns by crossings.
+        const std::string cpuWalks = field(cpu, "winding_walks");
+        ASSERT_NE(cpuWalks, "") << cpu;
+        if (std::string(kind).find("winding") == std::string::npos) {
+            EXPECT_EQ(cpuWalks, "0");
+            continue;
+        }
+        r = runSvo("voxelize " + mesh + " -r 32 " + kind + " --backend compute -o " + path("r.vdb") + " --json " +
+                   path("r.json"));
+        ASSERT_EQ(r.code, 0) << r.out;
+        const std::string compute = read("r.json");
+        EXPECT_EQ(field(compute, "active_voxels"), field(cpu, "active_voxels"));
+        EXPECT_GT(std::stoull(cpuWalks), 0u);
+        EXPECT_LT(std::stoull(cpuWalks), std::stoull(field(compute, "winding_walks")));
+        EXPECT_GE(std::stoull(field(compute, "winding_walks")), 512 * std::stoull(field(compute, "band_bricks")));
     }
 }
 

@@ -471,8 +471,30 @@ uint64_t expectClimbIsTheWalk(const TriangleMesh& mesh, const GridSpec& grid, do
     a.inside = walked, b.inside = climbed;
     WindingTies ties{local, &mesh};
     expectSameSigns(a, b, bricks, &ties);
+    // The brick centres of the grid's box: the same class (bricksBeyondBand's)
+    // climbed as walked, but on the surface.
+    const std::vector<float> everyCentre = windingAtBrickCentres(tree, grid, beta, Checkpoint{});
+    const BrickCentreColumns centreColumns = brickCentreColumns(local, mesh, grid);
+    uint64_t centresWalked = 0;
+    const std::vector<float> climbedCentres =
+        windingAtBrickCentres(tree, grid, beta, Checkpoint{}, &centreColumns, &centresWalked);
+    EXPECT_LE(centresWalked, everyCentre.size());
+    const auto classOf = [](float w) { return std::abs(w - 0.5f) < kWindingMargin ? 1 : w >= 0.5f ? 2 : 0; };
+    const auto& d = centreColumns.dims;
+    uint64_t centreTies = 0;
+    for (uint64_t g = 0; g < everyCentre.size(); ++g) {
+        if (classOf(everyCentre[g]) == classOf(climbedCentres[g])) continue;
+        const Vec3d q{8.0 * double(g % d[0]) + 3.5, 8.0 * double(g / d[0] % d[1]) + 3.5, 8.0 * double(g / (uint64_t(d[0]) * d[1])) + 3.5};
+        if (ties.surfaceDistance(q) < 1e-6) {
+            ++centreTies;
+            continue;
+        }
+        ADD_FAILURE() << "brick centre " << q.x << ", " << q.y << ", " << q.z << ": walked " << everyCentre[g]
+                      << ", climbed " << climbedCentres[g];
+    }
     std::cout << "[ cpu fields ] " << mesh.source << ", beta " << beta << ": climbed " << bricks.size() * 512
-              << " centres, walked " << centres << ", " << ties.seen << " differ on the surface\n";
+              << " centres, walked " << centres << ", " << ties.seen << " differ on the surface; brick centres "
+              << everyCentre.size() << ", walked " << centresWalked << ", " << centreTies << " differ on the surface\n";
     return centres;
 }
 

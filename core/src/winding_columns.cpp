@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
+#include <memory>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -13,7 +15,8 @@
 #include <tuple>
 
 #include "brick_index.h"
-#include "svo/core/column_crossing.h"
+#include "svo/core/error.h"
+#include "column_crossings.h"
 
 namespace svo {
 namespace {
@@ -34,34 +37,21 @@ std::vector<Crossing> crossingsOf(const std::vector<Vec3d>& local, const Triangl
 {
     tbb::enumerable_thread_specific<std::vector<Crossing>> found;
     const double dimZ = double(grid.dims[2]);
+    const uint32_t columns[2] = {grid.dims[0], grid.dims[1]};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangles.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
         auto& out = found.local();
         for (size_t t = r.begin(); t != r.end(); ++t) {
             const auto& f = mesh.triangles[t];
             const Vec3d &A = local[f[0]], &B = local[f[1]], &C = local[f[2]];
-            uint32_t lo[2], hi[2];
-            bool any = true;
-            for (int a = 0; a < 2 && any; ++a) {
-                const double first = std::max(std::ceil(std::min({A[a], B[a], C[a]})), 0.0);
-                const double last = std::min(std::floor(std::max({A[a], B[a], C[a]})), double(grid.dims[a]) - 1);
-                any = first <= last;
-                if (any) lo[a] = uint32_t(first), hi[a] = uint32_t(last);
-            }
-            if (!any) continue;
-            for (uint32_t y = lo[1]; y <= hi[1]; ++y)
-                for (uint32_t x = lo[0]; x <= hi[0]; ++x) {
-                    double zc = 0;
-                    if (!column_crossing::svo_column_crossing(A, B, C, double(x), double(y), zc)) continue;
-                    const double k = std::ceil(zc);
-                    if (k >= dimZ) continue;
-                    const auto kz = uint32_t(std::max(k, 0.0));
-                    const uint32_t i = index.find({x >> 3, y >> 3, kz >> 3});
-                    if (i == BrickIndex::kNone) continue; // between no two centres the caller climbs
-                    // Left of every edge in projection: counter-clockwise, facing up.
-                    const int side = column_crossing::svo_edge_side(B, C, double(x), double(y));
-                    const auto bit = uint16_t(((x & 7) << 6) | ((y & 7) << 3) | (kz & 7));
-                    out.push_back({i, bit, int16_t(side > 0 ? -1 : 1)});
-                }
+            forEachColumnCrossing(A, B, C, 0.0, 1.0, columns, [&](uint32_t x, uint32_t y, double zc, bool facingUp) {
+                const double k = std::ceil(zc);
+                if (k >= dimZ) return;
+                const auto kz = uint32_t(std::max(k, 0.0));
+                const uint32_t i = index.find({x >> 3, y >> 3, kz >> 3});
+                if (i == BrickIndex::kNone) return; // between no two centres the caller climbs
+                const auto bit = uint16_t(((x & 7) << 6) | ((y & 7) << 3) | (kz & 7));
+                out.push_back({i, bit, int16_t(facingUp ? -1 : 1)});
+            });
         }
     });
     std::vector<Crossing> all;
@@ -71,6 +61,10 @@ std::vector<Crossing> crossingsOf(const std::vector<Vec3d>& local, const Triangl
     });
     return all;
 }
+
+} // namespace
+
+namespace winding_boundary {
 
 /// A boundary edge from a to b, m times (the sum of its triangles'
 /// orientations: +1 for each a -> b, -1 for each b -> a).
@@ -164,8 +158,13 @@ public:
     bool empty() const { return edges_.empty(); }
 
     /// The bound on |dw/dz| (times 4 pi) over the box from the nodes far
-    /// enough to bound at once; the edges of the others go to @a near.
-    double farBound(const Box& box, std::vector<const Edge*>& near) const { return nodeBound(0, box, near); }
+    /// enough to bound at once; the edges of the others go to @a near. Past
+    /// @a limit the search stops, with infinity.
+    double farBound(const Box& box, std::vector<const Edge*>& near, double limit = INFINITY) const
+    {
+        double sum = 0;
+        return nodeBound(0, box, near, sum, limit) ? sum : INFINITY;
+    }
 
     /// An edge's part of the bound over a box (times 4 pi); infinity where it meets the box.
     static double edgeBound(const Edge& e, const Box& box)
@@ -222,10 +221,11 @@ private:
         return index;
     }
 
-    double nodeBound(uint32_t i, const Box& box, std::vector<const Edge*>& near) const
+    /// Adds node i's part to `sum`; false once it passes `limit`.
+    bool nodeBound(uint32_t i, const Box& box, std::vector<const Edge*>& near, double& sum, double limit) const
     {
         const Node& node = nodes_[i];
-        if (node.weightXY == 0) return 0; // only edges along z
+        if (node.weightXY == 0) return true; // only edges along z
         double best = node.weightXY * zKernel(gaps(box, node.box));
         Box centre;
         centre.add(node.c);
@@ -236,17 +236,28 @@ private:
             const double far = d - node.r;
             best = std::min(best, nxy * zKernel(g) + node.weight * node.r * 2.0 / (far * far * far));
         }
-        if (best < kEnough) return best;
+        if (best < kEnough) {
+            sum += best;
+            return sum <= limit;
+        }
         if (node.left == 0) {
             for (uint32_t k = node.first; k < node.first + node.count; ++k) near.push_back(&edges_[k]);
-            return 0;
+            return true;
         }
-        return nodeBound(node.left, box, near) + nodeBound(node.right, box, near);
+        return nodeBound(node.left, box, near, sum, limit) && nodeBound(node.right, box, near, sum, limit);
     }
 
     std::vector<Edge> edges_;
     std::vector<Node> nodes_;
 };
+
+} // namespace winding_boundary
+
+namespace {
+
+using winding_boundary::BoundaryTree;
+using winding_boundary::Box;
+using winding_boundary::Edge;
 
 /// The bounds of the columns of a square of the brick's footprint, from
 /// x0, y0 and `size` wide: the near edges (near[from..]) bounded over each
@@ -317,7 +328,7 @@ WindingColumns windingColumns(const std::vector<Vec3d>& local, const TriangleMes
     for (size_t i = 0; i < bricks.size(); ++i) out.first[i + 1] += out.first[i];
 
     out.columnsAt.assign(bricks.size(), WindingColumns::kWholeBrick);
-    const BoundaryTree boundary(boundaryEdges(local, mesh));
+    const BoundaryTree boundary(winding_boundary::boundaryEdges(local, mesh));
     if (!boundary.empty()) {
         // Bricks in chunks, each chunk's column slopes kept in its order.
         constexpr size_t kChunk = 256;
@@ -350,6 +361,51 @@ WindingColumns windingColumns(const std::vector<Vec3d>& local, const TriangleMes
     // A brick whose jumps overflowed is walked whole.
     for (uint32_t i : overflow) out.slope[i] = INFINITY, out.columnsAt[i] = WindingColumns::kWholeBrick;
     return out;
+}
+
+BrickCentreColumns brickCentreColumns(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid)
+{
+    BrickCentreColumns out;
+    for (int a = 0; a < 3; ++a) out.dims[a] = (grid.dims[a] + 7) / 8;
+    const auto& d = out.dims;
+    const uint64_t n = uint64_t(d[0]) * d[1] * d[2];
+    if (n > (uint64_t(1) << 31))
+        throw Unsupported(fmt::format("the grid's box holds {} bricks, more than the winding pass evaluates (2^31); use a "
+                                      "coarser grid",
+                                      n));
+    out.jump.assign(n, 0);
+    const auto at = [&](uint64_t x, uint64_t y, uint64_t z) { return x + d[0] * (y + d[1] * z); };
+    // Crossings of the columns through the brick centres, as crossingsOf's.
+    const uint32_t columns[2] = {d[0], d[1]};
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangles.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t t = r.begin(); t != r.end(); ++t) {
+            const auto& f = mesh.triangles[t];
+            const Vec3d &A = local[f[0]], &B = local[f[1]], &C = local[f[2]];
+            forEachColumnCrossing(A, B, C, 3.5, 8.0, columns, [&](uint32_t x, uint32_t y, double zc, bool facingUp) {
+                const double k = std::ceil((zc - 3.5) / 8); // the first brick centre above
+                if (k <= 0 || k >= double(d[2])) return;   // below the lowest (its walk counts it) or above all
+                __atomic_fetch_add(&out.jump[at(x, y, uint64_t(k))], facingUp ? -1 : 1, __ATOMIC_RELAXED);
+            });
+        }
+    });
+    auto boundary = std::make_shared<const BoundaryTree>(winding_boundary::boundaryEdges(local, mesh));
+    if (!boundary->empty()) out.boundary = std::move(boundary);
+    return out;
+}
+
+float BrickCentreColumns::slopeAt(uint64_t brick, double limit) const
+{
+    if (!boundary) return 0.0f;
+    const uint64_t x = brick % dims[0], y = brick / dims[0] % dims[1], z = brick / (uint64_t(dims[0]) * dims[1]);
+    const double cx = 8.0 * double(x) + 3.5, cy = 8.0 * double(y) + 3.5, cz = 8.0 * double(z) + 3.5;
+    Box segment;
+    segment.add({cx, cy, cz - 8}), segment.add({cx, cy, cz});
+    thread_local std::vector<const Edge*> near;
+    near.clear();
+    const double cap = limit / kInvFourPi;
+    double sum = boundary->farBound(segment, near, cap);
+    for (size_t k = 0; k < near.size() && sum <= cap; ++k) sum += BoundaryTree::edgeBound(*near[k], segment);
+    return sum <= cap ? roundUp(sum) : INFINITY;
 }
 
 } // namespace svo

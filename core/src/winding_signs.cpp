@@ -7,8 +7,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <memory>
 #include <cmath>
+#include <memory>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -282,8 +282,66 @@ void checkDepth(const WindingTree& tree)
 
 } // namespace
 
+namespace {
+
+/// A brick centre's local coordinates (x-fastest over a box of d bricks).
+Vec3d brickCentre(uint64_t g, const std::array<uint64_t, 3>& d)
+{
+    const uint64_t x = g % d[0], y = g / d[0] % d[1], z = g / (d[0] * d[1]);
+    return Vec3d{double(8 * x) + 3.5, double(8 * y) + 3.5, double(8 * z) + 3.5};
+}
+
+/// Whether every number in [lo, hi] falls in one class of bricksBeyondBand.
+bool oneClass(double lo, double hi)
+{
+    return hi < 0.5 - kWindingMargin || (lo > 0.5 - kWindingMargin && hi < 0.5 + kWindingMargin) ||
+           lo > 0.5 + kWindingMargin;
+}
+
+/// How far a climbed number may still move and stay in its class.
+double classRoom(double value)
+{
+    return std::max({0.5 - kWindingMargin - value, value - 0.5 - kWindingMargin,
+                     std::min(value - 0.5 + kWindingMargin, 0.5 + kWindingMargin - value)});
+}
+
+/// Brick centres column by column: the lowest walked, each above climbed
+/// from the one below where the climb keeps it in one class (its doubt plus
+/// `allowance` either way; a step's slope bounded only as far as it could
+/// still decide), else walked; with `climb` false every centre walked.
+/// @return the centres walked
+uint64_t climbColumn(const Walk& walk, const BrickCentreColumns& columns, uint64_t column, double allowance,
+                     bool climb, std::vector<float>& out)
+{
+    const std::array<uint64_t, 3> d{columns.dims[0], columns.dims[1], columns.dims[2]};
+    const uint64_t plane = d[0] * d[1];
+    uint64_t walked = 0;
+    double value = 0, doubt = 0;
+    for (uint64_t z = 0; z < d[2]; ++z) {
+        const uint64_t g = column + plane * z;
+        if (z > 0 && climb) {
+            value += columns.jump[g];
+            const double room = classRoom(value) - allowance - doubt;
+            if (room > 0) {
+                doubt += 8.0 * double(columns.slopeAt(g, room / 8.0));
+                if (oneClass(value - doubt - allowance, value + doubt + allowance)) {
+                    out[g] = float(value);
+                    continue;
+                }
+            }
+        }
+        out[g] = walk.at(brickCentre(g, d));
+        value = double(out[g]), doubt = 0;
+        ++walked;
+    }
+    return walked;
+}
+
+} // namespace
+
 std::vector<float> windingAtBrickCentres(const WindingTree& tree, const GridSpec& grid, double beta,
-                                         const Checkpoint& checkpoint)
+                                         const Checkpoint& checkpoint, const BrickCentreColumns* columns,
+                                         uint64_t* walked)
 {
     checkDepth(tree);
     const Walk walk{tree, beta2Of(beta)};
@@ -294,18 +352,39 @@ std::vector<float> windingAtBrickCentres(const WindingTree& tree, const GridSpec
         throw Unsupported(fmt::format("the grid's box holds {} bricks, more than the winding pass evaluates (2^31); use a "
                                       "coarser grid",
                                       n));
+    if (columns && columns->jump.size() != n)
+        throw InvalidInput(fmt::format("windingAtBrickCentres: {} bricks but columns for {}", n, columns->jump.size()));
     std::vector<float> out(n);
-    constexpr uint64_t kBatch = 1 << 14;
-    for (uint64_t first = 0; first < n; first += kBatch) {
-        const uint64_t last = std::min(n, first + kBatch);
-        tbb::parallel_for(tbb::blocked_range<uint64_t>(first, last, 64), [&](const tbb::blocked_range<uint64_t>& r) {
-            for (uint64_t g = r.begin(); g != r.end(); ++g) {
-                const uint64_t x = g % d[0], y = g / d[0] % d[1], z = g / (d[0] * d[1]);
-                out[g] = walk.at({double(8 * x) + 3.5, double(8 * y) + 3.5, double(8 * z) + 3.5});
-            }
-        });
-        checkpoint(double(last) / double(n), "winding per brick");
+    if (!columns) {
+        constexpr uint64_t kBatch = 1 << 14;
+        for (uint64_t first = 0; first < n; first += kBatch) {
+            const uint64_t last = std::min(n, first + kBatch);
+            tbb::parallel_for(tbb::blocked_range<uint64_t>(first, last, 64), [&](const tbb::blocked_range<uint64_t>& r) {
+                for (uint64_t g = r.begin(); g != r.end(); ++g) out[g] = walk.at(brickCentre(g, d));
+            });
+            checkpoint(double(last) / double(n), "winding per brick");
+        }
+        if (walked) *walked = n;
+        return out;
     }
+    // A climb that walks most centres anyway costs more than walking them
+    // all (the bounds it asks for near the boundary): once half of the
+    // centres so far were walked, the other columns walk every centre.
+    const double allowance = 2.0 * windingWalkError(beta);
+    const uint64_t plane = d[0] * d[1];
+    std::atomic<uint64_t> centres{0};
+    constexpr uint64_t kBatch = 256;
+    for (uint64_t first = 0; first < plane; first += kBatch) {
+        const uint64_t last = std::min(plane, first + kBatch);
+        const bool climb = 2 * centres.load() <= first * d[2];
+        tbb::parallel_for(tbb::blocked_range<uint64_t>(first, last, 16), [&](const tbb::blocked_range<uint64_t>& r) {
+            uint64_t here = 0;
+            for (uint64_t c = r.begin(); c != r.end(); ++c) here += climbColumn(walk, *columns, c, allowance, climb, out);
+            centres += here;
+        });
+        checkpoint(double(last) / double(plane), "winding per brick");
+    }
+    if (walked) *walked = centres;
     return out;
 }
 

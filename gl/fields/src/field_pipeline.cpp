@@ -139,7 +139,7 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     fine.beta = beta;
     fine.checkpoint = checkpoint.part(0.3, 1.0);
     stats.windingBricks = beyond.voxelwise.size();
-    stats.windingWalks = 512 * uint64_t(fine.bricks.size());
+    stats.windingWalks = 512 * uint64_t(fine.bricks.size()) + centres.perBrick.size();
     RunStats voxelsReport;
     WindingResult voxels = computeWinding(context, g, tree, fine, &voxelsReport);
     for (auto& st : voxelsReport.stages) stats.stages.push_back(std::move(st));
@@ -161,7 +161,10 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
     const WindingTree tree = buildWindingTree(local, mesh.triangles);
     stats.stages.push_back({"winding tree", -1, msSince(t0)});
     t0 = Clock::now();
-    const std::vector<float> centres = windingAtBrickCentres(tree, g, beta, checkpoint.part(0.0, 0.3));
+    const BrickCentreColumns centreColumns = brickCentreColumns(local, mesh, g);
+    uint64_t centresWalked = 0;
+    const std::vector<float> centres =
+        windingAtBrickCentres(tree, g, beta, checkpoint.part(0.0, 0.3), &centreColumns, &centresWalked);
     stats.stages.push_back({"winding bricks (cpu)", -1, msSince(t0)});
     t0 = Clock::now();
     const std::array<uint32_t, 3> dims{(g.dims[0] + 7) / 8, (g.dims[1] + 7) / 8, (g.dims[2] + 7) / 8};
@@ -177,6 +180,7 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
     t0 = Clock::now();
     std::vector<Brick> inside =
         windingInsideAlongColumns(tree, fine, columns, beta, checkpoint.part(0.3, 1.0), &stats.windingWalks);
+    stats.windingWalks += centresWalked;
     stats.stages.push_back({"winding voxels (cpu)", -1, msSince(t0)});
     signs.inside.assign(inside.begin(), inside.begin() + std::ptrdiff_t(band.size()));
     for (size_t i = band.size(); i < fine.size(); ++i)

@@ -15,7 +15,9 @@
 /// with m_e the edge's multiplicity. A brick's slope bounds this over its
 /// centres and the segment that enters it from the brick below; near the
 /// boundary, each of its columns has its own.
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "svo/core/field_bricks.h"
@@ -55,6 +57,33 @@ struct WindingColumns {
         return at == kWholeBrick ? slope[brick] : columnSlope[size_t(at) + column];
     }
 };
+
+namespace winding_boundary {
+class BoundaryTree;
+}
+
+/// The same for the centres of the bricks of a grid's box (brick b's centre
+/// 8 b + 3.5 in local coordinates), climbed a brick at a time. The slopes
+/// are bounded when asked: most steps of a climb near the boundary could
+/// not decide anything, and their bound need not be finished.
+struct BrickCentreColumns {
+    std::array<uint32_t, 3> dims{}; ///< the box in bricks
+    /// Per brick (x-fastest): the winding number's jump from the centre of
+    /// the brick below (0 for the lowest bricks).
+    std::vector<int32_t> jump;
+    /// The mesh's boundary edges; null for a closed mesh.
+    std::shared_ptr<const winding_boundary::BoundaryTree> boundary;
+
+    /// @brief A bound on |dw/dz| off the surface over the segment from the
+    /// centre below @a brick to its own, per voxel; +infinity where the
+    /// boundary meets it or the bound passes @a limit.
+    float slopeAt(uint64_t brick, double limit) const;
+};
+
+/// @brief The signed crossings and slopes of the brick centres of @a grid's box.
+/// @throw svo::Unsupported for a box of more than 2^31 bricks.
+BrickCentreColumns brickCentreColumns(const std::vector<Vec3d>& local, const TriangleMesh& mesh,
+                                      const GridSpec& grid);
 
 /// @brief The signed crossings and slopes of @a bricks, on the CPU with TBB.
 /// @param local  the mesh's positions in @a grid's local frame (localPositions)

@@ -48,14 +48,24 @@ inline constexpr float kWindingMargin = 0.25f;
 
 /// @brief The winding number at the centre of every brick of @a grid's box
 /// (brick b's centre is 8 b + 3.5 in local coordinates), on the CPU.
+/// With @a columns, each column of bricks climbs from its lowest centre
+/// (walked) and a centre is walked only where the climbed number, give or
+/// take its doubt and twice windingWalkError, could fall on either side of
+/// 1/2 -+ kWindingMargin: there the number is a climbed one, on the side of
+/// those thresholds the walk's is on (wherever the walk is within
+/// windingWalkError of the exact number).
 /// @param tree  built from the mesh's positions in @a grid's local frame
 ///              (localPositions) and its triangles (buildWindingTree)
 /// @param beta  the far-field threshold (SignOptions::windingAccuracy)
 /// @param checkpoint polled on the calling thread between batches
+/// @param columns brickCentreColumns of @a grid, or null: every centre walked
+/// @param walked  if not null, gets the number of centres walked
 /// @return x-fastest over the box of ceil(dims / 8) bricks
-/// @throw svo::Unsupported for a box of more than 2^31 bricks; svo::Interrupted.
+/// @throw svo::Unsupported for a box of more than 2^31 bricks; svo::InvalidInput
+///        when @a columns is of another box; svo::Interrupted.
 std::vector<float> windingAtBrickCentres(const WindingTree& tree, const GridSpec& grid, double beta,
-                                         const Checkpoint& checkpoint);
+                                         const Checkpoint& checkpoint, const BrickCentreColumns* columns = nullptr,
+                                         uint64_t* walked = nullptr);
 
 /// @brief Per brick of a list, the voxels whose centre's winding number is
 /// at least 1/2, on the CPU.
