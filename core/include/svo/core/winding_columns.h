@@ -10,11 +10,14 @@
 /// orientation of each triangle), C the smooth change. The gradient of the
 /// smooth part is the Biot-Savart integral over the mesh's boundary (the
 /// edges whose triangles do not cancel: holes and open shells; a closed
-/// mesh has none, and w is piecewise constant), so
-///   |dw/dz| <= sum over boundary edges e of |m_e| len_e / (4 pi dist(p, e)^2),
-/// with m_e the edge's multiplicity. A brick's slope bounds this over its
-/// centres and the segment that enters it from the brick below; near the
-/// boundary, each of its columns has its own.
+/// mesh has none, and w is piecewise constant). Its z part only sees the
+/// edges' horizontal extent:
+///   |dw/dz| <= (1/4 pi) sum over boundary edges e of |m_e| |e_xy| max |r_xy| / |r|^3,
+/// with m_e the edge's multiplicity and r from the edge to the point; a
+/// bounding-volume tree of the edges bounds a far group at once (its net
+/// current and a remainder of the next order). A brick's slope bounds this
+/// over its centres and the segment that enters it from the brick below;
+/// near the boundary, each of its columns has its own.
 #include <array>
 #include <cstdint>
 #include <memory>

@@ -37,9 +37,10 @@ struct VoxelizeStats {
     uint64_t openColumns = 0;      ///< level sets and solids: voxel columns crossed an odd number of times (open mesh)
     uint64_t bandBricks = 0;       ///< level sets and solids: bricks whose distances or signs were computed
     uint64_t windingBricks = 0;    ///< winding signs: bricks beyond the band classified voxel by voxel
-    /// Winding signs: the voxel centres whose number a walk of the tree
-    /// summed (the GPU walks every centre of those bricks; the CPU climbs
-    /// columns, svo/core/winding_signs.h, and walks where a climb cannot decide).
+    /// Winding signs: the points (voxel centres of those bricks, brick
+    /// centres of the box) whose number a walk of the tree summed: all of
+    /// them on a GPU; the CPU climbs columns (svo/core/winding_signs.h) and
+    /// walks where a climb cannot decide.
     uint64_t windingWalks = 0;
     /// Start-up paid since the previous call returned: the context if this
     /// call created it, and the programs this call made. Kept apart from
