@@ -489,11 +489,12 @@ private:
         topValue_[c] = value, topDoubt_[c] = doubt;
     }
 
-
+    /// Brick i's jumps, one a voxel (0 where none).
     void jumpsOf(uint32_t i)
     {
         std::fill(jump_, jump_ + 512, 0);
-        for (uint32_t j = columns_.first[i]; j < columns_.first[i + 1]; ++j) jump_[columns_.jumps[j].voxel] = columns_.jumps[j].jump;
+        for (uint32_t j = columns_.first[i]; j < columns_.first[i + 1]; ++j)
+            jump_[columns_.jumps[j].voxel] = columns_.jumps[j].jump;
     }
 
     const Walk& walk_;
