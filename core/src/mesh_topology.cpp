@@ -33,7 +33,7 @@ std::string EdgeReport::describe() const
     return s;
 }
 
-EdgeReport checkEdges(const TriangleMesh& mesh)
+std::vector<WeldedEdge> weldedEdges(const TriangleMesh& mesh)
 {
     // Weld: each vertex to the first vertex at its exact position.
     std::unordered_map<Vec3d, uint32_t, PositionHash> first;
@@ -58,16 +58,26 @@ EdgeReport checkEdges(const TriangleMesh& mesh)
     }
     tbb::parallel_sort(uses.begin(), uses.end(),
                        [](const Use& a, const Use& b) { return a.lo != b.lo ? a.lo < b.lo : a.hi < b.hi; });
-    EdgeReport r;
+    std::vector<WeldedEdge> edges;
     for (size_t i = 0; i < uses.size();) {
-        size_t j = i, forward = 0;
-        while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) forward += uses[j++].forward;
-        const size_t n = j - i;
+        WeldedEdge e{uses[i].lo, uses[i].hi, 0, 0};
+        for (; i < uses.size() && uses[i].lo == e.lo && uses[i].hi == e.hi; ++i) {
+            ++e.uses;
+            e.net += uses[i].forward ? 1 : -1;
+        }
+        edges.push_back(e);
+    }
+    return edges;
+}
+
+EdgeReport checkEdges(const TriangleMesh& mesh)
+{
+    EdgeReport r;
+    for (const WeldedEdge& e : weldedEdges(mesh)) {
         ++r.edges;
-        if (n == 1) ++r.boundary;
-        else if (n > 2) ++r.nonManifold;
-        else if (forward != 1) ++r.misoriented;
-        i = j;
+        if (e.uses == 1) ++r.boundary;
+        else if (e.uses > 2) ++r.nonManifold;
+        else if (e.net != 0) ++r.misoriented;
     }
     return r;
 }

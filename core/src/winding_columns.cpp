@@ -16,6 +16,7 @@
 
 #include "brick_index.h"
 #include "svo/core/error.h"
+#include "svo/core/mesh_topology.h"
 #include "column_crossings.h"
 
 namespace svo {
@@ -73,38 +74,14 @@ struct Edge {
     int64_t m;
 };
 
-/// The edges of the mesh whose triangles' orientations do not cancel,
-/// vertices joined by exact position (a mesh stored as separate triangles
-/// has the same boundary as its welded self).
+/// The edges of the mesh whose triangles' orientations do not cancel
+/// (weldedEdges: a mesh stored as separate triangles has the same boundary
+/// as its welded self), in @a local's frame.
 std::vector<Edge> boundaryEdges(const std::vector<Vec3d>& local, const TriangleMesh& mesh)
 {
-    std::vector<uint32_t> order(local.size());
-    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    const auto key = [&](uint32_t i) { return std::make_tuple(local[i].x, local[i].y, local[i].z); };
-    tbb::parallel_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
-    std::vector<uint32_t> id(local.size());
-    for (size_t n = 0; n < order.size(); ++n)
-        id[order[n]] = n > 0 && key(order[n]) == key(order[n - 1]) ? id[order[n - 1]] : uint32_t(n);
-
-    // Each directed edge a -> b adds +1 to the undirected edge (min, max) if a < b, else -1.
-    std::vector<std::pair<uint64_t, int32_t>> directed;
-    directed.reserve(3 * mesh.triangles.size());
-    for (const auto& f : mesh.triangles)
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t a = id[f[k]], b = id[f[(k + 1) % 3]];
-            if (a == b) continue;
-            directed.push_back({(uint64_t(std::min(a, b)) << 32) | std::max(a, b), a < b ? 1 : -1});
-        }
-    tbb::parallel_sort(directed.begin(), directed.end());
     std::vector<Edge> out;
-    for (size_t n = 0; n < directed.size();) {
-        size_t m = n;
-        int64_t sum = 0;
-        for (; m < directed.size() && directed[m].first == directed[n].first; ++m) sum += directed[m].second;
-        if (sum != 0)
-            out.push_back({local[order[directed[n].first >> 32]], local[order[directed[n].first & 0xffffffffu]], sum});
-        n = m;
-    }
+    for (const WeldedEdge& e : weldedEdges(mesh))
+        if (e.net != 0) out.push_back({local[e.lo], local[e.hi], e.net});
     return out;
 }
 

@@ -3,6 +3,7 @@
 /// @brief Whether a mesh bounds a solid: the test that picks the sign method.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "svo/core/mesh.h"
 
@@ -23,8 +24,20 @@ struct EdgeReport {
     std::string describe() const;
 };
 
-/// @brief Counts the edges of @a mesh after welding its vertices. Throws
-/// nothing but std::bad_alloc; indices must be valid (validateMesh).
+/// @brief An undirected edge of a mesh after welding its vertices.
+struct WeldedEdge {
+    uint32_t lo, hi; ///< its ends, lo < hi: each the first vertex at its position
+    uint32_t uses;   ///< triangles that have it
+    int64_t net;     ///< the triangles running lo -> hi along it, less those running hi -> lo
+};
+
+/// @brief The edges of @a mesh after welding its vertices at equal
+/// positions, sorted by (lo, hi); triangles with a repeated corner left out.
+/// Throws nothing but std::bad_alloc; indices must be valid (validateMesh).
+std::vector<WeldedEdge> weldedEdges(const TriangleMesh& mesh);
+
+/// @brief Counts the edges of @a mesh after welding its vertices (weldedEdges).
+/// Throws nothing but std::bad_alloc; indices must be valid (validateMesh).
 EdgeReport checkEdges(const TriangleMesh& mesh);
 
 } // namespace svo
