@@ -1,7 +1,8 @@
 // Band distances on the CPU (svo/core/band_distances.h). Triangles are
 // binned to the bricks their grown box spans; each brick then takes its
-// triangles in one thread, so the least distance needs no atomics. The
-// distance and the tests that skip centres are the shaders' own text
+// triangles in one thread, so the least distance needs no atomics, nearest
+// first, leaving out where a triangle's box is farther than what a centre
+// already has (BrickNearest). The distance and the slab test are the shaders' own text
 // (svo/core/triangle_distance.h), so each distance is the GPU's double, bit
 // for bit (this file is compiled with -ffp-contract=off).
 #include "svo/core/band_distances.h"
@@ -9,8 +10,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "brick_index.h"
@@ -85,6 +88,138 @@ BrickTriangles binTriangles(const std::vector<Vec3d>& local, const TriangleMesh&
     return out;
 }
 
+/// The next float above @a f (finite, not negative).
+inline float floatAbove(float f)
+{
+    uint32_t bits;
+    std::memcpy(&bits, &f, 4);
+    ++bits;
+    std::memcpy(&f, &bits, 4);
+    return f;
+}
+
+/// The least distances (and closest triangles) at the 512 centres of the
+/// brick at voxel @a org, from the triangles of its bin, as the minimum over
+/// every triangle, bit for bit, with less work:
+///  - Each centre keeps a limit on the squared distance past which a
+///    triangle cannot change its result. Without closest triangles that is
+///    the least squared distance so far: sqrt and the rounding to float are
+///    monotone, so the least float is the float of the least square, taken
+///    once at the end. With them it is the square of the next float above
+///    the least so far, since a triangle at that float may still tie.
+///  - A triangle whose box is farther from a centre (or from a whole column)
+///    than its limit is left out there; the relative margin of 1e-9 covers
+///    the rounding of the box's gap and of the distance.
+///  - The triangles are taken nearest the brick's centre first, so the
+///    limits fall early.
+class BrickNearest {
+public:
+    BrickNearest(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid, float band)
+        : local_(local), mesh_(mesh), grid_(grid), band_(band)
+    {
+    }
+
+    /// Fills d[512] (and c[512] when not null) for the brick at @a org, from
+    /// the triangles [first, last); a centre at the band or past it gets the band.
+    void operator()(const std::array<uint32_t, 3>& org, const uint32_t* first, const uint32_t* last, float* d,
+                    int32_t* c)
+    {
+        const double band = double(band_);
+        // The square of a float is exact in double, and its sqrt the float again.
+        const double start = c ? double(floatAbove(band_)) * double(floatAbove(band_)) : band * band;
+        std::fill(limit2_, limit2_ + 512, start);
+        std::fill(columnLimit2_, columnLimit2_ + 64, start);
+        if (c) {
+            std::fill(d, d + 512, band_);
+            std::fill(c, c + 512, -1);
+        }
+        nearestFirst(org, first, last);
+        for (const auto& [key, t] : order_) {
+            (void)key;
+            if (c) triangle<true>(org, t, d, c);
+            else triangle<false>(org, t, d, c);
+        }
+        if (!c)
+            for (int v = 0; v < 512; ++v) d[v] = float(std::sqrt(limit2_[v]));
+    }
+
+private:
+    /// order_: the bin's triangles by their squared distance from the brick's centre.
+    void nearestFirst(const std::array<uint32_t, 3>& org, const uint32_t* first, const uint32_t* last)
+    {
+        order_.clear();
+        const Vec3d centre{org[0] + 3.5, org[1] + 3.5, org[2] + 3.5};
+        for (const uint32_t* t = first; t != last; ++t) {
+            const auto& f = mesh_.triangles[*t];
+            order_.emplace_back(td::svo_triangle_distance2(centre, local_[f[0]], local_[f[1]], local_[f[2]]), *t);
+        }
+        std::sort(order_.begin(), order_.end());
+    }
+
+    /// Triangle t at the centres of the brick within its grown box and its
+    /// plane's slab, as band_distance_columns.comp narrows them, less those
+    /// its box is too far from.
+    template <bool kClosest>
+    void triangle(const std::array<uint32_t, 3>& org, uint32_t t, float* d, int32_t* c)
+    {
+        const auto& f = mesh_.triangles[t];
+        const Vec3d &A = local_[f[0]], &B = local_[f[1]], &C = local_[f[2]];
+        std::array<uint32_t, 3> lo{}, hi{};
+        grownBox(local_, mesh_, grid_, t, double(band_), lo, hi);
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::max(lo[a], org[a]) - org[a];
+            hi[a] = std::min(hi[a], org[a] + 7) - org[a];
+        }
+        const Vec3d boxLo{std::min({A.x, B.x, C.x}), std::min({A.y, B.y, C.y}), std::min({A.z, B.z, C.z})};
+        const Vec3d boxHi{std::max({A.x, B.x, C.x}), std::max({A.y, B.y, C.y}), std::max({A.z, B.z, C.z})};
+        const td::svo_Triangle tri = td::svo_triangle_of(A, B, C);
+        const td::svo_Slab slab = td::svo_slab_of(A, B, C, double(band_));
+        constexpr double kShrink = 1.0 - 1e-9; // a gap's square, made safely smaller
+        for (uint32_t x = lo[0]; x <= hi[0]; ++x)
+            for (uint32_t y = lo[1]; y <= hi[1]; ++y) {
+                const double px = double(org[0] + x), py = double(org[1] + y);
+                const double gx = std::max({boxLo.x - px, px - boxHi.x, 0.0});
+                const double gy = std::max({boxLo.y - py, py - boxHi.y, 0.0});
+                const double gxy2 = (gx * gx + gy * gy) * kShrink;
+                const uint32_t column = x * 8 + y;
+                if (gxy2 > columnLimit2_[column]) continue;
+                double z0 = double(org[2] + lo[2]), z1 = double(org[2] + hi[2]);
+                if (!td::svo_slab_run(slab, px, py, z0, z1)) continue;
+                bool nearer = false;
+                for (double pz = z0; pz <= z1; pz += 1.0) {
+                    const uint32_t v = column * 8 + uint32_t(pz) - org[2];
+                    const double gz = std::max({boxLo.z - pz, pz - boxHi.z, 0.0});
+                    if (gxy2 + gz * gz * kShrink > limit2_[v]) continue;
+                    const double d2 = td::svo_prepared_distance2(Vec3d{px, py, pz}, tri);
+                    if (d2 >= limit2_[v]) continue; // its float can neither win nor tie
+                    if (!kClosest) {
+                        limit2_[v] = d2;
+                        nearer = true;
+                        continue;
+                    }
+                    const float dd = float(std::sqrt(d2));
+                    if (dd < d[v]) {
+                        d[v] = dd;
+                        c[v] = int32_t(t);
+                        limit2_[v] = double(floatAbove(dd)) * double(floatAbove(dd));
+                        nearer = true;
+                    } else if (dd == d[v] && int32_t(t) < c[v]) {
+                        c[v] = int32_t(t);
+                    }
+                }
+                if (nearer) columnLimit2_[column] = *std::max_element(limit2_ + column * 8, limit2_ + column * 8 + 8);
+            }
+    }
+
+    const std::vector<Vec3d>& local_;
+    const TriangleMesh& mesh_;
+    const GridSpec& grid_;
+    const float band_;
+    double limit2_[512];      ///< per centre: the squared distance past which a triangle changes nothing
+    double columnLimit2_[64]; ///< per column: the largest of its centres' limits
+    std::vector<std::pair<double, uint32_t>> order_;
+};
+
 } // namespace
 
 BandDistances bandDistances(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid,
@@ -99,7 +234,7 @@ BandDistances bandDistances(const std::vector<Vec3d>& local, const TriangleMesh&
     checkpoint(0.1, "band distance");
 
     const float bandF = float(band);
-    const double band2 = double(bandF) * double(bandF);
+    tbb::enumerable_thread_specific<BrickNearest> perThread(local, mesh, grid, bandF);
     BandDistances out;
     out.near.resize(nb);
     out.offsets.resize(nb);
@@ -111,50 +246,13 @@ BandDistances bandDistances(const std::vector<Vec3d>& local, const TriangleMesh&
     for (size_t b0 = 0; b0 < nb; b0 += kBatch) {
         const size_t b1 = std::min(nb, b0 + kBatch);
         tbb::parallel_for(tbb::blocked_range<size_t>(b0, b1, 4), [&](const tbb::blocked_range<size_t>& r) {
+            BrickNearest& nearest = perThread.local();
             for (size_t i = r.begin(); i != r.end(); ++i) {
                 float* d = &dist[(i - b0) * 512];
                 int32_t* c = closestTriangle ? &near[(i - b0) * 512] : nullptr;
-                std::fill(d, d + 512, std::numeric_limits<float>::infinity());
-                if (c) std::fill(c, c + 512, -1);
                 const std::array<uint32_t, 3> org{8 * bricks[i][0], 8 * bricks[i][1], 8 * bricks[i][2]};
-                for (uint64_t k = bins.first[i]; k < bins.first[i + 1]; ++k) {
-                    const uint32_t t = bins.triangles[k];
-                    const auto& f = mesh.triangles[t];
-                    const Vec3d &A = local[f[0]], &B = local[f[1]], &C = local[f[2]];
-                    std::array<uint32_t, 3> lo{}, hi{};
-                    grownBox(local, mesh, grid, t, band, lo, hi);
-                    const Vec3d boxLo{std::min({A.x, B.x, C.x}), std::min({A.y, B.y, C.y}), std::min({A.z, B.z, C.z})};
-                    const Vec3d boxHi{std::max({A.x, B.x, C.x}), std::max({A.y, B.y, C.y}), std::max({A.z, B.z, C.z})};
-                    const td::svo_Triangle tri = td::svo_triangle_of(A, B, C);
-                    const td::svo_Slab slab = td::svo_slab_of(A, B, C, double(bandF));
-                    for (int a = 0; a < 3; ++a) {
-                        lo[a] = std::max(lo[a], org[a]) - org[a];
-                        hi[a] = std::min(hi[a], org[a] + 7) - org[a];
-                    }
-                    for (uint32_t x = lo[0]; x <= hi[0]; ++x)
-                        for (uint32_t y = lo[1]; y <= hi[1]; ++y) {
-                            const double px = double(org[0] + x), py = double(org[1] + y);
-                            // The centres of this column near the triangle's
-                            // box, then within its plane's slab, as
-                            // band_distance_columns.comp narrows them.
-                            double z0 = double(org[2] + lo[2]), z1 = double(org[2] + hi[2]);
-                            if (!td::svo_box_run(boxLo, boxHi, px, py, band2, z0, z1) ||
-                                !td::svo_slab_run(slab, px, py, z0, z1))
-                                continue;
-                            for (double pz = z0; pz <= z1; pz += 1.0) {
-                                const Vec3d p{px, py, pz};
-                                const float dd = float(std::sqrt(td::svo_prepared_distance2(p, tri)));
-                                if (dd > bandF) continue;
-                                const uint32_t v = x * 64 + y * 8 + uint32_t(pz) - org[2];
-                                if (dd < d[v]) {
-                                    d[v] = dd;
-                                    if (c) c[v] = int32_t(t);
-                                } else if (c && dd == d[v] && int32_t(t) < c[v]) {
-                                    c[v] = int32_t(t);
-                                }
-                            }
-                        }
-                }
+                const uint32_t* binned = bins.triangles.data();
+                nearest(org, binned + bins.first[i], binned + bins.first[i + 1], d, c);
                 Brick m;
                 for (uint32_t v = 0; v < 512; ++v)
                     if (d[v] < bandF) m.words[v >> 6] |= uint64_t(1) << (v & 63);
