@@ -1,5 +1,6 @@
 #include "svo/gl/fill_words.h"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 #include "svo/core/error.h"
@@ -14,7 +15,7 @@ const ShaderFiles& deviceShaders();
 
 void fillWords(const Context& context, const Buffer& buffer, uint32_t value, uint64_t bytes)
 {
-    if (bytes % 4 || bytes > buffer.bytes() || bytes / 4 >= (uint64_t(1) << 32))
+    if (bytes % 4 || bytes > buffer.bytes())
         throw InvalidInput(fmt::format("fillWords: {} bytes in a buffer of {}", bytes, buffer.bytes()));
     if (!bytes) return;
     const Context::Scope scope(context);
@@ -25,10 +26,15 @@ void fillWords(const Context& context, const Buffer& buffer, uint32_t value, uin
     glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, 0, &wasSize);
     const Program& fill = context.program(deviceShaders(), {"fill_words.comp"});
     fill.set("uValue", value);
-    buffer.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-    const uint64_t words = bytes / 4; // under 2^32 (checked above): one 2D dispatch
-    fill.set("uWords", uint32_t(words));
-    fill.dispatchRows((words + 255) / 256);
+    // Ranges of 2^28 words (1 GiB, a multiple of any storage offset
+    // alignment): the shader counts words in 32 bits.
+    constexpr uint64_t kRange = uint64_t(1) << 30;
+    for (uint64_t at = 0; at < bytes; at += kRange) {
+        const uint64_t n = std::min(kRange, bytes - at);
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, buffer.id(), GLintptr(at), GLsizeiptr(n));
+        fill.set("uWords", uint32_t(n / 4));
+        fill.dispatchRows((n / 4 + 255) / 256);
+    }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT |
                     GL_COMMAND_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
     if (wasSize > 0)

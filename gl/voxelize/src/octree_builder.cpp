@@ -9,6 +9,7 @@
 #include "svo/core/voxel_key.h"
 #include "svo/gl/octree_builder.h"
 #include "svo/gl/buffer.h"
+#include "svo/gl/fill_words.h"
 #include "svo/gl/gl_api.h"
 #include "svo/gl/program.h"
 #include "svo/gl/timer_query.h"
@@ -81,7 +82,7 @@ OctreeBuilder::Build OctreeBuilder::record(const GridSpec& grid, const OctreeInp
     b.nodes = &context_.scratch("octree nodes", b.nodeCapacity * sizeof(OctreeNode));
     b.bricks = &context_.scratch("octree bricks", b.brickCapacity * sizeof(Brick));
     b.state->write(0, sizeof init, &init);
-    b.bricks->clearUint(0, b.brickCapacity * sizeof(Brick));
+    fillWords(context_, *b.bricks, 0, b.brickCapacity * sizeof(Brick));
 
     b.state->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_STATE);
     b.nodes->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NODES);
@@ -123,8 +124,8 @@ void OctreeBuilder::recordBitmap(Build& b, uint32_t L, const std::function<void(
     const uint64_t blocks = first[L + 1];
     b.bitmap = &context_.scratch("octree bitmaps", blocks * gpu::kBitmapBlockWords * 4);
     b.blocks = &context_.scratch("octree bitmap blocks", 2 * blocks * 4);
-    b.bitmap->clearUint(0, blocks * gpu::kBitmapBlockWords * 4);
-    b.blocks->clearUint(0, blocks * 4);
+    fillWords(context_, *b.bitmap, 0, blocks * gpu::kBitmapBlockWords * 4);
+    fillWords(context_, *b.blocks, 0, blocks * 4);
     b.bitmap->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_BITMAP);
     b.blocks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_BUILD_BLOCKS);
     const Program& mark = context_.program(voxelizeShaders(), {"octree_mark.comp"});
@@ -149,7 +150,7 @@ void OctreeBuilder::recordBitmap(Build& b, uint32_t L, const std::function<void(
 
 void OctreeBuilder::recordDescent(Build& b, uint32_t L, const std::function<void()>& poll) const
 {
-    b.nodes->clearUint(0, b.nodeCapacity * sizeof(OctreeNode));
+    fillWords(context_, *b.nodes, 0, b.nodeCapacity * sizeof(OctreeNode));
     const Program& flag = context_.program(voxelizeShaders(), {"octree_flag.comp"});
     const Program& alloc = context_.program(voxelizeShaders(), {"octree_alloc.comp"});
     for (const Program* p : {&flag, &alloc}) p->set("uBrickLevel", L); // prepare_ does not read it

@@ -14,14 +14,13 @@ class Buffer;
 class Context;
 
 /// @brief Sets the first @a bytes of @a buffer to @a value as 32-bit words,
-/// with @a context current. Shader storage binding 0 is used and restored;
+/// with @a context current, in ranges of 1 GiB. Shader storage binding 0 is used and restored;
 /// the writes are visible to later shader, buffer-update and client reads.
 /// @param context the buffer's context
 /// @param buffer  the buffer, at least @a bytes long
 /// @param value   the word written
 /// @param bytes   how many bytes, a multiple of 4; nothing for 0
-/// @throw svo::InvalidInput when @a bytes is not a multiple of 4, exceeds the
-///        buffer or holds 2^32 words or more
+/// @throw svo::InvalidInput when @a bytes is not a multiple of 4 or exceeds the buffer
 void fillWords(const Context& context, const Buffer& buffer, uint32_t value, uint64_t bytes);
 
 } // namespace svo::gl
