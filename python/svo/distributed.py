@@ -23,9 +23,12 @@ bounded (timeout=, JobTimeout).
 Command line: ``python3 -m svo.distributed voxelize MESH -r N [--sdf|--udf|--fill solid]
 [--tile N] [--timeout S] [--workers N | --devices 0,1 | --scheduler ADDRESS] (-o OUT.vdb | --tiles-dir DIR)``.
 
-Not yet (issue 43): attributes (per-voxel arrays to join), level sets and
-solids partitioned to tiles (their signs need the whole mesh, or whole
-columns), the city benchmark.
+A surface's attributes and a level set's closest triangles are joined too:
+their grids by name, their per-voxel arrays with rows sorted by (i, j, k),
+returned as an svo.Result.
+
+Not yet (issue 43): level sets and solids partitioned to tiles (their signs
+need the whole mesh, or whole columns), the city benchmark.
 read_tiles joins a tile folder back into one grid.
 """
 import argparse
@@ -74,17 +77,48 @@ def _mesh_arrays(mesh):
 
 
 def _call(mesh, kind, keywords, region=None):
+    """The call's svo.Result."""
     vertices, triangles = _mesh_arrays(mesh)
     v = _voxelizer()
     if region is not None:
         keywords = dict(keywords, region=region)
     if kind == "surface":
-        return v.voxelize(vertices, triangles, **keywords).grid
+        return v.voxelize(vertices, triangles, **keywords)
     if kind == "sdf":
-        return v.level_set(vertices, triangles, **keywords).grid
+        return v.level_set(vertices, triangles, **keywords)
     if kind == "udf":
-        return v.level_set(vertices, triangles, unsigned=True, **keywords).grid
-    return v.solid(vertices, triangles, **keywords).grid
+        return v.level_set(vertices, triangles, unsigned=True, **keywords)
+    return v.solid(vertices, triangles, **keywords)
+
+
+def _wants_arrays(kind, keywords):
+    """Whether the call gives per-voxel arrays (svo.Result's ijk and the
+    rest): a surface's attributes, a level set's closest triangles."""
+    if kind == "surface":
+        return bool(keywords.get("attributes"))
+    return kind in ("sdf", "udf") and bool(keywords.get("closest_triangle"))
+
+
+ARRAYS = ("ijk", "normal", "color", "triangle")
+
+
+def _arrays_of(result, mesh):
+    """The result's per-voxel arrays by name (those it has), its triangle ids
+    in the whole mesh's numbering where the tile had a part of it."""
+    arrays = {name: getattr(result, name) for name in ARRAYS if getattr(result, name) is not None}
+    if isinstance(mesh, dict) and "triangle" in arrays:
+        # A part's triangles are the whole mesh's in its order (_tile_mesh),
+        # so the smallest id of a voxel stays the smallest.
+        arrays["triangle"] = _tile_triangle_ids(mesh["pieces"], mesh["bounding"])[arrays["triangle"]].astype(np.int32)
+    return arrays
+
+
+def _joined_arrays(parts):
+    """The tiles' arrays as one, rows sorted by (i, j, k)."""
+    arrays = {name: np.concatenate([p[name] for p in parts]) for name in parts[0]}
+    ijk = arrays["ijk"]
+    order = np.lexsort((ijk[:, 2], ijk[:, 1], ijk[:, 0]))
+    return {name: a[order] for name, a in arrays.items()}
 
 
 # An index box no grid reaches (OpenVDB coordinates are int32; svo keeps
@@ -95,10 +129,11 @@ _NOWHERE = ((2**30, 2**30, 2**30), (2**30 + 8, 2**30 + 8, 2**30 + 8))
 
 def _box_task(mesh, kind, keywords):
     """The index box that holds every value of the whole grid that is not
-    background, and an empty grid with the grid's transform and metadata."""
+    background, and the call's grids by name, empty, with their transform
+    and metadata (the main grid first)."""
     vertices, triangles = _mesh_arrays(mesh)
-    empty = _call((vertices, triangles), kind, keywords, region=_NOWHERE)
-    xform = empty.transform
+    empty = _call((vertices, triangles), kind, keywords, region=_NOWHERE).grids
+    xform = next(iter(empty.values())).transform
     lo = [math.inf] * 3
     hi = [-math.inf] * 3
     # The mesh's world box, its 8 corners to index space: holds the mesh under
@@ -117,7 +152,7 @@ def _box_task(mesh, kind, keywords):
         margin += _band(keywords) + 8
     box_lo = tuple(_floor8(math.floor(lo[a]) - margin) for a in range(3))
     box_hi = tuple(_ceil8(math.ceil(hi[a]) + margin + 1) for a in range(3))
-    return (box_lo, box_hi), empty
+    return (box_lo, box_hi), dict(empty)
 
 
 def _band(keywords):
@@ -126,15 +161,15 @@ def _band(keywords):
 
 def _plan_task(mesh, kind, keywords, tile=None, workers=1):
     """The tiles: boxes of whole leaves that cover every value of the whole
-    grid that is not background (see plan_tiles); the box they cover; an
-    empty grid with the grid's transform and metadata."""
+    grid that is not background (see plan_tiles); the box they cover; the
+    call's grids by name, empty (see _box_task)."""
     vertices, triangles = mesh = _mesh_arrays(mesh)
     box, empty = _box_task(mesh, kind, keywords)
     if tile is not None:
         return tiles(box, tile), box, empty
     if workers <= 1:
         return [box], box, empty
-    leaves, weights = surface_weights(vertices, triangles, _matrix(empty.transform))
+    leaves, weights = surface_weights(vertices, triangles, _matrix(next(iter(empty.values())).transform))
     return _balanced(box, workers, leaves, weights), box, empty
 
 
@@ -148,13 +183,18 @@ def _balanced(box, workers, leaves, weights):
 
 
 def _tile_task(mesh, kind, keywords, box, output_dir=None, metadata=None):
+    """The tile's main grid; with per-voxel arrays, its grids by name and its
+    arrays (_arrays_of); with output_dir, its index entry (_write_tile)."""
     try:
-        grid = _call(mesh, kind, keywords, region=box)
-        for key, value in (metadata or {}).items():  # what a part of the mesh says of the whole
-            grid[key] = value
-        if output_dir is None:
-            return grid
-        return _write_tile(grid, output_dir, box)
+        result = _call(mesh, kind, keywords, region=box)
+        for grid in result.grids.values():
+            for key, value in (metadata or {}).items():  # what a part of the mesh says of the whole
+                grid[key] = value
+        if output_dir is not None:
+            return _write_tile(result.grid, output_dir, box)
+        if _wants_arrays(kind, keywords):
+            return dict(result.grids), _arrays_of(result, mesh)
+        return result.grid
     except Exception as e:  # the job's error must say which tile
         raise TileError(f"tile {box[0]}..{box[1]}: {type(e).__name__}: {e}") from e
 
@@ -395,9 +435,16 @@ def _tile_mesh(pieces, bounding):
     return corners.reshape(-1, 3), np.arange(3 * len(index), dtype=np.int64).reshape(-1, 3)
 
 
+def _tile_triangle_ids(pieces, bounding):
+    """Per triangle of _tile_mesh(pieces, bounding), its index in the whole mesh."""
+    pieces = [p for p in pieces if p is not None] + [bounding]
+    return np.unique(np.concatenate([i for i, _ in pieces]))
+
+
 def _partitioned(client, vertices, triangles, kind, tile, workers, keywords, place=None, timeout=None):
     """Plan and partition a mesh of arrays: the tiles, the box, the plan's
-    grid, each tile's mesh (a dict of futures) and the metadata to set.
+    grids (see _box_task), each tile's mesh (a dict of futures) and the
+    metadata to set.
     place: see _placement; timeout: seconds to wait for the plan."""
     if place is None:
         place = _placement(client)
@@ -408,12 +455,13 @@ def _partitioned(client, vertices, triangles, kind, tile, workers, keywords, pla
     bounding = (bound, vertices[triangles[bound]])
     # The plan's call sees only the bounding triangles: the same box, so the
     # same transform and frame.
-    box, grid = _wait_result(_submit(client, place, _box_task, _tile_mesh([], bounding), kind, keywords),
-                             timeout, "the plan (the grid's box)")
+    box, grids = _wait_result(_submit(client, place, _box_task, _tile_mesh([], bounding), kind, keywords),
+                              timeout, "the plan (the grid's box)")
     metadata = {"svo:triangles": str(count)}
-    for key, value in metadata.items():
-        grid[key] = value
-    matrix = _matrix(grid.transform)
+    for grid in grids.values():
+        for key, value in metadata.items():
+            grid[key] = value
+    matrix = _matrix(next(iter(grids.values())).transform)
     # One chunk per worker; each a task's result, not scattered data, so that
     # the scheduler can make it again when its worker is lost (see _hold).
     n = max(1, min(workers, count))
@@ -438,7 +486,7 @@ def _partitioned(client, vertices, triangles, kind, tile, workers, keywords, pla
     split = [_submit(client, place, _partition_task, c, matrix, boxes, margin) for c in chunks]
     meshes = [{"pieces": [_submit(client, place, _pick, s, i) for s in split], "bounding": bounding}
               for i in range(len(boxes))]
-    return boxes, box, grid, meshes, metadata
+    return boxes, box, grids, meshes, metadata
 
 
 # --- the call ------------------------------------------------------------------
@@ -481,8 +529,13 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
     once). kind: "surface" (svo.voxelize),
     "sdf" (Voxelizer.level_set), "udf" (level_set unsigned=True) or "solid".
     keywords: those of that call (resolution, voxel_size, grid, backend,
-    exterior_band, sign, ...); not region, and not attributes (their arrays
-    are not joined yet). client: a dask.distributed Client; None starts a
+    exterior_band, sign, attributes, closest_triangle, ...); not region.
+    With attributes (a surface) or closest_triangle (a level set) the
+    result is an svo.Result: every grid of the call joined (the main one,
+    "normal"), and the per-voxel arrays (ijk, normal, triangle) of every
+    tile as one, rows sorted by (i, j, k) (a single process gives them in
+    its octree's order), triangle ids numbered in the whole mesh; report is
+    None. Not with output_dir. client: a dask.distributed Client; None starts a
     LocalCluster of one-thread worker processes (one per entry of devices,
     each on its EGL device: see local_cluster) and closes it after. tile:
     voxels per tile side, a multiple of 8, for a lattice of equal tiles
@@ -516,8 +569,9 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
         raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
     if "region" in keywords:
         raise ValueError("region: svo.distributed plans the regions itself")
-    if keywords.get("attributes"):
-        raise NotImplementedError("attributes: svo.distributed does not join per-voxel arrays yet")
+    if output_dir is not None and _wants_arrays(kind, keywords):
+        raise ValueError("attributes and closest_triangle: their grids and per-voxel arrays are joined on the "
+                         "client only; output_dir writes each tile's main grid")
     if kind == "udf" and "unsigned" in keywords:
         raise ValueError("unsigned: kind='udf' sets it")
     if tile is not None and (tile <= 0 or tile % 8):
@@ -614,8 +668,8 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
     place = _placement(client)
     metadata = None
     if not isinstance(mesh, (str, os.PathLike)) and kind in PARTITIONED_KINDS and partition and _metadata_settable():
-        boxes, box, grid, meshes, metadata = _partitioned(client, *mesh, kind, tile, workers, keywords, place,
-                                                          timeout)
+        boxes, box, grids, meshes, metadata = _partitioned(client, *mesh, kind, tile, workers, keywords, place,
+                                                           timeout)
     else:
         if not isinstance(mesh, (str, os.PathLike)):
             mesh = _submit_held(client, place, tuple(mesh))
@@ -623,9 +677,11 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
             mesh = os.fspath(mesh)
         # On a worker: a path is read where the tiles will read it (svo's reader
         # errors name the file), and the client needs no GL context.
-        boxes, box, grid = _wait_result(_submit(client, place, _plan_task, mesh, kind, keywords, tile, workers),
-                                        timeout, "the plan")
+        boxes, box, grids = _wait_result(_submit(client, place, _plan_task, mesh, kind, keywords, tile, workers),
+                                         timeout, "the plan")
         meshes = [mesh] * len(boxes)
+    grid = next(iter(grids.values()))
+    arrays = [] if _wants_arrays(kind, keywords) else None
     if output_dir is not None:
         output_dir = os.path.abspath(os.fspath(output_dir))
         os.makedirs(output_dir, exist_ok=True)
@@ -663,10 +719,19 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
                 raise TileError(f"tile {lo}..{hi}: a worker died while it held the task, more times than "
                                 f"Dask's distributed.scheduler.allowed-failures "
                                 f"({getattr(e, 'allowed_failures', '?')}) allows") from e
-            if output_dir is None:
+            if output_dir is not None:
+                entries.append(result)
+            elif arrays is None:
                 _join_region(grid, result)
             else:
-                entries.append(result)
+                parts, tile_arrays = result
+                for name, part in parts.items():
+                    if name in grids:
+                        _join_region(grids[name], part)
+                    else:  # the plan's empty call makes no attribute grids: the first tile's starts it
+                        grids[name] = part
+                if len(tile_arrays.get("ijk", ())):
+                    arrays.append(tile_arrays)
             del result
             future.release()
             done += 1
@@ -675,8 +740,11 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
         # One call for all: a failed tile (or Ctrl-C) stops the tiles still queued.
         client.cancel(futures)
         raise
-    if output_dir is None:
+    if output_dir is None and arrays is None:
         return grid
+    if output_dir is None:
+        joined = _joined_arrays(arrays) if arrays else {}
+        return svo.Result(grid=grid, grids=grids, **{name: joined.get(name) for name in ARRAYS})
     # A worker killed while svo's writer wrote a tile leaves its temporary
     # file (the tile's own name + ".tmp-" + 8 hex digits); the task ran again.
     for name in os.listdir(output_dir):

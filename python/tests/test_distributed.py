@@ -93,7 +93,8 @@ def active_mask(grid):
 
 def values(grid, lo, hi):
     dtype = bool if isinstance(grid, pyopenvdb.BoolGrid) else np.float32
-    a = np.empty(tuple(h - l for l, h in zip(lo, hi)), dtype=dtype)
+    vector = (3,) if isinstance(grid, pyopenvdb.Vec3SGrid) else ()
+    a = np.empty(tuple(h - l for l, h in zip(lo, hi)) + vector, dtype=dtype)
     grid.copyToArray(a, ijk=lo)
     return a
 
@@ -132,6 +133,38 @@ def test_tiles_joined_are_the_single_process_grid(client, voxelizer, shape, kind
     assert total >= 8 and calls[0] == (0, total) and calls[-1] == (total, total)
     assert [d for d, _ in calls] == list(range(total + 1))
     assert_same_grid(got, single(voxelizer, mesh, kind))
+
+
+def rows_by_ijk(result):
+    """The result's per-voxel arrays, rows sorted by (i, j, k)."""
+    order = np.lexsort((result.ijk[:, 2], result.ijk[:, 1], result.ijk[:, 0]))
+    return {name: getattr(result, name)[order] for name in ("ijk", "normal", "color", "triangle")
+            if getattr(result, name) is not None}
+
+
+@pytest.mark.parametrize("kind, keywords", [("surface", {"attributes": ["normal", "triangle"]}),
+                                            ("surface", {"attributes": ["triangle"], "grid": "fog", "mode": "thin"}),
+                                            ("sdf", {"closest_triangle": True}),
+                                            ("udf", {"closest_triangle": True})])
+def test_attributes_and_closest_triangles_are_joined(client, voxelizer, kind, keywords):
+    # The open sphere: a surface and a UDF of arrays are partitioned, so each
+    # tile's triangle ids are its part's, numbered back in the whole mesh.
+    v, t = open_sphere()
+    got = svo.distributed.voxelize((v, t), client=client, tile=TILE, kind=kind, resolution=RESOLUTION, **keywords)
+    if kind == "surface":
+        want = voxelizer.voxelize(v, t, resolution=RESOLUTION, **keywords)
+    else:
+        want = voxelizer.level_set(v, t, resolution=RESOLUTION, unsigned=kind == "udf", **keywords)
+    assert isinstance(got, svo.Result) and got.report is None
+    assert list(got.grids) == list(want.grids) and got.grid is got.grids[list(want.grids)[0]]
+    for name, grid in want.grids.items():
+        assert_same_grid(got.grids[name], grid)
+    got_rows, want_rows = rows_by_ijk(got), rows_by_ijk(want)
+    assert list(got_rows) == list(want_rows) and len(want_rows["ijk"]) > 0
+    for name, rows in want_rows.items():
+        assert got_rows[name].dtype == rows.dtype
+        np.testing.assert_array_equal(getattr(got, name), rows, err_msg=name)  # the distributed rows come sorted
+    assert want_rows["triangle"].min() >= 0 and want_rows["triangle"].max() < len(t)
 
 
 def test_progress_with_a_third_argument_gets_the_time_left(client):
@@ -206,6 +239,8 @@ def test_bad_arguments_fail_before_any_work(client):
         svo.distributed.voxelize((v, t), client=client, kind="fog")
     with pytest.raises(ValueError, match="multiple of 8"):
         svo.distributed.voxelize((v, t), client=client, tile=12)
+    with pytest.raises(ValueError, match="joined on the client only"):
+        svo.distributed.voxelize((v, t), client=client, output_dir="tiles", attributes=["normal"])
 
 
 def test_tiles_cover_the_box_once_in_whole_leaves():
