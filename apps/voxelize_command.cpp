@@ -106,6 +106,8 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
         throw InvalidInput("--winding-accuracy applies to --sdf and --fill solid");
     if (cmd.count("--winding-accuracy") && a.levelSet.options.sign.method == SignMethod::Parity)
         throw InvalidInput("--winding-accuracy applies to winding-number signs, not to --sign parity");
+    if (cmd.count("--part-of-closed-mesh") && !a.sdf && a.fill != "solid")
+        throw InvalidInput("--part-of-closed-mesh applies to --sdf and --fill solid");
     if (cmd.count("--gpu-memory") && a.backend.settings.backend == Backend::Cpu)
         throw InvalidInput("--gpu-memory applies to the GPU backends, not to --backend cpu");
     if (!a.field()) return;
@@ -492,7 +494,8 @@ void addVoxelizeCommand(CLI::App& app)
                     "(grid 'solid', whole regions as tiles)")
         ->check(CLI::IsMember({"surface", "solid"}));
     addBandOptions(*cmd, args->levelSet, "for --sdf and --udf");
-    addOptions(*cmd, args->levelSet.options, {"sign", "winding_accuracy"}, "for --sdf and --fill solid");
+    addOptions(*cmd, args->levelSet.options, {"sign", "winding_accuracy", "part_of_closed_mesh"},
+               "for --sdf and --fill solid");
     addOptions(*cmd, args->levelSet.options, {"closest_triangle"}, "with --sdf or --udf");
     cmd->add_option("--repeat", args->repeat,
                     "Voxelize N times (after one warm-up on the GPU) and report per-stage medians; without -o, "

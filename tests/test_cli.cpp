@@ -1213,7 +1213,8 @@ TEST_F(Cli, LevelSetsAndSolidsAreGridsVdbPrintReads)
                             "--exterior-band 3", "--fill solid --attributes normal", "--closest-triangle",
                             "--sdf --topology mask", "--udf --topology bool", "--fill solid --fog",
                             "--sdf --band 0.5", "--winding-accuracy 3", "--sdf --backend raster",
-                            "--udf --conservative hardware"}) {
+                            "--udf --conservative hardware", "--part-of-closed-mesh",
+                            "--sdf --sign winding --part-of-closed-mesh"}) {
         const auto r = runSvo("voxelize " + path("ico.off") + " " + bad + (std::string(bad).find(" -o ") == std::string::npos ? " -o " + path("bad.vdb") : std::string()));
         EXPECT_EQ(r.code, 1) << bad << ": " << r.out;
         EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << bad << ": " << r.out; // one line

@@ -199,6 +199,64 @@ TEST_P(Regions, LevelSetsUdfsAndSolidsAreTheWholeGridsCutToTheBox)
     }
 }
 
+/// The triangles of @a mesh whose local box, grown by @a margin voxels,
+/// meets the columns of region @a r in x and y, whatever their height: what
+/// a task of svo.distributed gets for a level set or solid signed by parity.
+TriangleMesh columnsPart(const TriangleMesh& mesh, const GridSpec& grid, const IndexBox& r, double margin)
+{
+    TriangleMesh part = mesh;
+    part.triangles.clear();
+    for (const auto& t : mesh.triangles) {
+        bool meets = true;
+        for (int a = 0; a < 2; ++a) {
+            double lo = 1e300, hi = -1e300;
+            for (uint32_t v : t) {
+                const double i = grid.toIndex(mesh.positions[v])[a];
+                lo = std::min(lo, i), hi = std::max(hi, i);
+            }
+            meets = meets && hi + margin >= double(r.lo[a]) && lo - margin <= double(r.hi[a] - 1);
+        }
+        if (meets) part.triangles.push_back(t);
+    }
+    part.source = mesh.source + " (the region's columns)";
+    return part;
+}
+
+TEST_P(Regions, ParitySignsNeedOnlyTheTrianglesOfTheRegionsColumns)
+{
+    // A closed mesh cut to a region's z columns is open at its sides: parity
+    // asked for it is refused, and SignOptions::partOfClosedMesh takes it
+    // unchecked. The part's region is then the whole mesh's, clipped.
+    Voxelizer v;
+    const TriangleMesh mesh = icosphere({0.1, -0.2, 0.3}, 1.0, 3);
+    const GridSpec grid = makeGrid(mesh, GridRequest{40, 0});
+    VoxelizeOptions o;
+    o.backend = GetParam() == Backend::Cpu ? Backend::Cpu : kGl;
+    LevelSetOptions sdf;
+    const auto wholeSdf = v.levelSet(mesh, grid, sdf, o);
+    const auto wholeSolid = v.solid(mesh, grid, o);
+    SignOptions part;
+    part.partOfClosedMesh = true;
+    sdf.sign = part;
+    uint64_t cut = 0;
+    for (const IndexBox& r : randomRegions(grid, 4, 29)) {
+        SCOPED_TRACE(describe(r));
+        o.region = r;
+        const TriangleMesh columns = columnsPart(mesh, grid, r, sdf.exteriorBand + 2);
+        if (columns.triangles.empty() || columns.triangles.size() == mesh.triangles.size()) continue;
+        ++cut;
+        EXPECT_THROW(v.solid(columns, grid, o, SignOptions(SignMethod::Parity)), InvalidInput);
+        const auto sdfPart = v.levelSet(columns, grid, sdf, o);
+        ASSERT_EQ(sdfPart.size(), wholeSdf.size());
+        for (size_t i = 0; i < sdfPart.size(); ++i) expectSameAsClipped(*wholeSdf[i], *sdfPart[i], r);
+        expectSameAsClipped(*wholeSolid, *v.solid(columns, grid, o, part), r);
+    }
+    EXPECT_GE(cut, 2u) << "regions whose columns hold a part of the mesh";
+    part.method = SignMethod::Winding;
+    EXPECT_THROW(v.solid(mesh, grid, o, part), InvalidInput);
+}
+
+
 // Past a GPU memory budget, level sets and solids are computed in regions
 // and joined: the whole grid's result, value for value.
 TEST(RegionsTiles, LevelSetsAndSolidsWithinAGpuBudgetAreTheWholeGrids)

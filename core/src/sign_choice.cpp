@@ -11,6 +11,15 @@ namespace svo {
 SignChoice chooseSign(const TriangleMesh& mesh, const SignOptions& asked, std::vector<std::string>& warnings)
 {
     checkWindingAccuracy(asked.windingAccuracy, "SignOptions::windingAccuracy");
+    if (asked.partOfClosedMesh) {
+        // The caller vouches for the whole mesh; the part is open where it was cut.
+        if (asked.method == SignMethod::Winding)
+            throw InvalidInput(std::vector<Error::Part>{Error::option("SignOptions::partOfClosedMesh"), " with ",
+                                                        Error::option("SignOptions::method"),
+                                " winding: a part of a closed mesh takes parity signs (winding numbers sum over the "
+                                "whole mesh)"});
+        return {SignMethod::Parity, "parity: a part of a closed mesh, as the caller says"};
+    }
     if (asked.method == SignMethod::Winding) return {SignMethod::Winding, "winding: as asked"};
     const EdgeReport edges = checkEdges(mesh);
     if (edges.closedAndOriented()) return {SignMethod::Parity, "parity: the mesh is " + edges.describe()};

@@ -563,10 +563,11 @@ const Call kOctreeCall{"octree",
                         "gpu_memory", "region"}};
 const Call kLevelSetCall{"level_set",
                          {"resolution", "voxel_size", "transform", "exterior_band", "interior_band", "unsigned",
-                          "closest_triangle", "sign", "winding_accuracy", "backend", "region", "report"}};
+                          "closest_triangle", "sign", "winding_accuracy", "part_of_closed_mesh", "backend", "region",
+                          "report"}};
 const Call kSolidCall{"solid",
-                      {"resolution", "voxel_size", "transform", "sign", "winding_accuracy", "backend", "region",
-                       "report"}};
+                      {"resolution", "voxel_size", "transform", "sign", "winding_accuracy", "part_of_closed_mesh",
+                       "backend", "region", "report"}};
 const Call kFromGridCall{"from_grid", {"backend"}};
 const Call kRenderCall{"render",
                        {"size", "view", "layers", "levels", "color", "ao", "ao_only", "ao_source", "lighting", "lights",

@@ -27,8 +27,12 @@ A surface's attributes and a level set's closest triangles are joined too:
 their grids by name, their per-voxel arrays with rows sorted by (i, j, k),
 returned as an svo.Result.
 
-Not yet (issue 43): level sets and solids partitioned to tiles (their signs
-need the whole mesh, or whole columns), the city benchmark.
+Level sets and solids of arrays signed by parity are partitioned too: each
+tile gets the triangles of its z columns, top to bottom. Those signed by
+winding numbers (open meshes) give every tile the whole mesh, over which
+the numbers sum.
+
+Not yet (issue 43): the city benchmark.
 read_tiles joins a tile folder back into one grid.
 """
 import argparse
@@ -328,7 +332,10 @@ def plan_tiles(box, tile, leaves, weights, parts, levels=3):
 # svo:triangles, the one piece of metadata that counts the mesh, is set to
 # the whole mesh's count.
 
-PARTITIONED_KINDS = ("surface", "udf")
+PARTITIONED_KINDS = ("surface", "udf", "sdf", "solid")
+# Level sets and solids are partitioned where their signs come from parity:
+# a tile then gets its columns' triangles (see _partitioned).
+SIGNED_KINDS = ("sdf", "solid")
 
 
 def _bounding_triangles(vertices, triangles, chunk=1 << 20):
@@ -352,16 +359,17 @@ def _chunk_weights(chunk, matrix):
     return surface_weights(corners.reshape(-1, 3), np.arange(3 * len(corners)).reshape(-1, 3), matrix)
 
 
-def _partition_task(chunk, matrix, boxes, margin):
+def _partition_task(chunk, matrix, boxes, margin, columns=False):
     """Per tile box, the chunk's triangles whose index-space box grown by
-    `margin` voxels meets the tile's voxels: (their indices in the mesh, their
-    corners), or None."""
+    `margin` voxels meets the tile's voxels (with columns, the tile's z
+    columns: x and y only): (their indices in the mesh, their corners), or None."""
     index, corners = chunk
     ijk = (corners - matrix[3, :3]) @ np.linalg.inv(matrix[:3, :3])
     lo, hi = ijk.min(axis=1) - margin, ijk.max(axis=1) + margin
+    axes = 2 if columns else 3
     out = []
     for b_lo, b_hi in boxes:
-        meets = np.all((hi >= np.array(b_lo)) & (lo <= np.array(b_hi) - 1), axis=1)
+        meets = np.all((hi[:, :axes] >= np.array(b_lo[:axes])) & (lo[:, :axes] <= np.array(b_hi[:axes]) - 1), axis=1)
         out.append((index[meets], corners[meets]) if meets.any() else None)
     return out
 
@@ -422,6 +430,12 @@ def _submit_held(client, place, data):
         return _submit(client, place, _hold, data)
 
 
+def _is_future(x):
+    from distributed import Future
+
+    return isinstance(x, Future)
+
+
 def _pick(parts, i):
     return parts[i]
 
@@ -441,23 +455,38 @@ def _tile_triangle_ids(pieces, bounding):
     return np.unique(np.concatenate([i for i, _ in pieces]))
 
 
-def _partitioned(client, vertices, triangles, kind, tile, workers, keywords, place=None, timeout=None):
+def _sign_task(mesh, kind, keywords):
+    """The sign method a level set or solid of the whole mesh takes, as its
+    grid's svo:sign says ("parity: ...", "winding: ...")."""
+    return _call(mesh, kind, keywords, region=_NOWHERE).grid["svo:sign"]
+
+
+def _partitioned(client, vertices, triangles, kind, tile, workers, keywords, place=None, timeout=None, sign=None):
     """Plan and partition a mesh of arrays: the tiles, the box, the plan's
-    grids (see _box_task), each tile's mesh (a dict of futures) and the
-    metadata to set.
+    grids (see _box_task), each tile's mesh (a dict of futures), the
+    metadata to set and the keywords of the tiles' calls. sign: a level
+    set's or solid's method, as _sign_task gives it for the whole mesh; only
+    "parity: ..." can be partitioned (winding numbers sum over the whole mesh).
     place: see _placement; timeout: seconds to wait for the plan."""
     if place is None:
         place = _placement(client)
     vertices = np.asarray(vertices, dtype=np.float64)
     triangles = np.asarray(triangles, dtype=np.int64)
     count = len(triangles)
+    metadata = {"svo:triangles": str(count)}
+    if kind in SIGNED_KINDS:
+        if not (sign or "").startswith("parity"):
+            raise ValueError(f"a {kind} is partitioned only when signed by parity, not {sign!r}")
+        # What the whole mesh decided (sign="auto" asks whether it is closed;
+        # a part looks open where it is cut), and its record in the grids.
+        metadata["svo:sign"] = sign
+        keywords = dict(keywords, part_of_closed_mesh=True)
     bound = _bounding_triangles(vertices, triangles)
     bounding = (bound, vertices[triangles[bound]])
     # The plan's call sees only the bounding triangles: the same box, so the
     # same transform and frame.
     box, grids = _wait_result(_submit(client, place, _box_task, _tile_mesh([], bounding), kind, keywords),
                               timeout, "the plan (the grid's box)")
-    metadata = {"svo:triangles": str(count)}
     for grid in grids.values():
         for key, value in metadata.items():
             grid[key] = value
@@ -479,14 +508,17 @@ def _partitioned(client, vertices, triangles, kind, tile, workers, keywords, pla
         weights = np.bincount(inverse.ravel(), weights=np.concatenate([p[1] for p in parts]), minlength=len(keys))
         boxes = _balanced(box, workers, keys, weights)
     # A surface voxel depends on the triangles that touch its cube grown by
-    # the guard band (half a voxel and a little); an unsigned distance within
-    # the band on those within the band of its centre (bricksNearTriangles'
-    # reach), a value beyond it is the background whatever lies there.
-    margin = 2 + (_band(keywords) if kind == "udf" else 0)
-    split = [_submit(client, place, _partition_task, c, matrix, boxes, margin) for c in chunks]
+    # the guard band (half a voxel and a little); a distance within the band
+    # on those within the band of its centre (bricksNearTriangles' reach), a
+    # value beyond it is the background whatever lies there. A parity sign
+    # depends on the crossings of the voxel's z column below it: a signed
+    # tile gets its columns' triangles, top to bottom (docs/design.md, "Regions").
+    margin = 2 + (_band(keywords) if kind in ("udf", "sdf") else 0)
+    columns = kind in SIGNED_KINDS
+    split = [_submit(client, place, _partition_task, c, matrix, boxes, margin, columns) for c in chunks]
     meshes = [{"pieces": [_submit(client, place, _pick, s, i) for s in split], "bounding": bounding}
               for i in range(len(boxes))]
-    return boxes, box, grids, meshes, metadata
+    return boxes, box, grids, meshes, metadata, keywords
 
 
 # --- the call ------------------------------------------------------------------
@@ -548,8 +580,10 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
 
     partition: for a surface or an unsigned field of arrays, each tile task
     gets only the triangles near its box (cut in parallel on the workers);
-    False sends every task the whole mesh. Level sets and solids always
-    have the whole mesh (their signs depend on triangles far away).
+    False sends every task the whole mesh. A level set or solid is cut to
+    its tiles' z columns (top to bottom, grown by the band) when the whole
+    mesh takes parity signs (a task decides that first, as sign="auto"
+    would); signed by winding numbers, every task gets the whole mesh.
 
     output_dir: instead of one grid on the client, each worker writes its
     tiles to this folder (one .vdb per tile that holds more than background,
@@ -667,14 +701,28 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
     workers = _wait_for_workers(client, timeout)
     place = _placement(client)
     metadata = None
+    plan = None
     if not isinstance(mesh, (str, os.PathLike)) and kind in PARTITIONED_KINDS and partition and _metadata_settable():
-        boxes, box, grids, meshes, metadata = _partitioned(client, *mesh, kind, tile, workers, keywords, place,
-                                                           timeout)
-    else:
-        if not isinstance(mesh, (str, os.PathLike)):
-            mesh = _submit_held(client, place, tuple(mesh))
+        sign = None
+        if kind in SIGNED_KINDS:
+            # The whole mesh decides the sign method; winding numbers need all
+            # of it, so its tiles then get the whole mesh, held.
+            held = _submit_held(client, place, tuple(mesh))
+            sign = _wait_result(_submit(client, place, _sign_task, held, kind, keywords), timeout,
+                                "the plan (the sign method)")
+        if sign is None or sign.startswith("parity"):
+            if sign is not None:
+                held.release()  # the tiles get their parts instead
+            plan = _partitioned(client, *mesh, kind, tile, workers, keywords, place, timeout, sign)
         else:
+            mesh = held
+    if plan is not None:
+        boxes, box, grids, meshes, metadata, keywords = plan
+    else:
+        if isinstance(mesh, (str, os.PathLike)):
             mesh = os.fspath(mesh)
+        elif not _is_future(mesh):
+            mesh = _submit_held(client, place, tuple(mesh))
         # On a worker: a path is read where the tiles will read it (svo's reader
         # errors name the file), and the client needs no GL context.
         boxes, box, grids = _wait_result(_submit(client, place, _plan_task, mesh, kind, keywords, tile, workers),

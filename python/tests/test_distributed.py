@@ -603,6 +603,14 @@ def test_each_worker_of_a_local_cluster_has_its_own_device(voxelizer):
     assert active_mask(got) == active_mask(want) and got.activeVoxelCount() > 0
 
 
+def test_a_level_set_signed_by_winding_numbers_is_not_partitioned(client):
+    v, t = open_sphere()
+    sign = svo.distributed._sign_task((v, t), "sdf", {"resolution": RESOLUTION})
+    assert sign.startswith("winding")
+    with pytest.raises(ValueError, match="only when signed by parity"):
+        svo.distributed._partitioned(client, v, t, "sdf", TILE, 2, {"resolution": RESOLUTION}, sign=sign)
+
+
 def test_devices_only_for_the_local_cluster(client):
     with pytest.raises(ValueError, match="SVO_EGL_DEVICE"):
         svo.distributed.voxelize(icosphere(), client=client, devices=[0])
@@ -611,12 +619,20 @@ def test_devices_only_for_the_local_cluster(client):
 # --- the mesh partitioned to tiles -------------------------------------------
 
 
-@pytest.mark.parametrize("kind", ["surface", "udf"])
+PARITY = "parity: the mesh is closed and consistently oriented"
+
+
+@pytest.mark.parametrize("kind", ["surface", "udf", "sdf", "solid"])
 def test_each_tile_task_gets_only_the_triangles_near_it(client, voxelizer, kind):
     v, t = icosphere(3)
-    boxes, _, _, meshes, metadata = svo.distributed._partitioned(client, v, t, kind, TILE, 2,
-                                                                 {"resolution": RESOLUTION})
-    assert metadata == {"svo:triangles": str(len(t))}
+    signed = kind in ("sdf", "solid")
+    # A closed mesh: a level set or solid takes parity signs, and a tile its z columns' triangles.
+    if signed:
+        assert svo.distributed._sign_task((v, t), kind, {"resolution": RESOLUTION}) == PARITY
+    boxes, _, _, meshes, metadata, keywords = svo.distributed._partitioned(
+        client, v, t, kind, TILE, 2, {"resolution": RESOLUTION}, sign=PARITY if signed else None)
+    assert metadata == {"svo:triangles": str(len(t)), **({"svo:sign": PARITY} if signed else {})}
+    assert keywords == {"resolution": RESOLUTION, **({"part_of_closed_mesh": True} if signed else {})}
     counts, seen = [], set()
     for m in meshes:
         pieces = [p for p in client.gather(m["pieces"]) if p is not None]
@@ -627,6 +643,13 @@ def test_each_tile_task_gets_only_the_triangles_near_it(client, voxelizer, kind)
             assert np.array_equal(corners, v[t[i]])
     assert seen == set(range(len(t)))  # every triangle reaches a tile
     assert max(counts) < len(t) / (4 if kind == "surface" else 2) and len(boxes) >= 8
+    if signed:  # tiles of one column share their triangles, whatever their height
+        by_column = {}
+        for (lo, hi), m in zip(boxes, meshes):
+            pieces = [p for p in client.gather(m["pieces"]) if p is not None]
+            index = frozenset(np.concatenate([i for i, _ in pieces]).tolist()) if pieces else frozenset()
+            by_column.setdefault((lo[:2], hi[:2]), set()).add(index)
+        assert all(len(parts) == 1 for parts in by_column.values()) and len(by_column) < len(boxes)
     # And the parts give the whole grid (the bounding triangles fix its box).
     got = svo.distributed.voxelize((v, t), client=client, tile=TILE, kind=kind, resolution=RESOLUTION)
     assert_same_grid(got, single(voxelizer, (v, t), kind))

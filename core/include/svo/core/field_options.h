@@ -41,6 +41,13 @@ struct SignOptions {
     /// triangles (Barill et al. 2018's beta; larger is slower and more exact;
     /// positive and finite, checkWindingAccuracy: 1e300 evaluates every triangle).
     double windingAccuracy = 1.5;
+    /// The mesh is the part of a closed mesh that a region's z columns meet,
+    /// top to bottom (every triangle whose box, grown by the band and 2
+    /// voxels, meets the region's columns in x and y; svo.distributed cuts
+    /// meshes so): parity signs without the closedness check, which the part,
+    /// cut at its sides, would fail. The caller vouches for the whole mesh;
+    /// with a region, the result is the whole mesh's in that region.
+    bool partOfClosedMesh = false;
     SignOptions(SignMethod m = SignMethod::Auto, double accuracy = 1.5) : method(m), windingAccuracy(accuracy) {}
 };
 
@@ -87,6 +94,10 @@ void forEachOption(SignOptions& o, Visit&& visit)
                      "Winding numbers: tree nodes farther than this many radii use their far-field expansion (a "
                      "positive finite number; larger is slower and more exact; 1e300 evaluates every triangle)"},
           CheckedNumber{o.windingAccuracy, checkWindingAccuracy});
+    visit(OptionInfo{"SignOptions::partOfClosedMesh", "part_of_closed_mesh",
+                     "The mesh is the part of a closed mesh that the region's z columns meet, top to bottom (grown "
+                     "by the band and 2 voxels): parity signs without the closedness check the part would fail"},
+          o.partOfClosedMesh);
 }
 
 template <typename Visit>

@@ -21,13 +21,14 @@ struct SignChoice {
 /// welding vertices at equal positions) and the winding number otherwise.
 /// Parity asked for a mesh with holes is refused; for one that is otherwise
 /// not closed (edges of three or more triangles, flipped faces) it is kept
-/// with a warning.
+/// with a warning. SignOptions::partOfClosedMesh takes parity unchecked.
 /// @param mesh     the mesh (its source names it in messages)
 /// @param asked    the sign options of the call
 /// @param warnings receives the warning for parity asked on a mesh that is not closed
 /// @return the method and why
 /// @throw svo::InvalidInput for a winding accuracy that fails
-///        checkWindingAccuracy, or parity asked on a mesh with holes.
+///        checkWindingAccuracy, parity asked on a mesh with holes, or winding
+///        numbers asked for a part of a closed mesh.
 SignChoice chooseSign(const TriangleMesh& mesh, const SignOptions& asked, std::vector<std::string>& warnings);
 
 } // namespace svo
