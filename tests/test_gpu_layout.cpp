@@ -303,6 +303,13 @@ TEST_F(GpuLayout, FillWordsSetsTheWordsAskedAndKeepsBindingZero)
     EXPECT_EQ(GLuint(name), bound.id());
     EXPECT_EQ(at, 16);
     EXPECT_EQ(size, 32);
+    // Past the driver's storage block limit: ranges of it, each bound at binding 0.
+    setenv("SVO_GL_MAX_STORAGE_BLOCK", "1048576", 1);
+    fillWords(*context_, target, 0x3F800000u, 4 * (words - 1));
+    unsetenv("SVO_GL_MAX_STORAGE_BLOCK");
+    const std::vector<uint32_t> ranged = readBack<uint32_t>(target, before.size());
+    for (uint64_t i = 0; i < ranged.size(); ++i)
+        ASSERT_EQ(ranged[i], i < words - 1 ? 0x3F800000u : i < words ? 0x7F800000u : 0xA5A5A5A5u) << "word " << i;
     EXPECT_THROW(fillWords(*context_, target, 0, 6), InvalidInput);              // not whole words
     EXPECT_THROW(fillWords(*context_, target, 0, target.bytes() + 4), InvalidInput); // past the end
     checkGl("fillWords test");

@@ -134,10 +134,9 @@ public:
             std::fill(c, c + 512, -1);
         }
         nearestFirst(org, first, last);
-        for (const auto& [key, t] : order_) {
-            (void)key;
-            if (c) triangle<true>(org, t, d, c);
-            else triangle<false>(org, t, d, c);
+        for (const auto& ordered : order_) {
+            if (c) triangle<true>(org, ordered.second, d, c);
+            else triangle<false>(org, ordered.second, d, c);
         }
         if (!c)
             for (int v = 0; v < 512; ++v) d[v] = float(std::sqrt(limit2_[v]));

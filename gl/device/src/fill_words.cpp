@@ -1,6 +1,7 @@
 #include "svo/gl/fill_words.h"
 
 #include <algorithm>
+#include <numeric>
 #include <fmt/format.h>
 
 #include "svo/core/error.h"
@@ -26,11 +27,16 @@ void fillWords(const Context& context, const Buffer& buffer, uint32_t value, uin
     glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, 0, &wasSize);
     const Program& fill = context.program(deviceShaders(), {"fill_words.comp"});
     fill.set("uValue", value);
-    // Ranges of 2^28 words (1 GiB, a multiple of any storage offset
-    // alignment): the shader counts words in 32 bits.
-    constexpr uint64_t kRange = uint64_t(1) << 30;
-    for (uint64_t at = 0; at < bytes; at += kRange) {
-        const uint64_t n = std::min(kRange, bytes - at);
+    // Ranges the shader can address (it counts words in 32 bits) and the
+    // driver binds (its storage block limit), starting at multiples of the
+    // offset alignment.
+    GLint align = 256;
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+    uint64_t range = uint64_t(1) << 30;
+    if (const uint64_t limit = context.shaderBufferLimit(); limit && limit < range) range = limit;
+    range -= range % std::lcm<uint64_t>(uint64_t(std::max(align, 4)), 4);
+    for (uint64_t at = 0; at < bytes; at += range) {
+        const uint64_t n = std::min(range, bytes - at);
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, buffer.id(), GLintptr(at), GLsizeiptr(n));
         fill.set("uWords", uint32_t(n / 4));
         fill.dispatchRows((n / 4 + 255) / 256);

@@ -14,7 +14,8 @@ class Buffer;
 class Context;
 
 /// @brief Sets the first @a bytes of @a buffer to @a value as 32-bit words,
-/// with @a context current, in ranges of 1 GiB. Shader storage binding 0 is used and restored;
+/// with @a context current, in ranges of at most 1 GiB and the driver's
+/// storage block limit (Context::shaderBufferLimit). Shader storage binding 0 is used and restored;
 /// the writes are visible to later shader, buffer-update and client reads.
 /// @param context the buffer's context
 /// @param buffer  the buffer, at least @a bytes long
