@@ -32,7 +32,7 @@ tile gets the triangles of its z columns, top to bottom. Those signed by
 winding numbers (open meshes) give every tile the whole mesh, over which
 the numbers sum.
 
-Not yet (issue 43): the city benchmark.
+The city benchmark: bench/distributed_city.py.
 read_tiles joins a tile folder back into one grid.
 """
 import argparse
