@@ -233,7 +233,8 @@ BandDistances bandDistances(const std::vector<Vec3d>& local, const TriangleMesh&
     checkpoint(0.1, "band distance");
 
     const float bandF = float(band);
-    tbb::enumerable_thread_specific<BrickNearest> perThread(local, mesh, grid, bandF);
+    // Made from a function: the exemplar form would copy the mesh and positions into the container.
+    tbb::enumerable_thread_specific<BrickNearest> perThread([&] { return BrickNearest(local, mesh, grid, bandF); });
     BandDistances out;
     out.near.resize(nb);
     out.offsets.resize(nb);

@@ -2,6 +2,7 @@
 /// @file mesh_topology.h
 /// @brief Whether a mesh bounds a solid: the test that picks the sign method.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,9 +32,15 @@ struct WeldedEdge {
     int64_t net;     ///< the triangles running lo -> hi along it, less those running hi -> lo
 };
 
-/// @brief The edges of @a mesh after welding its vertices at equal
-/// positions, sorted by (lo, hi); triangles with a repeated corner left out.
-/// Throws nothing but std::bad_alloc; indices must be valid (validateMesh).
+/// @brief Visits the edges of @a mesh after welding its vertices at equal
+/// positions, in (lo, hi) order; triangles with a repeated corner left out.
+/// Holds a few words per edge use, not the edges.
+/// @param visit called once per edge
+/// @throw std::bad_alloc only; indices must be valid (validateMesh)
+void forEachWeldedEdge(const TriangleMesh& mesh, const std::function<void(const WeldedEdge&)>& visit);
+
+/// @brief The edges forEachWeldedEdge visits, as a list.
+/// @throw std::bad_alloc only; indices must be valid (validateMesh)
 std::vector<WeldedEdge> weldedEdges(const TriangleMesh& mesh);
 
 /// @brief Counts the edges of @a mesh after welding its vertices (weldedEdges).
