@@ -144,7 +144,7 @@ TriangleMesh loadMesh(const std::string& path)
     if (bytes.empty()) throw IoError(fmt::format("{}: the file is empty", path));
 
     TriangleMesh mesh;
-    if (ext == "obj") mesh = detail::readObj(path, bytes);
+    if (ext == "obj") mesh = detail::readObj(path, std::move(bytes));
     else if (ext == "ply") mesh = detail::readPly(path, bytes);
     else if (ext == "stl") mesh = detail::readStl(path, bytes);
     else if (ext == "gltf" || ext == "glb") mesh = detail::readGltf(path, bytes);

@@ -194,6 +194,7 @@ TriangleMesh assemble(const std::string& path, std::vector<ObjPart>& parts, Mate
             part.colors.resize(part.positions.size(), Vec3f{-1, -1, -1});
             mesh.colors.insert(mesh.colors.end(), part.colors.begin(), part.colors.end());
         }
+        part = ObjPart(); // freed as joined: the pieces and the mesh are not all held at once
     }
     if (colored && colored != vertices)
         mesh.warnings.push_back(fmt::format("{}: only {} of {} vertices have a colour; colours are not used", path,
@@ -205,7 +206,7 @@ TriangleMesh assemble(const std::string& path, std::vector<ObjPart>& parts, Mate
 
 namespace {
 
-TriangleMesh readObjGeometry(const std::string& path, const std::string& bytes, size_t chunkBytes, size_t* inPieces,
+TriangleMesh readObjGeometry(const std::string& path, std::string& bytes, size_t chunkBytes, size_t* inPieces,
                              Materials& materials)
 {
     if (inPieces) *inPieces = 0;
@@ -228,6 +229,7 @@ TriangleMesh readObjGeometry(const std::string& path, const std::string& bytes, 
         });
         if (!serial) {
             if (inPieces) *inPieces = parts.size();
+            std::string().swap(bytes); // the text is parsed: freed before the mesh is joined
             return assemble(path, parts, materials);
         }
     }
@@ -333,7 +335,7 @@ void colorByMaterial(const std::string& path, TriangleMesh& mesh, const Material
 
 } // namespace
 
-TriangleMesh readObj(const std::string& path, const std::string& bytes, size_t chunkBytes, size_t* inPieces,
+TriangleMesh readObj(const std::string& path, std::string bytes, size_t chunkBytes, size_t* inPieces,
                      const MaterialFiles& materialFiles)
 {
     Materials materials;

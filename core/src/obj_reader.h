@@ -34,7 +34,9 @@ using MaterialFiles = std::function<std::optional<std::string>(const std::string
 /// same mesh, warnings and errors (an error, or a relative index, which needs
 /// the vertices before its piece, sends the file to the one-piece path).
 /// `inPieces`, when set, gets how many pieces gave the mesh (0: read as one).
-TriangleMesh readObj(const std::string& path, const std::string& bytes, size_t chunkBytes = kTextChunkBytes,
+/// `bytes` are taken, and freed once parsed, so that a large file's text,
+/// its parsed pieces and the joined mesh are never all in memory at once.
+TriangleMesh readObj(const std::string& path, std::string bytes, size_t chunkBytes = kTextChunkBytes,
                      size_t* inPieces = nullptr, const MaterialFiles& materialFiles = {});
 
 } // namespace svo::detail
