@@ -311,6 +311,13 @@ TEST_F(GpuNanoGrid, RandomFloatLeavesEqualTheCpuBuilder)
         expectSameAsCpu<float>(randomLeaves(count, 9000, true, count + 1), header("fog", 2, 0.0));
         expectSameAsCpu<float>(randomLeaves(count, 300, false, count + 2), header("background only", 0, -3.5));
     }
+    // Past one block of the sort's shared-memory steps (1024 entries): the
+    // long distances' dispatches and every merge's block steps.
+    for (const uint32_t count : {1025u, 5000u}) {
+        SCOPED_TRACE(count);
+        expectSameAsCpu<float>(randomLeaves(count, 4096, true, count), header("sdf", 1, 0.2));
+        expectSameAsCpu<nanovdb::ValueMask>(randomLeaves(count, 9000, false, count + 1), header("topology", 6, 0.0));
+    }
 }
 
 TEST_F(GpuNanoGrid, DeviceInputEqualsTheCpuBuilder)
