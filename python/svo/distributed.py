@@ -113,7 +113,8 @@ def _arrays_of(result, mesh):
     if isinstance(mesh, dict) and "triangle" in arrays:
         # A part's triangles are the whole mesh's in its order (_tile_mesh),
         # so the smallest id of a voxel stays the smallest.
-        arrays["triangle"] = _tile_triangle_ids(mesh["pieces"], mesh["bounding"])[arrays["triangle"]].astype(np.int32)
+        ids, _ = _tile_triangles(mesh["pieces"], mesh["bounding"], corners=False)
+        arrays["triangle"] = ids[arrays["triangle"]].astype(np.int32)
     return arrays
 
 
@@ -440,19 +441,19 @@ def _pick(parts, i):
     return parts[i]
 
 
-def _tile_mesh(pieces, bounding):
-    """A tile's mesh from its pieces and the bounding triangles: as a soup in
-    the mesh's order (each triangle once)."""
+def _tile_triangles(pieces, bounding, corners=True):
+    """A tile's triangles from its pieces and the bounding triangles, each
+    once, in the mesh's order: their indices in the whole mesh and (with
+    corners) their corners, (n, 3, 3)."""
     pieces = [p for p in pieces if p is not None] + [bounding]
     index, first = np.unique(np.concatenate([i for i, _ in pieces]), return_index=True)
-    corners = np.concatenate([c for _, c in pieces])[first]
+    return index, (np.concatenate([c for _, c in pieces])[first] if corners else None)
+
+
+def _tile_mesh(pieces, bounding):
+    """A tile's mesh (_tile_triangles) as a soup."""
+    index, corners = _tile_triangles(pieces, bounding)
     return corners.reshape(-1, 3), np.arange(3 * len(index), dtype=np.int64).reshape(-1, 3)
-
-
-def _tile_triangle_ids(pieces, bounding):
-    """Per triangle of _tile_mesh(pieces, bounding), its index in the whole mesh."""
-    pieces = [p for p in pieces if p is not None] + [bounding]
-    return np.unique(np.concatenate([i for i, _ in pieces]))
 
 
 def _sign_task(mesh, kind, keywords):
