@@ -50,14 +50,8 @@ void main()
             float d = float(sqrt(svo_triangle_distance2(p, A, B, C)));
             if (d > uBand) continue;
             uint i = 512u * brick + ((x << kKeyLeafXShift) | (y << kKeyLeafYShift) | z);
-            // A plain read first, an atomic only where it can change the value:
-            // values only fall, so a stale read is never below the value.
-            uint bits = floatBitsToUint(d);
-            if (uPass == 0u) {
-                if (bits < distances[i]) atomicMin(distances[i], bits);
-            } else if (distances[i] == bits && t < closest[i]) {
-                atomicMin(closest[i], t);
-            }
+            if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));
+            else if (distances[i] == floatBitsToUint(d)) atomicMin(closest[i], t);
         }
     }
 }

@@ -42,14 +42,8 @@ void columnDistances(uint t, svo_Triangle tri, svo_Slab slab, dvec3 boxLo, dvec3
         float d = float(sqrt(svo_prepared_distance2(p, tri)));
         if (d > uBand) continue;
         uint i = 512u * brick + leaf + (z & kBrickMask);
-        // A plain read first, an atomic only where it can change the value:
-        // values only fall, so a stale read is never below the value.
-        uint bits = floatBitsToUint(d);
-        if (uPass == 0u) {
-            if (bits < distances[i]) atomicMin(distances[i], bits);
-        } else if (distances[i] == bits && t < closest[i]) {
-            atomicMin(closest[i], t);
-        }
+        if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));
+        else if (distances[i] == floatBitsToUint(d)) atomicMin(closest[i], t);
     }
 }
 
