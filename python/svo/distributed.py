@@ -355,16 +355,31 @@ def _bounding_triangles(vertices, triangles, chunk=1 << 20):
     return np.unique([t for _, t in best])
 
 
+def _chunk_of(vertices, triangles, first, end):
+    """Triangles first..end of a mesh as a chunk to send: their first index,
+    the vertices they use and their corners as indices into those (int32).
+    Sent and kept by the scheduler (see _hold), so small: 12 bytes a
+    triangle and 24 a vertex, where corners would be 72 a triangle."""
+    used, local = np.unique(triangles[first:end], return_inverse=True)
+    return first, vertices[used], local.reshape(-1, 3).astype(np.int32)
+
+
+def _chunk_corners(chunk):
+    """A chunk's triangles: their indices in the mesh and their corners, (n, 3, 3)."""
+    first, vertices, local = chunk
+    return np.arange(first, first + len(local)), vertices[local]
+
+
 def _chunk_weights(chunk, matrix):
-    _, corners = chunk
-    return surface_weights(corners.reshape(-1, 3), np.arange(3 * len(corners)).reshape(-1, 3), matrix)
+    _, vertices, local = chunk
+    return surface_weights(vertices, local, matrix)
 
 
 def _partition_task(chunk, matrix, boxes, margin, columns=False):
     """Per tile box, the chunk's triangles whose index-space box grown by
     `margin` voxels meets the tile's voxels (with columns, the tile's z
     columns: x and y only): (their indices in the mesh, their corners), or None."""
-    index, corners = chunk
+    index, corners = _chunk_corners(chunk)
     ijk = (corners - matrix[3, :3]) @ np.linalg.inv(matrix[:3, :3])
     lo, hi = ijk.min(axis=1) - margin, ijk.max(axis=1) + margin
     axes = 2 if columns else 3
@@ -496,8 +511,7 @@ def _partitioned(client, vertices, triangles, kind, tile, workers, keywords, pla
     # the scheduler can make it again when its worker is lost (see _hold).
     n = max(1, min(workers, count))
     bounds = np.linspace(0, count, n + 1).astype(np.int64)
-    chunks = [_submit_held(client, place, (np.arange(a, b), vertices[triangles[a:b]]))
-              for a, b in zip(bounds, bounds[1:])]
+    chunks = [_submit_held(client, place, _chunk_of(vertices, triangles, a, b)) for a, b in zip(bounds, bounds[1:])]
     if tile is not None:
         boxes = tiles(box, tile)
     elif workers <= 1:
