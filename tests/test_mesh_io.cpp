@@ -561,6 +561,36 @@ TEST_F(MeshIo, ObjInPiecesGivesWhatOnePieceGives)
     }
 }
 
+// loadMesh reads an OBJ file a block at a time, parsing each block's whole
+// lines as it goes: the same mesh, colours and errors as the file's text
+// read at once, with blocks that end inside lines and `\` continued
+// statements, and files that need reading in order (relative indices).
+TEST_F(MeshIo, ObjFileInBlocksGivesWhatItsTextGives)
+{
+    const size_t whole = size_t(1) << 40;
+    const std::string good = variedObj(3000, true, false);
+    const size_t middle = good.find("vt 0.5 0.5\n", good.size() / 2) + 11;
+    const std::vector<std::string> texts = {good, variedObj(3000, false, false), variedObj(3000, true, true),
+                                            good + "v 1 2 x\nf 1 2 3\n", good + "f 1 2 999999\n" + good,
+                                            good.substr(0, middle) + "f 0 1 2\n" + good.substr(middle),
+                                            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3"}; // no final newline
+    for (size_t k = 0; k < texts.size(); ++k) {
+        const std::string file = write(fmt::format("blocks{}.obj", k), texts[k]);
+        TriangleMesh one, blocks;
+        const std::string expected = outcome([&] { return detail::readObj(file, texts[k], whole); }, one);
+        for (const size_t block : {size_t(1), size_t(7), size_t(4096), size_t(1) << 20})
+            for (const size_t chunk : {size_t(37), size_t(4096)}) {
+                SCOPED_TRACE(fmt::format("text {}, blocks of {} bytes, pieces of {}", k, block, chunk));
+                ASSERT_EQ(outcome([&] { return detail::readObjFile(file, block, chunk); }, blocks), expected);
+                if (expected.empty()) expectSameMesh(blocks, one);
+            }
+    }
+    const std::string file = write("loaded.obj", good);
+    TriangleMesh one;
+    ASSERT_EQ(outcome([&] { return detail::readObj(file, good, whole); }, one), "");
+    expectSameMesh(loadMesh(file), one);
+}
+
 TEST_F(MeshIo, OffInPiecesGivesWhatOnePieceGives)
 {
     const size_t whole = size_t(1) << 40;

@@ -138,13 +138,16 @@ TriangleMesh loadMesh(const std::string& path)
     if (!file) throw IoError(fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw IoError(fmt::format("{}: cannot read the file size: {}", path, ec.message()));
-    std::string bytes(size, '\0');
-    file.read(bytes.data(), std::streamsize(bytes.size()));
-    if (!file) throw IoError(fmt::format("{}: read error", path));
-    if (bytes.empty()) throw IoError(fmt::format("{}: the file is empty", path));
+    if (size == 0) throw IoError(fmt::format("{}: the file is empty", path));
 
     TriangleMesh mesh;
-    if (ext == "obj") mesh = detail::readObj(path, std::move(bytes));
+    std::string bytes;
+    if (ext != "obj") { // OBJ text is read a block at a time
+        bytes.resize(size);
+        file.read(bytes.data(), std::streamsize(bytes.size()));
+        if (!file) throw IoError(fmt::format("{}: read error", path));
+    }
+    if (ext == "obj") mesh = detail::readObjFile(path);
     else if (ext == "ply") mesh = detail::readPly(path, bytes);
     else if (ext == "stl") mesh = detail::readStl(path, bytes);
     else if (ext == "gltf" || ext == "glb") mesh = detail::readGltf(path, bytes);

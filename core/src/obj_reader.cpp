@@ -2,12 +2,14 @@
 
 #include <array>
 #include <atomic>
+#include <cerrno>
 #include <cmath>
-#include <tbb/parallel_for.h>
 #include <cstring>
+#include <tbb/parallel_for.h>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <string_view>
 #include <vector>
@@ -206,38 +208,57 @@ TriangleMesh assemble(const std::string& path, std::vector<ObjPart>& parts, Mate
 
 namespace {
 
-TriangleMesh readObjGeometry(const std::string& path, std::string& bytes, size_t chunkBytes, size_t* inPieces,
+/// Where `text` may be cut after its newline at `nl`: not inside a `\`
+/// continued statement.
+bool mayCutAfter(std::string_view text, size_t nl)
+{
+    size_t i = nl;
+    if (i > 0 && text[i - 1] == '\r') --i;
+    return i == 0 || text[i - 1] != '\\';
+}
+
+/// `text` (whole lines) cut into pieces and parsed in parallel, appended to
+/// `parts`; false when a piece needs the file read in order (a relative
+/// index or an error: the serial reader names the line).
+bool parseInPieces(const std::string& path, std::string_view text, size_t chunkBytes, std::vector<ObjPart>& parts)
+{
+    const std::vector<std::string_view> pieces =
+        cutAtLines(text, chunkBytes, [&](size_t nl) { return mayCutAfter(text, nl); });
+    const size_t first = parts.size();
+    parts.resize(first + pieces.size());
+    std::atomic<bool> serial{false};
+    tbb::parallel_for(size_t(0), pieces.size(), [&](size_t i) {
+        try {
+            parseObjPart(path, pieces[i], 1, nullptr, parts[first + i]);
+            if (parts[first + i].relative) serial = true;
+        } catch (const Error&) {
+            serial = true;
+        }
+    });
+    return !serial;
+}
+
+/// The file in one piece, in order.
+TriangleMesh readSerially(const std::string& path, std::string_view text, Materials& materials)
+{
+    const uint64_t none = 0;
+    std::vector<ObjPart> whole(1);
+    parseObjPart(path, text, 1, &none, whole[0]);
+    return assemble(path, whole, materials);
+}
+
+TriangleMesh readObjGeometry(const std::string& path, std::string_view bytes, size_t chunkBytes, size_t* inPieces,
                              Materials& materials)
 {
     if (inPieces) *inPieces = 0;
-    // Pieces end at line ends outside `\` continued statements.
-    const std::vector<std::string_view> pieces = cutAtLines(bytes, chunkBytes, [&](size_t nl) {
-        size_t i = nl;
-        if (i > 0 && bytes[i - 1] == '\r') --i;
-        return i == 0 || bytes[i - 1] != '\\';
-    });
-    if (pieces.size() > 1) {
-        std::vector<ObjPart> parts(pieces.size());
-        std::atomic<bool> serial{false};
-        tbb::parallel_for(size_t(0), pieces.size(), [&](size_t i) {
-            try {
-                parseObjPart(path, pieces[i], 1, nullptr, parts[i]);
-                if (parts[i].relative) serial = true;
-            } catch (const Error&) {
-                serial = true; // the whole file read in order names the line as the serial reader does
-            }
-        });
-        if (!serial) {
+    if (bytes.size() > chunkBytes) {
+        std::vector<ObjPart> parts;
+        if (parseInPieces(path, bytes, chunkBytes, parts) && parts.size() > 1) {
             if (inPieces) *inPieces = parts.size();
-            std::string().swap(bytes); // the text is parsed: freed before the mesh is joined
             return assemble(path, parts, materials);
         }
     }
-    // One piece, a relative index or an error: the file in one piece, in order.
-    const uint64_t none = 0;
-    std::vector<ObjPart> whole(1);
-    parseObjPart(path, bytes, 1, &none, whole[0]);
-    return assemble(path, whole, materials);
+    return readSerially(path, bytes, materials);
 }
 
 /// Material libraries read from the OBJ's folder.
@@ -335,11 +356,53 @@ void colorByMaterial(const std::string& path, TriangleMesh& mesh, const Material
 
 } // namespace
 
-TriangleMesh readObj(const std::string& path, std::string bytes, size_t chunkBytes, size_t* inPieces,
+TriangleMesh readObj(const std::string& path, std::string_view bytes, size_t chunkBytes, size_t* inPieces,
                      const MaterialFiles& materialFiles)
 {
     Materials materials;
     TriangleMesh mesh = readObjGeometry(path, bytes, chunkBytes, inPieces, materials);
+    colorByMaterial(path, mesh, materials, materialFiles ? materialFiles : besideTheFile(path));
+    return mesh;
+}
+
+TriangleMesh readObjFile(const std::string& path, size_t blockBytes, size_t chunkBytes,
+                         const MaterialFiles& materialFiles)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError(fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
+    Materials materials;
+    std::vector<ObjPart> parts;
+    std::string block; // whole lines not parsed yet, then the next block
+    bool inOrder = true;
+    for (bool end = false; !end && inOrder;) {
+        const size_t carried = block.size();
+        block.resize(carried + blockBytes);
+        in.read(block.data() + carried, std::streamsize(blockBytes));
+        if (in.bad()) throw IoError(fmt::format("{}: read error", path));
+        block.resize(carried + size_t(in.gcount()));
+        end = in.eof();
+        // Up to the last line end where a cut is allowed; all of it at the end.
+        size_t cut = block.size();
+        if (!end) {
+            size_t nl = block.rfind('\n');
+            while (nl != std::string::npos && !mayCutAfter(block, nl)) nl = nl ? block.rfind('\n', nl - 1) : std::string::npos;
+            cut = nl == std::string::npos ? 0 : nl + 1;
+        }
+        if (cut) inOrder = parseInPieces(path, std::string_view(block).substr(0, cut), chunkBytes, parts);
+        block.erase(0, cut);
+    }
+    std::string().swap(block);
+    TriangleMesh mesh;
+    if (inOrder && !parts.empty()) {
+        mesh = assemble(path, parts, materials);
+    } else { // a relative index or an error: the whole file, in order
+        parts.clear();
+        in.clear();
+        in.seekg(0);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (in.bad()) throw IoError(fmt::format("{}: read error", path));
+        mesh = readSerially(path, bytes, materials);
+    }
     colorByMaterial(path, mesh, materials, materialFiles ? materialFiles : besideTheFile(path));
     return mesh;
 }

@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "svo/core/mesh.h"
 #include "text_chunks.h"
@@ -34,9 +35,18 @@ using MaterialFiles = std::function<std::optional<std::string>(const std::string
 /// same mesh, warnings and errors (an error, or a relative index, which needs
 /// the vertices before its piece, sends the file to the one-piece path).
 /// `inPieces`, when set, gets how many pieces gave the mesh (0: read as one).
-/// `bytes` are taken, and freed once parsed, so that a large file's text,
-/// its parsed pieces and the joined mesh are never all in memory at once.
-TriangleMesh readObj(const std::string& path, std::string bytes, size_t chunkBytes = kTextChunkBytes,
+TriangleMesh readObj(const std::string& path, std::string_view bytes, size_t chunkBytes = kTextChunkBytes,
                      size_t* inPieces = nullptr, const MaterialFiles& materialFiles = {});
+
+/// Blocks of an OBJ file read at a time by readObjFile.
+constexpr size_t kObjBlockBytes = size_t(16) << 20;
+
+/// The mesh of the OBJ file at `path`, as readObj gives it from the file's
+/// bytes, read `blockBytes` at a time and parsed in pieces as it is read, so
+/// that the file's text is never all in memory (a file that needs reading in
+/// order, for a relative index or to name an error's line, is read whole).
+/// Throws svo::IoError when the file cannot be read, and as readObj.
+TriangleMesh readObjFile(const std::string& path, size_t blockBytes = kObjBlockBytes,
+                         size_t chunkBytes = kTextChunkBytes, const MaterialFiles& materialFiles = {});
 
 } // namespace svo::detail
