@@ -1,5 +1,6 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <malloc.h>
 #include <string>
 
 #include "cli_options.h"
@@ -10,6 +11,13 @@
 
 int main(int argc, char** argv)
 {
+#ifdef __GLIBC__
+    // Buffers of 1 MiB and more are mapped and given back when freed. glibc
+    // otherwise raises the threshold as large buffers are freed, and the
+    // load's buffers freed afterwards stay in the heap: 19 MB of the peak of
+    // the 1.3 M-triangle icosphere's level set (docs/design.md, "Memory").
+    mallopt(M_MMAP_THRESHOLD, 1 << 20);
+#endif
     CLI::App app{"svo: voxelize triangle meshes on the GPU (OpenGL 4.5) into sparse voxel octrees and OpenVDB grids"};
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("svo ") + svo::version()); // the one version (result_metadata.h)

@@ -58,11 +58,11 @@ double peakRssMb()
 }
 
 /// The summary's first lines, the same for grids and octrees.
-void printHeading(const std::string& scene, const TriangleMesh& mesh, const GridSpec& grid, const GridRequest& request)
+void printHeading(const std::string& scene, size_t triangles, const GridSpec& grid, const GridRequest& request)
 {
     fmt::print("svo voxelize\n");
     fmt::print("  {:<11} {}\n", "scene", scene);
-    fmt::print("  {:<11} {}\n", "triangles", thousands(mesh.triangles.size()));
+    fmt::print("  {:<11} {}\n", "triangles", thousands(triangles));
     fmt::print("  {:<11} {} x {} x {} local voxels, voxel size {:.6g}, {}\n", "grid", grid.dims[0], grid.dims[1],
                grid.dims[2], grid.voxelSize,
                request.voxelSize > 0 ? std::string("from --voxel-size") : fmt::format("resolution {}", request.resolution));
@@ -133,13 +133,22 @@ nlohmann::json startupJson(const StartupStats& s)
             {"program_cache", s.programCache}};
 }
 
+/// Frees @a mesh once its grids are made, so that writing them does not
+/// also hold it (a large mesh's peak memory); returns its triangle count.
+size_t release(TriangleMesh& mesh)
+{
+    const size_t triangles = mesh.triangles.size();
+    mesh = TriangleMesh();
+    return triangles;
+}
+
 /// What every --json report holds: the input and its grid, where the run
 /// went, and what it cost. Each kind of run adds its own fields.
-nlohmann::json runJson(const std::string& scene, const TriangleMesh& mesh, const GridSpec& grid,
+nlohmann::json runJson(const std::string& scene, size_t triangles, const GridSpec& grid,
                        const VoxelizeStats& stats, int repeat, double wallMs)
 {
     return {{"scene", scene},
-            {"triangles", mesh.triangles.size()},
+            {"triangles", triangles},
             {"dims", grid.dims},
             {"voxel_size", grid.voxelSize},
             {"backend", stats.backend},
@@ -200,7 +209,7 @@ struct GridCounts {
 };
 
 /// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb or .nvdb.
-void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& call, const TriangleMesh& mesh, const StageTime& load,
+void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& call, TriangleMesh& mesh, const StageTime& load,
               const std::string& scene,
               const GridSpec& grid, const GridRequest& request, const std::string& output, bool timingOnly,
               std::chrono::steady_clock::time_point start, OutputBatch& outputs)
@@ -227,6 +236,7 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
     const auto [grids, triangles] = vdb::splitTriangleGrids(all);
     // Python's level_set() and solid() tag theirs the same (no guard band: a field's voxels are not a surface's).
     const std::map<std::string, std::string> meta = resultMetadata(mesh, grid, request, false);
+    const size_t triangleCount = release(mesh);
     vdb::WriteStats written;
     std::string sidecar;
     if (nano) {
@@ -249,7 +259,7 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
     const GridCounts counts = nano ? GridCounts(nanoGrids) : GridCounts(grids);
     const bool boolGrid = a.out.grids.topology == GridOptions::Topology::Bool;
     if (!a.json.empty()) {
-        nlohmann::json report = runJson(scene, mesh, grid, stats, a.repeat, wall);
+        nlohmann::json report = runJson(scene, triangleCount, grid, stats, a.repeat, wall);
         report.update(nlohmann::json{{"kind", solid ? "solid" : a.udf() ? "udf" : "sdf"},
                                      {"exterior_band", ls.exteriorBand},
                                      {"interior_band", ls.interiorBand},
@@ -279,7 +289,7 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
                        sidecar.empty() ? std::string() : fmt::format("; {} in {}", GridCounts(triangles).names, sidecar),
                        staleSidecarNote(removed, output));
     } else {
-        printHeading(scene, mesh, grid, request);
+        printHeading(scene, triangleCount, grid, request);
         if (solid)
             fmt::print("  {:<11} solid: inside and surface voxels ({})\n", "grid kind",
                        boolGrid ? "BoolGrid" : "MaskGrid");
@@ -382,6 +392,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
 
     // Python's voxelize() tags its grids the same.
     const std::map<std::string, std::string> meta = resultMetadata(mesh, grid, request, true);
+    const size_t triangleCount = release(mesh);
     WriteReport written;
     if (!timingOnly && outputFormat(output) == OutputFormat::NanoVdb) {
         // Laid out by the Voxelizer: on the GPU where the voxels were made there.
@@ -405,7 +416,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
 
     const auto st = octreeStats(octree);
     if (!a.json.empty()) {
-        nlohmann::json report = runJson(scene, mesh, grid, stats, a.repeat, wall);
+        nlohmann::json report = runJson(scene, triangleCount, grid, stats, a.repeat, wall);
         report.update(nlohmann::json{{"resolution", request.resolution},
                                      {"mode", stats.mode},
                                      {"conservative", nameOf(a.backend.settings.dilation)},
@@ -442,7 +453,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
                        written.sidecar.empty() ? std::string() : fmt::format("; triangle_id in {}", written.sidecar),
                        staleSidecarNote(removed, output));
     } else {
-        printHeading(scene, mesh, grid, request);
+        printHeading(scene, triangleCount, grid, request);
         fmt::print("  {:<11} {}\n", "voxels", thousands(st.voxels));
         fmt::print("  {:<11} {} levels, {} nodes, {} bricks, {:.2f} bytes/voxel, brick fill {:.2f}\n", "octree",
                    octree.brickLevel + 1, thousands(octree.nodes.size()), thousands(st.bricks), st.bytesPerVoxel(),
