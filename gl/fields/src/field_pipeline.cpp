@@ -83,6 +83,15 @@ std::vector<BrickCoord> forRegion(std::vector<BrickCoord> bricks, const GridSpec
     return bricks;
 }
 
+/// Whether @a region holds no voxel of the grid: a call there computes no
+/// value, and winding signs skip their passes (which cover the whole grid's
+/// brick centres, whatever the region: the plan of svo.distributed asks for
+/// such a region to learn a grid's transform and sign method).
+bool missesGrid(const GridSpec& g, const std::optional<IndexBox>& region)
+{
+    return region && localBox(g, *region).empty();
+}
+
 /// The band's bricks that forRegion() keeps, searched only there.
 std::vector<BrickCoord> bandBricksFor(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& g,
                                       double band, const std::optional<IndexBox>& region, bool columns)
@@ -118,6 +127,7 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
                    const std::vector<BrickCoord>& band, double beta, const std::optional<IndexBox>& region,
                    const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
+    if (missesGrid(g, region)) return {};
     auto t0 = Clock::now();
     const WindingTree tree = buildWindingTree(localPositions(mesh, g), mesh.triangles);
     stats.stages.push_back({"winding tree", -1, msSince(t0)});
@@ -157,6 +167,7 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
                            const std::vector<BrickCoord>& band, double beta, const std::optional<IndexBox>& region,
                            const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
+    if (missesGrid(g, region)) return {};
     auto t0 = Clock::now();
     const WindingTree tree = buildWindingTree(local, mesh.triangles);
     stats.stages.push_back({"winding tree", -1, msSince(t0)});
