@@ -73,9 +73,11 @@ void forEachWeldedEdge(const TriangleMesh& mesh, const std::function<void(const 
         std::vector<uint64_t> fill(first.begin(), first.end() - 1);
         forEachUse([&](uint32_t lo, uint64_t use) { uses[fill[lo]++] = use; });
     }
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.positions.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t lo = r.begin(); lo != r.end(); ++lo) std::sort(uses.begin() + first[lo], uses.begin() + first[lo + 1]);
-    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.positions.size(), 4096),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t lo = r.begin(); lo != r.end(); ++lo)
+                              std::sort(uses.begin() + first[lo], uses.begin() + first[lo + 1]);
+                      });
     for (size_t lo = 0; lo < mesh.positions.size(); ++lo)
         for (uint64_t i = first[lo]; i < first[lo + 1];) {
             WeldedEdge e{uint32_t(lo), uint32_t(uses[i] >> 1), 0, 0};

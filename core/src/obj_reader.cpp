@@ -385,7 +385,8 @@ TriangleMesh readObjFile(const std::string& path, size_t blockBytes, size_t chun
         size_t cut = block.size();
         if (!end) {
             size_t nl = block.rfind('\n');
-            while (nl != std::string::npos && !mayCutAfter(block, nl)) nl = nl ? block.rfind('\n', nl - 1) : std::string::npos;
+            while (nl != std::string::npos && !mayCutAfter(block, nl))
+                nl = nl ? block.rfind('\n', nl - 1) : std::string::npos;
             cut = nl == std::string::npos ? 0 : nl + 1;
         }
         if (cut) inOrder = parseInPieces(path, std::string_view(block).substr(0, cut), chunkBytes, parts);
