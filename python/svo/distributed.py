@@ -598,7 +598,8 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
     False sends every task the whole mesh. A level set or solid is cut to
     its tiles' z columns (top to bottom, grown by the band) when the whole
     mesh takes parity signs (a task decides that first, as sign="auto"
-    would); signed by winding numbers, every task gets the whole mesh.
+    would); signed by winding numbers, every task gets the whole mesh. A
+    job of one tile (one worker and no tile size) is never cut.
 
     output_dir: instead of one grid on the client, each worker writes its
     tiles to this folder (one .vdb per tile that holds more than background,
@@ -717,6 +718,9 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
     place = _placement(client)
     metadata = None
     plan = None
+    # One tile (one worker, no tile size): the whole mesh, held; cutting it
+    # into parts would only cost time.
+    partition = partition and not (tile is None and workers <= 1)
     if not isinstance(mesh, (str, os.PathLike)) and kind in PARTITIONED_KINDS and partition and _metadata_settable():
         sign = None
         if kind in SIGNED_KINDS:
