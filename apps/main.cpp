@@ -15,7 +15,7 @@ int main(int argc, char** argv)
     // Buffers of 1 MiB and more are mapped and given back when freed. glibc
     // otherwise raises the threshold as large buffers are freed, and the
     // load's buffers freed afterwards stay in the heap: 19 MB of the peak of
-    // the 1.3 M-triangle icosphere's level set (docs/design.md, "Memory").
+    // the 1.3 M-triangle icosphere's level set (docs/design.md, "Reading meshes in parallel").
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
 #endif
     CLI::App app{"svo: voxelize triangle meshes on the GPU (OpenGL 4.5) into sparse voxel octrees and OpenVDB grids"};
