@@ -217,13 +217,18 @@ bool mayCutAfter(std::string_view text, size_t nl)
     return i == 0 || text[i - 1] != '\\';
 }
 
-/// `text` (whole lines) cut into pieces and parsed in parallel, appended to
-/// `parts`; false when a piece needs the file read in order (a relative
-/// index or an error: the serial reader names the line).
-bool parseInPieces(const std::string& path, std::string_view text, size_t chunkBytes, std::vector<ObjPart>& parts)
+/// `text` (whole lines) cut into pieces of about `chunkBytes` that end at
+/// line ends outside `\` continued statements.
+std::vector<std::string_view> piecesOf(std::string_view text, size_t chunkBytes)
 {
-    const std::vector<std::string_view> pieces =
-        cutAtLines(text, chunkBytes, [&](size_t nl) { return mayCutAfter(text, nl); });
+    return cutAtLines(text, chunkBytes, [&](size_t nl) { return mayCutAfter(text, nl); });
+}
+
+/// The pieces parsed in parallel, appended to `parts`; false when a piece
+/// needs the file read in order (a relative index or an error: the serial
+/// reader names the line).
+bool parseInPieces(const std::string& path, const std::vector<std::string_view>& pieces, std::vector<ObjPart>& parts)
+{
     const size_t first = parts.size();
     parts.resize(first + pieces.size());
     std::atomic<bool> serial{false};
@@ -251,12 +256,11 @@ TriangleMesh readObjGeometry(const std::string& path, std::string_view bytes, si
                              Materials& materials)
 {
     if (inPieces) *inPieces = 0;
-    if (bytes.size() > chunkBytes) {
-        std::vector<ObjPart> parts;
-        if (parseInPieces(path, bytes, chunkBytes, parts) && parts.size() > 1) {
-            if (inPieces) *inPieces = parts.size();
-            return assemble(path, parts, materials);
-        }
+    const std::vector<std::string_view> pieces = piecesOf(bytes, chunkBytes);
+    std::vector<ObjPart> parts;
+    if (pieces.size() > 1 && parseInPieces(path, pieces, parts)) {
+        if (inPieces) *inPieces = parts.size();
+        return assemble(path, parts, materials);
     }
     return readSerially(path, bytes, materials);
 }
@@ -389,7 +393,7 @@ TriangleMesh readObjFile(const std::string& path, size_t blockBytes, size_t chun
                 nl = nl ? block.rfind('\n', nl - 1) : std::string::npos;
             cut = nl == std::string::npos ? 0 : nl + 1;
         }
-        if (cut) inOrder = parseInPieces(path, std::string_view(block).substr(0, cut), chunkBytes, parts);
+        if (cut) inOrder = parseInPieces(path, piecesOf(std::string_view(block).substr(0, cut), chunkBytes), parts);
         block.erase(0, cut);
     }
     std::string().swap(block);
