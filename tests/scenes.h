@@ -97,4 +97,18 @@ inline TriangleMesh sphere(Vec3d c, double r, int slices, int stacks)
 /// icosphere() lives in svo/core/default_scene.h: the CLI generates it too.
 using svo::icosphere;
 
+/// `mesh` as a soup: three vertices of its own per triangle (the same
+/// positions), as STL files and unwelded exports store meshes.
+inline TriangleMesh asSoup(const TriangleMesh& mesh)
+{
+    TriangleMesh out;
+    out.source = mesh.source + " as a soup";
+    for (const auto& t : mesh.triangles) {
+        const auto base = uint32_t(out.positions.size());
+        for (uint32_t k : t) out.positions.push_back(mesh.positions[k]);
+        out.triangles.push_back({base, base + 1, base + 2});
+    }
+    return out;
+}
+
 } // namespace svo::test

@@ -498,19 +498,6 @@ uint64_t expectClimbIsTheWalk(const TriangleMesh& mesh, const GridSpec& grid, do
     return centres;
 }
 
-/// `mesh` as a soup: three vertices of its own per triangle (the same positions).
-TriangleMesh soup(const TriangleMesh& mesh)
-{
-    TriangleMesh out;
-    out.source = mesh.source + " as a soup";
-    for (const auto& t : mesh.triangles) {
-        const auto base = uint32_t(out.positions.size());
-        for (uint32_t k : t) out.positions.push_back(mesh.positions[k]);
-        out.triangles.push_back({base, base + 1, base + 2});
-    }
-    return out;
-}
-
 // Winding signs on the CPU climb each column of a run of bricks from its
 // lowest centres (walked) by the signed crossings and a bound on the
 // boundary's field, and walk only where that does not decide: the same
@@ -539,7 +526,7 @@ TEST(CpuFields, ClimbingColumnsGivesTheWalksSides)
             EXPECT_LT(walked, bricksNearTriangles(localPositions(*m, grid), *m, grid, 3.0).size() * 512 / 4);
         }
     }
-    expectClimbIsTheWalk(soup(messy), makeGrid(messy, GridRequest{40, 0}), 1.5);
+    expectClimbIsTheWalk(asSoup(messy), makeGrid(messy, GridRequest{40, 0}), 1.5);
     expectClimbIsTheWalk(messy, makeGrid(messy, GridRequest{40, 0}), 3.0);
     expectClimbIsTheWalk(messy, makeGrid(messy, GridRequest{40, 0}), 1e300);
     EXPECT_EQ(expectClimbIsTheWalk(messy, makeGrid(messy, GridRequest{32, 0}), 1.0),

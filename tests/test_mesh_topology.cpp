@@ -54,16 +54,10 @@ void expectSame(const TriangleMesh& mesh)
     }
 }
 
-/// @a mesh with every triangle on its own three vertices, in a shuffled order.
+/// @a mesh with every triangle on its own three vertices (test::asSoup), in a shuffled order.
 TriangleMesh soup(const TriangleMesh& mesh, uint32_t seed)
 {
-    TriangleMesh out;
-    out.source = mesh.source + " as a soup";
-    for (const auto& t : mesh.triangles) {
-        const uint32_t at = uint32_t(out.positions.size());
-        for (uint32_t v : t) out.positions.push_back(mesh.positions[v]);
-        out.triangles.push_back({at, at + 1, at + 2});
-    }
+    TriangleMesh out = svo::test::asSoup(mesh);
     std::vector<uint32_t> perm(out.positions.size());
     for (uint32_t i = 0; i < perm.size(); ++i) perm[i] = i;
     std::shuffle(perm.begin(), perm.end(), std::mt19937(seed));
