@@ -461,12 +461,13 @@ uint64_t expectClimbIsTheWalk(const TriangleMesh& mesh, const GridSpec& grid, do
                               std::vector<BrickCoord> bricks = {})
 {
     const std::vector<Vec3d> local = localPositions(mesh, grid);
-    if (bricks.empty()) bricks = bricksNearTriangles(local, mesh, grid, 3.0);
+    const bool searched = bricks.empty(); // the whole grid searched: a brick not listed holds no triangle
+    if (searched) bricks = bricksNearTriangles(local, mesh, grid, 3.0);
     const WindingTree tree = buildWindingTree(local, mesh.triangles);
     const std::vector<Brick> walked = windingInside(tree, bricks, beta, Checkpoint{});
+    const WindingColumns columns = windingColumns(local, mesh, grid, bricks);
     uint64_t centres = 0;
-    const std::vector<Brick> climbed =
-        windingInsideAlongColumns(tree, bricks, windingColumns(local, mesh, grid, bricks), beta, Checkpoint{}, &centres);
+    const std::vector<Brick> climbed = windingInsideAlongColumns(tree, bricks, columns, beta, Checkpoint{}, &centres);
     FieldSigns a, b;
     a.inside = walked, b.inside = climbed;
     WindingTies ties{local, &mesh};
@@ -476,8 +477,20 @@ uint64_t expectClimbIsTheWalk(const TriangleMesh& mesh, const GridSpec& grid, do
     const std::vector<float> everyCentre = windingAtBrickCentres(tree, grid, beta, Checkpoint{});
     const BrickCentreColumns centreColumns = brickCentreColumns(local, mesh, grid);
     uint64_t centresWalked = 0;
+    std::vector<float> doubts;
     const std::vector<float> climbedCentres =
-        windingAtBrickCentres(tree, grid, beta, Checkpoint{}, &centreColumns, &centresWalked);
+        windingAtBrickCentres(tree, grid, beta, Checkpoint{}, &centreColumns, &centresWalked, &doubts);
+    // Runs entered from the brick below (its centre's number, doubt and
+    // gradient bound) in place of their lowest layer's walks: the same sides.
+    uint64_t anchoredWalks = 0;
+    if (searched) {
+        ClimbAnchors anchors{&centreColumns, &climbedCentres, &doubts};
+        for (int axis = 0; axis < 3; ++axis) anchors.hi[axis] = grid.dims[axis] / 8;
+        FieldSigns c;
+        c.inside = windingInsideAlongColumns(tree, bricks, columns, beta, Checkpoint{}, &anchoredWalks, &anchors);
+        expectSameSigns(a, c, bricks, &ties);
+        EXPECT_LE(anchoredWalks, centres);
+    }
     EXPECT_LE(centresWalked, everyCentre.size());
     const auto classOf = [](float w) { return std::abs(w - 0.5f) < kWindingMargin ? 1 : w >= 0.5f ? 2 : 0; };
     const auto& d = centreColumns.dims;
@@ -493,7 +506,8 @@ uint64_t expectClimbIsTheWalk(const TriangleMesh& mesh, const GridSpec& grid, do
                       << ", climbed " << climbedCentres[g];
     }
     std::cout << "[ cpu fields ] " << mesh.source << ", beta " << beta << ": climbed " << bricks.size() * 512
-              << " centres, walked " << centres << ", " << ties.seen << " differ on the surface; brick centres "
+              << " centres, walked " << centres << " (entered from below: " << anchoredWalks << "), " << ties.seen
+              << " differ on the surface; brick centres "
               << everyCentre.size() << ", walked " << centresWalked << ", " << centreTies << " differ on the surface\n";
     return centres;
 }
@@ -525,6 +539,18 @@ TEST(CpuFields, ClimbingColumnsGivesTheWalksSides)
         if (m == &closed || m == &two) {
             EXPECT_LT(walked, bricksNearTriangles(localPositions(*m, grid), *m, grid, 3.0).size() * 512 / 4);
         }
+    }
+    {
+        // A cup (a sphere open at the bottom): above the opening, runs enter
+        // from bricks whose number changes fast near the rim, so the
+        // gradient's bound matters there.
+        TriangleMesh cup = icosphere({0.1, -0.2, 0.3}, 1.0, 4);
+        cup.triangles.erase(std::remove_if(cup.triangles.begin(), cup.triangles.end(),
+                                           [&](const auto& t) { return cup.positions[t[0]].z < 0.3 - 0.4; }),
+                            cup.triangles.end());
+        cup.source = "cup";
+        for (uint32_t n : {96u, 128u}) expectClimbIsTheWalk(cup, makeGrid(cup, GridRequest{n, 0}), 1.5);
+        for (uint32_t n : {96u, 128u}) expectClimbIsTheWalk(openBox, makeGrid(openBox, GridRequest{n, 0}), 1.5);
     }
     expectClimbIsTheWalk(asSoup(messy), makeGrid(messy, GridRequest{40, 0}), 1.5);
     expectClimbIsTheWalk(messy, makeGrid(messy, GridRequest{40, 0}), 3.0);

@@ -114,6 +114,20 @@ double zKernel(const Vec3d& g)
     return 0.3849001794597505 / (g.z * g.z); // (1/sqrt 2) / (3/2)^(3/2)
 }
 
+/// A bound on 1 / |r|^2 (|r x dl| / |r|^3 per unit of dl) over r = p - x,
+/// p and x in boxes with these gaps. Infinity when the boxes meet.
+double fullKernel(const Vec3d& g)
+{
+    const double r2 = dot(g, g);
+    return r2 == 0 ? INFINITY : 1.0 / r2;
+}
+
+/// Which part of the boundary's field a bound is of: its z component (a
+/// column's climb), or the whole of it (a move in any direction).
+enum class Part { Z, Whole };
+
+double kernel(Part part, const Vec3d& g) { return part == Part::Z ? zKernel(g) : fullKernel(g); }
+
 /// A bounding-volume tree over the boundary edges that bounds |dw/dz| over
 /// a box: the field's z component is (1/4 pi) sum_e m_e int_e (dl x r)_z / |r|^3,
 /// r = p - x (Biot-Savart), and (dl x r)_z is at most |dl_xy| |r_xy|. A node
@@ -124,7 +138,9 @@ double zKernel(const Vec3d& g)
 ///    radius of its ball about c and d the box's distance from c: the field
 ///    at p is N x K(p - c) plus, for each dl, K's change from c to x, at
 ///    most R sup |grad K| = R 2 / |r|^3 (K(r) = r / |r|^3).
-/// Otherwise its children are bounded, or a leaf's edges one by one.
+/// Otherwise its children are bounded, or a leaf's edges one by one. The
+/// whole field's bound is the same with |e| for |e_xy|, |N| for |N_xy| and
+/// 1 / |r|^2 for the z kernel (|dl x r| <= |dl| |r|).
 class BoundaryTree {
 public:
     explicit BoundaryTree(std::vector<Edge> edges) : edges_(std::move(edges))
@@ -137,21 +153,21 @@ public:
     /// The bound on |dw/dz| (times 4 pi) over the box from the nodes far
     /// enough to bound at once; the edges of the others go to @a near. Past
     /// @a limit the search stops, with infinity.
-    double farBound(const Box& box, std::vector<const Edge*>& near, double limit = INFINITY) const
+    double farBound(const Box& box, std::vector<const Edge*>& near, double limit = INFINITY, Part part = Part::Z) const
     {
         double sum = 0;
-        return nodeBound(0, box, near, sum, limit) ? sum : INFINITY;
+        return nodeBound(0, box, near, sum, limit, part) ? sum : INFINITY;
     }
 
     /// An edge's part of the bound over a box (times 4 pi); infinity where it meets the box.
-    static double edgeBound(const Edge& e, const Box& box)
+    static double edgeBound(const Edge& e, const Box& box, Part part = Part::Z)
     {
         const Vec3d d = e.b - e.a;
-        const double xy = double(std::abs(e.m)) * std::sqrt(d.x * d.x + d.y * d.y);
-        if (xy == 0) return 0; // along z: no field about z
+        const double length = double(std::abs(e.m)) * std::sqrt(d.x * d.x + d.y * d.y + (part == Part::Z ? 0.0 : d.z * d.z));
+        if (length == 0) return 0; // along z (or of no length): no field about z
         Box edge;
         edge.add(e.a), edge.add(e.b);
-        return xy * zKernel(gaps(box, edge));
+        return length * kernel(part, gaps(box, edge));
     }
 
 private:
@@ -199,19 +215,21 @@ private:
     }
 
     /// Adds node i's part to `sum`; false once it passes `limit`.
-    bool nodeBound(uint32_t i, const Box& box, std::vector<const Edge*>& near, double& sum, double limit) const
+    bool nodeBound(uint32_t i, const Box& box, std::vector<const Edge*>& near, double& sum, double limit,
+                   Part part) const
     {
         const Node& node = nodes_[i];
-        if (node.weightXY == 0) return true; // only edges along z
-        double best = node.weightXY * zKernel(gaps(box, node.box));
+        const double weight = part == Part::Z ? node.weightXY : node.weight;
+        if (weight == 0) return true; // only edges along z
+        double best = weight * kernel(part, gaps(box, node.box));
         Box centre;
         centre.add(node.c);
         const Vec3d g = gaps(box, centre);
         const double d = std::sqrt(dot(g, g));
         if (d > node.r) {
-            const double nxy = std::sqrt(node.n.x * node.n.x + node.n.y * node.n.y);
+            const double n = std::sqrt(node.n.x * node.n.x + node.n.y * node.n.y + (part == Part::Z ? 0.0 : node.n.z * node.n.z));
             const double far = d - node.r;
-            best = std::min(best, nxy * zKernel(g) + node.weight * node.r * 2.0 / (far * far * far));
+            best = std::min(best, n * kernel(part, g) + node.weight * node.r * 2.0 / (far * far * far));
         }
         if (best < kEnough) {
             sum += best;
@@ -221,7 +239,7 @@ private:
             for (uint32_t k = node.first; k < node.first + node.count; ++k) near.push_back(&edges_[k]);
             return true;
         }
-        return nodeBound(node.left, box, near, sum, limit) && nodeBound(node.right, box, near, sum, limit);
+        return nodeBound(node.left, box, near, sum, limit, part) && nodeBound(node.right, box, near, sum, limit, part);
     }
 
     std::vector<Edge> edges_;
@@ -383,6 +401,19 @@ float BrickCentreColumns::slopeAt(uint64_t brick, double limit) const
     double sum = boundary->farBound(segment, near, cap);
     for (size_t k = 0; k < near.size() && sum <= cap; ++k) sum += BoundaryTree::edgeBound(*near[k], segment);
     return sum <= cap ? roundUp(sum) : INFINITY;
+}
+
+float BrickCentreColumns::gradientAt(uint64_t brick) const
+{
+    if (!boundary) return 0.0f;
+    const uint64_t x = brick % dims[0], y = brick / dims[0] % dims[1], z = brick / (uint64_t(dims[0]) * dims[1]);
+    Box box;
+    box.add({8.0 * double(x), 8.0 * double(y), 8.0 * double(z)}), box.add({8.0 * double(x) + 7, 8.0 * double(y) + 7, 8.0 * double(z) + 7});
+    thread_local std::vector<const Edge*> near;
+    near.clear();
+    double sum = boundary->farBound(box, near, INFINITY, winding_boundary::Part::Whole);
+    for (size_t k = 0; k < near.size(); ++k) sum += BoundaryTree::edgeBound(*near[k], box, winding_boundary::Part::Whole);
+    return roundUp(sum);
 }
 
 } // namespace svo

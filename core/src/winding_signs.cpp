@@ -305,13 +305,22 @@ double classRoom(double value)
                      std::min(value - 0.5 + kWindingMargin, 0.5 + kWindingMargin - value)});
 }
 
+/// A climbed number's doubt as a float that bounds it, with the rounding of
+/// the number to float.
+float doubtOfFloat(double value, double doubt)
+{
+    const double d = doubt + 1e-6 * (1.0 + std::abs(value));
+    const float f = float(d);
+    return double(f) < d ? std::nextafter(f, INFINITY) : f;
+}
+
 /// Brick centres column by column: the lowest walked, each above climbed
 /// from the one below where the climb keeps it in one class (its doubt plus
 /// `allowance` either way; a step's slope bounded only as far as it could
 /// still decide), else walked; with `climb` false every centre walked.
 /// @return the centres walked
 uint64_t climbColumn(const Walk& walk, const BrickCentreColumns& columns, uint64_t column, double allowance,
-                     bool climb, std::vector<float>& out)
+                     bool climb, std::vector<float>& out, std::vector<float>* doubts)
 {
     const std::array<uint64_t, 3> d{columns.dims[0], columns.dims[1], columns.dims[2]};
     const uint64_t plane = d[0] * d[1];
@@ -326,6 +335,7 @@ uint64_t climbColumn(const Walk& walk, const BrickCentreColumns& columns, uint64
                 doubt += 8.0 * double(columns.slopeAt(g, room / 8.0));
                 if (oneClass(value - doubt - allowance, value + doubt + allowance)) {
                     out[g] = float(value);
+                    if (doubts) (*doubts)[g] = doubtOfFloat(value, doubt);
                     continue;
                 }
             }
@@ -341,7 +351,7 @@ uint64_t climbColumn(const Walk& walk, const BrickCentreColumns& columns, uint64
 
 std::vector<float> windingAtBrickCentres(const WindingTree& tree, const GridSpec& grid, double beta,
                                          const Checkpoint& checkpoint, const BrickCentreColumns* columns,
-                                         uint64_t* walked)
+                                         uint64_t* walked, std::vector<float>* doubts)
 {
     checkDepth(tree);
     const Walk walk{tree, beta2Of(beta)};
@@ -355,6 +365,7 @@ std::vector<float> windingAtBrickCentres(const WindingTree& tree, const GridSpec
     if (columns && columns->jump.size() != n)
         throw InvalidInput(fmt::format("windingAtBrickCentres: {} bricks but columns for {}", n, columns->jump.size()));
     std::vector<float> out(n);
+    if (doubts) doubts->assign(n, 0.0f);
     if (!columns) {
         constexpr uint64_t kBatch = 1 << 14;
         for (uint64_t first = 0; first < n; first += kBatch) {
@@ -379,7 +390,7 @@ std::vector<float> windingAtBrickCentres(const WindingTree& tree, const GridSpec
         const bool climb = 2 * centres.load() <= first * d[2];
         tbb::parallel_for(tbb::blocked_range<uint64_t>(first, last, 16), [&](const tbb::blocked_range<uint64_t>& r) {
             uint64_t here = 0;
-            for (uint64_t c = r.begin(); c != r.end(); ++c) here += climbColumn(walk, *columns, c, allowance, climb, out);
+            for (uint64_t c = r.begin(); c != r.end(); ++c) here += climbColumn(walk, *columns, c, allowance, climb, out, doubts);
             centres += here;
         });
         checkpoint(double(last) / double(plane), "winding per brick");
@@ -413,8 +424,8 @@ namespace {
 /// the centres the climb cannot decide are walked.
 class Climb {
 public:
-    Climb(const Walk& walk, const WindingColumns& columns, float allowance)
-        : walk_(walk), columns_(columns), allowance_(allowance)
+    Climb(const Walk& walk, const WindingColumns& columns, float allowance, const ClimbAnchors* anchors)
+        : walk_(walk), columns_(columns), allowance_(allowance), anchors_(anchors)
     {
     }
 
@@ -428,7 +439,7 @@ public:
             const std::array<uint32_t, 3> origin{8 * bricks[i][0], 8 * bricks[i][1], 8 * bricks[i][2]};
             jumpsOf(i);
             Brick known, walk, out;
-            if (k == 0) // the lowest layer anchors every column
+            if (k == 0 && !fromBelow(bricks[i])) // the lowest layer, walked, anchors every column
                 for (uint32_t x = 0; x < 8; ++x) walk.words[x] = 0x0101010101010101ull;
             // Rounds: walk what the last climb could not decide, then climb
             // again from every walked centre. Past a centre it cannot decide
@@ -460,6 +471,28 @@ public:
     }
 
 private:
+    /// Enters brick @a b's columns from the brick below, when ClimbAnchors
+    /// vouches that its box holds no triangle: the number at its centre,
+    /// give or take its doubt and the gradient's bound over the 3.5 sqrt 3
+    /// voxels (at most) to the top centre of any of its columns. False
+    /// (the lowest layer is walked) where that could not decide a side.
+    bool fromBelow(const BrickCoord& b)
+    {
+        if (!anchors_ || b[2] == 0) return false;
+        const BrickCoord below{b[0], b[1], b[2] - 1};
+        for (int a = 0; a < 3; ++a)
+            if (below[a] < anchors_->lo[a] || below[a] >= anchors_->hi[a]) return false;
+        const auto& d = anchors_->columns->dims;
+        const uint64_t g = below[0] + uint64_t(d[0]) * (below[1] + uint64_t(d[1]) * below[2]);
+        constexpr double kFarthest = 6.0622; // 3.5 sqrt 3, rounded up
+        const double value = double((*anchors_->centres)[g]);
+        const double doubt = double((*anchors_->doubts)[g]) + kFarthest * double(anchors_->columns->gradientAt(g));
+        if (!(std::abs(value - 0.5) > doubt + 2.0 * allowance_)) return false;
+        std::fill(value_, value_ + 64, value);
+        std::fill(doubt_, doubt_ + 64, doubt);
+        return true;
+    }
+
     /// Climbs column c of brick i from the brick below (value_, doubt_), or
     /// from its known centres: sets the inside voxels decided, marks in
     /// `walk` those to walk, and keeps the number and doubt at its top (for
@@ -500,6 +533,7 @@ private:
     const Walk& walk_;
     const WindingColumns& columns_;
     float allowance_;
+    const ClimbAnchors* anchors_;
     alignas(64) float sum_[512];
     double exact_[512];
     bool inside_[512];
@@ -518,13 +552,20 @@ float windingWalkError(double beta)
 
 std::vector<Brick> windingInsideAlongColumns(const WindingTree& tree, const std::vector<BrickCoord>& bricks,
                                              const WindingColumns& columns, double beta, const Checkpoint& checkpoint,
-                                             uint64_t* walked)
+                                             uint64_t* walked, const ClimbAnchors* anchors)
 {
     checkDepth(tree);
     if (columns.slope.size() != bricks.size() || columns.columnsAt.size() != bricks.size() ||
         columns.first.size() != bricks.size() + 1)
         throw InvalidInput(fmt::format("windingInsideAlongColumns: {} bricks but columns for {}", bricks.size(),
                                        columns.slope.size()));
+    if (anchors) {
+        const auto& d = anchors->columns->dims;
+        const uint64_t n = uint64_t(d[0]) * d[1] * d[2];
+        if (anchors->centres->size() != n || anchors->doubts->size() != n)
+            throw InvalidInput(fmt::format("windingInsideAlongColumns: anchors for {} of a box of {} bricks",
+                                           anchors->centres->size(), n));
+    }
     const Walk walk{tree, beta2Of(beta)};
     // Runs: bricks of one brick column with consecutive z, lowest first.
     std::vector<uint32_t> order(bricks.size());
@@ -540,7 +581,7 @@ std::vector<Brick> windingInsideAlongColumns(const WindingTree& tree, const std:
     std::atomic<uint64_t> centres{0};
     const float allowance = windingWalkError(beta);
     tbb::enumerable_thread_specific<std::unique_ptr<Climb>> climbs(
-        [&] { return std::make_unique<Climb>(walk, columns, allowance); });
+        [&] { return std::make_unique<Climb>(walk, columns, allowance, anchors); });
     const size_t runs = runStart.size() - 1;
     constexpr size_t kBatch = 256;
     for (size_t first = 0; first < runs; first += kBatch) {

@@ -160,6 +160,20 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     return signs;
 }
 
+/// @a anchors with the bricks its caller's band was searched in whole: the
+/// grid's, or the region's (the band of a winding-signed field is searched
+/// in the region's box, bandBricksFor; a solid's surface voxels are).
+ClimbAnchors searchedBricks(const GridSpec& g, const std::optional<IndexBox>& region, ClimbAnchors anchors)
+{
+    VoxelBox box = wholeBox(g);
+    if (region) box = localBox(g, *region);
+    for (int a = 0; a < 3; ++a) {
+        anchors.lo[a] = (box.lo[a] + 7) / 8;
+        anchors.hi[a] = std::min(box.hi[a], g.dims[a]) / 8;
+    }
+    return anchors;
+}
+
 /// The same on the CPU (svo/core/winding_signs.h): the same tree, rule and
 /// sums, walked where climbing a column from its lowest centres does not
 /// decide (windingInsideAlongColumns).
@@ -174,8 +188,9 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
     t0 = Clock::now();
     const BrickCentreColumns centreColumns = brickCentreColumns(local, mesh, g);
     uint64_t centresWalked = 0;
+    std::vector<float> doubts;
     const std::vector<float> centres =
-        windingAtBrickCentres(tree, g, beta, checkpoint.part(0.0, 0.3), &centreColumns, &centresWalked);
+        windingAtBrickCentres(tree, g, beta, checkpoint.part(0.0, 0.3), &centreColumns, &centresWalked, &doubts);
     stats.stages.push_back({"winding bricks (cpu)", -1, msSince(t0)});
     t0 = Clock::now();
     const std::array<uint32_t, 3> dims{(g.dims[0] + 7) / 8, (g.dims[1] + 7) / 8, (g.dims[2] + 7) / 8};
@@ -189,8 +204,9 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
     const WindingColumns columns = windingColumns(local, mesh, g, fine);
     stats.stages.push_back({"winding columns (cpu)", -1, msSince(t0)});
     t0 = Clock::now();
+    const ClimbAnchors anchors = searchedBricks(g, region, {&centreColumns, &centres, &doubts});
     std::vector<Brick> inside =
-        windingInsideAlongColumns(tree, fine, columns, beta, checkpoint.part(0.3, 1.0), &stats.windingWalks);
+        windingInsideAlongColumns(tree, fine, columns, beta, checkpoint.part(0.3, 1.0), &stats.windingWalks, &anchors);
     stats.windingWalks += centresWalked;
     stats.stages.push_back({"winding voxels (cpu)", -1, msSince(t0)});
     signs.inside.assign(inside.begin(), inside.begin() + std::ptrdiff_t(band.size()));

@@ -81,6 +81,13 @@ struct BrickCentreColumns {
     /// centre below @a brick to its own, per voxel; +infinity where the
     /// boundary meets it or the bound passes @a limit.
     float slopeAt(uint64_t brick, double limit) const;
+
+    /// @brief A bound on |grad w| over the box of @a brick's voxel centres
+    /// ([8 b, 8 b + 7] in each axis), per voxel: the same Biot-Savart bound
+    /// with the whole field for its z part. It holds off the surface, so
+    /// only for a brick whose box holds no triangle (one beyond a band of at
+    /// least one voxel); +infinity where the boundary meets the box.
+    float gradientAt(uint64_t brick) const;
 };
 
 /// @brief The signed crossings and slopes of the brick centres of @a grid's box.

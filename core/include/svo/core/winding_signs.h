@@ -60,12 +60,14 @@ inline constexpr float kWindingMargin = 0.25f;
 /// @param checkpoint polled on the calling thread between batches
 /// @param columns brickCentreColumns of @a grid, or null: every centre walked
 /// @param walked  if not null, gets the number of centres walked
+/// @param doubts  if not null, gets per centre how far its number may be
+///                from a walk's, less windingWalkError (0 where walked)
 /// @return x-fastest over the box of ceil(dims / 8) bricks
 /// @throw svo::Unsupported for a box of more than 2^31 bricks; svo::InvalidInput
 ///        when @a columns is of another box; svo::Interrupted.
 std::vector<float> windingAtBrickCentres(const WindingTree& tree, const GridSpec& grid, double beta,
                                          const Checkpoint& checkpoint, const BrickCentreColumns* columns = nullptr,
-                                         uint64_t* walked = nullptr);
+                                         uint64_t* walked = nullptr, std::vector<float>* doubts = nullptr);
 
 /// @brief Per brick of a list, the voxels whose centre's winding number is
 /// at least 1/2, on the CPU.
@@ -82,20 +84,39 @@ std::vector<Brick> windingInside(const WindingTree& tree, const std::vector<Bric
 /// arctangent and sums), at most 1/2 (no climb decides: every centre walked).
 float windingWalkError(double beta);
 
+/// @brief Where a run of bricks may start its climb without walking its
+/// lowest layer: from the brick below it, whose box holds no triangle when
+/// it is not in the list and was searched. The winding number is smooth
+/// there, so at the top centre of each of its columns it is the number at
+/// its centre, give or take that number's doubt and 3.5 sqrt 3 voxels of
+/// BrickCentreColumns::gradientAt.
+struct ClimbAnchors {
+    const BrickCentreColumns* columns = nullptr; ///< the grid's box and the gradient's bounds
+    const std::vector<float>* centres = nullptr; ///< windingAtBrickCentres over that box
+    const std::vector<float>* doubts = nullptr;  ///< ... and its doubts
+    /// The bricks b, lo <= b < hi per axis, that the list's band (of at least
+    /// one voxel about every triangle) was searched in whole: one not listed
+    /// holds no triangle in the box of its centres.
+    std::array<uint32_t, 3> lo{}, hi{};
+};
+
 /// @brief windingInside's result with fewer walks: per run of bricks stacked
-/// in z, the lowest layer's centres are walked and each column climbs from
-/// there by @a columns (winding_columns.h); a centre is walked too where
-/// the climbed number is within its bound plus twice windingWalkError(beta)
-/// of 1/2, and the column climbs on from it. A centre not walked is then on
-/// the side a walk would give it, wherever the walk is within
-/// windingWalkError of the exact number.
+/// in z, the lowest layer's centres are walked (or entered from the brick
+/// below, with @a anchors) and each column climbs from there by @a columns
+/// (winding_columns.h); a centre is walked too where the climbed number is
+/// within its bound plus twice windingWalkError(beta) of 1/2, and the
+/// column climbs on from it. A centre not walked is then on the side a walk
+/// would give it, wherever the walk is within windingWalkError of the exact
+/// number.
 /// @param columns windingColumns of @a bricks
 /// @param walked  if not null, gets the number of centres walked
+/// @param anchors if not null, the brick centres' numbers to enter runs from
 /// @return per brick, in list order, the inside voxels (bit order of Brick)
-/// @throw svo::InvalidInput when @a columns is not of @a bricks; svo::Interrupted.
+/// @throw svo::InvalidInput when @a columns is not of @a bricks, or
+///        @a anchors not of one box; svo::Interrupted.
 std::vector<Brick> windingInsideAlongColumns(const WindingTree& tree, const std::vector<BrickCoord>& bricks,
                                              const WindingColumns& columns, double beta, const Checkpoint& checkpoint,
-                                             uint64_t* walked = nullptr);
+                                             uint64_t* walked = nullptr, const ClimbAnchors* anchors = nullptr);
 
 /// What the bricks beyond a band take from their centres' winding numbers.
 struct BricksBeyondBand {
