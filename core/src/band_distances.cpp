@@ -98,6 +98,34 @@ inline float floatAbove(float f)
     return f;
 }
 
+/// svo_prepared_distance2 without branches: the face's and the edges'
+/// squared distances both computed and one kept, by the same operations, so
+/// the same bits; a loop over centres vectorizes.
+inline double flatDistance2(const Vec3d& p, const td::svo_Triangle& t)
+{
+    const bool inside = (t.n2 > 0.0) & (dot(cross(t.ab, p - t.a), t.n) >= 0.0) &
+                        (dot(cross(t.bc, p - t.b), t.n) >= 0.0) & (dot(cross(t.ca, p - t.c), t.n) >= 0.0);
+    const double h = dot(p - t.a, t.n);
+    const double face = h * h / t.n2;
+    const double edges = std::min(td::svo_edge_distance2(p, t.a, t.ab, t.lab),
+                                  std::min(td::svo_edge_distance2(p, t.b, t.bc, t.lbc),
+                                           td::svo_edge_distance2(p, t.c, t.ca, t.lca)));
+    return inside ? face : edges;
+}
+
+/// The squared distances from triangle @a t to the 8 centres (x, y, z0 + k)
+/// of a column. AVX2 where the CPU has it: the same IEEE operations lane by
+/// lane (no FMA: -ffp-contract=off), so the same bits.
+__attribute__((target_clones("avx2", "default"))) void columnDistances2(const td::svo_Triangle& t, double x, double y,
+                                                                        double z0, double* out)
+{
+    for (int k = 0; k < 8; ++k) out[k] = flatDistance2(Vec3d{x, y, z0 + double(k)}, t);
+}
+
+/// From how many centres of a column a triangle's distances are computed
+/// for the whole column at once (columnDistances2).
+constexpr int kColumnAtOnce = 2;
+
 /// The least distances (and closest triangles) at the 512 centres of the
 /// brick at voxel @a org, from the triangles of its bin, as the minimum over
 /// every triangle, bit for bit, with less work:
@@ -109,7 +137,9 @@ inline float floatAbove(float f)
 ///    the least so far, since a triangle at that float may still tie.
 ///  - A triangle whose box is farther from a centre (or from a whole column)
 ///    than its limit is left out there; the relative margin of 1e-9 covers
-///    the rounding of the box's gap and of the distance.
+///    the rounding of the box's gap and of the distance. Where two centres
+///    of a column or more are left, the triangle's distances to all eight
+///    are computed at once (vectorized), else one by one.
 ///  - The triangles are taken nearest the brick's centre first, so the
 ///    limits fall early.
 class BrickNearest {
@@ -184,12 +214,30 @@ private:
                 if (gxy2 > columnLimit2_[column]) continue;
                 double z0 = double(org[2] + lo[2]), z1 = double(org[2] + hi[2]);
                 if (!td::svo_slab_run(slab, px, py, z0, z1)) continue;
-                bool nearer = false;
-                for (double pz = z0; pz <= z1; pz += 1.0) {
-                    const uint32_t v = column * 8 + uint32_t(pz) - org[2];
+                // The centres the triangle's box is near enough to change, a bit each.
+                const uint32_t first = column * 8 + uint32_t(z0) - org[2];
+                uint32_t want = 0;
+                for (uint32_t k = 0; k <= uint32_t(z1 - z0); ++k) {
+                    const double pz = z0 + double(k);
                     const double gz = std::max({boxLo.z - pz, pz - boxHi.z, 0.0});
-                    if (gxy2 + gz * gz * kShrink > limit2_[v]) continue;
-                    const double d2 = td::svo_prepared_distance2(Vec3d{px, py, pz}, tri);
+                    if (gxy2 + gz * gz * kShrink <= limit2_[first + k]) want |= 1u << k;
+                }
+                if (!want) continue;
+                // A few alone, more all eight at once (the same bits either way).
+                alignas(64) double column2[8];
+                if (__builtin_popcount(want) >= kColumnAtOnce) {
+                    columnDistances2(tri, px, py, z0, column2);
+                } else {
+                    for (uint32_t m = want; m; m &= m - 1) {
+                        const int k = __builtin_ctz(m);
+                        column2[k] = td::svo_prepared_distance2(Vec3d{px, py, z0 + double(k)}, tri);
+                    }
+                }
+                bool nearer = false;
+                for (uint32_t m = want; m; m &= m - 1) {
+                    const int k = __builtin_ctz(m);
+                    const uint32_t v = first + uint32_t(k);
+                    const double d2 = column2[k];
                     if (d2 >= limit2_[v]) continue; // its float can neither win nor tie
                     if (!kClosest) {
                         limit2_[v] = d2;
