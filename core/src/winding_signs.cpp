@@ -230,18 +230,22 @@ struct Walk {
             if (nearCount == 0) continue;
             const uint32_t l0 = tree.links[2 * size_t(e.node)], l1 = tree.links[2 * size_t(e.node) + 1];
             if (l1 & gpu::kWindingLeaf) {
-                for (uint32_t i = 0; i < nearCount; ++i)
+                // The near centres' sums gathered once for the leaf's
+                // triangles (each still adds its angles in the walk's order).
+                for (uint32_t i = 0; i < nearCount; ++i) {
                     hx[i] = double(qx[lane[i]]), hy[i] = double(qy[lane[i]]), hz[i] = double(qz[lane[i]]);
+                    term[i] = sum[lane[i]];
+                }
                 const uint32_t last = l0 + (l1 & ~gpu::kWindingLeaf);
                 for (uint32_t j = l0; j < last; ++j) {
                     const auto& f = tree.triangles[tree.order[j]];
                     const Vec3d a = tree.positions[f[0]], b = tree.positions[f[1]], c = tree.positions[f[2]];
                     for (uint32_t i = 0; i < nearCount; ++i) {
                         const Vec3d q{hx[i], hy[i], hz[i]};
-                        term[i] = solidAngle(a - q, b - q, c - q);
+                        term[i] += solidAngle(a - q, b - q, c - q);
                     }
-                    for (uint32_t i = 0; i < nearCount; ++i) sum[lane[i]] += term[i];
                 }
+                for (uint32_t i = 0; i < nearCount; ++i) sum[lane[i]] = term[i];
             } else {
                 stack[top].node = l0;
                 std::copy(near, near + 8, stack[top++].mask);
