@@ -66,9 +66,10 @@ inline void voxelizeTriangle(const Vec3d& a, const Vec3d& b, const Vec3d& c, con
     u1 = std::min(u1, rowLast);
     range(v, v0, v1);
     range(w, w0, w1);
+    const svo_ColumnPlan plan = svo_column_plan(a, b, c, w, half, ulp); // once, not per column
     for (int64_t i = u0; i <= u1; ++i)
         for (int64_t j = v0; j <= v1; ++j) {
-            const Vec3d r = svo_column_range(a, b, c, w, double(i), double(j), half, ulp);
+            const Vec3d r = svo_plan_range(plan, double(i), double(j));
             const int64_t k0 = std::max(w0, int64_t(std::ceil(r.x))), k1 = std::min(w1, int64_t(std::floor(r.y)));
             for (int64_t k = k0; k <= k1; ++k) {
                 Vec3d centre;

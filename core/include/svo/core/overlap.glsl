@@ -189,46 +189,95 @@ SVO_FN int svo_projection_axis(svo_vec3 a, svo_vec3 b, svo_vec3 c, svo_real ulp)
 // dn = 8 ulp E^2 (E: longest edge); the resulting slope error widens the range,
 // and a triangle too degenerate for a reliable plane gets its full extent. The
 // range is therefore conservative in float as in double.
-SVO_FN svo_vec3 svo_column_range(svo_vec3 a, svo_vec3 b, svo_vec3 c, int w, svo_real cu, svo_real cv,
-                                 svo_real halfSide, svo_real ulp)
+//
+// What does not depend on the column is planned once (svo_column_plan), so
+// that a caller walking many columns of one triangle (the CPU voxelizer)
+// computes it once; svo_plan_range does the rest, by the same operations.
+struct svo_ColumnPlan {
+    int w, u, v;
+    svo_real lo, hi;       // the triangle's extent along w, grown by halfSide
+    bool sloped;           // the plane narrows the range
+    svo_real su, sv;       // its slopes along u and v
+    svo_vec3 a;            // the corner the plane is measured from
+    svo_real E;            // the longest edge's largest coordinate difference
+    svo_real slopeError;   // the plane's height error, before the column's magnitude
+    svo_real spread;       // halfSide (|su| + |sv|)
+    bool lineBound;        // the sliver bound applies (a longest edge of some length)
+    svo_vec3 p, d;         // that edge's line
+    svo_real cornerMag;    // the corners' largest coordinate
+    svo_real delta;        // the triangle's distance from the line, bounded
+    svo_real halfSide, ulp;
+};
+
+SVO_FN svo_ColumnPlan svo_column_plan(svo_vec3 a, svo_vec3 b, svo_vec3 c, int w, svo_real halfSide, svo_real ulp)
 {
-    int u = (w + 1) % 3;
-    int v = (w + 2) % 3;
-    svo_real lo = min(a[w], min(b[w], c[w])) - halfSide;
-    svo_real hi = max(a[w], max(b[w], c[w])) + halfSide;
+    svo_ColumnPlan q;
+    q.w = w;
+    q.u = (w + 1) % 3;
+    q.v = (w + 2) % 3;
+    q.a = a;
+    q.halfSide = halfSide;
+    q.ulp = ulp;
+    q.lo = min(a[w], min(b[w], c[w])) - halfSide;
+    q.hi = max(a[w], max(b[w], c[w])) + halfSide;
     svo_vec3 e0 = b - a;
     svo_vec3 e1 = c - a;
     svo_vec3 e2 = c - b;
-    svo_real E = max(max(max(abs(e0.x), abs(e0.y)), max(abs(e0.z), abs(e1.x))),
-                     max(max(abs(e1.y), abs(e1.z)), max(abs(e2.x), max(abs(e2.y), abs(e2.z)))));
+    q.E = max(max(max(abs(e0.x), abs(e0.y)), max(abs(e0.z), abs(e1.x))),
+              max(max(abs(e1.y), abs(e1.z)), max(abs(e2.x), max(abs(e2.y), abs(e2.z)))));
     svo_vec3 n = cross(e0, e1);
-    svo_real dn = 8.0 * ulp * E * E;
+    svo_real dn = 8.0 * ulp * q.E * q.E;
     svo_real nw = abs(n[w]);
-    if (nw > 2.0 * dn) {
-        svo_real su = -n[u] / n[w];
-        svo_real sv = -n[v] / n[w];
-        svo_real h = a[w] + su * (cu - a[u]) + sv * (cv - a[v]);
-        svo_real mag = max(abs(a[w]), max(abs(cu), abs(cv))) + E;
-        svo_real err = 4.0 * dn / (nw - dn) * (E + 1.0) + 8.0 * ulp * mag;
-        svo_real dz = halfSide * (abs(su) + abs(sv)) + err;
-        lo = max(lo, h - dz - halfSide);
-        hi = min(hi, h + dz + halfSide);
+    q.sloped = nw > 2.0 * dn;
+    q.su = 0.0;
+    q.sv = 0.0;
+    q.slopeError = 0.0;
+    q.spread = 0.0;
+    if (q.sloped) {
+        q.su = -n[q.u] / n[w];
+        q.sv = -n[q.v] / n[w];
+        q.slopeError = 4.0 * dn / (nw - dn) * (q.E + 1.0);
+        q.spread = halfSide * (abs(q.su) + abs(q.sv));
     }
     // The sliver bound, tight where the plane's is not: the triangle lies
     // within delta of the line through its longest edge (p, d) (the distance
     // to a line is convex, so it peaks at the third corner, |n| / |d| away),
     // so its points in this column are near the line's points in the column
     // grown by delta, whose heights follow from the line's parameter range.
-    // The margin g holds the rounding of that parameter range.
     int longest = svo_longest_edge(a, b, c);
-    svo_vec3 p = longest == 2 ? b : a;
-    svo_vec3 d = longest == 0 ? e0 : (longest == 1 ? e1 : e2);
-    svo_real dmax = max(abs(d.x), max(abs(d.y), abs(d.z)));
-    if (dmax > 0.0) {
-        svo_real mag = max(max(max(abs(a.x), abs(a.y)), max(abs(a.z), abs(b.x))),
-                           max(max(abs(b.y), abs(b.z)), max(abs(c.x), max(abs(c.y), abs(c.z)))));
-        mag = max(mag, max(abs(cu), abs(cv))) + 1.0;
-        svo_real delta = (abs(n.x) + abs(n.y) + abs(n.z) + 3.0 * dn) / dmax * (1.0 + 8.0 * ulp);
+    q.p = longest == 2 ? b : a;
+    q.d = longest == 0 ? e0 : (longest == 1 ? e1 : e2);
+    svo_real dmax = max(abs(q.d.x), max(abs(q.d.y), abs(q.d.z)));
+    q.lineBound = dmax > 0.0;
+    q.cornerMag = max(max(max(abs(a.x), abs(a.y)), max(abs(a.z), abs(b.x))),
+                      max(max(abs(b.y), abs(b.z)), max(abs(c.x), max(abs(c.y), abs(c.z)))));
+    q.delta = q.lineBound ? (abs(n.x) + abs(n.y) + abs(n.z) + 3.0 * dn) / dmax * (1.0 + 8.0 * ulp) : 0.0;
+    return q;
+}
+
+SVO_FN svo_vec3 svo_plan_range(svo_ColumnPlan q, svo_real cu, svo_real cv)
+{
+    int w = q.w;
+    int u = q.u;
+    int v = q.v;
+    svo_real halfSide = q.halfSide;
+    svo_real ulp = q.ulp;
+    svo_real lo = q.lo;
+    svo_real hi = q.hi;
+    if (q.sloped) {
+        svo_real h = q.a[w] + q.su * (cu - q.a[u]) + q.sv * (cv - q.a[v]);
+        svo_real mag = max(abs(q.a[w]), max(abs(cu), abs(cv))) + q.E;
+        svo_real err = q.slopeError + 8.0 * ulp * mag;
+        svo_real dz = q.spread + err;
+        lo = max(lo, h - dz - halfSide);
+        hi = min(hi, h + dz + halfSide);
+    }
+    // The margin g holds the rounding of the line's parameter range.
+    if (q.lineBound) {
+        svo_vec3 p = q.p;
+        svo_vec3 d = q.d;
+        svo_real mag = max(q.cornerMag, max(abs(cu), abs(cv))) + 1.0;
+        svo_real delta = q.delta;
         svo_real g = halfSide + delta + 16.0 * ulp * mag;
         svo_real t0 = -3.0e38;
         svo_real t1 = 3.0e38;
@@ -254,4 +303,10 @@ SVO_FN svo_vec3 svo_column_range(svo_vec3 a, svo_vec3 b, svo_vec3 c, int w, svo_
         }
     }
     return svo_vec3(lo, hi, 0.0);
+}
+
+SVO_FN svo_vec3 svo_column_range(svo_vec3 a, svo_vec3 b, svo_vec3 c, int w, svo_real cu, svo_real cv,
+                                 svo_real halfSide, svo_real ulp)
+{
+    return svo_plan_range(svo_column_plan(a, b, c, w, halfSide, ulp), cu, cv);
 }

@@ -22,8 +22,9 @@
 /// that near 1/2 (on a face of the mesh, where either side is the answer).
 ///
 /// Most centres need no walk: windingInsideAlongColumns walks a run of
-/// bricks' lowest centres and climbs each column from them
-/// (winding_columns.h), walking only where the climb cannot decide. It gives
+/// bricks' lowest centres (or enters the run from the brick below, whose
+/// centre's number the brick-centre pass has) and climbs each column from
+/// them (winding_columns.h), walking only where the climb cannot decide. It gives
 /// the walk's side wherever the walk is within windingWalkError of the exact
 /// number; a centre on the surface, where the walk's number is 1/2 up to
 /// rounding, takes the side of the crossings' ties.
