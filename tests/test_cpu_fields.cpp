@@ -550,7 +550,6 @@ TEST(CpuFields, ClimbingColumnsGivesTheWalksSides)
                             cup.triangles.end());
         cup.source = "cup";
         for (uint32_t n : {96u, 128u}) expectClimbIsTheWalk(cup, makeGrid(cup, GridRequest{n, 0}), 1.5);
-        for (uint32_t n : {96u, 128u}) expectClimbIsTheWalk(openBox, makeGrid(openBox, GridRequest{n, 0}), 1.5);
     }
     expectClimbIsTheWalk(asSoup(messy), makeGrid(messy, GridRequest{40, 0}), 1.5);
     expectClimbIsTheWalk(messy, makeGrid(messy, GridRequest{40, 0}), 3.0);

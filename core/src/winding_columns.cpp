@@ -159,6 +159,17 @@ public:
         return nodeBound(0, box, near, sum, limit, part) ? sum : INFINITY;
     }
 
+    /// The whole bound over the box (times 4 pi): the far nodes' and each
+    /// near edge's; past @a limit, infinity.
+    double bound(const Box& box, double limit, Part part) const
+    {
+        thread_local std::vector<const Edge*> near;
+        near.clear();
+        double sum = farBound(box, near, limit, part);
+        for (size_t k = 0; k < near.size() && sum <= limit; ++k) sum += edgeBound(*near[k], box, part);
+        return sum <= limit ? sum : INFINITY;
+    }
+
     /// An edge's part of the bound over a box (times 4 pi); infinity where it meets the box.
     static double edgeBound(const Edge& e, const Box& box, Part part = Part::Z)
     {
@@ -388,32 +399,35 @@ BrickCentreColumns brickCentreColumns(const std::vector<Vec3d>& local, const Tri
     return out;
 }
 
+namespace {
+
+/// Brick @a brick's origin in a box of @a dims bricks (x-fastest), in voxels (8 b).
+std::array<double, 3> brickOrigin(uint64_t brick, const std::array<uint32_t, 3>& dims)
+{
+    const uint64_t x = brick % dims[0], y = brick / dims[0] % dims[1], z = brick / (uint64_t(dims[0]) * dims[1]);
+    return {8.0 * double(x), 8.0 * double(y), 8.0 * double(z)};
+}
+
+} // namespace
+
 float BrickCentreColumns::slopeAt(uint64_t brick, double limit) const
 {
     if (!boundary) return 0.0f;
-    const uint64_t x = brick % dims[0], y = brick / dims[0] % dims[1], z = brick / (uint64_t(dims[0]) * dims[1]);
-    const double cx = 8.0 * double(x) + 3.5, cy = 8.0 * double(y) + 3.5, cz = 8.0 * double(z) + 3.5;
-    Box segment;
-    segment.add({cx, cy, cz - 8}), segment.add({cx, cy, cz});
-    thread_local std::vector<const Edge*> near;
-    near.clear();
-    const double cap = limit / kInvFourPi;
-    double sum = boundary->farBound(segment, near, cap);
-    for (size_t k = 0; k < near.size() && sum <= cap; ++k) sum += BoundaryTree::edgeBound(*near[k], segment);
-    return sum <= cap ? roundUp(sum) : INFINITY;
+    const auto o = brickOrigin(brick, dims);
+    Box segment; // from the centre below to this brick's
+    segment.add({o[0] + 3.5, o[1] + 3.5, o[2] - 4.5}), segment.add({o[0] + 3.5, o[1] + 3.5, o[2] + 3.5});
+    const double sum = boundary->bound(segment, limit / kInvFourPi, winding_boundary::Part::Z);
+    return std::isfinite(sum) ? roundUp(sum) : INFINITY;
 }
 
 float BrickCentreColumns::gradientAt(uint64_t brick) const
 {
     if (!boundary) return 0.0f;
-    const uint64_t x = brick % dims[0], y = brick / dims[0] % dims[1], z = brick / (uint64_t(dims[0]) * dims[1]);
-    Box box;
-    box.add({8.0 * double(x), 8.0 * double(y), 8.0 * double(z)}), box.add({8.0 * double(x) + 7, 8.0 * double(y) + 7, 8.0 * double(z) + 7});
-    thread_local std::vector<const Edge*> near;
-    near.clear();
-    double sum = boundary->farBound(box, near, INFINITY, winding_boundary::Part::Whole);
-    for (size_t k = 0; k < near.size(); ++k) sum += BoundaryTree::edgeBound(*near[k], box, winding_boundary::Part::Whole);
-    return roundUp(sum);
+    const auto o = brickOrigin(brick, dims);
+    Box box; // the brick's centres
+    box.add({o[0], o[1], o[2]}), box.add({o[0] + 7, o[1] + 7, o[2] + 7});
+    const double sum = boundary->bound(box, INFINITY, winding_boundary::Part::Whole);
+    return std::isfinite(sum) ? roundUp(sum) : INFINITY;
 }
 
 } // namespace svo
