@@ -513,8 +513,9 @@ uint64_t expectClimbIsTheWalk(const TriangleMesh& mesh, const GridSpec& grid, do
 }
 
 // Winding signs on the CPU climb each column of a run of bricks from its
-// lowest centres (walked) by the signed crossings and a bound on the
-// boundary's field, and walk only where that does not decide: the same
+// lowest centres (walked, or entered from the brick below) by the signed
+// crossings and a bound on the boundary's field, and walk only where that
+// does not decide: the same
 // sides as a walk at every centre, on open, flipped, overlapping, welded
 // and unwelded meshes, sheets, ties on voxel centres, a brick list out of
 // order with gaps, and at several accuracies (beta 1: nothing decided by a
