@@ -369,10 +369,16 @@ WindingColumns windingColumns(const std::vector<Vec3d>& local, const TriangleMes
     return out;
 }
 
-BrickCentreColumns brickCentreColumns(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid)
+BrickCentreColumns brickCentreColumns(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid,
+                                      const BrickBox* box)
 {
     BrickCentreColumns out;
-    for (int a = 0; a < 3; ++a) out.dims[a] = (grid.dims[a] + 7) / 8;
+    for (int a = 0; a < 3; ++a) {
+        const uint32_t end = (grid.dims[a] + 7) / 8;
+        const uint32_t hi = box ? std::min(box->hi[a], end) : end;
+        out.origin[a] = box ? std::min(box->lo[a], hi) : 0;
+        out.dims[a] = hi - out.origin[a];
+    }
     const auto& d = out.dims;
     const uint64_t n = uint64_t(d[0]) * d[1] * d[2];
     if (n > (uint64_t(1) << 31))
@@ -381,16 +387,17 @@ BrickCentreColumns brickCentreColumns(const std::vector<Vec3d>& local, const Tri
                                       n));
     out.jump.assign(n, 0);
     const auto at = [&](uint64_t x, uint64_t y, uint64_t z) { return x + d[0] * (y + d[1] * z); };
-    // Crossings of the columns through the brick centres, as crossingsOf's.
-    const uint32_t columns[2] = {d[0], d[1]};
+    // Crossings of the columns through the box's brick centres, as crossingsOf's.
+    const uint32_t from[2] = {out.origin[0], out.origin[1]}, to[2] = {out.origin[0] + d[0], out.origin[1] + d[1]};
+    const auto& o = out.origin;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangles.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t t = r.begin(); t != r.end(); ++t) {
             const auto& f = mesh.triangles[t];
             const Vec3d &A = local[f[0]], &B = local[f[1]], &C = local[f[2]];
-            forEachColumnCrossing(A, B, C, 3.5, 8.0, columns, [&](uint32_t x, uint32_t y, double zc, bool facingUp) {
-                const double k = std::ceil((zc - 3.5) / 8); // the first brick centre above
-                if (k <= 0 || k >= double(d[2])) return;   // below the lowest (its walk counts it) or above all
-                __atomic_fetch_add(&out.jump[at(x, y, uint64_t(k))], facingUp ? -1 : 1, __ATOMIC_RELAXED);
+            forEachColumnCrossing(A, B, C, 3.5, 8.0, from, to, [&](uint32_t x, uint32_t y, double zc, bool facingUp) {
+                const double k = std::ceil((zc - 3.5) / 8) - double(o[2]); // the first brick centre of the box above
+                if (k <= 0 || k >= double(d[2])) return; // below the box's lowest (its walk counts it) or above all
+                __atomic_fetch_add(&out.jump[at(x - o[0], y - o[1], uint64_t(k))], facingUp ? -1 : 1, __ATOMIC_RELAXED);
             });
         }
     });
@@ -401,11 +408,13 @@ BrickCentreColumns brickCentreColumns(const std::vector<Vec3d>& local, const Tri
 
 namespace {
 
-/// Brick @a brick's origin in a box of @a dims bricks (x-fastest), in voxels (8 b).
-std::array<double, 3> brickOrigin(uint64_t brick, const std::array<uint32_t, 3>& dims)
+/// The origin, in voxels (8 b), of brick @a brick of a box of @a dims bricks
+/// (x-fastest) from brick @a origin.
+std::array<double, 3> brickOrigin(uint64_t brick, const std::array<uint32_t, 3>& origin,
+                                  const std::array<uint32_t, 3>& dims)
 {
     const uint64_t x = brick % dims[0], y = brick / dims[0] % dims[1], z = brick / (uint64_t(dims[0]) * dims[1]);
-    return {8.0 * double(x), 8.0 * double(y), 8.0 * double(z)};
+    return {8.0 * double(origin[0] + x), 8.0 * double(origin[1] + y), 8.0 * double(origin[2] + z)};
 }
 
 } // namespace
@@ -413,7 +422,7 @@ std::array<double, 3> brickOrigin(uint64_t brick, const std::array<uint32_t, 3>&
 float BrickCentreColumns::slopeAt(uint64_t brick, double limit) const
 {
     if (!boundary) return 0.0f;
-    const auto o = brickOrigin(brick, dims);
+    const auto o = brickOrigin(brick, origin, dims);
     Box segment; // from the centre below to this brick's
     segment.add({o[0] + 3.5, o[1] + 3.5, o[2] - 4.5}), segment.add({o[0] + 3.5, o[1] + 3.5, o[2] + 3.5});
     const double sum = boundary->bound(segment, limit / kInvFourPi, winding_boundary::Part::Z);
@@ -423,7 +432,7 @@ float BrickCentreColumns::slopeAt(uint64_t brick, double limit) const
 float BrickCentreColumns::gradientAt(uint64_t brick) const
 {
     if (!boundary) return 0.0f;
-    const auto o = brickOrigin(brick, dims);
+    const auto o = brickOrigin(brick, origin, dims);
     Box box; // the brick's centres
     box.add({o[0], o[1], o[2]}), box.add({o[0] + 7, o[1] + 7, o[2] + 7});
     const double sum = boundary->bound(box, INFINITY, winding_boundary::Part::Whole);

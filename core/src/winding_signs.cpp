@@ -288,10 +288,10 @@ void checkDepth(const WindingTree& tree)
 
 namespace {
 
-/// A brick centre's local coordinates (x-fastest over a box of d bricks).
-Vec3d brickCentre(uint64_t g, const std::array<uint64_t, 3>& d)
+/// A brick centre's local coordinates (x-fastest over a box of d bricks from brick o).
+Vec3d brickCentre(uint64_t g, const std::array<uint64_t, 3>& d, const std::array<uint32_t, 3>& o = {0, 0, 0})
 {
-    const uint64_t x = g % d[0], y = g / d[0] % d[1], z = g / (d[0] * d[1]);
+    const uint64_t x = o[0] + g % d[0], y = o[1] + g / d[0] % d[1], z = o[2] + g / (d[0] * d[1]);
     return Vec3d{double(8 * x) + 3.5, double(8 * y) + 3.5, double(8 * z) + 3.5};
 }
 
@@ -344,7 +344,7 @@ uint64_t climbColumn(const Walk& walk, const BrickCentreColumns& columns, uint64
                 }
             }
         }
-        out[g] = walk.at(brickCentre(g, d));
+        out[g] = walk.at(brickCentre(g, d, columns.origin));
         value = double(out[g]), doubt = 0;
         ++walked;
     }
@@ -360,7 +360,7 @@ std::vector<float> windingAtBrickCentres(const WindingTree& tree, const GridSpec
     checkDepth(tree);
     const Walk walk{tree, beta2Of(beta)};
     std::array<uint64_t, 3> d{};
-    for (int a = 0; a < 3; ++a) d[a] = (grid.dims[a] + 7) / 8;
+    for (int a = 0; a < 3; ++a) d[a] = columns ? columns->dims[a] : (grid.dims[a] + 7) / 8;
     const uint64_t n = d[0] * d[1] * d[2];
     if (n > (uint64_t(1) << 31))
         throw Unsupported(fmt::format("the grid's box holds {} bricks, more than the winding pass evaluates (2^31); use a "
@@ -484,10 +484,12 @@ private:
     {
         if (!anchors_ || b[2] == 0) return false;
         const BrickCoord below{b[0], b[1], b[2] - 1};
-        for (int a = 0; a < 3; ++a)
-            if (below[a] < anchors_->lo[a] || below[a] >= anchors_->hi[a]) return false;
+        const auto& o = anchors_->columns->origin;
         const auto& d = anchors_->columns->dims;
-        const uint64_t g = below[0] + uint64_t(d[0]) * (below[1] + uint64_t(d[1]) * below[2]);
+        for (int a = 0; a < 3; ++a)
+            if (below[a] < anchors_->lo[a] || below[a] >= anchors_->hi[a] || below[a] < o[a] || below[a] - o[a] >= d[a])
+                return false;
+        const uint64_t g = (below[0] - o[0]) + uint64_t(d[0]) * ((below[1] - o[1]) + uint64_t(d[1]) * (below[2] - o[2]));
         constexpr double kFarthest = 6.0622; // 3.5 sqrt 3, rounded up
         const double value = double((*anchors_->centres)[g]);
         const double doubt = double((*anchors_->doubts)[g]) + kFarthest * double(anchors_->columns->gradientAt(g));
@@ -604,7 +606,7 @@ std::vector<Brick> windingInsideAlongColumns(const WindingTree& tree, const std:
 }
 
 BricksBeyondBand bricksBeyondBand(const std::vector<float>& centres, const std::array<uint32_t, 3>& d,
-                                  const std::vector<BrickCoord>& band)
+                                  const std::vector<BrickCoord>& band, const std::array<uint32_t, 3>& origin)
 {
     // `band` is sorted: the box's bricks in x-major order walk it once.
     BricksBeyondBand out;
@@ -612,7 +614,8 @@ BricksBeyondBand bricksBeyondBand(const std::vector<float>& centres, const std::
     for (uint32_t x = 0; x < d[0]; ++x)
         for (uint32_t y = 0; y < d[1]; ++y)
             for (uint32_t z = 0; z < d[2]; ++z) {
-                const BrickCoord b{x, y, z};
+                const BrickCoord b{origin[0] + x, origin[1] + y, origin[2] + z};
+                while (next < band.size() && band[next] < b) ++next; // band bricks outside the box
                 if (next < band.size() && band[next] == b) {
                     ++next;
                     continue;

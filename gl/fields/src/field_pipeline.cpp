@@ -160,6 +160,18 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     return signs;
 }
 
+/// The bricks that meet @a region (forRegion's), or all of the grid's.
+BrickBox bricksMeeting(const GridSpec& g, const std::optional<IndexBox>& region)
+{
+    const VoxelBox box = region ? localBox(g, *region) : wholeBox(g);
+    BrickBox bricks;
+    for (int a = 0; a < 3; ++a) {
+        bricks.lo[a] = box.lo[a] / 8;
+        bricks.hi[a] = std::max(bricks.lo[a], (box.hi[a] + 7) / 8);
+    }
+    return bricks;
+}
+
 /// @a anchors with the bricks its caller's band was searched in whole: the
 /// grid's, or the region's (the band of a winding-signed field is searched
 /// in the region's box, bandBricksFor; a solid's surface voxels are).
@@ -186,15 +198,16 @@ FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& l
     const WindingTree tree = buildWindingTree(local, mesh.triangles);
     stats.stages.push_back({"winding tree", -1, msSince(t0)});
     t0 = Clock::now();
-    const BrickCentreColumns centreColumns = brickCentreColumns(local, mesh, g);
+    // Only the region's bricks: a region's signs cost its own volume, not the grid's.
+    const BrickBox box = bricksMeeting(g, region);
+    const BrickCentreColumns centreColumns = brickCentreColumns(local, mesh, g, &box);
     uint64_t centresWalked = 0;
     std::vector<float> doubts;
     const std::vector<float> centres =
         windingAtBrickCentres(tree, g, beta, checkpoint.part(0.0, 0.3), &centreColumns, &centresWalked, &doubts);
     stats.stages.push_back({"winding bricks (cpu)", -1, msSince(t0)});
     t0 = Clock::now();
-    const std::array<uint32_t, 3> dims{(g.dims[0] + 7) / 8, (g.dims[1] + 7) / 8, (g.dims[2] + 7) / 8};
-    BricksBeyondBand beyond = bricksBeyondBand(centres, dims, band);
+    BricksBeyondBand beyond = bricksBeyondBand(centres, centreColumns.dims, band, centreColumns.origin);
     beyond.voxelwise = forRegion(std::move(beyond.voxelwise), g, region, false);
     FieldSigns signs;
     signs.insideBricks = forRegion(std::move(beyond.inside), g, region, false);

@@ -65,21 +65,27 @@ namespace winding_boundary {
 class BoundaryTree;
 }
 
-/// The same for the centres of the bricks of a grid's box (brick b's centre
-/// 8 b + 3.5 in local coordinates), climbed a brick at a time. The slopes
-/// are bounded when asked: most steps of a climb near the boundary could
-/// not decide anything, and their bound need not be finished.
+/// Bricks b of a grid with lo <= b < hi on each axis (brick coordinates).
+struct BrickBox {
+    std::array<uint32_t, 3> lo{}, hi{};
+};
+
+/// The same for the centres of the bricks of a box of a grid's bricks
+/// (brick b's centre 8 b + 3.5 in local coordinates), climbed a brick at a
+/// time. The slopes are bounded when asked: most steps of a climb near the
+/// boundary could not decide anything, and their bound need not be finished.
 struct BrickCentreColumns {
-    std::array<uint32_t, 3> dims{}; ///< the box in bricks
-    /// Per brick (x-fastest): the winding number's jump from the centre of
-    /// the brick below (0 for the lowest bricks).
+    std::array<uint32_t, 3> origin{}; ///< the box's first brick
+    std::array<uint32_t, 3> dims{};   ///< the box in bricks
+    /// Per brick of the box (x-fastest): the winding number's jump from the
+    /// centre of the brick below (0 for the box's lowest bricks).
     std::vector<int32_t> jump;
     /// The mesh's boundary edges; null for a closed mesh.
     std::shared_ptr<const winding_boundary::BoundaryTree> boundary;
 
     /// @brief A bound on |dw/dz| off the surface over the segment from the
-    /// centre below @a brick to its own, per voxel; +infinity where the
-    /// boundary meets it or the bound passes @a limit.
+    /// centre below @a brick (its index in the box) to its own, per voxel;
+    /// +infinity where the boundary meets it or the bound passes @a limit.
     float slopeAt(uint64_t brick, double limit) const;
 
     /// @brief A bound on |grad w| over the box of @a brick's voxel centres
@@ -90,10 +96,11 @@ struct BrickCentreColumns {
     float gradientAt(uint64_t brick) const;
 };
 
-/// @brief The signed crossings and slopes of the brick centres of @a grid's box.
+/// @brief The signed crossings and slopes of the brick centres of @a box,
+/// by default the grid's whole box (ceil(dims / 8) bricks).
 /// @throw svo::Unsupported for a box of more than 2^31 bricks.
 BrickCentreColumns brickCentreColumns(const std::vector<Vec3d>& local, const TriangleMesh& mesh,
-                                      const GridSpec& grid);
+                                      const GridSpec& grid, const BrickBox* box = nullptr);
 
 /// @brief The signed crossings and slopes of @a bricks, on the CPU with TBB.
 /// @param local  the mesh's positions in @a grid's local frame (localPositions)

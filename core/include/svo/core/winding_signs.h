@@ -48,7 +48,8 @@ namespace svo {
 inline constexpr float kWindingMargin = 0.25f;
 
 /// @brief The winding number at the centre of every brick of @a grid's box
-/// (brick b's centre is 8 b + 3.5 in local coordinates), on the CPU.
+/// (brick b's centre is 8 b + 3.5 in local coordinates), or of the box of
+/// bricks that @a columns covers, on the CPU.
 /// With @a columns, each column of bricks climbs from its lowest centre
 /// (walked) and a centre is walked only where the climbed number, give or
 /// take its doubt and twice windingWalkError, could fall on either side of
@@ -59,11 +60,12 @@ inline constexpr float kWindingMargin = 0.25f;
 ///              (localPositions) and its triangles (buildWindingTree)
 /// @param beta  the far-field threshold (SignOptions::windingAccuracy)
 /// @param checkpoint polled on the calling thread between batches
-/// @param columns brickCentreColumns of @a grid, or null: every centre walked
+/// @param columns brickCentreColumns of @a grid (of its whole box or a part),
+///                or null: every centre of the whole box walked
 /// @param walked  if not null, gets the number of centres walked
 /// @param doubts  if not null, gets per centre how far its number may be
 ///                from a walk's, less windingWalkError (0 where walked)
-/// @return x-fastest over the box of ceil(dims / 8) bricks
+/// @return x-fastest over the box (the whole box: ceil(dims / 8) bricks)
 /// @throw svo::Unsupported for a box of more than 2^31 bricks; svo::InvalidInput
 ///        when @a columns is of another box; svo::Interrupted.
 std::vector<float> windingAtBrickCentres(const WindingTree& tree, const GridSpec& grid, double beta,
@@ -93,7 +95,7 @@ float windingWalkError(double beta);
 /// BrickCentreColumns::gradientAt.
 struct ClimbAnchors {
     const BrickCentreColumns* columns = nullptr; ///< the grid's box and the gradient's bounds
-    const std::vector<float>* centres = nullptr; ///< windingAtBrickCentres over that box
+    const std::vector<float>* centres = nullptr; ///< windingAtBrickCentres over its box
     const std::vector<float>* doubts = nullptr;  ///< ... and its doubts
     /// The bricks b, lo <= b < hi per axis, that the list's band (of at least
     /// one voxel about every triangle) was searched in whole: one not listed
@@ -125,12 +127,13 @@ struct BricksBeyondBand {
     std::vector<BrickCoord> inside;    ///< the others at or above 1/2: wholly inside
 };
 
-/// @brief The rule for the bricks of the grid's box that are not in the band.
-/// @param centres   windingAtBrickCentres (or the GPU's per-brick numbers), x-fastest
+/// @brief The rule for the bricks of a box of the grid's bricks that are not in the band.
+/// @param centres   windingAtBrickCentres (or the GPU's per-brick numbers), x-fastest over the box
 /// @param brickDims the box in bricks
-/// @param band      the band's bricks, sorted (x-major) and unique
+/// @param band      the band's bricks, sorted (x-major) and unique; those outside the box are passed over
+/// @param origin    the box's first brick
 /// @return both lists in x-major order
 BricksBeyondBand bricksBeyondBand(const std::vector<float>& centres, const std::array<uint32_t, 3>& brickDims,
-                                  const std::vector<BrickCoord>& band);
+                                  const std::vector<BrickCoord>& band, const std::array<uint32_t, 3>& origin = {0, 0, 0});
 
 } // namespace svo
