@@ -84,9 +84,9 @@ std::vector<BrickCoord> forRegion(std::vector<BrickCoord> bricks, const GridSpec
 }
 
 /// Whether @a region holds no voxel of the grid: a call there computes no
-/// value, and winding signs skip their passes (which cover the whole grid's
-/// brick centres, whatever the region: the plan of svo.distributed asks for
-/// such a region to learn a grid's transform and sign method).
+/// value, and winding signs skip their passes (the tree, and on the GPU the
+/// whole grid's brick centres: the plan of svo.distributed asks for such a
+/// region to learn a grid's transform and sign method).
 bool missesGrid(const GridSpec& g, const std::optional<IndexBox>& region)
 {
     return region && localBox(g, *region).empty();
