@@ -46,7 +46,7 @@ void main()
     if (uMode == 1u) {
         for (uint g = uFirst + group * 64u + gl_LocalInvocationID.x; g < uCount; g += groups * 64u) {
             uvec3 b = uvec3(g % uBricks.x, (g / uBricks.x) % uBricks.y, g / (uBricks.x * uBricks.y));
-            outWords[g] = floatBitsToUint(windingNumber(dvec3(b << kBrickLog2) + 3.5LF));
+            outWords[g] = floatBitsToUint(windingNumber(dvec3((uBrickOrigin + b) << kBrickLog2) + 3.5LF));
         }
         if (gStopped) atomicOr(outWords[uFlagWord], 1u);
         return;

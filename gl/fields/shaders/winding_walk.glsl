@@ -18,7 +18,8 @@ layout(std430, binding = SVO_BIND_WINDING_OUT) restrict buffer Out { uint outWor
 uniform uint uMode;    // 0 per voxel, 1 per brick
 uniform uint uFirst;   // the first brick of this dispatch
 uniform uint uCount;   // one past the last brick of this dispatch (of the list, or of the grid's box)
-uniform uvec3 uBricks; // the grid's box in bricks (per brick)
+uniform uvec3 uBricks;      // the box of bricks (per brick)
+uniform uvec3 uBrickOrigin; // ... and its first brick
 uniform float uBeta2;  // beta^2; nodes nearer than beta radii are opened
 // Loop iterations an invocation may run before the driver would end its loops
 // silently (ContextInfo::loopLimit, less the loops around the walks); past it

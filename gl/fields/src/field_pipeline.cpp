@@ -84,9 +84,9 @@ std::vector<BrickCoord> forRegion(std::vector<BrickCoord> bricks, const GridSpec
 }
 
 /// Whether @a region holds no voxel of the grid: a call there computes no
-/// value, and winding signs skip their passes (the tree, and on the GPU the
-/// whole grid's brick centres: the plan of svo.distributed asks for such a
-/// region to learn a grid's transform and sign method).
+/// value, and winding signs skip their passes (the whole mesh's tree: the
+/// plan of svo.distributed asks for such a region to learn a grid's
+/// transform and sign method).
 bool missesGrid(const GridSpec& g, const std::optional<IndexBox>& region)
 {
     return region && localBox(g, *region).empty();
@@ -120,7 +120,20 @@ void checkFieldBudget(const VoxelizeSettings& settings, size_t bricks, const Tri
                                       settings.gpuMemory, bricks, bytes));
 }
 
-/// Winding-number signs: the number at every brick centre of the grid's box,
+/// The bricks that meet @a region (forRegion's), or all of the grid's.
+BrickBox bricksMeeting(const GridSpec& g, const std::optional<IndexBox>& region)
+{
+    const VoxelBox box = region ? localBox(g, *region) : wholeBox(g);
+    BrickBox bricks;
+    for (int a = 0; a < 3; ++a) {
+        bricks.lo[a] = box.lo[a] / 8;
+        bricks.hi[a] = std::max(bricks.lo[a], (box.hi[a] + 7) / 8);
+    }
+    return bricks;
+}
+
+/// Winding-number signs: the number at every brick centre of the grid's box
+/// (of a region's bricks, in a region),
 /// then voxel by voxel in the band's bricks and in the bricks whose centre is
 /// within kWindingMargin of 1/2 (bricksBeyondBand, the CPU path's rule too).
 FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSpec& g,
@@ -133,6 +146,7 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     stats.stages.push_back({"winding tree", -1, msSince(t0)});
     WindingRequest coarse;
     coarse.perBrick = true;
+    coarse.brickBox = bricksMeeting(g, region); // a region's own bricks, as on the CPU
     coarse.beta = beta;
     coarse.checkpoint = checkpoint.part(0.0, 0.3);
     RunStats centresReport;
@@ -140,7 +154,7 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     for (auto& st : centresReport.stages) stats.stages.push_back(std::move(st));
 
     FieldSigns signs;
-    BricksBeyondBand beyond = bricksBeyondBand(centres.perBrick, centres.brickDims, band);
+    BricksBeyondBand beyond = bricksBeyondBand(centres.perBrick, centres.brickDims, band, centres.brickOrigin);
     beyond.voxelwise = forRegion(std::move(beyond.voxelwise), g, region, false);
     signs.insideBricks = forRegion(std::move(beyond.inside), g, region, false);
     WindingRequest fine;
@@ -158,18 +172,6 @@ FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSp
     for (size_t i = band.size(); i < fine.bricks.size(); ++i)
         if (voxels.inside[i].count()) signs.partial.push_back({fine.bricks[i], voxels.inside[i]});
     return signs;
-}
-
-/// The bricks that meet @a region (forRegion's), or all of the grid's.
-BrickBox bricksMeeting(const GridSpec& g, const std::optional<IndexBox>& region)
-{
-    const VoxelBox box = region ? localBox(g, *region) : wholeBox(g);
-    BrickBox bricks;
-    for (int a = 0; a < 3; ++a) {
-        bricks.lo[a] = box.lo[a] / 8;
-        bricks.hi[a] = std::max(bricks.lo[a], (box.hi[a] + 7) / 8);
-    }
-    return bricks;
 }
 
 /// @a anchors with the bricks its caller's band was searched in whole: the

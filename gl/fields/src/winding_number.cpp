@@ -34,7 +34,12 @@ WindingResult computeWinding(Context& context, const GridSpec& grid, const Windi
                                       tree.depth + 1, gpu::kWindingStack));
     WindingResult result;
     RunStats stats;
-    for (int a = 0; a < 3; ++a) result.brickDims[a] = (grid.dims[a] + 7) / 8;
+    for (int a = 0; a < 3; ++a) {
+        const uint32_t end = (grid.dims[a] + 7) / 8;
+        const uint32_t hi = request.brickBox ? std::min(request.brickBox->hi[a], end) : end;
+        result.brickOrigin[a] = request.brickBox ? std::min(request.brickBox->lo[a], hi) : 0;
+        result.brickDims[a] = hi - result.brickOrigin[a];
+    }
     const uint64_t boxBricks = uint64_t(result.brickDims[0]) * result.brickDims[1] * result.brickDims[2];
     if (request.perBrick && boxBricks > (uint64_t(1) << 31))
         throw Unsupported(fmt::format("the grid's box holds {} bricks, more than the winding pass evaluates (2^31); use a "
@@ -60,7 +65,7 @@ WindingResult computeWinding(Context& context, const GridSpec& grid, const Windi
     const uint64_t resultBytes = std::max<uint64_t>(std::max(nb * sizeof(Brick), request.perBrick ? boxBricks * 4 : 0), 4);
     const uint64_t outBytes = resultBytes + 4;
     // One shader buffer holds each array (Context::shaderBufferLimit): refused,
-    // never cut short. The grid's brick centres do not shrink in a region; the
+    // never cut short. The box's brick centres shrink with a region, as the
     // band's bricks do (a BufferLimit, which the front door answers with regions).
     const uint64_t block = context.shaderBufferLimit();
     if (block && request.perBrick && boxBricks * 4 + 4 > block)
@@ -117,6 +122,7 @@ WindingResult computeWinding(Context& context, const GridSpec& grid, const Windi
         if (&program == &pointProgram) { // winding_columns.comp has the per-voxel mode only
             program.set("uMode", mode);
             program.set("uBricks", result.brickDims[0], result.brickDims[1], result.brickDims[2]);
+            program.set("uBrickOrigin", result.brickOrigin[0], result.brickOrigin[1], result.brickOrigin[2]);
         }
         for (uint64_t first = 0; first < count; first += perDispatch) {
             const uint64_t last = std::min(count, first + perDispatch);

@@ -24,4 +24,10 @@ struct VoxelBox {
     }
 };
 
+/// @brief Bricks b of a grid with lo <= b < hi on each axis (brick
+/// coordinates: local voxel / 8).
+struct BrickBox {
+    std::array<uint32_t, 3> lo{}, hi{};
+};
+
 } // namespace svo

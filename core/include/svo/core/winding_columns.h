@@ -27,6 +27,7 @@
 #include "svo/core/grid.h"
 #include "svo/core/mesh.h"
 #include "svo/core/vec3.h"
+#include "svo/core/voxel_box.h"
 
 namespace svo {
 
@@ -64,11 +65,6 @@ struct WindingColumns {
 namespace winding_boundary {
 class BoundaryTree;
 }
-
-/// Bricks b of a grid with lo <= b < hi on each axis (brick coordinates).
-struct BrickBox {
-    std::array<uint32_t, 3> lo{}, hi{};
-};
 
 /// The same for the centres of the bricks of a box of a grid's bricks
 /// (brick b's centre 8 b + 3.5 in local coordinates), climbed a brick at a

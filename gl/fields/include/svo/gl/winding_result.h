@@ -14,7 +14,8 @@ namespace svo::gl {
 struct WindingResult {
     std::vector<Brick> inside;   ///< per requested brick: voxels whose winding number is >= 1/2
     std::vector<float> perBrick; ///< x-fastest over the box of bricks, when asked
-    std::array<uint32_t, 3> brickDims{}; ///< that box, in bricks
+    std::array<uint32_t, 3> brickDims{};   ///< that box, in bricks
+    std::array<uint32_t, 3> brickOrigin{}; ///< ... and its first brick
 };
 
 } // namespace svo::gl
