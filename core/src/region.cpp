@@ -38,4 +38,25 @@ VoxelBox localBox(const GridSpec& grid, const IndexBox& r)
 
 VoxelBox wholeBox(const GridSpec& grid) { return VoxelBox{{0, 0, 0}, grid.dims}; }
 
+BrickBox bricksMeeting(const GridSpec& grid, const std::optional<IndexBox>& region)
+{
+    const VoxelBox box = region ? localBox(grid, *region) : wholeBox(grid);
+    BrickBox bricks;
+    for (int a = 0; a < 3; ++a) {
+        bricks.lo[a] = box.lo[a] / 8;
+        bricks.hi[a] = std::max(bricks.lo[a], (box.hi[a] + 7) / 8);
+    }
+    return withinGrid(grid, bricks);
+}
+
+BrickBox withinGrid(const GridSpec& grid, const BrickBox& box)
+{
+    BrickBox out;
+    for (int a = 0; a < 3; ++a) {
+        out.hi[a] = std::min(box.hi[a], (grid.dims[a] + 7) / 8);
+        out.lo[a] = std::min(box.lo[a], out.hi[a]);
+    }
+    return out;
+}
+
 } // namespace svo

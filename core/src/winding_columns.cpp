@@ -17,6 +17,7 @@
 #include "brick_index.h"
 #include "svo/core/error.h"
 #include "svo/core/mesh_topology.h"
+#include "svo/core/region.h"
 #include "column_crossings.h"
 
 namespace svo {
@@ -373,12 +374,8 @@ BrickCentreColumns brickCentreColumns(const std::vector<Vec3d>& local, const Tri
                                       const BrickBox* box)
 {
     BrickCentreColumns out;
-    for (int a = 0; a < 3; ++a) {
-        const uint32_t end = (grid.dims[a] + 7) / 8;
-        const uint32_t hi = box ? std::min(box->hi[a], end) : end;
-        out.origin[a] = box ? std::min(box->lo[a], hi) : 0;
-        out.dims[a] = hi - out.origin[a];
-    }
+    const BrickBox within = box ? withinGrid(grid, *box) : bricksMeeting(grid, std::nullopt);
+    for (int a = 0; a < 3; ++a) out.origin[a] = within.lo[a], out.dims[a] = within.hi[a] - within.lo[a];
     const auto& d = out.dims;
     const uint64_t n = uint64_t(d[0]) * d[1] * d[2];
     if (n > (uint64_t(1) << 31))

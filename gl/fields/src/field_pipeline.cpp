@@ -120,18 +120,6 @@ void checkFieldBudget(const VoxelizeSettings& settings, size_t bricks, const Tri
                                       settings.gpuMemory, bricks, bytes));
 }
 
-/// The bricks that meet @a region (forRegion's), or all of the grid's.
-BrickBox bricksMeeting(const GridSpec& g, const std::optional<IndexBox>& region)
-{
-    const VoxelBox box = region ? localBox(g, *region) : wholeBox(g);
-    BrickBox bricks;
-    for (int a = 0; a < 3; ++a) {
-        bricks.lo[a] = box.lo[a] / 8;
-        bricks.hi[a] = std::max(bricks.lo[a], (box.hi[a] + 7) / 8);
-    }
-    return bricks;
-}
-
 /// Winding-number signs: the number at every brick centre of the grid's box
 /// (of a region's bricks, in a region),
 /// then voxel by voxel in the band's bricks and in the bricks whose centre is

@@ -9,6 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "svo/core/region.h"
 #include "svo/gl/buffer.h"
 #include "svo/gl/gl_api.h"
 #include "svo/gl/program.h"
@@ -34,12 +35,8 @@ WindingResult computeWinding(Context& context, const GridSpec& grid, const Windi
                                       tree.depth + 1, gpu::kWindingStack));
     WindingResult result;
     RunStats stats;
-    for (int a = 0; a < 3; ++a) {
-        const uint32_t end = (grid.dims[a] + 7) / 8;
-        const uint32_t hi = request.brickBox ? std::min(request.brickBox->hi[a], end) : end;
-        result.brickOrigin[a] = request.brickBox ? std::min(request.brickBox->lo[a], hi) : 0;
-        result.brickDims[a] = hi - result.brickOrigin[a];
-    }
+    const BrickBox box = request.brickBox ? withinGrid(grid, *request.brickBox) : bricksMeeting(grid, std::nullopt);
+    for (int a = 0; a < 3; ++a) result.brickOrigin[a] = box.lo[a], result.brickDims[a] = box.hi[a] - box.lo[a];
     const uint64_t boxBricks = uint64_t(result.brickDims[0]) * result.brickDims[1] * result.brickDims[2];
     if (request.perBrick && boxBricks > (uint64_t(1) << 31))
         throw Unsupported(fmt::format("the grid's box holds {} bricks, more than the winding pass evaluates (2^31); use a "

@@ -30,6 +30,13 @@ VoxelBox localBox(const GridSpec& grid, const IndexBox& region);
 /// @brief The whole local range of @a grid.
 VoxelBox wholeBox(const GridSpec& grid);
 
+/// @brief The bricks of @a grid's box (ceil(dims / 8) per axis) that meet
+/// @a region, or all of them without one.
+BrickBox bricksMeeting(const GridSpec& grid, const std::optional<IndexBox>& region);
+
+/// @brief @a box cut to the bricks of @a grid's box (empty boxes keep lo <= hi).
+BrickBox withinGrid(const GridSpec& grid, const BrickBox& box);
+
 /// @brief An optional region as an option (svo/core/option_info.h): six
 /// whole numbers, lo then hi, "x0,y0,z0,x1,y1,z1" on the command line and
 /// ((x0, y0, z0), (x1, y1, z1)) in Python; None (the default) is the whole grid.
