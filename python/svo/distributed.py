@@ -47,7 +47,7 @@ import warnings
 import numpy as np
 
 import svo
-from svo._svo import _join_region
+from svo._svo import _grid_bytes, _grid_from_bytes, _join_region
 
 KINDS = ("surface", "sdf", "udf", "solid")
 
@@ -183,13 +183,16 @@ def _balanced(box, workers, leaves, weights):
     cost (on the 2-core machine's CPU backend 40-100 ms: the whole mesh's
     triangles culled, the octree and grid made), so a worker gets about 4
     tiles, enough for Dask to even out their costs; one worker gets the
-    whole box (see _plan_task)."""
+    whole box (see _plan_task), or without output_dir one task and no plan
+    at all (_run)."""
     return plan_tiles(box, default_tile(box, workers), leaves, weights, parts=4 * workers)
 
 
 def _tile_task(mesh, kind, keywords, box, output_dir=None, metadata=None):
     """The tile's main grid; with per-voxel arrays, its grids by name and its
-    arrays (_arrays_of); with output_dir, its index entry (_write_tile)."""
+    arrays (_arrays_of); with output_dir, its index entry (_write_tile).
+    Grids come back as bytes (_grid_bytes). box None: the whole grid, no
+    region (a job of one tile)."""
     try:
         result = _call(mesh, kind, keywords, region=box)
         for grid in result.grids.values():
@@ -198,10 +201,20 @@ def _tile_task(mesh, kind, keywords, box, output_dir=None, metadata=None):
         if output_dir is not None:
             return _write_tile(result.grid, output_dir, box)
         if _wants_arrays(kind, keywords):
-            return dict(result.grids), _arrays_of(result, mesh)
-        return result.grid
+            return {name: _grid_bytes(g) for name, g in result.grids.items()}, _arrays_of(result, mesh)
+        return _grid_bytes(result.grid)
     except Exception as e:  # the job's error must say which tile
-        raise TileError(f"tile {box[0]}..{box[1]}: {type(e).__name__}: {e}") from e
+        where = "the whole grid" if box is None else f"tile {box[0]}..{box[1]}"
+        raise TileError(f"{where}: {type(e).__name__}: {e}") from e
+
+
+def _joined(into, part):
+    """into with part's region joined (svo._svo._join_region); part itself
+    when there is nothing yet to join it to."""
+    if into is None:
+        return part
+    _join_region(into, part)
+    return into
 
 
 def tile_file_name(box):
@@ -720,7 +733,8 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
     plan = None
     # One tile (one worker, no tile size): the whole mesh, held; cutting it
     # into parts would only cost time.
-    partition = partition and not (tile is None and workers <= 1)
+    one_tile = tile is None and workers <= 1
+    partition = partition and not one_tile
     if not isinstance(mesh, (str, os.PathLike)) and kind in PARTITIONED_KINDS and partition and _metadata_settable():
         sign = None
         if kind in SIGNED_KINDS:
@@ -742,12 +756,17 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
             mesh = os.fspath(mesh)
         elif not _is_future(mesh):
             mesh = _submit_held(client, place, tuple(mesh))
-        # On a worker: a path is read where the tiles will read it (svo's reader
-        # errors name the file), and the client needs no GL context.
-        boxes, box, grids = _wait_result(_submit(client, place, _plan_task, mesh, kind, keywords, tile, workers),
-                                         timeout, "the plan")
+        if one_tile and output_dir is None:
+            # One task, the whole grid: no plan, no region, nothing to join
+            # (the 1-worker job's overhead, bench/results/.../distributed_overhead.md).
+            boxes, box, grids = [None], None, {}
+        else:
+            # On a worker: a path is read where the tiles will read it (svo's reader
+            # errors name the file), and the client needs no GL context.
+            boxes, box, grids = _wait_result(_submit(client, place, _plan_task, mesh, kind, keywords, tile, workers),
+                                             timeout, "the plan")
         meshes = [mesh] * len(boxes)
-    grid = next(iter(grids.values()))
+    grid = next(iter(grids.values()), None)
     arrays = [] if _wants_arrays(kind, keywords) else None
     if output_dir is not None:
         output_dir = os.path.abspath(os.fspath(output_dir))
@@ -777,26 +796,25 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
                 future = finished.get(timeout=timeout)
             except queue.Empty:
                 raise JobTimeout(_stalled(client, futures, box_of, timeout)) from None
-            lo, hi = box_of[future.key]
+            b = box_of[future.key]
+            where = "the whole grid" if b is None else f"tile {b[0]}..{b[1]}"
             try:
                 # Done, but a result lost with its worker before it came is made again.
-                result = _wait_result(future, timeout, f"tile {lo}..{hi} (made again: its result was lost)")
+                result = _wait_result(future, timeout, f"{where} (made again: its result was lost)")
             except _killed_worker() as e:
                 # Dask's allowed-failures: the task was on a worker that died that many times.
-                raise TileError(f"tile {lo}..{hi}: a worker died while it held the task, more times than "
+                raise TileError(f"{where}: a worker died while it held the task, more times than "
                                 f"Dask's distributed.scheduler.allowed-failures "
                                 f"({getattr(e, 'allowed_failures', '?')}) allows") from e
             if output_dir is not None:
                 entries.append(result)
             elif arrays is None:
-                _join_region(grid, result)
+                grid = _joined(grid, _grid_from_bytes(result))
             else:
                 parts, tile_arrays = result
+                # The plan's empty call makes no attribute grids: the first tile's starts each.
                 for name, part in parts.items():
-                    if name in grids:
-                        _join_region(grids[name], part)
-                    else:  # the plan's empty call makes no attribute grids: the first tile's starts it
-                        grids[name] = part
+                    grids[name] = _joined(grids.get(name), _grid_from_bytes(part))
                 if len(tile_arrays.get("ijk", ())):
                     arrays.append(tile_arrays)
             del result
@@ -811,6 +829,7 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
         return grid
     if output_dir is None:
         joined = _joined_arrays(arrays) if arrays else {}
+        grid = next(iter(grids.values()))  # the main grid first, as svo.Result's grids
         return svo.Result(grid=grid, grids=grids, **{name: joined.get(name) for name in ARRAYS})
     # A worker killed while svo's writer wrote a tile leaves its temporary
     # file (the tile's own name + ".tmp-" + 8 hex digits); the task ran again.
@@ -829,8 +848,9 @@ def _stalled(client, futures, box_of, timeout):
     except Exception as e:  # the scheduler itself may be what is stuck
         states = f"(the scheduler did not answer: {type(e).__name__}: {e})"
     first = box_of[left[0].key] if left else None
+    first = "the whole grid" if first is None else f"the first at {first}"
     return (f"svo.distributed: no tile finished in {timeout} s; {len(left)} of {len(futures)} tiles left "
-            f"(the first at {first}); the scheduler's task states: {states}; "
+            f"({first}); the scheduler's task states: {states}; "
             f"workers: {len(client.scheduler_info()['workers'])}")
 
 
@@ -1080,4 +1100,9 @@ def _main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(_main())
+    # Run from the imported module, not __main__: Dask then sends the tasks'
+    # functions by name (as svo.distributed's), not pickled by value with
+    # their globals (some of which, svo._svo's functions, do not pickle).
+    from svo.distributed import _main as main
+
+    sys.exit(main())

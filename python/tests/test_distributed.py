@@ -155,6 +155,11 @@ def test_attributes_and_closest_triangles_are_joined(client, voxelizer, kind, ke
         want = voxelizer.voxelize(v, t, resolution=RESOLUTION, **keywords)
     else:
         want = voxelizer.level_set(v, t, resolution=RESOLUTION, unsigned=kind == "udf", **keywords)
+    assert_same_result(got, want, len(t))
+
+
+def assert_same_result(got, want, triangles):
+    """svo.distributed's svo.Result with arrays against one process's."""
     assert isinstance(got, svo.Result) and got.report is None
     assert list(got.grids) == list(want.grids) and got.grid is got.grids[list(want.grids)[0]]
     for name, grid in want.grids.items():
@@ -164,7 +169,28 @@ def test_attributes_and_closest_triangles_are_joined(client, voxelizer, kind, ke
     for name, rows in want_rows.items():
         assert got_rows[name].dtype == rows.dtype
         np.testing.assert_array_equal(getattr(got, name), rows, err_msg=name)  # the distributed rows come sorted
-    assert want_rows["triangle"].min() >= 0 and want_rows["triangle"].max() < len(t)
+    assert want_rows["triangle"].min() >= 0 and want_rows["triangle"].max() < triangles
+
+
+@pytest.mark.parametrize("kind, keywords", [("surface", {}), ("sdf", {}), ("solid", {}),
+                                            ("surface", {"attributes": ["normal", "triangle"]}),
+                                            ("udf", {"closest_triangle": True})])
+def test_one_worker_runs_the_whole_grid_in_one_task(voxelizer, kind, keywords):
+    # One worker and no tile size: one task, the whole grid without a region,
+    # no plan and no join; the single-process result all the same.
+    v, t = open_sphere()
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
+        with distributed.get_task_stream(c) as tasks:
+            got = svo.distributed.voxelize((v, t), client=c, kind=kind, resolution=RESOLUTION, **keywords)
+    names = sorted(str(task["key"]).split("-")[0] for task in tasks.data)
+    assert names.count("_tile_task") == 1 and "_plan_task" not in names, names
+    if keywords:
+        want = (voxelizer.voxelize(v, t, resolution=RESOLUTION, **keywords) if kind == "surface" else
+                voxelizer.level_set(v, t, resolution=RESOLUTION, unsigned=True, **keywords))
+        assert_same_result(got, want, len(t))
+    else:
+        assert_same_grid(got, single(voxelizer, (v, t), kind))
 
 
 def test_progress_with_a_third_argument_gets_the_time_left(client):
@@ -599,6 +625,7 @@ def test_each_worker_of_a_local_cluster_has_its_own_device(voxelizer):
                      ((0, 0, 0), (8, 8, 8)), workers=[bad], pure=False).result()
         got = c.submit(svo.distributed._tile_task, (v, t), "surface", {"resolution": RESOLUTION, "backend": "raster"},
                        ((16, -8, -8), (24, 8, 8)), workers=[good], pure=False).result()
+        got = svo._svo._grid_from_bytes(got)  # a tile's grid comes back as bytes
     want = voxelizer.voxelize(v, t, resolution=RESOLUTION, backend="raster", region=((16, -8, -8), (24, 8, 8))).grid
     assert active_mask(got) == active_mask(want) and got.activeVoxelCount() > 0
 

@@ -7,10 +7,24 @@
 namespace svo::vdb {
 namespace {
 
+/// Sets in @a into every tile of @a node and of the internal nodes below it
+/// that is active or not background, at its own level. A node's own entries
+/// are walked (its child mask's off bits), not the tree's value iterator,
+/// which costs several times as much per entry (a level set's lower nodes
+/// hold 4,096 entries each, nearly all of them background).
+template <typename NodeT, typename TreeT>
+void setTilesOf(const NodeT& node, TreeT& into, const typename TreeT::ValueType& background)
+{
+    for (auto tile = node.cbeginValueAll(); tile; ++tile)
+        if (tile.isValueOn() || !openvdb::math::isExactlyEqual(*tile, background))
+            into.addTile(NodeT::LEVEL, tile.getCoord(), *tile, tile.isValueOn());
+    if constexpr (NodeT::LEVEL > 1)
+        for (auto child = node.cbeginChildOn(); child; ++child) setTilesOf(*child, into, background);
+}
+
 template <typename GridT>
 void joinInto(GridT& into, GridT& part)
 {
-    using TreeT = typename GridT::TreeType;
     if (!openvdb::math::isExactlyEqual(into.background(), part.background()))
         throw InvalidInput("joinRegion: the grids have different backgrounds");
     // A grid read with OpenVDB's delayed loading (a pickled one, from a Dask
@@ -18,13 +32,12 @@ void joinInto(GridT& into, GridT& part)
     // from the grid it was read into: read them now, while that grid lives.
     into.tree().readNonresidentBuffers();
     part.tree().readNonresidentBuffers();
-    const auto background = part.background();
-    auto tile = part.tree().cbeginValueAll();
-    tile.setMaxDepth(TreeT::ValueAllCIter::LEAF_DEPTH - 1); // tiles only: leaves move whole below
-    for (; tile; ++tile) {
-        if (!tile.isValueOn() && openvdb::math::isExactlyEqual(*tile, background)) continue;
-        into.tree().addTile(tile.getLevel(), tile.getCoord(), *tile, tile.isValueOn());
+    if (into.tree().empty()) { // the first region (only background tiles so far): take its tree whole
+        into.setTree(part.treePtr());
+        part.newTree();
+        return;
     }
+    setTilesOf(part.tree().root(), into.tree(), part.background());
     into.tree().merge(part.tree(), openvdb::MERGE_NODES);
 }
 
