@@ -17,6 +17,7 @@
 #include <nanovdb/util/GridHandle.h>
 #include <nanovdb/util/GridValidator.h>
 #include <random>
+#include <set>
 
 #include "nano_layout.h"
 #include "scenes.h"
@@ -570,6 +571,84 @@ TEST_F(GpuNanoGrid, FrontDoorUnsignedFieldsEqualTheCpuLayout)
                                                                 [](const std::vector<gl::NanoGridBuffer>&) {}),
                          Unsupported);
         }
+}
+
+/// A signed field through the front door on a GL backend. Signed by parity
+/// (closed meshes), its band stays on the device, the inside voxels negated
+/// there, and the host flood fills the grid read back ("nanovdb flood
+/// fill"): the bytes the CPU layout gives of the same call's bricks read back
+/// (levelSetBricks, then levelSetNanoGrids, which flood fills its own grid),
+/// checksum included. Signed by winding numbers (an open mesh), it keeps the
+/// CPU layout. NanoVDB's accessor gives each band voxel its signed distance.
+TEST_F(GpuNanoGrid, FrontDoorSignedFieldsEqualTheCpuLayout)
+{
+    Voxelizer voxelizer;
+    std::set<bool> signedBy; // parity or not: both must be seen
+    // The box is closed (parity); the sphere's seams are open (winding numbers).
+    for (const auto& [name, mesh] : frontDoorScenes())
+        for (const bool closest : {false, true}) {
+            SCOPED_TRACE(name + (closest ? " with closest triangles" : ""));
+            const GridSpec grid = makeGrid(mesh, {60, 0.0});
+            LevelSetOptions ls;
+            ls.exteriorBand = 2.5;
+            ls.interiorBand = 1.5; // unequal bands: a voxel's sign picks its band
+            ls.closestTriangle = closest;
+            VoxelizeOptions options;
+            options.backend = Backend::Compute;
+            VoxelizeStats stats;
+            options.stats = &stats;
+            const auto gpu = voxelizer.levelSetNanoVdb(mesh, grid, ls, options);
+            const bool parity = stats.sign.rfind("parity", 0) == 0;
+            EXPECT_TRUE(parity || stats.sign.rfind("winding", 0) == 0) << stats.sign;
+            signedBy.insert(parity);
+            EXPECT_EQ(hasStage(stats, "band leaves"), parity);
+            EXPECT_EQ(hasStage(stats, "nanovdb grid (gpu)"), parity);
+            EXPECT_EQ(hasStage(stats, "nanovdb flood fill"), parity);
+            EXPECT_EQ(hasStage(stats, "band packing"), !parity);
+            VoxelizeSettings settings;
+            settings.backend = Backend::Compute;
+            VoxelizeStats oldStats;
+            const DistanceBricks field = gl::levelSetBricks(device, mesh, grid, ls, settings, Checkpoint{}, oldStats);
+            const auto cpu = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
+            expectSameBytes(gpu, cpu, written);
+            ASSERT_EQ(gpu.size(), closest ? 2u : 1u);
+            const auto* sdf = gpu[0].grid<float>();
+            ASSERT_NE(sdf, nullptr);
+            EXPECT_EQ(sdf->gridClass(), nanovdb::GridClass::LevelSet);
+            EXPECT_TRUE(nanovdb::isValid(*sdf, true, true));
+            EXPECT_EQ(stats.voxels, sdf->activeVoxelCount());
+            ASSERT_GT(sdf->activeVoxelCount(), 1000u);
+            auto acc = sdf->getAccessor();
+            uint64_t wrong = 0, active = 0, negative = 0;
+            for (size_t b = 0; b < field.bricks.size(); ++b) {
+                uint32_t packed = field.offsets[b];
+                for (uint32_t v = 0; v < 512; ++v) {
+                    if (!((field.near[b].words[v >> 6] >> (v & 63)) & 1u)) continue;
+                    const bool inside = (field.signs.inside[b].words[v >> 6] >> (v & 63)) & 1u;
+                    const float d = field.distances[packed++];
+                    if (!(d < (inside ? ls.interiorBand : ls.exteriorBand))) continue;
+                    const nanovdb::Coord c(int32_t(field.grid.anchor[0] + 8 * field.bricks[b][0] + (v >> 6)),
+                                           int32_t(field.grid.anchor[1] + 8 * field.bricks[b][1] + ((v >> 3) & 7)),
+                                           int32_t(field.grid.anchor[2] + 8 * field.bricks[b][2] + (v & 7)));
+                    const float world = float(double(d) * grid.voxelSize);
+                    ++active;
+                    negative += inside;
+                    if ((!acc.isActive(c) || acc.getValue(c) != (inside ? -world : world)) && ++wrong <= 3)
+                        ADD_FAILURE() << "voxel (" << c[0] << ", " << c[1] << ", " << c[2] << ")";
+                }
+            }
+            EXPECT_EQ(wrong, 0u);
+            EXPECT_EQ(active, sdf->activeVoxelCount());
+            EXPECT_GT(negative, 100u);
+            const float background = float(ls.exteriorBand * grid.voxelSize);
+            EXPECT_EQ(acc.getValue(nanovdb::Coord(1 << 20)), background);
+            // The middle of the sphere, beyond the band: inside, -background.
+            const Vec3d centre = grid.toIndex({0.3, -0.2, 0.1});
+            EXPECT_EQ(acc.getValue(nanovdb::Coord(int32_t(std::floor(centre[0])), int32_t(std::floor(centre[1])),
+                                                  int32_t(std::floor(centre[2])))),
+                      -background);
+        }
+    EXPECT_EQ(signedBy.size(), 2u) << "a scene of each sign method";
 }
 
 /// Surfaces through the front door on the GL backends: the topology (mask or

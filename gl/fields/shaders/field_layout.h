@@ -39,12 +39,14 @@ SVO_CONST(uint) kTableWords = 4u;
 /* Band leaves (band_leaves.comp, unsigned fields built into NanoVDB grids on
    the device): instead of packing, the bricks with a voxel nearer than the
    band become leaves as svo/gl/nano_grid_builder.h takes them, in the slots
-   of the mesh, the items and the crossings, which an unsigned field's last
-   pass does not read. The leaf count is counter 2. */
+   of the mesh, the items and the crossings, which the leaves pass does not
+   read (a signed field's inside voxels come in a slot of their own). The
+   leaf count is counter 2. */
 #define SVO_BIND_LEAVES_ORIGINS 0 /* 3 ints per leaf: its origin in index space */
 #define SVO_BIND_LEAVES_MASKS 1   /* 16 uints per leaf: the voxels nearer than the band */
 #define SVO_BIND_LEAVES_VALUES 2  /* 512 per leaf: float bits of the distance in world units, else the background */
 #define SVO_BIND_LEAVES_CLOSEST 6 /* 512 per leaf: the closest triangle where active, else -1 */
+#define SVO_BIND_LEAVES_INSIDE 8  /* 16 uints per brick: the voxels inside (a field signed by parity) */
 SVO_CONST(uint) kLeafCounter = 2u;
 /* first item, voxel box origin x y z, box size x y z, 1 when the box is one item (else one per brick it spans) */
 SVO_CONST(uint) kItemWords = 8u;
@@ -66,7 +68,7 @@ static_assert(distinctSlots({SVO_BIND_COMPACT_MASKS, SVO_BIND_COMPACT_OFFSETS, S
                              SVO_BIND_COMPACT_CLOSEST, SVO_BIND_FIELD_DISTANCES, SVO_BIND_FIELD_CLOSEST,
                              SVO_BIND_FIELD_COUNTERS}));
 static_assert(distinctSlots({SVO_BIND_LEAVES_ORIGINS, SVO_BIND_LEAVES_MASKS, SVO_BIND_LEAVES_VALUES,
-                             SVO_BIND_LEAVES_CLOSEST, SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES,
+                             SVO_BIND_LEAVES_CLOSEST, SVO_BIND_LEAVES_INSIDE, SVO_BIND_FIELD_TABLE, SVO_BIND_FIELD_DISTANCES,
                              SVO_BIND_FIELD_CLOSEST, SVO_BIND_FIELD_COUNTERS}));
 static_assert(distinctSlots({SVO_BIND_FIELD_POSITIONS, SVO_BIND_FIELD_INDICES, SVO_BIND_WINDING_NODES,
                              SVO_BIND_WINDING_LINKS, SVO_BIND_WINDING_ORDER, SVO_BIND_WINDING_BRICKS,

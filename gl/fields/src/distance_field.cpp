@@ -19,6 +19,7 @@
 #include "svo/gl/timer_query.h"
 #include "svo/gl/wait_for_gpu.h"
 #include "svo/core/error.h"
+#include "svo/core/parity_scan.h"
 #include "field_layout.h"
 #include "svo/gl/winding_number.h"
 #include "fields_shaders.h"
@@ -358,11 +359,12 @@ PackedBand packBand(const Context& context, const FieldBuffers& buffers, const F
     return packed;
 }
 
-/// An unsigned field's band as leaves on the device (band_leaves.comp), in
-/// place of packBand, timed into `stats`; the count is read with the field's
-/// counters (readField). Every pass's slots are bound again after.
+/// A field's band as leaves on the device (band_leaves.comp), in place of
+/// packBand, timed into `stats`; the count is read with the field's counters
+/// (readField). @a inside: per brick, the voxels inside (a field signed by
+/// parity), or null. Every pass's slots are bound again after.
 FieldLeaves bandLeaves(const Context& context, const FieldBuffers& buffers, const GridSpec& grid,
-                       const FieldRequest& request, uint32_t tableMask, RunStats& stats)
+                       const FieldRequest& request, uint32_t tableMask, const Buffer* inside, RunStats& stats)
 {
     const uint64_t nb = std::max<uint64_t>(request.bricks.size(), 1);
     for (int a = 0; a < 3; ++a)
@@ -380,6 +382,7 @@ FieldLeaves bandLeaves(const Context& context, const FieldBuffers& buffers, cons
     // Bound, unused, without closest triangles.
     (leaves.closest ? leaves.closest : leaves.values)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_LEAVES_CLOSEST);
     (buffers.closest ? buffers.closest : buffers.distances)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_FIELD_CLOSEST);
+    (inside ? inside : leaves.masks)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_LEAVES_INSIDE); // bound, unused, unsigned
     const auto w0 = Clock::now();
     TimerQuery timer;
     timer.begin();
@@ -388,7 +391,8 @@ FieldLeaves bandLeaves(const Context& context, const FieldBuffers& buffers, cons
     std::memcpy(scale, &request.leafScale, 8);
     uint32_t background = 0;
     std::memcpy(&background, &request.leafBackground, 4);
-    program.set("uBand", float(request.band));
+    program.set("uBands", request.leafBands[0], request.leafBands[1]);
+    program.set("uSigned", inside ? 1u : 0u);
     program.set("uScale", std::vector<uint32_t>{scale[0], scale[1]});
     program.set("uBackground", background);
     program.set("uAnchor", int(grid.anchor[0]), int(grid.anchor[1]), int(grid.anchor[2]));
@@ -404,6 +408,28 @@ FieldLeaves bandLeaves(const Context& context, const FieldBuffers& buffers, cons
     stats.stages.push_back({"band leaves", timer.milliseconds(), msSince(w0)});
     buffers.bindAll();
     return leaves;
+}
+
+/// A field signed by parity whose leaves stay on the device: the crossings
+/// read back (into `result`) and scanned on the host (scanParity), the voxels
+/// inside uploaded in place of the crossings, whose buffer they fit, for
+/// band_leaves.comp; timed into `stats`.
+const Buffer* insideVoxels(const FieldBuffers& buffers, const FieldRequest& request, FieldResult& result,
+                           RunStats& stats)
+{
+    auto t0 = Clock::now();
+    const uint64_t nb = request.bricks.size();
+    result.crossings.resize(nb);
+    buffers.flips->readBulk(0, nb * sizeof(Brick), result.crossings.data());
+    checkGl("crossings readback");
+    stats.stages.push_back({"crossings readback", -1, msSince(t0)});
+    t0 = Clock::now();
+    const ParityScan scan = scanParity(request.bricks, result.crossings);
+    result.openColumns = scan.openColumns;
+    buffers.flips->write(0, nb * sizeof(Brick), scan.inside.data());
+    checkGl("inside voxels");
+    stats.stages.push_back({"parity scan", -1, msSince(t0)});
+    return buffers.flips;
 }
 
 /// The GPU bytes the passes held: the uploads, the per-brick buffers and the larger item list.
@@ -438,7 +464,7 @@ void readField(const FieldBuffers& buffers, const PackedBand& packed, uint64_t n
         result.closest.resize(count[1]);
         packed.closest->readBulk(0, uint64_t(count[1]) * 4, result.closest.data());
     }
-    if (buffers.flips) {
+    if (buffers.flips && result.crossings.empty()) { // (signed device leaves read them already)
         result.crossings.resize(nb);
         buffers.flips->readBulk(0, nb * sizeof(Brick), result.crossings.data());
     }
@@ -459,8 +485,6 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     RunStats stats;
     const uint64_t nb = request.bricks.size();
     const bool distances = request.band > 0;
-    if (request.deviceLeaves && request.crossings)
-        throw InvalidInput("internal error: band leaves on the device are for unsigned fields (no crossings)");
     request.checkpoint(0.0, "field upload");
 
     // Upload: local double positions, indices, items, the brick table.
@@ -484,8 +508,11 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     const bool leaves = distances && request.deviceLeaves;
     const PackedBand packed =
         distances && !leaves ? packBand(context, buffers, request, smallTriangles, stats) : PackedBand{};
-    if (leaves) result.leaves = bandLeaves(context, buffers, grid, request, tableMask, stats);
     if (request.crossings) passes.crossings(grid, items);
+    if (leaves) {
+        const Buffer* inside = request.crossings ? insideVoxels(buffers, request, result, stats) : nullptr;
+        result.leaves = bandLeaves(context, buffers, grid, request, tableMask, inside, stats);
+    }
     stats.stages.front().gpuMs = uploadTimer.milliseconds();
     stats.gpuBytes = fieldGpuBytes(buffers, items, nb);
     request.checkpoint(0.8, "field readback");

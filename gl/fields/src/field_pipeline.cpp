@@ -396,13 +396,11 @@ FieldRequest bandRequest(const TriangleMesh& mesh, const FieldSetup& f, const Le
     return request;
 }
 
-} // namespace
-
-DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
-                              const LevelSetOptions& ls, const VoxelizeSettings& settings,
-                              const Checkpoint& checkpoint, VoxelizeStats& stats)
+/// levelSetBricks once the field is set up.
+DistanceBricks bricksOf(Device& device, const TriangleMesh& mesh, const LevelSetOptions& ls,
+                        const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats,
+                        const FieldSetup& f)
 {
-    const FieldSetup f = setUpField(mesh, grid, ls, settings, stats);
     const bool signedField = f.signedField, winding = f.winding;
     const GridSpec& g = f.g;
     checkpoint(0.0, "band bricks");
@@ -445,6 +443,43 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
     return out;
 }
 
+/// Whether the band can stay on the device: a GL backend, no region, and no
+/// winding numbers (their signs beyond the band are tiles, which the GPU
+/// builder does not make).
+bool leavesOnDevice(Device& device, const VoxelizeSettings& settings, const FieldSetup& f)
+{
+    return !settings.region && !f.winding && !runsOnCpu(device, settings);
+}
+
+/// The band as NanoVDB leaves on the device, once the field is set up
+/// (leavesOnDevice): distances, and for a signed field the parity scan's
+/// inside voxels negated, as levelSetNanoGrids lays them out.
+DeviceField deviceLeavesOf(Device& device, const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
+                           const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats,
+                           const FieldSetup& f)
+{
+    checkpoint(0.0, "band bricks");
+    describeBackend(device, Backend::Compute, stats);
+    FieldRequest request = bandRequest(mesh, f, ls, settings, checkpoint, stats);
+    request.deviceLeaves = true;
+    request.leafScale = grid.voxelSize;
+    request.leafBackground = float(ls.exteriorBand * grid.voxelSize); // as levelSetNanoGrids
+    request.leafBands = {float(ls.exteriorBand), float(f.signedField ? ls.interiorBand : ls.exteriorBand)};
+    FieldResult field = fieldPass(device.context(), mesh, f.g, request, false, stats);
+    if (f.signedField) noteOpenColumns(stats, field.openColumns, "signs above its last crossing count as outside");
+    stats.startup = device.takeStartup(stats.warnings);
+    return {f.g, field.leaves, f.signedField};
+}
+
+} // namespace
+
+DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
+                              const LevelSetOptions& ls, const VoxelizeSettings& settings,
+                              const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    return bricksOf(device, mesh, ls, settings, checkpoint, stats, setUpField(mesh, grid, ls, settings, stats));
+}
+
 bool unsignedFieldOnDevice(Device& device, const LevelSetOptions& ls, const VoxelizeSettings& settings)
 {
     return ls.unsignedDistance && !settings.region && !runsOnCpu(device, settings);
@@ -457,15 +492,19 @@ DeviceField unsignedFieldLeaves(Device& device, const TriangleMesh& mesh, const 
     if (!unsignedFieldOnDevice(device, ls, settings))
         throw InvalidInput("internal error: band leaves on the device need an unsigned field without a region on a GL backend");
     const FieldSetup f = setUpField(mesh, grid, ls, settings, stats);
-    checkpoint(0.0, "band bricks");
-    describeBackend(device, Backend::Compute, stats);
-    FieldRequest request = bandRequest(mesh, f, ls, settings, checkpoint, stats);
-    request.deviceLeaves = true;
-    request.leafScale = grid.voxelSize;
-    request.leafBackground = float(ls.exteriorBand * grid.voxelSize); // as levelSetNanoGrids
-    FieldResult field = fieldPass(device.context(), mesh, f.g, request, false, stats);
-    stats.startup = device.takeStartup(stats.warnings);
-    return {f.g, field.leaves};
+    return deviceLeavesOf(device, mesh, grid, ls, settings, checkpoint, stats, f);
+}
+
+LevelSetBand levelSetBand(Device& device, const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
+                          const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    const FieldSetup f = setUpField(mesh, grid, ls, settings, stats);
+    LevelSetBand out;
+    if (leavesOnDevice(device, settings, f))
+        out.device = deviceLeavesOf(device, mesh, grid, ls, settings, checkpoint, stats, f);
+    else
+        out.host = bricksOf(device, mesh, ls, settings, checkpoint, stats, f);
+    return out;
 }
 
 SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid,

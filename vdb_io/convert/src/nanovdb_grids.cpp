@@ -154,6 +154,8 @@ void floodNode(uint32_t first, uint32_t size, Inside&& endInside, Set&& set, boo
     }
 }
 
+} // namespace
+
 void signedFloodFill(nanovdb::NanoGrid<float>& grid)
 {
     using LeafT = nanovdb::NanoLeaf<float>;
@@ -208,8 +210,6 @@ void signedFloodFill(nanovdb::NanoGrid<float>& grid)
                       [&](const uint8_t* c) { return lowerEnd(c, 4095); });
     static_assert(UpperT::DataType::FIXED_SIZE, "");
 }
-
-} // namespace
 
 std::vector<NanoHandle> octreeToNanoGrids(const Octree& o, const GridOptions& options, bool checksum)
 {

@@ -1,8 +1,10 @@
 // NanoVDB grids from the front door (svo/voxelizer.h): the field passes'
 // bricks laid out as NanoVDB grids (svo/vdb_io/nanovdb_grids.h), with no
-// OpenVDB tree between them; an unsigned field on a GL backend built on the
-// GPU from leaves that never leave it (svo/gl/nano_grid_builder.h).
+// OpenVDB tree between them; an unsigned or parity-signed field on a GL
+// backend built on the GPU from leaves that never leave it
+// (svo/gl/nano_grid_builder.h).
 #include <cstring>
+#include <functional>
 #include <fmt/format.h>
 
 #include "svo/core/error.h"
@@ -12,6 +14,7 @@
 #include "svo/gl/timer_query.h"
 #include "svo/gl/voxelize_pipeline.h"
 #include "svo/vdb_io/nanovdb_checksum.h"
+#include "svo/vdb_io/nanovdb_grids.h"
 #include "svo/vdb_io/nanovdb_layout.h"
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/vdb_io/reader_grids.h" // withTopology
@@ -89,9 +92,12 @@ void fullChecksum(vdb::NanoHandle& h, gl::NanoKind kind)
 /// the builder's limits (a shader storage block, 2^26 leaves, 16 GiB:
 /// svo::Unsupported, thrown before the grid is made) is laid out by
 /// `onHost()` instead, with a warning.
+/// `finish`, when given, changes the host copy before its checksum (a
+/// level set's flood fill), and `onHost()` then leaves the checksum to it.
 template <typename OnHost>
 vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const gl::NanoLeaves& leaves,
-                           const gl::NanoGridHeader& header, VoxelizeStats& stats, OnHost&& onHost)
+                           const gl::NanoGridHeader& header, VoxelizeStats& stats, OnHost&& onHost,
+                           const std::function<void(vdb::NanoHandle&)>& finish = {})
 {
     auto t0 = Clock::now();
     gl::TimerQuery timer;
@@ -105,6 +111,10 @@ vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const 
         stats.warnings.push_back(fmt::format("{}; grid \"{}\" laid out on the CPU instead", e.what(), header.name));
         t0 = Clock::now();
         vdb::NanoHandle out = onHost();
+        if (finish) {
+            finish(out);
+            fullChecksum(out, kind);
+        }
         stats.stages.push_back({"nanovdb grid (cpu)", -1, msSince(t0)});
         return out;
     }
@@ -116,6 +126,11 @@ vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const 
     context.returnScratch(gl::kNanoGridScratch, std::move(built.grid)); // the next grid's memory
     vdb::NanoHandle out(std::move(buffer));
     stats.stages.push_back({"nanovdb readback", -1, msSince(t0)});
+    if (finish) {
+        t0 = Clock::now();
+        finish(out);
+        stats.stages.push_back({"nanovdb flood fill", -1, msSince(t0)});
+    }
     t0 = Clock::now();
     fullChecksum(out, kind);
     stats.stages.push_back({"nanovdb checksum", -1, msSince(t0)});
@@ -125,7 +140,8 @@ vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const 
 /// The CPU layout of device leaves read back (float or int32 values): the
 /// grid the GPU builder makes of them, with its checksum.
 template <typename V>
-vdb::NanoHandle laidOutOnHost(const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header, V background)
+vdb::NanoHandle laidOutOnHost(const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header, V background,
+                              bool checksum = true)
 {
     static_assert(sizeof(V) == 4, "value words");
     vdb::SparseVoxels<V> s;
@@ -144,6 +160,7 @@ vdb::NanoHandle laidOutOnHost(const gl::NanoLeaves& leaves, const gl::NanoGridHe
     info.gridClass = nanovdb::GridClass(header.gridClass);
     info.voxelSize = header.voxelSize;
     info.translation = header.translation;
+    info.checksum = checksum;
     return vdb::buildNanoGrid<V>(s, info);
 }
 
@@ -158,38 +175,40 @@ gl::NanoLeaves leavesOf(const gl::DeviceField& field)
     return leaves;
 }
 
-/// The "distance" grid's header, as levelSetNanoGrids makes it.
-gl::NanoGridHeader distanceHeader(const GridSpec& grid, const LevelSetOptions& ls)
+/// The main grid's header, as levelSetNanoGrids makes it: "surface" (a level
+/// set) for a signed field, "distance" for an unsigned one.
+gl::NanoGridHeader distanceHeader(const GridSpec& grid, const LevelSetOptions& ls, bool signedField = false)
 {
     gl::NanoGridHeader header;
-    header.name = "distance";
-    header.gridClass = uint32_t(nanovdb::GridClass::Unknown);
+    header.name = signedField ? "surface" : "distance";
+    header.gridClass = uint32_t(signedField ? nanovdb::GridClass::LevelSet : nanovdb::GridClass::Unknown);
     header.voxelSize = grid.voxelSize;
     header.translation = grid.translation();
     header.background = double(float(ls.exteriorBand * grid.voxelSize));
     return header;
 }
 
-/// An unsigned field's grids on the GPU: its band's leaves stay on the
-/// device (gl::unsignedFieldLeaves) and the builder lays out the grids
-/// levelSetNanoGrids lays out on the host, byte for byte.
-std::vector<vdb::NanoHandle> unsignedGridsOnGpu(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
-                                                const LevelSetOptions& ls, const VoxelizeOptions& options,
-                                                const Checkpoint& checkpoint, VoxelizeStats& stats)
+/// A field's grids on the GPU: its band's leaves stay on the device
+/// (gl::levelSetBand) and the builder lays out the grids levelSetNanoGrids
+/// lays out on the host, byte for byte; a signed field's values beyond the
+/// band are flood filled on the host copy, as levelSetNanoGrids does.
+std::vector<vdb::NanoHandle> fieldGridsOnGpu(const gl::Context& context, const gl::DeviceField& field,
+                                             const GridSpec& grid, const LevelSetOptions& ls, VoxelizeStats& stats)
 {
-    const gl::DeviceField field = gl::unsignedFieldLeaves(device, mesh, grid, ls, options, checkpoint, stats);
-    checkpoint(0.85, "nanovdb grid");
-    const gl::Context& context = device.context();
     const gl::Context::Scope scope(context); // the leaves' scratch buffers and the grids' buffers
     gl::NanoLeaves leaves = leavesOf(field);
-    gl::NanoGridHeader header = distanceHeader(grid, ls);
+    gl::NanoGridHeader header = distanceHeader(grid, ls, field.signedField);
     std::vector<vdb::NanoHandle> out;
     const float background = float(header.background);
+    const bool flood = field.signedField;
+    std::function<void(vdb::NanoHandle&)> fill;
+    if (flood) fill = [](vdb::NanoHandle& h) { vdb::signedFloodFill(*h.grid<float>()); };
     out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats,
-                             [&] { return laidOutOnHost<float>(leaves, header, background); }));
+                             [&] { return laidOutOnHost<float>(leaves, header, background, !flood); }, fill));
     if (field.leaves.closest) {
         leaves.valueBuffer = field.leaves.closest;
         header.name = "closest_triangle";
+        header.gridClass = uint32_t(nanovdb::GridClass::Unknown);
         header.background = -1.0;
         out.push_back(builtOnGpu(context, gl::NanoKind::Int32, leaves, header, stats,
                                  [&] { return laidOutOnHost<int32_t>(leaves, header, -1); }));
@@ -271,12 +290,11 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
 {
     if (viaOpenVdb(options)) return converted(levelSet(mesh, grid, ls, options));
     auto make = [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
-        if (gl::unsignedFieldOnDevice(device_, ls, options))
-            return unsignedGridsOnGpu(device_, mesh, grid, ls, options, checkpoint, stats);
-        const DistanceBricks field = gl::levelSetBricks(device_, mesh, grid, ls, options, checkpoint, stats);
+        const gl::LevelSetBand band = gl::levelSetBand(device_, mesh, grid, ls, options, checkpoint, stats);
         checkpoint(0.85, "nanovdb grid");
+        if (band.device) return fieldGridsOnGpu(device_.context(), *band.device, grid, ls, stats);
         const auto t0 = Clock::now();
-        std::vector<vdb::NanoHandle> out = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
+        std::vector<vdb::NanoHandle> out = vdb::levelSetNanoGrids(band.host, ls.exteriorBand, ls.interiorBand, grid);
         stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
         return out;
     };

@@ -294,8 +294,10 @@ public:
     /// with no OpenVDB tree (levelSetNanoGrids), on the grid's own lattice;
     /// with a region or a GPU memory budget, levelSet()'s grids converted
     /// (toNanoVdb). Equal, voxel for voxel and value for value, to levelSet()'s.
-    /// An unsigned field on a GL backend is laid out on the GPU
-    /// (gl::buildNanoGridGpu, the band never read back), the same bytes.
+    /// On a GL backend an unsigned field, or a signed one whose signs come
+    /// from parity (a closed mesh), is laid out on the GPU
+    /// (gl::buildNanoGridGpu, the band never read back; a level set flood
+    /// filled on the host copy), the same bytes.
     /// @throw as levelSet()
     std::vector<vdb::NanoHandle> levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                  const LevelSetOptions& levelSet = {}, const VoxelizeOptions& options = {});

@@ -6,6 +6,7 @@
 /// by parity crossings or winding numbers (winding_number.h). What
 /// svo::Voxelizer runs, usable without OpenVDB; the converter
 /// (svo/vdb_io/field_grids.h) makes grids of the result.
+#include <optional>
 #include <string>
 
 #include "svo/core/field_bricks.h"
@@ -55,10 +56,11 @@ DistanceBricks levelSetBricks(Device& device, const TriangleMesh& mesh, const Gr
 /// @param device may make its GL context, to see the renderer
 bool unsignedFieldOnDevice(Device& device, const LevelSetOptions& levelSet, const VoxelizeSettings& settings);
 
-/// @brief An unsigned field's band left on the device as NanoVDB leaves.
+/// @brief A field's band left on the device as NanoVDB leaves.
 struct DeviceField {
-    GridSpec grid;      ///< the field's grid: the mesh's padded by the band, as levelSetBricks gives it
-    FieldLeaves leaves; ///< the device's leaves (field_result.h: the buffers' lifetime)
+    GridSpec grid;            ///< the field's grid: the mesh's padded by the band, as levelSetBricks gives it
+    FieldLeaves leaves;       ///< the device's leaves (field_result.h: the buffers' lifetime)
+    bool signedField = false; ///< signed by parity: values inside negated, beyond the band still unsigned
 };
 
 /// @brief levelSetBricks for an unsigned field on the GPU, its band left on
@@ -74,6 +76,28 @@ struct DeviceField {
 DeviceField unsignedFieldLeaves(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
                                 const LevelSetOptions& levelSet, const VoxelizeSettings& settings,
                                 const Checkpoint& checkpoint, VoxelizeStats& stats);
+
+/// @brief A level set's band, where it can stay on the device, or read back.
+struct LevelSetBand {
+    std::optional<DeviceField> device; ///< a GL backend, no region, and an unsigned field or one signed by parity
+    DistanceBricks host;               ///< otherwise: levelSetBricks' result
+};
+
+/// @brief levelSetBricks, or its band left on the device as the leaves
+/// levelSetNanoGrids lays out (as unsignedFieldLeaves) where it can be: on a
+/// GL backend, without a region, for an unsigned field or one signed by
+/// parity (the sign method is chosen first, so this is known only then).
+/// Parity signs: the crossings come back and are scanned on the host; the
+/// inside voxels go back up and are negated in the leaves, background
+/// included; the values beyond the band (signed flood fill) are the
+/// caller's, as levelSetNanoGrids does them on its grid. Winding numbers
+/// give inside tiles, which the GPU builder does not make: read back.
+/// @param checkpoint polled between stages with the fraction done (to 0.85)
+/// @param stats      receives stages, counts, the sign method and why, warnings
+/// @throw as levelSetBricks
+LevelSetBand levelSetBand(Device& device, const TriangleMesh& mesh, const GridSpec& grid,
+                          const LevelSetOptions& levelSet, const VoxelizeSettings& settings,
+                          const Checkpoint& checkpoint, VoxelizeStats& stats);
 
 /// @brief The solid a checked mesh bounds on a checked grid: every voxel whose
 /// centre is inside, plus the surface voxels (conservative, as voxelizeMesh);

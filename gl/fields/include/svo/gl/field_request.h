@@ -24,12 +24,18 @@ struct FieldRequest {
     bool crossings = true;       ///< the parity crossings
     FieldWork work = FieldWork::Auto; ///< how the distance pass cuts its work
     Checkpoint checkpoint;            ///< polled while the passes run; throws svo::Interrupted to stop
-    /// Unsigned fields (no crossings): leave the band on the device as
-    /// NanoVDB leaves (FieldResult::leaves, band_leaves.comp) instead of
-    /// packing it and reading it back; only the leaf count comes back.
+    /// Leave the band on the device as NanoVDB leaves (FieldResult::leaves,
+    /// band_leaves.comp) instead of packing it and reading it back; only the
+    /// leaf count comes back. With crossings (a field signed by parity), the
+    /// crossings are read back and scanned on the host (scanParity), and the
+    /// voxels it finds inside are uploaded and negated in the leaves.
     bool deviceLeaves = false;
     double leafScale = 1.0;      ///< world units per voxel: a leaf's value is float(double(distance) * leafScale)
-    float leafBackground = 0.0f; ///< the value of a leaf's voxels beyond the band
+    float leafBackground = 0.0f; ///< the value of a leaf's voxels beyond the band (negated inside)
+    /// A leaf's voxel is active when its distance is less than leafBands[0]
+    /// outside and leafBands[1] inside (in voxels, as levelSetNanoGrids
+    /// compares them).
+    std::array<float, 2> leafBands{0.0f, 0.0f};
 };
 
 } // namespace svo::gl

@@ -11,7 +11,7 @@ namespace svo::gl {
 
 class Buffer;
 
-/// @brief An unsigned field's band as NanoVDB leaves on the device
+/// @brief A field's band as NanoVDB leaves on the device
 /// (FieldRequest::deviceLeaves), in no fixed order, as svo::gl::NanoLeaves
 /// takes them: 3 ints (the origin in index space), 16 uints (the voxels
 /// nearer than the band, OpenVDB's bit order) and 512 value words per leaf.
@@ -21,7 +21,7 @@ struct FieldLeaves {
     uint32_t count = 0;              ///< the bricks with a voxel nearer than the band
     const Buffer* origins = nullptr; ///< 3 ints per leaf
     const Buffer* masks = nullptr;   ///< 16 uints per leaf
-    const Buffer* values = nullptr;  ///< 512 floats per leaf: the distance in world units, else the background
+    const Buffer* values = nullptr;  ///< 512 floats per leaf: the distance in world units, else the background; negated inside
     const Buffer* closest = nullptr; ///< 512 ints per leaf: the closest triangle, else -1; null unless computed
 };
 
@@ -40,6 +40,9 @@ struct FieldResult {
     std::vector<Brick> crossings;
     uint64_t lostCrossings = 0; ///< crossings whose voxel is in no requested brick (a caller's error)
     FieldLeaves leaves;         ///< with FieldRequest::deviceLeaves (then bandMasks, bandOffsets, distances and closest stay empty)
+    /// Device leaves signed by parity: the scan's columns with an odd count
+    /// of crossings (ParityScan::openColumns).
+    uint64_t openColumns = 0;
 };
 
 } // namespace svo::gl

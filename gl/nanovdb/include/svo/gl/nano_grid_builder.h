@@ -16,7 +16,9 @@
 /// host writes from the upper nodes' statistics it reads back (a few words
 /// per upper node).
 ///
-/// Not made here: tiles (a solid's 8³ tiles stay with the CPU builder). The
+/// Not made here: tiles (a solid's 8³ tiles and a winding-signed level
+/// set's inside bricks stay with the CPU builder; a parity-signed level
+/// set's are flood filled on the host copy, svo::vdb::signedFloodFill). The
 /// checksum only when NanoGridHeader::checksum asks (nano_crc.comp, a CRC
 /// per node); otherwise the grid's checksum field says "none" (all bits
 /// set, as nanovdb::ChecksumMode::Disable leaves it) and

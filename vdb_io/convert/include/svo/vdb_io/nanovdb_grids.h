@@ -40,6 +40,16 @@ std::vector<NanoHandle> octreeChannelNanoGrids(const Octree& octree, const GridO
 std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double exteriorBand, double interiorBand,
                                           const GridSpec& lattice, bool checksum = true);
 
+/// @brief OpenVDB's signed flood fill (tools::signedFloodFill, which the
+/// OpenVDB path runs on level sets signed by parity) on a NanoVDB level set
+/// laid out from leaves whose values carry their signs (levelSetNanoGrids,
+/// or the GPU builder's grid of the same leaves): in each node, bottom up,
+/// the inactive values and tiles take the sign of the last active value or
+/// child met along x, then y, then z, and the background's magnitude. The
+/// grid's checksum is not updated (updateFullChecksum does).
+/// @param grid a grid with leaves and internal nodes, no root tiles
+void signedFloodFill(nanovdb::NanoGrid<float>& grid);
+
 /// @brief A solid as the grid "solid", as solidGrid (field_grids.h) and
 /// withTopology (reader_grids.h) give it: inside voxels active, whole bricks
 /// inside as active 8³ tiles.
