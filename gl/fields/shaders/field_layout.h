@@ -36,7 +36,7 @@ SVO_CONST(uint) kTableWords = 4u;
 #define SVO_BIND_COMPACT_OFFSETS 1   /* per brick: where its values start in the packed arrays */
 #define SVO_BIND_COMPACT_DISTANCES 2 /* packed: the distances of the masked voxels, brick by brick in bit order */
 #define SVO_BIND_COMPACT_CLOSEST 3   /* packed alike: their closest triangles */
-/* Band leaves (band_leaves.comp, unsigned fields built into NanoVDB grids on
+/* Band leaves (band_leaves.comp, fields built into NanoVDB grids on
    the device): instead of packing, the bricks with a voxel nearer than the
    band become leaves as svo/gl/nano_grid_builder.h takes them, in the slots
    of the mesh, the items and the crossings, which the leaves pass does not
