@@ -23,6 +23,7 @@
 #include "svo/gl/view_request.h"
 #include "svo/core/region.h"
 #include "svo/vdb_io/join_region.h"
+#include "svo/vdb_io/nanovdb_file.h"
 #include "svo/vdb_io/vdb_file.h"
 #include "svo/result_metadata.h"
 #include "svo/svo.h"
@@ -479,6 +480,9 @@ const PythonKeyword kPythonKeywords[] = {
      "voxels are cubes of its index space"},
     {"grid", [] { return py::object(py::str("bool")); },
      "'bool' (a BoolGrid 'surface', true on voxels) or 'fog' (a FloatGrid 'density', 1 on voxels)"},
+    {"kind", [] { return py::object(py::str("surface")); },
+     "What write_nanovdb() lays out: 'surface' (voxelize()), 'sdf' (level_set()), 'udf' (level_set(unsigned=True)) "
+     "or 'solid' (solid())"},
     {"report", [] { return py::object(py::bool_(false)); },
      "Also say what the call did, as Result.report: backend, mode, sign method, voxels, GPU memory, stage times"},
     // Octree.render's own: what svo view takes in other forms (--size WxH, --layers a,b, --levels a:b,
@@ -577,11 +581,13 @@ void forEachLibraryOption(Visit&& visit)
     svo::DeviceOptions device;
     svo::LevelSetOptions levelSet; // its SignOptions included
     svo::gl::ViewRequest view;     // its layers, AO and lighting too
+    svo::GridOptions grids;        // write_nanovdb's topology, fog and codec
     forEachOption(request, visit);
     forEachOption(voxelize, visit);
     forEachOption(device, visit);
     forEachOption(levelSet, visit);
     forEachOption(view, visit);
+    forEachOption(grids, visit);
 #ifdef SVO_WITH_VALIDATE
     svo::validate::ReportOptions report;
     svo::validate::LevelSetReportOptions levelSetReport; // `worst` again: the same declaration
@@ -624,6 +630,10 @@ const Call kLevelSetCall{"level_set",
 const Call kSolidCall{"solid",
                       {"resolution", "voxel_size", "transform", "sign", "winding_accuracy", "part_of_closed_mesh",
                        "backend", "region", "report"}};
+const Call kWriteNanoVdbCall{"write_nanovdb",
+                             {"kind", "resolution", "voxel_size", "transform", "exterior_band", "interior_band", "closest_triangle",
+                              "sign", "winding_accuracy", "part_of_closed_mesh", "backend", "mode", "conservative",
+                              "attributes", "region", "topology", "fog", "codec"}};
 const Call kFromGridCall{"from_grid", {"backend"}};
 const Call kRenderCall{"render",
                        {"size", "view", "layers", "levels", "color", "ao", "ao_only", "ao_source", "lighting", "lights",
@@ -646,6 +656,7 @@ const std::pair<const char*, const Call*> kCalls[] = {
     {"Voxelizer.octree", &kOctreeCall},
     {"Voxelizer.level_set", &kLevelSetCall},
     {"Voxelizer.solid", &kSolidCall},
+    {"Voxelizer.write_nanovdb", &kWriteNanoVdbCall},
     {"Octree.from_grid", &kFromGridCall},
     {"Octree.render", &kRenderCall},
     {"voxelize", &kVoxelizeCall},
@@ -1151,6 +1162,43 @@ py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::ha
     return makeResult(out);
 }
 
+/// Voxelizer.write_nanovdb: a kind's NanoVDB grids laid out by the library's
+/// NanoVDB calls (on the GPU where they can be, as `svo voxelize -o x.nvdb`),
+/// with no OpenVDB tree, written to @a path (atomically); returns its bytes.
+uint64_t writeNanoVdbWith(svo::Voxelizer& v, const std::filesystem::path& path, const py::handle& vertices,
+                          const py::handle& triangles, const py::kwargs& kwargs)
+{
+    const CallKeywords kw(kWriteNanoVdbCall, kwargs);
+    const std::string file = path.string();
+    if (svo::outputFormat(file) != svo::OutputFormat::NanoVdb)
+        badValue(file + ": write_nanovdb writes .nvdb files (svo.write writes grids as .vdb)");
+    if (!kw.get<py::object>("transform").is_none())
+        badValue("transform: write_nanovdb takes resolution or voxel_size (a NanoVDB grid's transform here is a "
+                 "voxel size and a translation)");
+    const std::string kind = kw.get<std::string>("kind");
+    if (kind != "surface" && kind != "sdf" && kind != "udf" && kind != "solid")
+        badValue("kind: expected 'surface', 'sdf', 'udf' or 'solid', got '" + kind + "'");
+    svo::LevelSetOptions ls;
+    kw.read(ls);
+    ls.unsignedDistance = kind == "udf";
+    svo::VoxelizeSettings settings;
+    kw.read(settings);
+    svo::GridOptions grids;
+    kw.read(grids);
+    const Request r = makeRequest(vertices, triangles, kw);
+    const auto nano = runField(settings, [&](const svo::VoxelizeOptions& o) {
+        if (kind == "surface") return v.voxelizeNanoVdb(r.mesh, r.grid, o, grids);
+        if (kind == "solid") {
+            std::vector<svo::vdb::NanoHandle> out;
+            out.push_back(v.solidNanoVdb(r.mesh, r.grid, o, ls.sign, grids.topology));
+            return out;
+        }
+        return v.levelSetNanoVdb(r.mesh, r.grid, ls, o);
+    });
+    py::gil_scoped_release release;
+    return svo::vdb::writeNanoVdb(file, nano, grids.codec);
+}
+
 /// (K, 3) int32 index coordinates of a grid's active voxels, tiles expanded,
 /// in OpenVDB's tree order; any transform.
 py::array_t<int32_t> activeVoxels(const py::handle& obj)
@@ -1555,6 +1603,15 @@ PYBIND11_MODULE(_svo, m)
                        "whose centre is inside; regions wholly inside are active tiles; metadata 'svo:sign' as\n"
                        "level_set(). Arrays as voxelize().",
                        kSolidCall)
+                 .c_str())
+        .def("write_nanovdb", &writeNanoVdbWith, py::arg("path"), py::arg("vertices"), py::arg("triangles"),
+             docstring("Write a mesh's grids of one kind straight to a NanoVDB file (.nvdb), as svo voxelize -o\n"
+                       "x.nvdb: laid out with no OpenVDB tree, on the GPU where the backend runs there (surfaces'\n"
+                       "topology and fog, unsigned fields, level sets of closed meshes), the same bytes as on the\n"
+                       "CPU; atomically (a temporary file renamed). Grids: 'surface' (topology, 'density' with\n"
+                       "fog=True, the attributes' channels), 'surface' (class LEVEL_SET) or 'distance' and\n"
+                       "'closest_triangle', or 'solid'. Returns the file's size in bytes.",
+                       kWriteNanoVdbCall)
                  .c_str())
         .def("device", &svo::Voxelizer::deviceDescription, "The GPU's vendor, renderer and version.");
 

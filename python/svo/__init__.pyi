@@ -117,6 +117,31 @@ class Voxelizer:
         region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
         report: bool = False,
     ) -> Result: ...
+    def write_nanovdb(
+        self,
+        path: PathLike,
+        vertices: ArrayLike,
+        triangles: ArrayLike,
+        *,
+        kind: str = "surface",
+        resolution: Optional[int] = None,
+        voxel_size: Optional[float] = None,
+        transform: Optional[Union[Transform, ArrayLike]] = None,
+        exterior_band: float = 3.0,
+        interior_band: float = 3.0,
+        closest_triangle: bool = False,
+        sign: str = "auto",
+        winding_accuracy: float = 1.5,
+        part_of_closed_mesh: bool = False,
+        backend: str = "auto",
+        mode: str = "conservative",
+        conservative: str = "auto",
+        attributes: Sequence[str] = (),
+        region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
+        topology: str = "mask",
+        fog: bool = False,
+        codec: str = "none",
+    ) -> int: ...
     def device(self) -> str: ...
 
 class Octree:
