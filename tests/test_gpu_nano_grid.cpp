@@ -479,6 +479,19 @@ std::vector<std::pair<std::string, TriangleMesh>> frontDoorScenes()
     return {{"sphere", test::sphere({0.3, -0.2, 0.1}, 1.0, 48, 24)}, {"box", test::box({-1, -0.5, -0.25}, {1, 0.5, 0.25})}};
 }
 
+/// The path before the GPU builder: the same call's bricks read back
+/// (levelSetBricks on the compute backend), laid out on the CPU.
+std::pair<DistanceBricks, std::vector<vdb::NanoHandle>> readBackLayout(gl::Device& device, const TriangleMesh& mesh,
+                                                                      const GridSpec& grid, const LevelSetOptions& ls)
+{
+    VoxelizeSettings settings;
+    settings.backend = Backend::Compute;
+    VoxelizeStats stats;
+    DistanceBricks field = gl::levelSetBricks(device, mesh, grid, ls, settings, Checkpoint{}, stats);
+    std::vector<vdb::NanoHandle> grids = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
+    return {std::move(field), std::move(grids)};
+}
+
 /// An unsigned field through the front door on a GL backend: its band stays
 /// on the device and the GPU builder lays it out ("band leaves", "nanovdb
 /// grid (gpu)"), giving the bytes the CPU layout (levelSetNanoGrids) gives
@@ -505,11 +518,9 @@ TEST_F(GpuNanoGrid, FrontDoorUnsignedFieldsEqualTheCpuLayout)
             EXPECT_TRUE(hasStage(stats, "band leaves"));
             EXPECT_TRUE(hasStage(stats, "nanovdb grid (gpu)"));
             EXPECT_FALSE(hasStage(stats, "band packing"));
-            VoxelizeSettings settings;
-            settings.backend = Backend::Compute;
-            VoxelizeStats oldStats;
-            const DistanceBricks field = gl::levelSetBricks(device, mesh, grid, ls, settings, Checkpoint{}, oldStats);
-            const auto cpu = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
+            const auto readBack = readBackLayout(device, mesh, grid, ls);
+            const DistanceBricks& field = readBack.first;
+            const std::vector<vdb::NanoHandle>& cpu = readBack.second;
             expectSameBytes(gpu, cpu, written);
             ASSERT_EQ(gpu.size(), closest ? 2u : 1u);
             const auto* udf = gpu[0].grid<float>();
@@ -545,7 +556,8 @@ TEST_F(GpuNanoGrid, FrontDoorUnsignedFieldsEqualTheCpuLayout)
             cpuOptions.backend = Backend::Cpu;
             VoxelizeSettings cpuSettings;
             cpuSettings.backend = Backend::Cpu;
-            const DistanceBricks cpuField = gl::levelSetBricks(device, mesh, grid, ls, cpuSettings, Checkpoint{}, oldStats);
+            VoxelizeStats cpuStats;
+            const DistanceBricks cpuField = gl::levelSetBricks(device, mesh, grid, ls, cpuSettings, Checkpoint{}, cpuStats);
             expectSameBytes(voxelizer.levelSetNanoVdb(mesh, grid, ls, cpuOptions),
                             vdb::levelSetNanoGrids(cpuField, ls.exteriorBand, ls.interiorBand, grid), written);
             // The grids left on the GPU: the same bytes, read in the callback (the context current there).
@@ -605,11 +617,9 @@ TEST_F(GpuNanoGrid, FrontDoorSignedFieldsEqualTheCpuLayout)
             EXPECT_EQ(hasStage(stats, "nanovdb grid (gpu)"), parity);
             EXPECT_EQ(hasStage(stats, "nanovdb flood fill"), parity);
             EXPECT_EQ(hasStage(stats, "band packing"), !parity);
-            VoxelizeSettings settings;
-            settings.backend = Backend::Compute;
-            VoxelizeStats oldStats;
-            const DistanceBricks field = gl::levelSetBricks(device, mesh, grid, ls, settings, Checkpoint{}, oldStats);
-            const auto cpu = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
+            const auto readBack = readBackLayout(device, mesh, grid, ls);
+            const DistanceBricks& field = readBack.first;
+            const std::vector<vdb::NanoHandle>& cpu = readBack.second;
             expectSameBytes(gpu, cpu, written);
             ASSERT_EQ(gpu.size(), closest ? 2u : 1u);
             const auto* sdf = gpu[0].grid<float>();

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import svo
+from scenes import icosphere
 
 SVO_EXE = os.environ.get("SVO_EXE")
 VALIDATE = shutil.which("nanovdb_validate")
@@ -20,26 +21,10 @@ def write_obj(path, vertices, triangles):
         f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in triangles.tolist())
 
 
-def octahedron_sphere(subdivisions=3):
-    """A closed sphere (parity signs): an octahedron's faces split in four, repeatedly."""
-    v = [np.array(p, float) for p in ((1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1))]
-    t = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
-    for _ in range(subdivisions):
-        mid, out = {}, []
-
-        def middle(a, b):
-            key = (min(a, b), max(a, b))
-            if key not in mid:
-                p = v[a] + v[b]
-                v.append(p / np.linalg.norm(p))
-                mid[key] = len(v) - 1
-            return mid[key]
-
-        for a, b, c in t:
-            ab, bc, ca = middle(a, b), middle(b, c), middle(c, a)
-            out += [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
-        t = out
-    return np.array(v) * 0.8 + (0.1, -0.2, 0.05), np.array(t, np.int64)
+def sphere(subdivisions=3):
+    """A closed sphere, consistently oriented (parity signs), off the origin."""
+    v, t = icosphere(subdivisions)
+    return v * 0.8 + (0.1, -0.2, 0.05), t
 
 
 KINDS = [
@@ -57,7 +42,7 @@ KINDS = [
 @pytest.mark.parametrize("kind, flags, keywords", KINDS)
 @pytest.mark.parametrize("shape", ["closed", "open"])
 def test_the_file_is_the_command_lines(tmp_path, shape, kind, flags, keywords, backend):
-    v, t = octahedron_sphere()
+    v, t = sphere()
     if shape == "open":  # without its last faces: winding numbers sign it
         t = t[:-16]
     mesh = tmp_path / "mesh.obj"
@@ -75,7 +60,7 @@ def test_the_file_is_the_command_lines(tmp_path, shape, kind, flags, keywords, b
 
 
 def test_bad_arguments_are_refused(tmp_path):
-    v, t = octahedron_sphere(1)
+    v, t = sphere(1)
     vx = svo.Voxelizer()
     with pytest.raises(ValueError, match="kind: expected"):
         vx.write_nanovdb(tmp_path / "x.nvdb", v, t, kind="fog")
