@@ -27,10 +27,11 @@ void joinInto(GridT& into, GridT& part)
 {
     if (!openvdb::math::isExactlyEqual(into.background(), part.background()))
         throw InvalidInput("joinRegion: the grids have different backgrounds");
-    // A grid read with OpenVDB's delayed loading (a pickled one, from a Dask
-    // worker) fills its leaves on first touch, taking their inactive values
-    // from the grid it was read into: read them now, while that grid lives.
-    into.tree().readNonresidentBuffers();
+    // A grid read with OpenVDB's delayed loading (a tile file, a pickled
+    // grid) fills its leaves on first touch, taking their inactive values
+    // from the grid it was read into: the part's leaves leave that grid, so
+    // read them now. The target's stay where they are (reading them at every
+    // join would walk the growing grid once per part).
     part.tree().readNonresidentBuffers();
     if (into.tree().empty()) { // the first region (only background tiles so far): take its tree whole
         into.setTree(part.treePtr());
