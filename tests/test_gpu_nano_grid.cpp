@@ -75,11 +75,13 @@ static_assert(uint32_t(nanovdb::GridType::Float) == gpu::kNanoTypeFloat &&
               uint32_t(nanovdb::GridType::Mask) == gpu::kNanoTypeMask &&
               uint32_t(nanovdb::GridType::Boolean) == gpu::kNanoTypeBool);
 
-/// Leaves as both builders take them: value words for the GPU, typed values for the CPU.
+/// Leaves as both builders take them: value words for the GPU, typed values
+/// for the CPU; and 8³ tiles.
 struct Leaves {
     std::vector<std::array<int32_t, 3>> origins;
     std::vector<Brick> masks;
     std::vector<uint32_t> words; // 512 per leaf, or empty
+    std::vector<gl::NanoTile> tiles;
 };
 
 template <typename BuildT>
@@ -116,6 +118,7 @@ vdb::SparseVoxels<ValueOf<BuildT>> sparse(const Leaves& in, double background)
     s.origins = in.origins;
     s.masks = in.masks;
     for (uint32_t w : in.words) s.values.push_back(fromWord<BuildT>(w));
+    for (const gl::NanoTile& t : in.tiles) s.tiles.push_back({t.origin, 1, fromWord<BuildT>(t.value), t.active != 0});
     return s;
 }
 
@@ -147,7 +150,19 @@ void expectNanoVdbReads(const nanovdb::GridHandle<nanovdb::HostBuffer>& h, const
             }
             if (!ok && ++wrong <= 3) ADD_FAILURE() << "voxel (" << c[0] << ", " << c[1] << ", " << c[2] << ") differs";
         }
+    for (const gl::NanoTile& t : in.tiles)
+        for (uint32_t v = 0; v < 512; v += 73) { // a spread of its voxels, corners included
+            const nanovdb::Coord c(t.origin[0] + int32_t(v >> 6), t.origin[1] + int32_t((v >> 3) & 7),
+                                   t.origin[2] + int32_t(v & 7));
+            bool ok = acc.isActive(c) == (t.active != 0);
+            if constexpr (!std::is_same_v<BuildT, nanovdb::ValueMask>) {
+                const ValueOf<BuildT> want = fromWord<BuildT>(t.value), got = acc.getValue(c);
+                ok = ok && std::memcmp(&want, &got, sizeof want) == 0;
+            }
+            if (!ok && ++wrong <= 3) ADD_FAILURE() << "tile voxel (" << c[0] << ", " << c[1] << ", " << c[2] << ") differs";
+        }
     EXPECT_EQ(wrong, 0u);
+    for (const gl::NanoTile& t : in.tiles) active += t.active ? 512 : 0;
     EXPECT_EQ(grid->activeVoxelCount(), active);
 }
 
@@ -176,6 +191,8 @@ protected:
         gl::NanoGridBuffer gpu;
         gl::NanoLeaves leaves;
         leaves.count = uint32_t(in.origins.size());
+        leaves.tileCount = uint32_t(in.tiles.size());
+        leaves.tiles = in.tiles.data();
         if (deviceInput) {
             gl::Buffer origins("test origins", 12 * in.origins.size(), in.origins.data());
             gl::Buffer masks("test masks", 64 * in.masks.size(), in.masks.data());
@@ -211,7 +228,7 @@ protected:
             summed.checksum = true;
             const gl::NanoGridBuffer withSum = gl::buildNanoGridGpu(context, kindOf<BuildT>(), leaves, summed, true);
             ASSERT_EQ(withSum.host.size(), cpu.size());
-            if (in.origins.empty()) {
+            if (in.origins.empty() && in.tiles.empty()) {
                 std::memcpy(&none, withSum.host.data() + 8, 8);
                 EXPECT_EQ(none, ~uint64_t(0)) << "no leaves: no checksum from the GPU";
             } else {
@@ -293,6 +310,32 @@ Leaves randomLeaves(uint32_t count, int32_t span, bool values, uint32_t seed, bo
     return in;
 }
 
+/// @a count 8³ tiles added to @a in, on no leaf and no other tile: half of
+/// them in lower nodes of their own (far from the leaves, which lie within
+/// @a span of the origin), the rest beside leaves; active or not, values
+/// from a small pool (signed zeros and the leaves' values among them, so
+/// that ties between tiles and children test the order of NanoVDB's
+/// statistics: active tiles first).
+void addTiles(Leaves& in, uint32_t count, int32_t span, uint32_t seed, bool intValues = false)
+{
+    std::mt19937 rng(seed);
+    std::set<std::array<int32_t, 3>> taken(in.origins.begin(), in.origins.end());
+    const float pool[] = {0.0f, -0.0f, 1.5f, -2.25f, 3.0f, -3.0f, 0.125f, 7.0f};
+    std::uniform_int_distribution<int32_t> near(-span / 16, span / 16 - 1), far(span / 8 + 32, span / 8 + 63);
+    while (in.tiles.size() < count) {
+        const bool own = in.tiles.size() % 2 == 0;
+        auto coord = [&] { return (own ? far(rng) : near(rng)) * 8; };
+        const std::array<int32_t, 3> o{coord(), own ? coord() : near(rng) * 8, coord()};
+        if (!taken.insert(o).second) continue;
+        gl::NanoTile t;
+        t.origin = o;
+        if (intValues) t.value = uint32_t(int32_t(rng() % 64) - 32);
+        else std::memcpy(&t.value, &pool[rng() % 8], 4);
+        t.active = rng() % 3 != 0;
+        in.tiles.push_back(t);
+    }
+}
+
 gl::NanoGridHeader header(const std::string& name, uint32_t gridClass, double background)
 {
     gl::NanoGridHeader h;
@@ -338,6 +381,39 @@ TEST_F(GpuNanoGrid, MaskBoolAndInt32LeavesEqualTheCpuBuilder)
     }
 }
 
+TEST_F(GpuNanoGrid, TilesEqualTheCpuBuilder)
+{
+    for (const uint32_t count : {1u, 40u, 700u}) {
+        SCOPED_TRACE(count);
+        Leaves sdf = randomLeaves(count, 1024, true, 20 * count);
+        addTiles(sdf, count, 1024, 20 * count + 1);
+        expectSameAsCpu<float>(sdf, header("sdf", 1, 0.2));
+        Leaves topology = randomLeaves(count, 5000, false, 20 * count + 2);
+        addTiles(topology, 2 * count, 5000, 20 * count + 3);
+        expectSameAsCpu<nanovdb::ValueMask>(topology, header("topology", 6, 0.0));
+        expectSameAsCpu<bool>(topology, header("solid", 0, 0.0));
+        Leaves closest = randomLeaves(count, 3000, true, 20 * count + 4, true);
+        addTiles(closest, count, 3000, 20 * count + 5, true);
+        expectSameAsCpu<int32_t>(closest, header("closest", 0, -1.0));
+    }
+    // Tiles alone (no leaf): lower nodes of tiles only; and device leaves with host tiles.
+    Leaves tilesOnly;
+    addTiles(tilesOnly, 30, 512, 5);
+    const size_t before = written.size();
+    expectSameAsCpu<float>(tilesOnly, header("tiles", 1, 0.5));
+    expectSameAsCpu<nanovdb::ValueMask>(tilesOnly, header("tiles", 6, 0.0));
+    // Not for nanovdb_validate: Debian's asserts on a grid of no leaf
+    // (NanoVDB.h's PtrDiff of the null first leaf), whoever built it.
+    written.resize(before);
+    Leaves mixed = randomLeaves(300, 2048, true, 6);
+    addTiles(mixed, 300, 2048, 7);
+    expectSameAsCpu<float>(mixed, header("udf", 0, 2.5), true);
+    // Past one block of the sort's shared-memory steps.
+    Leaves many = randomLeaves(1500, 4096, false, 8);
+    addTiles(many, 1500, 4096, 9);
+    expectSameAsCpu<bool>(many, header("solid", 0, 0.0));
+}
+
 TEST_F(GpuNanoGrid, NoLeavesGiveAnEmptyGrid)
 {
     expectSameAsCpu<float>(Leaves{}, header("empty", 1, 3.0));
@@ -357,6 +433,20 @@ TEST_F(GpuNanoGrid, BadLeavesAreRefused)
     EXPECT_THROW(gl::buildNanoGridGpu(device.context(), gl::NanoKind::Mask, leaves, header("odd", 0, 0.0)), InvalidInput);
     EXPECT_THROW(gl::buildNanoGridGpu(device.context(), gl::NanoKind::Mask, leaves, header(std::string(256, 'n'), 0, 0.0)),
                  InvalidInput);
+    in.origins[5] = {8, 8, 0};
+    // A tile on a leaf, a tile twice, a tile off the lattice, tiles missing.
+    std::vector<gl::NanoTile> tiles(2);
+    tiles[0].origin = in.origins[7];
+    leaves.tiles = tiles.data();
+    leaves.tileCount = 1;
+    EXPECT_THROW(gl::buildNanoGridGpu(device.context(), gl::NanoKind::Mask, leaves, header("on a leaf", 0, 0.0)), InvalidInput);
+    tiles[0].origin = tiles[1].origin = {4096, 0, 0};
+    leaves.tileCount = 2;
+    EXPECT_THROW(gl::buildNanoGridGpu(device.context(), gl::NanoKind::Mask, leaves, header("tile twice", 0, 0.0)), InvalidInput);
+    tiles[1].origin = {4096, 3, 0};
+    EXPECT_THROW(gl::buildNanoGridGpu(device.context(), gl::NanoKind::Mask, leaves, header("odd tile", 0, 0.0)), InvalidInput);
+    leaves.tiles = nullptr;
+    EXPECT_THROW(gl::buildNanoGridGpu(device.context(), gl::NanoKind::Mask, leaves, header("no tiles", 0, 0.0)), InvalidInput);
 }
 
 /// The leaves of a NanoVDB grid, shuffled (the GPU sorts them).

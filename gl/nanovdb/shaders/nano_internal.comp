@@ -1,8 +1,10 @@
 #version 450 core
 // Passes 5 and 6, a work group per lower (then upper) node: child masks and
-// offsets, the background in every other table entry, the bounding box,
-// flags and statistics merged from the children in index order; an upper
-// node also writes its root tile.
+// offsets, a lower node's 8^3 tiles (their values, and the value mask of
+// the active ones), the background in every other table entry, the
+// bounding box, flags and statistics merged from the active tiles, then
+// the children, each in index order (as the CPU builder folds them); an
+// upper node also writes its root tile.
 #define NANO_GROUP 256
 layout(local_size_x = NANO_GROUP) in;
 #include "nano_common.glsl"
@@ -19,30 +21,58 @@ uniform uint uRootAt;      // the root's word (upper nodes: their tiles follow i
 uniform uint uBackground;  // the background's bits
 
 shared uint childMask[1024]; // 32768 bits: an upper node's; a lower node uses 128 words
+shared uint tileMask[128];   // a lower node's tiles, active or not
+shared uint valueMask[128];  // its active tiles
 
 uint log2Dim() { return uUpper != 0u ? kNanoUpperLog2 : kNanoLowerLog2; }
 uint nodeWords() { return uUpper != 0u ? kNanoUpperWords : kNanoLowerWords; }
 uint tableAt() { return uUpper != 0u ? kNanoUpperTable : kNanoLowerTable; }
-uint firstChild(uint node) { return ranks[uUpper != 0u ? upperFirstLowerAt(node) : lowerFirstLeafAt(node)]; }
-uint firstLeafOfLower(uint lower) { return ranks[lowerFirstLeafAt(lower)]; }
-uint indexInParent(uint child) { return uUpper != 0u ? lowerIndexOf(firstLeafOfLower(child)) : leafIndexOf(child); }
+// A node's children: sorted entries (leaves and tiles) of a lower node, lower nodes of an upper one.
+uint firstChild(uint node) { return ranks[uUpper != 0u ? upperFirstLowerAt(node) : lowerFirstEntryAt(node)]; }
+uint firstEntryOfLower(uint lower) { return ranks[lowerFirstEntryAt(lower)]; }
+uint indexInParent(uint child) { return uUpper != 0u ? lowerIndexOf(firstEntryOfLower(child)) : leafIndexOf(child); }
+
+// A tile's value word as the table holds it (a bool's byte for Bool and Mask).
+uint tileWord(uint value) { return hasValues() ? value : uint(value != 0u); }
+
+// Tile entry c of a lower node at word `at`, index n: its table value and
+// mask bits; its statistics when active.
+NodeStats linkTile(uint at, uint c, uint n)
+{
+    uint tile = (inputLeaf(c) - uLeafCount) * kNanoTileWords;
+    uint value = tileWord(tiles[tile + 3u]);
+    grid[at + tableAt() + 2u * n] = value;
+    atomicOr(tileMask[n >> 5u], 1u << (n & 31u));
+    if (tiles[tile + 4u] == 0u) return emptyStats();
+    atomicOr(valueMask[n >> 5u], 1u << (n & 31u));
+    atomicAdd(counters[kNanoCountActiveTiles], 1u);
+    uint before = atomicAdd(counters[kNanoCountVoxelsLow], 512u);
+    if (before + 512u < before) atomicAdd(counters[kNanoCountVoxelsHigh], 1u);
+    ivec3 o = ivec3(tiles[tile], tiles[tile + 1u], tiles[tile + 2u]);
+    return NodeStats(o, o + ivec3(7), value, value);
+}
 
 // Children [begin, end), a contiguous run per invocation (so the reduction
-// keeps their order): mask bits, table offsets, statistics.
-NodeStats linkChildren(uint at, uint begin, uint end)
+// keeps their order): mask bits, table offsets, statistics; tiles' apart.
+void linkChildren(uint at, uint begin, uint end, out NodeStats fromTiles, out NodeStats fromChildren)
 {
     uint per = (end - begin + uint(NANO_GROUP) - 1u) / uint(NANO_GROUP);
     uint from = min(begin + gl_LocalInvocationIndex * per, end), to = min(from + per, end);
-    NodeStats s = emptyStats();
+    fromTiles = emptyStats();
+    fromChildren = emptyStats();
     for (uint c = from; c < to; ++c) {
         uint n = indexInParent(c);
+        if (uUpper == 0u && isTile(c)) {
+            fromTiles = merge(fromTiles, linkTile(at, c, n));
+            continue;
+        }
+        uint child = uUpper != 0u ? c : ranks[leafRankAt(c)]; // its place in its level
         atomicOr(childMask[n >> 5u], 1u << (n & 31u));
-        uvec2 offset = byteOffset(at, uChildAt + c * uChildWords);
+        uvec2 offset = byteOffset(at, uChildAt + child * uChildWords);
         grid[at + tableAt() + 2u * n] = offset.x;
         grid[at + tableAt() + 2u * n + 1u] = offset.y;
-        s = merge(s, loadStats(uChildStatsAt + c));
+        fromChildren = merge(fromChildren, loadStats(uChildStatsAt + child));
     }
-    return s;
 }
 
 void writeRootTile(uint node, uint at, ivec3 origin)
@@ -63,17 +93,30 @@ void main()
     uint t = gl_LocalInvocationIndex, at = uNodeAt + node * nodeWords();
     uint entries = 1u << (3u * log2Dim()), maskWords = entries >> 5u;
     for (uint w = t; w < maskWords; w += uint(NANO_GROUP)) childMask[w] = 0u;
+    for (uint w = t; w < 128u; w += uint(NANO_GROUP)) tileMask[w] = valueMask[w] = 0u;
     memoryBarrierShared();
     barrier();
     uint begin = firstChild(node), end = firstChild(node + 1u);
-    NodeStats s = reduceGroup(linkChildren(at, begin, end)); // its barriers order the mask bits too
+    NodeStats fromTiles, fromChildren;
+    linkChildren(at, begin, end, fromTiles, fromChildren);
+    // nanovdb::GridStats folds the active tiles first, then the children.
+    // The reductions' barriers order the mask bits too.
+    NodeStats s = reduceGroup(fromTiles);
+    barrier(); // every invocation has read the first result before the second reuses its memory
+    s = merge(s, reduceGroup(fromChildren));
     uint maskAt = at + (uUpper != 0u ? kNanoUpperChildMask : kNanoLowerChildMask);
-    for (uint w = t; w < maskWords; w += uint(NANO_GROUP)) grid[maskAt + w] = childMask[w];
-    for (uint n = t; n < entries; n += uint(NANO_GROUP))
-        if ((childMask[n >> 5u] & (1u << (n & 31u))) == 0u) grid[at + tableAt() + 2u * n] = uBackground;
+    for (uint w = t; w < maskWords; w += uint(NANO_GROUP)) {
+        grid[maskAt + w] = childMask[w];
+        if (uUpper == 0u) grid[at + kNanoNodeValueMask + w] = valueMask[w];
+    }
+    for (uint n = t; n < entries; n += uint(NANO_GROUP)) {
+        bool taken = (childMask[n >> 5u] & (1u << (n & 31u))) != 0u ||
+                     (uUpper == 0u && (tileMask[n >> 5u] & (1u << (n & 31u))) != 0u);
+        if (!taken) grid[at + tableAt() + 2u * n] = uBackground;
+    }
     if (t != 0u) return;
     storeStats(uStatsAt + node, s);
-    if (uUpper != 0u) writeRootTile(node, at, upperOrigin(firstLeafOfLower(begin)));
+    if (uUpper != 0u) writeRootTile(node, at, upperOrigin(firstEntryOfLower(begin)));
     bool any = hasActive(s);
     ivec3 lo = any ? s.lo : ivec3(0x7FFFFFFF), hi = any ? s.hi : ivec3(-0x7FFFFFFF - 1); // empty: nanovdb's empty box
     grid[at] = uint(lo.x), grid[at + 1u] = uint(lo.y), grid[at + 2u] = uint(lo.z);

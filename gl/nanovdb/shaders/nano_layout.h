@@ -67,11 +67,16 @@ SVO_CONST(uint) kNanoLeafWordsBool = 40u;   /* Boolean: 160 bytes */
 SVO_CONST(uint) kNanoStatWords = 12u;
 
 /* ---- Sort entries ---------------------------------------------------------
-   Per leaf, 4 key words compared in order: upper node origin x, y, z (each
-   coordinate >> 12, plus 2^19 so that unsigned order is signed order), then
-   lower index << 12 | leaf index; a fifth word holds the leaf's input index.
+   Per leaf and per 8^3 tile, 4 key words compared in order: upper node
+   origin x, y, z (each coordinate >> 12, plus 2^19 so that unsigned order is
+   signed order), then lower index << 12 | leaf index; a fifth word holds the
+   entry's input index (a leaf's index, or the leaf count plus a tile's).
    Padding entries (up to a power of two) have all key words 0xFFFFFFFF. */
 SVO_CONST(uint) kNanoSortWords = 5u;
+
+/* ---- Tiles (words per 8^3 tile of a lower node) ---------------------------
+   origin x, y, z, the value's word, 1 when active (else 0). */
+SVO_CONST(uint) kNanoTileWords = 5u;
 
 /* ---- Counters (words) ---------------------------------------------------- */
 SVO_CONST(uint) kNanoCountUpper = 0u;
@@ -80,6 +85,7 @@ SVO_CONST(uint) kNanoCountRepeated = 2u; /* 1 + sorted index of a repeated leaf,
 SVO_CONST(uint) kNanoCountVoxelsLow = 3u;
 SVO_CONST(uint) kNanoCountVoxelsHigh = 4u;
 SVO_CONST(uint) kNanoCountMisaligned = 5u; /* 1 + input index of an origin not a multiple of 8, or 0 */
+SVO_CONST(uint) kNanoCountActiveTiles = 6u; /* active 8^3 tiles (TreeData's first tile count) */
 SVO_CONST(uint) kNanoCountWords = 8u;
 
 /* ---- Binding slots --------------------------------------------------------- */
@@ -87,14 +93,16 @@ SVO_CONST(uint) kNanoCountWords = 8u;
 #define SVO_BIND_NANO_MASKS 1    /* per leaf: 16 uints, OpenVDB's bit order (input order) */
 #define SVO_BIND_NANO_VALUES 2   /* per leaf: 512 value words (input order), when given */
 #define SVO_BIND_NANO_SORT 3     /* kNanoSortWords per entry */
-#define SVO_BIND_NANO_RANKS 4    /* per sorted leaf: lower rank, upper rank; then per lower its first leaf, per upper its first lower */
+#define SVO_BIND_NANO_RANKS 4    /* nano_common.glsl's tables: per sorted entry its lower and upper rank, per lower its first entry, per upper its first lower, per entry its leaf rank, per leaf its entry */
 #define SVO_BIND_NANO_STATS 5    /* kNanoStatWords per node: leaves, then lowers, then uppers */
 #define SVO_BIND_NANO_COUNTERS 6 /* kNanoCountWords */
 #define SVO_BIND_NANO_GRID 7     /* the grid */
+#define SVO_BIND_NANO_TILES 8    /* per 8^3 tile: kNanoTileWords (input order) */
 
 #ifdef __cplusplus
 static_assert(distinctSlots({SVO_BIND_NANO_ORIGINS, SVO_BIND_NANO_MASKS, SVO_BIND_NANO_VALUES, SVO_BIND_NANO_SORT,
-                             SVO_BIND_NANO_RANKS, SVO_BIND_NANO_STATS, SVO_BIND_NANO_COUNTERS, SVO_BIND_NANO_GRID}));
+                             SVO_BIND_NANO_RANKS, SVO_BIND_NANO_STATS, SVO_BIND_NANO_COUNTERS, SVO_BIND_NANO_GRID,
+                             SVO_BIND_NANO_TILES}));
 } // namespace svo::gpu
 #endif
 

@@ -1,5 +1,6 @@
 #version 450 core
-// Pass 4, a work group per sorted leaf, 8 voxels an invocation: the leaf's
+// Pass 4, a work group per leaf in its laid-out order (sorted, tiles left
+// out: leafEntryAt), 8 voxels an invocation: the leaf's
 // origin, bounding box, flags, value mask and statistics, folded over its
 // active voxels in bit order as the CPU builder folds them (an invocation
 // folds its 8, the group merges them in order: nano_stats.glsl); its
@@ -24,7 +25,7 @@ void main()
 {
     uint i = groupIndex();
     if (i >= uLeafCount) return; // the whole group: no barrier is left waiting
-    uint t = gl_LocalInvocationIndex, leaf = inputLeaf(i), at = uLeafAt + i * uLeafWords;
+    uint t = gl_LocalInvocationIndex, leaf = inputLeaf(ranks[leafEntryAt(i)]), at = uLeafAt + i * uLeafWords;
     ivec3 origin = ivec3(origins[3u * leaf], origins[3u * leaf + 1u], origins[3u * leaf + 2u]);
     uint word = masks[leaf * 16u + (t >> 2u)];
     if ((t & 3u) == 0u) grid[at + kNanoLeafValueMask + (t >> 2u)] = word;

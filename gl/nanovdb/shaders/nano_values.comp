@@ -1,5 +1,5 @@
 #version 450 core
-// Pass 4b, 16 invocations per sorted leaf, 32 voxels each: Float and Int32
+// Pass 4b, 16 invocations per laid-out leaf (nano_leaves.comp), 32 voxels each: Float and Int32
 // leaves' values (given; else uActive where active, when set, and the background); Boolean leaves' value bits
 // (given values that are not 0, else the active voxels).
 layout(local_size_x = 256) in;
@@ -18,7 +18,7 @@ void main()
     uint g = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 256u + gl_GlobalInvocationID.x;
     uint i = g >> 4u, w = g & 15u;
     if (i >= uLeafCount) return;
-    uint leaf = inputLeaf(i), at = uLeafAt + i * uLeafWords;
+    uint leaf = inputLeaf(ranks[leafEntryAt(i)]), at = uLeafAt + i * uLeafWords;
     if (uType == kNanoTypeBool) {
         uint bits = masks[leaf * 16u + w];
         if (uHasValues != 0u) {

@@ -29,17 +29,20 @@ uint32_t leafWords(NanoKind kind)
     }
 }
 
-/// The leaves' buffers on the device: the caller's, or uploads of the host arrays.
+/// The leaves' buffers on the device: the caller's, or uploads of the host
+/// arrays; the tiles' upload.
 struct DeviceLeaves {
     const Buffer* origins = nullptr;
     const Buffer* masks = nullptr;
     const Buffer* values = nullptr; // null: no values
+    const Buffer* tiles = nullptr;  // null: no tiles
 };
 
 void checkLeaves(const NanoLeaves& in, const NanoGridHeader& header)
 {
     if (header.name.size() >= 256)
         throw InvalidInput(fmt::format("NanoVDB GPU build: grid name of {} bytes; NanoVDB holds at most 255", header.name.size()));
+    if (in.tileCount && !in.tiles) throw InvalidInput("NanoVDB GPU build: a tile count without tiles");
     if (!in.count) return;
     if (in.origins) {
         if (!in.masks) throw InvalidInput("NanoVDB GPU build: leaf origins without masks");
@@ -54,9 +57,17 @@ void checkLeaves(const NanoLeaves& in, const NanoGridHeader& header)
 
 DeviceLeaves deviceLeaves(const Context& context, const NanoLeaves& in)
 {
-    if (!in.origins) return {in.originBuffer, in.maskBuffer, in.valueBuffer};
+    static_assert(sizeof(NanoTile) == 4 * gpu::kNanoTileWords, "a tile as nano_layout.h reads it");
+    const Buffer* tiles = nullptr;
+    if (in.tileCount) {
+        tiles = &context.scratch("nanovdb tiles", sizeof(NanoTile) * uint64_t(in.tileCount));
+        tiles->write(0, sizeof(NanoTile) * uint64_t(in.tileCount), in.tiles);
+    }
+    if (!in.origins) return {in.originBuffer, in.maskBuffer, in.valueBuffer, tiles};
     const uint64_t n = in.count;
     DeviceLeaves d;
+    d.tiles = tiles;
+    if (!n) return d;
     d.origins = &context.scratch("nanovdb leaf origins", 12 * n);
     d.masks = &context.scratch("nanovdb leaf masks", 64 * n);
     d.origins->write(0, 12 * n, in.origins);
@@ -68,10 +79,11 @@ DeviceLeaves deviceLeaves(const Context& context, const NanoLeaves& in)
     return d;
 }
 
-/// The origin of input leaf @a i, for messages.
+/// The origin of input entry @a i (leaves, then tiles), for messages.
 std::array<int32_t, 3> originOf(const NanoLeaves& in, const DeviceLeaves& d, uint32_t i)
 {
     std::array<int32_t, 3> o{};
+    if (i >= in.count) return in.tiles[i - in.count].origin;
     if (in.origins) return in.origins[i];
     d.origins->read(12 * uint64_t(i), 12, o.data());
     return o;
@@ -85,17 +97,20 @@ struct Scratch {
     const Buffer* counters;
 };
 
+/// @a n real entries (leaves and tiles), @a entries the sort's power of two.
 Scratch bindScratch(const Context& context, const DeviceLeaves& d, uint64_t n, uint64_t entries)
 {
     Scratch s;
     s.sort = &context.scratch("nanovdb sort", entries * gpu::kNanoSortWords * 4);
-    s.ranks = &context.scratch("nanovdb ranks", (4 * n + 2) * 4);
+    s.ranks = &context.scratch("nanovdb ranks", (6 * n + 2) * 4); // nano_common.glsl's tables
     s.stats = &context.scratch("nanovdb stats", 3 * n * gpu::kNanoStatWords * 4);
     s.counters = &context.scratch("nanovdb counters", gpu::kNanoCountWords * 4);
     s.counters->clearUint(0, gpu::kNanoCountWords * 4);
-    d.origins->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_ORIGINS);
-    d.masks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_MASKS);
-    (d.values ? d.values : d.masks)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_VALUES); // bound, unread without values
+    // Slots a build without leaves or without tiles leaves unread are bound to the sort's buffer.
+    (d.origins ? d.origins : s.sort)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_ORIGINS);
+    (d.masks ? d.masks : s.sort)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_MASKS);
+    (d.values ? d.values : s.sort)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_VALUES);
+    (d.tiles ? d.tiles : s.sort)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_TILES);
     s.sort->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_SORT);
     s.ranks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_RANKS);
     s.stats->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_STATS);
@@ -108,10 +123,11 @@ Scratch bindScratch(const Context& context, const DeviceLeaves& d, uint64_t n, u
 /// (nano_sort_local.comp), a dispatch for all of them; only the longer
 /// distances take a dispatch a step (nano_sort.comp): 36 dispatches instead
 /// of 153 for 2^17 entries.
-void sortAndRank(const Context& context, uint32_t n, uint32_t entries)
+void sortAndRank(const Context& context, uint32_t leaves, uint32_t n, uint32_t entries)
 {
     const Program& keys = context.program(nanovdbShaders(), {"nano_keys.comp"});
-    keys.set("uLeafCount", n);
+    keys.set("uLeafCount", leaves);
+    keys.set("uEntryCount", n);
     keys.set("uEntries", entries);
     keys.dispatchRows((entries + 255) / 256);
     passBarrier();
@@ -135,20 +151,23 @@ void sortAndRank(const Context& context, uint32_t n, uint32_t entries)
         passBarrier();
     }
     const Program& scan = context.program(nanovdbShaders(), {"nano_scan.comp"});
-    scan.set("uLeafCount", n);
+    scan.set("uLeafCount", leaves);
+    scan.set("uEntryCount", n);
     scan.dispatch(1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
-/// Passes 4 to 6: leaves (and their values), lower nodes, upper nodes.
-void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bool hasValues, uint32_t background,
-               const std::optional<uint32_t>& active)
+/// Passes 4 to 6: leaves (and their values), lower nodes, upper nodes, of
+/// @a entries leaves and tiles.
+void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, uint32_t entries, bool hasValues,
+               uint32_t background, const std::optional<uint32_t>& active)
 {
     const uint32_t n = f.nodes[0];
     const Program& leaves = context.program(nanovdbShaders(), {"nano_leaves.comp"});
     const Program& values = context.program(nanovdbShaders(), {"nano_values.comp"});
     for (const Program* p : {&leaves, &values}) {
         p->set("uLeafCount", n);
+        p->set("uEntryCount", entries);
         p->set("uType", uint32_t(kind));
         p->set("uLeafAt", uint32_t(f.at[0] / 4));
         p->set("uLeafWords", leafWords(kind));
@@ -157,11 +176,14 @@ void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, bo
         p->set("uHasActive", active && !hasValues ? 1u : 0u);
         p->set("uActive", active.value_or(background));
     }
-    leaves.dispatchRows(n); // a group a leaf
-    if (kind != NanoKind::Mask) values.dispatchRows((16 * uint64_t(n) + 255) / 256); // masks hold no values
-    passBarrier();
+    if (n) {
+        leaves.dispatchRows(n); // a group a leaf
+        if (kind != NanoKind::Mask) values.dispatchRows((16 * uint64_t(n) + 255) / 256); // masks hold no values
+        passBarrier();
+    }
     const Program& internal = context.program(nanovdbShaders(), {"nano_internal.comp"});
     internal.set("uLeafCount", n);
+    internal.set("uEntryCount", entries);
     internal.set("uType", uint32_t(kind));
     internal.set("uBackground", background);
     internal.set("uRootAt", uint32_t(f.at[3] / 4));
@@ -370,27 +392,31 @@ void checksumOnGpu(const Context& context, NanoKind kind, const NanoTreeFacts& f
 
 void throwOnBadLeaves(const NanoLeaves& in, const DeviceLeaves& d, const uint32_t* counters)
 {
+    auto what = [&](uint32_t i) { return i < in.count ? "leaf" : "tile"; };
     if (uint32_t bad = counters[gpu::kNanoCountMisaligned]) {
         const auto o = originOf(in, d, bad - 1);
-        throw InvalidInput(fmt::format("NanoVDB GPU build: leaf origin ({}, {}, {}) is not a multiple of 8", o[0], o[1], o[2]));
+        throw InvalidInput(fmt::format("NanoVDB GPU build: {} origin ({}, {}, {}) is not a multiple of 8", what(bad - 1),
+                                       o[0], o[1], o[2]));
     }
-    if (uint32_t twice = counters[gpu::kNanoCountRepeated]) {
+    if (uint32_t twice = counters[gpu::kNanoCountRepeated]) { // the later of two equal keys: a tile when one is
         const auto o = originOf(in, d, twice - 1);
-        throw InvalidInput(fmt::format("NanoVDB GPU build: leaf ({}, {}, {}) given twice", o[0], o[1], o[2]));
+        throw InvalidInput(fmt::format("NanoVDB GPU build: {} ({}, {}, {}) given twice, or on a leaf", what(twice - 1), o[0],
+                                       o[1], o[2]));
     }
 }
 
-/// The grid of @a in.count > 0 leaves: sort, rank, size, fill, then the headers.
+/// The grid of leaves and tiles (some): sort, rank, size, fill, then the headers.
 NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const NanoLeaves& in, const NanoGridHeader& header,
                                bool hostCopy)
 {
     NanoTreeFacts f;
     f.nodes[0] = in.count;
     const DeviceLeaves d = deviceLeaves(context, in);
+    const uint32_t n = in.count + in.tileCount;
     uint32_t entries = 1;
-    while (entries < in.count) entries <<= 1;
-    const Scratch s = bindScratch(context, d, in.count, entries);
-    sortAndRank(context, in.count, entries);
+    while (entries < n) entries <<= 1;
+    const Scratch s = bindScratch(context, d, n, entries);
+    sortAndRank(context, in.count, n, entries);
     uint32_t counters[gpu::kNanoCountWords] = {};
     s.counters->read(0, sizeof counters, counters);
     checkGl("NanoVDB GPU build: sort and rank");
@@ -402,12 +428,13 @@ NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const Nano
     NanoGridBuffer out{context.lendScratch(kNanoGridScratch, f.gridBytes), f.gridBytes, f.nodes, {}};
     fillWords(context, out.grid, 0, f.gridBytes); // not a clear: see fill_words.h
     out.grid.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_GRID);
-    fillNodes(context, kind, f, d.values != nullptr, backgroundWord(kind, header.background), in.activeWord);
+    fillNodes(context, kind, f, n, d.values != nullptr, backgroundWord(kind, header.background), in.activeWord);
     std::vector<uint32_t> upperStats(size_t(f.nodes[2]) * gpu::kNanoStatWords);
     s.stats->read(uint64_t(f.nodes[0] + f.nodes[1]) * gpu::kNanoStatWords * 4, upperStats.size() * 4, upperStats.data());
     s.counters->read(0, sizeof counters, counters);
     checkGl("NanoVDB GPU build: nodes");
     f.voxels = uint64_t(counters[gpu::kNanoCountVoxelsHigh]) << 32 | counters[gpu::kNanoCountVoxelsLow];
+    f.activeTiles = counters[gpu::kNanoCountActiveTiles];
     foldUppers(f, kind, upperStats);
     std::vector<uint8_t> head = nanoHeader(kind, header, f);
     out.grid.write(0, head.size(), head.data());
@@ -438,10 +465,11 @@ NanoGridBuffer buildNanoGridGpu(const Context& context, NanoKind kind, const Nan
                                 bool hostCopy)
 {
     checkLeaves(in, header);
-    if (in.count > (1u << 26)) // the sort's entries and the stats' words stay within 32 bits
-        throw Unsupported(fmt::format("NanoVDB GPU build: {} leaves exceed one build (at most 2^26)", in.count));
+    const uint64_t entries = uint64_t(in.count) + in.tileCount;
+    if (entries > (1u << 26)) // the sort's entries and the stats' words stay within 32 bits
+        throw Unsupported(fmt::format("NanoVDB GPU build: {} leaves and tiles exceed one build (at most 2^26)", entries));
     const Context::Scope scope(context);
-    return in.count ? buildFromLeaves(context, kind, in, header, hostCopy) : emptyGrid(kind, header, hostCopy);
+    return entries ? buildFromLeaves(context, kind, in, header, hostCopy) : emptyGrid(kind, header, hostCopy);
 }
 
 } // namespace svo::gl

@@ -99,7 +99,8 @@ void putTree(std::vector<uint8_t>& b, const NanoTreeFacts& tree)
         put(b, at + 8 * level, tree.nodes[level] ? tree.at[level] - treeAt : uint64_t(0));
     put(b, at + 24, tree.at[3] - treeAt);
     for (size_t level = 0; level < 3; ++level) put(b, at + 32 + 4 * level, tree.nodes[level]);
-    put(b, at + 56, tree.voxels); // tile counts (44..55) stay 0: no tiles
+    put(b, at + 44, tree.activeTiles); // active tiles per level: 8³ tiles only
+    put(b, at + 56, tree.voxels);
 }
 
 void putRoot(std::vector<uint8_t>& b, NanoKind kind, const NanoGridHeader& h, const NanoTreeFacts& tree)

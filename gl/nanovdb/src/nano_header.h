@@ -17,7 +17,8 @@ struct NanoTreeFacts {
     std::array<uint32_t, 3> nodes{0, 0, 0}; ///< leaves, lower, upper nodes
     std::array<uint64_t, 4> at{0, 0, 0, 0}; ///< byte offsets of the first leaf, lower, upper node and the root
     uint64_t gridBytes = 0;
-    uint64_t voxels = 0;
+    uint64_t voxels = 0;                    ///< active voxels, active tiles' included
+    uint32_t activeTiles = 0;               ///< active 8³ tiles
     bool any = false;                       ///< some voxel is active
     std::array<int32_t, 6> bbox{};          ///< index box of active voxels (min, max), when any
     uint32_t minimum = 0, maximum = 0;      ///< value bits, when any (Float, Int32)

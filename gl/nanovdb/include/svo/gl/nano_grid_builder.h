@@ -16,9 +16,11 @@
 /// host writes from the upper nodes' statistics it reads back (a few words
 /// per upper node).
 ///
-/// Not made here: tiles (a solid's 8³ tiles and a winding-signed level
-/// set's inside bricks stay with the CPU builder; a parity-signed level
-/// set's are flood filled on the host copy, svo::vdb::signedFloodFill). The
+/// Tiles: 8³ tiles of lower nodes (a solid's whole inside bricks, a
+/// winding-signed level set's inside bricks beyond its band), lower nodes
+/// of tiles alone included; not 128³ tiles of upper nodes, nor the values a
+/// signed flood fill gives (a parity-signed level set's are flood filled on
+/// the host copy, svo::vdb::signedFloodFill). The
 /// checksum only when NanoGridHeader::checksum asks (nano_crc.comp, a CRC
 /// per node); otherwise the grid's checksum field says "none" (all bits
 /// set, as nanovdb::ChecksumMode::Disable leaves it) and
@@ -41,7 +43,15 @@ namespace svo::gl {
 /// only) and Bool carry none.
 enum class NanoKind : uint32_t { Float = 1, Int32 = 4, Mask = 8, Bool = 11 };
 
-/// @brief The leaves, in any order, on the host or on the device.
+/// @brief An 8³ tile of a lower node: one value for its whole brick.
+struct NanoTile {
+    std::array<int32_t, 3> origin{0, 0, 0}; ///< a multiple of 8, on no leaf
+    uint32_t value = 0;                     ///< the value's word (Bool, Mask: non-zero is true)
+    uint32_t active = 0;                    ///< 1: its 512 voxels are active
+};
+
+/// @brief The leaves, in any order, on the host or on the device, and
+/// 8³ tiles on the host.
 struct NanoLeaves {
     uint32_t count = 0; ///< number of leaves
     /// Host input (used when `origins` is set): per leaf its origin (a
@@ -59,6 +69,8 @@ struct NanoLeaves {
     /// active voxel holds (a fog volume's 1.0f bits), the background the
     /// others; when not, every voxel holds the background.
     std::optional<uint32_t> activeWord;
+    uint32_t tileCount = 0;           ///< number of 8³ tiles
+    const NanoTile* tiles = nullptr;  ///< the tiles, in any order (host)
 };
 
 /// @brief What a grid holds besides its voxels (svo::vdb::NanoGridInfo's facts).
@@ -105,9 +117,10 @@ uint32_t backgroundWord(NanoKind kind, double background);
 /// @return the grid, with every byte svo::vdb::buildNanoGrid writes for the
 ///         same leaves, the checksum only when the header asks (see the file
 ///         comment); a grid of leaves in the buffer lent as kNanoGridScratch
-/// @throw svo::InvalidInput for a leaf origin that is not a multiple of 8, a
-///        repeated leaf, a name of 256 bytes or more, or inconsistent leaves
-///        (missing masks, device buffers too small)
+/// @throw svo::InvalidInput for a leaf or tile origin that is not a multiple
+///        of 8, a repeated leaf or tile, a tile on a leaf, a name of 256 bytes
+///        or more, or inconsistent leaves (missing masks or tiles, device
+///        buffers too small)
 /// @throw svo::Unsupported for a grid beyond 32-bit word addressing (16 GiB)
 /// @throw svo::OutOfMemory or svo::DeviceError on a GL error
 NanoGridBuffer buildNanoGridGpu(const Context& context, NanoKind kind, const NanoLeaves& leaves,
