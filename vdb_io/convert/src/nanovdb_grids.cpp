@@ -337,7 +337,7 @@ std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double ex
     return out;
 }
 
-NanoHandle solidNanoGrid(const SolidBricks& solid, const GridSpec& lattice, GridOptions::Topology topology, bool checksum)
+SparseVoxels<bool> solidVoxels(const SolidBricks& solid)
 {
     const GridSpec& g = solid.grid;
     const FieldSigns& signs = solid.signs;
@@ -356,6 +356,12 @@ NanoHandle solidNanoGrid(const SolidBricks& solid, const GridSpec& lattice, Grid
     }
     for (const BrickCoord& b : signs.insideBricks) s.tiles.push_back({brickOrigin(g, b), 1, true, true});
     fillRuns(s, g, signs.runs, true, true, false);
+    return s;
+}
+
+NanoHandle solidNanoGrid(const SolidBricks& solid, const GridSpec& lattice, GridOptions::Topology topology, bool checksum)
+{
+    SparseVoxels<bool> s = solidVoxels(solid);
     if (topology == GridOptions::Topology::Mask)
         return buildNanoGrid<nanovdb::ValueMask>(s, infoFor(lattice, "solid", nanovdb::GridClass::Topology, checksum));
     // NanoVDB keeps class Topology for ValueMask grids (nanovdb::isValid).

@@ -13,6 +13,7 @@
 #include "svo/core/field_bricks.h"
 #include "svo/core/octree.h"
 #include "svo/vdb_io/grid_options.h"
+#include "svo/vdb_io/nanovdb_layout.h"
 
 namespace svo::vdb {
 
@@ -49,6 +50,13 @@ std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double ex
 /// grid's checksum is not updated (updateFullChecksum does).
 /// @param grid a grid with leaves and internal nodes, no root tiles
 void signedFloodFill(nanovdb::NanoGrid<float>& grid);
+
+/// @brief A solid's voxels as solidNanoGrid lays them out: a leaf per brick
+/// with an inside voxel (its mask the inside voxels), whole bricks inside as
+/// active 8³ tiles (level 1, value true); values left empty.
+/// @param solid the solid's bricks and signs
+/// @return the leaves and tiles, in no particular order
+SparseVoxels<bool> solidVoxels(const SolidBricks& solid);
 
 /// @brief A solid as the grid "solid", as solidGrid (field_grids.h) and
 /// withTopology (reader_grids.h) give it: inside voxels active, whole bricks
