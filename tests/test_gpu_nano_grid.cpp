@@ -563,10 +563,19 @@ void expectSameBytes(const std::vector<vdb::NanoHandle>& gpu, const std::vector<
     }
 }
 
-/// The front door's scenes (test_nanovdb_layout's closed and open meshes).
+/// The front door's scenes: test_nanovdb_layout's closed box and sphere
+/// open at its seams, and a sphere without its top cap (a hole whose
+/// winding numbers classify bricks far from any triangle voxel by voxel).
 std::vector<std::pair<std::string, TriangleMesh>> frontDoorScenes()
 {
-    return {{"sphere", test::sphere({0.3, -0.2, 0.1}, 1.0, 48, 24)}, {"box", test::box({-1, -0.5, -0.25}, {1, 0.5, 0.25})}};
+    TriangleMesh cut = test::sphere({0.3, -0.2, 0.1}, 1.0, 48, 24);
+    std::vector<std::array<uint32_t, 3>> kept;
+    for (const auto& t : cut.triangles)
+        if (cut.positions[t[0]][2] + cut.positions[t[1]][2] + cut.positions[t[2]][2] < 3 * (0.1 + 0.6)) kept.push_back(t);
+    cut.triangles = std::move(kept);
+    return {{"sphere", test::sphere({0.3, -0.2, 0.1}, 1.0, 48, 24)},
+            {"box", test::box({-1, -0.5, -0.25}, {1, 0.5, 0.25})},
+            {"cut sphere", std::move(cut)}};
 }
 
 /// The path before the GPU builder: the same call's bricks read back
@@ -703,15 +712,35 @@ TEST_F(GpuNanoGrid, FrontDoorSignedFieldsEqualTheCpuLayout)
             const bool parity = stats.sign.rfind("parity", 0) == 0;
             EXPECT_TRUE(parity || stats.sign.rfind("winding", 0) == 0) << stats.sign;
             signedBy.insert(parity);
-            EXPECT_EQ(hasStage(stats, "band leaves"), parity);
-            EXPECT_EQ(hasStage(stats, "nanovdb grid (gpu)"), parity);
+            // Both on the GPU builder; the values beyond parity's band flood filled.
+            EXPECT_TRUE(hasStage(stats, "band leaves"));
+            EXPECT_TRUE(hasStage(stats, "nanovdb grid (gpu)"));
             EXPECT_EQ(hasStage(stats, "nanovdb flood fill"), parity);
-            EXPECT_EQ(hasStage(stats, "band packing"), !parity);
+            EXPECT_FALSE(hasStage(stats, "band packing"));
             const auto readBack = readBackLayout(device, mesh, grid, ls);
             const DistanceBricks& field = readBack.first;
             const std::vector<vdb::NanoHandle>& cpu = readBack.second;
             expectSameBytes(gpu, cpu, written);
             ASSERT_EQ(gpu.size(), closest ? 2u : 1u);
+            if (!parity) { // the scene has what winding signs add: leaves of inside voxels alone, inside tiles, and (the hole) bricks beyond the band
+                size_t insideOnly = 0;
+                for (size_t b = 0; b < field.bricks.size(); ++b) {
+                    bool any = false;
+                    uint32_t packed = field.offsets[b];
+                    for (uint32_t v = 0; v < 512; ++v) {
+                        if (!((field.near[b].words[v >> 6] >> (v & 63)) & 1u)) continue;
+                        const bool inside = (field.signs.inside[b].words[v >> 6] >> (v & 63)) & 1u;
+                        any = any || field.distances[packed] < (inside ? ls.interiorBand : ls.exteriorBand);
+                        ++packed;
+                    }
+                    insideOnly += !any && field.signs.inside[b].count();
+                }
+                EXPECT_GT(insideOnly, 5u);
+                EXPECT_GT(field.signs.insideBricks.size(), 20u);
+                if (name == "cut sphere") {
+                    EXPECT_GT(field.signs.partial.size(), 10u);
+                }
+            }
             const auto* sdf = gpu[0].grid<float>();
             ASSERT_NE(sdf, nullptr);
             EXPECT_EQ(sdf->gridClass(), nanovdb::GridClass::LevelSet);
@@ -782,13 +811,19 @@ TEST_F(GpuNanoGrid, FrontDoorSolidsEqualTheCpuLayout)
             options.stats = nullptr;
             std::vector<vdb::NanoHandle> onCpu;
             onCpu.push_back(voxelizer.solidNanoVdb(mesh, grid, options, SignOptions{}, topology));
+            // Not the cut sphere's: in its hole, centres whose winding number is
+            // 1/2 to within float rounding take either side, the CPU's climb
+            // one and the GPU's walk the other (test_cpu_fields' WindingTies).
             std::vector<nanovdb::GridHandle<nanovdb::HostBuffer>> unused;
-            expectSameBytes(onCpu, gpu, unused);
+            if (name != "cut sphere") {
+                SCOPED_TRACE("the CPU backend");
+                expectSameBytes(onCpu, gpu, unused);
+            }
             const auto* meta = gpu[0].gridMetaData();
             EXPECT_EQ(stats.voxels, meta->activeVoxelCount());
             const auto& tree = *reinterpret_cast<const nanovdb::NanoTree<bool>::DataType*>(
                 reinterpret_cast<const uint8_t*>(gpu[0].data()) + sizeof(nanovdb::GridData));
-            if (name == "sphere") {
+            if (name != "box") {
                 EXPECT_GT(tree.mTileCount[0], 10u);
             }
             EXPECT_EQ(tree.mTileCount[0], uint32_t(bricks.signs.insideBricks.size()) + [&] {
@@ -797,7 +832,7 @@ TEST_F(GpuNanoGrid, FrontDoorSolidsEqualTheCpuLayout)
                 return whole;
             }());
             // The sphere's centre is inside; far away is not.
-            const Vec3d centre = grid.toIndex(name == "sphere" ? Vec3d{0.3, -0.2, 0.1} : Vec3d{0.0, 0.0, 0.0});
+            const Vec3d centre = grid.toIndex(name != "box" ? Vec3d{0.3, -0.2, 0.1} : Vec3d{0.0, 0.0, 0.0});
             const nanovdb::Coord c(int32_t(std::floor(centre[0])), int32_t(std::floor(centre[1])), int32_t(std::floor(centre[2])));
             if (mask) {
                 auto acc = gpu[0].grid<nanovdb::ValueMask>()->getAccessor();

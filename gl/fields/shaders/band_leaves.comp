@@ -8,8 +8,12 @@
 // value is the distance in world units, float(double(d) * scale) exactly,
 // where active, the background elsewhere, negated (the sign bit flipped)
 // where the voxel is inside; and, when computed, the closest triangle where
-// active, -1 elsewhere. Inside voxels come from the host's parity scan
-// (uSigned; none for an unsigned field).
+// active, -1 elsewhere. Inside voxels come from the host (uSigned: the
+// parity scan's, or winding numbers'; none for an unsigned field). With
+// winding numbers a brick with inside voxels and none active takes a leaf
+// too, in a second dispatch (uInsideOnly), so that those leaves follow
+// every leaf with an active voxel (the closest triangles' grid takes only
+// the first ones), as levelSetNanoGrids keeps them.
 // One workgroup per slot of the brick table (empty slots are skipped); thread
 // t holds voxels 8t .. 8t+7 (x = t >> 3, y = t & 7, z = 0..7), the byte 8y of
 // the brick's 64-bit mask word x.
@@ -35,6 +39,7 @@ uniform uint uBackground; // float bits of the background
 uniform ivec3 uAnchor;    // index coordinates of the field grid's local origin
 uniform uint uClosest;    // 1: closest triangles were computed
 uniform uint uSigned;     // 1: `inside` holds the inside voxels of each brick
+uniform uint uInsideOnly; // 1: only bricks with inside voxels and none active take leaves
 
 shared uint sMask[16];
 shared uint sLeaf;
@@ -57,9 +62,13 @@ void main()
         atomicOr(sMask[2u * (t >> 3u) + ((t & 7u) >> 2u)], bits << (8u * (t & 3u)));
         barrier();
         if (t == 0u) {
-            uint any = 0u;
+            uint any = 0u, anyInside = 0u;
             for (uint i = 0u; i < 16u; ++i) any |= sMask[i];
-            sLeaf = any != 0u ? atomicAdd(counters[kLeafCounter], 1u) : kNoChild;
+            if (uInsideOnly != 0u)
+                for (uint i = 0u; i < 16u; ++i) anyInside |= inside[16u * brick + i];
+            bool takes = uInsideOnly != 0u ? any == 0u && anyInside != 0u : any != 0u;
+            sLeaf = takes ? atomicAdd(counters[kLeafCounter], 1u) : kNoChild;
+            if (takes && uInsideOnly != 0u) atomicAdd(counters[kInsideLeafCounter], 1u);
         }
         barrier();
         uint leaf = sLeaf;

@@ -46,8 +46,9 @@ SVO_CONST(uint) kTableWords = 4u;
 #define SVO_BIND_LEAVES_MASKS 1   /* 16 uints per leaf: the voxels nearer than the band */
 #define SVO_BIND_LEAVES_VALUES 2  /* 512 per leaf: float bits of the distance in world units, else the background */
 #define SVO_BIND_LEAVES_CLOSEST 6 /* 512 per leaf: the closest triangle where active, else -1 */
-#define SVO_BIND_LEAVES_INSIDE 8  /* 16 uints per brick: the voxels inside (a field signed by parity) */
+#define SVO_BIND_LEAVES_INSIDE 8  /* 16 uints per brick: the voxels inside (a signed field) */
 SVO_CONST(uint) kLeafCounter = 2u;
+SVO_CONST(uint) kInsideLeafCounter = 3u; /* of those, leaves with inside voxels and none active (winding signs) */
 /* first item, voxel box origin x y z, box size x y z, 1 when the box is one item (else one per brick it spans) */
 SVO_CONST(uint) kItemWords = 8u;
 

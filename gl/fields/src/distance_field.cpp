@@ -361,8 +361,10 @@ PackedBand packBand(const Context& context, const FieldBuffers& buffers, const F
 
 /// A field's band as leaves on the device (band_leaves.comp), in place of
 /// packBand, timed into `stats`; the count is read with the field's counters
-/// (readField). @a inside: per brick, the voxels inside (a field signed by
-/// parity), or null. Every pass's slots are bound again after.
+/// (readField). @a inside: per brick, the voxels inside (a signed field), or
+/// null; with winding signs (FieldRequest::insideVoxels) a second dispatch
+/// gives the bricks with inside voxels and none active their leaves. Every
+/// pass's slots are bound again after.
 FieldLeaves bandLeaves(const Context& context, const FieldBuffers& buffers, const GridSpec& grid,
                        const FieldRequest& request, uint32_t tableMask, const Buffer* inside, RunStats& stats)
 {
@@ -372,9 +374,11 @@ FieldLeaves bandLeaves(const Context& context, const FieldBuffers& buffers, cons
             grid.anchor[a] + int64_t(grid.dims[a]) > std::numeric_limits<int32_t>::max())
             throw Unsupported("the field's grid reaches beyond 32-bit index coordinates");
     FieldLeaves leaves;
-    leaves.origins = &context.scratch("band leaf origins", nb * 12);
-    leaves.masks = &context.scratch("band leaf masks", nb * sizeof(Brick));
-    leaves.values = &context.scratch("band leaf values", nb * 2048);
+    const uint64_t capacity = nb + request.extraLeaves;
+    leaves.capacity = uint32_t(capacity);
+    leaves.origins = &context.scratch("band leaf origins", capacity * 12);
+    leaves.masks = &context.scratch("band leaf masks", capacity * sizeof(Brick));
+    leaves.values = &context.scratch("band leaf values", capacity * 2048);
     if (buffers.closest) leaves.closest = &context.scratch("band leaf closest", nb * 2048);
     leaves.origins->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_LEAVES_ORIGINS);
     leaves.masks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_LEAVES_MASKS);
@@ -397,11 +401,15 @@ FieldLeaves bandLeaves(const Context& context, const FieldBuffers& buffers, cons
     program.set("uBackground", background);
     program.set("uAnchor", int(grid.anchor[0]), int(grid.anchor[1]), int(grid.anchor[2]));
     program.set("uClosest", buffers.closest ? 1u : 0u);
-    // A workgroup a table slot, its threads looping 1 + 8 + 16 + 8 times.
+    // A workgroup a table slot, its threads looping 1 + 8 + 16 + 16 + 8 times.
     const uint64_t slots = uint64_t(tableMask) + 1;
-    dispatchLooping(program, slots, uint32_t(std::min<uint64_t>(slots, context.info().software ? 256 : 65535)),
-                    context.info().loopLimit, 96, "uSlotFirst", "uSlots");
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    for (const uint32_t insideOnly : {0u, 1u}) {
+        if (insideOnly && !request.insideVoxels) break;
+        program.set("uInsideOnly", insideOnly);
+        dispatchLooping(program, slots, uint32_t(std::min<uint64_t>(slots, context.info().software ? 256 : 65535)),
+                        context.info().loopLimit, 112, "uSlotFirst", "uSlots");
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
     timer.end();
     checkGl("band leaves");
     waitForGpu([&] { request.checkpoint(0.5, "distance field"); });
@@ -432,6 +440,16 @@ const Buffer* insideVoxels(const FieldBuffers& buffers, const FieldRequest& requ
     return buffers.flips;
 }
 
+/// Winding signs' inside voxels uploaded for band_leaves.comp.
+const Buffer* uploadInside(const Context& context, const std::vector<Brick>& inside)
+{
+    const uint64_t bytes = std::max<uint64_t>(inside.size(), 1) * sizeof(Brick);
+    const Buffer& buffer = context.scratch("field inside voxels", bytes);
+    if (!inside.empty()) buffer.write(0, inside.size() * sizeof(Brick), inside.data());
+    checkGl("inside voxels");
+    return &buffer;
+}
+
 /// The GPU bytes the passes held: the uploads, the per-brick buffers and the larger item list.
 uint64_t fieldGpuBytes(const FieldBuffers& buffers, const FieldItems& w, uint64_t nb)
 {
@@ -449,9 +467,10 @@ void readField(const FieldBuffers& buffers, const PackedBand& packed, uint64_t n
     const auto t0 = Clock::now();
     TimerQuery readTimer;
     readTimer.begin();
-    uint32_t count[3] = {0, 0, 0}; // lost crossings, packed band values, band leaves
-    buffers.counters.read(0, 12, count);
+    uint32_t count[4] = {0, 0, 0, 0}; // lost crossings, packed band values, band leaves, of which inside only
+    buffers.counters.read(0, 16, count);
     result.leaves.count = count[2];
+    result.leaves.activeCount = count[2] - count[3];
     if (packed.masks) {
         result.bandMasks.resize(nb);
         packed.masks->readBulk(0, nb * sizeof(Brick), result.bandMasks.data());
@@ -510,7 +529,9 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
         distances && !leaves ? packBand(context, buffers, request, smallTriangles, stats) : PackedBand{};
     if (request.crossings) passes.crossings(grid, items);
     if (leaves) {
-        const Buffer* inside = request.crossings ? insideVoxels(buffers, request, result, stats) : nullptr;
+        const Buffer* inside = request.crossings      ? insideVoxels(buffers, request, result, stats)
+                               : request.insideVoxels ? uploadInside(context, *request.insideVoxels)
+                                                      : nullptr;
         result.leaves = bandLeaves(context, buffers, grid, request, tableMask, inside, stats);
     }
     stats.stages.front().gpuMs = uploadTimer.milliseconds();
@@ -521,6 +542,7 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     if (leaves) { // the leaves hold the band now: the per-brick field's memory goes to what the caller builds next
         context.releaseScratch("field distances");
         context.releaseScratch("field closest triangles");
+        context.releaseScratch("field inside voxels");
     }
     if (report) *report = std::move(stats);
     return result;

@@ -25,7 +25,9 @@
 #include "svo/core/sign_choice.h"
 #include "svo/core/winding_signs.h"
 #include "svo/core/winding_tree.h"
+#include "svo/gl/buffer.h"
 #include "svo/gl/distance_field.h"
+#include "svo/gl/gl_api.h"
 #include "svo/gl/voxelize_pipeline.h"
 #include "svo/gl/winding_number.h"
 
@@ -443,17 +445,43 @@ DistanceBricks bricksOf(Device& device, const TriangleMesh& mesh, const LevelSet
     return out;
 }
 
-/// Whether the band can stay on the device: a GL backend, no region, and no
-/// winding numbers (their signs beyond the band are tiles, which the GPU
-/// builder does not make).
-bool leavesOnDevice(Device& device, const VoxelizeSettings& settings, const FieldSetup& f)
+/// Whether the band can stay on the device: a GL backend and no region.
+bool leavesOnDevice(Device& device, const VoxelizeSettings& settings)
 {
-    return !settings.region && !f.winding && !runsOnCpu(device, settings);
+    return !settings.region && !runsOnCpu(device, settings);
+}
+
+/// Winding signs' bricks beyond the band classified voxel by voxel, added
+/// after the band's leaves: nothing active, the background negated where
+/// inside (levelSetNanoGrids' leaves of FieldSigns::partial).
+void addPartialLeaves(const Context& context, const GridSpec& g, const FieldSigns& signs, float background,
+                      FieldLeaves& leaves)
+{
+    const size_t n = signs.partial.size();
+    if (!n) return;
+    std::vector<std::array<int32_t, 3>> origins(n);
+    std::vector<Brick> masks(n);
+    std::vector<float> values(512 * n, background);
+    for (size_t i = 0; i < n; ++i) {
+        const auto& [b, inside] = signs.partial[i];
+        for (int a = 0; a < 3; ++a) origins[i][size_t(a)] = int32_t(g.anchor[size_t(a)] + 8 * int64_t(b[size_t(a)]));
+        for (uint32_t v = 0; v < 512; ++v)
+            if ((inside.words[v >> 6] >> (v & 63)) & 1u) values[512 * i + v] = -background;
+    }
+    const uint64_t at = leaves.count;
+    const Context::Scope scope(context);
+    leaves.origins->write(12 * at, 12 * n, origins.data());
+    leaves.masks->write(sizeof(Brick) * at, sizeof(Brick) * n, masks.data());
+    leaves.values->write(2048 * at, 2048 * n, values.data());
+    checkGl("partial leaves");
+    leaves.count += uint32_t(n);
 }
 
 /// The band as NanoVDB leaves on the device, once the field is set up
-/// (leavesOnDevice): distances, and for a signed field the parity scan's
-/// inside voxels negated, as levelSetNanoGrids lays them out.
+/// (leavesOnDevice): distances, and for a signed field the inside voxels
+/// negated (the parity scan's, or winding numbers', computed first), as
+/// levelSetNanoGrids lays them out; with winding numbers, the leaves of the
+/// bricks beyond the band it adds, and the whole bricks inside it makes tiles.
 DeviceField deviceLeavesOf(Device& device, const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
                            const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats,
                            const FieldSetup& f)
@@ -465,10 +493,19 @@ DeviceField deviceLeavesOf(Device& device, const TriangleMesh& mesh, const GridS
     request.leafScale = grid.voxelSize;
     request.leafBackground = float(ls.exteriorBand * grid.voxelSize); // as levelSetNanoGrids
     request.leafBands = {float(ls.exteriorBand), float(f.signedField ? ls.interiorBand : ls.exteriorBand)};
+    FieldSigns signs;
+    if (f.winding) {
+        signs = windingSigns(device.context(), mesh, f.g, request.bricks, ls.sign.windingAccuracy, std::nullopt,
+                             checkpoint.part(0.05, 0.3), stats);
+        request.insideVoxels = &signs.inside;
+        request.extraLeaves = uint32_t(signs.partial.size());
+    }
     FieldResult field = fieldPass(device.context(), mesh, f.g, request, false, stats);
-    if (f.signedField) noteOpenColumns(stats, field.openColumns, "signs above its last crossing count as outside");
+    if (f.signedField && !f.winding)
+        noteOpenColumns(stats, field.openColumns, "signs above its last crossing count as outside");
+    if (f.winding) addPartialLeaves(device.context(), f.g, signs, request.leafBackground, field.leaves);
     stats.startup = device.takeStartup(stats.warnings);
-    return {f.g, field.leaves, f.signedField};
+    return {f.g, field.leaves, f.signedField, f.winding, std::move(signs.insideBricks)};
 }
 
 } // namespace
@@ -500,7 +537,7 @@ LevelSetBand levelSetBand(Device& device, const TriangleMesh& mesh, const GridSp
 {
     const FieldSetup f = setUpField(mesh, grid, ls, settings, stats);
     LevelSetBand out;
-    if (leavesOnDevice(device, settings, f))
+    if (leavesOnDevice(device, settings))
         out.device = deviceLeavesOf(device, mesh, grid, ls, settings, checkpoint, stats, f);
     else
         out.host = bricksOf(device, mesh, ls, settings, checkpoint, stats, f);

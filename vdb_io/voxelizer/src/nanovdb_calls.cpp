@@ -1,8 +1,8 @@
 // NanoVDB grids from the front door (svo/voxelizer.h): the field passes'
 // bricks laid out as NanoVDB grids (svo/vdb_io/nanovdb_grids.h), with no
-// OpenVDB tree between them; an unsigned or parity-signed field on a GL
-// backend built on the GPU from leaves that never leave it
-// (svo/gl/nano_grid_builder.h).
+// OpenVDB tree between them; on a GL backend, a field's grids built on the
+// GPU from leaves that never leave it (svo/gl/nano_grid_builder.h), and a
+// surface's and a solid's from their bricks uploaded.
 #include <cstring>
 #include <functional>
 #include <fmt/format.h>
@@ -137,8 +137,8 @@ vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const 
     return out;
 }
 
-/// The CPU layout of device leaves read back (float or int32 values): the
-/// grid the GPU builder makes of them, with its checksum.
+/// The CPU layout of device leaves read back (float or int32 values) and
+/// the host tiles: the grid the GPU builder makes of them, with its checksum.
 template <typename V>
 vdb::NanoHandle laidOutOnHost(const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header, V background,
                               bool checksum = true)
@@ -154,6 +154,12 @@ vdb::NanoHandle laidOutOnHost(const gl::NanoLeaves& leaves, const gl::NanoGridHe
         leaves.originBuffer->readBulk(0, 12 * n, s.origins.data());
         leaves.maskBuffer->readBulk(0, 64 * n, s.masks.data());
         leaves.valueBuffer->readBulk(0, 2048 * n, s.values.data());
+    }
+    for (uint32_t i = 0; i < leaves.tileCount; ++i) {
+        const gl::NanoTile& t = leaves.tiles[i];
+        V value;
+        std::memcpy(&value, &t.value, 4);
+        s.tiles.push_back({t.origin, 1, value, t.active != 0});
     }
     vdb::NanoGridInfo info;
     info.name = header.name;
@@ -188,10 +194,29 @@ gl::NanoGridHeader distanceHeader(const GridSpec& grid, const LevelSetOptions& l
     return header;
 }
 
+/// A winding-signed field's whole bricks inside beyond the band: inactive
+/// 8³ tiles of the negated background.
+std::vector<gl::NanoTile> insideTiles(const gl::DeviceField& field, float background)
+{
+    uint32_t word = 0;
+    const float inside = -background;
+    std::memcpy(&word, &inside, 4);
+    std::vector<gl::NanoTile> tiles;
+    tiles.reserve(field.insideBricks.size());
+    for (const BrickCoord& b : field.insideBricks) {
+        gl::NanoTile t;
+        for (size_t a = 0; a < 3; ++a) t.origin[a] = int32_t(field.grid.anchor[a] + 8 * int64_t(b[a]));
+        t.value = word;
+        tiles.push_back(t);
+    }
+    return tiles;
+}
+
 /// A field's grids on the GPU: its band's leaves stay on the device
 /// (gl::levelSetBand) and the builder lays out the grids levelSetNanoGrids
-/// lays out on the host, byte for byte; a signed field's values beyond the
-/// band are flood filled on the host copy, as levelSetNanoGrids does.
+/// lays out on the host, byte for byte: a winding-signed field's whole
+/// bricks inside as tiles; a parity-signed field's values beyond the band
+/// flood filled on the host copy, as levelSetNanoGrids does.
 std::vector<vdb::NanoHandle> fieldGridsOnGpu(const gl::Context& context, const gl::DeviceField& field,
                                              const GridSpec& grid, const LevelSetOptions& ls, VoxelizeStats& stats)
 {
@@ -200,12 +225,19 @@ std::vector<vdb::NanoHandle> fieldGridsOnGpu(const gl::Context& context, const g
     gl::NanoGridHeader header = distanceHeader(grid, ls, field.signedField);
     std::vector<vdb::NanoHandle> out;
     const float background = float(header.background);
-    const bool flood = field.signedField;
+    const std::vector<gl::NanoTile> tiles = insideTiles(field, background);
+    leaves.tileCount = uint32_t(tiles.size());
+    leaves.tiles = tiles.data();
+    const bool flood = field.signedField && !field.winding;
     std::function<void(vdb::NanoHandle&)> fill;
     if (flood) fill = [](vdb::NanoHandle& h) { vdb::signedFloodFill(*h.grid<float>()); };
     out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats,
                              [&] { return laidOutOnHost<float>(leaves, header, background, !flood); }, fill));
     if (field.leaves.closest) {
+        // The leaves with an active voxel come first: the closest triangles' grid has only those, and no tiles.
+        leaves.count = field.leaves.activeCount;
+        leaves.tileCount = 0;
+        leaves.tiles = nullptr;
         leaves.valueBuffer = field.leaves.closest;
         header.name = "closest_triangle";
         header.gridClass = uint32_t(nanovdb::GridClass::Unknown);

@@ -8,6 +8,7 @@
 /// (svo/vdb_io/field_grids.h) makes grids of the result.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "svo/core/field_bricks.h"
 #include "svo/core/field_options.h"
@@ -60,7 +61,14 @@ bool unsignedFieldOnDevice(Device& device, const LevelSetOptions& levelSet, cons
 struct DeviceField {
     GridSpec grid;            ///< the field's grid: the mesh's padded by the band, as levelSetBricks gives it
     FieldLeaves leaves;       ///< the device's leaves (field_result.h: the buffers' lifetime)
-    bool signedField = false; ///< signed by parity: values inside negated, beyond the band still unsigned
+    bool signedField = false; ///< values inside negated
+    /// Signed by winding numbers: the leaves also hold the bricks beyond the
+    /// band with inside voxels (after FieldLeaves::activeCount), and
+    /// `insideBricks` are the whole bricks inside beyond it (inactive tiles
+    /// of the negated background). By parity (not winding): the values
+    /// beyond the band are still unsigned (a signed flood fill's).
+    bool winding = false;
+    std::vector<BrickCoord> insideBricks;
 };
 
 /// @brief levelSetBricks for an unsigned field on the GPU, its band left on
@@ -79,19 +87,22 @@ DeviceField unsignedFieldLeaves(Device& device, const TriangleMesh& mesh, const 
 
 /// @brief A level set's band, where it can stay on the device, or read back.
 struct LevelSetBand {
-    std::optional<DeviceField> device; ///< a GL backend, no region, and an unsigned field or one signed by parity
+    std::optional<DeviceField> device; ///< a GL backend and no region
     DistanceBricks host;               ///< otherwise: levelSetBricks' result
 };
 
 /// @brief levelSetBricks, or its band left on the device as the leaves
 /// levelSetNanoGrids lays out (as unsignedFieldLeaves) where it can be: on a
-/// GL backend, without a region, for an unsigned field or one signed by
-/// parity (the sign method is chosen first, so this is known only then).
+/// GL backend, without a region.
 /// Parity signs: the crossings come back and are scanned on the host; the
 /// inside voxels go back up and are negated in the leaves, background
 /// included; the values beyond the band (signed flood fill) are the
-/// caller's, as levelSetNanoGrids does them on its grid. Winding numbers
-/// give inside tiles, which the GPU builder does not make: read back.
+/// caller's, as levelSetNanoGrids does them on its grid. Winding numbers:
+/// computed first (their inside voxels come back), then uploaded and
+/// negated in the leaves as parity's are; bricks with inside voxels and
+/// none active take leaves too, the bricks beyond the band classified voxel
+/// by voxel are added as leaves, and the whole bricks inside are left to
+/// the caller as tiles (DeviceField::insideBricks).
 /// @param checkpoint polled between stages with the fraction done (to 0.85)
 /// @param stats      receives stages, counts, the sign method and why, warnings
 /// @throw as levelSetBricks

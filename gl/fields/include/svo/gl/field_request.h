@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "svo/core/interrupt.h"
+#include "svo/core/octree.h"
 #include "svo/gl/field_work.h"
 
 namespace svo::gl {
@@ -30,6 +31,13 @@ struct FieldRequest {
     /// crossings are read back and scanned on the host (scanParity), and the
     /// voxels it finds inside are uploaded and negated in the leaves.
     bool deviceLeaves = false;
+    /// With deviceLeaves and without crossings (winding signs): per brick of
+    /// `bricks`, the voxels inside, uploaded and negated in the leaves; a
+    /// brick with an inside voxel and none nearer than the band takes a leaf
+    /// too (after the others: FieldLeaves::activeCount). Not owned.
+    const std::vector<Brick>* insideVoxels = nullptr;
+    /// Leaves the caller adds after the band's (FieldLeaves' buffers hold them).
+    uint32_t extraLeaves = 0;
     double leafScale = 1.0;      ///< world units per voxel: a leaf's value is float(double(distance) * leafScale)
     float leafBackground = 0.0f; ///< the value of a leaf's voxels beyond the band (negated inside)
     /// A leaf's voxel is active when its distance is less than leafBands[0]
