@@ -294,10 +294,10 @@ public:
     /// with no OpenVDB tree (levelSetNanoGrids), on the grid's own lattice;
     /// with a region or a GPU memory budget, levelSet()'s grids converted
     /// (toNanoVdb). Equal, voxel for voxel and value for value, to levelSet()'s.
-    /// On a GL backend an unsigned field, or a signed one whose signs come
-    /// from parity (a closed mesh), is laid out on the GPU
-    /// (gl::buildNanoGridGpu, the band never read back; a level set flood
-    /// filled on the host copy), the same bytes.
+    /// On a GL backend the field is laid out on the GPU
+    /// (gl::buildNanoGridGpu, the band never read back; a parity-signed
+    /// level set flood filled on the host copy, a winding-signed one's
+    /// whole inside bricks as tiles), the same bytes.
     /// @throw as levelSet()
     std::vector<vdb::NanoHandle> levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                  const LevelSetOptions& levelSet = {}, const VoxelizeOptions& options = {});
@@ -317,7 +317,9 @@ public:
     void unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& levelSet,
                                       const VoxelizeOptions& options,
                                       const std::function<void(const std::vector<gl::NanoGridBuffer>&)>& use);
-    /// @brief solid() as the NanoVDB grid "solid" (solidNanoGrid), as levelSetNanoVdb.
+    /// @brief solid() as the NanoVDB grid "solid" (solidNanoGrid), as
+    /// levelSetNanoVdb; on a GL backend laid out on the GPU from the solid's
+    /// leaves and 8³ tiles (vdb::solidVoxels, uploaded), the same bytes.
     /// @param topology ValueMask (Mask) or bool true on inside voxels (Bool), as withTopology gives
     /// @throw as solid()
     vdb::NanoHandle solidNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
