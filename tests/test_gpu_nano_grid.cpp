@@ -70,8 +70,28 @@ static_assert(sizeof(nanovdb::NanoLeaf<float>) == 4 * gpu::kNanoLeafWordsValue);
 static_assert(sizeof(nanovdb::NanoLeaf<int32_t>) == 4 * gpu::kNanoLeafWordsValue);
 static_assert(sizeof(nanovdb::NanoLeaf<nanovdb::ValueMask>) == 4 * gpu::kNanoLeafWordsMask);
 static_assert(sizeof(nanovdb::NanoLeaf<bool>) == 4 * gpu::kNanoLeafWordsBool);
+// Vec3f: values of 3 words, table entries of 4, a larger root.
+using Vec3Leaf = nanovdb::NanoLeaf<nanovdb::Vec3f>::DataType;
+using Vec3Lower = nanovdb::NanoLower<nanovdb::Vec3f>::DataType;
+using Vec3Upper = nanovdb::NanoUpper<nanovdb::Vec3f>::DataType;
+using Vec3Root = nanovdb::NanoRoot<nanovdb::Vec3f>::DataType;
+static_assert(offsetof(Vec3Leaf, mMinimum) == 4 * gpu::kNanoLeafMinimum && offsetof(Vec3Leaf, mMaximum) == 4 * (gpu::kNanoLeafMinimum + 3));
+static_assert(offsetof(Vec3Leaf, mValues) == 4 * gpu::kNanoLeafValuesVec3f);
+static_assert(sizeof(nanovdb::NanoLeaf<nanovdb::Vec3f>) == 4 * gpu::kNanoLeafWordsVec3f);
+static_assert(offsetof(Vec3Lower, mMinimum) == 4 * gpu::kNanoLowerMinimum && offsetof(Vec3Lower, mMaximum) == 4 * (gpu::kNanoLowerMinimum + 3));
+static_assert(offsetof(Vec3Lower, mTable) == 4 * gpu::kNanoLowerTable && sizeof(Vec3Lower::Tile) == 16);
+static_assert(sizeof(nanovdb::NanoLower<nanovdb::Vec3f>) == 4 * gpu::kNanoLowerWordsVec3f);
+static_assert(offsetof(Vec3Upper, mMinimum) == 4 * gpu::kNanoUpperMinimum && offsetof(Vec3Upper, mTable) == 4 * gpu::kNanoUpperTable);
+static_assert(sizeof(nanovdb::NanoUpper<nanovdb::Vec3f>) == 4 * gpu::kNanoUpperWordsVec3f);
+static_assert(sizeof(Vec3Root) == gpu::kNanoRootBytesVec3f && sizeof(Vec3Root::Tile) == gpu::kNanoTileBytes);
+static_assert(offsetof(Vec3Root, mBackground) == 4 * gpu::kNanoRootBackground && offsetof(Vec3Root, mMinimum) == 4 * (gpu::kNanoRootBackground + 3) &&
+              offsetof(Vec3Root, mMaximum) == 4 * (gpu::kNanoRootBackground + 6));
+static_assert(offsetof(nanovdb::NanoRoot<float>::DataType, mBackground) == 4 * gpu::kNanoRootBackground &&
+              offsetof(nanovdb::NanoRoot<float>::DataType, mMinimum) == 4 * (gpu::kNanoRootBackground + 1) &&
+              offsetof(nanovdb::NanoRoot<float>::DataType, mMaximum) == 4 * (gpu::kNanoRootBackground + 2));
 static_assert(uint32_t(nanovdb::GridType::Float) == gpu::kNanoTypeFloat &&
               uint32_t(nanovdb::GridType::Int32) == gpu::kNanoTypeInt32 &&
+              uint32_t(nanovdb::GridType::Vec3f) == gpu::kNanoTypeVec3f &&
               uint32_t(nanovdb::GridType::Mask) == gpu::kNanoTypeMask &&
               uint32_t(nanovdb::GridType::Boolean) == gpu::kNanoTypeBool);
 
@@ -414,10 +434,107 @@ TEST_F(GpuNanoGrid, TilesEqualTheCpuBuilder)
     expectSameAsCpu<bool>(many, header("solid", 0, 0.0));
 }
 
+/// Vec3f leaves (3 words a value) from host and device input against the
+/// CPU builder: values from a pool of vectors of equal squared length but
+/// different bits (unit axes both ways, signed zero components), so the
+/// first of equals must win in leaves, nodes and the root; and any vectors.
+TEST_F(GpuNanoGrid, Vec3fLeavesEqualTheCpuBuilder)
+{
+    const std::array<float, 3> pool[] = {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}, {-1, 0, 0}, {0.0f, -0.0f, 1}, {0, 0, 0},
+                                         {-0.0f, 0, 0}, {0.6f, 0.8f, 0}, {0.8f, 0, 0.6f}};
+    for (const uint32_t count : {1u, 60u, 700u, 1500u}) {
+        for (const bool deviceInput : {false, true}) {
+            SCOPED_TRACE(std::to_string(count) + (deviceInput ? " device" : " host"));
+            Leaves in = randomLeaves(count, 3000, false, 30 * count + deviceInput);
+            std::mt19937 rng(count);
+            std::vector<uint32_t> words(1536 * size_t(count));
+            for (size_t i = 0; i < 512 * size_t(count); ++i) {
+                std::array<float, 3> v = pool[rng() % 9];
+                if ((i / 512) % 3 == 2) // some leaves hold any vectors
+                    for (float& c : v) c = std::uniform_real_distribution<float>(-2.0f, 2.0f)(rng);
+                std::memcpy(&words[3 * i], v.data(), 12);
+            }
+            vdb::SparseVoxels<nanovdb::Vec3f> sparse;
+            sparse.origins = in.origins;
+            sparse.masks = in.masks;
+            for (size_t i = 0; i < 512 * size_t(count); ++i) {
+                float v[3];
+                std::memcpy(v, &words[3 * i], 12);
+                sparse.values.emplace_back(v[0], v[1], v[2]);
+            }
+            const gl::NanoGridHeader h = header("normal", 0, 0.0);
+            vdb::NanoGridInfo info;
+            info.name = h.name;
+            info.voxelSize = h.voxelSize;
+            info.translation = h.translation;
+            const auto cpu = vdb::buildNanoGrid<nanovdb::Vec3f>(sparse, info);
+            gl::Context& context = device.context();
+            const gl::Context::Scope scope(context);
+            gl::NanoLeaves leaves;
+            leaves.count = count;
+            gl::Buffer origins("test origins", 12 * in.origins.size(), in.origins.data());
+            gl::Buffer masks("test masks", 64 * in.masks.size(), in.masks.data());
+            gl::Buffer values("test values", 4 * words.size(), words.data());
+            if (deviceInput) {
+                leaves.originBuffer = &origins, leaves.maskBuffer = &masks, leaves.valueBuffer = &values;
+            } else {
+                leaves.origins = in.origins.data(), leaves.masks = in.masks.data(), leaves.values = words.data();
+            }
+            for (const bool sum : {false, true}) {
+                gl::NanoGridHeader hs = h;
+                hs.checksum = sum;
+                gl::NanoGridBuffer gpu = gl::buildNanoGridGpu(context, gl::NanoKind::Vec3f, leaves, hs, true);
+                ASSERT_EQ(gpu.host.size(), cpu.size());
+                nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(gpu.host.size());
+                std::memcpy(buffer.data(), gpu.host.data(), gpu.host.size());
+                nanovdb::GridHandle<nanovdb::HostBuffer> handle(std::move(buffer));
+                const auto* grid = handle.grid<nanovdb::Vec3f>();
+                ASSERT_NE(grid, nullptr);
+                if (!sum) vdb::updateFullChecksum(*handle.grid<nanovdb::Vec3f>());
+                EXPECT_EQ(0, std::memcmp(handle.data(), cpu.data(), cpu.size()))
+                    << (sum ? "checksum on the GPU: " : "") << firstDifference(handle.data(), cpu.data(), cpu.size());
+                EXPECT_TRUE(nanovdb::isValid(*grid, true, true));
+                // NanoVDB's accessor: every input voxel's state, and the value of every 7th.
+                auto acc = grid->getAccessor();
+                uint64_t wrong = 0;
+                for (size_t i = 0; i < in.origins.size(); ++i)
+                    for (uint32_t v = 0; v < 512; v += 7) {
+                        const auto& o = in.origins[i];
+                        const nanovdb::Coord c(o[0] + int32_t(v >> 6), o[1] + int32_t((v >> 3) & 7), o[2] + int32_t(v & 7));
+                        const bool on = (in.masks[i].words[v >> 6] >> (v & 63)) & 1u;
+                        const nanovdb::Vec3f got = acc.getValue(c);
+                        wrong += acc.isActive(c) != on || std::memcmp(&got, &words[3 * (512 * i + v)], 12) != 0;
+                    }
+                EXPECT_EQ(wrong, 0u);
+                if (sum && !HasFailure()) written.push_back(std::move(handle));
+            }
+        }
+    }
+    gl::NanoLeaves bad;
+    std::vector<gl::NanoTile> tiles(1);
+    bad.tiles = tiles.data();
+    bad.tileCount = 1;
+    EXPECT_THROW(gl::buildNanoGridGpu(device.context(), gl::NanoKind::Vec3f, bad, header("tiles", 0, 0.0)), InvalidInput);
+}
+
 TEST_F(GpuNanoGrid, NoLeavesGiveAnEmptyGrid)
 {
     expectSameAsCpu<float>(Leaves{}, header("empty", 1, 3.0));
     expectSameAsCpu<nanovdb::ValueMask>(Leaves{}, header("empty", 6, 0.0));
+    // Vec3f: its own root layout (a larger RootData), no leaves.
+    vdb::NanoGridInfo info;
+    info.name = "empty";
+    info.voxelSize = 0.037;
+    info.translation = {-1.25, 0.5, 3.0 / 7.0};
+    const auto cpu = vdb::buildNanoGrid<nanovdb::Vec3f>(vdb::SparseVoxels<nanovdb::Vec3f>{}, info);
+    gl::NanoGridHeader h = header("empty", 0, 0.0);
+    const gl::NanoGridBuffer gpu = gl::buildNanoGridGpu(device.context(), gl::NanoKind::Vec3f, gl::NanoLeaves{}, h, true);
+    ASSERT_EQ(gpu.host.size(), cpu.size());
+    nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(gpu.host.size());
+    std::memcpy(buffer.data(), gpu.host.data(), gpu.host.size());
+    nanovdb::GridHandle<nanovdb::HostBuffer> handle(std::move(buffer));
+    vdb::updateFullChecksum(*handle.grid<nanovdb::Vec3f>());
+    EXPECT_EQ(0, std::memcmp(handle.data(), cpu.data(), cpu.size())) << firstDifference(handle.data(), cpu.data(), cpu.size());
 }
 
 TEST_F(GpuNanoGrid, BadLeavesAreRefused)

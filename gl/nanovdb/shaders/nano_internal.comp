@@ -25,7 +25,13 @@ shared uint tileMask[128];   // a lower node's tiles, active or not
 shared uint valueMask[128];  // its active tiles
 
 uint log2Dim() { return uUpper != 0u ? kNanoUpperLog2 : kNanoLowerLog2; }
-uint nodeWords() { return uUpper != 0u ? kNanoUpperWords : kNanoLowerWords; }
+uint nodeWords()
+{
+    bool isVec3 = uType == kNanoTypeVec3f;
+    return uUpper != 0u ? (isVec3 ? kNanoUpperWordsVec3f : kNanoUpperWords) : (isVec3 ? kNanoLowerWordsVec3f : kNanoLowerWords);
+}
+uint entryWords() { return uType == kNanoTypeVec3f ? 4u : 2u; } // a table entry: a value or an int64 child offset
+uint rootBytes() { return uType == kNanoTypeVec3f ? kNanoRootBytesVec3f : kNanoRootBytes; }
 uint tableAt() { return uUpper != 0u ? kNanoUpperTable : kNanoLowerTable; }
 // A node's children: sorted entries (leaves and tiles) of a lower node, lower nodes of an upper one.
 uint firstChild(uint node) { return ranks[uUpper != 0u ? upperFirstLowerAt(node) : lowerFirstEntryAt(node)]; }
@@ -40,7 +46,7 @@ uint tileWord(uint value) { return hasValues() ? value : uint(value != 0u); }
 NodeStats linkTile(uint at, uint c, uint n)
 {
     uint tile = (inputLeaf(c) - uLeafCount) * kNanoTileWords;
-    uint value = tileWord(tiles[tile + 3u]);
+    uint value = tileWord(tiles[tile + 3u]); // scalar kinds only (the host refuses Vec3f tiles)
     grid[at + tableAt() + 2u * n] = value;
     atomicOr(tileMask[n >> 5u], 1u << (n & 31u));
     if (tiles[tile + 4u] == 0u) return emptyStats();
@@ -49,7 +55,7 @@ NodeStats linkTile(uint at, uint c, uint n)
     uint before = atomicAdd(counters[kNanoCountVoxelsLow], 512u);
     if (before + 512u < before) atomicAdd(counters[kNanoCountVoxelsHigh], 1u);
     ivec3 o = ivec3(tiles[tile], tiles[tile + 1u], tiles[tile + 2u]);
-    return NodeStats(o, o + ivec3(7), value, value);
+    return NodeStats(o, o + ivec3(7), uvec3(value, 0u, 0u), uvec3(value, 0u, 0u));
 }
 
 // Children [begin, end), a contiguous run per invocation (so the reduction
@@ -69,15 +75,19 @@ void linkChildren(uint at, uint begin, uint end, out NodeStats fromTiles, out No
         uint child = uUpper != 0u ? c : ranks[leafRankAt(c)]; // its place in its level
         atomicOr(childMask[n >> 5u], 1u << (n & 31u));
         uvec2 offset = byteOffset(at, uChildAt + child * uChildWords);
-        grid[at + tableAt() + 2u * n] = offset.x;
-        grid[at + tableAt() + 2u * n + 1u] = offset.y;
+        uint e = at + tableAt() + entryWords() * n;
+        grid[e] = offset.x;
+        grid[e + 1u] = offset.y;
+        // The CPU sets every entry's value, then a child's offset over its
+        // first 8 bytes: a Vec3f's third word stays the background's.
+        if (valueWords() == 3u) grid[e + 2u] = uBackground;
         fromChildren = merge(fromChildren, loadStats(uChildStatsAt + child));
     }
 }
 
 void writeRootTile(uint node, uint at, ivec3 origin)
 {
-    uint tile = uRootAt + kNanoRootBytes / 4u + node * (kNanoTileBytes / 4u);
+    uint tile = uRootAt + rootBytes() / 4u + node * (kNanoTileBytes / 4u);
     uvec3 k = uvec3(origin) >> 12u; // nanovdb's 21 bits per axis
     grid[tile] = k.z | k.y << 21u;
     grid[tile + 1u] = k.y >> 11u | k.x << 10u;
@@ -112,7 +122,8 @@ void main()
     for (uint n = t; n < entries; n += uint(NANO_GROUP)) {
         bool taken = (childMask[n >> 5u] & (1u << (n & 31u))) != 0u ||
                      (uUpper == 0u && (tileMask[n >> 5u] & (1u << (n & 31u))) != 0u);
-        if (!taken) grid[at + tableAt() + 2u * n] = uBackground;
+        if (!taken)
+            for (uint c = 0u; c < valueWords(); ++c) grid[at + tableAt() + entryWords() * n + c] = uBackground;
     }
     if (t != 0u) return;
     storeStats(uStatsAt + node, s);
@@ -123,7 +134,5 @@ void main()
     grid[at + 3u] = uint(hi.x), grid[at + 4u] = uint(hi.y), grid[at + 5u] = uint(hi.z);
     grid[at + kNanoNodeFlags] = any ? 2u : 1u;
     if (!any || !hasValues()) return;
-    uint minAt = at + (uUpper != 0u ? kNanoUpperMinimum : kNanoLowerMinimum);
-    grid[minAt] = s.mn;
-    grid[minAt + 1u] = s.mx;
+    writeExtrema(at + (uUpper != 0u ? kNanoUpperMinimum : kNanoLowerMinimum), s);
 }

@@ -5,10 +5,11 @@
    there). The numbers are facts of NanoVDB's ABI (the byte offsets of
    nanovdb::GridData, TreeData, RootData and its Tile, InternalData and
    LeafData, as Debian's PNanoVDB.h lists them too); tests/test_gpu_nano_grid.cpp
-   checks each against offsetof/sizeof on NanoVDB's own structs. Every kind
-   the builder makes (Float, Int32, Mask, Boolean) shares the root and the
-   internal nodes' layout (a table entry is 8 bytes: a 4-byte value or an
-   int64 child offset); only the leaves differ. */
+   checks each against offsetof/sizeof on NanoVDB's own structs. The scalar
+   kinds (Float, Int32, Mask, Boolean) share the root and the internal
+   nodes' layout (a table entry is 8 bytes: a 4-byte value or an int64 child
+   offset); only their leaves differ. Vec3f (3 words a value) has its own:
+   table entries of 16 bytes, a larger root, the leaves' values at word 32. */
 #ifndef SVO_NANO_LAYOUT_H
 #define SVO_NANO_LAYOUT_H
 
@@ -20,6 +21,7 @@ namespace svo::gpu {
 /* ---- Kinds (nanovdb::GridType values) ----------------------------------- */
 SVO_CONST(uint) kNanoTypeFloat = 1u;
 SVO_CONST(uint) kNanoTypeInt32 = 4u;
+SVO_CONST(uint) kNanoTypeVec3f = 6u;
 SVO_CONST(uint) kNanoTypeMask = 8u;
 SVO_CONST(uint) kNanoTypeBool = 11u;
 
@@ -27,12 +29,14 @@ SVO_CONST(uint) kNanoTypeBool = 11u;
 SVO_CONST(uint) kNanoGridBytes = 672u; /* GridData */
 SVO_CONST(uint) kNanoTreeBytes = 64u;  /* TreeData */
 SVO_CONST(uint) kNanoRootBytes = 64u;  /* RootData of a 4-byte value, before its tiles */
+SVO_CONST(uint) kNanoRootBytesVec3f = 96u;
+SVO_CONST(uint) kNanoRootBackground = 7u; /* word; the minimum and maximum follow it, a value each */
 SVO_CONST(uint) kNanoTileBytes = 32u;  /* RootData::Tile: key (8), child (8), state (4), value (4), padding */
 
 /* ---- Internal nodes (words) ----------------------------------------------
    bbox min (3), bbox max (3), flags (uint64), value mask, child mask,
    minimum, maximum, average, deviation, then the table at a 32-byte
-   boundary. */
+   boundary (the maximum a value after the minimum). */
 SVO_CONST(uint) kNanoNodeFlags = 6u;
 SVO_CONST(uint) kNanoNodeValueMask = 8u;
 SVO_CONST(uint) kNanoLowerLog2 = 4u; /* 16^3 children of 8^3 voxels */
@@ -45,12 +49,15 @@ SVO_CONST(uint) kNanoUpperChildMask = 1032u;
 SVO_CONST(uint) kNanoUpperMinimum = 2056u;
 SVO_CONST(uint) kNanoUpperTable = 2064u;
 SVO_CONST(uint) kNanoUpperWords = 67600u; /* 270400 bytes */
+SVO_CONST(uint) kNanoLowerWordsVec3f = 16656u;  /* 66624 bytes: entries of 4 words */
+SVO_CONST(uint) kNanoUpperWordsVec3f = 133136u; /* 532544 bytes */
 
 /* ---- Leaves (words) ------------------------------------------------------
    bbox min (3), bbox size - 1 as 3 bytes and flags as the 4th, value mask
    (16), then per kind: Float and Int32 minimum, maximum, average,
-   deviation, 512 values at word 24; Boolean its 512 value bits at word 20;
-   Mask nothing (padding). */
+   deviation, 512 values at word 24; Vec3f minimum and maximum (3 words
+   each), average, deviation, 512 values of 3 words at word 32; Boolean its
+   512 value bits at word 20; Mask nothing (padding). */
 SVO_CONST(uint) kNanoLeafDifFlags = 3u;
 SVO_CONST(uint) kNanoLeafValueMask = 4u;
 SVO_CONST(uint) kNanoLeafMinimum = 20u;
@@ -59,11 +66,12 @@ SVO_CONST(uint) kNanoLeafBoolValues = 20u; /* Boolean: a 512-bit mask */
 SVO_CONST(uint) kNanoLeafWordsValue = 536u; /* Float, Int32: 2144 bytes */
 SVO_CONST(uint) kNanoLeafWordsMask = 24u;   /* Mask: 96 bytes */
 SVO_CONST(uint) kNanoLeafWordsBool = 40u;   /* Boolean: 160 bytes */
+SVO_CONST(uint) kNanoLeafValuesVec3f = 32u;
+SVO_CONST(uint) kNanoLeafWordsVec3f = 1568u; /* Vec3f: 6272 bytes */
 
 /* ---- Per-node statistics scratch (words per node) ------------------------
    bbox min xyz, bbox max xyz (an empty box: INT_MAX then INT_MIN), the
-   minimum's and the maximum's bits, then the node's origin xyz and its
-   parent-relative index (internal nodes). */
+   minimum's bits (3 words, scalars in the first), the maximum's. */
 SVO_CONST(uint) kNanoStatWords = 12u;
 
 /* ---- Sort entries ---------------------------------------------------------
@@ -91,7 +99,7 @@ SVO_CONST(uint) kNanoCountWords = 8u;
 /* ---- Binding slots --------------------------------------------------------- */
 #define SVO_BIND_NANO_ORIGINS 0  /* per leaf: its origin, 3 ints (input order) */
 #define SVO_BIND_NANO_MASKS 1    /* per leaf: 16 uints, OpenVDB's bit order (input order) */
-#define SVO_BIND_NANO_VALUES 2   /* per leaf: 512 value words (input order), when given */
+#define SVO_BIND_NANO_VALUES 2   /* per leaf: 512 values of 1 word (Vec3f: 3) (input order), when given */
 #define SVO_BIND_NANO_SORT 3     /* kNanoSortWords per entry */
 #define SVO_BIND_NANO_RANKS 4    /* nano_common.glsl's tables: per sorted entry its lower and upper rank, per lower its first entry, per upper its first lower, per entry its leaf rank, per leaf its entry */
 #define SVO_BIND_NANO_STATS 5    /* kNanoStatWords per node: leaves, then lowers, then uppers */

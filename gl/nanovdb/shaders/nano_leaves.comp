@@ -30,9 +30,13 @@ void main()
     uint word = masks[leaf * 16u + (t >> 2u)];
     if ((t & 3u) == 0u) grid[at + kNanoLeafValueMask + (t >> 2u)] = word;
     NodeStats s = emptyStats();
+    uint n = valueWords();
     for (uint bits = (word >> (8u * (t & 3u))) & 0xFFu; bits != 0u; bits &= bits - 1u) {
         uint v = 8u * t + uint(findLSB(bits));
-        uint value = uHasValues != 0u ? values[leaf * 512u + v] : uHasActive != 0u ? uActive : uBackground;
+        uvec3 value = uvec3(uHasActive != 0u ? uActive : uBackground);
+        if (uHasValues != 0u)
+            for (uint c = 0u; c < n; ++c) value[c] = values[(leaf * 512u + v) * n + c];
+        if (n == 1u) value.yz = uvec2(0u);
         ivec3 c = origin + ivec3(v >> 6u, (v >> 3u) & 7u, v & 7u);
         s = merge(s, NodeStats(c, c, value, value));
     }
@@ -51,6 +55,5 @@ void main()
     grid[at] = uint(s.lo.x), grid[at + 1u] = uint(s.lo.y), grid[at + 2u] = uint(s.lo.z);
     grid[at + kNanoLeafDifFlags] = dif.x | dif.y << 8u | dif.z << 16u | 2u << 24u;
     if (!hasValues()) return;
-    grid[at + kNanoLeafMinimum] = s.mn;
-    grid[at + kNanoLeafMinimum + 1u] = s.mx;
+    writeExtrema(at + kNanoLeafMinimum, s);
 }

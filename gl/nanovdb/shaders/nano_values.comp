@@ -1,5 +1,5 @@
 #version 450 core
-// Pass 4b, 16 invocations per laid-out leaf (nano_leaves.comp), 32 voxels each: Float and Int32
+// Pass 4b, 16 invocations per laid-out leaf (nano_leaves.comp), 32 voxels (Vec3f: 32 values' 96 words) each: Float and Int32
 // leaves' values (given; else uActive where active, when set, and the background); Boolean leaves' value bits
 // (given values that are not 0, else the active voxels).
 layout(local_size_x = 256) in;
@@ -30,10 +30,12 @@ void main()
     }
     // Word k = 16 b + w: the 16 invocations of a leaf read and write 16
     // consecutive words at each step (one run of 64 bytes, not 16 runs 128
-    // bytes apart).
-    for (uint b = 0u; b < 32u; ++b) {
+    // bytes apart). Vec3f: 3 words a value, no active word (uHasActive 0).
+    bool isVec3 = uType == kNanoTypeVec3f;
+    uint words = isVec3 ? 1536u : 512u, first = isVec3 ? kNanoLeafValuesVec3f : kNanoLeafValues;
+    for (uint b = 0u; b < words / 16u; ++b) {
         uint k = 16u * b + w;
         bool on = uHasActive != 0u && (masks[leaf * 16u + (k >> 5u)] & (1u << (k & 31u))) != 0u;
-        grid[at + kNanoLeafValues + k] = uHasValues != 0u ? values[leaf * 512u + k] : on ? uActive : uBackground;
+        grid[at + first + k] = uHasValues != 0u ? values[leaf * words + k] : on ? uActive : uBackground;
     }
 }

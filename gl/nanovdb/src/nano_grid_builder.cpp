@@ -25,9 +25,16 @@ uint32_t leafWords(NanoKind kind)
     switch (kind) {
     case NanoKind::Mask: return gpu::kNanoLeafWordsMask;
     case NanoKind::Bool: return gpu::kNanoLeafWordsBool;
+    case NanoKind::Vec3f: return gpu::kNanoLeafWordsVec3f;
     default: return gpu::kNanoLeafWordsValue;
     }
 }
+
+/// Words per value, and the internal nodes' and the root's sizes, by kind (nano_layout.h).
+uint32_t valueWords(NanoKind kind) { return kind == NanoKind::Vec3f ? 3 : 1; }
+uint32_t lowerWords(NanoKind kind) { return kind == NanoKind::Vec3f ? gpu::kNanoLowerWordsVec3f : gpu::kNanoLowerWords; }
+uint32_t upperWords(NanoKind kind) { return kind == NanoKind::Vec3f ? gpu::kNanoUpperWordsVec3f : gpu::kNanoUpperWords; }
+uint32_t rootBytes(NanoKind kind) { return kind == NanoKind::Vec3f ? gpu::kNanoRootBytesVec3f : gpu::kNanoRootBytes; }
 
 /// The leaves' buffers on the device: the caller's, or uploads of the host
 /// arrays; the tiles' upload.
@@ -38,11 +45,13 @@ struct DeviceLeaves {
     const Buffer* tiles = nullptr;  // null: no tiles
 };
 
-void checkLeaves(const NanoLeaves& in, const NanoGridHeader& header)
+void checkLeaves(NanoKind kind, const NanoLeaves& in, const NanoGridHeader& header)
 {
     if (header.name.size() >= 256)
         throw InvalidInput(fmt::format("NanoVDB GPU build: grid name of {} bytes; NanoVDB holds at most 255", header.name.size()));
     if (in.tileCount && !in.tiles) throw InvalidInput("NanoVDB GPU build: a tile count without tiles");
+    if (kind == NanoKind::Vec3f && (in.tileCount || in.activeWord))
+        throw InvalidInput("NanoVDB GPU build: Vec3f grids take neither tiles nor an active word");
     if (!in.count) return;
     if (in.origins) {
         if (!in.masks) throw InvalidInput("NanoVDB GPU build: leaf origins without masks");
@@ -51,11 +60,11 @@ void checkLeaves(const NanoLeaves& in, const NanoGridHeader& header)
     if (!in.originBuffer || !in.maskBuffer) throw InvalidInput("NanoVDB GPU build: no leaf origins or masks given");
     const uint64_t n = in.count;
     if (in.originBuffer->bytes() < 12 * n || in.maskBuffer->bytes() < 64 * n ||
-        (in.valueBuffer && in.valueBuffer->bytes() < 2048 * n))
+        (in.valueBuffer && in.valueBuffer->bytes() < 2048 * valueWords(kind) * n))
         throw InvalidInput(fmt::format("NanoVDB GPU build: device buffers too small for {} leaves", n));
 }
 
-DeviceLeaves deviceLeaves(const Context& context, const NanoLeaves& in)
+DeviceLeaves deviceLeaves(const Context& context, NanoKind kind, const NanoLeaves& in)
 {
     static_assert(sizeof(NanoTile) == 4 * gpu::kNanoTileWords, "a tile as nano_layout.h reads it");
     const Buffer* tiles = nullptr;
@@ -73,8 +82,9 @@ DeviceLeaves deviceLeaves(const Context& context, const NanoLeaves& in)
     d.origins->write(0, 12 * n, in.origins);
     d.masks->write(0, 64 * n, in.masks);
     if (in.values) {
-        d.values = &context.scratch("nanovdb leaf values", 2048 * n);
-        d.values->write(0, 2048 * n, in.values);
+        const uint64_t bytes = 2048 * valueWords(kind) * n;
+        d.values = &context.scratch("nanovdb leaf values", bytes);
+        d.values->write(0, bytes, in.values);
     }
     return d;
 }
@@ -192,7 +202,7 @@ void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, ui
         internal.set("uNodeCount", f.nodes[1 + upper]);
         internal.set("uNodeAt", uint32_t(f.at[1 + upper] / 4));
         internal.set("uChildAt", uint32_t(f.at[upper] / 4));
-        internal.set("uChildWords", upper ? gpu::kNanoLowerWords : leafWords(kind));
+        internal.set("uChildWords", upper ? lowerWords(kind) : leafWords(kind));
         internal.set("uStatsAt", upper ? n + f.nodes[1] : n);
         internal.set("uChildStatsAt", upper ? n : 0u);
         internal.dispatchRows(f.nodes[1 + upper]);
@@ -205,9 +215,9 @@ void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, ui
 void layOut(NanoTreeFacts& f, NanoKind kind)
 {
     const uint64_t rootAt = gpu::kNanoGridBytes + gpu::kNanoTreeBytes;
-    const uint64_t upperAt = rootAt + gpu::kNanoRootBytes + uint64_t(gpu::kNanoTileBytes) * f.nodes[2];
-    const uint64_t lowerAt = upperAt + uint64_t(gpu::kNanoUpperWords) * 4 * f.nodes[2];
-    const uint64_t leafAt = lowerAt + uint64_t(gpu::kNanoLowerWords) * 4 * f.nodes[1];
+    const uint64_t upperAt = rootAt + rootBytes(kind) + uint64_t(gpu::kNanoTileBytes) * f.nodes[2];
+    const uint64_t lowerAt = upperAt + uint64_t(upperWords(kind)) * 4 * f.nodes[2];
+    const uint64_t leafAt = lowerAt + uint64_t(lowerWords(kind)) * 4 * f.nodes[1];
     f.at = {leafAt, lowerAt, upperAt, rootAt};
     f.gridBytes = leafAt + uint64_t(leafWords(kind)) * 4 * f.nodes[0];
     if (f.gridBytes / 4 >= (uint64_t(1) << 32))
@@ -215,40 +225,56 @@ void layOut(NanoTreeFacts& f, NanoKind kind)
 }
 
 /// A hardware driver's storage-block limit is real: past it, writes are lost without an error.
-void checkBufferLimit(const Context& context, uint64_t gridBytes, uint64_t leaves)
+void checkBufferLimit(const Context& context, NanoKind kind, uint64_t gridBytes, uint64_t leaves)
 {
     const uint64_t limit = context.shaderBufferLimit();
-    const uint64_t largest = std::max(gridBytes, 2048 * leaves);
+    const uint64_t largest = std::max(gridBytes, 2048 * valueWords(kind) * leaves);
     if (limit && largest > limit)
         throw Unsupported(fmt::format("NanoVDB GPU build: a buffer of {} bytes exceeds the driver's shader storage limit of {}",
                                       largest, limit));
 }
 
+float floatOf(uint32_t w)
+{
+    float x;
+    std::memcpy(&x, &w, 4);
+    return x;
+}
+
+/// nanovdb::Vec3f::lengthSqr of three float words (nano_stats.glsl's, unfused).
+float lengthSqr(const std::array<uint32_t, 3>& v)
+{
+    const float x = floatOf(v[0]), y = floatOf(v[1]), z = floatOf(v[2]);
+    const float xx = x * x, yy = y * y, zz = z * z;
+    const float xy = xx + yy;
+    return xy + zz;
+}
+
 /// The root's statistics: the upper nodes' merged in order, as the CPU builder folds them.
 void foldUppers(NanoTreeFacts& f, NanoKind kind, const std::vector<uint32_t>& stats)
 {
-    auto less = [kind](uint32_t a, uint32_t b) {
-        if (kind != NanoKind::Float) return int32_t(a) < int32_t(b);
-        float x, y;
-        std::memcpy(&x, &a, 4);
-        std::memcpy(&y, &b, 4);
-        return x < y;
+    using Value = std::array<uint32_t, 3>;
+    auto less = [kind](const Value& a, const Value& b) {
+        if (kind == NanoKind::Vec3f) return lengthSqr(a) < lengthSqr(b);
+        if (kind != NanoKind::Float) return int32_t(a[0]) < int32_t(b[0]);
+        return floatOf(a[0]) < floatOf(b[0]);
     };
     for (uint32_t u = 0; u < f.nodes[2]; ++u) {
         const uint32_t* s = stats.data() + size_t(u) * gpu::kNanoStatWords;
         if (int32_t(s[0]) > int32_t(s[3])) continue; // nothing active
+        const Value mn{s[6], s[7], s[8]}, mx{s[9], s[10], s[11]};
         if (!f.any) {
             f.any = true;
             for (size_t i = 0; i < 6; ++i) f.bbox[i] = int32_t(s[i]);
-            f.minimum = s[6], f.maximum = s[7];
+            f.minimum = mn, f.maximum = mx;
             continue;
         }
         for (size_t i = 0; i < 3; ++i) {
             f.bbox[i] = std::min(f.bbox[i], int32_t(s[i]));
             f.bbox[3 + i] = std::max(f.bbox[3 + i], int32_t(s[3 + i]));
         }
-        if (less(s[6], f.minimum)) f.minimum = s[6];
-        if (less(f.maximum, s[7])) f.maximum = s[7];
+        if (less(mn, f.minimum)) f.minimum = mn;
+        if (less(f.maximum, mx)) f.maximum = mx;
     }
 }
 
@@ -334,7 +360,7 @@ void checksumOnGpu(const Context& context, NanoKind kind, const NanoTreeFacts& f
                                       loopLimit, kCrcLoopIterations));
     const Program& crc = context.program(nanovdbShaders(), {"nano_crc.comp"});
     auto wordsOf = [&](size_t level) {
-        return level == 2 ? gpu::kNanoUpperWords : level == 1 ? gpu::kNanoLowerWords : leafWords(kind);
+        return level == 2 ? upperWords(kind) : level == 1 ? lowerWords(kind) : leafWords(kind);
     };
     uint64_t regWords = 256; // the table, then the most registers a level's folds keep
     for (size_t level = 0; level < 3; ++level) {
@@ -411,7 +437,7 @@ NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const Nano
 {
     NanoTreeFacts f;
     f.nodes[0] = in.count;
-    const DeviceLeaves d = deviceLeaves(context, in);
+    const DeviceLeaves d = deviceLeaves(context, kind, in);
     const uint32_t n = in.count + in.tileCount;
     uint32_t entries = 1;
     while (entries < n) entries <<= 1;
@@ -424,7 +450,7 @@ NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const Nano
     f.nodes[1] = counters[gpu::kNanoCountLower];
     f.nodes[2] = counters[gpu::kNanoCountUpper];
     layOut(f, kind);
-    checkBufferLimit(context, f.gridBytes, in.count);
+    checkBufferLimit(context, kind, f.gridBytes, in.count);
     NanoGridBuffer out{context.lendScratch(kNanoGridScratch, f.gridBytes), f.gridBytes, f.nodes, {}};
     fillWords(context, out.grid, 0, f.gridBytes); // not a clear: see fill_words.h
     out.grid.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_GRID);
@@ -464,7 +490,7 @@ NanoGridBuffer emptyGrid(NanoKind kind, const NanoGridHeader& header, bool hostC
 NanoGridBuffer buildNanoGridGpu(const Context& context, NanoKind kind, const NanoLeaves& in, const NanoGridHeader& header,
                                 bool hostCopy)
 {
-    checkLeaves(in, header);
+    checkLeaves(kind, in, header);
     const uint64_t entries = uint64_t(in.count) + in.tileCount;
     if (entries > (1u << 26)) // the sort's entries and the stats' words stay within 32 bits
         throw Unsupported(fmt::format("NanoVDB GPU build: {} leaves and tiles exceed one build (at most 2^26)", entries));

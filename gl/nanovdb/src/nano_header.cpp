@@ -18,7 +18,9 @@ void put(std::vector<uint8_t>& b, size_t at, const T& v)
     std::memcpy(b.data() + at, &v, sizeof v);
 }
 
-bool hasStats(NanoKind kind) { return kind == NanoKind::Float || kind == NanoKind::Int32; }
+bool hasStats(NanoKind kind) { return kind == NanoKind::Float || kind == NanoKind::Int32 || kind == NanoKind::Vec3f; }
+uint32_t valueWords(NanoKind kind) { return kind == NanoKind::Vec3f ? 3 : 1; }
+uint32_t rootBytes(NanoKind kind) { return kind == NanoKind::Vec3f ? gpu::kNanoRootBytesVec3f : gpu::kNanoRootBytes; }
 
 /// nanovdb::Map::set(dx, translation, 1.0): a scale, its inverse, the translation, in float and double.
 void putMap(std::vector<uint8_t>& b, size_t at, double dx, const std::array<double, 3>& t)
@@ -117,9 +119,14 @@ void putRoot(std::vector<uint8_t>& b, NanoKind kind, const NanoGridHeader& h, co
         b[at + 28] = uint8_t(background); // a bool
         return;
     }
-    put(b, at + 28, background);
-    put(b, at + 32, tree.any ? tree.minimum : background);
-    put(b, at + 36, tree.any ? tree.maximum : background);
+    // The background, then the minimum and maximum, a value (1 or 3 words) each.
+    const uint32_t n = valueWords(kind);
+    for (uint32_t c = 0; c < n; ++c) {
+        const size_t word = at + 4 * (gpu::kNanoRootBackground + c);
+        put(b, word, background);
+        put(b, word + 4 * n, tree.any ? tree.minimum[c] : background);
+        put(b, word + 8 * n, tree.any ? tree.maximum[c] : background);
+    }
 }
 
 } // namespace
@@ -127,7 +134,8 @@ void putRoot(std::vector<uint8_t>& b, NanoKind kind, const NanoGridHeader& h, co
 uint32_t backgroundWord(NanoKind kind, double background)
 {
     switch (kind) {
-    case NanoKind::Float: {
+    case NanoKind::Float:
+    case NanoKind::Vec3f: { // each component
         const float f = float(background);
         uint32_t bits = 0;
         std::memcpy(&bits, &f, 4);
@@ -142,7 +150,7 @@ uint32_t backgroundWord(NanoKind kind, double background)
 
 std::vector<uint8_t> nanoHeader(NanoKind kind, const NanoGridHeader& header, const NanoTreeFacts& tree)
 {
-    std::vector<uint8_t> b(gpu::kNanoGridBytes + gpu::kNanoTreeBytes + gpu::kNanoRootBytes, 0);
+    std::vector<uint8_t> b(gpu::kNanoGridBytes + gpu::kNanoTreeBytes + rootBytes(kind), 0);
     putGrid(b, kind, header, tree);
     putTree(b, tree);
     putRoot(b, kind, header, tree);

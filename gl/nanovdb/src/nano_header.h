@@ -21,10 +21,11 @@ struct NanoTreeFacts {
     uint32_t activeTiles = 0;               ///< active 8³ tiles
     bool any = false;                       ///< some voxel is active
     std::array<int32_t, 6> bbox{};          ///< index box of active voxels (min, max), when any
-    uint32_t minimum = 0, maximum = 0;      ///< value bits, when any (Float, Int32)
+    std::array<uint32_t, 3> minimum{}, maximum{}; ///< value bits, when any (Float, Int32: the first word; Vec3f)
 };
 
-/// @brief The header bytes: kNanoGridBytes + kNanoTreeBytes + kNanoRootBytes.
+/// @brief The header bytes: kNanoGridBytes + kNanoTreeBytes + the root's
+/// (kNanoRootBytes; Vec3f kNanoRootBytesVec3f).
 std::vector<uint8_t> nanoHeader(NanoKind kind, const NanoGridHeader& header, const NanoTreeFacts& tree);
 
 /// @brief zlib's CRC-32 (crc32_z) of @a n bytes, continuing from @a crc

@@ -81,6 +81,7 @@ void fullChecksum(vdb::NanoHandle& h, gl::NanoKind kind)
     switch (kind) {
     case gl::NanoKind::Float: return vdb::updateFullChecksum(*h.grid<float>());
     case gl::NanoKind::Int32: return vdb::updateFullChecksum(*h.grid<int32_t>());
+    case gl::NanoKind::Vec3f: return vdb::updateFullChecksum(*h.grid<nanovdb::Vec3f>());
     case gl::NanoKind::Mask: return vdb::updateFullChecksum(*h.grid<nanovdb::ValueMask>());
     case gl::NanoKind::Bool: return vdb::updateFullChecksum(*h.grid<bool>());
     }

@@ -39,9 +39,10 @@
 namespace svo::gl {
 
 /// @brief The grid's value type (nanovdb::GridType): Float and Int32 carry
-/// 512 values per leaf and min/max statistics; Mask (ValueMask, topology
-/// only) and Bool carry none.
-enum class NanoKind : uint32_t { Float = 1, Int32 = 4, Mask = 8, Bool = 11 };
+/// 512 values per leaf and min/max statistics, Vec3f 512 vectors of 3 words
+/// and min/max by squared length; Mask (ValueMask, topology only) and Bool
+/// carry none.
+enum class NanoKind : uint32_t { Float = 1, Int32 = 4, Vec3f = 6, Mask = 8, Bool = 11 };
 
 /// @brief An 8³ tile of a lower node: one value for its whole brick.
 struct NanoTile {
@@ -56,20 +57,21 @@ struct NanoLeaves {
     uint32_t count = 0; ///< number of leaves
     /// Host input (used when `origins` is set): per leaf its origin (a
     /// multiple of 8, unique), its active voxels in OpenVDB's bit order, and
-    /// optionally 512 value words (float or int32 bits; Bool: non-zero is on).
+    /// optionally 512 values (float or int32 bits, a word each; Vec3f three
+    /// float words each; Bool: non-zero is on).
     const std::array<int32_t, 3>* origins = nullptr;
     const Brick* masks = nullptr;
     const uint32_t* values = nullptr;
     /// Device input (used when `origins` is null): the same, 3 ints, 16 uints
-    /// and 512 words per leaf; `valueBuffer` may be null.
+    /// and 512 values per leaf; `valueBuffer` may be null.
     const Buffer* originBuffer = nullptr;
     const Buffer* maskBuffer = nullptr;
     const Buffer* valueBuffer = nullptr;
     /// Float and Int32 leaves without values: when set, the word every
     /// active voxel holds (a fog volume's 1.0f bits), the background the
-    /// others; when not, every voxel holds the background.
+    /// others; when not (and for Vec3f), every voxel holds the background.
     std::optional<uint32_t> activeWord;
-    uint32_t tileCount = 0;           ///< number of 8³ tiles
+    uint32_t tileCount = 0;           ///< number of 8³ tiles (scalar kinds only)
     const NanoTile* tiles = nullptr;  ///< the tiles, in any order (host)
 };
 
@@ -79,7 +81,7 @@ struct NanoGridHeader {
     uint32_t gridClass = 0;                           ///< nanovdb::GridClass (Mask grids: Topology whatever is given)
     double voxelSize = 1.0;                           ///< index -> world scale
     std::array<double, 3> translation{0.0, 0.0, 0.0}; ///< world position of index (0, 0, 0)
-    double background = 0.0;                          ///< converted to the kind's value (Bool: non-zero is true)
+    double background = 0.0;                          ///< converted to the kind's value (Bool: non-zero is true; Vec3f: every component)
     /// NanoVDB's full checksum (nanovdb::ChecksumMode::Full), the nodes'
     /// CRCs on the GPU, the headers' and the list's on the host; else (and
     /// for a grid of no leaves) the checksum field says "none".
@@ -102,7 +104,7 @@ struct NanoGridBuffer {
 };
 
 /// @brief The 32-bit word a grid of @a kind stores for @a background: float
-/// or int32 bits, 1 or 0 for Bool and Mask (a bool's byte).
+/// or int32 bits (Vec3f: each component's), 1 or 0 for Bool and Mask (a bool's byte).
 /// @param kind       the value type
 /// @param background the background, as NanoGridHeader holds it
 /// @return the word
@@ -119,8 +121,8 @@ uint32_t backgroundWord(NanoKind kind, double background);
 ///         comment); a grid of leaves in the buffer lent as kNanoGridScratch
 /// @throw svo::InvalidInput for a leaf or tile origin that is not a multiple
 ///        of 8, a repeated leaf or tile, a tile on a leaf, a name of 256 bytes
-///        or more, or inconsistent leaves (missing masks or tiles, device
-///        buffers too small)
+///        or more, inconsistent leaves (missing masks or tiles, device
+///        buffers too small), or tiles or an active word with Vec3f
 /// @throw svo::Unsupported for a grid beyond 32-bit word addressing (16 GiB)
 /// @throw svo::OutOfMemory or svo::DeviceError on a GL error
 NanoGridBuffer buildNanoGridGpu(const Context& context, NanoKind kind, const NanoLeaves& leaves,
