@@ -964,30 +964,39 @@ TEST_F(GpuNanoGrid, FrontDoorSolidsEqualTheCpuLayout)
 }
 
 /// Surfaces through the front door on the GL backends: the topology (mask or
-/// bool) and the fog built on the GPU, the channels on the host, the bytes
-/// octreeToNanoGrids lays out from the same call's octree.
+/// bool), the fog and the channels (normals and colours Vec3f, triangle ids
+/// Int32) built on the GPU, the bytes octreeToNanoGrids lays out from the
+/// same call's octree.
 TEST_F(GpuNanoGrid, FrontDoorSurfacesEqualTheCpuLayout)
 {
     Voxelizer voxelizer;
-    for (const auto& [name, mesh] : frontDoorScenes())
+    for (auto [name, mesh] : frontDoorScenes())
         for (const Backend backend : {Backend::Compute, Backend::Raster})
             for (const auto topology : {GridOptions::Topology::Mask, GridOptions::Topology::Bool}) {
+                // Vertex colours of every hue, some equal in squared length (the first of equals kept).
+                mesh.colors.resize(mesh.positions.size());
+                for (size_t i = 0; i < mesh.positions.size(); ++i)
+                    mesh.colors[i] = i % 3 == 0 ? Vec3f{1.0f, 0.0f, 0.0f}
+                                     : i % 3 == 1 ? Vec3f{0.0f, 1.0f, 0.0f}
+                                                  : Vec3f{float(i % 7) / 7.0f, 0.5f, float(i % 5) / 5.0f};
                 SCOPED_TRACE(name + (backend == Backend::Compute ? " compute" : " raster") +
                              (topology == GridOptions::Topology::Mask ? " mask" : " bool"));
                 const GridSpec grid = makeGrid(mesh, {72, 0.0});
                 VoxelizeOptions options;
                 options.backend = backend;
-                options.attributes = kNormals | kTriangles;
+                options.attributes = kNormals | kTriangles | kColors;
                 VoxelizeStats stats;
                 options.stats = &stats;
                 GridOptions grids;
                 grids.topology = topology;
                 grids.fog = true;
                 const auto gpu = voxelizer.voxelizeNanoVdb(mesh, grid, options, grids);
-                EXPECT_TRUE(hasStage(stats, "nanovdb grid (gpu)"));
+                EXPECT_EQ(std::count_if(stats.stages.begin(), stats.stages.end(),
+                                        [](const StageTime& s) { return s.name == "nanovdb grid (gpu)"; }),
+                          5);
                 options.stats = nullptr;
                 const auto cpu = vdb::octreeToNanoGrids(voxelizer.voxelize(mesh, grid, options), grids);
-                ASSERT_EQ(cpu.size(), 4u); // topology, density, normal, triangle_id
+                ASSERT_EQ(cpu.size(), 5u); // topology, density, normal, triangle_id, color
                 expectSameBytes(gpu, cpu, written);
                 if (topology == GridOptions::Topology::Mask) {
                     ASSERT_NE(gpu[0].grid<nanovdb::ValueMask>(), nullptr);

@@ -228,27 +228,38 @@ std::vector<NanoHandle> octreeToNanoGrids(const Octree& o, const GridOptions& op
     return out;
 }
 
-std::vector<NanoHandle> octreeChannelNanoGrids(const Octree& o, const GridOptions& options, bool checksum)
+std::vector<OctreeChannel> octreeChannelVoxels(const Octree& o, const GridOptions& options)
 {
-    std::vector<NanoHandle> out;
-    const GridSpec& g = o.grid;
+    std::vector<OctreeChannel> out;
     if (!options.attributes) return out;
     const std::vector<uint64_t> offsets = brickVoxelOffsets(o);
     const VoxelAttributes& a = o.attributes;
-    if (!a.normals.empty())
-        out.push_back(buildNanoGrid<nanovdb::Vec3f>(
-            octreeLeaves<nanovdb::Vec3f>(o, nanovdb::Vec3f(0.0f), true,
-                                         [&](uint32_t b, uint32_t n) { return vec(a.normals[offsets[b] + n]); }),
-            infoFor(g, "normal", nanovdb::GridClass::Unknown, checksum)));
-    if (!a.triangles.empty())
-        out.push_back(buildNanoGrid<int32_t>(
-            octreeLeaves<int32_t>(o, -1, true, [&](uint32_t b, uint32_t n) { return a.triangles[offsets[b] + n]; }),
-            infoFor(g, "triangle_id", nanovdb::GridClass::Unknown, checksum)));
-    if (!a.colors.empty())
-        out.push_back(buildNanoGrid<nanovdb::Vec3f>(
-            octreeLeaves<nanovdb::Vec3f>(o, nanovdb::Vec3f(0.0f), true,
-                                         [&](uint32_t b, uint32_t n) { return vec(a.colors[offsets[b] + n]); }),
-            infoFor(g, "color", nanovdb::GridClass::Unknown, checksum)));
+    auto vectors = [&](const char* name, const std::vector<Vec3f>& values) {
+        OctreeChannel c;
+        c.name = name;
+        c.vectors = octreeLeaves<nanovdb::Vec3f>(o, nanovdb::Vec3f(0.0f), true,
+                                                 [&](uint32_t b, uint32_t n) { return vec(values[offsets[b] + n]); });
+        out.push_back(std::move(c));
+    };
+    if (!a.normals.empty()) vectors("normal", a.normals);
+    if (!a.triangles.empty()) {
+        OctreeChannel c;
+        c.name = "triangle_id";
+        c.vector = false;
+        c.ints = octreeLeaves<int32_t>(o, -1, true, [&](uint32_t b, uint32_t n) { return a.triangles[offsets[b] + n]; });
+        out.push_back(std::move(c));
+    }
+    if (!a.colors.empty()) vectors("color", a.colors);
+    return out;
+}
+
+std::vector<NanoHandle> octreeChannelNanoGrids(const Octree& o, const GridOptions& options, bool checksum)
+{
+    std::vector<NanoHandle> out;
+    for (const OctreeChannel& c : octreeChannelVoxels(o, options)) {
+        const NanoGridInfo info = infoFor(o.grid, c.name, nanovdb::GridClass::Unknown, checksum);
+        out.push_back(c.vector ? buildNanoGrid<nanovdb::Vec3f>(c.vectors, info) : buildNanoGrid<int32_t>(c.ints, info));
+    }
     return out;
 }
 

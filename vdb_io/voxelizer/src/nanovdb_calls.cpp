@@ -249,10 +249,45 @@ std::vector<vdb::NanoHandle> fieldGridsOnGpu(const gl::Context& context, const g
     return out;
 }
 
-/// An octree's grids with the topology and fog built on the GPU from its
-/// bricks (uploaded: 76 bytes a leaf), byte for byte octreeToNanoGrids'; the
-/// channel grids (Vec3f and per-voxel values the builder does not take) on
-/// the host. Stages are added to `stats`.
+/// An octree's channel grids on the GPU builder: each channel's leaves
+/// (vdb::octreeChannelVoxels, 512 values a leaf: 6 KB for Vec3f, 2 KB for
+/// triangle ids) uploaded, byte for byte octreeChannelNanoGrids'.
+void channelGridsOnGpu(const gl::Context& context, const Octree& o, const GridOptions& grids, VoxelizeStats& stats,
+                       std::vector<vdb::NanoHandle>& out)
+{
+    auto t0 = Clock::now();
+    const std::vector<vdb::OctreeChannel> channels = vdb::octreeChannelVoxels(o, grids);
+    if (channels.empty()) return;
+    stats.stages.push_back({"nanovdb channel leaves", -1, msSince(t0)});
+    for (const vdb::OctreeChannel& c : channels) {
+        gl::NanoLeaves leaves;
+        const auto& origins = c.vector ? c.vectors.origins : c.ints.origins;
+        leaves.count = uint32_t(origins.size());
+        leaves.origins = origins.data();
+        leaves.masks = c.vector ? c.vectors.masks.data() : c.ints.masks.data();
+        static_assert(sizeof(nanovdb::Vec3f) == 12, "three float words");
+        leaves.values = c.vector ? reinterpret_cast<const uint32_t*>(c.vectors.values.data())
+                                 : reinterpret_cast<const uint32_t*>(c.ints.values.data());
+        gl::NanoGridHeader header;
+        header.name = c.name;
+        header.gridClass = uint32_t(nanovdb::GridClass::Unknown);
+        header.voxelSize = o.grid.voxelSize;
+        header.translation = o.grid.translation();
+        header.background = c.vector ? 0.0 : -1.0;
+        vdb::NanoGridInfo info;
+        info.name = c.name;
+        info.voxelSize = o.grid.voxelSize;
+        info.translation = o.grid.translation();
+        auto onHost = [&] {
+            return c.vector ? vdb::buildNanoGrid<nanovdb::Vec3f>(c.vectors, info) : vdb::buildNanoGrid<int32_t>(c.ints, info);
+        };
+        out.push_back(builtOnGpu(context, c.vector ? gl::NanoKind::Vec3f : gl::NanoKind::Int32, leaves, header, stats, onHost));
+    }
+}
+
+/// An octree's grids built on the GPU, byte for byte octreeToNanoGrids':
+/// the topology and fog from its bricks (uploaded: 76 bytes a leaf), then
+/// the channels. Stages are added to `stats`.
 std::vector<vdb::NanoHandle> surfaceGridsOnGpu(const gl::Context& context, const Octree& o, const GridOptions& grids,
                                                VoxelizeStats& stats)
 {
@@ -290,10 +325,7 @@ std::vector<vdb::NanoHandle> surfaceGridsOnGpu(const gl::Context& context, const
         header.gridClass = uint32_t(nanovdb::GridClass::FogVolume);
         out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats, onHost(true)));
     }
-    t0 = Clock::now();
-    std::vector<vdb::NanoHandle> channels = vdb::octreeChannelNanoGrids(o, grids);
-    if (!channels.empty()) stats.stages.push_back({"nanovdb channels", -1, msSince(t0)});
-    for (auto& c : channels) out.push_back(std::move(c));
+    channelGridsOnGpu(context, o, grids, stats, out);
     return out;
 }
 

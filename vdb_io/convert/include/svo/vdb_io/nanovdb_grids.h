@@ -6,6 +6,7 @@
 /// nanovdb::openToNanoVDB makes of the OpenVDB grid the same data gives
 /// (grid_builder.h, field_grids.h): the same names, classes, backgrounds,
 /// active voxels and values, inactive values included.
+#include <string>
 #include <vector>
 #include <nanovdb/util/GridHandle.h>
 #include <nanovdb/util/HostBuffer.h>
@@ -26,6 +27,22 @@ using NanoHandle = nanovdb::GridHandle<nanovdb::HostBuffer>;
 /// "color" (Vec3f) when asked and present. Transform: the octree's lattice.
 /// @param checksum whether each grid gets a full CRC32
 std::vector<NanoHandle> octreeToNanoGrids(const Octree& octree, const GridOptions& grids = {}, bool checksum = true);
+
+/// @brief One channel of an octree as sparse voxels: its octree's leaves
+/// (occupied bricks, in octreeToNanoGrids' order), 512 values each, the
+/// channel's value on active voxels and the background elsewhere.
+struct OctreeChannel {
+    std::string name;                       ///< "normal", "triangle_id" or "color"
+    bool vector = true;                     ///< Vec3f (background 0) or Int32 (background -1)
+    SparseVoxels<nanovdb::Vec3f> vectors;   ///< when `vector`
+    SparseVoxels<int32_t> ints;             ///< otherwise
+};
+
+/// @brief The channels octreeChannelNanoGrids lays out, in its order, as
+/// sparse voxels (for a builder of the caller's: the GPU's).
+/// @param grids whether channels are asked for (GridOptions::attributes)
+/// @return one entry per channel the octree holds, none when not asked
+std::vector<OctreeChannel> octreeChannelVoxels(const Octree& octree, const GridOptions& grids = {});
 
 /// @brief The channel grids of octreeToNanoGrids alone ("normal",
 /// "triangle_id", "color"), for callers that lay out the topology and fog
