@@ -282,8 +282,8 @@ public:
     std::vector<vdb::NanoHandle> voxelizeNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                  const VoxelizeOptions& options = {}, const GridOptions& grids = {});
     /// @brief An octree from voxelize() as NanoVDB grids, the same bytes as
-    /// vdb::octreeToNanoGrids: the topology and fog laid out on the GPU
-    /// where @a options' backend runs on a GL device, the channels on the host.
+    /// vdb::octreeToNanoGrids: every grid (topology, fog, channels) laid out
+    /// on the GPU where @a options' backend runs on a GL device.
     /// @param octree  voxelize()'s result
     /// @param grids   which grids (topology type and name, fog, channels)
     /// @param options the backend (as given to voxelize()); its stats, if any, get the stages

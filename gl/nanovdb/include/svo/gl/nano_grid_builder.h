@@ -18,7 +18,7 @@
 ///
 /// Tiles: 8³ tiles of lower nodes (a solid's whole inside bricks, a
 /// winding-signed level set's inside bricks beyond its band), lower nodes
-/// of tiles alone included; not 128³ tiles of upper nodes, nor the values a
+/// of tiles alone included, for the scalar kinds; not 128³ tiles of upper nodes, nor the values a
 /// signed flood fill gives (a parity-signed level set's are flood filled on
 /// the host copy, svo::vdb::signedFloodFill). The
 /// checksum only when NanoGridHeader::checksum asks (nano_crc.comp, a CRC
