@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Level sets' and solids' .nvdb end to end on the GPU host (issue 45): this
-# build, which lays them out on the GPU builder (level sets signed by parity
-# or winding numbers, solids), against the build before (SVO_OLD: 70cf151's
+# Level sets', solids' and surface channels' .nvdb end to end on the GPU
+# host (issue 45): this build, which lays them out on the GPU builder (level
+# sets signed by parity or winding numbers, solids, normals and triangle
+# ids), against the build before (SVO_OLD: 70cf151's
 # svo binary, rpath $ORIGIN/../lib, run from the bundle's bin), which laid
 # them out on the CPU (parity level sets already on the GPU builder there).
 # In one run: wall ms of a fresh process (median of RUNS), one `-v` stage
@@ -10,7 +11,7 @@
 # carried gzipped in .gl, and the open meshes (ogre, japanese-temple) copied
 # into .gl/meshes from ../shared/meshes (carry ["bundle", ".gl"]):
 #   gunzip -c .gl/svo_old.gz > /tmp/svo_old
-#   OUT=dir SVO_OLD=/tmp/svo_old [RES="512 1024 2048"] [RUNS=3] [KINDS="sdf solid"] bash bench/gpu_host_sdf_nvdb.sh
+#   OUT=dir SVO_OLD=/tmp/svo_old [RES="512 1024 2048"] [RUNS=3] [KINDS="sdf solid channels"] bash bench/gpu_host_sdf_nvdb.sh
 set -uo pipefail
 source "$(dirname "$0")/gpu_host_env.sh"
 cp "${SVO_OLD:?the svo binary of the build before}" "$bin/svo_old"
@@ -21,7 +22,9 @@ for exe in svo svo_old; do
   "$bin/$exe" voxelize bundle/meshes/spot.obj -r 64 --sdf -o "$work/warm.nvdb" >/dev/null 2>&1
 done
 median() { sort -n | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}'; }
-flags() { [ "$1" = solid ] && echo "--fill solid" || echo "--sdf"; }
+flags() { # a kind's options: sdf, solid, or channels (a surface with its fog, normals and triangle ids)
+  case "$1" in solid) echo "--fill solid" ;; channels) echo "--fog --attributes normal triangle" ;; *) echo "--sdf" ;; esac
+}
 wall() { # exe mesh n file kind: ms of one fresh process
   local t0 t1
   t0=$(date +%s%N)
@@ -36,7 +39,7 @@ gpu=$(nvidia-smi --query-gpu=name --format=csv,noheader | head -1)
   echo "| kind | mesh | N | sign | new ms | old ms | gain | bytes | same bytes |"
   echo "|---|---|---|---|---|---|---|---|---|"
 } | tee "$out/sdf_nvdb.md"
-for kind in ${KINDS:-sdf solid}; do
+for kind in ${KINDS:-sdf solid channels}; do
 for mesh in bundle/meshes/spot.obj "$work/icosphere.obj" .gl/meshes/elephant.off .gl/meshes/fandisk.off \
             bundle/meshes/stanford-bunny.obj .gl/meshes/ogre.obj .gl/meshes/japanese-temple.obj; do
   [ -f "$mesh" ] || { echo "missing $mesh" >&2; continue; }
