@@ -4,7 +4,7 @@
 # sets signed by parity or winding numbers, solids, normals and triangle
 # ids), against the build before (SVO_OLD: 70cf151's
 # svo binary, rpath $ORIGIN/../lib, run from the bundle's bin), which laid
-# them out on the CPU (parity level sets already on the GPU builder there).
+# them all out on the CPU.
 # In one run: wall ms of a fresh process (median of RUNS), one `-v` stage
 # table of each, and the two files compared byte for byte (they must be
 # equal). Expected figures: bench/nanovdb_expected.md. With the old binary
