@@ -8,6 +8,8 @@
 // bits holds it to CGAL too.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstring>
 #include <iostream>
 #include <functional>
 #include <map>
@@ -23,6 +25,7 @@
 #include "svo/core/voxel_key.h"
 #include "svo/core/winding_columns.h"
 #include "svo/core/winding_signs.h"
+#include "svo/core/winding_tree_cache.h"
 #include "svo/gl/device.h"
 #include "svo/gl/field_pipeline.h"
 #include "svo/svo.h"
@@ -649,6 +652,97 @@ TEST(CpuFields, GradientBoundHoldsOverBricksBeyondTheBand)
 
 // The CPU path makes no GL context, polls the checkpoint with the fraction
 // done (rising to the end of its part), and stops with svo::Interrupted.
+/// Whether @a stats ran a stage named @a name.
+bool ranStage(const VoxelizeStats& stats, const std::string& name)
+{
+    return std::any_of(stats.stages.begin(), stats.stages.end(), [&](const StageTime& s) { return s.name == name; });
+}
+
+/// WindingTreeCache's key is its whole input, bit for bit: the same input
+/// gets the kept tree (the same object, the nodes buildWindingTree gives);
+/// a coordinate's zero turned negative, another triangle order and clear()
+/// each build again.
+TEST(CpuFields, WindingTreeCacheKeysOnTheWholeInput)
+{
+    const TriangleMesh ico = icosphere({0.0, 0.5, -0.25}, 1.0, 2);
+    std::vector<Vec3d> positions = ico.positions;
+    positions[0] = {0.0, positions[0][1], positions[0][2]};
+    WindingTreeCache cache;
+    bool built = false;
+    const WindingTree* first = &cache.treeFor(positions, ico.triangles, &built);
+    EXPECT_TRUE(built);
+    const WindingTree fresh = buildWindingTree(positions, ico.triangles);
+    ASSERT_EQ(first->nodes.size(), fresh.nodes.size());
+    EXPECT_EQ(0, std::memcmp(first->nodes.data(), fresh.nodes.data(), 4 * fresh.nodes.size()));
+    EXPECT_EQ(first->links, fresh.links);
+    EXPECT_EQ(first->order, fresh.order);
+    EXPECT_EQ(&cache.treeFor(positions, ico.triangles, &built), first);
+    EXPECT_FALSE(built);
+    positions[0][0] = -0.0; // equal as a number
+    (void)cache.treeFor(positions, ico.triangles, &built);
+    EXPECT_TRUE(built);
+    std::vector<std::array<uint32_t, 3>> turned = ico.triangles;
+    std::swap(turned[0][1], turned[0][2]);
+    (void)cache.treeFor(positions, turned, &built);
+    EXPECT_TRUE(built);
+    (void)cache.treeFor(positions, turned, &built);
+    EXPECT_FALSE(built);
+    cache.clear();
+    (void)cache.treeFor(positions, turned, &built);
+    EXPECT_TRUE(built);
+}
+
+/// The device keeps the last winding tree (svo/core/winding_tree_cache.h):
+/// a call over the same triangles in the same frame (another region of the
+/// same grid, or a solid of it) walks the kept tree, and its signs are a
+/// fresh device's bit for bit; a moved vertex and releaseScratch() each
+/// build it again.
+TEST(CpuFields, RegionsOfOneGridShareTheWindingTree)
+{
+    TriangleMesh open = icosphere({0.1, -0.2, 0.3}, 1.0, 3);
+    std::vector<std::array<uint32_t, 3>> kept;
+    for (const auto& t : open.triangles)
+        if (open.positions[t[0]][2] + open.positions[t[1]][2] + open.positions[t[2]][2] < 3 * (0.3 + 0.5)) kept.push_back(t);
+    open.triangles = std::move(kept); // a hole: winding numbers
+    const GridSpec grid = makeGrid(open, GridRequest{48, 0});
+    for (const Backend backend : {Backend::Cpu, kGl}) {
+        SCOPED_TRACE(backend == Backend::Cpu ? "cpu" : "gl");
+        gl::Device device;
+        VoxelizeSettings settings;
+        settings.backend = backend;
+        const LevelSetOptions ls = options(3, 3, SignMethod::Winding);
+        VoxelizeStats first, second, third;
+        settings.region = IndexBox{{grid.anchor[0] - 16, grid.anchor[1] - 16, grid.anchor[2] - 16},
+                                   {grid.anchor[0] + 24, grid.anchor[1] + 64, grid.anchor[2] + 64}};
+        (void)gl::levelSetBricks(device, open, grid, ls, settings, Checkpoint{}, first);
+        EXPECT_TRUE(ranStage(first, "winding tree"));
+        settings.region->lo[0] += 40, settings.region->hi[0] += 40; // the next region along x
+        const DistanceBricks kept2 = gl::levelSetBricks(device, open, grid, ls, settings, Checkpoint{}, second);
+        EXPECT_TRUE(ranStage(second, "winding tree (kept)"));
+        EXPECT_FALSE(ranStage(second, "winding tree"));
+        gl::Device fresh;
+        VoxelizeStats freshStats;
+        const DistanceBricks built = gl::levelSetBricks(fresh, open, grid, ls, settings, Checkpoint{}, freshStats);
+        ASSERT_EQ(kept2.bricks, built.bricks);
+        ASSERT_GT(kept2.signs.inside.size(), 10u);
+        EXPECT_EQ(0, std::memcmp(kept2.signs.inside.data(), built.signs.inside.data(), sizeof(Brick) * built.signs.inside.size()));
+        EXPECT_EQ(kept2.signs.insideBricks, built.signs.insideBricks);
+        // A solid of the same mesh and grid: the same local frame, the same tree.
+        VoxelizeStats solidStats;
+        (void)gl::solidBricks(device, open, grid, settings, SignOptions(SignMethod::Winding), Checkpoint{}, solidStats);
+        EXPECT_TRUE(ranStage(solidStats, "winding tree (kept)"));
+        // One vertex moved: another key.
+        TriangleMesh moved = open;
+        moved.positions[open.triangles[0][0]][0] += 1e-3;
+        (void)gl::levelSetBricks(device, moved, grid, ls, settings, Checkpoint{}, third);
+        EXPECT_TRUE(ranStage(third, "winding tree"));
+        device.releaseScratch();
+        VoxelizeStats fourth;
+        (void)gl::levelSetBricks(device, moved, grid, ls, settings, Checkpoint{}, fourth);
+        EXPECT_TRUE(ranStage(fourth, "winding tree"));
+    }
+}
+
 TEST(CpuFields, NoContextProgressAndInterrupts)
 {
     gl::Device device;

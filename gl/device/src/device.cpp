@@ -83,6 +83,7 @@ StartupStats Device::takeStartup(std::vector<std::string>& warnings)
 void Device::releaseScratch()
 {
     if (context_) context_->releaseScratch();
+    windingTrees_.clear();
 }
 
 } // namespace svo::gl

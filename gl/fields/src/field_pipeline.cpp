@@ -126,14 +126,27 @@ void checkFieldBudget(const VoxelizeSettings& settings, size_t bricks, const Tri
 /// (of a region's bricks, in a region),
 /// then voxel by voxel in the band's bricks and in the bricks whose centre is
 /// within kWindingMargin of 1/2 (bricksBeyondBand, the CPU path's rule too).
-FieldSigns windingSigns(Context& context, const TriangleMesh& mesh, const GridSpec& g,
+/// The mesh's winding tree in @a g's local frame: the device's kept one when
+/// the last call's was over the same triangles (a region's after another's),
+/// timed into `stats` ("winding tree", or "winding tree (kept)" for the
+/// comparison alone).
+const WindingTree& windingTree(WindingTreeCache& trees, const std::vector<Vec3d>& local, const TriangleMesh& mesh,
+                               VoxelizeStats& stats)
+{
+    const auto t0 = Clock::now();
+    bool built = false;
+    const WindingTree& tree = trees.treeFor(local, mesh.triangles, &built);
+    stats.stages.push_back({built ? "winding tree" : "winding tree (kept)", -1, msSince(t0)});
+    return tree;
+}
+
+FieldSigns windingSigns(Device& device, const TriangleMesh& mesh, const GridSpec& g,
                    const std::vector<BrickCoord>& band, double beta, const std::optional<IndexBox>& region,
                    const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
     if (missesGrid(g, region)) return {};
-    auto t0 = Clock::now();
-    const WindingTree tree = buildWindingTree(localPositions(mesh, g), mesh.triangles);
-    stats.stages.push_back({"winding tree", -1, msSince(t0)});
+    Context& context = device.context();
+    const WindingTree& tree = windingTree(device.windingTrees(), localPositions(mesh, g), mesh, stats);
     WindingRequest coarse;
     coarse.perBrick = true;
     coarse.brickBox = bricksMeeting(g, region); // a region's own bricks, as on the CPU
@@ -181,15 +194,13 @@ ClimbAnchors searchedBricks(const GridSpec& g, const std::optional<IndexBox>& re
 /// The same on the CPU (svo/core/winding_signs.h): the same tree, rule and
 /// sums, walked where climbing a column from its lowest centres does not
 /// decide (windingInsideAlongColumns).
-FieldSigns windingSignsCpu(const TriangleMesh& mesh, const std::vector<Vec3d>& local, const GridSpec& g,
-                           const std::vector<BrickCoord>& band, double beta, const std::optional<IndexBox>& region,
-                           const Checkpoint& checkpoint, VoxelizeStats& stats)
+FieldSigns windingSignsCpu(WindingTreeCache& trees, const TriangleMesh& mesh, const std::vector<Vec3d>& local,
+                           const GridSpec& g, const std::vector<BrickCoord>& band, double beta,
+                           const std::optional<IndexBox>& region, const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
     if (missesGrid(g, region)) return {};
+    const WindingTree& tree = windingTree(trees, local, mesh, stats);
     auto t0 = Clock::now();
-    const WindingTree tree = buildWindingTree(local, mesh.triangles);
-    stats.stages.push_back({"winding tree", -1, msSince(t0)});
-    t0 = Clock::now();
     // Only the region's bricks: a region's signs cost its own volume, not the grid's.
     const BrickBox box = bricksMeeting(g, region);
     const BrickCentreColumns centreColumns = brickCentreColumns(local, mesh, g, &box);
@@ -315,7 +326,7 @@ std::vector<Brick> crossingsCpu(const std::vector<Vec3d>& local, const TriangleM
 
 /// levelSetBricks on the CPU (svo/core/band_distances.h, parity_crossings.h,
 /// winding_signs.h): the same bricks, distances and signs as the GPU's.
-DistanceBricks levelSetOnCpu(const TriangleMesh& mesh, const GridSpec& g, const LevelSetOptions& ls,
+DistanceBricks levelSetOnCpu(WindingTreeCache& trees, const TriangleMesh& mesh, const GridSpec& g, const LevelSetOptions& ls,
                              const SignChoice& sign, double band, const std::optional<IndexBox>& region,
                              const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
@@ -333,7 +344,7 @@ DistanceBricks levelSetOnCpu(const TriangleMesh& mesh, const GridSpec& g, const 
         bandDistances(local, mesh, g, out.bricks, band, ls.closestTriangle, checkpoint.part(0.05, winding ? 0.3 : 0.8));
     stats.stages.push_back({"band distance (cpu)", -1, msSince(t0)});
     if (winding) {
-        out.signs = windingSignsCpu(mesh, local, g, out.bricks, ls.sign.windingAccuracy, region,
+        out.signs = windingSignsCpu(trees, mesh, local, g, out.bricks, ls.sign.windingAccuracy, region,
                                     checkpoint.part(0.3, 0.85), stats);
     } else if (signedField) {
         const std::vector<Brick> crossings = crossingsCpu(local, mesh, g, out.bricks, region.has_value(), stats);
@@ -408,7 +419,8 @@ DistanceBricks bricksOf(Device& device, const TriangleMesh& mesh, const LevelSet
     checkpoint(0.0, "band bricks");
     if (runsOnCpu(device, settings)) { // no GL context is made
         describeBackend(device, Backend::Cpu, stats);
-        DistanceBricks out = levelSetOnCpu(mesh, g, ls, f.sign, f.band, settings.region, checkpoint, stats);
+        DistanceBricks out =
+            levelSetOnCpu(device.windingTrees(), mesh, g, ls, f.sign, f.band, settings.region, checkpoint, stats);
         noteOpenColumns(stats, out.signs.openColumns, "signs above its last crossing count as outside");
         out.grid = g;
         out.closestTriangle = ls.closestTriangle;
@@ -423,7 +435,7 @@ DistanceBricks bricksOf(Device& device, const TriangleMesh& mesh, const LevelSet
     FieldResult field = fieldPass(device.context(), mesh, g, request, settings.region.has_value(), stats);
     DistanceBricks out;
     if (winding) {
-        out.signs = windingSigns(device.context(), mesh, g, request.bricks, ls.sign.windingAccuracy, settings.region,
+        out.signs = windingSigns(device, mesh, g, request.bricks, ls.sign.windingAccuracy, settings.region,
                                  checkpoint.part(0.55, 0.85), stats);
     } else if (signedField) {
         const auto t0 = Clock::now();
@@ -495,7 +507,7 @@ DeviceField deviceLeavesOf(Device& device, const TriangleMesh& mesh, const GridS
     request.leafBands = {float(ls.exteriorBand), float(f.signedField ? ls.interiorBand : ls.exteriorBand)};
     FieldSigns signs;
     if (f.winding) {
-        signs = windingSigns(device.context(), mesh, f.g, request.bricks, ls.sign.windingAccuracy, std::nullopt,
+        signs = windingSigns(device, mesh, f.g, request.bricks, ls.sign.windingAccuracy, std::nullopt,
                              checkpoint.part(0.05, 0.3), stats);
         request.insideVoxels = &signs.inside;
         request.extraLeaves = uint32_t(signs.partial.size());
@@ -573,7 +585,7 @@ SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec
     if (runsOnCpu(device, settings)) { // the surface voxels came from the CPU voxelizer too
         const std::vector<Vec3d> local = localPositions(mesh, g);
         if (winding) {
-            out.signs = windingSignsCpu(mesh, local, g, out.bricks, signOptions.windingAccuracy, settings.region,
+            out.signs = windingSignsCpu(device.windingTrees(), mesh, local, g, out.bricks, signOptions.windingAccuracy, settings.region,
                                         checkpoint.part(0.35, 0.8), stats);
         } else {
             checkpoint(0.35, "parity crossings");
@@ -584,7 +596,7 @@ SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec
             stats.stages.push_back({"parity scan", -1, msSince(t0)});
         }
     } else if (winding) {
-        out.signs = windingSigns(device.context(), mesh, g, out.bricks, signOptions.windingAccuracy, settings.region,
+        out.signs = windingSigns(device, mesh, g, out.bricks, signOptions.windingAccuracy, settings.region,
                                  checkpoint.part(0.35, 0.8), stats);
     } else {
         FieldRequest request;

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "svo/core/winding_tree_cache.h"
 #include "svo/gl/context.h"
 #include "svo/gl/device_options.h"
 #include "svo/gl/program_stats.h"
@@ -67,8 +68,13 @@ public:
     /// creation if not yet reported, and the programs made since.
     /// @param warnings receives the program cache's new warnings
     StartupStats takeStartup(std::vector<std::string>& warnings);
-    /// @brief Frees the context's scratch buffers (nothing when there is no context).
+    /// @brief Frees what the device keeps between calls: the context's
+    /// scratch buffers (nothing when there is no context) and the winding tree.
     void releaseScratch();
+    /// @brief The last winding tree built on this device's calls, kept for
+    /// the next call over the same triangles (a level set's or solid's
+    /// regions, a cluster worker's tiles), on the CPU paths too.
+    WindingTreeCache& windingTrees() { return windingTrees_; }
 
 private:
     DeviceOptions options_;
@@ -76,6 +82,7 @@ private:
     double unreportedEglMs_ = 0; // the context's creation, until takeStartup reports it
     ProgramStats reported_;      // the programs' statistics already reported
     std::string failed_;         // why the context could not be made; "" until a failure
+    WindingTreeCache windingTrees_;
 };
 
 } // namespace svo::gl
