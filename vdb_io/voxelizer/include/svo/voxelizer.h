@@ -35,7 +35,9 @@
 /// scratch buffers, so only the first call pays for EGL start-up and making
 /// programs (loaded from the program cache, DeviceOptions::programCache, or
 /// compiled), and a warm call pays only for its work. Scratch buffers stay
-/// at their largest size until releaseScratch().
+/// at their largest size until releaseScratch(), and so does the last
+/// winding tree: a call over the same triangles on the same grid (another
+/// region or tile of it) reuses it (svo/core/winding_tree_cache.h).
 ///
 /// Host contexts. The Voxelizer's context is current only inside a call; the
 /// context the calling thread had current before (EGL, or GLX such as a
@@ -346,7 +348,7 @@ public:
     /// statistics still report the set-up (StartupStats::eglMs).
     /// @throw svo::DeviceError as the first GPU call would: no usable GPU or driver.
     void startDevice();
-    /// @brief Frees the scratch buffers kept for the next call.
+    /// @brief Frees the scratch buffers and the winding tree kept for the next call.
     void releaseScratch();
 
 private:
