@@ -708,6 +708,18 @@ std::pair<DistanceBricks, std::vector<vdb::NanoHandle>> readBackLayout(gl::Devic
     return {std::move(field), std::move(grids)};
 }
 
+/// levelSetNanoVdb of @a mesh on its 60-voxel grid on the compute backend
+/// (a voxel size that is no power of two, so world distances round), its
+/// stages in @a stats.
+std::vector<vdb::NanoHandle> frontDoorLevelSet(Voxelizer& voxelizer, const TriangleMesh& mesh, const GridSpec& grid,
+                                               const LevelSetOptions& ls, VoxelizeStats& stats)
+{
+    VoxelizeOptions options;
+    options.backend = Backend::Compute;
+    options.stats = &stats;
+    return voxelizer.levelSetNanoVdb(mesh, grid, ls, options);
+}
+
 /// An unsigned field through the front door on a GL backend: its band stays
 /// on the device and the GPU builder lays it out ("band leaves", "nanovdb
 /// grid (gpu)"), giving the bytes the CPU layout (levelSetNanoGrids) gives
@@ -720,17 +732,13 @@ TEST_F(GpuNanoGrid, FrontDoorUnsignedFieldsEqualTheCpuLayout)
     for (const auto& [name, mesh] : frontDoorScenes())
         for (const bool closest : {false, true}) {
             SCOPED_TRACE(name + (closest ? " with closest triangles" : ""));
-            // A voxel size that is no power of two, so world distances round.
             const GridSpec grid = makeGrid(mesh, {60, 0.0});
             LevelSetOptions ls;
             ls.unsignedDistance = true;
             ls.exteriorBand = 2.5;
             ls.closestTriangle = closest;
-            VoxelizeOptions options;
-            options.backend = Backend::Compute;
             VoxelizeStats stats;
-            options.stats = &stats;
-            const auto gpu = voxelizer.levelSetNanoVdb(mesh, grid, ls, options);
+            const auto gpu = frontDoorLevelSet(voxelizer, mesh, grid, ls, stats);
             EXPECT_TRUE(hasStage(stats, "band leaves"));
             EXPECT_TRUE(hasStage(stats, "nanovdb grid (gpu)"));
             EXPECT_FALSE(hasStage(stats, "band packing"));
@@ -778,6 +786,8 @@ TEST_F(GpuNanoGrid, FrontDoorUnsignedFieldsEqualTheCpuLayout)
                             vdb::levelSetNanoGrids(cpuField, ls.exteriorBand, ls.interiorBand, grid), written);
             // The grids left on the GPU: the same bytes, read in the callback (the context current there).
             VoxelizeStats deviceStats;
+            VoxelizeOptions options;
+            options.backend = Backend::Compute;
             options.stats = &deviceStats;
             size_t calls = 0;
             voxelizer.unsignedFieldNanoVdbOnDevice(mesh, grid, ls, options, [&](const std::vector<gl::NanoGridBuffer>& grids) {
@@ -812,7 +822,7 @@ TEST_F(GpuNanoGrid, FrontDoorSignedFieldsEqualTheCpuLayout)
 {
     Voxelizer voxelizer;
     std::set<bool> signedBy; // parity or not: both must be seen
-    // The box is closed (parity); the sphere's seams are open (winding numbers).
+    // The box is closed (parity); both spheres are open (winding numbers).
     for (const auto& [name, mesh] : frontDoorScenes())
         for (const bool closest : {false, true}) {
             SCOPED_TRACE(name + (closest ? " with closest triangles" : ""));
@@ -821,11 +831,8 @@ TEST_F(GpuNanoGrid, FrontDoorSignedFieldsEqualTheCpuLayout)
             ls.exteriorBand = 2.5;
             ls.interiorBand = 1.5; // unequal bands: a voxel's sign picks its band
             ls.closestTriangle = closest;
-            VoxelizeOptions options;
-            options.backend = Backend::Compute;
             VoxelizeStats stats;
-            options.stats = &stats;
-            const auto gpu = voxelizer.levelSetNanoVdb(mesh, grid, ls, options);
+            const auto gpu = frontDoorLevelSet(voxelizer, mesh, grid, ls, stats);
             const bool parity = stats.sign.rfind("parity", 0) == 0;
             EXPECT_TRUE(parity || stats.sign.rfind("winding", 0) == 0) << stats.sign;
             signedBy.insert(parity);

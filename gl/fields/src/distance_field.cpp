@@ -374,8 +374,7 @@ FieldLeaves bandLeaves(const Context& context, const FieldBuffers& buffers, cons
             grid.anchor[a] + int64_t(grid.dims[a]) > std::numeric_limits<int32_t>::max())
             throw Unsupported("the field's grid reaches beyond 32-bit index coordinates");
     FieldLeaves leaves;
-    const uint64_t capacity = nb + request.extraLeaves;
-    leaves.capacity = uint32_t(capacity);
+    const uint64_t capacity = nb + request.extraLeaves; // room for the caller's leaves after the band's
     leaves.origins = &context.scratch("band leaf origins", capacity * 12);
     leaves.masks = &context.scratch("band leaf masks", capacity * sizeof(Brick));
     leaves.values = &context.scratch("band leaf values", capacity * 2048);

@@ -186,11 +186,9 @@ void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, ui
         p->set("uHasActive", active && !hasValues ? 1u : 0u);
         p->set("uActive", active.value_or(background));
     }
-    if (n) {
-        leaves.dispatchRows(n); // a group a leaf
-        if (kind != NanoKind::Mask) values.dispatchRows((16 * uint64_t(n) + 255) / 256); // masks hold no values
-        passBarrier();
-    }
+    leaves.dispatchRows(n); // a group a leaf (none for a grid of tiles alone)
+    if (kind != NanoKind::Mask) values.dispatchRows((16 * uint64_t(n) + 255) / 256); // masks hold no values
+    passBarrier();
     const Program& internal = context.program(nanovdbShaders(), {"nano_internal.comp"});
     internal.set("uLeafCount", n);
     internal.set("uEntryCount", entries);

@@ -20,7 +20,6 @@ class Buffer;
 struct FieldLeaves {
     uint32_t count = 0;              ///< the bricks that took a leaf (FieldRequest::insideVoxels: those with inside voxels too)
     uint32_t activeCount = 0;        ///< the first leaves: the bricks with a voxel nearer than the band
-    uint32_t capacity = 0;           ///< leaves the buffers hold (FieldRequest::extraLeaves past the bricks)
     const Buffer* origins = nullptr; ///< 3 ints per leaf
     const Buffer* masks = nullptr;   ///< 16 uints per leaf
     const Buffer* values = nullptr;  ///< 512 floats per leaf: the distance in world units, else the background; negated inside
