@@ -5,12 +5,14 @@
 # (../shared/peers/nanovdb: CUDA and headers only), then both tools convert the
 # same OBJ files at the same voxel size. Needs the bundle (scripts/bundle.sh),
 # bundle/meshes and bundle/peers.
-#   OUT=dir [RES="256 ... 4096"] [RUNS=5] [ARCH=sm_90] [MESHES="bunny icosphere ..."] bash bench/gpu_host_nanovdb.sh
+#   OUT=dir [RES="256 ... 4096"] [RUNS=5] [ARCH=sm_90] [MESHES="bunny icosphere ..."] [M2G=path] bash bench/gpu_host_nanovdb.sh
+# M2G: where the harness is built, kept for a later call on the same machine
+# (built only when missing there; default a fresh temporary folder).
 # MESHES picks among bunny icosphere spot ogre rocker-arm fandisk (default: all six).
 set -uo pipefail
 source "$(dirname "$0")/gpu_host_env.sh"
-m2g="$work/m2g"
-nvcc -O3 -std=c++17 -arch="${ARCH:-sm_90}" --extended-lambda --expt-relaxed-constexpr \
+m2g="${M2G:-$work/m2g}"
+[ -x "$m2g" ] || nvcc -O3 -std=c++17 -arch="${ARCH:-sm_90}" --extended-lambda --expt-relaxed-constexpr \
   -I bundle/peers/nanovdb bench/nanovdb_mesh_to_grid.cu -o "$m2g" > "$out/m2g_build.txt" 2>&1
 if [ ! -x "$m2g" ]; then
   echo "gpu_host_nanovdb: the MeshToGrid harness did not build; see $out/m2g_build.txt" >&2

@@ -78,6 +78,10 @@ def before_ms(a, mesh, res, args, tmp):
     return w1 + w2 if rc1 == 0 and rc2 == 0 else None
 
 
+def stage_gpu_ms(report, name):
+    return next((s["gpu_ms"] for s in report["stages"] if s["name"] == name and s.get("gpu_ms") is not None), None)
+
+
 def fmt(v, digits=1):
     return "—" if v is None else f"{v:.{digits}f}"
 
@@ -86,9 +90,41 @@ def ratio(num, den):
     return "—" if not num or not den else f"{num / den:.2f}×"
 
 
+def write_md(path, title, band, runs, rows):
+    """The tables of every row so far (rewritten after each row, so a run cut
+    short by its time limit still leaves its table)."""
+    with open(path + ".tmp", "w") as f:
+        f.write(f"# {title}\n\nBand {band:g}, medians of {runs} runs after a warm-up; "
+                "ratio = MeshToGrid / svo (above 1: svo faster). GPU ms: the mesh already on the GPU.\n\n")
+        f.write("| mesh | N | svo UDF GPU ms | of which band distance / grid | MeshToGrid topology GPU ms | ratio | MeshToGrid UDF GPU ms | ratio "
+                "| voxels both / only svo / only MeshToGrid | UDF max diff | svo .nvdb end to end ms | before ms | gain "
+                "| MeshToGrid end to end ms |\n|" + "---|" * 14 + "\n")
+        for r in rows:
+            s, t, u = r["svo_udf"], r["m2g_topology"], r["m2g_udf"]
+            g = svo_gpu_ms(s) if s else None
+            sets = f"{t['both']} / {t['only_svo']} / {t['only_meshtogrid']}" if t and "both" in t else "—"
+            e2e = s["end_to_end_ms"] if s else None
+            split = (f"{fmt(stage_gpu_ms(s, 'band distance'))} / {fmt(stage_gpu_ms(s, 'nanovdb grid (gpu)'))}"
+                     if s else "—")
+            f.write(f"| {r['mesh']} | {r['res']} | {fmt(g)} | {split} | {fmt(t and t['gpu_ms_median'])} | {ratio(t and t['gpu_ms_median'], g)} "
+                    f"| {fmt(u and u['gpu_ms_median'])} | {ratio(u and u['gpu_ms_median'], g)} | {sets} "
+                    f"| {fmt(u and u.get('udf_max_abs_diff'), 6)} | {fmt(e2e)} | {fmt(r['before_udf_ms'])} "
+                    f"| {ratio(r['before_udf_ms'], e2e)} | {fmt(u and u['end_to_end_ms'])} |\n")
+        f.write("\n## Surface: svo's conservative surface against MeshToGrid with band 0\n\n")
+        f.write("| mesh | N | svo GPU ms | MeshToGrid GPU ms | ratio | voxels both / only svo / only MeshToGrid |\n"
+                "|---|---|---|---|---|---|\n")
+        for r in rows:
+            s, m = r["svo_surface"], r["m2g_surface"]
+            g = svo_gpu_ms(s) if s else None
+            sets = f"{m['both']} / {m['only_svo']} / {m['only_meshtogrid']}" if m and "both" in m else "—"
+            f.write(f"| {r['mesh']} | {r['res']} | {fmt(g)} | {fmt(m and m['gpu_ms_median'])} "
+                    f"| {ratio(m and m['gpu_ms_median'], g)} | {sets} |\n")
+    os.replace(path + ".tmp", path)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("meshes", nargs="+")
+    ap.add_argument("meshes", nargs="*")
     ap.add_argument("--svo", default="build/bin/svo")
     ap.add_argument("--m2g", required=True, help="bench/nanovdb_mesh_to_grid.cu built with nvcc")
     ap.add_argument("--res", type=int, nargs="+", default=[256, 512, 1024, 2048, 4096])
@@ -98,7 +134,12 @@ def main():
     ap.add_argument("--md", required=True)
     ap.add_argument("--json", help="every measurement, one object per line")
     ap.add_argument("--title", default="svo NanoVDB output against NanoVDB's MeshToGrid")
+    ap.add_argument("--from-jsonl", help="write --md from the JSON lines of an earlier run, running nothing")
     a = ap.parse_args()
+    if a.from_jsonl:
+        with open(a.from_jsonl) as f:
+            write_md(a.md, a.title, a.band, a.runs, [json.loads(l) for l in f if l.strip()])
+        return 0
     rows = []
     log = open(a.json, "w") if a.json else None
     for mesh in a.meshes:
@@ -122,30 +163,7 @@ def main():
                 print(f"{row['mesh']} {res}: svo udf {fmt(s_udf and svo_gpu_ms(s_udf))} GPU ms, "
                       f"m2g topology {fmt(m_top and m_top['gpu_ms_median'])}, udf {fmt(m_udf and m_udf['gpu_ms_median'])}",
                       flush=True)
-    with open(a.md, "w") as f:
-        f.write(f"# {a.title}\n\nBand {a.band:g}, medians of {a.runs} runs after a warm-up; "
-                "ratio = MeshToGrid / svo (above 1: svo faster). GPU ms: the mesh already on the GPU.\n\n")
-        f.write("| mesh | N | svo UDF GPU ms | MeshToGrid topology GPU ms | ratio | MeshToGrid UDF GPU ms | ratio "
-                "| voxels both / only svo / only MeshToGrid | UDF max diff | svo .nvdb end to end ms | before ms | gain "
-                "| MeshToGrid end to end ms |\n|" + "---|" * 13 + "\n")
-        for r in rows:
-            s, t, u = r["svo_udf"], r["m2g_topology"], r["m2g_udf"]
-            g = svo_gpu_ms(s) if s else None
-            sets = f"{t['both']} / {t['only_svo']} / {t['only_meshtogrid']}" if t and "both" in t else "—"
-            e2e = s["end_to_end_ms"] if s else None
-            f.write(f"| {r['mesh']} | {r['res']} | {fmt(g)} | {fmt(t and t['gpu_ms_median'])} | {ratio(t and t['gpu_ms_median'], g)} "
-                    f"| {fmt(u and u['gpu_ms_median'])} | {ratio(u and u['gpu_ms_median'], g)} | {sets} "
-                    f"| {fmt(u and u.get('udf_max_abs_diff'), 6)} | {fmt(e2e)} | {fmt(r['before_udf_ms'])} "
-                    f"| {ratio(r['before_udf_ms'], e2e)} | {fmt(u and u['end_to_end_ms'])} |\n")
-        f.write("\n## Surface: svo's conservative surface against MeshToGrid with band 0\n\n")
-        f.write("| mesh | N | svo GPU ms | MeshToGrid GPU ms | ratio | voxels both / only svo / only MeshToGrid |\n"
-                "|---|---|---|---|---|---|\n")
-        for r in rows:
-            s, m = r["svo_surface"], r["m2g_surface"]
-            g = svo_gpu_ms(s) if s else None
-            sets = f"{m['both']} / {m['only_svo']} / {m['only_meshtogrid']}" if m and "both" in m else "—"
-            f.write(f"| {r['mesh']} | {r['res']} | {fmt(g)} | {fmt(m and m['gpu_ms_median'])} "
-                    f"| {ratio(m and m['gpu_ms_median'], g)} | {sets} |\n")
+                write_md(a.md, a.title, a.band, a.runs, rows)
     return 0
 
 
