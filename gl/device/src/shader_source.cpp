@@ -1,6 +1,8 @@
 #include "svo/gl/shader_source.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <fstream>
 #include <regex>
 #include <sstream>
 
@@ -60,8 +62,9 @@ private:
         emit("#line " + std::to_string(result.lines.size() + 2) + ' ' + std::to_string(file), origin);
     }
 
-    const std::string& textOf(const std::string& name) const
+    const std::string& textOf(const std::string& name)
     {
+        if (const std::string* text = overrideOf(name)) return *text;
         if (const auto it = extra_.find(name); it != extra_.end()) return it->second;
         const auto& files = coreShaderFiles();
         const auto it = files.find(name);
@@ -78,7 +81,22 @@ private:
         return uint32_t(result.files.size() - 1);
     }
 
+    /// A developer's copy of file @a name in $SVO_SHADER_DIR, when there is
+    /// one: a shader tuned on a GPU host without a rebuild (the program cache
+    /// keys on the text, so a changed file is compiled anew).
+    const std::string* overrideOf(const std::string& name)
+    {
+        const char* dir = std::getenv("SVO_SHADER_DIR");
+        if (!dir || !*dir) return nullptr;
+        std::ifstream in(std::string(dir) + "/" + name, std::ios::binary);
+        if (!in) return nullptr;
+        std::ostringstream text;
+        text << in.rdbuf();
+        return &(overrides_[name] = text.str());
+    }
+
     const ShaderFiles& extra_;
+    std::map<std::string, std::string> overrides_; // files read from $SVO_SHADER_DIR
     std::vector<std::string> open_; // the include chain being expanded
 };
 
