@@ -4,6 +4,9 @@
 // compiler errors traced to the file and line they come from, and uniforms
 // that do not exist; and fillWords, the device layer's own shader.
 #include <array>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <cstdint>
 #include <gtest/gtest.h>
 #include <memory>
@@ -281,6 +284,24 @@ TEST(ShaderSource, IncludesAreWrappedInLineDirectives)
         EXPECT_EQ(s.lines[k].file, expected[k].first) << "line " << k + 1;
         EXPECT_EQ(s.lines[k].line, expected[k].second) << "line " << k + 1;
     }
+}
+
+TEST(ShaderSource, FilesInTheShaderDirReplaceTheEmbeddedOnes)
+{
+    const ShaderFiles files = {{"top.comp", "#version 450 core\n#include \"a.glsl\"\n"}, {"a.glsl", "embedded\n"}};
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "svo_shader_dir_test";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "a.glsl") << "replaced\n";
+    setenv("SVO_SHADER_DIR", dir.c_str(), 1);
+    const std::string withDir = shaderSource("top.comp", files).text;
+    unsetenv("SVO_SHADER_DIR");
+    const std::string without = shaderSource("top.comp", files).text;
+    std::filesystem::remove_all(dir);
+    EXPECT_NE(withDir.find("replaced\n"), std::string::npos) << withDir;
+    EXPECT_EQ(withDir.find("embedded"), std::string::npos) << withDir;
+    // A file the folder lacks stays the embedded one, and so does everything without the variable.
+    EXPECT_NE(withDir.find("#version 450 core"), std::string::npos);
+    EXPECT_NE(without.find("embedded\n"), std::string::npos) << without;
 }
 
 TEST_F(GpuLayout, FillWordsSetsTheWordsAskedAndKeepsBindingZero)
