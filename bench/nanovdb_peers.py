@@ -6,6 +6,7 @@ same voxel size, bench/nanovdb_mesh_to_grid.cu):
   topology, band 3   MeshToGrid getHandle()            svo --udf --band 3 (its active voxels)
   UDF, band 3        MeshToGrid getHandleAndUDF()      svo --udf --band 3
   surface            MeshToGrid band 0                 svo's conservative surface
+  surface's ball     MeshToGrid band 0.867 (sqrt(3)/2) svo's conservative surface (must be a subset)
 GPU ms: MeshToGrid's CUDA events around the call, median of --runs after a
 warm-up; svo's stage GPU times (timer queries), medians of --repeat after a
 warm-up. End to end: one process each, mesh file to .nvdb (svo) or the
@@ -78,6 +79,9 @@ def before_ms(a, mesh, res, args, tmp):
     return w1 + w2 if rc1 == 0 and rc2 == 0 else None
 
 
+HALF_DIAGONAL = 0.867  # a voxel's circumscribed sphere, sqrt(3)/2 voxels, and a margin for float rounding
+
+
 def stage_gpu_ms(report, name):
     return next((s["gpu_ms"] for s in report["stages"] if s["name"] == name and s.get("gpu_ms") is not None), None)
 
@@ -111,14 +115,16 @@ def write_md(path, title, band, runs, rows):
                     f"| {fmt(u and u.get('udf_max_abs_diff'), 6)} | {fmt(e2e)} | {fmt(r['before_udf_ms'])} "
                     f"| {ratio(r['before_udf_ms'], e2e)} | {fmt(u and u['end_to_end_ms'])} |\n")
         f.write("\n## Surface: svo's conservative surface against MeshToGrid with band 0\n\n")
-        f.write("| mesh | N | svo GPU ms | MeshToGrid GPU ms | ratio | voxels both / only svo / only MeshToGrid |\n"
-                "|---|---|---|---|---|---|\n")
+        f.write("| mesh | N | svo GPU ms | MeshToGrid GPU ms | ratio | voxels both / only svo / only MeshToGrid "
+                "| band 0.867 (√3/2): both / only svo / only MeshToGrid |\n|---|---|---|---|---|---|---|\n")
         for r in rows:
             s, m = r["svo_surface"], r["m2g_surface"]
             g = svo_gpu_ms(s) if s else None
             sets = f"{m['both']} / {m['only_svo']} / {m['only_meshtogrid']}" if m and "both" in m else "—"
+            h = r.get("m2g_half_diagonal")
+            ball = f"{h['both']} / {h['only_svo']} / {h['only_meshtogrid']}" if h and "both" in h else "—"
             f.write(f"| {r['mesh']} | {r['res']} | {fmt(g)} | {fmt(m and m['gpu_ms_median'])} "
-                    f"| {ratio(m and m['gpu_ms_median'], g)} | {sets} |\n")
+                    f"| {ratio(m and m['gpu_ms_median'], g)} | {sets} | {ball} |\n")
     os.replace(path + ".tmp", path)
 
 
@@ -153,9 +159,14 @@ def main():
                 m_top = m2g_run(a, mesh, res, a.band, False, udf_nvdb if s_udf else None, tmp)
                 m_udf = m2g_run(a, mesh, res, a.band, True, udf_nvdb if s_udf else None, tmp)
                 m_surf = m2g_run(a, mesh, res, 0.0, False, surf_nvdb if s_surf else None, tmp)
+                # Every voxel whose cube meets a triangle has its centre within
+                # half the cube's diagonal of it: MeshToGrid's band sqrt(3)/2
+                # must hold svo's conservative surface (none only in svo's).
+                m_ball = m2g_run(a, mesh, res, HALF_DIAGONAL, False, surf_nvdb if s_surf else None, tmp)
                 b_udf = before_ms(a, mesh, res, udf_args, tmp)
                 row = dict(mesh=os.path.basename(mesh), res=res, svo_udf=s_udf, svo_surface=s_surf, m2g_topology=m_top,
-                           m2g_udf=m_udf, m2g_surface=m_surf, before_udf_ms=b_udf)
+                           m2g_udf=m_udf, m2g_surface=m_surf, m2g_half_diagonal=m_ball,
+                           before_udf_ms=b_udf)
                 rows.append(row)
                 if log:
                     log.write(json.dumps(row) + "\n")
