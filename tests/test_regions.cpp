@@ -5,6 +5,7 @@
 // own Grid::clip) for level sets, unsigned fields and solids, on every
 // backend. Boxes are random (seeded), overlap the grid's edges, and one lies
 // outside it.
+#include <cstring>
 #include <gtest/gtest.h>
 #include <map>
 #include <nanovdb/NanoVDB.h>
@@ -13,6 +14,8 @@
 #include "gl_backend.h"
 #include "scenes.h"
 #include "svo/core/city_scene.h"
+#include "svo/core/error.h"
+#include "svo/core/field_join.h"
 #include "svo/core/octree.h"
 #include "svo/core/region.h"
 #include "svo/core/voxel_key.h"
@@ -257,6 +260,12 @@ TEST_P(Regions, ParitySignsNeedOnlyTheTrianglesOfTheRegionsColumns)
 }
 
 
+/// Whether two NanoVDB grids are the same bytes (their checksums included).
+bool sameBytes(const vdb::NanoHandle& a, const vdb::NanoHandle& b)
+{
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size()) == 0;
+}
+
 // Past a GPU memory budget, level sets and solids are computed in regions
 // and joined: the whole grid's result, value for value.
 TEST(RegionsTiles, LevelSetsAndSolidsWithinAGpuBudgetAreTheWholeGrids)
@@ -279,8 +288,20 @@ TEST(RegionsTiles, LevelSetsAndSolidsWithinAGpuBudgetAreTheWholeGrids)
         const auto tiledSolid = v.solid(mesh, grid, tiled);
         EXPECT_GT(stats.tiles, 1u);
         expectSameAsClipped(*wholeSolid, *tiledSolid, all);
+        // An unsigned field's NanoVDB grids join on the bricks: the whole
+        // grid's grids, byte for byte (the whole grid's built on the GPU).
+        LevelSetOptions udf;
+        udf.unsignedDistance = true;
+        udf.closestTriangle = true;
+        const auto wholeNano = v.levelSetNanoVdb(mesh, grid, udf, whole);
+        const auto tiledNano = v.levelSetNanoVdb(mesh, grid, udf, tiled);
+        EXPECT_GE(stats.tiles, 2u);
+        ASSERT_EQ(tiledNano.size(), 2u);
+        ASSERT_EQ(wholeNano.size(), 2u);
+        for (size_t i = 0; i < 2; ++i) EXPECT_TRUE(sameBytes(wholeNano[i], tiledNano[i])) << "grid " << i;
         tiled.gpuMemory = 1024; // less than the mesh itself
         EXPECT_THROW(v.levelSet(mesh, grid, {}, tiled), OutOfMemory);
+        EXPECT_THROW(v.levelSetNanoVdb(mesh, grid, udf, tiled), OutOfMemory);
     }
 }
 
@@ -361,6 +382,7 @@ TEST(RegionsTiles, FieldsPastOneShaderBufferAreCutIntoRegions)
     const auto wholeSdf = v.levelSet(mesh, grid, {}, o);
     const auto wholeUdf = v.levelSet(mesh, grid, udf, o);
     const auto wholeSolid = v.solid(mesh, grid, o);
+    const auto wholeNano = v.levelSetNanoVdb(mesh, grid, udf, o);
     ASSERT_EQ(stats.tiles, 1u);
     const IndexBox all{{grid.anchor[0] - 16, grid.anchor[1] - 16, grid.anchor[2] - 16},
                        {grid.anchor[0] + 72, grid.anchor[1] + 72, grid.anchor[2] + 72}};
@@ -374,6 +396,8 @@ TEST(RegionsTiles, FieldsPastOneShaderBufferAreCutIntoRegions)
 
     const auto nano = v.levelSetNanoVdb(mesh, grid, udf, o);
     EXPECT_GE(stats.tiles, 2u);
+    ASSERT_EQ(nano.size(), 1u);
+    EXPECT_TRUE(sameBytes(nano.front(), wholeNano.front())) << "the regions' grid is the whole grid's, byte for byte";
     ASSERT_EQ(stats.warnings.size(), 1u);
     EXPECT_NE(stats.warnings.front().find("regions"), std::string::npos) << stats.warnings.front();
     const auto* distances = nano.front().grid<float>();
@@ -388,6 +412,57 @@ TEST(RegionsTiles, FieldsPastOneShaderBufferAreCutIntoRegions)
         differ += !acc.isActive(n) || acc.getValue(n) != *it;
     }
     EXPECT_EQ(differ, 0u) << "voxels of the NanoVDB grid that are not the whole grid's";
+}
+
+// Joining regions' unsigned fields on their bricks refuses what is not two
+// parts of one unsigned field, and keeps the bricks sorted with their values.
+TEST(RegionsJoin, UnsignedFieldsJoinInBrickOrderAndRefuseTheRest)
+{
+    auto field = [](std::vector<BrickCoord> bricks, float base) {
+        DistanceBricks f;
+        f.signedField = false;
+        f.grid.dims = {64, 64, 64};
+        f.bricks = bricks;
+        for (size_t i = 0; i < bricks.size(); ++i) {
+            Brick near;
+            near.words[0] = 0b101; // voxels 0 and 2
+            f.near.push_back(near);
+            f.offsets.push_back(uint32_t(f.distances.size()));
+            f.distances.push_back(base + float(i));
+            f.distances.push_back(base + float(i) + 0.5f);
+        }
+        return f;
+    };
+    DistanceBricks a = field({{0, 0, 0}, {0, 0, 3}, {2, 1, 0}}, 10.0f);
+    a.closestTriangle = true;
+    a.closest = {1, 2, 3, 4, 5, 6};
+    DistanceBricks b = field({{0, 0, 1}, {1, 0, 0}, {3, 0, 0}}, 20.0f);
+    b.closestTriangle = true;
+    b.closest = {7, 8, 9, 10, 11, 12};
+    joinUnsignedFields(a, std::move(b));
+    const std::vector<BrickCoord> order{{0, 0, 0}, {0, 0, 1}, {0, 0, 3}, {1, 0, 0}, {2, 1, 0}, {3, 0, 0}};
+    EXPECT_EQ(a.bricks, order);
+    EXPECT_EQ(a.offsets, (std::vector<uint32_t>{0, 2, 4, 6, 8, 10}));
+    EXPECT_EQ(a.distances, (std::vector<float>{10, 10.5f, 20, 20.5f, 11, 11.5f, 21, 21.5f, 12, 12.5f, 22, 22.5f}));
+    EXPECT_EQ(a.closest, (std::vector<int32_t>{1, 2, 7, 8, 3, 4, 9, 10, 5, 6, 11, 12}));
+    EXPECT_TRUE(b.bricks.empty());
+
+    DistanceBricks same = field({{2, 1, 0}}, 0.0f);
+    same.closestTriangle = true;
+    same.closest = {0, 0};
+    EXPECT_THROW(joinUnsignedFields(a, std::move(same)), InvalidInput) << "a brick in both";
+    DistanceBricks other = field({{5, 5, 5}}, 0.0f);
+    other.closestTriangle = true;
+    other.closest = {0, 0};
+    other.grid.anchor = {8, 0, 0};
+    EXPECT_THROW(joinUnsignedFields(a, std::move(other)), InvalidInput) << "another grid";
+    DistanceBricks withoutClosest = field({{5, 5, 5}}, 0.0f);
+    EXPECT_THROW(joinUnsignedFields(a, std::move(withoutClosest)), InvalidInput) << "another request";
+    DistanceBricks signedField = field({{5, 5, 5}}, 0.0f);
+    signedField.signedField = true;
+    signedField.closestTriangle = true;
+    signedField.closest = {0, 0};
+    EXPECT_THROW(joinUnsignedFields(a, std::move(signedField)), InvalidInput) << "a signed field";
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Regions, ::testing::Values(Backend::Cpu, Backend::Raster, Backend::Compute),

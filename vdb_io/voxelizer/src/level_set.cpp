@@ -13,12 +13,14 @@
 #include "svo/vdb_io/grid_builder.h"
 #include "svo/vdb_io/join_region.h"
 #include "svo/vdb_io/vdb_file.h"
+#include "regions.h"
 #include "voxelizer_state.h"
 
 namespace svo {
 namespace {
 
 using detail::Clock;
+using detail::fieldBox;
 using detail::InterruptScope;
 using detail::msSince;
 
@@ -33,61 +35,6 @@ void clipToRegion(openvdb::GridBase& grid, const std::optional<IndexBox>& region
         return openvdb::Coord(c(0), c(1), c(2));
     };
     grid.clip(openvdb::CoordBBox(coord(region->lo, 0), coord(region->hi, -1)));
-}
-
-/// The grid's index range grown by `pad` voxels, in whole leaves: every
-/// voxel a field of the grid holds (its band included) lies inside.
-IndexBox fieldBox(const GridSpec& grid, int64_t pad)
-{
-    IndexBox box;
-    for (int a = 0; a < 3; ++a) {
-        box.lo[a] = floorTo8(grid.anchor[a] - pad);
-        box.hi[a] = floorTo8(grid.anchor[a] + int64_t(grid.dims[a]) + pad + 7);
-    }
-    return box;
-}
-
-/// `run` on `box`, or, where a GPU memory budget cannot hold that, on its two
-/// halves across its wider x or y side (z columns stay whole: parity counts
-/// along them), joined; each region is exactly the whole grid's there, so
-/// the join is the whole grid's result (docs/design.md §7e).
-template <typename Run>
-openvdb::GridPtrVec inRegions(Run& run, const IndexBox& box, uint32_t& tiles)
-{
-    try {
-        openvdb::GridPtrVec out = run(box);
-        ++tiles;
-        return out;
-    } catch (const OutOfMemory&) {
-        const int axis = box.hi[0] - box.lo[0] >= box.hi[1] - box.lo[1] ? 0 : 1;
-        const int64_t leaves = (box.hi[axis] - box.lo[axis]) / 8;
-        if (leaves < 2) throw; // one column of leaves: nothing smaller to try
-        IndexBox first = box, second = box;
-        first.hi[axis] = second.lo[axis] = box.lo[axis] + 8 * (leaves / 2);
-        openvdb::GridPtrVec out = inRegions(run, first, tiles);
-        openvdb::GridPtrVec more = inRegions(run, second, tiles);
-        for (size_t i = 0; i < out.size(); ++i) vdb::joinRegion(*out[i], *more[i]);
-        return out;
-    }
-}
-
-/// `run` on the call's region (none: the whole grid); past a GPU memory
-/// budget, or past what one shader buffer holds, in regions of `box` (or of
-/// the call's region) that fit.
-template <typename Run>
-openvdb::GridPtrVec withinBudget(Run&& run, const VoxelizeOptions& options, const IndexBox& box, VoxelizeStats& stats)
-{
-    try {
-        return run(options.region);
-    } catch (const BufferLimit&) {
-        // A driver's per-buffer limit: smaller regions fit, budget or not.
-    } catch (const OutOfMemory&) {
-        if (!options.gpuMemory) throw; // only a budget the grid can be cut for
-    }
-    uint32_t tiles = 0;
-    openvdb::GridPtrVec out = inRegions(run, options.region ? *options.region : box, tiles);
-    stats.tiles = tiles;
-    return out;
 }
 
 /// The last stage, the result's record of what ran (each grid's metadata:
@@ -138,7 +85,10 @@ openvdb::GridPtrVec runFieldCall(const FieldCall& call, const VoxelizeOptions& o
         for (auto& g : out) clipToRegion(*g, region);
         return out;
     };
-    openvdb::GridPtrVec out = withinBudget(run, options, call.box, stats);
+    auto join = [](openvdb::GridPtrVec& into, const openvdb::GridPtrVec& more) {
+        for (size_t i = 0; i < into.size(); ++i) vdb::joinRegion(*into[i], *more[i]);
+    };
+    openvdb::GridPtrVec out = detail::withinBudget(run, join, options, call.box, stats);
     finishStats(stats, call.stage, t0, out, checkpoint, options);
     return out;
 }
@@ -177,8 +127,8 @@ openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const G
                                                const LevelSetOptions& ls, const VoxelizeOptions& options,
                                                openvdb::math::Transform::Ptr xform, double worldPerVoxel)
 {
-    const int64_t pad = int64_t(std::ceil(std::max(ls.exteriorBand, ls.interiorBand))) + 8;
-    const FieldCall call{"svo: computing a distance field", "level set grid", 0.85, fieldBox(grid, pad)};
+    const FieldCall call{"svo: computing a distance field", "level set grid", 0.85,
+                         fieldBox(grid, detail::levelSetPad(ls))};
     return runFieldCall(
         call, options,
         [&](const VoxelizeOptions& part, const Checkpoint& checkpoint, VoxelizeStats& stats) {

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "svo/core/error.h"
-
+#include "svo/core/field_join.h"
 #include "svo/gl/field_pipeline.h"
 #include "svo/gl/nano_grid_builder.h"
 #include "svo/gl/timer_query.h"
@@ -19,6 +19,7 @@
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/vdb_io/reader_grids.h" // withTopology
 #include "svo/voxelizer.h"
+#include "regions.h"
 #include "voxelizer_state.h"
 
 namespace svo {
@@ -29,9 +30,14 @@ using detail::msSince;
 
 namespace {
 
-/// Regions and GPU memory budgets cut the grid and join OpenVDB grids
-/// (level_set.cpp): those calls keep that path and convert its result.
-bool viaOpenVdb(const VoxelizeOptions& options) { return options.region || options.gpuMemory; }
+/// A call's region, and a GPU memory budget for what is not an unsigned
+/// field, cut the grid and join OpenVDB grids (level_set.cpp): those calls
+/// keep that path and convert its result. An unsigned field's regions join
+/// on the bricks (unsignedFieldInRegions).
+bool viaOpenVdb(const VoxelizeOptions& options, bool unsignedField = false)
+{
+    return options.region || (options.gpuMemory && !unsignedField);
+}
 
 std::vector<vdb::NanoHandle> converted(const openvdb::GridPtrVec& grids)
 {
@@ -41,8 +47,8 @@ std::vector<vdb::NanoHandle> converted(const openvdb::GridPtrVec& grids)
 }
 
 /// Where one shader buffer cannot hold the whole grid's field (BufferLimit),
-/// the NanoVDB calls take the OpenVDB route, which cuts the grid into regions
-/// (level_set.cpp), then convert; the warning says so.
+/// the NanoVDB calls cut the grid into regions (level_set.cpp's, or an
+/// unsigned field's bricks), then lay the grid out on the host; the warning says so.
 void warnPastOneBuffer(const VoxelizeOptions& options)
 {
     if (options.stats)
@@ -389,7 +395,30 @@ std::vector<vdb::NanoHandle> Voxelizer::octreeNanoVdb(const Octree& octree, cons
 std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                         const LevelSetOptions& ls, const VoxelizeOptions& options)
 {
-    if (viaOpenVdb(options)) return converted(levelSet(mesh, grid, ls, options));
+    if (viaOpenVdb(options, ls.unsignedDistance)) return converted(levelSet(mesh, grid, ls, options));
+    // An unsigned field cut into regions: each region's bricks on the host,
+    // joined (their bricks are the whole grid's there), then the CPU layout;
+    // no OpenVDB tree.
+    auto unsignedInRegions = [&] {
+        return nanoCall(mesh, grid, options, "svo: computing a distance field",
+                        [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+                            auto run = [&](const std::optional<IndexBox>& region) {
+                                VoxelizeOptions part = options;
+                                part.region = region;
+                                stats = VoxelizeStats{};
+                                return gl::levelSetBricks(device_, mesh, grid, ls, part, checkpoint, stats);
+                            };
+                            DistanceBricks field = detail::withinBudget(
+                                run, joinUnsignedFields, options, detail::fieldBox(grid, detail::levelSetPad(ls)), stats);
+                            checkpoint(0.85, "nanovdb grid");
+                            const auto t0 = Clock::now();
+                            std::vector<vdb::NanoHandle> out =
+                                vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
+                            stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
+                            return out;
+                        });
+    };
+    if (ls.unsignedDistance && options.gpuMemory) return unsignedInRegions();
     auto make = [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
         const gl::LevelSetBand band = gl::levelSetBand(device_, mesh, grid, ls, options, checkpoint, stats);
         checkpoint(0.85, "nanovdb grid");
@@ -402,7 +431,8 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
     try {
         return nanoCall(mesh, grid, options, "svo: computing a distance field", make);
     } catch (const BufferLimit&) {
-        std::vector<vdb::NanoHandle> out = converted(levelSet(mesh, grid, ls, options));
+        std::vector<vdb::NanoHandle> out =
+            ls.unsignedDistance ? unsignedInRegions() : converted(levelSet(mesh, grid, ls, options));
         warnPastOneBuffer(options);
         return out;
     }

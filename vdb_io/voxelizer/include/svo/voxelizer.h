@@ -294,8 +294,10 @@ public:
                                                const VoxelizeOptions& options = {});
     /// @brief levelSet() as NanoVDB grids, laid out from the field's bricks
     /// with no OpenVDB tree (levelSetNanoGrids), on the grid's own lattice;
-    /// with a region or a GPU memory budget, levelSet()'s grids converted
-    /// (toNanoVdb). Equal, voxel for voxel and value for value, to levelSet()'s.
+    /// with a region, or a GPU memory budget for a signed field, levelSet()'s
+    /// grids converted (toNanoVdb); an unsigned field cut into regions (a
+    /// budget, or past one shader buffer) joins their bricks and is laid
+    /// out from them. Equal, voxel for voxel and value for value, to levelSet()'s.
     /// On a GL backend the field is laid out on the GPU
     /// (gl::buildNanoGridGpu, the band never read back; a parity-signed
     /// level set flood filled on the host copy, a winding-signed one's

@@ -1,0 +1,81 @@
+#pragma once
+// Fields cut into regions (docs/design.md §7e): past a GPU memory budget, or
+// past what one shader buffer holds, a field call runs on halves of its box
+// until each fits, and joins the halves' results. Private to the front door:
+// level_set.cpp joins OpenVDB grids, nanovdb_calls.cpp an unsigned field's
+// bricks.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <utility>
+
+#include "svo/core/error.h"
+#include "svo/core/region.h"
+#include "svo/voxelizer.h"
+
+namespace svo::detail {
+
+/// The grid's index range grown by `pad` voxels, in whole leaves: every
+/// voxel a field of the grid holds (its band included) lies inside.
+inline IndexBox fieldBox(const GridSpec& grid, int64_t pad)
+{
+    IndexBox box;
+    for (int a = 0; a < 3; ++a) {
+        box.lo[a] = floorTo8(grid.anchor[a] - pad);
+        box.hi[a] = floorTo8(grid.anchor[a] + int64_t(grid.dims[a]) + pad + 7);
+    }
+    return box;
+}
+
+/// The pad of a level set's field box: its wider band, and a leaf.
+inline int64_t levelSetPad(const LevelSetOptions& ls)
+{
+    return int64_t(std::ceil(std::max(ls.exteriorBand, ls.interiorBand))) + 8;
+}
+
+/// `run` on `box`, or, where a GPU memory budget cannot hold that, on its two
+/// halves across its wider x or y side (z columns stay whole: parity counts
+/// along them), joined by `join(first, second)`; each region is exactly the
+/// whole grid's there, so the join is the whole grid's result.
+template <typename Run, typename Join>
+auto inRegions(Run& run, Join& join, const IndexBox& box, uint32_t& tiles) -> decltype(run(box))
+{
+    try {
+        auto out = run(box);
+        ++tiles;
+        return out;
+    } catch (const OutOfMemory&) {
+        const int axis = box.hi[0] - box.lo[0] >= box.hi[1] - box.lo[1] ? 0 : 1;
+        const int64_t leaves = (box.hi[axis] - box.lo[axis]) / 8;
+        if (leaves < 2) throw; // one column of leaves: nothing smaller to try
+        IndexBox first = box, second = box;
+        first.hi[axis] = second.lo[axis] = box.lo[axis] + 8 * (leaves / 2);
+        auto out = inRegions(run, join, first, tiles);
+        auto more = inRegions(run, join, second, tiles);
+        join(out, std::move(more));
+        return out;
+    }
+}
+
+/// `run` on the call's region (none: the whole grid); past a GPU memory
+/// budget, or past what one shader buffer holds, in regions of `box` (or of
+/// the call's region) that fit; `stats.tiles` says how many.
+template <typename Run, typename Join>
+auto withinBudget(Run&& run, Join&& join, const VoxelizeOptions& options, const IndexBox& box, VoxelizeStats& stats)
+    -> decltype(run(options.region))
+{
+    try {
+        return run(options.region);
+    } catch (const BufferLimit&) {
+        // A driver's per-buffer limit: smaller regions fit, budget or not.
+    } catch (const OutOfMemory&) {
+        if (!options.gpuMemory) throw; // only a budget the grid can be cut for
+    }
+    uint32_t tiles = 0;
+    auto out = inRegions(run, join, options.region ? *options.region : box, tiles);
+    stats.tiles = tiles;
+    return out;
+}
+
+} // namespace svo::detail
