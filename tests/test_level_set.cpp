@@ -18,6 +18,8 @@
 
 #include "gl_backend.h"
 #include "scenes.h"
+#include "svo/core/band_distances.h"
+#include "svo/core/local_positions.h"
 #include "svo/core/mesh_io.h"
 #include "svo/core/mesh_topology.h"
 #include "svo/core/winding_pieces.h"
@@ -188,6 +190,16 @@ TEST(LevelSet, BothCutsOfTheDistanceWorkGiveTheSameField)
     const auto base = uint32_t(mesh.positions.size());
     mesh.positions.insert(mesh.positions.end(), cube.positions.begin(), cube.positions.end());
     for (auto t : cube.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    // Free edges, where no neighbour shares a centre's closest edge, with
+    // bands that reach past the grid's last voxels (the grid is not padded):
+    // a lone slanted triangle, a sliver and a flat fan-like triangle.
+    for (const std::array<Vec3d, 3>& t : {std::array<Vec3d, 3>{{{0.6, -1.2, -1.0}, {1.3, -0.4, -0.7}, {0.9, -1.1, 0.2}}},
+                                          std::array<Vec3d, 3>{{{-1.2, 0.9, -1.1}, {0.3, 1.0, -1.0}, {-1.2, 0.9004, -1.0}}},
+                                          std::array<Vec3d, 3>{{{-0.8, -0.9, 1.2}, {-0.2, -0.6, 1.2}, {0.4, -0.3, 1.2}}}}) {
+        const auto first = uint32_t(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), t.begin(), t.end());
+        mesh.triangles.push_back({first, first + 1, first + 2});
+    }
     const GridSpec grid = makeGrid(mesh, GridRequest{48, 0});
     gl::FieldRequest request;
     for (uint32_t z = 0; z * 8 < grid.dims[2]; ++z)
@@ -201,6 +213,31 @@ TEST(LevelSet, BothCutsOfTheDistanceWorkGiveTheSameField)
     request.work = gl::FieldWork::SmallTriangles;
     const gl::FieldResult small = gl::computeField(context, mesh, grid, request);
     ASSERT_GT(bricks.distances.size(), 10000u);
+    // Both against the CPU's field (core's band_distances.cpp, the reference).
+    const BandDistances cpu = bandDistances(localPositions(mesh, grid), mesh, grid, request.bricks, 3.0, true, {});
+    for (const gl::FieldResult* r : {&bricks, &small}) {
+        SCOPED_TRACE(r == &bricks ? "bricks" : "small triangles");
+        ASSERT_EQ(r->bandMasks.size(), cpu.near.size());
+        uint64_t masks = 0, values = 0;
+        for (size_t i = 0; i < cpu.near.size(); ++i) {
+            if (!(r->bandMasks[i] == cpu.near[i])) {
+                if (masks++ < 3) {
+                    auto bit = [](const Brick& b, uint32_t v) { return (b.words[v >> 6] >> (v & 63)) & 1u; };
+                    for (uint32_t v = 0; v < 512; ++v)
+                        if (bit(r->bandMasks[i], v) != bit(cpu.near[i], v))
+                            ADD_FAILURE() << "brick (" << request.bricks[i][0] << ", " << request.bricks[i][1] << ", "
+                                          << request.bricks[i][2] << ") voxel " << v << ": GPU "
+                                          << bit(r->bandMasks[i], v) << ", CPU " << bit(cpu.near[i], v);
+                }
+                continue;
+            }
+            for (uint32_t k = 0, n = cpu.near[i].count(); k < n; ++k)
+                values += r->distances[r->bandOffsets[i] + k] != cpu.distances[cpu.offsets[i] + k] ||
+                          r->closest[r->bandOffsets[i] + k] != cpu.closest[cpu.offsets[i] + k];
+        }
+        EXPECT_EQ(masks, 0u) << "bricks whose band voxels differ from the CPU's";
+        EXPECT_EQ(values, 0u) << "values that differ from the CPU's";
+    }
     ASSERT_EQ(bricks.distances.size(), small.distances.size());
     ASSERT_EQ(bricks.bandMasks.size(), small.bandMasks.size());
     // Bricks are packed in the order they finish (an atomic counter): compare brick by brick.

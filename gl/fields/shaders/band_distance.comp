@@ -41,7 +41,11 @@ void main()
         dvec3 w = dvec3(uBand);
         svo_Slab slab = svo_slab_of(A, B, C, double(uBand));
         if (svo_box_beyond_slab(slab, max(brickLo, boxLo - w), min(brickHi, boxHi + w))) continue;
-        double px = brickLo.x + double(x), py = brickLo.y + double(y), z0 = brickLo.z, z1 = brickHi.z;
+        // The centres of the item's box only (the grown box, cut to the
+        // grid and to this brick), as the CPU's field takes them.
+        uvec3 c = (b << kBrickLog2) + uvec3(x, y, 0u);
+        if (any(lessThan(c.xy, lo.xy)) || any(greaterThanEqual(c.xy, lo.xy + size.xy))) continue;
+        double px = double(c.x), py = double(c.y), z0 = double(lo.z), z1 = double(lo.z + size.z - 1u);
         if (!svo_box_run(boxLo, boxHi, px, py, band2, z0, z1) || !svo_slab_run(slab, px, py, z0, z1)) continue;
         for (uint z = uint(z0 - brickLo.z); z <= uint(z1 - brickLo.z); ++z) {
             dvec3 p = brickLo + dvec3(x, y, z);
