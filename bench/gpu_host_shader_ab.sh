@@ -5,7 +5,7 @@
 # each mesh and size: the warm stage medians of `svo voxelize ... --repeat R
 # -v` (STAGE's GPU ms, default "band distance"), and the output compared
 # byte for byte with the built-in shaders' (a variant must not change a bit).
-#   OUT=dir VARIANTS="dir1 dir2" [MESHES="a.obj b.obj"] [RES="1024 2048"] [REPEAT=5]
+#   OUT=dir VARIANTS="dir1 dir2" [MESHES="a.obj icosphere ..."] [RES="1024 2048"] [REPEAT=5]
 #     [ARGS="--udf --band 3"] [STAGE="band distance"] bash bench/gpu_host_shader_ab.sh
 set -uo pipefail
 source "$(dirname "$0")/gpu_host_env.sh"
@@ -18,7 +18,8 @@ ms() { # the stage's GPU ms in a -v stage table
   echo "| mesh | N | variant | $stage GPU ms | same bytes |"
   echo "|---|---|---|---|---|"
 } | tee "$out/shader_ab.md"
-for mesh in ${MESHES:-bundle/meshes/stanford-bunny.obj $work/icosphere.obj bundle/meshes/spot.obj}; do
+for mesh in ${MESHES:-bundle/meshes/stanford-bunny.obj icosphere bundle/meshes/spot.obj}; do
+  [ "$mesh" = icosphere ] && mesh="$work/icosphere.obj" # svo's 1.3 M-triangle scene, made here
   name=$(basename "${mesh%.*}")
   for n in ${RES:-1024 2048}; do
     for v in builtin ${VARIANTS:?folders of shader files}; do
