@@ -11,7 +11,9 @@
 # carried gzipped in .gl, and the open meshes (ogre, japanese-temple) copied
 # into .gl/meshes from ../shared/meshes (carry ["bundle", ".gl"]):
 #   gunzip -c .gl/svo_old.gz > /tmp/svo_old
-#   OUT=dir SVO_OLD=/tmp/svo_old [RES="512 1024 2048"] [RUNS=3] [KINDS="sdf solid channels"] bash bench/gpu_host_sdf_nvdb.sh
+#   OUT=dir SVO_OLD=/tmp/svo_old [RES="512 1024 2048"] [RUNS=3] [KINDS="sdf solid channels"] [MESHES="a.obj icosphere"] bash bench/gpu_host_sdf_nvdb.sh
+# KINDS may also name udf (--udf --band 3: past one shader buffer at 4096³ on
+# an H200, the regions' bricks joined against the build before's OpenVDB route).
 set -uo pipefail
 source "$(dirname "$0")/gpu_host_env.sh"
 cp "${SVO_OLD:?the svo binary of the build before}" "$bin/svo_old"
@@ -22,8 +24,11 @@ for exe in svo svo_old; do
   "$bin/$exe" voxelize bundle/meshes/spot.obj -r 64 --sdf -o "$work/warm.nvdb" >/dev/null 2>&1
 done
 median() { sort -n | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}'; }
-flags() { # a kind's options: sdf, solid, or channels (a surface with its fog, normals and triangle ids)
-  case "$1" in solid) echo "--fill solid" ;; channels) echo "--fog --attributes normal triangle" ;; *) echo "--sdf" ;; esac
+flags() { # a kind's options: sdf, solid, channels (a surface with its fog, normals and triangle ids), or udf
+  case "$1" in
+    solid) echo "--fill solid" ;; channels) echo "--fog --attributes normal triangle" ;; udf) echo "--udf --band 3" ;;
+    *) echo "--sdf" ;;
+  esac
 }
 wall() { # exe mesh n file kind: ms of one fresh process
   local t0 t1
@@ -40,8 +45,10 @@ gpu=$(nvidia-smi --query-gpu=name --format=csv,noheader | head -1)
   echo "|---|---|---|---|---|---|---|---|---|"
 } | tee "$out/sdf_nvdb.md"
 for kind in ${KINDS:-sdf solid channels}; do
-for mesh in bundle/meshes/spot.obj "$work/icosphere.obj" .gl/meshes/elephant.off .gl/meshes/fandisk.off \
-            bundle/meshes/stanford-bunny.obj .gl/meshes/ogre.obj .gl/meshes/japanese-temple.obj; do
+all="bundle/meshes/spot.obj $work/icosphere.obj .gl/meshes/elephant.off .gl/meshes/fandisk.off
+     bundle/meshes/stanford-bunny.obj .gl/meshes/ogre.obj .gl/meshes/japanese-temple.obj"
+for mesh in ${MESHES:-$all}; do
+  [ "$mesh" = icosphere ] && mesh="$work/icosphere.obj"
   [ -f "$mesh" ] || { echo "missing $mesh" >&2; continue; }
   name=$(basename "${mesh%.*}")
   for n in ${RES:-512 1024 2048}; do
