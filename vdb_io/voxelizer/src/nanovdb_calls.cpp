@@ -255,6 +255,30 @@ std::vector<vdb::NanoHandle> fieldGridsOnGpu(const gl::Context& context, const g
     return out;
 }
 
+/// An unsigned field cut into regions (past a GPU memory budget, or past one
+/// shader buffer), as levelSet() cuts them: each region's bricks on the host,
+/// joined (each region's bricks are the whole grid's there), then laid out
+/// on the CPU (levelSetNanoGrids): the whole grid's grids, with no OpenVDB
+/// tree. Stages and the region count go to `stats`.
+std::vector<vdb::NanoHandle> unsignedFieldInRegions(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
+                                                    const LevelSetOptions& ls, const VoxelizeOptions& options,
+                                                    const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    auto run = [&](const std::optional<IndexBox>& region) {
+        VoxelizeOptions part = options;
+        part.region = region;
+        stats = VoxelizeStats{};
+        return gl::levelSetBricks(device, mesh, grid, ls, part, checkpoint, stats);
+    };
+    const IndexBox box = detail::fieldBox(grid, detail::levelSetPad(ls));
+    const DistanceBricks field = detail::withinBudget(run, joinUnsignedFields, options, box, stats);
+    checkpoint(0.85, "nanovdb grid");
+    const auto t0 = Clock::now();
+    std::vector<vdb::NanoHandle> out = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
+    stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
+    return out;
+}
+
 /// An octree's channel grids on the GPU builder: each channel's leaves
 /// (vdb::octreeChannelVoxels, 512 values a leaf: 6 KB for Vec3f, 2 KB for
 /// triangle ids) uploaded, byte for byte octreeChannelNanoGrids'.
@@ -396,26 +420,10 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
                                                         const LevelSetOptions& ls, const VoxelizeOptions& options)
 {
     if (viaOpenVdb(options, ls.unsignedDistance)) return converted(levelSet(mesh, grid, ls, options));
-    // An unsigned field cut into regions: each region's bricks on the host,
-    // joined (their bricks are the whole grid's there), then the CPU layout;
-    // no OpenVDB tree.
     auto unsignedInRegions = [&] {
         return nanoCall(mesh, grid, options, "svo: computing a distance field",
                         [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
-                            auto run = [&](const std::optional<IndexBox>& region) {
-                                VoxelizeOptions part = options;
-                                part.region = region;
-                                stats = VoxelizeStats{};
-                                return gl::levelSetBricks(device_, mesh, grid, ls, part, checkpoint, stats);
-                            };
-                            DistanceBricks field = detail::withinBudget(
-                                run, joinUnsignedFields, options, detail::fieldBox(grid, detail::levelSetPad(ls)), stats);
-                            checkpoint(0.85, "nanovdb grid");
-                            const auto t0 = Clock::now();
-                            std::vector<vdb::NanoHandle> out =
-                                vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
-                            stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
-                            return out;
+                            return unsignedFieldInRegions(device_, mesh, grid, ls, options, checkpoint, stats);
                         });
     };
     if (ls.unsignedDistance && options.gpuMemory) return unsignedInRegions();
