@@ -192,7 +192,7 @@ TEST(LevelSet, BothCutsOfTheDistanceWorkGiveTheSameField)
     for (auto t : cube.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
     // Free edges, where no neighbour shares a centre's closest edge, with
     // bands that reach past the grid's last voxels (the grid is not padded):
-    // a lone slanted triangle, a sliver and a flat fan-like triangle.
+    // a lone slanted triangle, a sliver and a needle (corners on one line).
     for (const std::array<Vec3d, 3>& t : {std::array<Vec3d, 3>{{{0.6, -1.2, -1.0}, {1.3, -0.4, -0.7}, {0.9, -1.1, 0.2}}},
                                           std::array<Vec3d, 3>{{{-1.2, 0.9, -1.1}, {0.3, 1.0, -1.0}, {-1.2, 0.9004, -1.0}}},
                                           std::array<Vec3d, 3>{{{-0.8, -0.9, 1.2}, {-0.2, -0.6, 1.2}, {0.4, -0.3, 1.2}}}}) {
