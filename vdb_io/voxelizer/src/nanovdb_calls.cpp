@@ -259,10 +259,12 @@ std::vector<vdb::NanoHandle> fieldGridsOnGpu(const gl::Context& context, const g
 /// shader buffer), as levelSet() cuts them: each region's bricks on the host,
 /// joined (each region's bricks are the whole grid's there), then laid out
 /// on the CPU (levelSetNanoGrids): the whole grid's grids, with no OpenVDB
-/// tree. Stages and the region count go to `stats`.
+/// tree. `pastOneBuffer`: the whole grid is known not to fit (BufferLimit),
+/// so it is not tried again. Stages and the region count go to `stats`.
 std::vector<vdb::NanoHandle> unsignedFieldInRegions(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
                                                     const LevelSetOptions& ls, const VoxelizeOptions& options,
-                                                    const Checkpoint& checkpoint, VoxelizeStats& stats)
+                                                    bool pastOneBuffer, const Checkpoint& checkpoint,
+                                                    VoxelizeStats& stats)
 {
     auto run = [&](const std::optional<IndexBox>& region) {
         VoxelizeOptions part = options;
@@ -271,7 +273,10 @@ std::vector<vdb::NanoHandle> unsignedFieldInRegions(gl::Device& device, const Tr
         return gl::levelSetBricks(device, mesh, grid, ls, part, checkpoint, stats);
     };
     const IndexBox box = detail::fieldBox(grid, detail::levelSetPad(ls));
-    const DistanceBricks field = detail::withinBudget(run, joinUnsignedFields, options, box, stats);
+    uint32_t tiles = 0;
+    const DistanceBricks field = pastOneBuffer ? detail::inRegions(run, joinUnsignedFields, box, tiles)
+                                               : detail::withinBudget(run, joinUnsignedFields, options, box, stats);
+    if (pastOneBuffer) stats.tiles = tiles;
     checkpoint(0.85, "nanovdb grid");
     const auto t0 = Clock::now();
     std::vector<vdb::NanoHandle> out = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
@@ -420,13 +425,14 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
                                                         const LevelSetOptions& ls, const VoxelizeOptions& options)
 {
     if (viaOpenVdb(options, ls.unsignedDistance)) return converted(levelSet(mesh, grid, ls, options));
-    auto unsignedInRegions = [&] {
+    auto unsignedInRegions = [&](bool pastOneBuffer) {
         return nanoCall(mesh, grid, options, "svo: computing a distance field",
                         [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
-                            return unsignedFieldInRegions(device_, mesh, grid, ls, options, checkpoint, stats);
+                            return unsignedFieldInRegions(device_, mesh, grid, ls, options, pastOneBuffer, checkpoint,
+                                                          stats);
                         });
     };
-    if (ls.unsignedDistance && options.gpuMemory) return unsignedInRegions();
+    if (ls.unsignedDistance && options.gpuMemory) return unsignedInRegions(false);
     auto make = [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
         const gl::LevelSetBand band = gl::levelSetBand(device_, mesh, grid, ls, options, checkpoint, stats);
         checkpoint(0.85, "nanovdb grid");
@@ -440,7 +446,7 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
         return nanoCall(mesh, grid, options, "svo: computing a distance field", make);
     } catch (const BufferLimit&) {
         std::vector<vdb::NanoHandle> out =
-            ls.unsignedDistance ? unsignedInRegions() : converted(levelSet(mesh, grid, ls, options));
+            ls.unsignedDistance ? unsignedInRegions(true) : converted(levelSet(mesh, grid, ls, options));
         warnPastOneBuffer(options);
         return out;
     }
