@@ -19,6 +19,8 @@
 #include "svo/core/octree.h"
 #include "svo/core/region.h"
 #include "svo/core/voxel_key.h"
+#include "svo/gl/device.h"
+#include "svo/gl/field_pipeline.h"
 #include "svo/svo.h"
 
 namespace svo::test {
@@ -173,9 +175,34 @@ TEST_P(Regions, SurfacesAndAttributesAreTheWholeGridsCutToTheBox)
     }
 }
 
+/// The region's level set laid out as NanoVDB from its bricks
+/// (vdb::levelSetNanoGrids) holds @a part's values and active states at
+/// every voxel of @a r: its signs beyond the band too, which come from the
+/// parity runs, not a flood fill of a band cut at the region's sides.
+void expectSameNanoGrid(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
+                        const VoxelizeOptions& o, const openvdb::GridBase& part, const IndexBox& r)
+{
+    VoxelizeStats stats;
+    const LevelSetOptions ls;
+    const DistanceBricks field = gl::levelSetBricks(device, mesh, grid, ls, o, Checkpoint{}, stats);
+    const auto nano = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
+    const auto acc = nano.front().grid<float>()->getAccessor();
+    const auto want = static_cast<const openvdb::FloatGrid&>(part).getConstAccessor();
+    uint64_t differ = 0;
+    for (int64_t x = r.lo[0]; x < r.hi[0]; ++x)
+        for (int64_t y = r.lo[1]; y < r.hi[1]; ++y)
+            for (int64_t z = r.lo[2]; z < r.hi[2]; ++z) {
+                const openvdb::Coord c{int32_t(x), int32_t(y), int32_t(z)};
+                const nanovdb::Coord n(c.x(), c.y(), c.z());
+                differ += acc.getValue(n) != want.getValue(c) || acc.isActive(n) != want.isValueOn(c);
+            }
+    EXPECT_EQ(differ, 0u) << "voxels of the region's NanoVDB level set that are not its OpenVDB grid's";
+}
+
 TEST_P(Regions, LevelSetsUdfsAndSolidsAreTheWholeGridsCutToTheBox)
 {
     Voxelizer v;
+    gl::Device device;
     // Closed (parity signs: a column's crossings below the box count), open
     // and mixed (winding numbers from the whole mesh's tree).
     for (const TriangleMesh& mesh : {icosphere({0.1, -0.2, 0.3}, 1.0, 3), holedSphere(), smallCity()}) {
@@ -194,6 +221,7 @@ TEST_P(Regions, LevelSetsUdfsAndSolidsAreTheWholeGridsCutToTheBox)
             const auto sdfPart = v.levelSet(mesh, grid, sdf, o);
             ASSERT_EQ(sdfPart.size(), wholeSdf.size());
             for (size_t i = 0; i < sdfPart.size(); ++i) expectSameAsClipped(*wholeSdf[i], *sdfPart[i], r);
+            expectSameNanoGrid(device, mesh, grid, o, *sdfPart.front(), r);
             const auto udfPart = v.levelSet(mesh, grid, udf, o);
             for (size_t i = 0; i < udfPart.size(); ++i) expectSameAsClipped(*wholeUdf[i], *udfPart[i], r);
             expectSameAsClipped(*wholeSolid, *v.solid(mesh, grid, o), r);
@@ -288,17 +316,31 @@ TEST(RegionsTiles, LevelSetsAndSolidsWithinAGpuBudgetAreTheWholeGrids)
         const auto tiledSolid = v.solid(mesh, grid, tiled);
         EXPECT_GT(stats.tiles, 1u);
         expectSameAsClipped(*wholeSolid, *tiledSolid, all);
-        // An unsigned field's NanoVDB grids join on the bricks: the whole
-        // grid's grids, byte for byte (the whole grid's built on the GPU).
+        // The NanoVDB calls join the regions' bricks: the whole grid's
+        // grids, byte for byte (the whole grid's built on the GPU), for
+        // unsigned and signed fields and for solids.
         LevelSetOptions udf;
         udf.unsignedDistance = true;
         udf.closestTriangle = true;
-        const auto wholeNano = v.levelSetNanoVdb(mesh, grid, udf, whole);
-        const auto tiledNano = v.levelSetNanoVdb(mesh, grid, udf, tiled);
-        EXPECT_GE(stats.tiles, 2u);
-        ASSERT_EQ(tiledNano.size(), 2u);
-        ASSERT_EQ(wholeNano.size(), 2u);
-        for (size_t i = 0; i < 2; ++i) EXPECT_TRUE(sameBytes(wholeNano[i], tiledNano[i])) << "grid " << i;
+        LevelSetOptions sdf;
+        sdf.closestTriangle = true;
+        for (const LevelSetOptions& ls : {udf, sdf}) {
+            SCOPED_TRACE(ls.unsignedDistance ? "udf" : "sdf");
+            const auto wholeNano = v.levelSetNanoVdb(mesh, grid, ls, whole);
+            ASSERT_EQ(stats.tiles, 1u);
+            const auto tiledNano = v.levelSetNanoVdb(mesh, grid, ls, tiled);
+            EXPECT_GE(stats.tiles, 2u);
+            ASSERT_EQ(tiledNano.size(), 2u);
+            ASSERT_EQ(wholeNano.size(), 2u);
+            for (size_t i = 0; i < 2; ++i) EXPECT_TRUE(sameBytes(wholeNano[i], tiledNano[i])) << "grid " << i;
+        }
+        for (auto topology : {GridOptions::Topology::Mask, GridOptions::Topology::Bool}) {
+            const auto wholeNano = v.solidNanoVdb(mesh, grid, whole, {}, topology);
+            ASSERT_EQ(stats.tiles, 1u);
+            const auto tiledNano = v.solidNanoVdb(mesh, grid, tiled, {}, topology);
+            EXPECT_GE(stats.tiles, 2u);
+            EXPECT_TRUE(sameBytes(wholeNano, tiledNano)) << "solid";
+        }
         tiled.gpuMemory = 1024; // less than the mesh itself
         EXPECT_THROW(v.levelSet(mesh, grid, {}, tiled), OutOfMemory);
         EXPECT_THROW(v.levelSetNanoVdb(mesh, grid, udf, tiled), OutOfMemory);
@@ -383,6 +425,8 @@ TEST(RegionsTiles, FieldsPastOneShaderBufferAreCutIntoRegions)
     const auto wholeUdf = v.levelSet(mesh, grid, udf, o);
     const auto wholeSolid = v.solid(mesh, grid, o);
     const auto wholeNano = v.levelSetNanoVdb(mesh, grid, udf, o);
+    const auto wholeSdfNano = v.levelSetNanoVdb(mesh, grid, {}, o);
+    const auto wholeSolidNano = v.solidNanoVdb(mesh, grid, o);
     ASSERT_EQ(stats.tiles, 1u);
     const IndexBox all{{grid.anchor[0] - 16, grid.anchor[1] - 16, grid.anchor[2] - 16},
                        {grid.anchor[0] + 72, grid.anchor[1] + 72, grid.anchor[2] + 72}};
@@ -400,6 +444,13 @@ TEST(RegionsTiles, FieldsPastOneShaderBufferAreCutIntoRegions)
     EXPECT_TRUE(sameBytes(nano.front(), wholeNano.front())) << "the regions' grid is the whole grid's, byte for byte";
     ASSERT_EQ(stats.warnings.size(), 1u);
     EXPECT_NE(stats.warnings.front().find("regions"), std::string::npos) << stats.warnings.front();
+    const auto sdfNano = v.levelSetNanoVdb(mesh, grid, {}, o);
+    EXPECT_GE(stats.tiles, 2u);
+    EXPECT_TRUE(sameBytes(sdfNano.front(), wholeSdfNano.front())) << "the level set's regions";
+    const auto solidNano = v.solidNanoVdb(mesh, grid, o);
+    EXPECT_GE(stats.tiles, 2u);
+    EXPECT_TRUE(sameBytes(solidNano, wholeSolidNano)) << "the solid's regions";
+    EXPECT_FALSE(stats.warnings.empty());
     const auto* distances = nano.front().grid<float>();
     ASSERT_NE(distances, nullptr);
     const auto& want = static_cast<const openvdb::FloatGrid&>(*wholeUdf.front());
@@ -439,7 +490,7 @@ TEST(RegionsJoin, UnsignedFieldsJoinInBrickOrderAndRefuseTheRest)
     DistanceBricks b = field({{0, 0, 1}, {1, 0, 0}, {3, 0, 0}}, 20.0f);
     b.closestTriangle = true;
     b.closest = {7, 8, 9, 10, 11, 12};
-    joinUnsignedFields(a, std::move(b));
+    joinFields(a, std::move(b));
     const std::vector<BrickCoord> order{{0, 0, 0}, {0, 0, 1}, {0, 0, 3}, {1, 0, 0}, {2, 1, 0}, {3, 0, 0}};
     EXPECT_EQ(a.bricks, order);
     EXPECT_EQ(a.offsets, (std::vector<uint32_t>{0, 2, 4, 6, 8, 10}));
@@ -450,19 +501,99 @@ TEST(RegionsJoin, UnsignedFieldsJoinInBrickOrderAndRefuseTheRest)
     DistanceBricks same = field({{2, 1, 0}}, 0.0f);
     same.closestTriangle = true;
     same.closest = {0, 0};
-    EXPECT_THROW(joinUnsignedFields(a, std::move(same)), InvalidInput) << "a brick in both";
+    EXPECT_THROW(joinFields(a, std::move(same)), InvalidInput) << "a brick in both";
     DistanceBricks other = field({{5, 5, 5}}, 0.0f);
     other.closestTriangle = true;
     other.closest = {0, 0};
     other.grid.anchor = {8, 0, 0};
-    EXPECT_THROW(joinUnsignedFields(a, std::move(other)), InvalidInput) << "another grid";
+    EXPECT_THROW(joinFields(a, std::move(other)), InvalidInput) << "another grid";
     DistanceBricks withoutClosest = field({{5, 5, 5}}, 0.0f);
-    EXPECT_THROW(joinUnsignedFields(a, std::move(withoutClosest)), InvalidInput) << "another request";
+    EXPECT_THROW(joinFields(a, std::move(withoutClosest)), InvalidInput) << "another request";
     DistanceBricks signedField = field({{5, 5, 5}}, 0.0f);
     signedField.signedField = true;
     signedField.closestTriangle = true;
     signedField.closest = {0, 0};
-    EXPECT_THROW(joinUnsignedFields(a, std::move(signedField)), InvalidInput) << "a signed field";
+    EXPECT_THROW(joinFields(a, std::move(signedField)), InvalidInput) << "a signed field";
+}
+
+// Signed fields and solids join with their signs: the inside voxels brick by
+// brick, and beyond the band the runs, inside bricks and partly inside
+// bricks of both, sorted; a brick in both lists, or fields of other kinds, are refused.
+TEST(RegionsJoin, SignsAndSolidsJoinWithTheirBricks)
+{
+    auto brick = [](uint64_t word) {
+        Brick b;
+        b.words[1] = word;
+        return b;
+    };
+    auto signs = [&](std::vector<BrickCoord> inside, std::vector<BrickCoord> partial, std::vector<BrickCoord> runs) {
+        FieldSigns s;
+        s.insideBricks = inside;
+        for (const auto& p : partial) s.partial.push_back({p, brick(p[0] + 100)});
+        for (const auto& r : runs) s.runs.push_back({r, 2, ~uint64_t(0)});
+        s.openColumns = 1;
+        return s;
+    };
+    auto field = [&](std::vector<BrickCoord> bricks, FieldSigns s) {
+        DistanceBricks f;
+        f.winding = true;
+        f.grid.dims = {64, 64, 64};
+        f.bricks = bricks;
+        f.signs = std::move(s);
+        for (const auto& b : bricks) {
+            f.near.push_back(brick(1));
+            f.offsets.push_back(uint32_t(f.distances.size()));
+            f.distances.push_back(float(b[0]));
+            f.signs.inside.push_back(brick(b[0] + 10));
+        }
+        return f;
+    };
+    DistanceBricks a = field({{0, 0, 0}, {2, 0, 0}}, signs({{0, 2, 2}}, {{4, 0, 0}}, {{0, 1, 1}}));
+    DistanceBricks b = field({{1, 0, 0}, {3, 0, 0}}, signs({{1, 2, 2}}, {{3, 3, 3}}, {{1, 1, 1}}));
+    joinFields(a, std::move(b));
+    EXPECT_EQ(a.bricks, (std::vector<BrickCoord>{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}));
+    EXPECT_EQ(a.distances, (std::vector<float>{0, 1, 2, 3}));
+    ASSERT_EQ(a.signs.inside.size(), 4u);
+    for (uint32_t i = 0; i < 4; ++i) EXPECT_EQ(a.signs.inside[i].words[1], 10u + i) << "brick " << i;
+    EXPECT_EQ(a.signs.insideBricks, (std::vector<BrickCoord>{{0, 2, 2}, {1, 2, 2}}));
+    ASSERT_EQ(a.signs.partial.size(), 2u);
+    EXPECT_EQ(a.signs.partial[0].first, (BrickCoord{3, 3, 3}));
+    EXPECT_EQ(a.signs.partial[0].second.words[1], 103u);
+    EXPECT_EQ(a.signs.partial[1].first, (BrickCoord{4, 0, 0}));
+    ASSERT_EQ(a.signs.runs.size(), 2u);
+    EXPECT_EQ(a.signs.runs[1].first, (BrickCoord{1, 1, 1}));
+    EXPECT_EQ(a.signs.openColumns, 2u);
+    EXPECT_TRUE(a.winding && a.signedField);
+
+    DistanceBricks twice = field({{7, 0, 0}}, signs({{1, 2, 2}}, {}, {}));
+    EXPECT_THROW(joinFields(a, std::move(twice)), InvalidInput) << "an inside brick in both";
+    DistanceBricks parity = field({{7, 0, 0}}, {});
+    parity.winding = false;
+    EXPECT_THROW(joinFields(a, std::move(parity)), InvalidInput) << "another sign method";
+    DistanceBricks noSigns = field({{7, 0, 0}}, {});
+    noSigns.signs.inside.clear();
+    EXPECT_THROW(joinFields(a, std::move(noSigns)), InvalidInput) << "no inside voxels for its bricks";
+
+    auto solid = [&](std::vector<BrickCoord> bricks, FieldSigns s) {
+        SolidBricks out;
+        out.grid.dims = {64, 64, 64};
+        out.bricks = bricks;
+        out.signs = std::move(s);
+        for (const auto& c : bricks) out.signs.inside.push_back(brick(c[1] + 20));
+        return out;
+    };
+    SolidBricks sa = solid({{0, 0, 0}, {0, 2, 0}}, signs({}, {}, {{0, 0, 1}}));
+    SolidBricks sb = solid({{0, 1, 0}}, signs({}, {}, {{0, 1, 1}}));
+    joinSolids(sa, std::move(sb));
+    EXPECT_EQ(sa.bricks, (std::vector<BrickCoord>{{0, 0, 0}, {0, 1, 0}, {0, 2, 0}}));
+    ASSERT_EQ(sa.signs.inside.size(), 3u);
+    for (uint32_t i = 0; i < 3; ++i) EXPECT_EQ(sa.signs.inside[i].words[1], 20u + i);
+    EXPECT_EQ(sa.signs.runs.size(), 2u);
+    EXPECT_TRUE(sb.bricks.empty());
+    SolidBricks again = solid({{0, 1, 0}}, {});
+    EXPECT_THROW(joinSolids(sa, std::move(again)), InvalidInput) << "a band brick in both";
+    SolidBricks runTwice = solid({{5, 5, 5}}, signs({}, {}, {{0, 1, 1}}));
+    EXPECT_THROW(joinSolids(sa, std::move(runTwice)), InvalidInput) << "a run in both";
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Regions, ::testing::Values(Backend::Cpu, Backend::Raster, Backend::Compute),

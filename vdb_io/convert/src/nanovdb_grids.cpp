@@ -332,10 +332,14 @@ std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double ex
                 if (bitOf(m, k)) dist.values[i * 512 + k] = -background;
         }
         for (const BrickCoord& b : signs.insideBricks) dist.tiles.push_back({brickOrigin(g, b), 1, -background, false});
+    } else if (signedField && field.region) {
+        // A region's band is cut at its sides, so a flood fill would guess
+        // beyond them; the parity runs say what the whole grid's fill says.
+        fillRuns(dist, g, signs.runs, -background, false, true);
     }
     std::vector<NanoHandle> out;
     // Parity: OpenVDB's signed flood fill, as the OpenVDB path runs it, on the layout; then the checksum.
-    const bool flood = signedField && !winding;
+    const bool flood = signedField && !winding && !field.region;
     out.push_back(buildNanoGrid<float>(dist, infoFor(lattice, signedField ? "surface" : "distance",
                                                      signedField ? nanovdb::GridClass::LevelSet : nanovdb::GridClass::Unknown,
                                                      checksum && !flood)));

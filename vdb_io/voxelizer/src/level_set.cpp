@@ -143,7 +143,7 @@ openvdb::MaskGrid::Ptr Voxelizer::solidChecked(const TriangleMesh& mesh, const G
                                                const VoxelizeOptions& options, const SignOptions& sign,
                                                openvdb::math::Transform::Ptr xform)
 {
-    const FieldCall call{"svo: filling a solid", "solid grid", 0.8, fieldBox(grid, 16)};
+    const FieldCall call{"svo: filling a solid", "solid grid", 0.8, fieldBox(grid, detail::kSolidPad)};
     const openvdb::GridPtrVec out = runFieldCall(
         call, options,
         [&](const VoxelizeOptions& part, const Checkpoint& checkpoint, VoxelizeStats& stats) {

@@ -30,14 +30,9 @@ using detail::msSince;
 
 namespace {
 
-/// A call's region, and a GPU memory budget for what is not an unsigned
-/// field, cut the grid and join OpenVDB grids (level_set.cpp): those calls
-/// keep that path and convert its result. An unsigned field's regions join
-/// on the bricks (unsignedFieldInRegions).
-bool viaOpenVdb(const VoxelizeOptions& options, bool unsignedField = false)
-{
-    return options.region || (options.gpuMemory && !unsignedField);
-}
+/// A call's region cuts the grid and joins OpenVDB grids (level_set.cpp):
+/// those calls keep that path and convert its result.
+bool viaOpenVdb(const VoxelizeOptions& options) { return options.region.has_value(); }
 
 std::vector<vdb::NanoHandle> converted(const openvdb::GridPtrVec& grids)
 {
@@ -47,8 +42,8 @@ std::vector<vdb::NanoHandle> converted(const openvdb::GridPtrVec& grids)
 }
 
 /// Where one shader buffer cannot hold the whole grid's field (BufferLimit),
-/// the NanoVDB calls cut the grid into regions (level_set.cpp's, or an
-/// unsigned field's bricks), then lay the grid out on the host; the warning says so.
+/// the NanoVDB calls cut the grid into regions, join their bricks, then lay
+/// the grid out on the host; the warning says so.
 void warnPastOneBuffer(const VoxelizeOptions& options)
 {
     if (options.stats)
@@ -255,33 +250,53 @@ std::vector<vdb::NanoHandle> fieldGridsOnGpu(const gl::Context& context, const g
     return out;
 }
 
-/// An unsigned field cut into regions (past a GPU memory budget, or past one
-/// shader buffer), as levelSet() cuts them: each region's bricks on the host,
-/// joined (each region's bricks are the whole grid's there), then laid out
-/// on the CPU (levelSetNanoGrids): the whole grid's grids, with no OpenVDB
-/// tree. `pastOneBuffer`: the whole grid is known not to fit (BufferLimit),
-/// so it is not tried again. Stages and the region count go to `stats`.
-std::vector<vdb::NanoHandle> unsignedFieldInRegions(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
-                                                    const LevelSetOptions& ls, const VoxelizeOptions& options,
-                                                    bool pastOneBuffer, const Checkpoint& checkpoint,
-                                                    VoxelizeStats& stats)
+/// `bricks(options)` (a field's or a solid's) cut into regions, past a GPU
+/// memory budget or past one shader buffer, as levelSet() cuts them, and
+/// joined by `join` (svo/core/field_join.h): each region's bricks are the
+/// whole grid's there, so the result is the whole grid's bricks, with no
+/// OpenVDB tree. `pastOneBuffer`: the whole grid is known not to fit
+/// (BufferLimit), so it is not tried again. The region count goes to `stats`.
+template <typename Bricks, typename Join>
+auto bricksInRegions(Bricks&& bricks, Join&& join, const VoxelizeOptions& options, const IndexBox& box,
+                     bool pastOneBuffer, VoxelizeStats& stats) -> decltype(bricks(options))
 {
     auto run = [&](const std::optional<IndexBox>& region) {
         VoxelizeOptions part = options;
         part.region = region;
         stats = VoxelizeStats{};
-        return gl::levelSetBricks(device, mesh, grid, ls, part, checkpoint, stats);
+        return bricks(part);
     };
-    const IndexBox box = detail::fieldBox(grid, detail::levelSetPad(ls));
+    if (!pastOneBuffer) return detail::withinBudget(run, join, options, box, stats);
     uint32_t tiles = 0;
-    const DistanceBricks field = pastOneBuffer ? detail::inRegions(run, joinUnsignedFields, box, tiles)
-                                               : detail::withinBudget(run, joinUnsignedFields, options, box, stats);
-    if (pastOneBuffer) stats.tiles = tiles;
-    checkpoint(0.85, "nanovdb grid");
+    auto out = detail::inRegions(run, join, box, tiles);
+    stats.tiles = tiles;
+    return out;
+}
+
+/// A field's grids laid out on the CPU (levelSetNanoGrids), a stage of `stats`.
+std::vector<vdb::NanoHandle> fieldGridsOnHost(const DistanceBricks& field, const GridSpec& grid,
+                                              const LevelSetOptions& ls, VoxelizeStats& stats)
+{
     const auto t0 = Clock::now();
     std::vector<vdb::NanoHandle> out = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
     stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
     return out;
+}
+
+/// A field cut into regions (bricksInRegions), laid out on the CPU: the
+/// whole grid's grids.
+std::vector<vdb::NanoHandle> fieldInRegions(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
+                                            const LevelSetOptions& ls, const VoxelizeOptions& options,
+                                            bool pastOneBuffer, const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    auto bricks = [&](const VoxelizeOptions& part) {
+        return gl::levelSetBricks(device, mesh, grid, ls, part, checkpoint, stats);
+    };
+    DistanceBricks field = bricksInRegions(bricks, joinFields, options, detail::fieldBox(grid, detail::levelSetPad(ls)),
+                                           pastOneBuffer, stats);
+    field.region = false; // the regions make up the whole grid: a parity field's signs beyond the band are its fill's
+    checkpoint(0.85, "nanovdb grid");
+    return fieldGridsOnHost(field, grid, ls, stats);
 }
 
 /// An octree's channel grids on the GPU builder: each channel's leaves
@@ -424,29 +439,24 @@ std::vector<vdb::NanoHandle> Voxelizer::octreeNanoVdb(const Octree& octree, cons
 std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                         const LevelSetOptions& ls, const VoxelizeOptions& options)
 {
-    if (viaOpenVdb(options, ls.unsignedDistance)) return converted(levelSet(mesh, grid, ls, options));
-    auto unsignedInRegions = [&](bool pastOneBuffer) {
-        return nanoCall(mesh, grid, options, "svo: computing a distance field",
-                        [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
-                            return unsignedFieldInRegions(device_, mesh, grid, ls, options, pastOneBuffer, checkpoint,
-                                                          stats);
-                        });
+    if (viaOpenVdb(options)) return converted(levelSet(mesh, grid, ls, options));
+    constexpr const char* task = "svo: computing a distance field";
+    auto inRegions = [&](bool pastOneBuffer) {
+        return nanoCall(mesh, grid, options, task, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+            return fieldInRegions(device_, mesh, grid, ls, options, pastOneBuffer, checkpoint, stats);
+        });
     };
-    if (ls.unsignedDistance && options.gpuMemory) return unsignedInRegions(false);
+    if (options.gpuMemory) return inRegions(false);
     auto make = [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
         const gl::LevelSetBand band = gl::levelSetBand(device_, mesh, grid, ls, options, checkpoint, stats);
         checkpoint(0.85, "nanovdb grid");
         if (band.device) return fieldGridsOnGpu(device_.context(), *band.device, grid, ls, stats);
-        const auto t0 = Clock::now();
-        std::vector<vdb::NanoHandle> out = vdb::levelSetNanoGrids(band.host, ls.exteriorBand, ls.interiorBand, grid);
-        stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
-        return out;
+        return fieldGridsOnHost(band.host, grid, ls, stats);
     };
     try {
-        return nanoCall(mesh, grid, options, "svo: computing a distance field", make);
+        return nanoCall(mesh, grid, options, task, make);
     } catch (const BufferLimit&) {
-        std::vector<vdb::NanoHandle> out =
-            ls.unsignedDistance ? unsignedInRegions(true) : converted(levelSet(mesh, grid, ls, options));
+        std::vector<vdb::NanoHandle> out = inRegions(true);
         warnPastOneBuffer(options);
         return out;
     }
@@ -455,10 +465,12 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
 vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                                         const SignOptions& sign, GridOptions::Topology topology)
 {
-    auto viaRegions = [&] { return vdb::toNanoVdb(vdb::withTopology(solid(mesh, grid, options, sign), topology)); };
-    if (viaOpenVdb(options)) return viaRegions();
-    auto make = [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
-        const SolidBricks bricks = gl::solidBricks(device_, mesh, grid, options, sign, checkpoint, stats);
+    if (viaOpenVdb(options)) return vdb::toNanoVdb(vdb::withTopology(solid(mesh, grid, options, sign), topology));
+    constexpr const char* task = "svo: filling a solid";
+    auto bricksOf = [&](const VoxelizeOptions& part, const Checkpoint& checkpoint, VoxelizeStats& stats) {
+        return gl::solidBricks(device_, mesh, grid, part, sign, checkpoint, stats);
+    };
+    auto gridOf = [&](const SolidBricks& bricks, const Checkpoint& checkpoint, VoxelizeStats& stats) {
         checkpoint(0.8, "nanovdb grid");
         std::vector<vdb::NanoHandle> grids;
         if (!gl::runsOnCpu(device_, options)) {
@@ -470,10 +482,22 @@ vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec
         stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
         return grids;
     };
+    // Past a budget or one shader buffer: the regions' bricks joined (bricksInRegions), then the same grid.
+    auto inRegions = [&](bool pastOneBuffer) {
+        return std::move(nanoCall(mesh, grid, options, task, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+                             auto bricks = [&](const VoxelizeOptions& part) { return bricksOf(part, checkpoint, stats); };
+                             const SolidBricks joined = bricksInRegions(bricks, joinSolids, options,
+                                                                        detail::fieldBox(grid, detail::kSolidPad), pastOneBuffer, stats);
+                             return gridOf(joined, checkpoint, stats);
+                         }).front());
+    };
+    if (options.gpuMemory) return inRegions(false);
     try {
-        return std::move(nanoCall(mesh, grid, options, "svo: filling a solid", make).front());
+        return std::move(nanoCall(mesh, grid, options, task, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+                             return gridOf(bricksOf(options, checkpoint, stats), checkpoint, stats);
+                         }).front());
     } catch (const BufferLimit&) {
-        vdb::NanoHandle out = viaRegions();
+        vdb::NanoHandle out = inRegions(true);
         warnPastOneBuffer(options);
         return out;
     }
@@ -483,7 +507,7 @@ void Voxelizer::unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const Gri
                                              const VoxelizeOptions& options,
                                              const std::function<void(const std::vector<gl::NanoGridBuffer>&)>& use)
 {
-    if (viaOpenVdb(options) || !gl::unsignedFieldOnDevice(device_, ls, options))
+    if (options.region || options.gpuMemory || !gl::unsignedFieldOnDevice(device_, ls, options))
         throw Unsupported("a NanoVDB grid stays on the GPU only for an unsigned distance field on a GL backend, "
                           "without a region or a GPU memory budget");
     validateMesh(mesh);

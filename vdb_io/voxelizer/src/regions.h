@@ -2,8 +2,8 @@
 // Fields cut into regions (docs/design.md §7e): past a GPU memory budget, or
 // past what one shader buffer holds, a field call runs on halves of its box
 // until each fits, and joins the halves' results. Private to the front door:
-// level_set.cpp joins OpenVDB grids, nanovdb_calls.cpp an unsigned field's
-// bricks.
+// level_set.cpp joins OpenVDB grids, nanovdb_calls.cpp the fields' and
+// solids' bricks (svo/core/field_join.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -33,6 +33,9 @@ inline int64_t levelSetPad(const LevelSetOptions& ls)
 {
     return int64_t(std::ceil(std::max(ls.exteriorBand, ls.interiorBand))) + 8;
 }
+
+/// The pad of a solid's field box: its 2 voxels, in whole leaves, and a leaf.
+constexpr int64_t kSolidPad = 16;
 
 /// `run` on `box`, or, where a GPU memory budget cannot hold that, on its two
 /// halves across its wider x or y side (z columns stay whole: parity counts

@@ -294,10 +294,10 @@ public:
                                                const VoxelizeOptions& options = {});
     /// @brief levelSet() as NanoVDB grids, laid out from the field's bricks
     /// with no OpenVDB tree (levelSetNanoGrids), on the grid's own lattice;
-    /// with a region, or a GPU memory budget for a signed field, levelSet()'s
-    /// grids converted (toNanoVdb); an unsigned field cut into regions (a
-    /// budget, or past one shader buffer) joins their bricks and is laid
-    /// out from them. Equal, voxel for voxel and value for value, to levelSet()'s.
+    /// a field cut into regions (a GPU memory budget, or past one shader
+    /// buffer) joins their bricks (joinFields) and is laid out from them,
+    /// the whole grid's bytes; with a region, levelSet()'s grids converted
+    /// (toNanoVdb). Equal, voxel for voxel and value for value, to levelSet()'s.
     /// On a GL backend the field is laid out on the GPU
     /// (gl::buildNanoGridGpu, the band never read back; a parity-signed
     /// level set flood filled on the host copy, a winding-signed one's
@@ -322,8 +322,9 @@ public:
                                       const VoxelizeOptions& options,
                                       const std::function<void(const std::vector<gl::NanoGridBuffer>&)>& use);
     /// @brief solid() as the NanoVDB grid "solid" (solidNanoGrid), as
-    /// levelSetNanoVdb; on a GL backend laid out on the GPU from the solid's
-    /// leaves and 8³ tiles (vdb::solidVoxels, uploaded), the same bytes.
+    /// levelSetNanoVdb (regions joined by joinSolids); on a GL backend laid
+    /// out on the GPU from the solid's leaves and 8³ tiles (vdb::solidVoxels,
+    /// uploaded), the same bytes.
     /// @param topology ValueMask (Mask) or bool true on inside voxels (Bool), as withTopology gives
     /// @throw as solid()
     vdb::NanoHandle solidNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
