@@ -16,6 +16,7 @@
 #include "svo/core/city_scene.h"
 #include "svo/core/error.h"
 #include "svo/core/field_join.h"
+#include "svo/core/mesh_io.h"
 #include "svo/core/octree.h"
 #include "svo/core/region.h"
 #include "svo/core/voxel_key.h"
@@ -345,6 +346,27 @@ TEST(RegionsTiles, LevelSetsAndSolidsWithinAGpuBudgetAreTheWholeGrids)
         EXPECT_THROW(v.levelSet(mesh, grid, {}, tiled), OutOfMemory);
         EXPECT_THROW(v.levelSetNanoVdb(mesh, grid, udf, tiled), OutOfMemory);
     }
+}
+
+// A solid's band grows a voxel from its surface, so a region's brick can be
+// in the band for a surface voxel just beyond the region's side: CGAL's
+// elephant at 100³ cut by a budget has such bricks. The regions' solid is
+// still the whole grid's, byte for byte (leaves where its leaves are, tiles
+// where its tiles are).
+TEST(RegionsTiles, ASolidsBandAtARegionsSideIsTheWholeGrids)
+{
+    Voxelizer v;
+    const TriangleMesh mesh = loadMesh(std::string(SVO_CGAL_MESHES) + "/elephant.off");
+    const GridSpec grid = makeGrid(mesh, GridRequest{100, 0});
+    VoxelizeStats stats;
+    VoxelizeOptions whole = onGl(&stats), tiled = onGl(&stats);
+    tiled.gpuMemory = 1 << 20;
+    const auto wholeNano = v.solidNanoVdb(mesh, grid, whole);
+    ASSERT_EQ(stats.tiles, 1u);
+    const auto tiledNano = v.solidNanoVdb(mesh, grid, tiled);
+    EXPECT_GE(stats.tiles, 2u);
+    EXPECT_TRUE(sameBytes(wholeNano, tiledNano));
+    EXPECT_EQ(wholeNano.gridMetaData()->activeVoxelCount(), tiledNano.gridMetaData()->activeVoxelCount());
 }
 
 /// SVO_GL_MAX_BUFFER set for one scope: a driver that refuses buffers past

@@ -6,6 +6,7 @@
 #include "svo/gl/field_pipeline.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
@@ -567,11 +568,22 @@ SolidBricks solidBricks(Device& device, const TriangleMesh& mesh, const GridSpec
     const GridSpec g = padded(grid, 2, mesh.source);
     checkpoint(0.0, "surface voxels");
     // Parity counts crossings from the bottom of each column: a region's
-    // solid needs the surface of its columns, top to bottom.
+    // solid needs the surface of its columns, top to bottom. The band grows
+    // a voxel from the surface, so a brick of the region can be in it for a
+    // surface voxel just beyond the region's sides: the surface is taken a
+    // brick past them, and the band is then the whole grid's there (regions'
+    // bricks join into the whole grid's: svo/core/field_join.h).
     VoxelizeSettings surfaceSettings = settings;
-    if (settings.region && !winding) {
-        surfaceSettings.region->lo[2] = floorTo8(g.anchor[2]);
-        surfaceSettings.region->hi[2] = floorTo8(g.anchor[2] + int64_t(g.dims[2]) + 7);
+    if (settings.region) {
+        IndexBox& r = *surfaceSettings.region;
+        for (int a = 0; a < 3; ++a) { // saturating: a region may lie anywhere in int64
+            r.lo[a] = std::max(r.lo[a], INT64_MIN + 8) - 8;
+            r.hi[a] = std::min(r.hi[a], INT64_MAX - 8) + 8;
+        }
+        if (!winding) {
+            r.lo[2] = floorTo8(g.anchor[2]);
+            r.hi[2] = floorTo8(g.anchor[2] + int64_t(g.dims[2]) + 7);
+        }
     }
     const Octree surface = surfaceVoxels(device, mesh, g, surfaceSettings, stats);
     stats.sign = sign.why;
