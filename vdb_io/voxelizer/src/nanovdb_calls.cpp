@@ -41,18 +41,6 @@ std::vector<vdb::NanoHandle> converted(const openvdb::GridPtrVec& grids)
     return out;
 }
 
-/// Where one shader buffer cannot hold the whole grid's field (BufferLimit),
-/// the NanoVDB calls cut the grid into regions, join their bricks, then lay
-/// the grid out on the host; the warning says so.
-void warnPastOneBuffer(const VoxelizeOptions& options)
-{
-    if (options.stats)
-        options.stats->warnings.push_back(
-            fmt::format("one GPU buffer does not hold the whole grid's field: computed in {} regions, joined, and laid "
-                        "out as NanoVDB on the host",
-                        options.stats->tiles));
-}
-
 /// The bracket of levelSetNanoVdb and solidNanoVdb: the checks (the same
 /// transform rule as levelSet()), the interrupter, then `make(checkpoint,
 /// stats)` (the field and its grids, its stages recorded), the counts of
@@ -255,7 +243,8 @@ std::vector<vdb::NanoHandle> fieldGridsOnGpu(const gl::Context& context, const g
 /// joined by `join` (svo/core/field_join.h): each region's bricks are the
 /// whole grid's there, so the result is the whole grid's bricks, with no
 /// OpenVDB tree. `pastOneBuffer`: the whole grid is known not to fit
-/// (BufferLimit), so it is not tried again. The region count goes to `stats`.
+/// (BufferLimit), so it is not tried again, and a warning says so. The
+/// region count goes to `stats`.
 template <typename Bricks, typename Join>
 auto bricksInRegions(Bricks&& bricks, Join&& join, const VoxelizeOptions& options, const IndexBox& box,
                      bool pastOneBuffer, VoxelizeStats& stats) -> decltype(bricks(options))
@@ -270,6 +259,7 @@ auto bricksInRegions(Bricks&& bricks, Join&& join, const VoxelizeOptions& option
     uint32_t tiles = 0;
     auto out = detail::inRegions(run, join, box, tiles);
     stats.tiles = tiles;
+    stats.warnings.push_back(detail::pastOneBufferWarning(tiles));
     return out;
 }
 
@@ -456,9 +446,7 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
     try {
         return nanoCall(mesh, grid, options, task, make);
     } catch (const BufferLimit&) {
-        std::vector<vdb::NanoHandle> out = inRegions(true);
-        warnPastOneBuffer(options);
-        return out;
+        return inRegions(true);
     }
 }
 
@@ -497,9 +485,7 @@ vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec
                              return gridOf(bricksOf(options, checkpoint, stats), checkpoint, stats);
                          }).front());
     } catch (const BufferLimit&) {
-        vdb::NanoHandle out = inRegions(true);
-        warnPastOneBuffer(options);
-        return out;
+        return inRegions(true);
     }
 }
 

@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fmt/format.h>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include "svo/core/error.h"
@@ -61,23 +63,34 @@ auto inRegions(Run& run, Join& join, const IndexBox& box, uint32_t& tiles) -> de
     }
 }
 
+/// The warning of a call cut into @a regions because one shader buffer
+/// cannot hold its field (BufferLimit): no budget asked for the cut.
+inline std::string pastOneBufferWarning(uint32_t regions)
+{
+    return fmt::format("one GPU buffer does not hold the whole grid's field: computed in {} regions and joined",
+                       regions);
+}
+
 /// `run` on the call's region (none: the whole grid); past a GPU memory
-/// budget, or past what one shader buffer holds, in regions of `box` (or of
-/// the call's region) that fit; `stats.tiles` says how many.
+/// budget, or past what one shader buffer holds (with a warning), in
+/// regions of `box` (or of the call's region) that fit; `stats.tiles` says
+/// how many.
 template <typename Run, typename Join>
 auto withinBudget(Run&& run, Join&& join, const VoxelizeOptions& options, const IndexBox& box, VoxelizeStats& stats)
     -> decltype(run(options.region))
 {
+    bool pastOneBuffer = false;
     try {
         return run(options.region);
     } catch (const BufferLimit&) {
-        // A driver's per-buffer limit: smaller regions fit, budget or not.
+        pastOneBuffer = true; // a driver's per-buffer limit: smaller regions fit, budget or not
     } catch (const OutOfMemory&) {
         if (!options.gpuMemory) throw; // only a budget the grid can be cut for
     }
     uint32_t tiles = 0;
     auto out = inRegions(run, join, options.region ? *options.region : box, tiles);
     stats.tiles = tiles;
+    if (pastOneBuffer) stats.warnings.push_back(pastOneBufferWarning(tiles));
     return out;
 }
 
