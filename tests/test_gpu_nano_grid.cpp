@@ -720,6 +720,37 @@ std::vector<vdb::NanoHandle> frontDoorLevelSet(Voxelizer& voxelizer, const Trian
     return voxelizer.levelSetNanoVdb(mesh, grid, ls, options);
 }
 
+/// The grids a `...NanoVdbOnDevice` call hands its callback, each read back
+/// there (the Voxelizer's context current, the buffers GL buffers of it).
+template <typename Call>
+std::vector<std::vector<uint8_t>> keptOnDevice(Call&& call)
+{
+    std::vector<std::vector<uint8_t>> out;
+    size_t calls = 0;
+    call([&](const std::vector<gl::NanoGridBuffer>& grids) {
+        ++calls;
+        for (const gl::NanoGridBuffer& g : grids) {
+            EXPECT_TRUE(glIsBuffer(g.grid.id())) << "a GL buffer of the current context";
+            std::vector<uint8_t> bytes(g.bytes);
+            g.grid.readBulk(0, bytes.size(), bytes.data());
+            out.push_back(std::move(bytes));
+        }
+    });
+    EXPECT_EQ(calls, 1u);
+    return out;
+}
+
+/// Grids kept on the device hold the host handles' bytes, checksums (the GPU's) included.
+void expectSameAsKept(const std::vector<std::vector<uint8_t>>& kept, const std::vector<vdb::NanoHandle>& host)
+{
+    ASSERT_EQ(kept.size(), host.size());
+    for (size_t i = 0; i < kept.size(); ++i) {
+        ASSERT_EQ(kept[i].size(), host[i].size()) << "grid " << i;
+        EXPECT_EQ(0, std::memcmp(kept[i].data(), host[i].data(), kept[i].size()))
+            << "grid " << i << " on the device: " << firstDifference(kept[i].data(), host[i].data(), kept[i].size());
+    }
+}
+
 /// An unsigned field through the front door on a GL backend: its band stays
 /// on the device and the GPU builder lays it out ("band leaves", "nanovdb
 /// grid (gpu)"), giving the bytes the CPU layout (levelSetNanoGrids) gives
@@ -747,6 +778,13 @@ TEST_F(GpuNanoGrid, FrontDoorUnsignedFieldsEqualTheCpuLayout)
             const std::vector<vdb::NanoHandle>& cpu = readBack.second;
             expectSameBytes(gpu, cpu, written);
             ASSERT_EQ(gpu.size(), closest ? 2u : 1u);
+            // levelSetNanoVdbOnDevice keeps an unsigned field's grids on the GPU too.
+            VoxelizeOptions onDevice;
+            onDevice.backend = Backend::Compute;
+            expectSameAsKept(keptOnDevice([&](const NanoGridsOnDevice& use) {
+                                 voxelizer.levelSetNanoVdbOnDevice(mesh, grid, ls, onDevice, use);
+                             }),
+                             gpu);
             const auto* udf = gpu[0].grid<float>();
             ASSERT_NE(udf, nullptr);
             EXPECT_TRUE(nanovdb::isValid(*udf, true, true));
@@ -846,6 +884,17 @@ TEST_F(GpuNanoGrid, FrontDoorSignedFieldsEqualTheCpuLayout)
             const std::vector<vdb::NanoHandle>& cpu = readBack.second;
             expectSameBytes(gpu, cpu, written);
             ASSERT_EQ(gpu.size(), closest ? 2u : 1u);
+            // Kept on the GPU: the same bytes, by winding numbers; by parity the
+            // host flood fills the grid, so it cannot stay there.
+            VoxelizeOptions onDevice;
+            onDevice.backend = Backend::Compute;
+            auto keep = [&](const NanoGridsOnDevice& use) {
+                voxelizer.levelSetNanoVdbOnDevice(mesh, grid, ls, onDevice, use);
+            };
+            if (parity)
+                EXPECT_THROW(keep([](const std::vector<gl::NanoGridBuffer>&) { ADD_FAILURE() << "called"; }), Unsupported);
+            else
+                expectSameAsKept(keptOnDevice(keep), gpu);
             if (!parity) { // the scene has what winding signs add: leaves of inside voxels alone, inside tiles, and (the hole) bricks beyond the band
                 size_t insideOnly = 0;
                 for (size_t b = 0; b < field.bricks.size(); ++b) {
@@ -931,6 +980,14 @@ TEST_F(GpuNanoGrid, FrontDoorSolidsEqualTheCpuLayout)
             std::vector<vdb::NanoHandle> cpu;
             cpu.push_back(vdb::solidNanoGrid(bricks, grid, topology));
             expectSameBytes(gpu, cpu, written);
+            VoxelizeStats deviceStats;
+            options.stats = &deviceStats;
+            expectSameAsKept(keptOnDevice([&](const NanoGridsOnDevice& use) {
+                                 voxelizer.solidNanoVdbOnDevice(mesh, grid, options, SignOptions{}, topology, use);
+                             }),
+                             gpu);
+            EXPECT_EQ(deviceStats.voxels, stats.voxels);
+            EXPECT_EQ(deviceStats.bricks, stats.bricks);
             options.backend = Backend::Cpu;
             options.stats = nullptr;
             std::vector<vdb::NanoHandle> onCpu;
@@ -1002,9 +1059,14 @@ TEST_F(GpuNanoGrid, FrontDoorSurfacesEqualTheCpuLayout)
                                         [](const StageTime& s) { return s.name == "nanovdb grid (gpu)"; }),
                           5);
                 options.stats = nullptr;
-                const auto cpu = vdb::octreeToNanoGrids(voxelizer.voxelize(mesh, grid, options), grids);
+                const Octree octree = voxelizer.voxelize(mesh, grid, options);
+                const auto cpu = vdb::octreeToNanoGrids(octree, grids);
                 ASSERT_EQ(cpu.size(), 5u); // topology, density, normal, triangle_id, color
                 expectSameBytes(gpu, cpu, written);
+                expectSameAsKept(keptOnDevice([&](const NanoGridsOnDevice& use) {
+                                     voxelizer.octreeNanoVdbOnDevice(octree, grids, options, use);
+                                 }),
+                                 cpu);
                 if (topology == GridOptions::Topology::Mask) {
                     ASSERT_NE(gpu[0].grid<nanovdb::ValueMask>(), nullptr);
                     EXPECT_TRUE(nanovdb::isValid(*gpu[0].grid<nanovdb::ValueMask>(), true, true));

@@ -5,25 +5,26 @@
 // surface's and a solid's from their bricks uploaded.
 #include <cstring>
 #include <functional>
+#include <tuple>
 #include <fmt/format.h>
 
 #include "svo/core/error.h"
 #include "svo/core/field_join.h"
 #include "svo/gl/field_pipeline.h"
 #include "svo/gl/nano_grid_builder.h"
-#include "svo/gl/timer_query.h"
 #include "svo/gl/voxelize_pipeline.h"
-#include "svo/vdb_io/nanovdb_checksum.h"
 #include "svo/vdb_io/nanovdb_grids.h"
 #include "svo/vdb_io/nanovdb_layout.h"
 #include "svo/vdb_io/nanovdb_output.h"
 #include "svo/vdb_io/reader_grids.h" // withTopology
 #include "svo/voxelizer.h"
+#include "built_grids.h"
 #include "regions.h"
 #include "voxelizer_state.h"
 
 namespace svo {
 
+using detail::BuiltGrids;
 using detail::Clock;
 using detail::InterruptScope;
 using detail::msSince;
@@ -41,6 +42,9 @@ std::vector<vdb::NanoHandle> converted(const openvdb::GridPtrVec& grids)
     return out;
 }
 
+constexpr const char* kFieldTask = "svo: computing a distance field";
+constexpr const char* kSolidTask = "svo: filling a solid";
+
 /// The bracket of levelSetNanoVdb and solidNanoVdb: the checks (the same
 /// transform rule as levelSet()), the interrupter, then `make(checkpoint,
 /// stats)` (the field and its grids, its stages recorded), the counts of
@@ -56,74 +60,13 @@ std::vector<vdb::NanoHandle> nanoCall(const TriangleMesh& mesh, const GridSpec& 
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;
     std::vector<vdb::NanoHandle> out = make(checkpoint, stats);
-    const auto* main = out.front().gridMetaData();
-    stats.voxels = main ? main->activeVoxelCount() : 0;
-    stats.bricks = main ? main->nodeCount(0) : 0;
+    if (!out.empty()) { // grids kept on the device set their counts
+        const auto* main = out.front().gridMetaData();
+        stats.voxels = main ? main->activeVoxelCount() : 0;
+        stats.bricks = main ? main->nodeCount(0) : 0;
+    }
     checkpoint(1.0, "finish");
     if (options.stats) *options.stats = std::move(stats);
-    return out;
-}
-
-/// Gives @a h NanoVDB's full checksum on the host.
-void fullChecksum(vdb::NanoHandle& h, gl::NanoKind kind)
-{
-    switch (kind) {
-    case gl::NanoKind::Float: return vdb::updateFullChecksum(*h.grid<float>());
-    case gl::NanoKind::Int32: return vdb::updateFullChecksum(*h.grid<int32_t>());
-    case gl::NanoKind::Vec3f: return vdb::updateFullChecksum(*h.grid<nanovdb::Vec3f>());
-    case gl::NanoKind::Mask: return vdb::updateFullChecksum(*h.grid<nanovdb::ValueMask>());
-    case gl::NanoKind::Bool: return vdb::updateFullChecksum(*h.grid<bool>());
-    }
-}
-
-/// A grid built on the GPU, read back, and given its full checksum on the
-/// host, each step a stage of `stats`. The host hashes the copy it has to
-/// read anyway (docs/design.md compares it with the GPU's checksum). A grid past
-/// the builder's limits (a shader storage block, 2^26 leaves, 16 GiB:
-/// svo::Unsupported, thrown before the grid is made) is laid out by
-/// `onHost()` instead, with a warning.
-/// `finish`, when given, changes the host copy before its checksum (a
-/// level set's flood fill), and `onHost()` then leaves the checksum to it.
-template <typename OnHost>
-vdb::NanoHandle builtOnGpu(const gl::Context& context, gl::NanoKind kind, const gl::NanoLeaves& leaves,
-                           const gl::NanoGridHeader& header, VoxelizeStats& stats, OnHost&& onHost,
-                           const std::function<void(vdb::NanoHandle&)>& finish = {})
-{
-    auto t0 = Clock::now();
-    gl::TimerQuery timer;
-    timer.begin();
-    gl::NanoGridBuffer built;
-    gl::NanoGridHeader noChecksumYet = header;
-    noChecksumYet.checksum = false;
-    try {
-        built = gl::buildNanoGridGpu(context, kind, leaves, noChecksumYet);
-    } catch (const Unsupported& e) {
-        stats.warnings.push_back(fmt::format("{}; grid \"{}\" laid out on the CPU instead", e.what(), header.name));
-        t0 = Clock::now();
-        vdb::NanoHandle out = onHost();
-        if (finish) {
-            finish(out);
-            fullChecksum(out, kind);
-        }
-        stats.stages.push_back({"nanovdb grid (cpu)", -1, msSince(t0)});
-        return out;
-    }
-    timer.end();
-    stats.stages.push_back({"nanovdb grid (gpu)", timer.milliseconds(), msSince(t0)});
-    t0 = Clock::now();
-    nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(built.bytes);
-    built.grid.readBulk(0, built.bytes, buffer.data());
-    context.returnScratch(gl::kNanoGridScratch, std::move(built.grid)); // the next grid's memory
-    vdb::NanoHandle out(std::move(buffer));
-    stats.stages.push_back({"nanovdb readback", -1, msSince(t0)});
-    if (finish) {
-        t0 = Clock::now();
-        finish(out);
-        stats.stages.push_back({"nanovdb flood fill", -1, msSince(t0)});
-    }
-    t0 = Clock::now();
-    fullChecksum(out, kind);
-    stats.stages.push_back({"nanovdb checksum", -1, msSince(t0)});
     return out;
 }
 
@@ -204,16 +147,14 @@ std::vector<gl::NanoTile> insideTiles(const gl::DeviceField& field, float backgr
 
 /// A field's grids on the GPU: its band's leaves stay on the device
 /// (gl::levelSetBand) and the builder lays out the grids levelSetNanoGrids
-/// lays out on the host, byte for byte: a winding-signed field's whole
-/// bricks inside as tiles; a parity-signed field's values beyond the band
-/// flood filled on the host copy, as levelSetNanoGrids does.
-std::vector<vdb::NanoHandle> fieldGridsOnGpu(const gl::Context& context, const gl::DeviceField& field,
-                                             const GridSpec& grid, const LevelSetOptions& ls, VoxelizeStats& stats)
+/// lays out on the host, byte for byte, into @a out: a winding-signed
+/// field's whole bricks inside as tiles; a parity-signed field's values
+/// beyond the band flood filled on the host copy, as levelSetNanoGrids does
+/// (so its grids cannot stay on the device).
+void fieldGridsOnGpu(const gl::DeviceField& field, const GridSpec& grid, const LevelSetOptions& ls, BuiltGrids& out)
 {
-    const gl::Context::Scope scope(context); // the leaves' scratch buffers and the grids' buffers
     gl::NanoLeaves leaves = leavesOf(field);
     gl::NanoGridHeader header = distanceHeader(grid, ls, field.signedField);
-    std::vector<vdb::NanoHandle> out;
     const float background = float(header.background);
     const std::vector<gl::NanoTile> tiles = insideTiles(field, background);
     leaves.tileCount = uint32_t(tiles.size());
@@ -221,8 +162,8 @@ std::vector<vdb::NanoHandle> fieldGridsOnGpu(const gl::Context& context, const g
     const bool flood = field.signedField && !field.winding;
     std::function<void(vdb::NanoHandle&)> fill;
     if (flood) fill = [](vdb::NanoHandle& h) { vdb::signedFloodFill(*h.grid<float>()); };
-    out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats,
-                             [&] { return laidOutOnHost<float>(leaves, header, background, !flood); }, fill));
+    out.add(gl::NanoKind::Float, leaves, header,
+            [&] { return laidOutOnHost<float>(leaves, header, background, !flood); }, fill);
     if (field.leaves.closest) {
         // The leaves with an active voxel come first: the closest triangles' grid has only those, and no tiles.
         leaves.count = field.leaves.activeCount;
@@ -232,10 +173,8 @@ std::vector<vdb::NanoHandle> fieldGridsOnGpu(const gl::Context& context, const g
         header.name = "closest_triangle";
         header.gridClass = uint32_t(nanovdb::GridClass::Unknown);
         header.background = -1.0;
-        out.push_back(builtOnGpu(context, gl::NanoKind::Int32, leaves, header, stats,
-                                 [&] { return laidOutOnHost<int32_t>(leaves, header, -1); }));
+        out.add(gl::NanoKind::Int32, leaves, header, [&] { return laidOutOnHost<int32_t>(leaves, header, -1); });
     }
-    return out;
 }
 
 /// `bricks(options)` (a field's or a solid's) cut into regions, past a GPU
@@ -292,8 +231,7 @@ std::vector<vdb::NanoHandle> fieldInRegions(gl::Device& device, const TriangleMe
 /// An octree's channel grids on the GPU builder: each channel's leaves
 /// (vdb::octreeChannelVoxels, 512 values a leaf: 6 KB for Vec3f, 2 KB for
 /// triangle ids) uploaded, byte for byte octreeChannelNanoGrids'.
-void channelGridsOnGpu(const gl::Context& context, const Octree& o, const GridOptions& grids, VoxelizeStats& stats,
-                       std::vector<vdb::NanoHandle>& out)
+void channelGridsOnGpu(const Octree& o, const GridOptions& grids, VoxelizeStats& stats, BuiltGrids& out)
 {
     auto t0 = Clock::now();
     const std::vector<vdb::OctreeChannel> channels = vdb::octreeChannelVoxels(o, grids);
@@ -321,20 +259,18 @@ void channelGridsOnGpu(const gl::Context& context, const Octree& o, const GridOp
         auto onHost = [&] {
             return c.vector ? vdb::buildNanoGrid<nanovdb::Vec3f>(c.vectors, info) : vdb::buildNanoGrid<int32_t>(c.ints, info);
         };
-        out.push_back(builtOnGpu(context, c.vector ? gl::NanoKind::Vec3f : gl::NanoKind::Int32, leaves, header, stats, onHost));
+        out.add(c.vector ? gl::NanoKind::Vec3f : gl::NanoKind::Int32, leaves, header, onHost);
     }
 }
 
 /// An octree's grids built on the GPU, byte for byte octreeToNanoGrids':
 /// the topology and fog from its bricks (uploaded: 76 bytes a leaf), then
 /// the channels. Stages are added to `stats`.
-std::vector<vdb::NanoHandle> surfaceGridsOnGpu(const gl::Context& context, const Octree& o, const GridOptions& grids,
-                                               VoxelizeStats& stats)
+void surfaceGridsOnGpu(const Octree& o, const GridOptions& grids, VoxelizeStats& stats, BuiltGrids& out)
 {
     auto t0 = Clock::now();
     const OctreeLeaves bricks = octreeLeaves(o);
     stats.stages.push_back({"nanovdb leaves", -1, msSince(t0)});
-    const gl::Context::Scope scope(context);
     gl::NanoLeaves leaves;
     leaves.count = uint32_t(bricks.origins.size());
     leaves.origins = bricks.origins.data();
@@ -353,9 +289,7 @@ std::vector<vdb::NanoHandle> surfaceGridsOnGpu(const gl::Context& context, const
         one.attributes = false;
         return [&o, one, fog] { return std::move(vdb::octreeToNanoGrids(o, one)[fog ? 1 : 0]); };
     };
-    std::vector<vdb::NanoHandle> out;
-    out.push_back(builtOnGpu(context, mask ? gl::NanoKind::Mask : gl::NanoKind::Bool, leaves, header, stats,
-                             onHost(false)));
+    out.add(mask ? gl::NanoKind::Mask : gl::NanoKind::Bool, leaves, header, onHost(false));
     if (grids.fog) {
         const float one = 1.0f;
         uint32_t word = 0;
@@ -363,10 +297,9 @@ std::vector<vdb::NanoHandle> surfaceGridsOnGpu(const gl::Context& context, const
         leaves.activeWord = word;
         header.name = "density";
         header.gridClass = uint32_t(nanovdb::GridClass::FogVolume);
-        out.push_back(builtOnGpu(context, gl::NanoKind::Float, leaves, header, stats, onHost(true)));
+        out.add(gl::NanoKind::Float, leaves, header, onHost(true));
     }
-    channelGridsOnGpu(context, o, grids, stats, out);
-    return out;
+    channelGridsOnGpu(o, grids, stats, out);
 }
 
 /// Host leaves and 8³ tiles as the builder takes them (the tiles' words
@@ -386,13 +319,12 @@ gl::NanoLeaves hostLeaves(const vdb::SparseVoxels<bool>& s, std::vector<gl::Nano
 
 /// A solid's grid on the GPU builder from its voxels (vdb::solidVoxels,
 /// uploaded: 76 bytes a leaf, 20 a tile), byte for byte solidNanoGrid's.
-vdb::NanoHandle solidGridOnGpu(const gl::Context& context, const SolidBricks& bricks, const GridSpec& grid,
-                               GridOptions::Topology topology, VoxelizeStats& stats)
+void solidGridOnGpu(const SolidBricks& bricks, const GridSpec& grid, GridOptions::Topology topology,
+                    VoxelizeStats& stats, BuiltGrids& out)
 {
     auto t0 = Clock::now();
     const vdb::SparseVoxels<bool> voxels = vdb::solidVoxels(bricks);
     stats.stages.push_back({"nanovdb leaves", -1, msSince(t0)});
-    const gl::Context::Scope scope(context);
     std::vector<gl::NanoTile> tiles;
     const gl::NanoLeaves leaves = hostLeaves(voxels, tiles);
     gl::NanoGridHeader header;
@@ -401,8 +333,45 @@ vdb::NanoHandle solidGridOnGpu(const gl::Context& context, const SolidBricks& br
     header.translation = grid.translation();
     const bool mask = topology == GridOptions::Topology::Mask;
     header.gridClass = uint32_t(mask ? nanovdb::GridClass::Topology : nanovdb::GridClass::Unknown);
-    return builtOnGpu(context, mask ? gl::NanoKind::Mask : gl::NanoKind::Bool, leaves, header, stats,
-                      [&] { return vdb::solidNanoGrid(bricks, grid, topology); });
+    out.add(mask ? gl::NanoKind::Mask : gl::NanoKind::Bool, leaves, header,
+            [&] { return vdb::solidNanoGrid(bricks, grid, topology); });
+}
+
+/// `make(out)` with the grids built in @a context and read back: their handles.
+template <typename Make>
+std::vector<vdb::NanoHandle> readBack(const gl::Context& context, VoxelizeStats& stats, Make&& make)
+{
+    const gl::Context::Scope scope(context); // the leaves' buffers and the grids'
+    BuiltGrids out(context, false, stats);
+    make(out);
+    return std::move(out.host());
+}
+
+/// `make(out)` with the grids built in @a context and kept there, handed to
+/// @a use while the context is current, then freed.
+template <typename Make>
+void keptOnDevice(const gl::Context& context, VoxelizeStats& stats, const NanoGridsOnDevice& use, Make&& make)
+{
+    const gl::Context::Scope scope(context); // the grids are made, used and freed in it
+    BuiltGrids out(context, true, stats);
+    make(out);
+    use(out.device());
+}
+
+/// nanoCall's checks, interrupter and statistics for grids kept on the
+/// device: `make(checkpoint, stats, out)` builds them into `out`, and @a use
+/// gets them.
+template <typename Make>
+void nanoCallOnDevice(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
+                      const VoxelizeOptions& options, const char* what, const NanoGridsOnDevice& use, Make&& make)
+{
+    nanoCall(mesh, grid, options, what, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+        keptOnDevice(device.context(), stats, use, [&](BuiltGrids& out) {
+            make(checkpoint, stats, out);
+            std::tie(stats.voxels, stats.bricks) = out.firstCounts();
+        });
+        return std::vector<vdb::NanoHandle>{}; // no host grid: the counts are set
+    });
 }
 
 } // namespace
@@ -419,20 +388,31 @@ std::vector<vdb::NanoHandle> Voxelizer::octreeNanoVdb(const Octree& octree, cons
     VoxelizeStats local;
     VoxelizeStats& stats = options.stats ? *options.stats : local;
     // On a GL backend (the test runsOnCpu makes for level sets and solids).
-    if (!gl::runsOnCpu(device_, options)) return surfaceGridsOnGpu(device_.context(), octree, grids, stats);
+    if (!gl::runsOnCpu(device_, options))
+        return readBack(device_.context(), stats, [&](BuiltGrids& out) { surfaceGridsOnGpu(octree, grids, stats, out); });
     const auto t0 = Clock::now();
     std::vector<vdb::NanoHandle> out = vdb::octreeToNanoGrids(octree, grids);
     stats.stages.push_back({"nvdb build (cpu)", -1, msSince(t0)});
     return out;
 }
 
+void Voxelizer::octreeNanoVdbOnDevice(const Octree& octree, const GridOptions& grids, const VoxelizeOptions& options,
+                                      const NanoGridsOnDevice& use)
+{
+    if (gl::runsOnCpu(device_, options))
+        throw Unsupported("an octree's NanoVDB grids stay on the GPU only on a GL backend (not Backend::Cpu, nor "
+                          "Auto on a software renderer)");
+    VoxelizeStats local;
+    VoxelizeStats& stats = options.stats ? *options.stats : local;
+    keptOnDevice(device_.context(), stats, use, [&](BuiltGrids& out) { surfaceGridsOnGpu(octree, grids, stats, out); });
+}
+
 std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                         const LevelSetOptions& ls, const VoxelizeOptions& options)
 {
     if (viaOpenVdb(options)) return converted(levelSet(mesh, grid, ls, options));
-    constexpr const char* task = "svo: computing a distance field";
     auto inRegions = [&](bool pastOneBuffer) {
-        return nanoCall(mesh, grid, options, task, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+        return nanoCall(mesh, grid, options, kFieldTask, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
             return fieldInRegions(device_, mesh, grid, ls, options, pastOneBuffer, checkpoint, stats);
         });
     };
@@ -440,39 +420,62 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
     auto make = [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
         const gl::LevelSetBand band = gl::levelSetBand(device_, mesh, grid, ls, options, checkpoint, stats);
         checkpoint(0.85, "nanovdb grid");
-        if (band.device) return fieldGridsOnGpu(device_.context(), *band.device, grid, ls, stats);
-        return fieldGridsOnHost(band.host, grid, ls, stats);
+        if (!band.device) return fieldGridsOnHost(band.host, grid, ls, stats);
+        return readBack(device_.context(), stats,
+                        [&](BuiltGrids& out) { fieldGridsOnGpu(*band.device, grid, ls, out); });
     };
     try {
-        return nanoCall(mesh, grid, options, task, make);
+        return nanoCall(mesh, grid, options, kFieldTask, make);
     } catch (const BufferLimit&) {
         return inRegions(true);
     }
+}
+
+void Voxelizer::levelSetNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
+                                        const VoxelizeOptions& options, const NanoGridsOnDevice& use)
+{
+    if (options.region || options.gpuMemory || gl::runsOnCpu(device_, options))
+        throw Unsupported("a field's NanoVDB grids stay on the GPU only on a GL backend, without a region or a GPU "
+                          "memory budget");
+    nanoCallOnDevice(device_, mesh, grid, options, kFieldTask, use,
+                     [&](const Checkpoint& checkpoint, VoxelizeStats& stats, BuiltGrids& out) {
+                         const gl::LevelSetBand band =
+                             gl::levelSetBand(device_, mesh, grid, ls, options, checkpoint, stats);
+                         checkpoint(0.85, "nanovdb grid");
+                         fieldGridsOnGpu(*band.device, grid, ls, out); // on a GL backend, no region: on the device
+                     });
+}
+
+void Voxelizer::unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
+                                             const VoxelizeOptions& options, const NanoGridsOnDevice& use)
+{
+    if (!ls.unsignedDistance)
+        throw Unsupported("unsignedFieldNanoVdbOnDevice takes an unsigned distance field; levelSetNanoVdbOnDevice "
+                          "takes level sets too");
+    levelSetNanoVdbOnDevice(mesh, grid, ls, options, use);
 }
 
 vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                                         const SignOptions& sign, GridOptions::Topology topology)
 {
     if (viaOpenVdb(options)) return vdb::toNanoVdb(vdb::withTopology(solid(mesh, grid, options, sign), topology));
-    constexpr const char* task = "svo: filling a solid";
     auto bricksOf = [&](const VoxelizeOptions& part, const Checkpoint& checkpoint, VoxelizeStats& stats) {
         return gl::solidBricks(device_, mesh, grid, part, sign, checkpoint, stats);
     };
     auto gridOf = [&](const SolidBricks& bricks, const Checkpoint& checkpoint, VoxelizeStats& stats) {
         checkpoint(0.8, "nanovdb grid");
-        std::vector<vdb::NanoHandle> grids;
-        if (!gl::runsOnCpu(device_, options)) {
-            grids.push_back(solidGridOnGpu(device_.context(), bricks, grid, topology, stats));
-            return grids;
-        }
+        if (!gl::runsOnCpu(device_, options))
+            return readBack(device_.context(), stats,
+                            [&](BuiltGrids& out) { solidGridOnGpu(bricks, grid, topology, stats, out); });
         const auto t0 = Clock::now();
+        std::vector<vdb::NanoHandle> grids;
         grids.push_back(vdb::solidNanoGrid(bricks, grid, topology));
         stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
         return grids;
     };
     // Past a budget or one shader buffer: the regions' bricks joined (bricksInRegions), then the same grid.
     auto inRegions = [&](bool pastOneBuffer) {
-        return std::move(nanoCall(mesh, grid, options, task, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+        return std::move(nanoCall(mesh, grid, options, kSolidTask, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
                              auto bricks = [&](const VoxelizeOptions& part) { return bricksOf(part, checkpoint, stats); };
                              const SolidBricks joined = bricksInRegions(bricks, joinSolids, options,
                                                                         detail::fieldBox(grid, detail::kSolidPad), pastOneBuffer, stats);
@@ -481,7 +484,7 @@ vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec
     };
     if (options.gpuMemory) return inRegions(false);
     try {
-        return std::move(nanoCall(mesh, grid, options, task, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+        return std::move(nanoCall(mesh, grid, options, kSolidTask, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
                              return gridOf(bricksOf(options, checkpoint, stats), checkpoint, stats);
                          }).front());
     } catch (const BufferLimit&) {
@@ -489,56 +492,19 @@ vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec
     }
 }
 
-void Voxelizer::unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
-                                             const VoxelizeOptions& options,
-                                             const std::function<void(const std::vector<gl::NanoGridBuffer>&)>& use)
+void Voxelizer::solidNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                                     const SignOptions& sign, GridOptions::Topology topology,
+                                     const NanoGridsOnDevice& use)
 {
-    if (options.region || options.gpuMemory || !gl::unsignedFieldOnDevice(device_, ls, options))
-        throw Unsupported("a NanoVDB grid stays on the GPU only for an unsigned distance field on a GL backend, "
-                          "without a region or a GPU memory budget");
-    validateMesh(mesh);
-    checkGrid(grid, mesh.source);
-    vdb::checkVdbGrid(grid, "grid");
-    const InterruptScope interrupt(options.interrupter, "svo: computing a distance field");
-    const Checkpoint checkpoint = interrupt.checkpoint();
-    VoxelizeStats stats;
-    const gl::DeviceField field = gl::unsignedFieldLeaves(device_, mesh, grid, ls, options, checkpoint, stats);
-    checkpoint(0.85, "nanovdb grid");
-    const gl::Context& context = device_.context();
-    const gl::Context::Scope scope(context); // the grids are made, used and freed in it
-    gl::NanoLeaves leaves = leavesOf(field);
-    gl::NanoGridHeader header = distanceHeader(grid, ls);
-    header.checksum = true;
-    const auto t0 = Clock::now();
-    gl::TimerQuery timer;
-    timer.begin();
-    std::vector<gl::NanoGridBuffer> grids;
-    grids.push_back(gl::buildNanoGridGpu(context, gl::NanoKind::Float, leaves, header));
-    if (field.leaves.closest) {
-        leaves.valueBuffer = field.leaves.closest;
-        header.name = "closest_triangle";
-        header.background = -1.0;
-        grids.push_back(gl::buildNanoGridGpu(context, gl::NanoKind::Int32, leaves, header));
-    }
-    timer.end();
-    stats.stages.push_back({"nanovdb grid (gpu)", timer.milliseconds(), msSince(t0)});
-    for (size_t i = 0; i < grids.size(); ++i) { // a grid of no leaves: the checksum of its headers, here
-        const gl::NanoGridBuffer& g = grids[i];
-        if (g.nodes[0]) continue;
-        nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(g.bytes);
-        g.grid.read(0, g.bytes, buffer.data());
-        vdb::NanoHandle h(std::move(buffer));
-        fullChecksum(h, i == 0 ? gl::NanoKind::Float : gl::NanoKind::Int32);
-        g.grid.write(0, g.bytes, h.data());
-    }
-    stats.bricks = grids.front().nodes[0];
-    alignas(64) uint8_t head[sizeof(nanovdb::GridData) + sizeof(nanovdb::NanoTree<float>::DataType)];
-    grids.front().grid.readBulk(0, sizeof head, head); // read() can copy the whole grid on some drivers
-    stats.voxels = reinterpret_cast<const nanovdb::NanoGrid<float>*>(head)->activeVoxelCount();
-    use(grids);
-    for (gl::NanoGridBuffer& g : grids) context.returnScratch(gl::kNanoGridScratch, std::move(g.grid));
-    checkpoint(1.0, "finish");
-    if (options.stats) *options.stats = std::move(stats);
+    if (options.region || options.gpuMemory || gl::runsOnCpu(device_, options))
+        throw Unsupported("a solid's NanoVDB grid stays on the GPU only on a GL backend, without a region or a GPU "
+                          "memory budget");
+    nanoCallOnDevice(device_, mesh, grid, options, kSolidTask, use,
+                     [&](const Checkpoint& checkpoint, VoxelizeStats& stats, BuiltGrids& out) {
+                         const SolidBricks bricks = gl::solidBricks(device_, mesh, grid, options, sign, checkpoint, stats);
+                         checkpoint(0.8, "nanovdb grid");
+                         solidGridOnGpu(bricks, grid, topology, stats, out);
+                     });
 }
 
 } // namespace svo

@@ -91,6 +91,11 @@ struct VoxelizeOptions : VoxelizeSettings {
     VoxelizeStats* stats = nullptr;
 };
 
+/// @brief Takes NanoVDB grids kept on the GPU (the `...NanoVdbOnDevice`
+/// calls), each in a GL buffer of the Voxelizer's context, which is current
+/// during the call: bind them, copy them, register them with CUDA-GL interop
+/// or read them back there. They are freed when it returns.
+using NanoGridsOnDevice = std::function<void(const std::vector<gl::NanoGridBuffer>&)>;
 
 struct IndexSpaceMesh;
 
@@ -305,22 +310,35 @@ public:
     /// @throw as levelSet()
     std::vector<vdb::NanoHandle> levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                  const LevelSetOptions& levelSet = {}, const VoxelizeOptions& options = {});
-    /// @brief An unsigned field's grids left on the GPU: levelSetNanoVdb's
-    /// grids ("distance", then "closest_triangle" when asked), byte for byte
-    /// with their full checksums, each in a GL buffer of this Voxelizer's
-    /// context (gl::NanoGridBuffer: the buffer, the grid's bytes), handed to
-    /// @a use while that context is current: bind them, copy them, register
-    /// them with CUDA-GL interop or read them back there. They are freed
+    /// @brief levelSetNanoVdb()'s grids left on the GPU ("distance" or
+    /// "surface", then "closest_triangle" when asked), byte for byte with
+    /// their full checksums (made on the GPU), each in a GL buffer of this
+    /// Voxelizer's context (gl::NanoGridBuffer: the buffer, the grid's
+    /// bytes), handed to @a use while that context is current. They are freed
     /// when @a use returns; the context the thread had current before is
     /// current again after the call, as after every call.
     /// @param use called once, on this thread, with the grids
-    /// @throw svo::Unsupported unless the call can keep the grid on the GPU
-    ///        (LevelSetOptions::unsignedDistance, a GL backend, no region or
-    ///        GPU memory budget), or for a grid past the GPU builder's limits;
-    ///        otherwise as levelSet(), and whatever @a use throws
+    /// @throw svo::Unsupported unless the call can keep the grids on the GPU:
+    ///        a GL backend, no region or GPU memory budget, a grid within the
+    ///        GPU builder's limits, and an unsigned field or a level set
+    ///        signed by winding numbers (a parity-signed level set is flood
+    ///        filled on the host; this is found once the signs are chosen);
+    ///        otherwise as levelSet() (svo::OutOfMemory where one shader
+    ///        buffer cannot hold the field: levelSetNanoVdb() cuts it into
+    ///        regions), and whatever @a use throws
+    void levelSetNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& levelSet,
+                                 const VoxelizeOptions& options, const NanoGridsOnDevice& use);
+    /// @brief levelSetNanoVdbOnDevice() for an unsigned field only.
+    /// @throw svo::Unsupported for a signed field; otherwise as levelSetNanoVdbOnDevice()
     void unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& levelSet,
-                                      const VoxelizeOptions& options,
-                                      const std::function<void(const std::vector<gl::NanoGridBuffer>&)>& use);
+                                      const VoxelizeOptions& options, const NanoGridsOnDevice& use);
+    /// @brief octreeNanoVdb()'s grids (topology, fog, channels) left on the
+    /// GPU, as levelSetNanoVdbOnDevice() leaves a field's.
+    /// @throw svo::Unsupported off a GL backend, or for a grid past the GPU
+    ///        builder's limits; svo::DeviceError or svo::OutOfMemory from the
+    ///        GPU, and whatever @a use throws
+    void octreeNanoVdbOnDevice(const Octree& octree, const GridOptions& grids, const VoxelizeOptions& options,
+                               const NanoGridsOnDevice& use);
     /// @brief solid() as the NanoVDB grid "solid" (solidNanoGrid), as
     /// levelSetNanoVdb (regions joined by joinSolids); on a GL backend laid
     /// out on the GPU from the solid's leaves and 8³ tiles (vdb::solidVoxels,
@@ -330,6 +348,13 @@ public:
     vdb::NanoHandle solidNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options = {},
                                  const SignOptions& sign = {},
                                  GridOptions::Topology topology = GridOptions::Topology::Mask);
+    /// @brief solidNanoVdb()'s grid left on the GPU, as
+    /// levelSetNanoVdbOnDevice() leaves a field's.
+    /// @throw svo::Unsupported off a GL backend, with a region or a GPU
+    ///        memory budget, or for a grid past the GPU builder's limits;
+    ///        otherwise as solid(), and whatever @a use throws
+    void solidNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                              const SignOptions& sign, GridOptions::Topology topology, const NanoGridsOnDevice& use);
 
     /// @brief The backend a voxelize call with @a options runs on: Backend::Auto
     /// resolved (a dilation mode's raster backend when one is asked for; else
