@@ -4,6 +4,7 @@
 #include "svo/gl/nano_grid_builder.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fmt/format.h>
 
@@ -52,6 +53,8 @@ void checkLeaves(NanoKind kind, const NanoLeaves& in, const NanoGridHeader& head
     if (in.tileCount && !in.tiles) throw InvalidInput("NanoVDB GPU build: a tile count without tiles");
     if (kind == NanoKind::Vec3f && (in.tileCount || in.activeWord))
         throw InvalidInput("NanoVDB GPU build: Vec3f grids take neither tiles nor an active word");
+    if (header.signedFloodFill && kind != NanoKind::Float)
+        throw InvalidInput("NanoVDB GPU build: a signed flood fill is for Float level sets");
     if (!in.count) return;
     if (in.origins) {
         if (!in.masks) throw InvalidInput("NanoVDB GPU build: leaf origins without masks");
@@ -414,6 +417,37 @@ void checksumOnGpu(const Context& context, NanoKind kind, const NanoTreeFacts& f
     grid.write(8, 8, &checksum);
 }
 
+/// The most loop iterations one nano_flood.comp invocation takes: an upper
+/// node's mask scan (1024 words) and its 32 + 32² + 32³ entries.
+constexpr uint64_t kFloodLoopIterations = 1024 + 32 + 32 * 32 + 32 * 32 * 32;
+
+/// OpenVDB's signed flood fill of a level set's inactive values, on the
+/// grid: leaves, then lower, then upper nodes, an invocation a node
+/// (nano_flood.comp).
+void floodOnGpu(const Context& context, const NanoTreeFacts& f, double background)
+{
+    const uint64_t loopLimit = context.info().loopLimit;
+    if (loopLimit && loopLimit < kFloodLoopIterations)
+        throw Unsupported(fmt::format("NanoVDB GPU flood fill: the driver's loop limit of {} is under the {} "
+                                      "iterations it needs",
+                                      loopLimit, kFloodLoopIterations));
+    const Program& flood = context.program(nanovdbShaders(), {"nano_flood.comp"});
+    const float outside = std::abs(float(background)), minus = -outside;
+    uint32_t word = 0;
+    std::memcpy(&word, &outside, 4);
+    flood.set("uOutside", word);
+    std::memcpy(&word, &minus, 4);
+    flood.set("uMinus", word);
+    for (uint32_t level = 0; level < 3; ++level) { // bottom up: a node reads its children's filled values
+        if (!f.nodes[level]) continue;
+        flood.set("uLevel", level);
+        flood.set("uNodeAt", uint32_t(f.at[level] / 4));
+        flood.set("uNodeCount", f.nodes[level]);
+        flood.dispatchRows((uint64_t(f.nodes[level]) + 63) / 64);
+        passBarrier();
+    }
+}
+
 void throwOnBadLeaves(const NanoLeaves& in, const DeviceLeaves& d, const uint32_t* counters)
 {
     auto what = [&](uint32_t i) { return i < in.count ? "leaf" : "tile"; };
@@ -453,6 +487,7 @@ NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const Nano
     fillWords(context, out.grid, 0, f.gridBytes); // not a clear: see fill_words.h
     out.grid.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_GRID);
     fillNodes(context, kind, f, n, d.values != nullptr, backgroundWord(kind, header.background), in.activeWord);
+    if (header.signedFloodFill) floodOnGpu(context, f, header.background);
     std::vector<uint32_t> upperStats(size_t(f.nodes[2]) * gpu::kNanoStatWords);
     s.stats->read(uint64_t(f.nodes[0] + f.nodes[1]) * gpu::kNanoStatWords * 4, upperStats.size() * 4, upperStats.data());
     s.counters->read(0, sizeof counters, counters);

@@ -36,23 +36,16 @@ BuiltGrids::~BuiltGrids()
 }
 
 void BuiltGrids::add(gl::NanoKind kind, const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header,
-                     const std::function<vdb::NanoHandle()>& onHost,
-                     const std::function<void(vdb::NanoHandle&)>& finish)
+                     const std::function<vdb::NanoHandle()>& onHost)
 {
-    if (!onDevice_) return addOnHost(kind, leaves, header, onHost, finish);
-    if (finish)
-        throw Unsupported(fmt::format("grid \"{}\" is finished on the host (a level set signed by parity is flood "
-                                      "filled there), so it cannot stay on the GPU; winding-number signs "
-                                      "(SignOptions::method) keep a level set there",
-                                      header.name));
-    addOnDevice(kind, leaves, header);
+    if (onDevice_) addOnDevice(kind, leaves, header);
+    else addOnHost(kind, leaves, header, onHost);
 }
 
 // The host hashes the copy it has to read anyway (docs/design.md compares
 // it with the GPU's checksum).
 void BuiltGrids::addOnHost(gl::NanoKind kind, const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header,
-                           const std::function<vdb::NanoHandle()>& onHost,
-                           const std::function<void(vdb::NanoHandle&)>& finish)
+                           const std::function<vdb::NanoHandle()>& onHost)
 {
     auto t0 = Clock::now();
     gl::TimerQuery timer;
@@ -65,13 +58,8 @@ void BuiltGrids::addOnHost(gl::NanoKind kind, const gl::NanoLeaves& leaves, cons
     } catch (const Unsupported& e) {
         stats_.warnings.push_back(fmt::format("{}; grid \"{}\" laid out on the CPU instead", e.what(), header.name));
         t0 = Clock::now();
-        vdb::NanoHandle out = onHost();
-        if (finish) { // onHost() left the checksum to it
-            finish(out);
-            fullChecksum(out, kind);
-        }
+        host_.push_back(onHost());
         stats_.stages.push_back({"nanovdb grid (cpu)", -1, msSince(t0)});
-        host_.push_back(std::move(out));
         return;
     }
     timer.end();
@@ -82,11 +70,6 @@ void BuiltGrids::addOnHost(gl::NanoKind kind, const gl::NanoLeaves& leaves, cons
     context_.returnScratch(gl::kNanoGridScratch, std::move(built.grid)); // the next grid's memory
     vdb::NanoHandle out(std::move(buffer));
     stats_.stages.push_back({"nanovdb readback", -1, msSince(t0)});
-    if (finish) {
-        t0 = Clock::now();
-        finish(out);
-        stats_.stages.push_back({"nanovdb flood fill", -1, msSince(t0)});
-    }
     t0 = Clock::now();
     fullChecksum(out, kind);
     stats_.stages.push_back({"nanovdb checksum", -1, msSince(t0)});

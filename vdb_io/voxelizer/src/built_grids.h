@@ -24,15 +24,14 @@ public:
     ~BuiltGrids();
 
     /// @brief Builds one grid of @a leaves on the GPU. On the host: read
-    /// back, `finish` (when given: a level set's flood fill) applied to the
-    /// copy, then the host's full checksum; a grid past the builder's limits
+    /// back, then the host's full checksum; a grid past the builder's limits
     /// (svo::Unsupported, thrown before the grid is made) is laid out by
-    /// `onHost()` instead, with a warning. On the device: the GPU's checksum.
-    /// @throw svo::Unsupported on the device, for a grid that needs `finish`
-    ///        or is past the builder's limits: it cannot stay there
+    /// `onHost()` instead (with its checksum), with a warning. On the
+    /// device: the GPU's checksum.
+    /// @throw svo::Unsupported on the device, for a grid past the builder's
+    ///        limits: it cannot stay there
     void add(gl::NanoKind kind, const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header,
-             const std::function<vdb::NanoHandle()>& onHost,
-             const std::function<void(vdb::NanoHandle&)>& finish = {});
+             const std::function<vdb::NanoHandle()>& onHost);
 
     bool onDevice() const { return onDevice_; }
     std::vector<vdb::NanoHandle>& host() { return host_; }
@@ -42,8 +41,7 @@ public:
 
 private:
     void addOnHost(gl::NanoKind kind, const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header,
-                   const std::function<vdb::NanoHandle()>& onHost,
-                   const std::function<void(vdb::NanoHandle&)>& finish);
+                   const std::function<vdb::NanoHandle()>& onHost);
     void addOnDevice(gl::NanoKind kind, const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header);
 
     const gl::Context& context_;

@@ -13,6 +13,7 @@
 #include "svo/gl/field_pipeline.h"
 #include "svo/gl/nano_grid_builder.h"
 #include "svo/gl/voxelize_pipeline.h"
+#include "svo/vdb_io/nanovdb_checksum.h"
 #include "svo/vdb_io/nanovdb_grids.h"
 #include "svo/vdb_io/nanovdb_layout.h"
 #include "svo/vdb_io/nanovdb_output.h"
@@ -149,8 +150,7 @@ std::vector<gl::NanoTile> insideTiles(const gl::DeviceField& field, float backgr
 /// (gl::levelSetBand) and the builder lays out the grids levelSetNanoGrids
 /// lays out on the host, byte for byte, into @a out: a winding-signed
 /// field's whole bricks inside as tiles; a parity-signed field's values
-/// beyond the band flood filled on the host copy, as levelSetNanoGrids does
-/// (so its grids cannot stay on the device).
+/// beyond the band flood filled by the builder, as levelSetNanoGrids fills them.
 void fieldGridsOnGpu(const gl::DeviceField& field, const GridSpec& grid, const LevelSetOptions& ls, BuiltGrids& out)
 {
     gl::NanoLeaves leaves = leavesOf(field);
@@ -159,11 +159,14 @@ void fieldGridsOnGpu(const gl::DeviceField& field, const GridSpec& grid, const L
     const std::vector<gl::NanoTile> tiles = insideTiles(field, background);
     leaves.tileCount = uint32_t(tiles.size());
     leaves.tiles = tiles.data();
-    const bool flood = field.signedField && !field.winding;
-    std::function<void(vdb::NanoHandle&)> fill;
-    if (flood) fill = [](vdb::NanoHandle& h) { vdb::signedFloodFill(*h.grid<float>()); };
-    out.add(gl::NanoKind::Float, leaves, header,
-            [&] { return laidOutOnHost<float>(leaves, header, background, !flood); }, fill);
+    header.signedFloodFill = field.signedField && !field.winding;
+    out.add(gl::NanoKind::Float, leaves, header, [&] {
+        if (!header.signedFloodFill) return laidOutOnHost<float>(leaves, header, background);
+        vdb::NanoHandle h = laidOutOnHost<float>(leaves, header, background, false);
+        vdb::signedFloodFill(*h.grid<float>());
+        vdb::updateFullChecksum(*h.grid<float>());
+        return h;
+    });
     if (field.leaves.closest) {
         // The leaves with an active voxel come first: the closest triangles' grid has only those, and no tiles.
         leaves.count = field.leaves.activeCount;
@@ -173,6 +176,7 @@ void fieldGridsOnGpu(const gl::DeviceField& field, const GridSpec& grid, const L
         header.name = "closest_triangle";
         header.gridClass = uint32_t(nanovdb::GridClass::Unknown);
         header.background = -1.0;
+        header.signedFloodFill = false;
         out.add(gl::NanoKind::Int32, leaves, header, [&] { return laidOutOnHost<int32_t>(leaves, header, -1); });
     }
 }

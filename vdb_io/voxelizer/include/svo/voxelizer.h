@@ -305,8 +305,8 @@ public:
     /// (toNanoVdb). Equal, voxel for voxel and value for value, to levelSet()'s.
     /// On a GL backend the field is laid out on the GPU
     /// (gl::buildNanoGridGpu, the band never read back; a parity-signed
-    /// level set flood filled on the host copy, a winding-signed one's
-    /// whole inside bricks as tiles), the same bytes.
+    /// level set flood filled there, a winding-signed one's whole inside
+    /// bricks as tiles), the same bytes.
     /// @throw as levelSet()
     std::vector<vdb::NanoHandle> levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                  const LevelSetOptions& levelSet = {}, const VoxelizeOptions& options = {});
@@ -319,10 +319,9 @@ public:
     /// current again after the call, as after every call.
     /// @param use called once, on this thread, with the grids
     /// @throw svo::Unsupported unless the call can keep the grids on the GPU:
-    ///        a GL backend, no region or GPU memory budget, a grid within the
-    ///        GPU builder's limits, and an unsigned field or a level set
-    ///        signed by winding numbers (a parity-signed level set is flood
-    ///        filled on the host; this is found once the signs are chosen);
+    ///        a GL backend, no region or GPU memory budget, and a grid within
+    ///        the GPU builder's limits (a parity-signed level set's flood
+    ///        fill within the driver's loop limit);
     ///        otherwise as levelSet() (svo::OutOfMemory where one shader
     ///        buffer cannot hold the field: levelSetNanoVdb() cuts it into
     ///        regions), and whatever @a use throws

@@ -86,6 +86,10 @@ struct NanoGridHeader {
     /// CRCs on the GPU, the headers' and the list's on the host; else (and
     /// for a grid of no leaves) the checksum field says "none".
     bool checksum = false;
+    /// Float level sets: the inactive values signed as OpenVDB's
+    /// tools::signedFloodFill signs them (svo::vdb::signedFloodFill's bits),
+    /// on the GPU, before the checksum.
+    bool signedFloodFill = false;
 };
 
 /// @brief The context's scratch buffer (Context::lendScratch) that a grid
@@ -122,8 +126,10 @@ uint32_t backgroundWord(NanoKind kind, double background);
 /// @throw svo::InvalidInput for a leaf or tile origin that is not a multiple
 ///        of 8, a repeated leaf or tile, a tile on a leaf, a name of 256 bytes
 ///        or more, inconsistent leaves (missing masks or tiles, device
-///        buffers too small), or tiles or an active word with Vec3f
-/// @throw svo::Unsupported for a grid beyond 32-bit word addressing (16 GiB)
+///        buffers too small), tiles or an active word with Vec3f, or a
+///        flood fill of a kind other than Float
+/// @throw svo::Unsupported for a grid beyond 32-bit word addressing (16 GiB),
+///        or a checksum or flood fill past the driver's loop limit
 /// @throw svo::OutOfMemory or svo::DeviceError on a GL error
 NanoGridBuffer buildNanoGridGpu(const Context& context, NanoKind kind, const NanoLeaves& leaves,
                                 const NanoGridHeader& header, bool hostCopy = false);
