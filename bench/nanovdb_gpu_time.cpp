@@ -2,7 +2,9 @@
 // with and without its checksum) against the GPU builder
 // (svo::gl::buildNanoGridGpu) from the same leaves: from host arrays with a
 // host copy back (what a file write needs), and from device-resident leaves
-// with the grid left on the device (the build alone). Then a surface's
+// with the grid left on the device (the build alone), and the signed flood
+// fill a parity level set takes (vdb::signedFloodFill on the host layout;
+// NanoGridHeader::signedFloodFill in the GPU build). Then a surface's
 // topology and fog grids as svo::Voxelizer::voxelizeNanoVdb makes them on a
 // GL backend (masks uploaded, built with their checksums, read back)
 // against the CPU layout (octreeToNanoGrids) of the same octree. Last, an
@@ -129,8 +131,9 @@ int run(int argc, char** argv)
     gl::Device device;
     const gl::Context::Scope scope(device.context()); // the grids' buffers are freed in it
     fmt::print("renderer: {}\n\n", device.context().info().renderer);
-    fmt::print("| mesh | N | leaves | MB | CPU layout ms | CPU layout + checksum ms | GPU from host + copy back ms | "
-               "GPU on device ms | GPU on device + checksum ms |\n|---|---|---|---|---|---|---|---|---|\n");
+    fmt::print("| mesh | N | leaves | MB | CPU layout ms | CPU layout + checksum ms | CPU flood fill ms | GPU from host + "
+               "copy back ms | GPU on device ms | GPU on device + checksum ms | GPU on device + flood fill ms |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const int64_t n : res) {
         const GridSpec grid = makeGrid(m, {n, 0.0});
         VoxelizeSettings s;
@@ -158,6 +161,9 @@ int run(int argc, char** argv)
             info.checksum = true;
             vdb::buildNanoGrid<float>(in, info);
         });
+        info.checksum = false;
+        auto layout = vdb::buildNanoGrid<float>(in, info);
+        const double cpuFlood = medianMs(runs, [&] { vdb::signedFloodFill(*layout.grid<float>()); });
         gl::NanoLeaves host;
         host.count = uint32_t(in.origins.size());
         host.origins = in.origins.data();
@@ -169,6 +175,7 @@ int run(int argc, char** argv)
         const double gpuHost = medianMs(runs, [&] { gl::buildNanoGridGpu(context, gl::NanoKind::Float, host, header, true); });
         double gpuDevice = 0;
         double gpuDeviceSum = 0;
+        double gpuDeviceFlood = 0;
         uint64_t bytes = 0;
         {
             const gl::Buffer origins("bench origins", 12 * in.origins.size(), in.origins.data());
@@ -185,9 +192,13 @@ int run(int argc, char** argv)
             gl::NanoGridHeader summed = header;
             summed.checksum = true; // reads back the node CRCs: synchronous
             gpuDeviceSum = medianMs(runs, [&] { gl::buildNanoGridGpu(context, gl::NanoKind::Float, dev, summed); });
+            gl::NanoGridHeader flooded = header;
+            flooded.signedFloodFill = true; // the statistics read after the fill waits for it: synchronous
+            gpuDeviceFlood = medianMs(runs, [&] { gl::buildNanoGridGpu(context, gl::NanoKind::Float, dev, flooded); });
         }
-        fmt::print("| {} | {} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} |\n", mesh, n, in.origins.size(),
-                   double(bytes) / 1e6, cpuBare, cpuSum, gpuHost, gpuDevice, gpuDeviceSum);
+        fmt::print("| {} | {} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} |\n", mesh, n,
+                   in.origins.size(), double(bytes) / 1e6, cpuBare, cpuSum, cpuFlood, gpuHost, gpuDevice, gpuDeviceSum,
+                   gpuDeviceFlood);
     }
     fmt::print("\n| mesh | N | leaves | MB (mask + fog) | CPU layout + checksum ms | GPU from host, checksum on the GPU, copy back ms |\n"
                "|---|---|---|---|---|---|\n");

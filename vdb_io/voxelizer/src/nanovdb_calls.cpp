@@ -2,11 +2,11 @@
 // bricks laid out as NanoVDB grids (svo/vdb_io/nanovdb_grids.h), with no
 // OpenVDB tree between them; on a GL backend, a field's grids built on the
 // GPU from leaves that never leave it (svo/gl/nano_grid_builder.h), and a
-// surface's and a solid's from their bricks uploaded.
+// surface's and a solid's from their bricks uploaded; read back, or kept on
+// the GPU for the caller (the ...OnDevice calls). Fields and solids cut into
+// regions join their bricks (svo/core/field_join.h).
 #include <cstring>
-#include <functional>
 #include <tuple>
-#include <fmt/format.h>
 
 #include "svo/core/error.h"
 #include "svo/core/field_join.h"
