@@ -21,8 +21,6 @@
 #include "svo/core/octree.h"
 #include "svo/core/region.h"
 #include "svo/core/voxel_key.h"
-#include "svo/gl/device.h"
-#include "svo/gl/field_pipeline.h"
 #include "svo/svo.h"
 
 namespace svo::test {
@@ -177,34 +175,38 @@ TEST_P(Regions, SurfacesAndAttributesAreTheWholeGridsCutToTheBox)
     }
 }
 
-/// The region's level set laid out as NanoVDB from its bricks
-/// (vdb::levelSetNanoGrids) holds @a part's values and active states at
-/// every voxel of @a r: its signs beyond the band too, which come from the
-/// parity runs, not a flood fill of a band cut at the region's sides.
-void expectSameNanoGrid(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
-                        const VoxelizeOptions& o, const openvdb::GridBase& part, const IndexBox& r)
+/// The region's NanoVDB level set and solid (levelSetNanoVdb, solidNanoVdb
+/// with the region: the region's bricks cut to it and laid out, no OpenVDB
+/// tree) hold the OpenVDB grids' values and active states at every voxel of
+/// @a r, and nothing beyond it. The level set's signs beyond the band come
+/// from the parity runs (levelSetNanoGrids), not a flood fill of a band cut
+/// at the region's sides.
+void expectSameNanoGrids(Voxelizer& v, const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& o,
+                         const openvdb::FloatGrid& sdf, const openvdb::MaskGrid& solid, const IndexBox& r)
 {
-    VoxelizeStats stats;
-    const LevelSetOptions ls;
-    const DistanceBricks field = gl::levelSetBricks(device, mesh, grid, ls, o, Checkpoint{}, stats);
-    const auto nano = vdb::levelSetNanoGrids(field, ls.exteriorBand, ls.interiorBand, grid);
-    const auto acc = nano.front().grid<float>()->getAccessor();
-    const auto want = static_cast<const openvdb::FloatGrid&>(part).getConstAccessor();
+    const auto nanoSdf = v.levelSetNanoVdb(mesh, grid, {}, o);
+    const vdb::NanoHandle nanoSolid = v.solidNanoVdb(mesh, grid, o);
+    const auto sdfAcc = nanoSdf.front().grid<float>()->getAccessor();
+    const auto solidAcc = nanoSolid.grid<nanovdb::ValueMask>()->getAccessor();
+    const auto wantSdf = sdf.getConstAccessor();
+    const auto wantSolid = solid.getConstAccessor();
     uint64_t differ = 0;
     for (int64_t x = r.lo[0]; x < r.hi[0]; ++x)
         for (int64_t y = r.lo[1]; y < r.hi[1]; ++y)
             for (int64_t z = r.lo[2]; z < r.hi[2]; ++z) {
                 const openvdb::Coord c{int32_t(x), int32_t(y), int32_t(z)};
                 const nanovdb::Coord n(c.x(), c.y(), c.z());
-                differ += acc.getValue(n) != want.getValue(c) || acc.isActive(n) != want.isValueOn(c);
+                differ += sdfAcc.getValue(n) != wantSdf.getValue(c) || sdfAcc.isActive(n) != wantSdf.isValueOn(c);
+                differ += solidAcc.isActive(n) != wantSolid.isValueOn(c);
             }
-    EXPECT_EQ(differ, 0u) << "voxels of the region's NanoVDB level set that are not its OpenVDB grid's";
+    EXPECT_EQ(differ, 0u) << "voxels of the region's NanoVDB grids that are not its OpenVDB grids'";
+    EXPECT_EQ(nanoSdf.front().gridMetaData()->activeVoxelCount(), sdf.activeVoxelCount()) << "the level set's, in all";
+    EXPECT_EQ(nanoSolid.gridMetaData()->activeVoxelCount(), solid.activeVoxelCount()) << "the solid's, in all";
 }
 
 TEST_P(Regions, LevelSetsUdfsAndSolidsAreTheWholeGridsCutToTheBox)
 {
     Voxelizer v;
-    gl::Device device;
     // Closed (parity signs: a column's crossings below the box count), open
     // and mixed (winding numbers from the whole mesh's tree).
     for (const TriangleMesh& mesh : {icosphere({0.1, -0.2, 0.3}, 1.0, 3), holedSphere(), smallCity()}) {
@@ -223,10 +225,11 @@ TEST_P(Regions, LevelSetsUdfsAndSolidsAreTheWholeGridsCutToTheBox)
             const auto sdfPart = v.levelSet(mesh, grid, sdf, o);
             ASSERT_EQ(sdfPart.size(), wholeSdf.size());
             for (size_t i = 0; i < sdfPart.size(); ++i) expectSameAsClipped(*wholeSdf[i], *sdfPart[i], r);
-            expectSameNanoGrid(device, mesh, grid, o, *sdfPart.front(), r);
             const auto udfPart = v.levelSet(mesh, grid, udf, o);
             for (size_t i = 0; i < udfPart.size(); ++i) expectSameAsClipped(*wholeUdf[i], *udfPart[i], r);
-            expectSameAsClipped(*wholeSolid, *v.solid(mesh, grid, o), r);
+            const auto solidPart = v.solid(mesh, grid, o);
+            expectSameAsClipped(*wholeSolid, *solidPart, r);
+            expectSameNanoGrids(v, mesh, grid, o, static_cast<const openvdb::FloatGrid&>(*sdfPart.front()), *solidPart, r);
         }
         o.region.reset();
     }

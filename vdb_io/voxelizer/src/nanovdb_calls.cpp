@@ -9,7 +9,9 @@
 #include <tuple>
 
 #include "svo/core/error.h"
+#include "svo/core/field_clip.h"
 #include "svo/core/field_join.h"
+#include "svo/core/region.h"
 #include "svo/gl/field_pipeline.h"
 #include "svo/gl/nano_grid_builder.h"
 #include "svo/gl/voxelize_pipeline.h"
@@ -17,7 +19,6 @@
 #include "svo/vdb_io/nanovdb_grids.h"
 #include "svo/vdb_io/nanovdb_layout.h"
 #include "svo/vdb_io/nanovdb_output.h"
-#include "svo/vdb_io/reader_grids.h" // withTopology
 #include "svo/voxelizer.h"
 #include "built_grids.h"
 #include "regions.h"
@@ -31,17 +32,6 @@ using detail::InterruptScope;
 using detail::msSince;
 
 namespace {
-
-/// A call's region cuts the grid and joins OpenVDB grids (level_set.cpp):
-/// those calls keep that path and convert its result.
-bool viaOpenVdb(const VoxelizeOptions& options) { return options.region.has_value(); }
-
-std::vector<vdb::NanoHandle> converted(const openvdb::GridPtrVec& grids)
-{
-    std::vector<vdb::NanoHandle> out;
-    for (const auto& g : grids) out.push_back(vdb::toNanoVdb(g));
-    return out;
-}
 
 constexpr const char* kFieldTask = "svo: computing a distance field";
 constexpr const char* kSolidTask = "svo: filling a solid";
@@ -181,13 +171,14 @@ void fieldGridsOnGpu(const gl::DeviceField& field, const GridSpec& grid, const L
     }
 }
 
-/// `bricks(options)` (a field's or a solid's) cut into regions, past a GPU
-/// memory budget or past one shader buffer, as levelSet() cuts them, and
-/// joined by `join` (svo/core/field_join.h): each region's bricks are the
-/// whole grid's there, so the result is the whole grid's bricks, with no
-/// OpenVDB tree. `pastOneBuffer`: the whole grid is known not to fit
-/// (BufferLimit), so it is not tried again, and a warning says so. The
-/// region count goes to `stats`.
+/// `bricks(options)` (a field's or a solid's) on the call's region (none:
+/// the whole grid), cut into regions past a GPU memory budget or past one
+/// shader buffer as levelSet() cuts them, and joined by `join`
+/// (svo/core/field_join.h): each region's bricks are the whole grid's there,
+/// so the result is the whole grid's bricks (of the call's region: cut to
+/// it by the caller), with no OpenVDB tree. `pastOneBuffer`: the whole grid
+/// is known not to fit (BufferLimit), so it is not tried again, and a
+/// warning says so. The region count goes to `stats`.
 template <typename Bricks, typename Join>
 auto bricksInRegions(Bricks&& bricks, Join&& join, const VoxelizeOptions& options, const IndexBox& box,
                      bool pastOneBuffer, VoxelizeStats& stats) -> decltype(bricks(options))
@@ -216,8 +207,9 @@ std::vector<vdb::NanoHandle> fieldGridsOnHost(const DistanceBricks& field, const
     return out;
 }
 
-/// A field cut into regions (bricksInRegions), laid out on the CPU: the
-/// whole grid's grids.
+/// A field on the call's region or cut into regions (bricksInRegions),
+/// laid out on the CPU: the whole grid's grids, or the call's region's, cut
+/// to it (clipField) as levelSet() clips its grids.
 std::vector<vdb::NanoHandle> fieldInRegions(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
                                             const LevelSetOptions& ls, const VoxelizeOptions& options,
                                             bool pastOneBuffer, const Checkpoint& checkpoint, VoxelizeStats& stats)
@@ -227,7 +219,8 @@ std::vector<vdb::NanoHandle> fieldInRegions(gl::Device& device, const TriangleMe
     };
     DistanceBricks field = bricksInRegions(bricks, joinFields, options, detail::fieldBox(grid, detail::levelSetPad(ls)),
                                            pastOneBuffer, stats);
-    field.region = false; // the regions make up the whole grid: a parity field's signs beyond the band are its fill's
+    if (options.region) clipField(field, bricksMeeting(field.grid, options.region));
+    else field.region = false; // the regions make up the whole grid: a parity field's signs beyond the band are its fill's
     checkpoint(0.85, "nanovdb grid");
     return fieldGridsOnHost(field, grid, ls, stats);
 }
@@ -414,13 +407,12 @@ void Voxelizer::octreeNanoVdbOnDevice(const Octree& octree, const GridOptions& g
 std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh, const GridSpec& grid,
                                                         const LevelSetOptions& ls, const VoxelizeOptions& options)
 {
-    if (viaOpenVdb(options)) return converted(levelSet(mesh, grid, ls, options));
     auto inRegions = [&](bool pastOneBuffer) {
         return nanoCall(mesh, grid, options, kFieldTask, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
             return fieldInRegions(device_, mesh, grid, ls, options, pastOneBuffer, checkpoint, stats);
         });
     };
-    if (options.gpuMemory) return inRegions(false);
+    if (options.gpuMemory || options.region) return inRegions(false);
     auto make = [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
         const gl::LevelSetBand band = gl::levelSetBand(device_, mesh, grid, ls, options, checkpoint, stats);
         checkpoint(0.85, "nanovdb grid");
@@ -462,7 +454,6 @@ void Voxelizer::unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const Gri
 vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                                         const SignOptions& sign, GridOptions::Topology topology)
 {
-    if (viaOpenVdb(options)) return vdb::toNanoVdb(vdb::withTopology(solid(mesh, grid, options, sign), topology));
     auto bricksOf = [&](const VoxelizeOptions& part, const Checkpoint& checkpoint, VoxelizeStats& stats) {
         return gl::solidBricks(device_, mesh, grid, part, sign, checkpoint, stats);
     };
@@ -477,16 +468,18 @@ vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec
         stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
         return grids;
     };
-    // Past a budget or one shader buffer: the regions' bricks joined (bricksInRegions), then the same grid.
+    // On the call's region, past a budget or past one shader buffer: the
+    // regions' bricks joined (bricksInRegions) and cut to the call's region, then the same grid.
     auto inRegions = [&](bool pastOneBuffer) {
         return std::move(nanoCall(mesh, grid, options, kSolidTask, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
                              auto bricks = [&](const VoxelizeOptions& part) { return bricksOf(part, checkpoint, stats); };
-                             const SolidBricks joined = bricksInRegions(bricks, joinSolids, options,
-                                                                        detail::fieldBox(grid, detail::kSolidPad), pastOneBuffer, stats);
+                             SolidBricks joined = bricksInRegions(bricks, joinSolids, options,
+                                                                  detail::fieldBox(grid, detail::kSolidPad), pastOneBuffer, stats);
+                             if (options.region) clipSolid(joined, bricksMeeting(joined.grid, options.region));
                              return gridOf(joined, checkpoint, stats);
                          }).front());
     };
-    if (options.gpuMemory) return inRegions(false);
+    if (options.gpuMemory || options.region) return inRegions(false);
     try {
         return std::move(nanoCall(mesh, grid, options, kSolidTask, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
                              return gridOf(bricksOf(options, checkpoint, stats), checkpoint, stats);

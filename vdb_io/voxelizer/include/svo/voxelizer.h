@@ -301,8 +301,8 @@ public:
     /// with no OpenVDB tree (levelSetNanoGrids), on the grid's own lattice;
     /// a field cut into regions (a GPU memory budget, or past one shader
     /// buffer) joins their bricks (joinFields) and is laid out from them,
-    /// the whole grid's bytes; with a region, levelSet()'s grids converted
-    /// (toNanoVdb). Equal, voxel for voxel and value for value, to levelSet()'s.
+    /// the whole grid's bytes; with a region, the region's bricks cut to it
+    /// (clipField). Equal, voxel for voxel and value for value, to levelSet()'s.
     /// On a GL backend the field is laid out on the GPU
     /// (gl::buildNanoGridGpu, the band never read back; a parity-signed
     /// level set flood filled there, a winding-signed one's whole inside
