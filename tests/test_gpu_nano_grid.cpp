@@ -1006,6 +1006,37 @@ TEST_F(GpuNanoGrid, FrontDoorSignedFieldsEqualTheCpuLayout)
     EXPECT_EQ(signedBy.size(), 2u) << "a scene of each sign method";
 }
 
+/// Where the driver's loop limit is under the flood fill's walk of an upper
+/// node (SVO_LOOP_LIMIT lowers llvmpipe's for a new context), a parity
+/// level set's grid is laid out on the CPU instead, the same bytes, with a
+/// warning that says why; it cannot stay on the GPU (Unsupported).
+TEST_F(GpuNanoGrid, AFloodFillPastTheLoopLimitIsLaidOutOnTheCpu)
+{
+    if (!device.context().info().loopLimit) GTEST_SKIP() << "a driver without a loop limit: "
+                                                            "SVO_LOOP_LIMIT applies to llvmpipe only";
+    const TriangleMesh mesh = test::box({-1, -0.5, -0.25}, {1, 0.5, 0.25}); // closed: parity
+    const GridSpec grid = makeGrid(mesh, {60, 0.0});
+    VoxelizeStats stats;
+    Voxelizer whole;
+    const auto want = frontDoorLevelSet(whole, mesh, grid, {}, stats);
+    ASSERT_EQ(stats.sign.rfind("parity", 0), 0u) << stats.sign;
+    EXPECT_TRUE(stats.warnings.empty());
+    setenv("SVO_LOOP_LIMIT", "20000", 1); // over the checksum's and the passes' splits, under an upper node's walk
+    Voxelizer limited;
+    const auto got = frontDoorLevelSet(limited, mesh, grid, {}, stats);
+    VoxelizeOptions onDevice;
+    onDevice.backend = Backend::Compute;
+    EXPECT_THROW(limited.levelSetNanoVdbOnDevice(mesh, grid, {}, onDevice,
+                                                 [](const std::vector<gl::NanoGridBuffer>&) { ADD_FAILURE() << "called"; }),
+                 Unsupported);
+    unsetenv("SVO_LOOP_LIMIT");
+    std::vector<nanovdb::GridHandle<nanovdb::HostBuffer>> unused;
+    expectSameBytes(got, want, unused);
+    EXPECT_TRUE(hasStage(stats, "nanovdb grid (cpu)"));
+    ASSERT_EQ(stats.warnings.size(), 1u);
+    EXPECT_NE(stats.warnings.front().find("loop limit"), std::string::npos) << stats.warnings.front();
+}
+
 /// Solids through the front door on the compute backend: the GPU builder
 /// lays out the leaves and 8³ tiles of the same call's bricks (solidBricks)
 /// byte for byte as solidNanoGrid does on the CPU, and the CPU backend (the
