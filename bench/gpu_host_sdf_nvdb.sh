@@ -45,7 +45,7 @@ gpu=$(nvidia-smi --query-gpu=name --format=csv,noheader | head -1)
   echo "|---|---|---|---|---|---|---|---|---|"
 } | tee "$out/sdf_nvdb.md"
 for kind in ${KINDS:-sdf solid channels}; do
-all="bundle/meshes/spot.obj $work/icosphere.obj .gl/meshes/elephant.off .gl/meshes/fandisk.off
+all="bundle/meshes/spot.obj $work/icosphere.obj .gl/meshes/elephant.off bundle/meshes/fandisk.obj
      bundle/meshes/stanford-bunny.obj .gl/meshes/ogre.obj .gl/meshes/japanese-temple.obj"
 for mesh in ${MESHES:-$all}; do
   [ "$mesh" = icosphere ] && mesh="$work/icosphere.obj"
