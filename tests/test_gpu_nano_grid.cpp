@@ -808,6 +808,19 @@ void expectSameAsKept(const std::vector<std::vector<uint8_t>>& kept, const std::
     }
 }
 
+/// levelSetNanoVdbOnDevice's grids (compute backend), read back in its
+/// callback, are @a host's bytes.
+void expectLevelSetKeptOnDevice(Voxelizer& voxelizer, const TriangleMesh& mesh, const GridSpec& grid,
+                                const LevelSetOptions& ls, const std::vector<vdb::NanoHandle>& host)
+{
+    VoxelizeOptions onDevice;
+    onDevice.backend = Backend::Compute;
+    expectSameAsKept(keptOnDevice([&](const NanoGridsOnDevice& use) {
+                         voxelizer.levelSetNanoVdbOnDevice(mesh, grid, ls, onDevice, use);
+                     }),
+                     host);
+}
+
 /// An unsigned field through the front door on a GL backend: its band stays
 /// on the device and the GPU builder lays it out ("band leaves", "nanovdb
 /// grid (gpu)"), giving the bytes the CPU layout (levelSetNanoGrids) gives
@@ -835,13 +848,7 @@ TEST_F(GpuNanoGrid, FrontDoorUnsignedFieldsEqualTheCpuLayout)
             const std::vector<vdb::NanoHandle>& cpu = readBack.second;
             expectSameBytes(gpu, cpu, written);
             ASSERT_EQ(gpu.size(), closest ? 2u : 1u);
-            // levelSetNanoVdbOnDevice keeps an unsigned field's grids on the GPU too.
-            VoxelizeOptions onDevice;
-            onDevice.backend = Backend::Compute;
-            expectSameAsKept(keptOnDevice([&](const NanoGridsOnDevice& use) {
-                                 voxelizer.levelSetNanoVdbOnDevice(mesh, grid, ls, onDevice, use);
-                             }),
-                             gpu);
+            expectLevelSetKeptOnDevice(voxelizer, mesh, grid, ls, gpu); // unsigned fields too
             const auto* udf = gpu[0].grid<float>();
             ASSERT_NE(udf, nullptr);
             EXPECT_TRUE(nanovdb::isValid(*udf, true, true));
@@ -941,13 +948,7 @@ TEST_F(GpuNanoGrid, FrontDoorSignedFieldsEqualTheCpuLayout)
             const std::vector<vdb::NanoHandle>& cpu = readBack.second;
             expectSameBytes(gpu, cpu, written);
             ASSERT_EQ(gpu.size(), closest ? 2u : 1u);
-            // Kept on the GPU (by parity, flood filled there too): the same bytes.
-            VoxelizeOptions onDevice;
-            onDevice.backend = Backend::Compute;
-            expectSameAsKept(keptOnDevice([&](const NanoGridsOnDevice& use) {
-                                 voxelizer.levelSetNanoVdbOnDevice(mesh, grid, ls, onDevice, use);
-                             }),
-                             gpu);
+            expectLevelSetKeptOnDevice(voxelizer, mesh, grid, ls, gpu); // by parity, flood filled there too
             if (!parity) { // the scene has what winding signs add: leaves of inside voxels alone, inside tiles, and (the hole) bricks beyond the band
                 size_t insideOnly = 0;
                 for (size_t b = 0; b < field.bricks.size(); ++b) {
