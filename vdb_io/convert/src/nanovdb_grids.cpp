@@ -278,51 +278,54 @@ std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double ex
     closest.background = -1;
     const size_t nb = field.bricks.size();
     // Per band brick, as levelSetGrids makes its leaves: kept when any voxel is
-    // active, or (winding) when it holds inside values.
-    std::vector<std::vector<float>> values(nb);
-    std::vector<std::vector<int32_t>> nearest(nb);
+    // active, or (winding) when it holds inside values. First each brick's
+    // active voxels, then, once the kept bricks are counted, its values
+    // written where its leaf goes (no copy of the band per brick).
     std::vector<Brick> active(nb);
-    std::vector<uint8_t> keep(nb, 0), keepClosest(nb, 0);
+    std::vector<uint8_t> keep(nb, 0);
     tbb::parallel_for(size_t(0), nb, [&](size_t i) {
         const Brick& near = field.near[i];
-        const bool anyInside = signedField && signs.inside[i].count();
-        if (!near.count() && !(winding && anyInside)) return;
-        std::vector<float> v(512);
-        std::vector<int32_t> c(field.closestTriangle ? 512 : 0, -1);
-        bool any = false;
         size_t packed = field.offsets[i];
         for (uint32_t k = 0; k < 512; ++k) {
+            if (!bitOf(near, k)) continue;
             const bool inside = signedField && bitOf(signs.inside[i], k);
-            float value = background;
-            if (bitOf(near, k)) {
-                const float d = field.distances[packed];
-                if (d < (inside ? interior : exterior)) {
-                    value = float(double(d) * scale);
-                    active[i].words[k >> 6] |= uint64_t(1) << (k & 63);
-                    if (!c.empty()) c[k] = field.closest[packed];
-                    any = true;
-                }
-                ++packed;
-            }
-            v[k] = inside ? -value : value;
+            if (field.distances[packed++] < (inside ? interior : exterior))
+                active[i].words[k >> 6] |= uint64_t(1) << (k & 63);
         }
-        if (!any && !(winding && anyInside)) return;
-        keep[i] = 1;
-        keepClosest[i] = !c.empty() && any;
-        values[i] = std::move(v);
-        nearest[i] = std::move(c);
+        keep[i] = active[i].count() || (winding && signs.inside[i].count());
     });
+    constexpr uint32_t kNone = UINT32_MAX;
+    std::vector<uint32_t> leafAt(nb, kNone), closestAt(nb, kNone);
     for (size_t i = 0; i < nb; ++i) {
         if (!keep[i]) continue;
         const Origin o = brickOrigin(g, field.bricks[i]);
+        leafAt[i] = uint32_t(dist.origins.size());
         dist.origins.push_back(o);
         dist.masks.push_back(active[i]);
-        dist.values.insert(dist.values.end(), values[i].begin(), values[i].end());
-        if (!keepClosest[i]) continue;
+        if (!field.closestTriangle || !active[i].count()) continue;
+        closestAt[i] = uint32_t(closest.origins.size());
         closest.origins.push_back(o);
         closest.masks.push_back(active[i]);
-        closest.values.insert(closest.values.end(), nearest[i].begin(), nearest[i].end());
     }
+    dist.values.resize(dist.origins.size() * 512);
+    closest.values.assign(closest.origins.size() * 512, -1);
+    tbb::parallel_for(size_t(0), nb, [&](size_t i) {
+        if (leafAt[i] == kNone) return;
+        float* v = dist.values.data() + size_t(leafAt[i]) * 512;
+        int32_t* c = closestAt[i] == kNone ? nullptr : closest.values.data() + size_t(closestAt[i]) * 512;
+        size_t packed = field.offsets[i];
+        for (uint32_t k = 0; k < 512; ++k) {
+            float value = background;
+            if (bitOf(field.near[i], k)) {
+                if (bitOf(active[i], k)) {
+                    value = float(double(field.distances[packed]) * scale);
+                    if (c) c[k] = field.closest[packed];
+                }
+                ++packed;
+            }
+            v[k] = signedField && bitOf(signs.inside[i], k) ? -value : value;
+        }
+    });
     if (winding) {
         // Beyond the band: inactive values, negative where the winding number says inside.
         LeafIndex<float> leaves(dist, true);
