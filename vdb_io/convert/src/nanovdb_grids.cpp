@@ -383,12 +383,9 @@ NanoHandle solidNanoGrid(const SolidBricks& solid, const GridSpec& lattice, Grid
     if (topology == GridOptions::Topology::Mask)
         return buildNanoGrid<nanovdb::ValueMask>(s, infoFor(lattice, "solid", nanovdb::GridClass::Topology, checksum));
     // NanoVDB keeps class Topology for ValueMask grids (nanovdb::isValid).
-    const NanoGridInfo info = infoFor(lattice, "solid", nanovdb::GridClass::Unknown, checksum);
-    // Bool: true exactly where active, as a topology copy of the mask gives it.
-    s.values.assign(s.masks.size() * 512, false);
-    for (size_t i = 0; i < s.masks.size(); ++i)
-        for (uint32_t v = 0; v < 512; ++v) s.values[i * 512 + v] = (s.masks[i].words[v >> 6] >> (v & 63)) & 1u;
-    return buildNanoGrid<bool>(s, info);
+    // Bool: true exactly where active, as a topology copy of the mask gives
+    // it, which is what the layout makes of bool leaves without values.
+    return buildNanoGrid<bool>(s, infoFor(lattice, "solid", nanovdb::GridClass::Unknown, checksum));
 }
 
 } // namespace svo::vdb

@@ -186,8 +186,10 @@ NodeStats<V> fillLeaf(typename nanovdb::NanoLeaf<BuildT>::DataType& d, const Spa
     const bool given = !in.values.empty();
     const size_t at = size_t(k) * 512;
     if constexpr (std::is_same_v<BuildT, bool>) {
-        for (uint32_t v = 0; v < 512; ++v)
-            d.mValues.set(v, given ? bool(in.values[at + v]) : bool((mask.words[v >> 6] >> (v & 63)) & 1u));
+        if (!given) // the values are the active voxels: the mask's words
+            for (uint32_t w = 0; w < 8; ++w) d.mValues.template getWord<uint64_t>(w) = mask.words[w];
+        else
+            for (uint32_t v = 0; v < 512; ++v) d.mValues.set(v, bool(in.values[at + v]));
     } else if constexpr (!std::is_same_v<BuildT, nanovdb::ValueMask>) {
         for (uint32_t v = 0; v < 512; ++v) d.mValues[v] = given ? in.values[at + v] : in.background;
     }

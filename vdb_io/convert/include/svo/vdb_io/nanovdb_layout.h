@@ -54,7 +54,7 @@ struct SparseVoxels {
     ValueT background{};
     std::vector<std::array<int32_t, 3>> origins; ///< per leaf: its origin, a multiple of 8; unique
     std::vector<Brick> masks;                    ///< per leaf: active voxels, OpenVDB's bit order
-    std::vector<ValueT> values;                  ///< 512 per leaf, or empty: background everywhere
+    std::vector<ValueT> values;                  ///< 512 per leaf, or empty: background everywhere (bool: the active voxels)
     std::vector<Tile> tiles;
 };
 
