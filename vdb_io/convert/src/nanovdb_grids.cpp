@@ -215,15 +215,18 @@ std::vector<NanoHandle> octreeToNanoGrids(const Octree& o, const GridOptions& op
 {
     std::vector<NanoHandle> out;
     const GridSpec& g = o.grid;
+    const SparseVoxels<bool> leaves = octreeLeaves<bool>(o, false, false, [](uint32_t, uint32_t) { return true; });
     if (options.topology == GridOptions::Topology::Bool)
-        out.push_back(buildNanoGrid<bool>(octreeLeaves<bool>(o, false, false, [](uint32_t, uint32_t) { return true; }),
-                                          infoFor(g, options.name, nanovdb::GridClass::Unknown, checksum)));
+        out.push_back(buildNanoGrid<bool>(leaves, infoFor(g, options.name, nanovdb::GridClass::Unknown, checksum)));
     else
-        out.push_back(buildNanoGrid<nanovdb::ValueMask>(octreeLeaves<bool>(o, false, false, [](uint32_t, uint32_t) { return true; }),
-                                                        infoFor(g, options.name, nanovdb::GridClass::Topology, checksum)));
-    if (options.fog)
-        out.push_back(buildNanoGrid<float>(octreeLeaves<float>(o, 0.0f, true, [](uint32_t, uint32_t) { return 1.0f; }),
-                                           infoFor(g, "density", nanovdb::GridClass::FogVolume, checksum)));
+        out.push_back(buildNanoGrid<nanovdb::ValueMask>(leaves, infoFor(g, options.name, nanovdb::GridClass::Topology, checksum)));
+    if (options.fog) { // the same leaves, 1.0 where active, the values never written out
+        SparseVoxels<float> fog;
+        fog.origins = leaves.origins;
+        fog.masks = leaves.masks;
+        fog.activeValue = 1.0f;
+        out.push_back(buildNanoGrid<float>(fog, infoFor(g, "density", nanovdb::GridClass::FogVolume, checksum)));
+    }
     for (auto& channel : octreeChannelNanoGrids(o, options, checksum)) out.push_back(std::move(channel));
     return out;
 }

@@ -191,7 +191,11 @@ NodeStats<V> fillLeaf(typename nanovdb::NanoLeaf<BuildT>::DataType& d, const Spa
         else
             for (uint32_t v = 0; v < 512; ++v) d.mValues.set(v, bool(in.values[at + v]));
     } else if constexpr (!std::is_same_v<BuildT, nanovdb::ValueMask>) {
-        for (uint32_t v = 0; v < 512; ++v) d.mValues[v] = given ? in.values[at + v] : in.background;
+        if (given)
+            for (uint32_t v = 0; v < 512; ++v) d.mValues[v] = in.values[at + v];
+        else
+            for (uint32_t v = 0; v < 512; ++v)
+                d.mValues[v] = in.activeValue && ((mask.words[v >> 6] >> (v & 63)) & 1u) ? *in.activeValue : in.background;
     }
     // The bounding box of the active voxels, as LeafNode::updateBBox sets it.
     Coord lo(8, 8, 8), hi(-1, -1, -1);

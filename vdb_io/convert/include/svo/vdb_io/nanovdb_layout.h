@@ -19,6 +19,7 @@
 /// a sum in a fixed order is what the GPU builder must reproduce bit for bit.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 #include <nanovdb/NanoVDB.h>
@@ -55,6 +56,9 @@ struct SparseVoxels {
     std::vector<std::array<int32_t, 3>> origins; ///< per leaf: its origin, a multiple of 8; unique
     std::vector<Brick> masks;                    ///< per leaf: active voxels, OpenVDB's bit order
     std::vector<ValueT> values;                  ///< 512 per leaf, or empty: background everywhere (bool: the active voxels)
+    /// With no values: every active voxel's value (a fog's 1.0), the
+    /// background elsewhere; not read for bool and mask grids.
+    std::optional<ValueT> activeValue;
     std::vector<Tile> tiles;
 };
 
