@@ -16,6 +16,7 @@
 #include "scenes.h"
 #include "svo/core/city_scene.h"
 #include "svo/core/error.h"
+#include "svo/core/field_clip.h"
 #include "svo/core/field_join.h"
 #include "svo/core/mesh_io.h"
 #include "svo/core/octree.h"
@@ -627,6 +628,57 @@ TEST(RegionsJoin, SignsAndSolidsJoinWithTheirBricks)
     EXPECT_THROW(joinSolids(sa, std::move(again)), InvalidInput) << "a band brick in both";
     SolidBricks runTwice = solid({{5, 5, 5}}, signs({}, {}, {{0, 1, 1}}));
     EXPECT_THROW(joinSolids(sa, std::move(runTwice)), InvalidInput) << "a run in both";
+}
+
+// A field cut to a box keeps its bricks inside with their values, wherever
+// those lie in the packed arrays (the GPU packs bricks in the order its work
+// groups finish, not in brick order), and its parity runs cut in z; a solid
+// alike.
+TEST(RegionsClip, AFieldCutToABoxKeepsItsBricksValuesWhereverTheyLie)
+{
+    DistanceBricks f;
+    f.grid.dims = {64, 64, 64};
+    f.closestTriangle = true;
+    f.bricks = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {1, 0, 0}};
+    for (size_t i = 0; i < f.bricks.size(); ++i) {
+        Brick near;
+        near.words[0] = 0b11; // two values a brick
+        f.near.push_back(near);
+        Brick in;
+        in.words[2] = i + 1;
+        f.signs.inside.push_back(in);
+    }
+    f.offsets = {6, 4, 0, 2}; // brick 2's values first, brick 0's last
+    f.distances = {20, 21, 30, 31, 10, 11, 0, 1};
+    f.closest = {120, 121, 130, 131, 110, 111, 100, 101};
+    f.signs.runs = {{{0, 1, 0}, 8, ~uint64_t(0)}, {{1, 1, 0}, 2, 5}};
+    f.signs.insideBricks = {{0, 2, 0}, {1, 2, 0}};
+    BrickBox box;
+    box.lo = {0, 0, 1};
+    box.hi = {1, 8, 4}; // x 0, z 1 to 3: bricks 1 and 2
+    clipField(f, box);
+    EXPECT_EQ(f.bricks, (std::vector<BrickCoord>{{0, 0, 1}, {0, 0, 2}}));
+    EXPECT_EQ(f.offsets, (std::vector<uint32_t>{0, 2}));
+    EXPECT_EQ(f.distances, (std::vector<float>{10, 11, 20, 21}));
+    EXPECT_EQ(f.closest, (std::vector<int32_t>{110, 111, 120, 121}));
+    ASSERT_EQ(f.signs.inside.size(), 2u);
+    EXPECT_EQ(f.signs.inside[0].words[2], 2u);
+    EXPECT_EQ(f.signs.inside[1].words[2], 3u);
+    ASSERT_EQ(f.signs.runs.size(), 1u) << "the run past x is left out";
+    EXPECT_EQ(f.signs.runs[0].first, (BrickCoord{0, 1, 1}));
+    EXPECT_EQ(f.signs.runs[0].bricks, 3u) << "cut to z 1 to 3";
+    EXPECT_TRUE(f.signs.insideBricks.empty());
+
+    SolidBricks solid;
+    solid.bricks = {{0, 0, 0}, {0, 0, 2}, {0, 0, 5}};
+    solid.signs.inside.resize(3);
+    solid.signs.inside[1].words[0] = 7;
+    solid.signs.insideBricks = {{0, 3, 2}, {0, 3, 4}};
+    clipSolid(solid, box);
+    EXPECT_EQ(solid.bricks, (std::vector<BrickCoord>{{0, 0, 2}}));
+    ASSERT_EQ(solid.signs.inside.size(), 1u);
+    EXPECT_EQ(solid.signs.inside[0].words[0], 7u);
+    EXPECT_EQ(solid.signs.insideBricks, (std::vector<BrickCoord>{{0, 3, 2}}));
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Regions, ::testing::Values(Backend::Cpu, Backend::Raster, Backend::Compute),

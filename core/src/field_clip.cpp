@@ -46,27 +46,27 @@ void clipField(DistanceBricks& field, const BrickBox& box)
 {
     const bool signs = field.signedField && field.signs.inside.size() == field.bricks.size();
     const bool closest = !field.closest.empty();
-    size_t kept = 0, value = 0;
+    // New value arrays: a brick's values may lie anywhere in the old ones
+    // (the GPU packs bricks in the order its work groups finish).
+    std::vector<float> distances;
+    std::vector<int32_t> nearest;
+    size_t kept = 0;
     for (size_t i = 0; i < field.bricks.size(); ++i) {
         if (!inside(box, field.bricks[i])) continue;
-        const size_t first = field.offsets[i], n = field.near[i].count();
-        if (value != first) { // moved down: std::copy takes a destination that begins before its source
-            std::copy_n(field.distances.begin() + std::ptrdiff_t(first), n, field.distances.begin() + std::ptrdiff_t(value));
-            if (closest)
-                std::copy_n(field.closest.begin() + std::ptrdiff_t(first), n, field.closest.begin() + std::ptrdiff_t(value));
-        }
+        const auto first = std::ptrdiff_t(field.offsets[i]), n = std::ptrdiff_t(field.near[i].count());
         field.bricks[kept] = field.bricks[i];
         field.near[kept] = field.near[i];
-        field.offsets[kept] = uint32_t(value);
+        field.offsets[kept] = uint32_t(distances.size());
         if (signs) field.signs.inside[kept] = field.signs.inside[i];
+        distances.insert(distances.end(), field.distances.begin() + first, field.distances.begin() + first + n);
+        if (closest) nearest.insert(nearest.end(), field.closest.begin() + first, field.closest.begin() + first + n);
         ++kept;
-        value += n;
     }
     field.bricks.resize(kept);
     field.near.resize(kept);
     field.offsets.resize(kept);
-    field.distances.resize(value);
-    if (closest) field.closest.resize(value);
+    field.distances = std::move(distances);
+    field.closest = std::move(nearest);
     if (signs) field.signs.inside.resize(kept);
     clipBeyondBand(field.signs, box);
 }
