@@ -31,6 +31,7 @@ BuiltGrids::BuiltGrids(const gl::Context& context, bool onDevice, VoxelizeStats&
 
 BuiltGrids::~BuiltGrids()
 {
+    if (device_.empty()) return;
     const gl::Context::Scope scope(context_);
     for (gl::NanoGridBuffer& g : device_) context_.returnScratch(gl::kNanoGridScratch, std::move(g.grid));
 }
@@ -101,12 +102,8 @@ void BuiltGrids::addOnDevice(gl::NanoKind kind, const gl::NanoLeaves& leaves, co
     device_.push_back(std::move(g));
 }
 
-std::pair<uint64_t, uint64_t> BuiltGrids::firstCounts() const
+std::pair<uint64_t, uint64_t> BuiltGrids::firstDeviceCounts() const
 {
-    if (!onDevice_) {
-        const auto* main = host_.empty() ? nullptr : host_.front().gridMetaData();
-        return {main ? main->activeVoxelCount() : 0, main ? main->nodeCount(0) : 0};
-    }
     if (device_.empty()) return {0, 0};
     // The grid's and tree's headers; the active voxel count is where every grid type keeps it.
     alignas(64) uint8_t head[sizeof(nanovdb::GridData) + sizeof(nanovdb::NanoTree<float>::DataType)];

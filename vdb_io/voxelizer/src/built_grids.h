@@ -33,11 +33,11 @@ public:
     void add(gl::NanoKind kind, const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header,
              const std::function<vdb::NanoHandle()>& onHost);
 
-    bool onDevice() const { return onDevice_; }
     std::vector<vdb::NanoHandle>& host() { return host_; }
     const std::vector<gl::NanoGridBuffer>& device() const { return device_; }
-    /// The first grid's active voxels and leaves (the call's counts).
-    std::pair<uint64_t, uint64_t> firstCounts() const;
+    /// The first grid kept on the device: its active voxels and leaves (the
+    /// call's counts; the host's handles give theirs themselves).
+    std::pair<uint64_t, uint64_t> firstDeviceCounts() const;
 
 private:
     void addOnHost(gl::NanoKind kind, const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header,

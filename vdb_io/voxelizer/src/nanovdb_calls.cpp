@@ -365,7 +365,7 @@ void nanoCallOnDevice(gl::Device& device, const TriangleMesh& mesh, const GridSp
     nanoCall(mesh, grid, options, what, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
         keptOnDevice(device.context(), stats, use, [&](BuiltGrids& out) {
             make(checkpoint, stats, out);
-            std::tie(stats.voxels, stats.bricks) = out.firstCounts();
+            std::tie(stats.voxels, stats.bricks) = out.firstDeviceCounts();
         });
         return std::vector<vdb::NanoHandle>{}; // no host grid: the counts are set
     });
