@@ -236,6 +236,37 @@ TEST_P(Regions, LevelSetsUdfsAndSolidsAreTheWholeGridsCutToTheBox)
     }
 }
 
+// The band's bricks are those of the triangles' grown boxes near their
+// planes; on CGAL's fandisk at 96³ some lie wholly inside with no voxel
+// in the band, between no two band bricks of their column (so in no parity
+// run). A region has no flood fill to sign them: its level set keeps their
+// inside values, on the OpenVDB and NanoVDB paths, cut by the call or by a
+// budget.
+TEST_P(Regions, AParityRegionSignsBandBricksWithNoVoxelInTheBand)
+{
+    Voxelizer v;
+    const TriangleMesh mesh = loadMesh(std::string(SVO_CGAL_MESHES) + "/fandisk.off");
+    const GridSpec grid = makeGrid(mesh, GridRequest{96, 0});
+    VoxelizeOptions o;
+    o.backend = GetParam() == Backend::Cpu ? Backend::Cpu : kGl;
+    const auto wholeSdf = v.levelSet(mesh, grid, {}, o);
+    const auto wholeSolid = v.solid(mesh, grid, o);
+    const IndexBox half{{0, -128, -128}, {128, 128, 128}}; // the grid is centred on the origin
+    o.region = half;
+    const auto sdfPart = v.levelSet(mesh, grid, {}, o);
+    expectSameAsClipped(*wholeSdf.front(), *sdfPart.front(), half);
+    const auto solidPart = v.solid(mesh, grid, o);
+    expectSameNanoGrids(v, mesh, grid, o, static_cast<const openvdb::FloatGrid&>(*sdfPart.front()), *solidPart, half);
+    if (GetParam() == Backend::Cpu) return; // a budget is the GPU's
+    VoxelizeStats stats;
+    o = onGl(&stats);
+    o.gpuMemory = 1 << 20;
+    const auto tiledSdf = v.levelSet(mesh, grid, {}, o);
+    EXPECT_GE(stats.tiles, 2u) << "the budget cut the grid";
+    const IndexBox all{{-128, -128, -128}, {128, 128, 128}};
+    expectSameAsClipped(*wholeSdf.front(), *tiledSdf.front(), all);
+}
+
 /// The triangles of @a mesh whose local box, grown by @a margin voxels,
 /// meets the columns of region @a r in x and y, whatever their height: what
 /// a task of svo.distributed gets for a level set or solid signed by parity.

@@ -73,6 +73,10 @@ openvdb::GridPtrVec levelSetGrids(const DistanceBricks& field, double exteriorBa
 {
     const GridSpec& g = field.grid;
     const bool signedField = field.signedField, winding = field.winding;
+    // Where no flood fill runs (winding, a parity field's region), a band
+    // brick's inside values are kept even when none of its voxels is active:
+    // a brick of the band's list wholly inside lies in no parity run.
+    const bool keepInside = winding || (signedField && field.region);
     const FieldSigns& signs = field.signs;
     const float exterior = float(exteriorBand), interior = float(interiorBand);
     const float background = float(exteriorBand * worldPerVoxel);
@@ -87,9 +91,8 @@ openvdb::GridPtrVec levelSetGrids(const DistanceBricks& field, double exteriorBa
             const Brick& near = field.near[i];
             const bool anyInside = signedField && signs.inside[i].count();
             // Parity's flood fill signs inactive leaves from their neighbours;
-            // winding signs are known at every voxel, so a leaf with no active
-            // voxel is still kept when it holds inside values.
-            if (!near.count() && !(winding && anyInside)) continue;
+            // elsewhere a leaf with no active voxel is kept when it holds inside values.
+            if (!near.count() && !(keepInside && anyInside)) continue;
             auto leaf = std::make_unique<openvdb::FloatTree::LeafNodeType>(origin, background);
             std::unique_ptr<openvdb::Int32Tree::LeafNodeType> c;
             if (closest) c = std::make_unique<openvdb::Int32Tree::LeafNodeType>(origin, -1);
@@ -110,7 +113,7 @@ openvdb::GridPtrVec levelSetGrids(const DistanceBricks& field, double exteriorBa
                 }
                 leaf->setValueOnly(v, inside ? -value : value);
             }
-            if (!any && !(winding && anyInside)) continue;
+            if (!any && !(keepInside && anyInside)) continue;
             if (c && any) closestLeaves[i] = c.release();
             leaves[i] = leaf.release();
         }

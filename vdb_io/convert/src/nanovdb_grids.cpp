@@ -272,6 +272,7 @@ std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double ex
     const GridSpec& g = field.grid;
     const FieldSigns& signs = field.signs;
     const bool signedField = field.signedField, winding = field.winding;
+    const bool keepInside = winding || (signedField && field.region); // as levelSetGrids: no flood fill there
     const double scale = lattice.voxelSize;
     const float exterior = float(exteriorBand), interior = float(interiorBand);
     const float background = float(exteriorBand * scale);
@@ -281,7 +282,7 @@ std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double ex
     closest.background = -1;
     const size_t nb = field.bricks.size();
     // Per band brick, as levelSetGrids makes its leaves: kept when any voxel is
-    // active, or (winding) when it holds inside values. First each brick's
+    // active, or (winding, a parity region) when it holds inside values. First each brick's
     // active voxels, then, once the kept bricks are counted, its values
     // written where its leaf goes (no copy of the band per brick).
     std::vector<Brick> active(nb);
@@ -295,7 +296,7 @@ std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double ex
             if (field.distances[packed++] < (inside ? interior : exterior))
                 active[i].words[k >> 6] |= uint64_t(1) << (k & 63);
         }
-        keep[i] = active[i].count() || (winding && signs.inside[i].count());
+        keep[i] = active[i].count() || (keepInside && signs.inside[i].count());
     });
     constexpr uint32_t kNone = UINT32_MAX;
     std::vector<uint32_t> leafAt(nb, kNone), closestAt(nb, kNone);
