@@ -110,6 +110,17 @@ def test_tiles_joined_are_the_single_process_grid(client, voxelizer, shape, kind
     assert_same_grid(got, single(voxelizer, mesh, kind))
 
 
+def test_a_level_set_of_a_real_mesh_is_the_single_process_grid(client, voxelizer):
+    """CGAL's fandisk at 96: its band holds bricks wholly inside with no voxel
+    in the band, which a tile signs without a flood fill."""
+    path = os.path.join(os.environ.get("SVO_CGAL_MESHES", ""), "fandisk.off")
+    if not os.path.exists(path):
+        pytest.skip("libcgal-demo meshes not extracted (SVO_CGAL_MESHES)")
+    v, t = svo.read_mesh(path)
+    got = svo.distributed.voxelize((v, t), client=client, tile=32, kind="sdf", resolution=96)
+    assert_same_grid(got, voxelizer.level_set(v, t, resolution=96).grid)
+
+
 def rows_by_ijk(result):
     """The result's per-voxel arrays, rows sorted by (i, j, k)."""
     order = np.lexsort((result.ijk[:, 2], result.ijk[:, 1], result.ijk[:, 0]))
