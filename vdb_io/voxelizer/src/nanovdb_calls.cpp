@@ -7,6 +7,8 @@
 // regions join their bricks (svo/core/field_join.h).
 #include <cstring>
 #include <tuple>
+#include <type_traits>
+#include <utility>
 
 #include "svo/core/error.h"
 #include "svo/core/field_clip.h"
@@ -39,10 +41,11 @@ constexpr const char* kSolidTask = "svo: filling a solid";
 /// The bracket of levelSetNanoVdb and solidNanoVdb: the checks (the same
 /// transform rule as levelSet()), the interrupter, then `make(checkpoint,
 /// stats)` (the field and its grids, its stages recorded), the counts of
-/// its first grid and the statistics handed out.
+/// its first grid and the statistics handed out. A `make` that keeps its
+/// grids on the device returns nothing and sets the counts itself.
 template <typename Make>
-std::vector<vdb::NanoHandle> nanoCall(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
-                                      const char* what, Make&& make)
+auto nanoCall(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options, const char* what,
+              Make&& make) -> decltype(make(std::declval<const Checkpoint&>(), std::declval<VoxelizeStats&>()))
 {
     validateMesh(mesh);
     checkGrid(grid, mesh.source);
@@ -50,15 +53,21 @@ std::vector<vdb::NanoHandle> nanoCall(const TriangleMesh& mesh, const GridSpec& 
     const InterruptScope interrupt(options.interrupter, what);
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;
-    std::vector<vdb::NanoHandle> out = make(checkpoint, stats);
-    if (!out.empty()) { // grids kept on the device set their counts
+    auto finish = [&] {
+        checkpoint(1.0, "finish");
+        if (options.stats) *options.stats = std::move(stats);
+    };
+    if constexpr (std::is_void_v<decltype(make(checkpoint, stats))>) {
+        make(checkpoint, stats);
+        finish();
+    } else {
+        std::vector<vdb::NanoHandle> out = make(checkpoint, stats);
         const auto* main = out.front().gridMetaData();
         stats.voxels = main ? main->activeVoxelCount() : 0;
         stats.bricks = main ? main->nodeCount(0) : 0;
+        finish();
+        return out;
     }
-    checkpoint(1.0, "finish");
-    if (options.stats) *options.stats = std::move(stats);
-    return out;
 }
 
 /// The CPU layout of device leaves read back (float or int32 values) and
@@ -367,7 +376,6 @@ void nanoCallOnDevice(gl::Device& device, const TriangleMesh& mesh, const GridSp
             make(checkpoint, stats, out);
             std::tie(stats.voxels, stats.bricks) = out.firstDeviceCounts();
         });
-        return std::vector<vdb::NanoHandle>{}; // no host grid: the counts are set
     });
 }
 
