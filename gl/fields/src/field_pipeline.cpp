@@ -18,6 +18,7 @@
 
 #include "svo/core/band_bricks.h"
 #include "svo/core/band_distances.h"
+#include "svo/core/byte_size.h"
 #include "svo/core/parity_crossings.h"
 #include "svo/core/error.h"
 #include "svo/core/local_positions.h"
@@ -117,10 +118,13 @@ void checkFieldBudget(const VoxelizeSettings& settings, size_t bricks, const Tri
     if (!settings.gpuMemory) return;
     constexpr uint64_t kBytesPerBrick = 512 * 4 * 2 + 64 * 4 + 16; // distances, closest, masks, coordinates
     constexpr uint64_t kBytesPerTriangle = 3 * 12 + 12 + 16;        // corners, indices, work items
-    const uint64_t bytes = uint64_t(bricks) * kBytesPerBrick + uint64_t(mesh.triangles.size()) * kBytesPerTriangle;
-    if (bytes > settings.gpuMemory)
-        throw OutOfMemory(fmt::format("a GPU memory budget of {} bytes cannot hold the field's {} band bricks ({} bytes)",
-                                      settings.gpuMemory, bricks, bytes));
+    const uint64_t brickBytes = uint64_t(bricks) * kBytesPerBrick;
+    const uint64_t meshBytes = uint64_t(mesh.triangles.size()) * kBytesPerTriangle;
+    if (brickBytes + meshBytes > settings.gpuMemory)
+        throw OutOfMemory(fmt::format("a GPU memory budget of {} cannot hold the field's {} band bricks ({}) with the "
+                                      "mesh's {} triangles ({}: corners, indices, work items); raise the budget",
+                                      byteSize(settings.gpuMemory), bricks, byteSize(brickBytes),
+                                      mesh.triangles.size(), byteSize(meshBytes)));
 }
 
 /// Winding-number signs: the number at every brick centre of the grid's box

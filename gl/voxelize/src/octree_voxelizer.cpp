@@ -16,6 +16,7 @@
 #include "svo/gl/timer_query.h"
 #include "svo/gl/wait_for_gpu.h"
 #include "octree_passes.h"
+#include "svo/core/byte_size.h"
 #include "svo/core/error.h"
 #include "svo/core/host_memory.h"
 #include "svo/core/voxel_attributes.h"
@@ -191,13 +192,6 @@ std::vector<VoxelBox> splitBox(const VoxelBox& box, uint64_t pieces)
         boxes = std::move(next);
     }
     return boxes;
-}
-
-std::string byteSize(uint64_t bytes)
-{
-    if (bytes < (uint64_t(1) << 20)) return fmt::format("{:.1f} KiB", double(bytes) / 1024);
-    if (bytes < (uint64_t(1) << 30)) return fmt::format("{:.1f} MiB", double(bytes) / (1 << 20));
-    return fmt::format("{:.2f} GiB", double(bytes) / (1 << 30));
 }
 
 /// One call's passes over boxes of the grid: each fills the list for its box,
