@@ -379,7 +379,15 @@ TEST(RegionsTiles, LevelSetsAndSolidsWithinAGpuBudgetAreTheWholeGrids)
             EXPECT_TRUE(sameBytes(wholeNano, tiledNano)) << "solid";
         }
         tiled.gpuMemory = 1024; // less than the mesh itself
-        EXPECT_THROW(v.levelSet(mesh, grid, {}, tiled), OutOfMemory);
+        try {
+            v.levelSet(mesh, grid, {}, tiled);
+            ADD_FAILURE() << "a budget below the mesh's triangles was not refused";
+        } catch (const OutOfMemory& e) { // what needs the room, and what to do
+            EXPECT_NE(std::string(e.what()).find("budget of 1.0 KiB cannot hold"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(std::to_string(mesh.triangles.size()) + " triangles"), std::string::npos)
+                << e.what();
+            EXPECT_NE(std::string(e.what()).find("raise the budget"), std::string::npos) << e.what();
+        }
         EXPECT_THROW(v.levelSetNanoVdb(mesh, grid, udf, tiled), OutOfMemory);
     }
 }
