@@ -625,15 +625,15 @@ const Call kOctreeCall{"octree",
                         "gpu_memory", "region"}};
 const Call kLevelSetCall{"level_set",
                          {"resolution", "voxel_size", "transform", "exterior_band", "interior_band", "unsigned",
-                          "closest_triangle", "sign", "winding_accuracy", "part_of_closed_mesh", "backend", "region",
-                          "report"}};
+                          "closest_triangle", "sign", "winding_accuracy", "part_of_closed_mesh", "backend",
+                          "gpu_memory", "region", "report"}};
 const Call kSolidCall{"solid",
                       {"resolution", "voxel_size", "transform", "sign", "winding_accuracy", "part_of_closed_mesh",
-                       "backend", "region", "report"}};
+                       "backend", "gpu_memory", "region", "report"}};
 const Call kWriteNanoVdbCall{"write_nanovdb",
                              {"kind", "resolution", "voxel_size", "transform", "exterior_band", "interior_band", "closest_triangle",
                               "sign", "winding_accuracy", "part_of_closed_mesh", "backend", "mode", "conservative",
-                              "attributes", "region", "topology", "fog", "codec"}};
+                              "attributes", "gpu_memory", "region", "topology", "fog", "codec"}};
 const Call kFromGridCall{"from_grid", {"backend"}};
 const Call kRenderCall{"render",
                        {"size", "view", "layers", "levels", "color", "ao", "ao_only", "ao_source", "lighting", "lights",

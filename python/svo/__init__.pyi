@@ -99,6 +99,7 @@ class Voxelizer:
         winding_accuracy: float = 1.5,
         part_of_closed_mesh: bool = False,
         backend: str = "auto",
+        gpu_memory: Optional[int] = None,
         region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
         report: bool = False,
     ) -> Result: ...
@@ -114,6 +115,7 @@ class Voxelizer:
         winding_accuracy: float = 1.5,
         part_of_closed_mesh: bool = False,
         backend: str = "auto",
+        gpu_memory: Optional[int] = None,
         region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
         report: bool = False,
     ) -> Result: ...
@@ -137,6 +139,7 @@ class Voxelizer:
         mode: str = "conservative",
         conservative: str = "auto",
         attributes: Sequence[str] = (),
+        gpu_memory: Optional[int] = None,
         region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
         topology: str = "mask",
         fog: bool = False,

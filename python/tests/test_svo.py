@@ -326,6 +326,27 @@ def test_a_small_gpu_memory_budget_tiles_to_the_same_voxels(voxelizer):
         voxelizer.voxelize(v, t, resolution=160, gpu_memory=1024)
 
 
+def test_fields_and_solids_within_a_gpu_memory_budget_are_the_whole_grids(voxelizer, tmp_path):
+    v, t = tetrahedron()
+
+    def dense(grid):
+        a = np.empty((120, 120, 120), dtype=bool if isinstance(grid, pyopenvdb.BoolGrid) else np.float32)
+        grid.copyToArray(a, ijk=(-10, -10, -10))  # the grid and its band, inactive values too
+        return a
+
+    for call in (voxelizer.level_set, voxelizer.solid):
+        whole = call(v, t, resolution=96, backend="compute", report=True)
+        tiled = call(v, t, resolution=96, backend="compute", gpu_memory=1 << 20, report=True)
+        assert whole.report["tiles"] == 1 and tiled.report["tiles"] >= 2
+        assert np.array_equal(dense(tiled.grid), dense(whole.grid))
+    voxelizer.write_nanovdb(tmp_path / "whole.nvdb", v, t, kind="sdf", resolution=96, backend="compute")
+    voxelizer.write_nanovdb(tmp_path / "tiled.nvdb", v, t, kind="sdf", resolution=96, backend="compute",
+                            gpu_memory=1 << 20)
+    assert (tmp_path / "tiled.nvdb").read_bytes() == (tmp_path / "whole.nvdb").read_bytes()
+    with pytest.raises(MemoryError, match="raise the budget"):
+        voxelizer.level_set(v, t, resolution=96, backend="compute", gpu_memory=1024)
+
+
 def test_a_region_is_the_whole_grid_cut_to_its_box(voxelizer):
     v, t = tetrahedron()
     whole = as_set(svo.active_voxels(voxelizer.voxelize(v, t, resolution=48).grid))
