@@ -9,8 +9,10 @@
 #include <cstring>
 #include <gtest/gtest.h>
 #include <map>
+#include <set>
 #include <nanovdb/NanoVDB.h>
 #include <openvdb/openvdb.h>
+#include <openvdb/util/NullInterrupter.h>
 
 #include "gl_backend.h"
 #include "scenes.h"
@@ -23,6 +25,7 @@
 #include "svo/core/region.h"
 #include "svo/core/voxel_key.h"
 #include "svo/svo.h"
+#include "regions.h" // the front door's private cut into regions
 
 namespace svo::test {
 namespace {
@@ -390,6 +393,77 @@ TEST(RegionsTiles, LevelSetsAndSolidsWithinAGpuBudgetAreTheWholeGrids)
         }
         EXPECT_THROW(v.levelSetNanoVdb(mesh, grid, udf, tiled), OutOfMemory);
     }
+}
+
+/// Every percentage a call reports.
+struct Percentages : openvdb::util::NullInterrupter {
+    bool wasInterrupted(int percent) override
+    {
+        seen.push_back(percent);
+        return false;
+    }
+    std::vector<int> seen;
+};
+
+// Past a budget, each region reports on its share of the call: the
+// percentage climbs once across the regions, not from 0 in each, on the
+// OpenVDB and NanoVDB paths.
+TEST(RegionsTiles, ProgressClimbsOnceAcrossTheRegions)
+{
+    Voxelizer v;
+    const TriangleMesh mesh = icosphere({0.1, -0.2, 0.3}, 1.0, 3);
+    const GridSpec grid = makeGrid(mesh, GridRequest{48, 0});
+    VoxelizeStats stats;
+    VoxelizeOptions o = onGl(&stats);
+    o.gpuMemory = 1 << 20;
+    auto expectClimbs = [&](const char* call, auto&& run) {
+        Percentages p;
+        o.interrupter = &p;
+        run();
+        EXPECT_GE(stats.tiles, 2u) << call;
+        EXPECT_TRUE(std::is_sorted(p.seen.begin(), p.seen.end())) << call << ": percentages only grow " << ::testing::PrintToString(p.seen);
+        EXPECT_GT(std::set<int>(p.seen.begin(), p.seen.end()).size(), 2 * size_t(stats.tiles)) << call;
+        ASSERT_FALSE(p.seen.empty());
+        EXPECT_EQ(p.seen.back(), 100) << call;
+    };
+    expectClimbs("levelSet", [&] { v.levelSet(mesh, grid, {}, o); });
+    expectClimbs("solid", [&] { v.solid(mesh, grid, o); });
+    expectClimbs("levelSetNanoVdb", [&] { v.levelSetNanoVdb(mesh, grid, {}, o); });
+    expectClimbs("solidNanoVdb", [&] { v.solidNanoVdb(mesh, grid, o); });
+}
+
+// The mechanism: a region's run reports on its columns' share of the box,
+// after the regions done; a run cut smaller after a try starts again from
+// its share's start without the percentage going back.
+TEST(RegionsTiles, EachRegionReportsOnItsColumnsShare)
+{
+    std::vector<int> seen;
+    const Checkpoint checkpoint([&](int percent) {
+        seen.push_back(percent);
+        return false;
+    });
+    const IndexBox box{{0, 0, 0}, {64, 32, 16}};
+    detail::RegionProgress progress(checkpoint, box);
+    const IndexBox left{{0, 0, 0}, {16, 32, 16}}, right{{16, 0, 0}, {64, 32, 16}};
+    progress.of(left)(0.5);
+    progress.finished(left);
+    progress.of(right)(0.0);
+    progress.of(right)(0.5);
+    EXPECT_EQ(seen, (std::vector<int>{12, 25, 62}));
+    // A box the run refuses past 16 voxels wide: cut to four regions, each
+    // reporting half way and done; the first try's report is held.
+    seen.clear();
+    uint32_t tiles = 0;
+    auto run = [&](const IndexBox& b, const Checkpoint& c) {
+        c(0.5);
+        if (b.hi[0] - b.lo[0] > 16) throw OutOfMemory("past the budget");
+        c(1.0);
+        return 0;
+    };
+    auto join = [](int&, int) {};
+    detail::allRegions(run, join, box, checkpoint, tiles);
+    EXPECT_EQ(tiles, 4u);
+    EXPECT_EQ(seen, (std::vector<int>{50, 50, 50, 50, 50, 50, 75, 75, 75, 87, 100})) << ::testing::PrintToString(seen);
 }
 
 // A solid's band grows a voxel from its surface, so a region's brick can be

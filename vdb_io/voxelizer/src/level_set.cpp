@@ -74,12 +74,12 @@ openvdb::GridPtrVec runFieldCall(const FieldCall& call, const VoxelizeOptions& o
     const Checkpoint checkpoint = interrupt.checkpoint();
     VoxelizeStats stats;
     Clock::time_point t0;
-    auto run = [&](const std::optional<IndexBox>& region) {
+    auto run = [&](const std::optional<IndexBox>& region, const Checkpoint& progress) {
         VoxelizeOptions part = options;
         part.region = region;
         stats = VoxelizeStats{};
-        const auto field = bricks(part, checkpoint, stats);
-        checkpoint(call.stageAt, call.stage);
+        const auto field = bricks(part, progress, stats);
+        progress(call.stageAt, call.stage);
         t0 = Clock::now();
         openvdb::GridPtrVec out = grids(field);
         for (auto& g : out) clipToRegion(*g, region);
@@ -88,7 +88,7 @@ openvdb::GridPtrVec runFieldCall(const FieldCall& call, const VoxelizeOptions& o
     auto join = [](openvdb::GridPtrVec& into, const openvdb::GridPtrVec& more) {
         for (size_t i = 0; i < into.size(); ++i) vdb::joinRegion(*into[i], *more[i]);
     };
-    openvdb::GridPtrVec out = detail::withinBudget(run, join, options, call.box, stats);
+    openvdb::GridPtrVec out = detail::withinBudget(run, join, options, call.box, checkpoint, stats);
     finishStats(stats, call.stage, t0, out, checkpoint, options);
     return out;
 }

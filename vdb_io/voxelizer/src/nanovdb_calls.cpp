@@ -180,27 +180,29 @@ void fieldGridsOnGpu(const gl::DeviceField& field, const GridSpec& grid, const L
     }
 }
 
-/// `bricks(options)` (a field's or a solid's) on the call's region (none:
-/// the whole grid), cut into regions past a GPU memory budget or past one
-/// shader buffer as levelSet() cuts them, and joined by `join`
+/// `bricks(options, checkpoint)` (a field's or a solid's) on the call's
+/// region (none: the whole grid), cut into regions past a GPU memory budget
+/// or past one shader buffer as levelSet() cuts them, and joined by `join`
 /// (svo/core/field_join.h): each region's bricks are the whole grid's there,
 /// so the result is the whole grid's bricks (of the call's region: cut to
 /// it by the caller), with no OpenVDB tree. `pastOneBuffer`: the whole grid
 /// is known not to fit (BufferLimit), so it is not tried again, and a
-/// warning says so. The region count goes to `stats`.
+/// warning says so. Each region reports on its share of @a checkpoint; the
+/// region count goes to `stats`.
 template <typename Bricks, typename Join>
 auto bricksInRegions(Bricks&& bricks, Join&& join, const VoxelizeOptions& options, const IndexBox& box,
-                     bool pastOneBuffer, VoxelizeStats& stats) -> decltype(bricks(options))
+                     bool pastOneBuffer, const Checkpoint& checkpoint, VoxelizeStats& stats)
+    -> decltype(bricks(options, checkpoint))
 {
-    auto run = [&](const std::optional<IndexBox>& region) {
+    auto run = [&](const std::optional<IndexBox>& region, const Checkpoint& progress) {
         VoxelizeOptions part = options;
         part.region = region;
         stats = VoxelizeStats{};
-        return bricks(part);
+        return bricks(part, progress);
     };
-    if (!pastOneBuffer) return detail::withinBudget(run, join, options, box, stats);
+    if (!pastOneBuffer) return detail::withinBudget(run, join, options, box, checkpoint, stats);
     uint32_t tiles = 0;
-    auto out = detail::inRegions(run, join, box, tiles);
+    auto out = detail::allRegions(run, join, box, checkpoint, tiles);
     stats.tiles = tiles;
     stats.warnings.push_back(detail::pastOneBufferWarning(tiles));
     return out;
@@ -223,11 +225,11 @@ std::vector<vdb::NanoHandle> fieldInRegions(gl::Device& device, const TriangleMe
                                             const LevelSetOptions& ls, const VoxelizeOptions& options,
                                             bool pastOneBuffer, const Checkpoint& checkpoint, VoxelizeStats& stats)
 {
-    auto bricks = [&](const VoxelizeOptions& part) {
-        return gl::levelSetBricks(device, mesh, grid, ls, part, checkpoint, stats);
+    auto bricks = [&](const VoxelizeOptions& part, const Checkpoint& progress) {
+        return gl::levelSetBricks(device, mesh, grid, ls, part, progress, stats);
     };
     DistanceBricks field = bricksInRegions(bricks, joinFields, options, detail::fieldBox(grid, detail::levelSetPad(ls)),
-                                           pastOneBuffer, stats);
+                                           pastOneBuffer, checkpoint.part(0.0, 0.85), stats);
     if (options.region) clipField(field, bricksMeeting(field.grid, options.region));
     else field.region = false; // the regions make up the whole grid: a parity field's signs beyond the band are its fill's
     checkpoint(0.85, "nanovdb grid");
@@ -480,9 +482,12 @@ vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec
     // regions' bricks joined (bricksInRegions) and cut to the call's region, then the same grid.
     auto inRegions = [&](bool pastOneBuffer) {
         return std::move(nanoCall(mesh, grid, options, kSolidTask, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
-                             auto bricks = [&](const VoxelizeOptions& part) { return bricksOf(part, checkpoint, stats); };
+                             auto bricks = [&](const VoxelizeOptions& part, const Checkpoint& progress) {
+                                 return bricksOf(part, progress, stats);
+                             };
                              SolidBricks joined = bricksInRegions(bricks, joinSolids, options,
-                                                                  detail::fieldBox(grid, detail::kSolidPad), pastOneBuffer, stats);
+                                                                  detail::fieldBox(grid, detail::kSolidPad), pastOneBuffer,
+                                                                  checkpoint.part(0.0, 0.8), stats);
                              if (options.region) clipSolid(joined, bricksMeeting(joined.grid, options.region));
                              return gridOf(joined, checkpoint, stats);
                          }).front());

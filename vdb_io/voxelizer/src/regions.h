@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "svo/core/error.h"
+#include "svo/core/interrupt.h"
 #include "svo/core/region.h"
 #include "svo/voxelizer.h"
 
@@ -39,15 +40,39 @@ inline int64_t levelSetPad(const LevelSetOptions& ls)
 /// The pad of a solid's field box: its 2 voxels, in whole leaves, and a leaf.
 constexpr int64_t kSolidPad = 16;
 
-/// `run` on `box`, or, where a GPU memory budget cannot hold that, on its two
-/// halves across its wider x or y side (z columns stay whole: parity counts
-/// along them), joined by `join(first, second)`; each region is exactly the
-/// whole grid's there, so the join is the whole grid's result.
+/// Progress across regions: each region's run reports on its share of the
+/// call, its columns' share of the box's (regions cut the box in x and y
+/// only), after the regions done, so the percentage climbs once over all of
+/// them instead of starting again in each.
+class RegionProgress {
+public:
+    RegionProgress(const Checkpoint& checkpoint, const IndexBox& box) : checkpoint_(checkpoint), columns_(columns(box)) {}
+
+    /// The checkpoint of @a region's run.
+    Checkpoint of(const IndexBox& region) const
+    {
+        return checkpoint_.part(done_ / columns_, (done_ + columns(region)) / columns_);
+    }
+    void finished(const IndexBox& region) { done_ += columns(region); }
+
+private:
+    static double columns(const IndexBox& b) { return double(b.hi[0] - b.lo[0]) * double(b.hi[1] - b.lo[1]); }
+
+    Checkpoint checkpoint_;
+    double columns_, done_ = 0.0;
+};
+
+/// `run(box, checkpoint)` on `box`, or, where a GPU memory budget cannot hold
+/// that, on its two halves across its wider x or y side (z columns stay
+/// whole: parity counts along them), joined by `join(first, second)`; each
+/// region is exactly the whole grid's there, so the join is the whole grid's result.
 template <typename Run, typename Join>
-auto inRegions(Run& run, Join& join, const IndexBox& box, uint32_t& tiles) -> decltype(run(box))
+auto inRegions(Run& run, Join& join, const IndexBox& box, uint32_t& tiles, RegionProgress& progress)
+    -> decltype(run(box, progress.of(box)))
 {
     try {
-        auto out = run(box);
+        auto out = run(box, progress.of(box));
+        progress.finished(box);
         ++tiles;
         return out;
     } catch (const OutOfMemory&) {
@@ -56,11 +81,22 @@ auto inRegions(Run& run, Join& join, const IndexBox& box, uint32_t& tiles) -> de
         if (leaves < 2) throw; // one column of leaves: nothing smaller to try
         IndexBox first = box, second = box;
         first.hi[axis] = second.lo[axis] = box.lo[axis] + 8 * (leaves / 2);
-        auto out = inRegions(run, join, first, tiles);
-        auto more = inRegions(run, join, second, tiles);
+        auto out = inRegions(run, join, first, tiles, progress);
+        auto more = inRegions(run, join, second, tiles, progress);
         join(out, std::move(more));
         return out;
     }
+}
+
+/// inRegions over all of `box`, on `checkpoint`'s range; `tiles` counts the
+/// regions. A region cut smaller after a try reports again from its start:
+/// monotonic() holds the percentage where the try left it.
+template <typename Run, typename Join>
+auto allRegions(Run& run, Join& join, const IndexBox& box, const Checkpoint& checkpoint, uint32_t& tiles)
+    -> decltype(run(box, checkpoint))
+{
+    RegionProgress progress(checkpoint.monotonic(), box);
+    return inRegions(run, join, box, tiles, progress);
 }
 
 /// The warning of a call cut into @a regions because one shader buffer
@@ -71,24 +107,25 @@ inline std::string pastOneBufferWarning(uint32_t regions)
                        regions);
 }
 
-/// `run` on the call's region (none: the whole grid); past a GPU memory
-/// budget, or past what one shader buffer holds (with a warning), in
-/// regions of `box` (or of the call's region) that fit; `stats.tiles` says
-/// how many.
+/// `run(region, checkpoint)` on the call's region (none: the whole grid);
+/// past a GPU memory budget, or past what one shader buffer holds (with a
+/// warning), in regions of `box` (or of the call's region) that fit, each
+/// on its share of `checkpoint`; `stats.tiles` says how many.
 template <typename Run, typename Join>
-auto withinBudget(Run&& run, Join&& join, const VoxelizeOptions& options, const IndexBox& box, VoxelizeStats& stats)
-    -> decltype(run(options.region))
+auto withinBudget(Run&& run, Join&& join, const VoxelizeOptions& options, const IndexBox& box,
+                  const Checkpoint& checkpoint, VoxelizeStats& stats) -> decltype(run(options.region, checkpoint))
 {
+    const Checkpoint progress = checkpoint.monotonic(); // the regions retry what the first try began
     bool pastOneBuffer = false;
     try {
-        return run(options.region);
+        return run(options.region, progress);
     } catch (const BufferLimit&) {
         pastOneBuffer = true; // a driver's per-buffer limit: smaller regions fit, budget or not
     } catch (const OutOfMemory&) {
         if (!options.gpuMemory) throw; // only a budget the grid can be cut for
     }
     uint32_t tiles = 0;
-    auto out = inRegions(run, join, options.region ? *options.region : box, tiles);
+    auto out = allRegions(run, join, options.region ? *options.region : box, progress, tiles);
     stats.tiles = tiles;
     if (pastOneBuffer) stats.warnings.push_back(pastOneBufferWarning(tiles));
     return out;

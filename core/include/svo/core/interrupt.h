@@ -8,7 +8,10 @@
 /// the whole call's percentage, and when it answers true the checkpoint throws
 /// svo::Interrupted. Work split into parts hands each part a sub-range with
 /// part(), so percentages stay monotonic across stages.
+#include <algorithm>
+#include <atomic>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "svo/core/error.h"
@@ -33,8 +36,26 @@ public:
     {
         if (!poll_) return;
         const double f = from_ + (to_ - from_) * (fraction < 0 ? 0 : fraction > 1 ? 1 : fraction);
-        if (poll_(int(f * 100.0)))
+        int percent = int(f * 100.0);
+        if (highest_) { // the most reported so far, from any thread
+            int seen = highest_->load();
+            while (seen < percent && !highest_->compare_exchange_weak(seen, percent)) {
+            }
+            percent = std::max(percent, seen);
+        }
+        if (poll_(percent))
             throw Interrupted(std::string("interrupted") + (*where ? std::string(" during ") + where : std::string()));
+    }
+
+    /// @brief This part, never reporting less than it (or its parts) reported
+    /// before: for work tried again, such as a field cut into regions after
+    /// its whole grid passed a GPU memory budget, whose retry starts below
+    /// where the first try stopped.
+    Checkpoint monotonic() const
+    {
+        Checkpoint c = *this;
+        if (!c.highest_) c.highest_ = std::make_shared<std::atomic<int>>(0); // already: the same floor
+        return c;
     }
 
     /// @brief The sub-range [a, b] of this part (fractions of it) as a part of its own.
@@ -49,6 +70,7 @@ public:
 private:
     Poll poll_;
     double from_ = 0.0, to_ = 1.0;
+    std::shared_ptr<std::atomic<int>> highest_; ///< monotonic(): shared by its parts
 };
 
 } // namespace svo
