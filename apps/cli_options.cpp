@@ -298,6 +298,11 @@ void addGridOptions(CLI::App& cmd, GridRequest& request)
     cmd.get_option("--resolution")->excludes("--voxel-size");
 }
 
+void addGridNameOption(CLI::App& cmd, std::string& gridName)
+{
+    cmd.add_option("--grid", gridName, "Grid of a .vdb or .nvdb input (default: the first in name order)");
+}
+
 std::string nonEmptyMeshPath(const std::string& value)
 {
     return value.empty() ? "the mesh path is empty; give a mesh file, or no mesh for the built-in Cornell box" : "";

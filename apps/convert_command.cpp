@@ -158,7 +158,7 @@ void addConvertCommand(CLI::App& app)
     CLI::App* cmd = app.add_subcommand("convert", "Convert between .vdb or .nvdb grids and .svo octrees");
     cmd->add_option("input", args->input, "Input .vdb, .nvdb or .svo")->required();
     addOutputPath(*cmd, "-o,--output", args->output, "Output .svo, .vdb or .nvdb")->required();
-    cmd->add_option("--grid", args->gridName, "Grid of the input .vdb or .nvdb (default: the first)");
+    addGridNameOption(*cmd, args->gridName);
     addBackendOptions(*cmd, args->backend);
     addOutputOptions(*cmd, args->out);
     addOutputHabits(*cmd, args->habits);

@@ -62,7 +62,7 @@ void addInfoCommand(CLI::App& app)
     cmd->add_option("input", args->input,
                     fmt::format("A .svo, .vdb, .nvdb or mesh file ({})", supportedMeshExtensions()))
         ->required();
-    cmd->add_option("--grid", args->gridName, "Grid of a .vdb or .nvdb input (default: the first)");
+    addGridNameOption(*cmd, args->gridName);
     addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
     cmd->callback([args, cmd] { runInfo(*args, *cmd); });

@@ -130,7 +130,7 @@ void addVtkCommand(CLI::App& app)
     cmd->add_option("--size", args->width, "Picture width in pixels; the height is 3/4 of it")
         ->check(CLI::Range(64, 8192))
         ->capture_default_str();
-    cmd->add_option("--grid", args->gridName, "Grid of a .vdb input (default: the first)");
+    addGridNameOption(*cmd, args->gridName);
     addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
     addOutputHabits(*cmd, args->habits);
