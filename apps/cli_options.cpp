@@ -298,9 +298,11 @@ void addGridOptions(CLI::App& cmd, GridRequest& request)
     cmd.get_option("--resolution")->excludes("--voxel-size");
 }
 
-void addGridNameOption(CLI::App& cmd, std::string& gridName)
+void addGridNameOption(CLI::App& cmd, std::string& gridName, bool field)
 {
-    cmd.add_option("--grid", gridName, "Grid of a .vdb or .nvdb input (default: the first in name order)");
+    cmd.add_option("--grid", gridName,
+                   std::string("Grid of a .vdb or .nvdb input (default: the first ") +
+                       (field ? "distance field in name order, else the first grid)" : "in name order)"));
 }
 
 std::string nonEmptyMeshPath(const std::string& value)

@@ -904,6 +904,19 @@ TEST(View, LevelSetIsDrawnAtItsZeroCrossing)
         const openvdb::Vec3d w = ls->indexToWorld(openvdb::Vec3d(double(c[0]), double(c[1]), double(c[2])));
         EXPECT_LT(std::abs((w - openvdb::Vec3d(0.3, -0.2, 0.45)).length() - 6.3), 0.5 * std::sqrt(3.0) + 1e-6);
     }
+    // Beside a grid that sorts first by name (an .nvdb level set's
+    // closest_triangle), the level set is still the one drawn.
+    auto closest = openvdb::Int32Grid::create(-1);
+    closest->setTransform(ls->transform().copy());
+    closest->tree().topologyUnion(ls->tree());
+    closest->setName("closest_triangle");
+    const std::string both = dir.path("both.vdb");
+    {
+        openvdb::io::File file(both);
+        file.write({ls, closest});
+    }
+    const svo::LoadedOctree beside = svo::loadOctree(voxelizer, both, "", {}, {}, svo::FieldVoxels::ZeroCrossing);
+    EXPECT_TRUE(indexCoords(beside.octree) == expected) << indexCoords(beside.octree).size() << " voxels drawn";
     // Asked for the active voxels (svo info, convert), the whole band.
     const svo::LoadedOctree band = svo::loadOctree(voxelizer, path, "", {}, {});
     EXPECT_EQ(band.fieldVoxels, 0u);
