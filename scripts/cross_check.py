@@ -106,9 +106,10 @@ def main():
             return r, sorted(glob.glob(os.path.join(tmp, stem + ".*vdb")))
 
         def as_vdb(nvdb, stem):
+            """The .nvdb's grids as a .vdb (svo convert), or the error it gave."""
             path = os.path.join(tmp, stem + ".vdb")
-            subprocess.run([a.svo, "convert", nvdb, "-q", "-o", path], check=True, capture_output=True)
-            return [path]
+            r = subprocess.run([a.svo, "convert", nvdb, "-q", "-o", path], capture_output=True, text=True)
+            return ([path], "") if r.returncode == 0 else ([], r.stderr.strip())
 
         for case in range(a.cases):
             kind = rng.choice(KINDS)
@@ -135,7 +136,9 @@ def main():
                 print(("refused " if ok else "DIFFERS (exit codes) ") + what, flush=True)
                 failed += not ok
                 continue
-            bad = [f"vdb/nvdb {d}" for d in differ(part_vdb, as_vdb(os.path.join(tmp, "nanopart.nvdb"), "nano"))]
+            nano_vdb, error = as_vdb(os.path.join(tmp, "nanopart.nvdb"), "nano")
+            bad = [f"svo convert of the .nvdb: {error}"] if error else []
+            bad += [f"vdb/nvdb {d}" for d in differ(part_vdb, nano_vdb)] if nano_vdb else []
             if extra:
                 bad += [f"vs whole {d}" for d in differ(part_vdb, whole_vdb, box)]
             if extra and not box:  # a budget: the whole grid's .nvdb, byte for byte

@@ -298,6 +298,41 @@ TEST(NanoVdbLayoutInput, TilesAtBothLevelsAndNegativeOrigins)
     EXPECT_EQ(g->tree().root().maximum(), 1.5f);
 }
 
+// A node with no active value has an empty box in NanoVDB (its GridStats,
+// and svo's layout as a region's level set makes such nodes), so its
+// origin() is no place; NanoVDB's own converter reads it anyway. svo's
+// reader places the node from its parent: the values come back where they lie.
+TEST(NanoVdbLayoutInput, NodesWithNoActiveValueAreReadWhereTheyLie)
+{
+    openvdb::initialize();
+    auto grid = openvdb::FloatGrid::create(2.0f);
+    grid->setName("inactive nodes");
+    grid->tree().setValueOn(openvdb::Coord(1, 2, 3), 0.5f);
+    const openvdb::Coord inUpper(5, -4000, -4000), inLower(300, 5, 5); // alone in their upper and lower node
+    grid->tree().setValueOff(inUpper, -2.0f);
+    grid->tree().setValueOff(inLower, -1.0f);
+    std::vector<NanoHandle> nano;
+    nano.push_back(vdb::toNanoVdb(grid)); // NanoVDB's own converter
+    ASSERT_EQ(nano[0].grid<float>()->getAccessor().getValue(nanovdb::Coord(5, -4000, -4000)), -2.0f);
+    test::TempDir dir("nanovdb_layout");
+    const std::string path = dir.path("inactive.nvdb");
+    vdb::writeNanoVdb(path, nano, vdb::NanoCodec::None);
+    const openvdb::GridPtrVec back = vdb::readNanoVdbGrids(path);
+    ASSERT_EQ(back.size(), 1u);
+    const auto& f = static_cast<const openvdb::FloatGrid&>(*back[0]);
+    EXPECT_EQ(f.activeVoxelCount(), 1u);
+    for (const openvdb::Coord& c : {inUpper, inLower, openvdb::Coord(1, 2, 3), openvdb::Coord(0, 0, 0)}) {
+        EXPECT_EQ(f.tree().getValue(c), grid->tree().getValue(c)) << c;
+        EXPECT_EQ(f.tree().isValueOn(c), grid->tree().isValueOn(c)) << c;
+    }
+    EXPECT_EQ(f.tree().leafCount(), grid->tree().leafCount());
+    openvdb::CoordBBox leaves;
+    f.tree().evalLeafBoundingBox(leaves);
+    openvdb::CoordBBox want;
+    grid->tree().evalLeafBoundingBox(want);
+    EXPECT_EQ(leaves, want) << "every node where it lies";
+}
+
 TEST(NanoVdbLayoutInput, BadInputIsRefused)
 {
     vdb::SparseVoxels<float> s;

@@ -1,6 +1,7 @@
 #include "svo/vdb_io/nanovdb_input.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
@@ -201,7 +202,7 @@ template <typename T> bool sameBytes(const T& a, const T& b) { return std::memcm
 /// Checks one grid's layout against its buffer (everything NanoVDB's
 /// validator, checksum and converter dereference), then runs the validator.
 template <typename BuildT>
-const nanovdb::NanoGrid<BuildT>* checkGrid(const RawGrid& raw, const std::string& name)
+const nanovdb::NanoGrid<BuildT>* checkGrid(RawGrid& raw, const std::string& name)
 {
     using GridT = nanovdb::NanoGrid<BuildT>;
     using TreeT = typename GridT::TreeType;
@@ -260,23 +261,36 @@ const nanovdb::NanoGrid<BuildT>* checkGrid(const RawGrid& raw, const std::string
         seen[l][i] = 1;
         return off;
     };
+    // An internal node's origin is its active box's corner (NanoVDB's
+    // InternalNode::origin). A node with no active value has an empty box
+    // (NanoVDB's own GridStats gives it one, as svo's layout does), so its
+    // place is its parent's word; once the grid is validated, `unplaced`
+    // get that place as their box's corner, for the converter, which reads
+    // origin().
+    std::vector<std::pair<uint64_t, nanovdb::Coord>> unplaced; // a node's byte offset, its place
+    auto placedAt = [&](auto* node, uint64_t off, const nanovdb::Coord& at) {
+        if (node->origin() == at) return;
+        if (!node->data()->mBBox.empty()) damaged(name, gn + " has a node whose origin is not its place in its parent");
+        unplaced.emplace_back(off, at);
+    };
     for (uint32_t t = 0; t < rootData->mTableSize; ++t) {
         const TileT* tile = rootData->tile(t);
         if (!tile->isChild()) continue;
         const uint64_t uOff = child(2, rootOff, tile->child);
         const auto* upper = reinterpret_cast<const UpperT*>(base + uOff);
-        if (upper->origin() != tile->origin()) damaged(name, gn + " has a node whose origin is not its root key");
+        const nanovdb::Coord upperAt = tile->origin();
+        placedAt(upper, uOff, upperAt);
         for (auto it = upper->childMask().beginOn(); it; ++it) {
             const uint32_t n = *it;
             const uint64_t lOff = child(1, uOff, upper->data()->mTable[n].child);
             const auto* lower = reinterpret_cast<const LowerT*>(base + lOff);
-            if (lower->origin() != upper->offsetToGlobalCoord(n))
-                damaged(name, gn + " has a node whose origin is not its place in its parent");
+            const nanovdb::Coord lowerAt = upperAt + (UpperT::OffsetToLocalCoord(n) << LowerT::TOTAL);
+            placedAt(lower, lOff, lowerAt);
             for (auto jt = lower->childMask().beginOn(); jt; ++jt) {
                 const uint32_t m = *jt;
                 const uint64_t fOff = child(0, lOff, lower->data()->mTable[m].child);
                 const auto* leaf = reinterpret_cast<const LeafT*>(base + fOff);
-                if (leaf->origin() != lower->offsetToGlobalCoord(m))
+                if (leaf->origin() != lowerAt + (LowerT::OffsetToLocalCoord(m) << LeafT::TOTAL))
                     damaged(name, gn + " has a leaf whose origin is not its place in its parent");
             }
         }
@@ -312,6 +326,12 @@ const nanovdb::NanoGrid<BuildT>* checkGrid(const RawGrid& raw, const std::string
     const auto* grid = reinterpret_cast<const GridT*>(base);
     const std::string why = nanovdb::GridValidator<BuildT>::check(*grid, /*detailed*/ true);
     if (!why.empty()) damaged(name, fmt::format("{} fails NanoVDB's validation: {}", gn, why));
+    static_assert(offsetof(typename UpperT::DataType, mBBox) == 0 && offsetof(typename LowerT::DataType, mBBox) == 0,
+                  "an internal node begins with its box");
+    for (const auto& [off, at] : unplaced) { // still empty, its corner the node's place (after the checksum)
+        auto* box = reinterpret_cast<nanovdb::CoordBBox*>(raw.buffer.data() + off);
+        *box = nanovdb::CoordBBox(at, at - nanovdb::Coord(1));
+    }
 
     // The segment's record of the grid must say what the grid says.
     const nanovdb::io::MetaData& m = raw.meta;
@@ -336,7 +356,7 @@ const nanovdb::NanoGrid<BuildT>* checkGrid(const RawGrid& raw, const std::string
     return grid;
 }
 
-template <typename BuildT> openvdb::GridBase::Ptr convert(const RawGrid& raw, const std::string& name)
+template <typename BuildT> openvdb::GridBase::Ptr convert(RawGrid& raw, const std::string& name)
 {
     const auto* grid = checkGrid<BuildT>(raw, name);
     try {
@@ -346,7 +366,7 @@ template <typename BuildT> openvdb::GridBase::Ptr convert(const RawGrid& raw, co
     }
 }
 
-openvdb::GridBase::Ptr toOpenVdb(const RawGrid& raw, const std::string& name)
+openvdb::GridBase::Ptr toOpenVdb(RawGrid& raw, const std::string& name)
 {
     using nanovdb::GridType;
     switch (raw.meta.gridType) {
@@ -388,7 +408,7 @@ openvdb::GridPtrVec readNanoVdbGridsFromBytes(const std::string& bytes, const st
                                               const std::string& gridName)
 {
     openvdb::initialize();
-    const std::vector<RawGrid> raws = splitSegments(bytes, name);
+    std::vector<RawGrid> raws = splitSegments(bytes, name);
     const RawGrid* named = nullptr;
     if (!gridName.empty()) {
         for (const auto& r : raws)
@@ -397,7 +417,7 @@ openvdb::GridPtrVec readNanoVdbGridsFromBytes(const std::string& bytes, const st
     }
     openvdb::GridPtrVec out;
     // Every grid is checked, also when one is asked for.
-    for (const auto& r : raws) {
+    for (auto& r : raws) {
         openvdb::GridBase::Ptr g = toOpenVdb(r, name);
         if (!named || named == &r) out.push_back(std::move(g));
     }
