@@ -108,8 +108,6 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
         throw InvalidInput("--winding-accuracy applies to winding-number signs, not to --sign parity");
     if (cmd.count("--part-of-closed-mesh") && !a.sdf && a.fill != "solid")
         throw InvalidInput("--part-of-closed-mesh applies to --sdf and --fill solid");
-    if (cmd.count("--gpu-memory") && a.backend.settings.backend == Backend::Cpu)
-        throw InvalidInput("--gpu-memory applies to the GPU backends, not to --backend cpu");
     if (!a.field()) return;
     checkFieldMode(a.backend.voxelizeOptions()); // --mode thin: the library's rule, as svo validate --sdf checks it
     if (a.backend.settings.attributes) throw InvalidInput("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");

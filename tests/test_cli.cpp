@@ -1083,6 +1083,12 @@ TEST_F(Cli, AGpuMemoryBudgetTilesTheGridToTheSameVoxels)
         EXPECT_EQ(r.code, 1) << bad << "\n" << r.out;
         EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << bad << "\n" << r.out;
     }
+    // The library's rule, in the CLI's words, for surfaces and fields alike.
+    for (const char* kind : {"", " --sdf", " --fill solid"}) {
+        r = runSvo(std::string("voxelize -r 32 --backend cpu --gpu-memory 1G") + kind + " -o " + path("x.vdb"));
+        EXPECT_EQ(r.code, 1) << kind;
+        EXPECT_EQ(r.out, "svo: error: --gpu-memory applies to the GPU backends, not to --backend cpu\n") << kind;
+    }
     expectOnly({"whole.vdb", "whole.json", "tiled.vdb", "tiled.json"});
 }
 

@@ -261,6 +261,10 @@ def test_library_errors_become_python_errors_by_their_type(voxelizer, tmp_path):
     with pytest.raises(MemoryError, match="cannot hold the mesh") as caught:
         voxelizer.voxelize(v, t, resolution=16, gpu_memory=1024)
     assert isinstance(caught.value, RuntimeError) and isinstance(caught.value, svo.OutOfMemoryError)
+    # A budget asked of the CPU backend, which allocates no GPU memory: refused, not ignored.
+    for call in (voxelizer.voxelize, voxelizer.level_set, voxelizer.solid):
+        with pytest.raises(ValueError, match="^gpu_memory applies to the GPU backends, not to backend cpu$"):
+            call(v, t, resolution=16, backend="cpu", gpu_memory=1 << 30)
     # An option the mesh cannot take (svo::InvalidInput): ValueError.
     with pytest.raises(ValueError, match="parity signs need a mesh without holes"):
         voxelizer.level_set(v, t[:3], resolution=8, sign="parity")

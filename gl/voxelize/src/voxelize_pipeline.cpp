@@ -118,13 +118,25 @@ bool autoPicksCpu(Device& device, const VoxelizeSettings& settings, bool create)
     return create && (device.withoutGl(true) || device.software(true));
 }
 
-} // namespace
-
-Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool create)
+/// Options that name a backend they do not apply to (the library's rules, so
+/// that every front end refuses them alike).
+void checkBackendOptions(const VoxelizeSettings& settings)
 {
     // A dilation mode is a raster option: asking for one picks the raster backend.
     if (settings.backend == Backend::Compute && settings.dilation != Dilation::Auto)
         throw InvalidInput("a dilation mode applies to the raster backend; the compute backend needs none");
+    // A budget asked of the CPU would be ignored: the CPU backend allocates no GPU memory.
+    if (settings.backend == Backend::Cpu && settings.gpuMemory)
+        throw InvalidInput(std::vector<Error::Part>{Error::option("VoxelizeOptions::gpuMemory"),
+                                                    " applies to the GPU backends, not to ",
+                                                    Error::option("VoxelizeOptions::backend"), " cpu"});
+}
+
+} // namespace
+
+Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool create)
+{
+    checkBackendOptions(settings);
     if (settings.backend != Backend::Auto) return settings.backend;
     if (settings.dilation != Dilation::Auto) return Backend::Raster;
     if (autoPicksCpu(device, settings, create)) return Backend::Cpu;
@@ -136,6 +148,7 @@ Backend resolveBackend(Device& device, const VoxelizeSettings& settings, bool cr
 
 bool runsOnCpu(Device& device, const VoxelizeSettings& settings, bool create)
 {
+    checkBackendOptions(settings);
     if (settings.backend == Backend::Cpu) return true;
     return settings.backend == Backend::Auto && settings.dilation == Dilation::Auto && autoPicksCpu(device, settings, create);
 }

@@ -35,7 +35,8 @@ struct VoxelizeSettings {
     /// less a margin (unbounded where the driver does not tell). Level sets
     /// and solids past a budget given here are computed in regions of the
     /// grid and joined (the front door; docs/design.md §7e); without one,
-    /// they report running out of memory.
+    /// they report running out of memory. Backend::Cpu refuses a budget
+    /// (InvalidInput): it allocates no GPU memory.
     uint64_t gpuMemory = 0;
     /// Only the voxels of this box of whole leaves (svo/core/region.h), in
     /// the grid's index space: exactly what the whole-grid call gives there,
