@@ -298,11 +298,11 @@ void addGridOptions(CLI::App& cmd, GridRequest& request)
     cmd.get_option("--resolution")->excludes("--voxel-size");
 }
 
-void addGridNameOption(CLI::App& cmd, std::string& gridName, bool field)
+void addGridNameOption(CLI::App& cmd, std::string& gridName)
 {
     cmd.add_option("--grid", gridName,
-                   std::string("Grid of a .vdb or .nvdb input (default: the first ") +
-                       (field ? "distance field in name order, else the first grid)" : "in name order)"));
+                   "Grid of a .vdb or .nvdb input (default: the first distance field in name order, else the first "
+                   "surface, solid or fog grid, else the first grid)");
 }
 
 std::string nonEmptyMeshPath(const std::string& value)

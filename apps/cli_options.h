@@ -74,9 +74,8 @@ std::string nonEmptyMeshPath(const std::string& value);
 
 /// -r/--resolution and --voxel-size (mutually exclusive).
 void addGridOptions(CLI::App& cmd, GridRequest& request);
-/// --grid: which grid of a .vdb or .nvdb input (loadOctree's gridName);
-/// `field`: the command draws a distance field's zero crossing (FieldVoxels::ZeroCrossing).
-void addGridNameOption(CLI::App& cmd, std::string& gridName, bool field = false);
+/// --grid: which grid of a .vdb or .nvdb input (loadOctree's gridName).
+void addGridNameOption(CLI::App& cmd, std::string& gridName);
 /// The request those options make; resolution 256 when neither is given.
 GridRequest gridRequest(const GridRequest& given);
 

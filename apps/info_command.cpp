@@ -43,7 +43,7 @@ void printNanoVdbGrids(const std::string& path)
     }
 }
 
-void runInfo(const InfoArgs& a, const CLI::App& cmd)
+void runInfo(const InfoArgs& a)
 {
     LibraryCall call(a.backend, "building the octree");
     const LoadedOctree lo = call.load(a.input, a.gridName, gridRequest(a.grid));
@@ -65,7 +65,7 @@ void addInfoCommand(CLI::App& app)
     addGridNameOption(*cmd, args->gridName);
     addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
-    cmd->callback([args, cmd] { runInfo(*args, *cmd); });
+    cmd->callback([args] { runInfo(*args); });
 }
 
 } // namespace svo::app

@@ -421,7 +421,7 @@ void addViewCommand(CLI::App& app)
         ->capture_default_str();
     addOptions(*cmd, args->request, {"color"});
     cmd->add_option("--levels", args->levels, "Outline levels a:b (0 = root; a, a: or :b)");
-    addGridNameOption(*cmd, args->gridName, true);
+    addGridNameOption(*cmd, args->gridName);
     addOptions(*cmd, args->request.layers.ao); // --ao, --ao-aperture, ... --ao-filter
     addOptions(*cmd, args->request, {"surface"});
     cmd->add_option("--cone-pattern", args->conePattern,

@@ -50,7 +50,7 @@ LevelRange parseLevels(const std::string& text)
     return r;
 }
 
-void runVtk(const VtkArgs& a, const CLI::App& cmd)
+void runVtk(const VtkArgs& a)
 {
     if (a.output.empty() && a.png.empty()) throw InvalidInput("give -o OUT (.htg, .vtu or .vtp), --png PICTURE, or both");
     const LevelRange levels = parseLevels(a.levels);
@@ -134,7 +134,7 @@ void addVtkCommand(CLI::App& app)
     addGridOptions(*cmd, args->grid);
     addBackendOptions(*cmd, args->backend);
     addOutputHabits(*cmd, args->habits);
-    cmd->callback([args, cmd] { runVtk(*args, *cmd); });
+    cmd->callback([args] { runVtk(*args); });
 }
 
 } // namespace svo::app

@@ -1137,6 +1137,14 @@ TEST_F(Cli, LevelSetsAndSolidsWriteNanoVdb)
         const auto info = runSvo("info " + path("f.nvdb"));
         EXPECT_EQ(info.code, 0) << kind << ": " << info.out;
     }
+    // Without --grid, info describes the file's main grid, not a channel
+    // that sorts before it: the level set beside its closest triangles, the
+    // surface beside its normals.
+    const std::string ico = "voxelize " + path("ico.off") + " -r 32 ";
+    ASSERT_EQ(runSvo(ico + "--sdf --closest-triangle -o " + path("f.nvdb")).code, 0);
+    EXPECT_NE(runSvo("info " + path("f.nvdb")).out.find("grid 'surface' (Tree_float_5_4_3"), std::string::npos);
+    ASSERT_EQ(runSvo(ico + "--attributes normal -o " + path("f.vdb")).code, 0);
+    EXPECT_NE(runSvo("info " + path("f.vdb")).out.find("grid 'surface' (Tree_bool_5_4_3"), std::string::npos);
     expectOnly({"ico.off", "f.nvdb", "f.vdb", "n.json", "v.json"});
 }
 

@@ -511,3 +511,39 @@ TEST(VdbIo, ADeviceNamedVdbIsRefusedAsADevice)
     }
     EXPECT_THROW(vdb::readVdbGrids(z), svo::Error);
 }
+
+// Without a grid name a file stands for its main grid: a distance field,
+// else a grid of voxels, else the first grid; per-voxel channels, which sort
+// before the grid they annotate, are never picked over it.
+TEST(VdbIo, AFileWithoutAGridNameStandsForItsMainGrid)
+{
+    auto named = [](openvdb::GridBase::Ptr g, const char* name) {
+        g->setName(name);
+        return g;
+    };
+    auto color = named(openvdb::Vec3SGrid::create(), "color");
+    auto closest = named(openvdb::Int32Grid::create(-1), "closest_triangle");
+    auto surface = named(openvdb::BoolGrid::create(), "surface");
+    auto density = openvdb::FloatGrid::create(0.f);
+    density->setGridClass(openvdb::GRID_FOG_VOLUME);
+    named(density, "density");
+    auto field = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(1.f, openvdb::Vec3f(0.f), 0.25f);
+    named(field, "z_level_set");
+    openvdb::gridPtrCast<openvdb::Vec3SGrid>(color)->tree().setValueOn(openvdb::Coord(0), openvdb::Vec3s(1.f));
+    openvdb::gridPtrCast<openvdb::Int32Grid>(closest)->tree().setValueOn(openvdb::Coord(0), 3);
+    openvdb::gridPtrCast<openvdb::BoolGrid>(surface)->tree().setValueOn(openvdb::Coord(0), true);
+    density->tree().setValueOn(openvdb::Coord(0), 1.f);
+
+    using List = openvdb::GridPtrVec;
+    EXPECT_EQ(vdb::mainGrid(List{color, closest, surface, density, field}), field);
+    EXPECT_EQ(vdb::mainGrid(List{color, closest, surface, density}), density);
+    EXPECT_EQ(vdb::mainGrid(List{closest, color, surface}), surface);
+    EXPECT_EQ(vdb::mainGrid(List{color, closest}), closest); // no grid of voxels: the first in name order
+
+    // The readers pick the same.
+    const test::TempDir tmp("vdb_main_grid");
+    const std::string path = tmp.path("grids.vdb");
+    openvdb::io::File(path).write(List{color, closest, surface});
+    EXPECT_EQ(vdb::readVdbBricks(path).gridName, "surface");
+    EXPECT_EQ(vdb::readVdbBricks(path, "color").gridName, "color");
+}

@@ -431,12 +431,8 @@ openvdb::GridPtrVec readNanoVdbGrids(const std::string& path, const std::string&
 
 VdbBricks readNanoVdbBricks(const std::string& path, const std::string& gridName)
 {
-    const openvdb::GridPtrVec grids = readNanoVdbGrids(path, gridName);
-    // Without a name, the first grid in name order, as for a .vdb.
-    openvdb::GridBase::Ptr grid = grids.front();
-    for (const auto& g : grids)
-        if (g->getName() < grid->getName()) grid = g;
-    return bricksOfGrid(*grid, path);
+    // Without a name, the file's main grid, as for a .vdb.
+    return bricksOfGrid(*mainGrid(readNanoVdbGrids(path, gridName)), path);
 }
 
 } // namespace svo::vdb

@@ -16,6 +16,7 @@
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 #include "svo/vdb_io/grid_builder.h"
+#include "svo/vdb_io/zero_crossing.h"
 #include "parallel_buffers.h"
 
 namespace svo::vdb {
@@ -782,6 +783,21 @@ openvdb::GridPtrVec readVdbGrids(const std::string& path, const std::string& gri
     }
 }
 
+openvdb::GridBase::Ptr mainGrid(const openvdb::GridPtrVec& grids)
+{
+    // Distance fields first, then grids of voxels, then per-voxel channels; in name order within each.
+    auto rank = [](const openvdb::GridBase& g) {
+        if (distanceKind(g) != DistanceKind::None) return 0;
+        const bool voxels = g.isType<openvdb::BoolGrid>() || g.isType<openvdb::MaskGrid>() ||
+                            g.isType<openvdb::FloatGrid>() || g.isType<openvdb::DoubleGrid>();
+        return voxels ? 1 : 2;
+    };
+    openvdb::GridBase::Ptr best = grids.front();
+    for (const auto& g : grids)
+        if (std::make_pair(rank(*g), g->getName()) < std::make_pair(rank(*best), best->getName())) best = g;
+    return best;
+}
+
 namespace {
 template <typename T> bool isOne(const T& v)
 {
@@ -841,8 +857,8 @@ VdbBricks readVdbBricks(std::istream& in, const std::string& name, const std::st
 namespace {
 
 /// Every grid of the file read and checked; the ones asked for (all when
-/// `all`, else the one named, or the first in name order) returned, an
-/// instance with its parent's tree.
+/// `all`, else the one named, or the mainGrid()) returned, an instance with
+/// its parent's tree.
 openvdb::GridPtrVec readSelected(std::istream& in, uint64_t size, const std::string& name, const std::string& gridName,
                                  bool all)
 {
@@ -854,45 +870,33 @@ openvdb::GridPtrVec readSelected(std::istream& in, uint64_t size, const std::str
     else
         for (const auto& gd : reader.descriptors()) grids.push_back({gd, nullptr});
     if (grids.empty()) throw IoError(fmt::format("{}: the file holds no grids", name));
-    std::vector<const CheckedReader::Read*> chosen;
-    if (all) {
-        for (const auto& r : grids) chosen.push_back(&r);
-    } else if (gridName.empty()) {
-        // Without a name, the first grid in name order (as OpenVDB's File lists them).
-        const CheckedReader::Read* first = nullptr;
-        for (const auto& r : grids)
-            if (!first || r.gd.gridName() < first->gd.gridName()) first = &r;
-        chosen.push_back(first);
-    } else {
-        const CheckedReader::Read* named = nullptr;
+    const CheckedReader::Read* named = nullptr;
+    if (!gridName.empty() && !all) {
         for (const auto& r : grids)
             if (!named && r.gd.gridName() == gridName) named = &r;
         const std::string unique = GridDescriptor::stringAsUniqueName(gridName);
         for (const auto& r : grids)
             if (!named && r.gd.uniqueName() == unique) named = &r; // "name[1]": the second grid of that name
         if (!named) throw InvalidInput(fmt::format("{}: no grid named '{}'", name, gridName));
-        chosen.push_back(named);
     }
     std::map<std::string, openvdb::GridBase::Ptr> byUniqueName;
-    std::vector<openvdb::GridBase::Ptr> read(grids.size());
+    openvdb::GridPtrVec read(grids.size());
     for (size_t i = 0; i < grids.size(); ++i) {
         read[i] = reader.sequential() ? grids[i].grid : reader.read(grids[i].gd);
         byUniqueName[grids[i].gd.uniqueName()] = read[i];
     }
-    openvdb::GridPtrVec out;
-    for (const auto* c : chosen) {
-        openvdb::GridBase::Ptr grid = read[size_t(c - grids.data())];
-        if (c->gd.isInstance()) {
-            const std::string parent = c->gd.instanceParentName();
-            auto it = byUniqueName.find(parent);
-            if (it == byUniqueName.end())
-                throw IoError(fmt::format("{}: truncated or damaged: grid '{}' shares the tree of a grid '{}' the file lacks",
-                                          name, c->gd.gridName(), GridDescriptor::nameAsString(parent)));
-            grid->setTree(it->second->baseTreePtr());
-        }
-        out.push_back(grid);
+    for (size_t i = 0; i < grids.size(); ++i) {
+        if (!grids[i].gd.isInstance()) continue;
+        const std::string parent = grids[i].gd.instanceParentName();
+        auto it = byUniqueName.find(parent);
+        if (it == byUniqueName.end())
+            throw IoError(fmt::format("{}: truncated or damaged: grid '{}' shares the tree of a grid '{}' the file lacks",
+                                      name, grids[i].gd.gridName(), GridDescriptor::nameAsString(parent)));
+        read[i]->setTree(it->second->baseTreePtr());
     }
-    return out;
+    if (all) return read;
+    if (named) return {read[size_t(named - grids.data())]};
+    return {mainGrid(read)};
 }
 
 openvdb::GridPtrVec readGridsChecked(std::istream& in, uint64_t size, const std::string& name,

@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <utility>
 
 #include "svo/core/mesh_io.h"
 #include "svo/core/octree_file.h"
@@ -24,13 +23,7 @@ vdb::VdbBricks readBricks(const std::string& path, bool nano, const std::string&
 {
     if (field == FieldVoxels::Active) return nano ? vdb::readNanoVdbBricks(path, gridName) : vdb::readVdbBricks(path, gridName);
     const openvdb::GridPtrVec grids = nano ? vdb::readNanoVdbGrids(path, gridName) : vdb::readVdbGrids(path, gridName);
-    // Without a name, the first distance field in name order (an .nvdb
-    // level set's 'closest_triangle' sorts before its 'surface'), else the
-    // first grid, as readVdbBricks picks.
-    const auto isField = [](const openvdb::GridBase& g) { return vdb::distanceKind(g) != vdb::DistanceKind::None; };
-    openvdb::GridBase::Ptr grid = grids.front();
-    for (const auto& g : grids)
-        if (std::make_pair(!isField(*g), g->getName()) < std::make_pair(!isField(*grid), grid->getName())) grid = g;
+    const openvdb::GridBase::Ptr grid = vdb::mainGrid(grids); // the one named, or the file's main grid
     vdb::VdbBricks vb = vdb::bricksOfGrid(*grid, path);
     if (vdb::distanceKind(*grid) != vdb::DistanceKind::None) fieldVoxels = vdb::keepZeroCrossing(*grid, vb);
     return vb;

@@ -43,8 +43,7 @@ enum class FieldVoxels {
 /// @brief Reads any input as an octree, the kind chosen by the extension.
 /// @param voxelizer builds .vdb, .nvdb and mesh inputs, with @a options
 ///        (backend, interrupter, statistics)
-/// @param gridName  picks a .vdb or .nvdb grid (empty: the first in name order; with
-///        FieldVoxels::ZeroCrossing, the first distance field, if the file holds one)
+/// @param gridName  picks a .vdb or .nvdb grid (empty: the file's vdb::mainGrid)
 /// @param grid      how to voxelize a mesh
 /// @param field     what to keep of a grid of distances (other grids: their active voxels)
 /// @throw svo::IoError for a file that is missing, unreadable or damaged

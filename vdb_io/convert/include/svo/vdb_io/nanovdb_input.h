@@ -45,7 +45,7 @@ openvdb::GridPtrVec readNanoVdbGridsFromBytes(const std::string& bytes, const st
 
 /// @brief One grid's active voxels as bricks, as readVdbBricks gives them
 /// from a .vdb.
-/// @param gridName the grid; empty for the first in name order
+/// @param gridName the grid; empty for the file's mainGrid() (vdb_file.h)
 /// @throw as readNanoVdbGrids, and svo::InvalidInput as gridToBricks (a
 ///        transform or extent svo cannot take, too many tile bricks)
 VdbBricks readNanoVdbBricks(const std::string& path, const std::string& gridName = {});

@@ -68,6 +68,16 @@ struct VdbBricks {
     /// when its active voxels say everything.
     std::string valuesDropped;
 };
+/// @brief The grid a file stands for when no name picks one: its first
+/// distance field in name order (zero_crossing.h's DistanceKind: a level set
+/// or an unsigned field), else its first grid of voxels (bool, mask, float or
+/// double: a surface, solid or fog), else its first grid. Per-voxel channels
+/// (normal, color, triangle_id, closest_triangle) come last, though they sort
+/// before the grid they annotate.
+/// @param grids a file's grids, at least one
+/// @return one of @a grids
+openvdb::GridBase::Ptr mainGrid(const openvdb::GridPtrVec& grids);
+
 /// @brief The active voxels of one grid of a .vdb file as bricks, active
 /// tiles expanded.
 ///
@@ -78,7 +88,7 @@ struct VdbBricks {
 /// carry no checksum: a changed bit that still decodes to a consistent file
 /// (a voxel value, a mask bit in a file without the recorded count) cannot
 /// be found.
-/// @param gridName the grid; empty for the first in name order
+/// @param gridName the grid; empty for the file's mainGrid()
 /// @throw svo::IoError naming the file when it is missing or unreadable, has
 ///        no grids, or is cut short or damaged
 /// @throw svo::InvalidInput when no grid is named @a gridName, or the grid's
