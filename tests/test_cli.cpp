@@ -1148,6 +1148,29 @@ TEST_F(Cli, LevelSetsAndSolidsWriteNanoVdb)
     expectOnly({"ico.off", "f.nvdb", "f.vdb", "n.json", "v.json"});
 }
 
+// A region no triangle reaches writes the grids and sidecar of any other
+// region, empty: a pipeline that reads a region's 'normal' or
+// 'triangle_id' finds it whether or not the region holds voxels.
+TEST_F(Cli, AnEmptyRegionWritesTheGridsOfAnyOtherRegion)
+{
+    ASSERT_EQ(runSvo("scene icosphere --level 2 -o " + path("ico.off")).code, 0);
+    const std::string call = "voxelize " + path("ico.off") +
+                             " -r 32 --attributes normal triangle --region=1024,1024,1024,1032,1032,1032 -o ";
+    for (const char* backend : {"cpu", "compute"}) {
+        SCOPED_TRACE(backend);
+        const auto vdb = runSvo(call + path("e.vdb") + " --backend " + backend);
+        ASSERT_EQ(vdb.code, 0) << vdb.out;
+        EXPECT_NE(vdb.out.find("0 voxels"), std::string::npos) << vdb.out;
+        EXPECT_EQ(runSvo("info " + path("e.vdb") + " --grid normal").code, 0);
+        EXPECT_EQ(runSvo("info " + path("e.triangle.vdb") + " --grid triangle_id").code, 0);
+        ASSERT_EQ(runSvo(call + path("e.nvdb") + " --backend " + backend).code, 0);
+        for (const char* grid : {"surface", "normal", "triangle_id"})
+            EXPECT_EQ(runSvo("info " + path("e.nvdb") + " --grid " + grid).code, 0) << grid;
+        EXPECT_EQ(runCommand("nanovdb_validate " + path("e.nvdb") + " >/dev/null 2>&1 && echo valid"), "valid\n");
+    }
+    expectOnly({"ico.off", "e.vdb", "e.triangle.vdb", "e.nvdb"});
+}
+
 // A surface's .nvdb on a GL backend is laid out by the GPU builder (the -v
 // stages say so): the same bytes as the CPU backend's CPU layout, fog
 // included, and NanoVDB's validator passes it.

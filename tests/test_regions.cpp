@@ -175,7 +175,14 @@ TEST_P(Regions, SurfacesAndAttributesAreTheWholeGridsCutToTheBox)
                           w.second != value.second;
             }
             EXPECT_EQ(differ, 0u) << "voxels whose attributes differ";
+            EXPECT_EQ(part.channels(), kNormals | kTriangles);
         }
+        // A region no triangle reaches still has the channels, with no values.
+        o.region = IndexBox{{1 << 20, 1 << 20, 1 << 20}, {(1 << 20) + 8, (1 << 20) + 8, (1 << 20) + 8}};
+        const Octree none = v.voxelize(mesh, grid, o);
+        EXPECT_EQ(none.voxelCount(), 0u);
+        EXPECT_EQ(none.channels(), kNormals | kTriangles);
+        EXPECT_TRUE(checkOctree(none).empty());
     }
 }
 

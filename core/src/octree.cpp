@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 #include <functional>
+#include <tuple>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -53,14 +54,16 @@ bool VoxelAttributes::operator==(const VoxelAttributes& o) const
         return std::equal(a.begin(), a.end(), b.begin(), b.end(),
                           [](const Vec3f& x, const Vec3f& y) { return x.x == y.x && x.y == y.y && x.z == y.z; });
     };
-    return eq3(normals, o.normals) && triangles == o.triangles && eq3(colors, o.colors);
+    return channels() == o.channels() && eq3(normals, o.normals) && triangles == o.triangles && eq3(colors, o.colors);
 }
 
-uint32_t Octree::channels() const
+uint32_t VoxelAttributes::channels() const
 {
-    return (attributes.normals.empty() ? 0u : kNormals) | (attributes.triangles.empty() ? 0u : kTriangles) |
-           (attributes.colors.empty() ? 0u : kColors);
+    return computed | (normals.empty() ? 0u : kNormals) | (triangles.empty() ? 0u : kTriangles) |
+           (colors.empty() ? 0u : kColors);
 }
+
+uint32_t Octree::channels() const { return attributes.channels(); }
 
 uint64_t Octree::bytes() const
 {
@@ -225,6 +228,7 @@ Octree canonicalOrder(const Octree& src)
         level = std::move(next);
     }
     // Attribute blocks follow their bricks.
+    out.attributes.computed = src.attributes.computed;
     if (!src.attributes.empty()) {
         const auto offsets = brickVoxelOffsets(src);
         auto permute = [&](const auto& in, auto& result) {
@@ -380,10 +384,11 @@ std::vector<std::string> checkOctree(const Octree& o, size_t limit)
     for (size_t b = 0; b < o.bricks.size(); ++b)
         if (!brickRefs[b]) fail(fmt::format("brick {} is orphaned", b));
     const uint64_t voxels = o.voxelCount();
-    for (auto [size, name] : {std::pair{o.attributes.normals.size(), "normal"},
-                              std::pair{o.attributes.triangles.size(), "triangle"},
-                              std::pair{o.attributes.colors.size(), "colour"}})
-        if (size && size != voxels) fail(fmt::format("{} {} values for {} voxels", size, name, voxels));
+    // A channel computed holds a value for every voxel (none in an empty octree).
+    for (auto [size, bit, name] : {std::tuple{o.attributes.normals.size(), kNormals, "normal"},
+                                   std::tuple{o.attributes.triangles.size(), kTriangles, "triangle"},
+                                   std::tuple{o.attributes.colors.size(), kColors, "colour"}})
+        if ((o.channels() & bit) && size != voxels) fail(fmt::format("{} {} values for {} voxels", size, name, voxels));
     if (!problems.empty()) return problems;
 
     // Only voxels inside the grid's local range.

@@ -138,6 +138,7 @@ Octree parseOctree(const void* data, size_t size, const std::string& name)
     take(o.attributes.normals, kNormals);
     take(o.attributes.triangles, kTriangles);
     take(o.attributes.colors, kColors);
+    o.attributes.computed = h.channels; // also where no voxel holds them
     const auto problems = checkOctree(o, 1);
     if (!problems.empty()) throw fail(problems.front());
     return o;

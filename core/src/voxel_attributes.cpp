@@ -50,6 +50,7 @@ VoxelAttributes finishAttributes(const std::vector<AttributeSums>& sums, uint32_
                                           "use a finer grid or leave out the attribute channels",
                                           s[kSumCount], kFixedMaxContributions));
     VoxelAttributes a;
+    a.computed = channels;
     auto fixedVec = [](const AttributeSums& s, uint32_t at) {
         return Vec3f{float(int32_t(s[at])) / kFixedScale, float(int32_t(s[at + 1])) / kFixedScale,
                      float(int32_t(s[at + 2])) / kFixedScale};

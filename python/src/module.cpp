@@ -1067,8 +1067,9 @@ py::object voxelizeWith(svo::Voxelizer& v, const py::handle& vertices, const py:
             std::copy(octree.attributes.triangles.begin(), octree.attributes.triangles.end(), ids.mutable_data());
             out.triangle = ids;
         }
-        if (!octree.attributes.normals.empty()) out.normal = vectorArray(octree.attributes.normals);
-        if (!octree.attributes.colors.empty()) out.color = vectorArray(octree.attributes.colors);
+        // Each channel computed, an empty array where no voxel holds it (an empty region).
+        if (octree.channels() & svo::kNormals) out.normal = vectorArray(octree.attributes.normals);
+        if (octree.channels() & svo::kColors) out.color = vectorArray(octree.attributes.colors);
     }
     tagResult(out.grids, r, true);
     if (wantReport) out.report = reportOf(stats, *out.grids.front());

@@ -812,7 +812,7 @@ def _run(client, mesh, kind, tile, progress, output_dir, partition, keywords, ti
                 grid = _joined(grid, _grid_from_bytes(result))
             else:
                 parts, tile_arrays = result
-                # The plan's empty call makes no attribute grids: the first tile's starts each.
+                # Each tile's grids joined into the plan's empty ones (attributes included).
                 for name, part in parts.items():
                     grids[name] = _joined(grids.get(name), _grid_from_bytes(part))
                 if len(tile_arrays.get("ijk", ())):

@@ -364,6 +364,12 @@ def test_a_region_is_the_whole_grid_cut_to_its_box(voxelizer):
     assert as_set(svo.active_voxels(sdf_part)) == expected
     acc, part_acc = sdf.getConstAccessor(), sdf_part.getConstAccessor()
     assert all(acc.getValue(p) == part_acc.getValue(p) for p in expected)
+    # A region no triangle reaches has the same grids and arrays, empty.
+    nowhere = ((1024, 1024, 1024), (1032, 1032, 1032))
+    full = voxelizer.voxelize(v, t, resolution=48, region=box, attributes=("normal", "triangle"))
+    empty = voxelizer.voxelize(v, t, resolution=48, region=nowhere, attributes=("normal", "triangle"))
+    assert sorted(empty.grids) == sorted(full.grids) and "normal" in full.grids
+    assert empty.ijk.shape == (0, 3) and empty.normal.shape == (0, 3) and empty.triangle.shape == (0,)
     with pytest.raises(ValueError, match="region .*multiple of 8"):
         voxelizer.voxelize(v, t, resolution=48, region=((0, 0, 0), (8, 8, 12)))
     with pytest.raises(TypeError):

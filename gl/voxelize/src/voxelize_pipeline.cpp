@@ -176,6 +176,8 @@ Octree voxelizeMesh(Device& device, const TriangleMesh& mesh, const GridSpec& gr
     Octree octree = backend == Backend::Cpu
                         ? voxelizeOnCpu(mesh, grid, settings, checkpoint, stats, voxelList)
                         : voxelizeOnGpu(device.context(), mesh, grid, backend, settings, checkpoint, stats, voxelList);
+    // The channels asked for, also where no voxel holds them (an empty region).
+    octree.attributes.computed = availableChannels(mesh, settings.attributes);
     stats.startup = device.takeStartup(stats.warnings);
     stats.voxels = octree.voxelCount();
     stats.bricks = octree.bricks.size();

@@ -137,13 +137,14 @@ openvdb::GridPtrVec buildAttributeGrids(const Octree& o)
         return grid;
     };
     auto vec = [](const Vec3f& v) { return openvdb::Vec3s(v.x, v.y, v.z); };
-    if (!o.attributes.normals.empty()) {
+    // Every channel computed, an empty grid where no voxel holds it.
+    const uint32_t channels = o.channels();
+    if (channels & kNormals) {
         auto g = build(openvdb::Vec3s(0, 0, 0), o.attributes.normals, vec, "normal");
         g->setVectorType(openvdb::VEC_COVARIANT_NORMALIZE);
     }
-    if (!o.attributes.triangles.empty())
-        build(int32_t(-1), o.attributes.triangles, [](int32_t t) { return t; }, "triangle_id");
-    if (!o.attributes.colors.empty()) build(openvdb::Vec3s(0, 0, 0), o.attributes.colors, vec, "color");
+    if (channels & kTriangles) build(int32_t(-1), o.attributes.triangles, [](int32_t t) { return t; }, "triangle_id");
+    if (channels & kColors) build(openvdb::Vec3s(0, 0, 0), o.attributes.colors, vec, "color");
     return grids;
 }
 

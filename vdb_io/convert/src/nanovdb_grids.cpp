@@ -244,15 +244,17 @@ std::vector<OctreeChannel> octreeChannelVoxels(const Octree& o, const GridOption
                                                  [&](uint32_t b, uint32_t n) { return vec(values[offsets[b] + n]); });
         out.push_back(std::move(c));
     };
-    if (!a.normals.empty()) vectors("normal", a.normals);
-    if (!a.triangles.empty()) {
+    // Every channel computed, an empty grid where no voxel holds it.
+    const uint32_t channels = o.channels();
+    if (channels & kNormals) vectors("normal", a.normals);
+    if (channels & kTriangles) {
         OctreeChannel c;
         c.name = "triangle_id";
         c.vector = false;
         c.ints = octreeLeaves<int32_t>(o, -1, true, [&](uint32_t b, uint32_t n) { return a.triangles[offsets[b] + n]; });
         out.push_back(std::move(c));
     }
-    if (!a.colors.empty()) vectors("color", a.colors);
+    if (channels & kColors) vectors("color", a.colors);
     return out;
 }
 

@@ -58,7 +58,7 @@ WriteReport writeOctree(const std::string& path, const Octree& octree, const Gri
         vdb::WriteOptions wo;
         static_cast<GridOptions&>(wo) = grids;
         wo.metadata = metadata;
-        if (grids.attributes && !octree.attributes.triangles.empty()) wo.triangleSidecar = vdb::triangleSidecarPath(path);
+        if (grids.attributes && (octree.channels() & kTriangles)) wo.triangleSidecar = vdb::triangleSidecarPath(path);
         const vdb::WriteStats ws = vdb::writeVdb(path, octree, wo);
         report.sidecar = wo.triangleSidecar;
         report.sidecarBytes = ws.sidecarBytes;

@@ -51,17 +51,23 @@ static_assert(sizeof(Brick) == 64 && sizeof(Brick) == gpu::kBrickWords * 4);
 /// present in a finished octree. The shaders write it (gpu_layout.h).
 constexpr uint32_t kNoChild = gpu::kNoChild;
 
-/// @brief Optional per-voxel channels. Each is empty (not asked for, or the input
-/// lacks it) or holds one value per voxel, in voxel order: bricks in index
-/// order, and within a brick by bit index (brickVoxelOffsets gives where each
-/// brick starts).
+/// @brief Optional per-voxel channels. Each is empty (not asked for, the input
+/// lacks it, or no voxel holds it) or holds one value per voxel, in voxel
+/// order: bricks in index order, and within a brick by bit index
+/// (brickVoxelOffsets gives where each brick starts).
 struct VoxelAttributes {
     std::vector<Vec3f> normals;     ///< unit average of the covering triangles' normals (0 where they cancel or all are degenerate)
     std::vector<int32_t> triangles; ///< smallest index of a covering triangle
     std::vector<Vec3f> colors;      ///< average of the covering triangles' mean vertex colours
-    /// @brief Whether no channel is held.
+    /// AttributeChannel bits of the channels computed, kept where no voxel
+    /// holds a value (an empty region's result), so that its files have the
+    /// same grids as any other region's.
+    uint32_t computed = 0;
+    /// @brief Whether no voxel holds a channel value.
     bool empty() const { return normals.empty() && triangles.empty() && colors.empty(); }
-    /// @brief Whether every channel is equal, value for value.
+    /// @brief The AttributeChannel bits of the channels computed or holding values.
+    uint32_t channels() const;
+    /// @brief Whether the channels and every value are equal.
     bool operator==(const VoxelAttributes& o) const;
 };
 
@@ -95,7 +101,7 @@ struct Octree {
 
     /// @brief The voxels set in all bricks.
     uint64_t voxelCount() const;
-    /// @brief The AttributeChannel bits of the channels held.
+    /// @brief The AttributeChannel bits of the channels held (VoxelAttributes::channels).
     uint32_t channels() const;
     /// @brief The bytes of nodes, bricks and channels in memory.
     uint64_t bytes() const;
