@@ -5,22 +5,24 @@
 // whole by a workgroup. A shader of its own, as small as it can be: on an
 // H100 this pass ran 1.7-1.9 times slower inside one shader with the CPU
 // rasterizers' paths (bench/results/nvidia-h100/band_ab.md).
-layout(local_size_x = 64) in;
+layout(local_size_x = 32) in;
 #include "band_distance.glsl"
 
 void main()
 {
-    // A workgroup a brick of a triangle's grown box, a column of 8 centres a
-    // thread: the column first narrowed to the centres within the band of
-    // the triangle's box and of its plane (svo_box_run, svo_slab_run: the
-    // CPU rasterizers' tests, widened for rounding, so no kept distance
-    // changes), then each centre's box test before its distance. Without
-    // the narrowing, a slanted triangle's brick computed every centre the
-    // box test passed, about three times those within the band.
+    // A workgroup a brick of a triangle's grown box, a thread a centre of
+    // the item's part of the box: a slanted triangle's part of a brick is
+    // about 5x5x5 centres, which a thread a column of 8 left mostly idle
+    // (32 threads a centre each: 27 % less time on the bunny at 2048³, 42 %
+    // on the 1.3 M-triangle icosphere; bench/results/nvidia-h100/nanovdb/
+    // shader-ab-2026-12-05). Each centre is tested against the triangle's
+    // box and plane grown by the band (svo_slab_of: widened for rounding, so
+    // no kept distance changes) before its distance, and its square root is
+    // skipped where the square is beyond the band with a margin no rounding
+    // closes.
     // A workgroup takes a run of consecutive items, so each item's triangle
     // is found from the one before (a step or two), not by a search of all
     // triangles per item (21 dependent loads a thread on a 1.3 M-triangle mesh).
-    uint x = gl_LocalInvocationID.x >> 3u, y = gl_LocalInvocationID.x & 7u;
     uint first, end;
     itemRun(first, end);
     uint t = first < end ? triangleOfItem(first) : 0u;
@@ -36,24 +38,24 @@ void main()
         dvec3 brickLo = dvec3(b << kBrickLog2), brickHi = brickLo + 7.0LF;
         dvec3 gap = max(max(boxLo - brickHi, brickLo - boxHi), dvec3(0.0LF));
         double band2 = double(uBand) * double(uBand);
+        double keep2 = band2 * (1.0LF + 1e-5LF);
         if (dot(gap, gap) > band2) continue; // the whole brick is beyond the band from the triangle's box
-        // ... or from its plane, over the centres the box test can pass.
         dvec3 w = dvec3(uBand);
         svo_Slab slab = svo_slab_of(A, B, C, double(uBand));
         if (svo_box_beyond_slab(slab, max(brickLo, boxLo - w), min(brickHi, boxHi + w))) continue;
-        // The centres of the item's box only (the grown box, cut to the
-        // grid and to this brick), as the CPU's field takes them.
-        uvec3 c = (b << kBrickLog2) + uvec3(x, y, 0u);
-        if (any(lessThan(c.xy, lo.xy)) || any(greaterThanEqual(c.xy, lo.xy + size.xy))) continue;
-        double px = double(c.x), py = double(c.y), z0 = double(lo.z), z1 = double(lo.z + size.z - 1u);
-        if (!svo_box_run(boxLo, boxHi, px, py, band2, z0, z1) || !svo_slab_run(slab, px, py, z0, z1)) continue;
-        for (uint z = uint(z0 - brickLo.z); z <= uint(z1 - brickLo.z); ++z) {
-            dvec3 p = brickLo + dvec3(x, y, z);
+        uint count = size.x * size.y * size.z;
+        for (uint c = gl_LocalInvocationID.x; c < count; c += gl_WorkGroupSize.x) {
+            uvec3 v = lo + uvec3(c % size.x, (c / size.x) % size.y, c / (size.x * size.y));
+            dvec3 p = dvec3(v);
             dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));
             if (dot(g, g) > band2) continue;
-            float d = float(sqrt(svo_triangle_distance2(p, A, B, C)));
+            if (abs(dot(slab.n, p - slab.a)) > slab.limit) continue; // beyond the band of the plane
+            double d2 = svo_triangle_distance2(p, A, B, C);
+            if (d2 > keep2) continue; // beyond the band with a wide margin: no sqrt
+            float d = float(sqrt(d2));
             if (d > uBand) continue;
-            uint i = 512u * brick + ((x << kKeyLeafXShift) | (y << kKeyLeafYShift) | z);
+            uvec3 l = v & 7u;
+            uint i = 512u * brick + ((l.x << kKeyLeafXShift) | (l.y << kKeyLeafYShift) | l.z);
             if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));
             else if (distances[i] == floatBitsToUint(d)) atomicMin(closest[i], t);
         }

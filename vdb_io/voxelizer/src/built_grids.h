@@ -33,6 +33,8 @@ public:
     void add(gl::NanoKind kind, const gl::NanoLeaves& leaves, const gl::NanoGridHeader& header,
              const std::function<vdb::NanoHandle()>& onHost);
 
+    /// Whether the grids stay on the device (the constructor's @a onDevice).
+    bool onDevice() const { return onDevice_; }
     std::vector<vdb::NanoHandle>& host() { return host_; }
     const std::vector<gl::NanoGridBuffer>& device() const { return device_; }
     /// The first grid kept on the device: its active voxels and leaves (the
