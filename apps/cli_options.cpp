@@ -301,8 +301,8 @@ void addGridOptions(CLI::App& cmd, GridRequest& request)
 void addGridNameOption(CLI::App& cmd, std::string& gridName)
 {
     cmd.add_option("--grid", gridName,
-                   "Grid of a .vdb or .nvdb input (default: the first distance field in name order, else the first "
-                   "surface, solid or fog grid, else the first grid)");
+                   "Grid of a .vdb or .nvdb input (default: the first level set in name order, else the first "
+                   "surface, solid, fog or distance grid, else the first grid)");
 }
 
 std::string nonEmptyMeshPath(const std::string& value)

@@ -512,8 +512,8 @@ TEST(VdbIo, ADeviceNamedVdbIsRefusedAsADevice)
     EXPECT_THROW(vdb::readVdbGrids(z), svo::Error);
 }
 
-// Without a grid name a file stands for its main grid: a distance field,
-// else a grid of voxels, else the first grid; per-voxel channels, which sort
+// Without a grid name a file stands for its main grid: a level set, else a
+// grid of voxels (an unsigned field among them), else the first grid; per-voxel channels, which sort
 // before the grid they annotate, are never picked over it.
 TEST(VdbIo, AFileWithoutAGridNameStandsForItsMainGrid)
 {
@@ -539,6 +539,8 @@ TEST(VdbIo, AFileWithoutAGridNameStandsForItsMainGrid)
     EXPECT_EQ(vdb::mainGrid(List{color, closest, surface, density}), density);
     EXPECT_EQ(vdb::mainGrid(List{closest, color, surface}), surface);
     EXPECT_EQ(vdb::mainGrid(List{color, closest}), closest); // no grid of voxels: the first in name order
+    auto distance = named(openvdb::FloatGrid::create(3.f), "distance"); // an unsigned field's grid
+    EXPECT_EQ(vdb::mainGrid(List{closest, distance}), distance);
 
     // The readers pick the same.
     const test::TempDir tmp("vdb_main_grid");

@@ -16,7 +16,6 @@
 #include "svo/core/atomic_file.h"
 #include "svo/core/error.h"
 #include "svo/vdb_io/grid_builder.h"
-#include "svo/vdb_io/zero_crossing.h"
 #include "parallel_buffers.h"
 
 namespace svo::vdb {
@@ -785,9 +784,10 @@ openvdb::GridPtrVec readVdbGrids(const std::string& path, const std::string& gri
 
 openvdb::GridBase::Ptr mainGrid(const openvdb::GridPtrVec& grids)
 {
-    // Distance fields first, then grids of voxels, then per-voxel channels; in name order within each.
+    // Level sets first, then grids of voxels, then per-voxel channels; in
+    // name order within each. Metadata and types only: no value is read.
     auto rank = [](const openvdb::GridBase& g) {
-        if (distanceKind(g) != DistanceKind::None) return 0;
+        if (g.getGridClass() == openvdb::GRID_LEVEL_SET) return 0;
         const bool voxels = g.isType<openvdb::BoolGrid>() || g.isType<openvdb::MaskGrid>() ||
                             g.isType<openvdb::FloatGrid>() || g.isType<openvdb::DoubleGrid>();
         return voxels ? 1 : 2;

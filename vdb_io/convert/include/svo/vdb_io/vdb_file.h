@@ -68,12 +68,12 @@ struct VdbBricks {
     /// when its active voxels say everything.
     std::string valuesDropped;
 };
-/// @brief The grid a file stands for when no name picks one: its first
-/// distance field in name order (zero_crossing.h's DistanceKind: a level set
-/// or an unsigned field), else its first grid of voxels (bool, mask, float or
-/// double: a surface, solid or fog), else its first grid. Per-voxel channels
-/// (normal, color, triangle_id, closest_triangle) come last, though they sort
-/// before the grid they annotate.
+/// @brief The grid a file stands for when no name picks one: its first level
+/// set in name order, else its first grid of voxels (bool, mask, float or
+/// double: a surface, solid, fog or unsigned distance field), else its first
+/// grid. Per-voxel channels (normal, color, triangle_id, closest_triangle)
+/// come last, though they sort before the grid they annotate. Reads the
+/// grids' types and classes only, no values.
 /// @param grids a file's grids, at least one
 /// @return one of @a grids
 openvdb::GridBase::Ptr mainGrid(const openvdb::GridPtrVec& grids);
