@@ -1,5 +1,5 @@
 // svo voxelize [MESH] -o out.vdb|out.nvdb|out.svo [--resolution N | --voxel-size h]
-//              [--sdf | --udf | --fill solid] [--band W | --exterior-band A --interior-band B]
+//              [--sdf | --udf | --fill solid | --fill band] [--band W | --exterior-band A --interior-band B]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <filesystem>
@@ -42,7 +42,8 @@ struct VoxelizeArgs {
     std::string fill = "surface";
     FieldArgs levelSet; ///< bands, sign, --udf and --closest-triangle
     bool udf() const { return levelSet.options.unsignedDistance; }
-    bool field() const { return sdf || udf() || fill == "solid"; }
+    bool band() const { return fill == "band"; }
+    bool field() const { return sdf || udf() || fill == "solid" || band(); }
     /// Whether a .vdb output gets a triangle sidecar (reader_grids.h).
     bool triangleGrids() const
     {
@@ -93,10 +94,14 @@ nlohmann::json stagesJson(const std::vector<StageTime>& stages)
 /// Refuses combinations that have no meaning before any work is done.
 void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
 {
-    const int modes = int(a.sdf) + int(a.udf()) + int(a.fill == "solid");
-    if (modes > 1) throw InvalidInput("--sdf, --udf and --fill solid each make a different grid; give one of them");
+    const int modes = int(a.sdf) + int(a.udf()) + int(a.fill == "solid") + int(a.band());
+    if (modes > 1)
+        throw InvalidInput("--sdf, --udf, --fill solid and --fill band each make a different grid; give one of them");
     const bool bands = bandsGiven(cmd);
-    if (bands && !a.sdf && !a.udf()) throw InvalidInput("--band, --exterior-band and --interior-band apply to --sdf and --udf");
+    if (bands && !a.sdf && !a.udf() && !a.band())
+        throw InvalidInput("--band, --exterior-band and --interior-band apply to --sdf, --udf and --fill band");
+    if (a.band() && (cmd.count("--exterior-band") || cmd.count("--interior-band")))
+        throw InvalidInput("--fill band takes --band, its half width; it has no inside or outside");
     if (cmd.count("--band") && (cmd.count("--exterior-band") || cmd.count("--interior-band")))
         throw InvalidInput("--band sets both bands; give it or --exterior-band/--interior-band, not both");
     if (a.udf() && cmd.count("--interior-band")) throw InvalidInput("--interior-band applies to --sdf; --udf has no inside");
@@ -110,15 +115,18 @@ void checkFieldArgs(const VoxelizeArgs& a, const CLI::App& cmd)
         throw InvalidInput("--part-of-closed-mesh applies to --sdf and --fill solid");
     if (!a.field()) return;
     checkFieldMode(a.backend.voxelizeOptions()); // --mode thin: the library's rule, as svo validate --sdf checks it
-    if (a.backend.settings.attributes) throw InvalidInput("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid");
-    if (cmd.count("--fog")) throw InvalidInput("--fog applies to surface voxels, not to --sdf, --udf or --fill solid");
-    if (cmd.count("--topology") && a.fill != "solid")
-        throw InvalidInput("--topology applies to surface voxels and --fill solid, not to --sdf or --udf");
+    if (a.backend.settings.attributes)
+        throw InvalidInput("--attributes applies to surface voxels, not to --sdf, --udf or --fill solid or band");
+    if (cmd.count("--fog")) throw InvalidInput("--fog applies to surface voxels, not to --sdf, --udf or --fill solid or band");
+    if (cmd.count("--topology") && a.fill == "surface")
+        throw InvalidInput("--topology applies to surface voxels and --fill solid or band, not to --sdf or --udf");
     if (!a.output.empty() && outputFormat(a.output) == OutputFormat::Svo)
-        throw InvalidInput(fmt::format("{}: --sdf, --udf and --fill solid write grids; name a .vdb or .nvdb file", a.output));
+        throw InvalidInput(
+            fmt::format("{}: --sdf, --udf and --fill solid or band write grids; name a .vdb or .nvdb file", a.output));
     // A level set's band comes from the triangles, not from rasterized voxels.
-    if ((a.sdf || a.udf()) && (cmd.count("--conservative") || a.backend.settings.backend == Backend::Raster))
-        throw InvalidInput("--sdf and --udf run compute passes only: --backend raster and --conservative do not apply");
+    if ((a.sdf || a.udf() || a.band()) && (cmd.count("--conservative") || a.backend.settings.backend == Backend::Raster))
+        throw InvalidInput(
+            "--sdf, --udf and --fill band run compute passes only: --backend raster and --conservative do not apply");
 }
 
 nlohmann::json startupJson(const StartupStats& s)
@@ -206,13 +214,13 @@ struct GridCounts {
     }
 };
 
-/// svo voxelize --sdf | --udf | --fill solid: grids from the library, written as .vdb or .nvdb.
+/// svo voxelize --sdf | --udf | --fill solid | --fill band: grids from the library, written as .vdb or .nvdb.
 void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& call, TriangleMesh& mesh, const StageTime& load,
               const std::string& scene,
               const GridSpec& grid, const GridRequest& request, const std::string& output, bool timingOnly,
               std::chrono::steady_clock::time_point start, OutputBatch& outputs)
 {
-    const bool solid = a.fill == "solid";
+    const bool solid = a.fill == "solid", band = a.band();
 
     VoxelizeStats stats;
     // .nvdb: NanoVDB grids laid out from the field's bricks, no OpenVDB tree.
@@ -222,12 +230,18 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
         nanoGrids.clear();
         if (nano && solid)
             nanoGrids.push_back(call.voxelizer.solidNanoVdb(mesh, grid, call.options, ls.sign, a.out.grids.topology));
+        else if (nano && band)
+            nanoGrids.push_back(
+                call.voxelizer.bandNanoVdb(mesh, grid, ls.exteriorBand, call.options, a.out.grids.topology));
         else if (nano)
             nanoGrids = call.voxelizer.levelSetNanoVdb(mesh, grid, ls, call.options);
         if (nano) return openvdb::GridPtrVec{};
         if (solid)
             return openvdb::GridPtrVec{
                 vdb::withTopology(call.voxelizer.solid(mesh, grid, call.options, ls.sign), a.out.grids.topology)};
+        if (band)
+            return openvdb::GridPtrVec{vdb::withTopology(
+                call.voxelizer.band(mesh, grid, ls.exteriorBand, call.options), a.out.grids.topology)};
         return call.voxelizer.levelSet(mesh, grid, ls, call.options);
     });
     // Closest triangles (Int32Grid) beside the output: python3-openvdb opens the output whole.
@@ -258,7 +272,7 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
     const bool boolGrid = a.out.grids.topology == GridOptions::Topology::Bool;
     if (!a.json.empty()) {
         nlohmann::json report = runJson(scene, triangleCount, grid, stats, a.repeat, wall);
-        report.update(nlohmann::json{{"kind", solid ? "solid" : a.udf() ? "udf" : "sdf"},
+        report.update(nlohmann::json{{"kind", solid ? "solid" : band ? "band" : a.udf() ? "udf" : "sdf"},
                                      {"exterior_band", ls.exteriorBand},
                                      {"interior_band", ls.interiorBand},
                                      {"sign", stats.sign},
@@ -279,6 +293,7 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
                        timingOnly ? std::string("nothing written (--repeat without -o)")
                                   : fmt::format("wrote {}", output),
                        solid ? fmt::format("solid, {}", boolGrid ? "bool" : "mask")
+                       : band ? fmt::format("band, {}", boolGrid ? "bool" : "mask")
                        : a.udf() ? std::string("unsigned distance")
                                  : std::string("level set"),
                        counts.name, thousands(counts.voxels),
@@ -290,6 +305,9 @@ void runField(const VoxelizeArgs& a, const LevelSetOptions& ls, LibraryCall& cal
         printHeading(scene, triangleCount, grid, request);
         if (solid)
             fmt::print("  {:<11} solid: inside and surface voxels ({})\n", "grid kind",
+                       boolGrid ? "BoolGrid" : "MaskGrid");
+        else if (band)
+            fmt::print("  {:<11} band: voxels nearer than {} voxels to a triangle ({})\n", "grid kind", ls.exteriorBand,
                        boolGrid ? "BoolGrid" : "MaskGrid");
         else if (a.udf())
             fmt::print("  {:<11} unsigned distance, band {} voxels\n", "grid kind", ls.exteriorBand);
@@ -331,6 +349,7 @@ void runVoxelize(const VoxelizeArgs& a, const CLI::App& cmd)
     // at the end: a failure or an interrupt before then replaces none of them.
     OutputBatch outputs({a.output, a.json});
     LibraryCall call(a.backend, a.fill == "solid" ? "filling the solid"
+                                : a.band()        ? "finding the band"
                                 : a.field()       ? "computing the distance field"
                                                   : "voxelizing");
     // EGL set-up beside loading the mesh; joined (a device error rethrown) before the first call.
@@ -500,9 +519,10 @@ void addVoxelizeCommand(CLI::App& app)
     addOptions(*cmd, args->levelSet.options, {"unsigned"}, "within the band (grid 'distance') instead of voxels");
     cmd->add_option("--fill", args->fill,
                     "surface: the voxels the triangles touch; solid: also every voxel whose centre is inside "
-                    "(grid 'solid', whole regions as tiles)")
-        ->check(CLI::IsMember({"surface", "solid"}));
-    addBandOptions(*cmd, args->levelSet, "for --sdf and --udf");
+                    "(grid 'solid', whole regions as tiles); band: every voxel whose centre is nearer than --band "
+                    "voxels to a triangle (grid 'band': the active voxels of --udf, without distances)")
+        ->check(CLI::IsMember({"surface", "solid", "band"}));
+    addBandOptions(*cmd, args->levelSet, "for --sdf, --udf and --fill band");
     addOptions(*cmd, args->levelSet.options, {"sign", "winding_accuracy", "part_of_closed_mesh"},
                "for --sdf and --fill solid");
     addOptions(*cmd, args->levelSet.options, {"closest_triangle"}, "with --sdf or --udf");

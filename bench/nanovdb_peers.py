@@ -3,7 +3,7 @@
 
 For every mesh and resolution N (svo's --resolution; the harness takes the
 same voxel size, bench/nanovdb_mesh_to_grid.cu):
-  topology, band 3   MeshToGrid getHandle()            svo --udf --band 3 (its active voxels)
+  topology, band 3   MeshToGrid getHandle()            svo --fill band --band 3 --topology mask
   UDF, band 3        MeshToGrid getHandleAndUDF()      svo --udf --band 3
   surface            MeshToGrid band 0                 svo's conservative surface
   surface's ball     MeshToGrid band 0.867 (sqrt(3)/2) svo's conservative surface (must be a subset)
@@ -100,18 +100,28 @@ def write_md(path, title, band, runs, rows):
     with open(path + ".tmp", "w") as f:
         f.write(f"# {title}\n\nBand {band:g}, medians of {runs} runs after a warm-up; "
                 "ratio = MeshToGrid / svo (above 1: svo faster). GPU ms: the mesh already on the GPU.\n\n")
-        f.write("| mesh | N | svo UDF GPU ms | of which band distance / grid | MeshToGrid topology GPU ms | ratio | MeshToGrid UDF GPU ms | ratio "
-                "| voxels both / only svo / only MeshToGrid | UDF max diff | svo .nvdb end to end ms | before ms | gain "
-                "| MeshToGrid end to end ms |\n|" + "---|" * 14 + "\n")
+        f.write("## Topology: svo's `--fill band` (ValueMask) against MeshToGrid's getHandle()\n\n"
+                "| mesh | N | svo band GPU ms | of which band distance / grid | MeshToGrid topology GPU ms | ratio "
+                "| voxels both / only svo / only MeshToGrid | svo band .nvdb end to end ms |\n|" + "---|" * 8 + "\n")
         for r in rows:
-            s, t, u = r["svo_udf"], r["m2g_topology"], r["m2g_udf"]
-            g = svo_gpu_ms(s) if s else None
+            b, t = r.get("svo_band"), r["m2g_topology"]
+            g = svo_gpu_ms(b) if b else None
             sets = f"{t['both']} / {t['only_svo']} / {t['only_meshtogrid']}" if t and "both" in t else "—"
+            split = (f"{fmt(stage_gpu_ms(b, 'band distance'))} / {fmt(stage_gpu_ms(b, 'nanovdb grid (gpu)'))}"
+                     if b else "—")
+            f.write(f"| {r['mesh']} | {r['res']} | {fmt(g)} | {split} | {fmt(t and t['gpu_ms_median'])} "
+                    f"| {ratio(t and t['gpu_ms_median'], g)} | {sets} | {fmt(b and b['end_to_end_ms'])} |\n")
+        f.write("\n## Unsigned distances: svo's `--udf` against MeshToGrid's getHandleAndUDF()\n\n"
+                "| mesh | N | svo UDF GPU ms | of which band distance / grid | MeshToGrid UDF GPU ms | ratio "
+                "| UDF max diff | svo .nvdb end to end ms | before ms | gain | MeshToGrid end to end ms |\n|" + "---|" * 11 + "\n")
+        for r in rows:
+            s, u = r["svo_udf"], r["m2g_udf"]
+            g = svo_gpu_ms(s) if s else None
             e2e = s["end_to_end_ms"] if s else None
             split = (f"{fmt(stage_gpu_ms(s, 'band distance'))} / {fmt(stage_gpu_ms(s, 'nanovdb grid (gpu)'))}"
                      if s else "—")
-            f.write(f"| {r['mesh']} | {r['res']} | {fmt(g)} | {split} | {fmt(t and t['gpu_ms_median'])} | {ratio(t and t['gpu_ms_median'], g)} "
-                    f"| {fmt(u and u['gpu_ms_median'])} | {ratio(u and u['gpu_ms_median'], g)} | {sets} "
+            f.write(f"| {r['mesh']} | {r['res']} | {fmt(g)} | {split} "
+                    f"| {fmt(u and u['gpu_ms_median'])} | {ratio(u and u['gpu_ms_median'], g)} "
                     f"| {fmt(u and u.get('udf_max_abs_diff'), 6)} | {fmt(e2e)} | {fmt(r['before_udf_ms'])} "
                     f"| {ratio(r['before_udf_ms'], e2e)} | {fmt(u and u['end_to_end_ms'])} |\n")
         f.write("\n## Surface: svo's conservative surface against MeshToGrid with band 0\n\n")
@@ -152,11 +162,14 @@ def main():
         for res in a.res:
             with tempfile.TemporaryDirectory() as tmp:
                 udf_nvdb, surf_nvdb = os.path.join(tmp, "udf.nvdb"), os.path.join(tmp, "surface.nvdb")
+                band_nvdb = os.path.join(tmp, "band.nvdb")
                 udf_args = ["--udf", "--band", str(a.band)]
                 s_udf = svo_run(a, mesh, res, udf_args, udf_nvdb, tmp)
+                s_band = svo_run(a, mesh, res, ["--fill", "band", "--band", str(a.band), "--topology", "mask"],
+                                 band_nvdb, tmp)
                 # ValueMask topology: the harness compares mask or float grids.
                 s_surf = svo_run(a, mesh, res, ["--topology", "mask"], surf_nvdb, tmp)
-                m_top = m2g_run(a, mesh, res, a.band, False, udf_nvdb if s_udf else None, tmp)
+                m_top = m2g_run(a, mesh, res, a.band, False, band_nvdb if s_band else None, tmp)
                 m_udf = m2g_run(a, mesh, res, a.band, True, udf_nvdb if s_udf else None, tmp)
                 m_surf = m2g_run(a, mesh, res, 0.0, False, surf_nvdb if s_surf else None, tmp)
                 # Every voxel whose cube meets a triangle has its centre within
@@ -164,7 +177,7 @@ def main():
                 # must hold svo's conservative surface (none only in svo's).
                 m_ball = m2g_run(a, mesh, res, HALF_DIAGONAL, False, surf_nvdb if s_surf else None, tmp)
                 b_udf = before_ms(a, mesh, res, udf_args, tmp)
-                row = dict(mesh=os.path.basename(mesh), res=res, svo_udf=s_udf, svo_surface=s_surf, m2g_topology=m_top,
+                row = dict(mesh=os.path.basename(mesh), res=res, svo_udf=s_udf, svo_band=s_band, svo_surface=s_surf, m2g_topology=m_top,
                            m2g_udf=m_udf, m2g_surface=m_surf, m2g_half_diagonal=m_ball,
                            before_udf_ms=b_udf)
                 rows.append(row)
@@ -172,6 +185,7 @@ def main():
                     log.write(json.dumps(row) + "\n")
                     log.flush()
                 print(f"{row['mesh']} {res}: svo udf {fmt(s_udf and svo_gpu_ms(s_udf))} GPU ms, "
+                      f"band {fmt(s_band and svo_gpu_ms(s_band))}, "
                       f"m2g topology {fmt(m_top and m_top['gpu_ms_median'])}, udf {fmt(m_udf and m_udf['gpu_ms_median'])}",
                       flush=True)
                 write_md(a.md, a.title, a.band, a.runs, rows)

@@ -1148,6 +1148,53 @@ TEST_F(Cli, LevelSetsAndSolidsWriteNanoVdb)
     expectOnly({"ico.off", "f.nvdb", "f.vdb", "n.json", "v.json"});
 }
 
+// --fill band: the voxels nearer than --band to a triangle, the active
+// voxels of --udf with that band, as a topology grid 'band' (.vdb and
+// .nvdb, mask or bool); the same bytes on the CPU and compute backends and
+// in regions under a GPU memory budget; NanoVDB's validator passes it.
+TEST_F(Cli, ABandIsTheUnsignedFieldsActiveVoxels)
+{
+    ASSERT_EQ(runSvo("scene icosphere --level 3 -o " + path("ico.off")).code, 0);
+    const std::string call = "voxelize " + path("ico.off") + " -r 40 --band 2.5 ";
+    auto voxels = [&](const std::string& json) {
+        const std::string text = runCommand("cat " + path(json));
+        const auto at = text.find("\"active_voxels\": ");
+        return at == std::string::npos ? std::string() : text.substr(at, text.find_first_of(",\n", at) - at);
+    };
+    ASSERT_EQ(runSvo(call + "--udf -o " + path("u.vdb") + " --json " + path("u.json")).code, 0);
+    ASSERT_FALSE(voxels("u.json").empty());
+    const std::vector<std::string> files = {"cpu.nvdb", "compute.nvdb", "budget.nvdb"};
+    for (const std::string topology : {"mask", "bool"}) {
+        SCOPED_TRACE(topology);
+        const std::string band = call + "--fill band --topology " + topology + " ";
+        for (const char* backend : {"cpu", "compute"}) {
+            const auto r = runSvo(band + "--backend " + backend + " -o " + path(std::string(backend) + ".nvdb") +
+                                  " --json " + path("b.json"));
+            ASSERT_EQ(r.code, 0) << r.out;
+            EXPECT_NE(r.out.find("band, " + topology + " 'band'"), std::string::npos) << r.out;
+            EXPECT_EQ(voxels("b.json"), voxels("u.json")) << backend;
+        }
+        ASSERT_EQ(runSvo(band + "--backend compute --gpu-memory 1M -o " + path("budget.nvdb")).code, 0);
+        for (const auto& f : files)
+            EXPECT_EQ(runCommand("nanovdb_validate " + path(f) + " >/dev/null 2>&1 && echo valid"), "valid\n") << f;
+        EXPECT_EQ(runCommand("cmp " + path("cpu.nvdb") + " " + path("compute.nvdb") + " && echo same"), "same\n");
+        EXPECT_EQ(runCommand("cmp " + path("cpu.nvdb") + " " + path("budget.nvdb") + " && echo same"), "same\n");
+        ASSERT_EQ(runSvo(band + "-o " + path("b.vdb") + " --json " + path("b.json")).code, 0);
+        EXPECT_EQ(voxels("b.json"), voxels("u.json"));
+        EXPECT_NE(runSvo("info " + path("b.vdb")).out.find("grid 'band' (Tree_" + topology), std::string::npos);
+    }
+    // What --fill band does not take, refused before any work.
+    for (const std::string bad : {"--fill band --interior-band 2 -o " + path("x.vdb"),
+                                  "--fill band --closest-triangle -o " + path("x.vdb"),
+                                  "--fill band --sign winding -o " + path("x.vdb"),
+                                  "--fill band --udf -o " + path("x.vdb"), "--fill band -o " + path("x.svo")}) {
+        const auto r = runSvo(call + bad);
+        EXPECT_NE(r.code, 0) << bad;
+        EXPECT_NE(r.out.find("error"), std::string::npos) << bad << ": " << r.out;
+    }
+    expectOnly({"ico.off", "u.vdb", "u.json", "cpu.nvdb", "compute.nvdb", "budget.nvdb", "b.json", "b.vdb"});
+}
+
 // A region no triangle reaches writes the grids and sidecar of any other
 // region, empty: a pipeline that reads a region's 'normal' or
 // 'triangle_id' finds it whether or not the region holds voxels.

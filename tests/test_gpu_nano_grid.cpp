@@ -913,6 +913,77 @@ TEST_F(GpuNanoGrid, FrontDoorUnsignedFieldsEqualTheCpuLayout)
         }
 }
 
+/// A band's topology (Voxelizer::bandNanoVdb, `--fill band`): on a GL
+/// backend its leaves stay on the device without values, and its distance
+/// pass skips triangles at voxels already in the band; the voxels must be
+/// exactly the unsigned field's active ones (the full pass's, every
+/// distance the least), the grid the CPU backend's bytes and the bytes kept
+/// on the device, mask and bool alike, and band()'s OpenVDB grid the same voxels.
+TEST_F(GpuNanoGrid, FrontDoorBandsAreTheUnsignedFieldsActiveVoxels)
+{
+    Voxelizer voxelizer;
+    for (const auto& [name, mesh] : frontDoorScenes())
+        for (const auto topology : {GridOptions::Topology::Mask, GridOptions::Topology::Bool}) {
+            const bool mask = topology == GridOptions::Topology::Mask;
+            SCOPED_TRACE(name + (mask ? ", mask" : ", bool"));
+            const GridSpec grid = makeGrid(mesh, {60, 0.0});
+            const double width = 2.5;
+            VoxelizeStats stats;
+            VoxelizeOptions options;
+            options.backend = Backend::Compute;
+            options.stats = &stats;
+            std::vector<vdb::NanoHandle> gpu;
+            gpu.push_back(voxelizer.bandNanoVdb(mesh, grid, width, options, topology));
+            EXPECT_TRUE(hasStage(stats, "band leaves"));
+            EXPECT_TRUE(hasStage(stats, "nanovdb grid (gpu)"));
+            VoxelizeOptions cpuOptions;
+            cpuOptions.backend = Backend::Cpu;
+            std::vector<vdb::NanoHandle> cpu;
+            cpu.push_back(voxelizer.bandNanoVdb(mesh, grid, width, cpuOptions, topology));
+            expectSameBytes(gpu, cpu, written);
+            expectSameAsKept(keptOnDevice([&](const NanoGridsOnDevice& use) {
+                                 voxelizer.bandNanoVdbOnDevice(mesh, grid, width, options, topology, use);
+                             }),
+                             gpu);
+            LevelSetOptions ls;
+            ls.unsignedDistance = true;
+            ls.exteriorBand = width;
+            VoxelizeStats udfStats;
+            const auto udf = frontDoorLevelSet(voxelizer, mesh, grid, ls, udfStats);
+            const auto* distance = udf.at(0).grid<float>();
+            ASSERT_NE(distance, nullptr);
+            ASSERT_GT(distance->activeVoxelCount(), 1000u);
+            EXPECT_EQ(gpu[0].gridMetaData()->shortGridName(), std::string("band"));
+            EXPECT_EQ(gpu[0].gridMetaData()->activeVoxelCount(), distance->activeVoxelCount());
+            EXPECT_EQ(stats.voxels, distance->activeVoxelCount());
+            uint64_t missing = 0;
+            auto expectHolds = [&](auto* band) {
+                ASSERT_NE(band, nullptr);
+                EXPECT_TRUE(nanovdb::isValid(*band, true, true));
+                auto acc = band->getAccessor();
+                const auto* leaf = distance->tree().getFirstNode<0>();
+                for (uint32_t i = 0; i < distance->tree().nodeCount(0); ++i, ++leaf)
+                    for (auto it = leaf->beginValueOn(); it; ++it)
+                        if (!acc.isActive(it.getCoord()) && ++missing <= 3)
+                            ADD_FAILURE() << "voxel " << it.getCoord()[0] << ", " << it.getCoord()[1] << ", "
+                                          << it.getCoord()[2] << " of the field is not in the band";
+            };
+            if (mask) expectHolds(gpu[0].grid<nanovdb::ValueMask>());
+            else expectHolds(gpu[0].grid<bool>());
+            EXPECT_EQ(missing, 0u);
+            const openvdb::MaskGrid::Ptr vdbBand = voxelizer.band(mesh, grid, width, options);
+            EXPECT_EQ(vdbBand->getName(), "band");
+            EXPECT_EQ(vdbBand->activeVoxelCount(), distance->activeVoxelCount());
+            auto acc = distance->getAccessor();
+            uint64_t outside = 0;
+            for (auto it = vdbBand->cbeginValueOn(); it; ++it) {
+                const openvdb::Coord c = it.getCoord();
+                outside += !acc.isActive(nanovdb::Coord(c.x(), c.y(), c.z()));
+            }
+            EXPECT_EQ(outside, 0u) << "band() voxels that are not the field's";
+        }
+}
+
 /// A signed field through the front door on a GL backend. Signed by parity
 /// (closed meshes), its band stays on the device, the inside voxels negated
 /// there, and the host flood fills the grid read back ("nanovdb flood

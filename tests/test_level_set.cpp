@@ -176,14 +176,9 @@ TEST(LevelSet, ManyWorkItemsPerWorkgroupLoseNoBandVoxel)
     expectLevelSetMatchesCgal(v, icosphere({0.1, -0.2, 0.3}, 1.0, 7), 40, 3, 3);
 }
 
-// The distance pass cuts its work two ways, a workgroup per brick of each
-// triangle's grown box (GPUs) or a thread per small triangle (CPU
-// rasterizers; FieldWork). The renderer picks one, so CI's llvmpipe would
-// never run the GPUs' cut: both run here, on a mesh of small triangles (an
-// icosphere) joined with one of large ones (a box), and must give the same
-// field bit for bit: distances, closest triangles, band masks and parity
-// crossings. The cut the renderer picks is the one checked against CGAL above.
-TEST(LevelSet, BothCutsOfTheDistanceWorkGiveTheSameField)
+/// Small triangles (an icosphere) joined with large ones (a box), and a
+/// lone slanted triangle, a sliver and a needle: both cuts' cases.
+TriangleMesh smallAndLargeTriangles()
 {
     TriangleMesh mesh = icosphere({0.1, -0.2, 0.3}, 1.0, 4);
     const TriangleMesh cube = box({-1.3, -1.1, -0.9}, {0.4, 0.2, 1.1});
@@ -200,6 +195,19 @@ TEST(LevelSet, BothCutsOfTheDistanceWorkGiveTheSameField)
         mesh.positions.insert(mesh.positions.end(), t.begin(), t.end());
         mesh.triangles.push_back({first, first + 1, first + 2});
     }
+    return mesh;
+}
+
+// The distance pass cuts its work two ways, a workgroup per brick of each
+// triangle's grown box (GPUs) or a thread per small triangle (CPU
+// rasterizers; FieldWork). The renderer picks one, so CI's llvmpipe would
+// never run the GPUs' cut: both run here, on a mesh of small triangles (an
+// icosphere) joined with one of large ones (a box), and must give the same
+// field bit for bit: distances, closest triangles, band masks and parity
+// crossings. The cut the renderer picks is the one checked against CGAL above.
+TEST(LevelSet, BothCutsOfTheDistanceWorkGiveTheSameField)
+{
+    const TriangleMesh mesh = smallAndLargeTriangles();
     const GridSpec grid = makeGrid(mesh, GridRequest{48, 0});
     gl::FieldRequest request;
     for (uint32_t z = 0; z * 8 < grid.dims[2]; ++z)
@@ -251,6 +259,52 @@ TEST(LevelSet, BothCutsOfTheDistanceWorkGiveTheSameField)
         }
     }
     EXPECT_EQ(bricks.lostCrossings, 0u);
+}
+
+/// A band's topology (FieldRequest::bandOnly) skips a triangle at a voxel
+/// already nearer than the band, so its distances need not be the least;
+/// with either cut its voxels nearer than the band must be exactly the CPU
+/// field's (every distance the least), and the skip must have happened.
+TEST(LevelSet, ABandsTopologyIsTheFieldsVoxelsNearerThanTheBand)
+{
+    const TriangleMesh mesh = smallAndLargeTriangles();
+    const GridSpec grid = makeGrid(mesh, GridRequest{48, 0});
+    gl::FieldRequest request;
+    for (uint32_t z = 0; z * 8 < grid.dims[2]; ++z)
+        for (uint32_t y = 0; y * 8 < grid.dims[1]; ++y)
+            for (uint32_t x = 0; x * 8 < grid.dims[0]; ++x) request.bricks.push_back({x, y, z});
+    const double band = 2.5;
+    request.band = band;
+    request.crossings = false;
+    const BandDistances cpu = bandDistances(localPositions(mesh, grid), mesh, grid, request.bricks, band, false, {});
+    auto nearer = [&](const Brick& near, uint32_t offset, const std::vector<float>& distances) {
+        Brick in;
+        for (uint32_t v = 0, k = 0; v < 512; ++v)
+            if ((near.words[v >> 6] >> (v & 63)) & 1u)
+                if (distances[offset + k++] < float(band)) in.words[v >> 6] |= uint64_t(1) << (v & 63);
+        return in;
+    };
+    gl::Context context;
+    request.bandOnly = true;
+    for (const gl::FieldWork work : {gl::FieldWork::Bricks, gl::FieldWork::SmallTriangles}) {
+        SCOPED_TRACE(work == gl::FieldWork::Bricks ? "bricks" : "small triangles");
+        request.work = work;
+        const gl::FieldResult r = gl::computeField(context, mesh, grid, request);
+        ASSERT_EQ(r.bandMasks.size(), cpu.near.size());
+        uint64_t differ = 0, voxels = 0, larger = 0;
+        for (size_t i = 0; i < cpu.near.size(); ++i) {
+            const Brick want = nearer(cpu.near[i], cpu.offsets[i], cpu.distances);
+            const Brick got = nearer(r.bandMasks[i], r.bandOffsets[i], r.distances);
+            voxels += want.count();
+            differ += !(want == got);
+            if (!(r.bandMasks[i] == cpu.near[i])) continue;
+            for (uint32_t k = 0, n = cpu.near[i].count(); k < n; ++k)
+                larger += r.distances[r.bandOffsets[i] + k] > cpu.distances[cpu.offsets[i] + k];
+        }
+        ASSERT_GT(voxels, 10000u);
+        EXPECT_EQ(differ, 0u) << "bricks whose voxels nearer than the band differ from the CPU's";
+        EXPECT_GT(larger, 0u) << "no distance was skipped: the band-only pass did not run";
+    }
 }
 
 /// `mesh` with the triangles whose first corner lies above z = `cut` left out

@@ -481,8 +481,9 @@ const PythonKeyword kPythonKeywords[] = {
     {"grid", [] { return py::object(py::str("bool")); },
      "'bool' (a BoolGrid 'surface', true on voxels) or 'fog' (a FloatGrid 'density', 1 on voxels)"},
     {"kind", [] { return py::object(py::str("surface")); },
-     "What write_nanovdb() lays out: 'surface' (voxelize()), 'sdf' (level_set()), 'udf' (level_set(unsigned=True)) "
-     "or 'solid' (solid())"},
+     "What write_nanovdb() lays out: 'surface' (voxelize()), 'sdf' (level_set()), 'udf' (level_set(unsigned=True)), "
+     "'solid' (solid()) or 'band' (the voxels nearer than exterior_band to a triangle: the active voxels of 'udf', "
+     "as a topology grid 'band')"},
     {"report", [] { return py::object(py::bool_(false)); },
      "Also say what the call did, as Result.report: backend, mode, sign method, voxels, GPU memory, stage times"},
     // Octree.render's own: what svo view takes in other forms (--size WxH, --layers a,b, --levels a:b,
@@ -1177,8 +1178,8 @@ uint64_t writeNanoVdbWith(svo::Voxelizer& v, const std::filesystem::path& path, 
         badValue("transform: write_nanovdb takes resolution or voxel_size (a NanoVDB grid's transform here is a "
                  "voxel size and a translation)");
     const std::string kind = kw.get<std::string>("kind");
-    if (kind != "surface" && kind != "sdf" && kind != "udf" && kind != "solid")
-        badValue("kind: expected 'surface', 'sdf', 'udf' or 'solid', got '" + kind + "'");
+    if (kind != "surface" && kind != "sdf" && kind != "udf" && kind != "solid" && kind != "band")
+        badValue("kind: expected 'surface', 'sdf', 'udf', 'solid' or 'band', got '" + kind + "'");
     svo::LevelSetOptions ls;
     kw.read(ls);
     ls.unsignedDistance = kind == "udf";
@@ -1189,9 +1190,10 @@ uint64_t writeNanoVdbWith(svo::Voxelizer& v, const std::filesystem::path& path, 
     const Request r = makeRequest(vertices, triangles, kw);
     const auto nano = runField(settings, [&](const svo::VoxelizeOptions& o) {
         if (kind == "surface") return v.voxelizeNanoVdb(r.mesh, r.grid, o, grids);
-        if (kind == "solid") {
+        if (kind == "solid" || kind == "band") {
             std::vector<svo::vdb::NanoHandle> out;
-            out.push_back(v.solidNanoVdb(r.mesh, r.grid, o, ls.sign, grids.topology));
+            if (kind == "solid") out.push_back(v.solidNanoVdb(r.mesh, r.grid, o, ls.sign, grids.topology));
+            else out.push_back(v.bandNanoVdb(r.mesh, r.grid, ls.exteriorBand, o, grids.topology));
             return out;
         }
         return v.levelSetNanoVdb(r.mesh, r.grid, ls, o);

@@ -34,6 +34,7 @@ KINDS = [
                                                              "closest_triangle": True}),
     ("udf", ["--udf"], {}),
     ("solid", ["--fill", "solid", "--topology", "mask"], {}),
+    ("band", ["--fill", "band", "--band", "2.5", "--topology", "mask"], {"exterior_band": 2.5}),
 ]
 
 

@@ -50,12 +50,13 @@ void main()
             dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));
             if (dot(g, g) > band2) continue;
             if (abs(dot(slab.n, p - slab.a)) > slab.limit) continue; // beyond the band of the plane
+            uvec3 l = v & 7u;
+            uint i = 512u * brick + ((l.x << kKeyLeafXShift) | (l.y << kKeyLeafYShift) | l.z);
+            if (knownInBand(i)) continue;
             double d2 = svo_triangle_distance2(p, A, B, C);
             if (d2 > keep2) continue; // beyond the band with a wide margin: no sqrt
             float d = float(sqrt(d2));
             if (d > uBand) continue;
-            uvec3 l = v & 7u;
-            uint i = 512u * brick + ((l.x << kKeyLeafXShift) | (l.y << kKeyLeafYShift) | l.z);
             if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));
             else if (distances[i] == floatBitsToUint(d)) atomicMin(closest[i], t);
         }

@@ -13,6 +13,12 @@ layout(std430, binding = SVO_BIND_FIELD_CLOSEST) restrict buffer Closest { uint 
 
 uniform uint uPass;
 uniform float uBand; // distances beyond it are not kept
+// A band's topology only (FieldRequest::bandOnly): a voxel whose kept
+// distance is already less than this is in the band, whatever its other
+// triangles give, so they are not computed there; 0 computes every one.
+uniform float uKnownBelow;
+
+bool knownInBand(uint i) { return uintBitsToFloat(distances[i]) < uKnownBelow; }
 
 // The distance to a triangle and the slab and box tests, one text with the
 // CPU backend's (core/src/band_distances.cpp).

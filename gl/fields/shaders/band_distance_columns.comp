@@ -39,9 +39,10 @@ void columnDistances(uint t, svo_Triangle tri, svo_Slab slab, dvec3 boxLo, dvec3
         dvec3 p = dvec3(column, z);
         dvec3 g = max(max(boxLo - p, p - boxHi), dvec3(0.0LF));
         if (dot(g, g) > band2) continue;
+        uint i = 512u * brick + leaf + (z & kBrickMask);
+        if (knownInBand(i)) continue;
         float d = float(sqrt(svo_prepared_distance2(p, tri)));
         if (d > uBand) continue;
-        uint i = 512u * brick + leaf + (z & kBrickMask);
         if (uPass == 0u) atomicMin(distances[i], floatBitsToUint(d));
         else if (distances[i] == floatBitsToUint(d)) atomicMin(closest[i], t);
     }

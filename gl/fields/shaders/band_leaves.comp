@@ -40,6 +40,7 @@ uniform ivec3 uAnchor;    // index coordinates of the field grid's local origin
 uniform uint uClosest;    // 1: closest triangles were computed
 uniform uint uSigned;     // 1: `inside` holds the inside voxels of each brick
 uniform uint uInsideOnly; // 1: only bricks with inside voxels and none active take leaves
+uniform uint uValues;     // 0: a band's topology only, no values written
 
 shared uint sMask[16];
 shared uint sLeaf;
@@ -76,7 +77,7 @@ void main()
             if (t < 16u) masks[16u * leaf + t] = sMask[t];
             if (t < 3u) origins[3u * leaf + t] = uAnchor[t] + 8 * int(table[kTableWords * slot + t]);
             uint at = 512u * leaf + 8u * t;
-            for (uint z = 0u; z < 8u; ++z) {
+            for (uint z = 0u; z < 8u && uValues != 0u; ++z) {
                 bool on = (bits & (1u << z)) != 0u;
                 // In double, rounded once to float: the host's float(double(d) * scale).
                 precise double world = double(distances[first + z]) * scale;

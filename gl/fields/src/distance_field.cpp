@@ -280,6 +280,10 @@ struct FieldPasses {
             context.program(fieldsShaders(), {smallTriangles ? "band_distance_columns.comp" : "band_distance.comp"});
         program.set("uBand", float(request.band));
         program.set("uPass", 0u);
+        // A band's topology: a voxel is in once a distance below the band the
+        // leaves (or the host) compare with is kept.
+        const float known = request.deviceLeaves ? request.leafBands[0] : float(request.band);
+        program.set("uKnownBelow", request.bandOnly ? known : 0.0f);
         // band_distance.comp: 64 threads, an item's thread loops 1 + 64
         // (triangleOfItemFrom's gallop and search; the run's first item
         // searches all triangles, 32) + 8 (its column) times and probes the
@@ -400,6 +404,7 @@ FieldLeaves bandLeaves(const Context& context, const FieldBuffers& buffers, cons
     program.set("uBackground", background);
     program.set("uAnchor", int(grid.anchor[0]), int(grid.anchor[1]), int(grid.anchor[2]));
     program.set("uClosest", buffers.closest ? 1u : 0u);
+    program.set("uValues", request.bandOnly ? 0u : 1u);
     // A workgroup a table slot, its threads looping 1 + 8 + 16 + 16 + 8 times.
     const uint64_t slots = uint64_t(tableMask) + 1;
     for (const uint32_t insideOnly : {0u, 1u}) {
@@ -503,6 +508,8 @@ FieldResult computeField(Context& context, const TriangleMesh& mesh, const GridS
     RunStats stats;
     const uint64_t nb = request.bricks.size();
     const bool distances = request.band > 0;
+    if (request.bandOnly && (request.closestTriangle || request.crossings || request.insideVoxels))
+        throw InvalidInput("internal error: a band's topology is unsigned and has no closest triangles");
     request.checkpoint(0.0, "field upload");
 
     // Upload: local double positions, indices, items, the brick table.

@@ -501,12 +501,13 @@ void addPartialLeaves(const Context& context, const GridSpec& g, const FieldSign
 /// bricks beyond the band it adds, and the whole bricks inside it makes tiles.
 DeviceField deviceLeavesOf(Device& device, const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,
                            const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats,
-                           const FieldSetup& f)
+                           const FieldSetup& f, bool bandOnly = false)
 {
     checkpoint(0.0, "band bricks");
     describeBackend(device, Backend::Compute, stats);
     FieldRequest request = bandRequest(mesh, f, ls, settings, checkpoint, stats);
     request.deviceLeaves = true;
+    request.bandOnly = bandOnly;
     request.leafScale = grid.voxelSize;
     request.leafBackground = float(ls.exteriorBand * grid.voxelSize); // as levelSetNanoGrids
     request.leafBands = {float(ls.exteriorBand), float(f.signedField ? ls.interiorBand : ls.exteriorBand)};
@@ -547,6 +548,18 @@ DeviceField unsignedFieldLeaves(Device& device, const TriangleMesh& mesh, const 
         throw InvalidInput("internal error: band leaves on the device need an unsigned field without a region on a GL backend");
     const FieldSetup f = setUpField(mesh, grid, ls, settings, stats);
     return deviceLeavesOf(device, mesh, grid, ls, settings, checkpoint, stats, f);
+}
+
+DeviceField bandTopologyLeaves(Device& device, const TriangleMesh& mesh, const GridSpec& grid, double band,
+                               const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    LevelSetOptions ls;
+    ls.unsignedDistance = true;
+    ls.exteriorBand = band;
+    if (!unsignedFieldOnDevice(device, ls, settings))
+        throw InvalidInput("internal error: band leaves on the device need no region and a GL backend");
+    const FieldSetup f = setUpField(mesh, grid, ls, settings, stats);
+    return deviceLeavesOf(device, mesh, grid, ls, settings, checkpoint, stats, f, true);
 }
 
 LevelSetBand levelSetBand(Device& device, const TriangleMesh& mesh, const GridSpec& grid, const LevelSetOptions& ls,

@@ -4,7 +4,9 @@
 #include "svo/gl/nano_grid_builder.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fmt/format.h>
 
@@ -131,12 +133,33 @@ Scratch bindScratch(const Context& context, const DeviceLeaves& d, uint64_t n, u
     return s;
 }
 
+/// With SVO_NANO_PASS_MS set, each phase of a build waited for (glFinish)
+/// and its milliseconds printed to stderr: where a build's time goes, for
+/// the benchmarks (bench/gpu_host_issue45.sh); off, it costs nothing.
+struct PhaseClock {
+    const bool on = std::getenv("SVO_NANO_PASS_MS") != nullptr;
+    std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
+    std::string line;
+    void operator()(const char* phase)
+    {
+        if (!on) return;
+        glFinish();
+        const auto now = std::chrono::steady_clock::now();
+        line += fmt::format(" {} {:.3f}", phase, std::chrono::duration<double, std::milli>(now - t).count());
+        t = now;
+    }
+    ~PhaseClock()
+    {
+        if (on) fmt::print(stderr, "nanovdb build ms:{}\n", line);
+    }
+};
+
 /// Passes 1 to 3: sort entries, the bitonic sort, the node ranks and counts.
 /// The sort's steps within blocks of 1024 entries run in shared memory
 /// (nano_sort_local.comp), a dispatch for all of them; only the longer
 /// distances take a dispatch a step (nano_sort.comp): 36 dispatches instead
 /// of 153 for 2^17 entries.
-void sortAndRank(const Context& context, uint32_t leaves, uint32_t n, uint32_t entries)
+void sortAndRank(const Context& context, uint32_t leaves, uint32_t n, uint32_t entries, PhaseClock& phase)
 {
     const Program& keys = context.program(nanovdbShaders(), {"nano_keys.comp"});
     keys.set("uLeafCount", leaves);
@@ -144,6 +167,7 @@ void sortAndRank(const Context& context, uint32_t leaves, uint32_t n, uint32_t e
     keys.set("uEntries", entries);
     keys.dispatchRows((entries + 255) / 256);
     passBarrier();
+    phase("keys");
     const uint32_t block = std::min<uint32_t>(entries, 1024);
     const Program& local = context.program(nanovdbShaders(), {"nano_sort_local.comp"});
     local.set("uBlock", block);
@@ -163,6 +187,7 @@ void sortAndRank(const Context& context, uint32_t leaves, uint32_t n, uint32_t e
         local.dispatchRows(entries / block);
         passBarrier();
     }
+    phase("sort");
     const Program& scan = context.program(nanovdbShaders(), {"nano_scan.comp"});
     scan.set("uLeafCount", leaves);
     scan.set("uEntryCount", n);
@@ -173,7 +198,7 @@ void sortAndRank(const Context& context, uint32_t leaves, uint32_t n, uint32_t e
 /// Passes 4 to 6: leaves (and their values), lower nodes, upper nodes, of
 /// @a entries leaves and tiles.
 void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, uint32_t entries, bool hasValues,
-               uint32_t background, const std::optional<uint32_t>& active)
+               uint32_t background, const std::optional<uint32_t>& active, PhaseClock& phase)
 {
     const uint32_t n = f.nodes[0];
     const Program& leaves = context.program(nanovdbShaders(), {"nano_leaves.comp"});
@@ -192,6 +217,7 @@ void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, ui
     leaves.dispatchRows(n); // a group a leaf (none for a grid of tiles alone)
     if (kind != NanoKind::Mask) values.dispatchRows((16 * uint64_t(n) + 255) / 256); // masks hold no values
     passBarrier();
+    phase("leaves");
     const Program& internal = context.program(nanovdbShaders(), {"nano_internal.comp"});
     internal.set("uLeafCount", n);
     internal.set("uEntryCount", entries);
@@ -208,6 +234,7 @@ void fillNodes(const Context& context, NanoKind kind, const NanoTreeFacts& f, ui
         internal.set("uChildStatsAt", upper ? n : 0u);
         internal.dispatchRows(f.nodes[1 + upper]);
         passBarrier();
+        phase(upper ? "uppers" : "lowers");
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 }
@@ -467,6 +494,8 @@ void throwOnBadLeaves(const NanoLeaves& in, const DeviceLeaves& d, const uint32_
 NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const NanoLeaves& in, const NanoGridHeader& header,
                                bool hostCopy)
 {
+    PhaseClock phase;
+    phase("start");
     NanoTreeFacts f;
     f.nodes[0] = in.count;
     const DeviceLeaves d = deviceLeaves(context, kind, in);
@@ -474,7 +503,9 @@ NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const Nano
     uint32_t entries = 1;
     while (entries < n) entries <<= 1;
     const Scratch s = bindScratch(context, d, n, entries);
-    sortAndRank(context, in.count, n, entries);
+    phase("upload");
+    sortAndRank(context, in.count, n, entries, phase);
+    phase("scan");
     uint32_t counters[gpu::kNanoCountWords] = {};
     s.counters->read(0, sizeof counters, counters);
     checkGl("NanoVDB GPU build: sort and rank");
@@ -485,8 +516,9 @@ NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const Nano
     checkBufferLimit(context, kind, f.gridBytes, in.count);
     NanoGridBuffer out{context.lendScratch(kNanoGridScratch, f.gridBytes), f.gridBytes, f.nodes, {}};
     fillWords(context, out.grid, 0, f.gridBytes); // not a clear: see fill_words.h
+    phase("size+zero");
     out.grid.bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_GRID);
-    fillNodes(context, kind, f, n, d.values != nullptr, backgroundWord(kind, header.background), in.activeWord);
+    fillNodes(context, kind, f, n, d.values != nullptr, backgroundWord(kind, header.background), in.activeWord, phase);
     if (header.signedFloodFill) floodOnGpu(context, f, header.background);
     std::vector<uint32_t> upperStats(size_t(f.nodes[2]) * gpu::kNanoStatWords);
     s.stats->read(uint64_t(f.nodes[0] + f.nodes[1]) * gpu::kNanoStatWords * 4, upperStats.size() * 4, upperStats.data());
@@ -497,7 +529,9 @@ NanoGridBuffer buildFromLeaves(const Context& context, NanoKind kind, const Nano
     foldUppers(f, kind, upperStats);
     std::vector<uint8_t> head = nanoHeader(kind, header, f);
     out.grid.write(0, head.size(), head.data());
+    phase("headers");
     if (header.checksum) checksumOnGpu(context, kind, f, *s.stats, out.grid, head);
+    phase("checksum");
     if (hostCopy) {
         out.host.resize(f.gridBytes);
         out.grid.readBulk(0, f.gridBytes, out.host.data());

@@ -154,6 +154,18 @@ openvdb::GridPtrVec levelSetGrids(const DistanceBricks& field, double exteriorBa
     return out;
 }
 
+openvdb::MaskGrid::Ptr bandGrid(const DistanceBricks& field, double band, openvdb::math::Transform::Ptr xform)
+{
+    // The unsigned field's grid says which voxels are nearer than the band;
+    // its topology is the band's.
+    const openvdb::GridBase::Ptr distance = levelSetGrids(field, band, band, 1.0, xform).front();
+    auto out = openvdb::MaskGrid::create(false);
+    out->tree().topologyUnion(openvdb::gridPtrCast<openvdb::FloatGrid>(distance)->tree());
+    out->setTransform(xform);
+    out->setName("band");
+    return out;
+}
+
 openvdb::MaskGrid::Ptr solidGrid(const SolidBricks& solid, openvdb::math::Transform::Ptr xform)
 {
     const GridSpec& g = solid.grid;

@@ -383,6 +383,27 @@ SparseVoxels<bool> solidVoxels(const SolidBricks& solid)
     return s;
 }
 
+NanoHandle bandNanoGrid(const DistanceBricks& field, double band, const GridSpec& lattice,
+                        GridOptions::Topology topology, bool checksum)
+{
+    // levelSetNanoGrids' leaves of an unsigned field, their masks only.
+    const float limit = float(band);
+    SparseVoxels<bool> s;
+    for (size_t i = 0; i < field.bricks.size(); ++i) {
+        const Brick& near = field.near[i];
+        Brick active;
+        size_t packed = field.offsets[i];
+        for (uint32_t k = 0; k < 512; ++k)
+            if (bitOf(near, k) && field.distances[packed++] < limit) active.words[k >> 6] |= uint64_t(1) << (k & 63);
+        if (!active.count()) continue;
+        s.origins.push_back(brickOrigin(field.grid, field.bricks[i]));
+        s.masks.push_back(active);
+    }
+    if (topology == GridOptions::Topology::Mask)
+        return buildNanoGrid<nanovdb::ValueMask>(s, infoFor(lattice, "band", nanovdb::GridClass::Topology, checksum));
+    return buildNanoGrid<bool>(s, infoFor(lattice, "band", nanovdb::GridClass::Unknown, checksum));
+}
+
 NanoHandle solidNanoGrid(const SolidBricks& solid, const GridSpec& lattice, GridOptions::Topology topology, bool checksum)
 {
     SparseVoxels<bool> s = solidVoxels(solid);

@@ -123,6 +123,24 @@ openvdb::MaskGrid::Ptr Voxelizer::solid(const TriangleMesh& mesh, const GridSpec
     return solidChecked(mesh, grid, options, sign, xform ? xform : vdb::makeTransform(grid));
 }
 
+openvdb::MaskGrid::Ptr Voxelizer::band(const TriangleMesh& mesh, const GridSpec& grid, double band,
+                                       const VoxelizeOptions& options, openvdb::math::Transform::Ptr xform)
+{
+    validateMesh(mesh);
+    checkGrid(grid, mesh.source);
+    if (!xform) xform = vdb::makeTransform(grid);
+    detail::uniformScale(*xform); // as levelSet(): the band is a distance
+    const LevelSetOptions ls = detail::bandOptions(band);
+    const FieldCall call{"svo: finding a band", "band grid", 0.85, fieldBox(grid, detail::levelSetPad(ls))};
+    const openvdb::GridPtrVec out = runFieldCall(
+        call, options,
+        [&](const VoxelizeOptions& part, const Checkpoint& checkpoint, VoxelizeStats& stats) {
+            return gl::levelSetBricks(device_, mesh, grid, ls, part, checkpoint, stats);
+        },
+        [&](const DistanceBricks& field) { return openvdb::GridPtrVec{vdb::bandGrid(field, band, xform)}; });
+    return openvdb::gridPtrCast<openvdb::MaskGrid>(out.front());
+}
+
 openvdb::GridPtrVec Voxelizer::levelSetChecked(const TriangleMesh& mesh, const GridSpec& grid,
                                                const LevelSetOptions& ls, const VoxelizeOptions& options,
                                                openvdb::math::Transform::Ptr xform, double worldPerVoxel)

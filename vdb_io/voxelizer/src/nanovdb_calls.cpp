@@ -37,6 +37,7 @@ namespace {
 
 constexpr const char* kFieldTask = "svo: computing a distance field";
 constexpr const char* kSolidTask = "svo: filling a solid";
+constexpr const char* kBandTask = "svo: finding a band";
 
 /// The bracket of levelSetNanoVdb and solidNanoVdb: the checks (the same
 /// transform rule as levelSet()), the interrupter, then `make(checkpoint,
@@ -218,12 +219,26 @@ std::vector<vdb::NanoHandle> fieldGridsOnHost(const DistanceBricks& field, const
     return out;
 }
 
+/// A band's grid (bandNanoGrid) laid out on the CPU, a stage of `stats`.
+std::vector<vdb::NanoHandle> bandGridOnHost(const DistanceBricks& field, const GridSpec& grid, double band,
+                                            GridOptions::Topology topology, VoxelizeStats& stats)
+{
+    const auto t0 = Clock::now();
+    std::vector<vdb::NanoHandle> out;
+    out.push_back(vdb::bandNanoGrid(field, band, grid, topology));
+    stats.stages.push_back({"nanovdb grid", -1, msSince(t0)});
+    return out;
+}
+
 /// A field on the call's region or cut into regions (bricksInRegions),
-/// laid out on the CPU: the whole grid's grids, or the call's region's, cut
-/// to it (clipField) as levelSet() clips its grids.
+/// laid out on the CPU by `layout(field)` (fieldGridsOnHost's grids by
+/// default): the whole grid's grids, or the call's region's, cut to it
+/// (clipField) as levelSet() clips its grids.
+template <typename Layout>
 std::vector<vdb::NanoHandle> fieldInRegions(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
                                             const LevelSetOptions& ls, const VoxelizeOptions& options,
-                                            bool pastOneBuffer, const Checkpoint& checkpoint, VoxelizeStats& stats)
+                                            bool pastOneBuffer, const Checkpoint& checkpoint, VoxelizeStats& stats,
+                                            Layout&& layout)
 {
     auto bricks = [&](const VoxelizeOptions& part, const Checkpoint& progress) {
         return gl::levelSetBricks(device, mesh, grid, ls, part, progress, stats);
@@ -233,7 +248,7 @@ std::vector<vdb::NanoHandle> fieldInRegions(gl::Device& device, const TriangleMe
     if (options.region) clipField(field, bricksMeeting(field.grid, options.region));
     else field.region = false; // the regions make up the whole grid: a parity field's signs beyond the band are its fill's
     checkpoint(0.85, "nanovdb grid");
-    return fieldGridsOnHost(field, grid, ls, stats);
+    return layout(field);
 }
 
 /// An octree's channel grids, byte for byte octreeChannelNanoGrids'. Read
@@ -355,6 +370,38 @@ void solidGridOnGpu(const SolidBricks& bricks, const GridSpec& grid, GridOptions
             [&] { return vdb::solidNanoGrid(bricks, grid, topology); });
 }
 
+/// A band's grid on the GPU builder from its leaves on the device (masks
+/// only), byte for byte bandNanoGrid's.
+void bandGridOnGpu(const gl::DeviceField& field, const GridSpec& grid, GridOptions::Topology topology,
+                   BuiltGrids& out)
+{
+    gl::NanoLeaves leaves = leavesOf(field);
+    leaves.valueBuffer = nullptr;
+    gl::NanoGridHeader header;
+    header.name = "band";
+    header.voxelSize = grid.voxelSize;
+    header.translation = grid.translation();
+    const bool mask = topology == GridOptions::Topology::Mask;
+    header.gridClass = uint32_t(mask ? nanovdb::GridClass::Topology : nanovdb::GridClass::Unknown);
+    out.add(mask ? gl::NanoKind::Mask : gl::NanoKind::Bool, leaves, header, [&] {
+        // Past the builder's limits: the leaves read back, laid out on the host.
+        vdb::SparseVoxels<bool> s;
+        const uint64_t n = leaves.count;
+        s.origins.resize(n);
+        s.masks.resize(n);
+        if (n) {
+            leaves.originBuffer->readBulk(0, 12 * n, s.origins.data());
+            leaves.maskBuffer->readBulk(0, 64 * n, s.masks.data());
+        }
+        vdb::NanoGridInfo info;
+        info.name = header.name;
+        info.gridClass = nanovdb::GridClass(header.gridClass);
+        info.voxelSize = header.voxelSize;
+        info.translation = header.translation;
+        return mask ? vdb::buildNanoGrid<nanovdb::ValueMask>(s, info) : vdb::buildNanoGrid<bool>(s, info);
+    });
+}
+
 /// `make(out)` with the grids built in @a context and read back: their handles.
 template <typename Make>
 std::vector<vdb::NanoHandle> readBack(const gl::Context& context, VoxelizeStats& stats, Make&& make)
@@ -429,7 +476,8 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
 {
     auto inRegions = [&](bool pastOneBuffer) {
         return nanoCall(mesh, grid, options, kFieldTask, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
-            return fieldInRegions(device_, mesh, grid, ls, options, pastOneBuffer, checkpoint, stats);
+            return fieldInRegions(device_, mesh, grid, ls, options, pastOneBuffer, checkpoint, stats,
+                                  [&](const DistanceBricks& field) { return fieldGridsOnHost(field, grid, ls, stats); });
         });
     };
     if (options.gpuMemory || options.region) return inRegions(false);
@@ -469,6 +517,54 @@ void Voxelizer::unsignedFieldNanoVdbOnDevice(const TriangleMesh& mesh, const Gri
         throw Unsupported("unsignedFieldNanoVdbOnDevice takes an unsigned distance field; levelSetNanoVdbOnDevice "
                           "takes level sets too");
     levelSetNanoVdbOnDevice(mesh, grid, ls, options, use);
+}
+
+vdb::NanoHandle Voxelizer::bandNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, double band,
+                                       const VoxelizeOptions& options, GridOptions::Topology topology)
+{
+    const LevelSetOptions ls = detail::bandOptions(band);
+    auto onHost = [&](const DistanceBricks& field, VoxelizeStats& stats) {
+        return bandGridOnHost(field, grid, band, topology, stats);
+    };
+    auto inRegions = [&](bool pastOneBuffer) {
+        return nanoCall(mesh, grid, options, kBandTask, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+            return fieldInRegions(device_, mesh, grid, ls, options, pastOneBuffer, checkpoint, stats,
+                                  [&](const DistanceBricks& field) { return onHost(field, stats); });
+        });
+    };
+    if (options.gpuMemory || options.region) return std::move(inRegions(false).front());
+    auto make = [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
+        if (!gl::unsignedFieldOnDevice(device_, ls, options)) {
+            const DistanceBricks field = gl::levelSetBricks(device_, mesh, grid, ls, options, checkpoint, stats);
+            checkpoint(0.85, "nanovdb grid");
+            return onHost(field, stats);
+        }
+        const gl::DeviceField field = gl::bandTopologyLeaves(device_, mesh, grid, band, options, checkpoint, stats);
+        checkpoint(0.85, "nanovdb grid");
+        return readBack(device_.context(), stats, [&](BuiltGrids& out) { bandGridOnGpu(field, grid, topology, out); });
+    };
+    try {
+        return std::move(nanoCall(mesh, grid, options, kBandTask, make).front());
+    } catch (const BufferLimit&) {
+        return std::move(inRegions(true).front());
+    }
+}
+
+void Voxelizer::bandNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, double band,
+                                    const VoxelizeOptions& options, GridOptions::Topology topology,
+                                    const NanoGridsOnDevice& use)
+{
+    const LevelSetOptions ls = detail::bandOptions(band);
+    if (!gl::unsignedFieldOnDevice(device_, ls, options) || options.gpuMemory)
+        throw Unsupported("a band's NanoVDB grid stays on the GPU only on a GL backend, without a region or a GPU "
+                          "memory budget");
+    nanoCallOnDevice(device_, mesh, grid, options, kBandTask, use,
+                     [&](const Checkpoint& checkpoint, VoxelizeStats& stats, BuiltGrids& out) {
+                         const gl::DeviceField field =
+                             gl::bandTopologyLeaves(device_, mesh, grid, band, options, checkpoint, stats);
+                         checkpoint(0.85, "nanovdb grid");
+                         bandGridOnGpu(field, grid, topology, out);
+                     });
 }
 
 vdb::NanoHandle Voxelizer::solidNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,

@@ -37,6 +37,17 @@ inline int64_t levelSetPad(const LevelSetOptions& ls)
     return int64_t(std::ceil(std::max(ls.exteriorBand, ls.interiorBand))) + 8;
 }
 
+/// The unsigned field whose active voxels are a band of @a band voxels
+/// (Voxelizer::band), checked as levelSet() checks its bands.
+inline LevelSetOptions bandOptions(double band)
+{
+    checkBand(band, "band");
+    LevelSetOptions ls;
+    ls.unsignedDistance = true;
+    ls.exteriorBand = ls.interiorBand = band;
+    return ls;
+}
+
 /// The pad of a solid's field box: its 2 voxels, in whole leaves, and a leaf.
 constexpr int64_t kSolidPad = 16;
 

@@ -265,6 +265,18 @@ public:
                                        const openvdb::math::Transform& xform, const VoxelizeOptions& options = {},
                                        const SignOptions& sign = {});
 
+    /// @brief The voxels whose centres are nearer than @a band voxels to a
+    /// triangle: the active voxels of meshToUnsignedDistanceField() with that
+    /// band, exactly, computed as only the set asks (a voxel already known
+    /// to be in takes no more distances). Needs no closed mesh.
+    /// @param grid  a grid from makeGrid or makeGridOnLattice; the band may reach beyond grid.dims
+    /// @param band  the band half width in voxels (checkBand: 1 to 1000)
+    /// @param xform as for levelSet()
+    /// @return the grid, named "band", class GRID_UNKNOWN
+    /// @throw as levelSet()
+    openvdb::MaskGrid::Ptr band(const TriangleMesh& mesh, const GridSpec& grid, double band,
+                                const VoxelizeOptions& options = {}, openvdb::math::Transform::Ptr xform = nullptr);
+
     /// @brief Level set (or unsigned field) of svo's own mesh on a grid from
     /// makeGrid. The band may reach beyond grid.dims.
     /// @param levelSet the bands, sign, and whether to add closest triangles
@@ -338,6 +350,22 @@ public:
     ///        GPU, and whatever @a use throws
     void octreeNanoVdbOnDevice(const Octree& octree, const GridOptions& grids, const VoxelizeOptions& options,
                                const NanoGridsOnDevice& use);
+    /// @brief band() as the NanoVDB grid "band" (bandNanoGrid), as
+    /// levelSetNanoVdb() lays out an unsigned field (regions joined, or on
+    /// the GPU from leaves that never leave it: without values), the same
+    /// bytes on every backend.
+    /// @param topology ValueMask, class Topology (Mask), or bool true on the voxels (Bool)
+    /// @throw as band()
+    vdb::NanoHandle bandNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, double band,
+                                const VoxelizeOptions& options = {},
+                                GridOptions::Topology topology = GridOptions::Topology::Mask);
+    /// @brief bandNanoVdb()'s grid left on the GPU, as
+    /// levelSetNanoVdbOnDevice() leaves a field's.
+    /// @throw svo::Unsupported off a GL backend, with a region or a GPU
+    ///        memory budget; otherwise as band(), and whatever @a use throws
+    void bandNanoVdbOnDevice(const TriangleMesh& mesh, const GridSpec& grid, double band,
+                             const VoxelizeOptions& options, GridOptions::Topology topology,
+                             const NanoGridsOnDevice& use);
     /// @brief solid() as the NanoVDB grid "solid" (solidNanoGrid), as
     /// levelSetNanoVdb (regions joined by joinSolids); on a GL backend laid
     /// out on the GPU from the solid's leaves and 8³ tiles (vdb::solidVoxels,

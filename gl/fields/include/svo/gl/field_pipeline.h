@@ -85,6 +85,17 @@ DeviceField unsignedFieldLeaves(Device& device, const TriangleMesh& mesh, const 
                                 const LevelSetOptions& levelSet, const VoxelizeSettings& settings,
                                 const Checkpoint& checkpoint, VoxelizeStats& stats);
 
+/// @brief The voxels nearer than @a band to a triangle (a band's topology)
+/// left on the device as leaves without values: unsignedFieldLeaves'
+/// leaves and masks for an unsigned field of that band, computed as only
+/// the set asks (FieldRequest::bandOnly: a voxel already nearer than the
+/// band takes no more distances). Feed them to svo::gl::buildNanoGridGpu
+/// as a mask or bool grid.
+/// @param band the band half width in voxels (checkBand)
+/// @throw as unsignedFieldLeaves
+DeviceField bandTopologyLeaves(Device& device, const TriangleMesh& mesh, const GridSpec& grid, double band,
+                               const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats);
+
 /// @brief A level set's band, where it can stay on the device, or read back.
 struct LevelSetBand {
     std::optional<DeviceField> device; ///< a GL backend and no region

@@ -36,6 +36,13 @@ struct FieldRequest {
     /// brick with an inside voxel and none nearer than the band takes a leaf
     /// too (after the others: FieldLeaves::activeCount). Not owned.
     const std::vector<Brick>* insideVoxels = nullptr;
+    /// Only which voxels are nearer than leafBands[0] (or than `band`,
+    /// without deviceLeaves) is asked, a band's topology: a triangle is not
+    /// measured at a voxel already nearer, so the kept distances are not
+    /// the least, but the voxels nearer than the band are exactly the
+    /// field's. With deviceLeaves the leaves take no values. Unsigned
+    /// fields only (no crossings, no closest triangles).
+    bool bandOnly = false;
     /// Leaves the caller adds after the band's (FieldLeaves' buffers hold them).
     uint32_t extraLeaves = 0;
     double leafScale = 1.0;      ///< world units per voxel: a leaf's value is float(double(distance) * leafScale)

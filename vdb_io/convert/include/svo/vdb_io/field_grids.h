@@ -23,6 +23,14 @@ namespace svo::vdb {
 openvdb::GridPtrVec levelSetGrids(const DistanceBricks& field, double exteriorBand, double interiorBand,
                                   double worldPerVoxel, openvdb::math::Transform::Ptr xform);
 
+/// @brief The MaskGrid "band": the voxels of an unsigned field nearer than
+/// @a band, the active voxels of levelSetGrids' "distance" grid.
+/// @param field an unsigned field (its distances, not necessarily the
+///        least where only the band was asked: gl::FieldRequest::bandOnly)
+/// @param band  the band in voxels
+/// @param xform the grid's transform
+openvdb::MaskGrid::Ptr bandGrid(const DistanceBricks& field, double band, openvdb::math::Transform::Ptr xform);
+
 /// @brief The MaskGrid "solid": the band's inside voxels, and whole regions
 /// inside as active tiles at the largest tree level they fill (memory follows
 /// the surface).

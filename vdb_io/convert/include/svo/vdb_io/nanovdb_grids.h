@@ -68,6 +68,14 @@ std::vector<NanoHandle> levelSetNanoGrids(const DistanceBricks& field, double ex
 /// @param grid a grid with leaves and internal nodes, no root tiles
 void signedFloodFill(nanovdb::NanoGrid<float>& grid);
 
+/// @brief The voxels of an unsigned field nearer than @a band as the grid
+/// "band" (bandGrid's voxels, field_grids.h): a leaf per brick with such a
+/// voxel, no values.
+/// @param lattice  the grid whose voxel size and translation the grid takes
+/// @param topology ValueMask, class Topology (Mask), or bool true on every active voxel (Bool)
+NanoHandle bandNanoGrid(const DistanceBricks& field, double band, const GridSpec& lattice,
+                        GridOptions::Topology topology = GridOptions::Topology::Mask, bool checksum = true);
+
 /// @brief A solid's voxels as solidNanoGrid lays them out: a leaf per brick
 /// with an inside voxel (its mask the inside voxels), whole bricks inside as
 /// active 8³ tiles (level 1, value true); values left empty.
