@@ -21,6 +21,7 @@
 #   udf4096   the bunny's UDF at 4096³, regions' bricks against the old OpenVDB route
 #   peers4096 MeshToGrid side by side at 4096³ (bunny, spot, icosphere)
 #   passes    where the NanoVDB builder's time goes (gpu_host_nano_passes.sh)
+#   quick     MeshToGrid side by side, the bunny and spot at 1024³ and 2048³
 set -uo pipefail
 out=${OUT:?a folder for the archive of the results}
 top=$(mktemp -d /tmp/issue45.XXXXXX)
@@ -45,6 +46,7 @@ for s in ${STEPS:-builder peers peers2048 peers4096 sdf udf4096}; do
       MESHES=bundle/meshes/stanford-bunny.obj ;;
   peers4096) step peers4096 360 bench/gpu_host_nanovdb.sh RES=4096 RUNS=3 "MESHES=bunny spot icosphere" M2G="$m2g" ;;
   passes) step passes 120 bench/gpu_host_nano_passes.sh ;;
+  quick) step quick 120 bench/gpu_host_nanovdb.sh "RES=1024 2048" RUNS=3 "MESHES=bunny spot" M2G="$m2g" ;;
   *) echo "gpu_host_issue45: unknown step $s" >&2 ;;
   esac
 done

@@ -55,9 +55,11 @@ Buffer::Buffer(const char* what, uint64_t bytes, const void* data, GLbitfield fl
 
 void Buffer::read(uint64_t offset, uint64_t bytes, void* out) const
 {
-    // Above this size a direct read took NVIDIA's slow path (a few bytes of a
-    // 747 MB grid in 0.5 s); through staging it takes well under a millisecond.
-    constexpr uint64_t kDirectReadLimit = uint64_t(64) << 20;
+    // NVIDIA's driver reads directly by copying the whole buffer: a few
+    // bytes of a 747 MB grid took 0.5 s, of a 45 MB scratch buffer 3.2 ms
+    // (bench/results/nvidia-h100/nanovdb/band-2026-12-05/passes); through
+    // staging, well under a millisecond. Small buffers are read directly.
+    constexpr uint64_t kDirectReadLimit = uint64_t(1) << 20;
     if (bytes_ > kDirectReadLimit) return readBulk(offset, bytes, out);
     glGetNamedBufferSubData(h_.get(), GLintptr(offset), GLsizeiptr(bytes), out);
 }

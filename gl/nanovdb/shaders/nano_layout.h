@@ -95,6 +95,9 @@ SVO_CONST(uint) kNanoCountVoxelsHigh = 4u;
 SVO_CONST(uint) kNanoCountMisaligned = 5u; /* 1 + input index of an origin not a multiple of 8, or 0 */
 SVO_CONST(uint) kNanoCountActiveTiles = 6u; /* active 8^3 tiles (TreeData's first tile count) */
 SVO_CONST(uint) kNanoCountWords = 8u;
+/* nano_scan.comp: the sorted entries a work group of its counting and
+   writing phases takes (256 threads, 8 rounds). */
+SVO_CONST(uint) kNanoScanChunk = 2048u;
 
 /* ---- Binding slots --------------------------------------------------------- */
 #define SVO_BIND_NANO_ORIGINS 0  /* per leaf: its origin, 3 ints (input order) */
@@ -106,11 +109,12 @@ SVO_CONST(uint) kNanoCountWords = 8u;
 #define SVO_BIND_NANO_COUNTERS 6 /* kNanoCountWords */
 #define SVO_BIND_NANO_GRID 7     /* the grid */
 #define SVO_BIND_NANO_TILES 8    /* per 8^3 tile: kNanoTileWords (input order) */
+#define SVO_BIND_NANO_SCAN 9     /* nano_scan.comp: per chunk of kNanoScanChunk entries, its upper, lower and leaf starts (then their exclusive sums) */
 
 #ifdef __cplusplus
 static_assert(distinctSlots({SVO_BIND_NANO_ORIGINS, SVO_BIND_NANO_MASKS, SVO_BIND_NANO_VALUES, SVO_BIND_NANO_SORT,
                              SVO_BIND_NANO_RANKS, SVO_BIND_NANO_STATS, SVO_BIND_NANO_COUNTERS, SVO_BIND_NANO_GRID,
-                             SVO_BIND_NANO_TILES}));
+                             SVO_BIND_NANO_TILES, SVO_BIND_NANO_SCAN}));
 } // namespace svo::gpu
 #endif
 

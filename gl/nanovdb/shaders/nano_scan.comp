@@ -1,14 +1,21 @@
 #version 450 core
-// Pass 3, one work group: over the sorted entries, which start a new lower
-// or upper node and which are leaves; their ranks (exclusive prefix sums of
-// those), each node's first child, each leaf's entry, the node counts, and
-// a repeated entry (a leaf or tile given twice, or a tile on a leaf) if any.
-layout(local_size_x = 1024) in;
+// Pass 3, over the sorted entries: which start a new upper or lower node
+// and which are leaves; their ranks (exclusive prefix sums of those), each
+// node's first child, each leaf's entry, the node counts, and a repeated
+// entry (a leaf or tile given twice, or a tile on a leaf) if any. Three
+// phases (uPhase), so that every SM takes part: 0 counts each chunk of
+// kNanoScanChunk entries' starts, 1 (one work group) sums the chunks'
+// counts, 2 ranks each chunk's entries from its chunk's sums. One work
+// group walking every entry took 3.6 ms of an H100 at 312,898 leaves
+// (bench/results/nvidia-h100/nanovdb/band-2026-12-05/passes).
+layout(local_size_x = 256) in;
 #include "nano_common.glsl"
 
-shared uint partialUpper[1024];
-shared uint partialLower[1024];
-shared uint partialLeaves[1024];
+layout(std430, binding = SVO_BIND_NANO_SCAN) buffer Chunks { uint chunks[]; };
+
+uniform uint uPhase;
+
+shared uvec3 sums[256];
 
 bool sameWords(uint a, uint b, uint words)
 {
@@ -20,63 +27,109 @@ bool sameWords(uint a, uint b, uint words)
 bool startsUpper(uint i) { return i == 0u || !sameWords(i, i - 1u, 3u); }
 bool startsLower(uint i) { return startsUpper(i) || lowerIndexOf(i) != lowerIndexOf(i - 1u); }
 
-// The inclusive scan of the group's partial sums, in place.
-void scanGroup(uint t)
+// Entry i's starts: (upper, lower, leaf), 0 past the entries.
+uvec3 startsOf(uint i)
 {
-    for (uint offset = 1u; offset < 1024u; offset <<= 1u) {
-        uint u = t >= offset ? partialUpper[t - offset] : 0u;
-        uint l = t >= offset ? partialLower[t - offset] : 0u;
-        uint f = t >= offset ? partialLeaves[t - offset] : 0u;
-        memoryBarrierShared();
+    if (i >= uEntryCount) return uvec3(0u);
+    return uvec3(startsUpper(i) ? 1u : 0u, startsLower(i) ? 1u : 0u, isTile(i) ? 0u : 1u);
+}
+
+// The inclusive scan of sums[0, n) in place (Hillis-Steele), n threads of the group.
+void scanShared(uint t, uint n)
+{
+    for (uint offset = 1u; offset < n; offset <<= 1u) {
+        uvec3 add = t >= offset && t < n ? sums[t - offset] : uvec3(0u);
         barrier();
-        partialUpper[t] += u;
-        partialLower[t] += l;
-        partialLeaves[t] += f;
-        memoryBarrierShared();
+        if (t < n) sums[t] += add;
         barrier();
+    }
+}
+
+void countChunk(uint first)
+{
+    uint t = gl_LocalInvocationID.x;
+    uvec3 own = uvec3(0u);
+    for (uint r = 0u; r < kNanoScanChunk / 256u; ++r) {
+        uint i = first + 256u * r + t;
+        own += startsOf(i);
+        if (i < uEntryCount && i > 0u && sameWords(i, i - 1u, 4u))
+            atomicMax(counters[kNanoCountRepeated], inputLeaf(i) + 1u);
+    }
+    sums[t] = own;
+    barrier();
+    scanShared(t, 256u);
+    if (t == 255u) {
+        uint chunk = first / kNanoScanChunk;
+        chunks[3u * chunk] = sums[255].x;
+        chunks[3u * chunk + 1u] = sums[255].y;
+        chunks[3u * chunk + 2u] = sums[255].z;
+    }
+}
+
+// One group: the chunks' counts turned into exclusive sums, 256 at a time,
+// then the node counts and the tables' closing entries.
+void sumChunks()
+{
+    uint t = gl_LocalInvocationID.x;
+    uint n = (uEntryCount + kNanoScanChunk - 1u) / kNanoScanChunk;
+    uvec3 carry = uvec3(0u);
+    for (uint base = 0u; base < n; base += 256u) {
+        uint c = base + t;
+        uvec3 own = c < n ? uvec3(chunks[3u * c], chunks[3u * c + 1u], chunks[3u * c + 2u]) : uvec3(0u);
+        sums[t] = own;
+        barrier();
+        scanShared(t, 256u);
+        if (c < n) {
+            uvec3 before = carry + sums[t] - own;
+            chunks[3u * c] = before.x;
+            chunks[3u * c + 1u] = before.y;
+            chunks[3u * c + 2u] = before.z;
+        }
+        carry += sums[255];
+        barrier(); // sums is refilled
+    }
+    if (t != 0u) return;
+    counters[kNanoCountUpper] = carry.x;
+    counters[kNanoCountLower] = carry.y;
+    ranks[lowerFirstEntryAt(carry.y)] = uEntryCount;
+    ranks[upperFirstLowerAt(carry.x)] = carry.y;
+}
+
+void rankChunk(uint first)
+{
+    uint t = gl_LocalInvocationID.x;
+    uint chunk = first / kNanoScanChunk;
+    uvec3 carry = uvec3(chunks[3u * chunk], chunks[3u * chunk + 1u], chunks[3u * chunk + 2u]);
+    for (uint r = 0u; r < kNanoScanChunk / 256u; ++r) {
+        uint i = first + 256u * r + t;
+        uvec3 own = startsOf(i);
+        sums[t] = own;
+        barrier();
+        scanShared(t, 256u);
+        uvec3 before = carry + sums[t] - own; // starts before entry i
+        if (i < uEntryCount) {
+            if (own.x != 0u) ranks[upperFirstLowerAt(before.x)] = before.y;
+            if (own.y != 0u) ranks[lowerFirstEntryAt(before.y)] = i;
+            ranks[lowerRankAt(i)] = before.y + own.y - 1u;
+            ranks[upperRankAt(i)] = before.x + own.x - 1u;
+            if (own.z != 0u) {
+                ranks[leafRankAt(i)] = before.z;
+                ranks[leafEntryAt(before.z)] = i;
+            }
+        }
+        carry += sums[255];
+        barrier(); // sums is refilled
     }
 }
 
 void main()
 {
-    uint t = gl_LocalInvocationID.x;
-    uint per = (uEntryCount + 1023u) / 1024u;
-    uint begin = min(t * per, uEntryCount), end = min(begin + per, uEntryCount);
-    uint uppers = 0u, lowers = 0u, leaves = 0u;
-    for (uint i = begin; i < end; ++i) {
-        if (startsUpper(i)) ++uppers;
-        if (startsLower(i)) ++lowers;
-        if (!isTile(i)) ++leaves;
-        if (i > 0u && sameWords(i, i - 1u, 4u)) atomicMax(counters[kNanoCountRepeated], inputLeaf(i) + 1u);
+    if (uPhase == 1u) {
+        sumChunks();
+        return;
     }
-    partialUpper[t] = uppers;
-    partialLower[t] = lowers;
-    partialLeaves[t] = leaves;
-    memoryBarrierShared();
-    barrier();
-    scanGroup(t);
-    // Before this range:
-    uint upper = partialUpper[t] - uppers, lower = partialLower[t] - lowers, leaf = partialLeaves[t] - leaves;
-    for (uint i = begin; i < end; ++i) {
-        if (startsUpper(i)) {
-            ranks[upperFirstLowerAt(upper)] = lower;
-            ++upper;
-        }
-        if (startsLower(i)) {
-            ranks[lowerFirstEntryAt(lower)] = i;
-            ++lower;
-        }
-        ranks[lowerRankAt(i)] = lower - 1u;
-        ranks[upperRankAt(i)] = upper - 1u;
-        if (!isTile(i)) {
-            ranks[leafRankAt(i)] = leaf;
-            ranks[leafEntryAt(leaf)] = i;
-            ++leaf;
-        }
-    }
-    if (t != 1023u) return;
-    counters[kNanoCountUpper] = upper;
-    counters[kNanoCountLower] = lower;
-    ranks[lowerFirstEntryAt(lower)] = uEntryCount;
-    ranks[upperFirstLowerAt(upper)] = lower;
+    uint first = groupIndex() * kNanoScanChunk;
+    if (first >= uEntryCount) return; // the same for the whole group
+    if (uPhase == 0u) countChunk(first);
+    else rankChunk(first);
 }

@@ -110,6 +110,7 @@ struct Scratch {
     const Buffer* ranks;
     const Buffer* stats;
     const Buffer* counters;
+    const Buffer* scan;
 };
 
 /// @a n real entries (leaves and tiles), @a entries the sort's power of two.
@@ -120,6 +121,7 @@ Scratch bindScratch(const Context& context, const DeviceLeaves& d, uint64_t n, u
     s.ranks = &context.scratch("nanovdb ranks", (6 * n + 2) * 4); // nano_common.glsl's tables
     s.stats = &context.scratch("nanovdb stats", 3 * n * gpu::kNanoStatWords * 4);
     s.counters = &context.scratch("nanovdb counters", gpu::kNanoCountWords * 4);
+    s.scan = &context.scratch("nanovdb scan chunks", ((n + gpu::kNanoScanChunk - 1) / gpu::kNanoScanChunk) * 12 + 12);
     s.counters->clearUint(0, gpu::kNanoCountWords * 4);
     // Slots a build without leaves or without tiles leaves unread are bound to the sort's buffer.
     (d.origins ? d.origins : s.sort)->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_ORIGINS);
@@ -130,6 +132,7 @@ Scratch bindScratch(const Context& context, const DeviceLeaves& d, uint64_t n, u
     s.ranks->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_RANKS);
     s.stats->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_STATS);
     s.counters->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_COUNTERS);
+    s.scan->bindBase(GL_SHADER_STORAGE_BUFFER, SVO_BIND_NANO_SCAN);
     return s;
 }
 
@@ -191,8 +194,14 @@ void sortAndRank(const Context& context, uint32_t leaves, uint32_t n, uint32_t e
     const Program& scan = context.program(nanovdbShaders(), {"nano_scan.comp"});
     scan.set("uLeafCount", leaves);
     scan.set("uEntryCount", n);
-    scan.dispatch(1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    const uint64_t chunks = (uint64_t(n) + gpu::kNanoScanChunk - 1) / gpu::kNanoScanChunk;
+    for (const uint32_t phase : {0u, 1u, 2u}) { // count each chunk's starts, sum the chunks, rank the entries
+        scan.set("uPhase", phase);
+        if (phase == 1) scan.dispatch(1);
+        else scan.dispatchRows(chunks);
+        passBarrier();
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 /// Passes 4 to 6: leaves (and their values), lower nodes, upper nodes, of
