@@ -198,6 +198,16 @@ TriangleMesh smallAndLargeTriangles()
     return mesh;
 }
 
+/// Every brick of @a grid, as a FieldRequest takes them.
+std::vector<std::array<uint32_t, 3>> everyBrick(const GridSpec& grid)
+{
+    std::vector<std::array<uint32_t, 3>> bricks;
+    for (uint32_t z = 0; z * 8 < grid.dims[2]; ++z)
+        for (uint32_t y = 0; y * 8 < grid.dims[1]; ++y)
+            for (uint32_t x = 0; x * 8 < grid.dims[0]; ++x) bricks.push_back({x, y, z});
+    return bricks;
+}
+
 // The distance pass cuts its work two ways, a workgroup per brick of each
 // triangle's grown box (GPUs) or a thread per small triangle (CPU
 // rasterizers; FieldWork). The renderer picks one, so CI's llvmpipe would
@@ -210,9 +220,7 @@ TEST(LevelSet, BothCutsOfTheDistanceWorkGiveTheSameField)
     const TriangleMesh mesh = smallAndLargeTriangles();
     const GridSpec grid = makeGrid(mesh, GridRequest{48, 0});
     gl::FieldRequest request;
-    for (uint32_t z = 0; z * 8 < grid.dims[2]; ++z)
-        for (uint32_t y = 0; y * 8 < grid.dims[1]; ++y)
-            for (uint32_t x = 0; x * 8 < grid.dims[0]; ++x) request.bricks.push_back({x, y, z});
+    request.bricks = everyBrick(grid);
     request.band = 3;
     request.closestTriangle = true;
     gl::Context context;
@@ -270,9 +278,7 @@ TEST(LevelSet, ABandsTopologyIsTheFieldsVoxelsNearerThanTheBand)
     const TriangleMesh mesh = smallAndLargeTriangles();
     const GridSpec grid = makeGrid(mesh, GridRequest{48, 0});
     gl::FieldRequest request;
-    for (uint32_t z = 0; z * 8 < grid.dims[2]; ++z)
-        for (uint32_t y = 0; y * 8 < grid.dims[1]; ++y)
-            for (uint32_t x = 0; x * 8 < grid.dims[0]; ++x) request.bricks.push_back({x, y, z});
+    request.bricks = everyBrick(grid);
     const double band = 2.5;
     request.band = band;
     request.crossings = false;
