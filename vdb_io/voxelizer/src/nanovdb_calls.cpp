@@ -231,9 +231,9 @@ std::vector<vdb::NanoHandle> bandGridOnHost(const DistanceBricks& field, const G
 }
 
 /// A field on the call's region or cut into regions (bricksInRegions),
-/// laid out on the CPU by `layout(field)` (fieldGridsOnHost's grids by
-/// default): the whole grid's grids, or the call's region's, cut to it
-/// (clipField) as levelSet() clips its grids.
+/// laid out on the CPU by `layout(field)` (fieldGridsOnHost, or a band's
+/// bandGridOnHost): the whole grid's grids, or the call's region's, cut to
+/// it (clipField) as levelSet() clips its grids.
 template <typename Layout>
 std::vector<vdb::NanoHandle> fieldInRegions(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
                                             const LevelSetOptions& ls, const VoxelizeOptions& options,

@@ -267,8 +267,8 @@ public:
 
     /// @brief The voxels whose centres are nearer than @a band voxels to a
     /// triangle: the active voxels of meshToUnsignedDistanceField() with that
-    /// band, exactly, computed as only the set asks (a voxel already known
-    /// to be in takes no more distances). Needs no closed mesh.
+    /// band, exactly (its field computed, its topology kept; bandNanoVdb()
+    /// on a GL backend computes only the set). Needs no closed mesh.
     /// @param grid  a grid from makeGrid or makeGridOnLattice; the band may reach beyond grid.dims
     /// @param band  the band half width in voxels (checkBand: 1 to 1000)
     /// @param xform as for levelSet()
@@ -352,8 +352,9 @@ public:
                                const NanoGridsOnDevice& use);
     /// @brief band() as the NanoVDB grid "band" (bandNanoGrid), as
     /// levelSetNanoVdb() lays out an unsigned field (regions joined, or on
-    /// the GPU from leaves that never leave it: without values), the same
-    /// bytes on every backend.
+    /// the GPU from leaves that never leave it, without values, computed as
+    /// only the set asks: a voxel already nearer than the band takes no
+    /// more distances), the same bytes on every backend.
     /// @param topology ValueMask, class Topology (Mask), or bool true on the voxels (Bool)
     /// @throw as band()
     vdb::NanoHandle bandNanoVdb(const TriangleMesh& mesh, const GridSpec& grid, double band,
