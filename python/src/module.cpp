@@ -635,6 +635,9 @@ const Call kWriteNanoVdbCall{"write_nanovdb",
                              {"kind", "resolution", "voxel_size", "transform", "exterior_band", "interior_band", "closest_triangle",
                               "sign", "winding_accuracy", "part_of_closed_mesh", "backend", "mode", "conservative",
                               "attributes", "gpu_memory", "region", "topology", "fog", "codec"}};
+const Call kBandCall{"band",
+                     {"resolution", "voxel_size", "transform", "exterior_band", "backend", "gpu_memory", "region",
+                      "report"}};
 const Call kFromGridCall{"from_grid", {"backend"}};
 const Call kRenderCall{"render",
                        {"size", "view", "layers", "levels", "color", "ao", "ao_only", "ao_source", "lighting", "lights",
@@ -657,6 +660,7 @@ const std::pair<const char*, const Call*> kCalls[] = {
     {"Voxelizer.octree", &kOctreeCall},
     {"Voxelizer.level_set", &kLevelSetCall},
     {"Voxelizer.solid", &kSolidCall},
+    {"Voxelizer.band", &kBandCall},
     {"Voxelizer.write_nanovdb", &kWriteNanoVdbCall},
     {"Octree.from_grid", &kFromGridCall},
     {"Octree.render", &kRenderCall},
@@ -1137,11 +1141,27 @@ py::object levelSetWith(svo::Voxelizer& v, const py::handle& vertices, const py:
     return makeResult(out);
 }
 
+/// A MaskGrid result (solid(), band()) as Python takes it: pyopenvdb has no
+/// MaskGrid, so the same topology as a BoolGrid, true on it, with the
+/// library's name and svo:* metadata (svo:sign: which sign method ran and why).
+py::object maskResult(const openvdb::MaskGrid::Ptr& mask, const Request& r, const svo::VoxelizeStats& stats,
+                      bool wantReport)
+{
+    auto grid = openvdb::BoolGrid::create(
+        openvdb::BoolTree::Ptr(new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
+    grid->setTransform(mask->transform().copy());
+    for (auto meta = mask->beginMeta(); meta != mask->endMeta(); ++meta) grid->insertMeta(meta->first, *meta->second);
+    ResultParts out;
+    out.grids.push_back(grid);
+    tagResult(out.grids, r, false);
+    if (wantReport) out.report = reportOf(stats, *grid);
+    return makeResult(out);
+}
+
 py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
                      const py::kwargs& kwargs)
 {
     const CallKeywords kw(kSolidCall, kwargs);
-    const bool wantReport = kw.get<bool>("report");
     svo::SignOptions signOptions;
     kw.read(signOptions);
     svo::VoxelizeSettings settings;
@@ -1151,17 +1171,23 @@ py::object solidWith(svo::Voxelizer& v, const py::handle& vertices, const py::ha
     const auto mask = runField(
         settings, [&](const svo::VoxelizeOptions& o) { return v.solid(r.mesh, r.grid, o, signOptions, r.xform); },
         &stats);
-    // pyopenvdb has no MaskGrid: the same topology as a BoolGrid, true on it.
-    auto solid = openvdb::BoolGrid::create(
-        openvdb::BoolTree::Ptr(new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
-    solid->setTransform(mask->transform().copy());
-    // The library's svo:* metadata (svo:sign: which sign method ran and why) and the name, as it tagged them.
-    for (auto meta = mask->beginMeta(); meta != mask->endMeta(); ++meta) solid->insertMeta(meta->first, *meta->second);
-    ResultParts out;
-    out.grids.push_back(solid);
-    tagResult(out.grids, r, false);
-    if (wantReport) out.report = reportOf(stats, *solid);
-    return makeResult(out);
+    return maskResult(mask, r, stats, kw.get<bool>("report"));
+}
+
+py::object bandWith(svo::Voxelizer& v, const py::handle& vertices, const py::handle& triangles,
+                    const py::kwargs& kwargs)
+{
+    const CallKeywords kw(kBandCall, kwargs);
+    svo::LevelSetOptions ls;
+    kw.read(ls);
+    svo::VoxelizeSettings settings;
+    kw.read(settings);
+    const Request r = makeRequest(vertices, triangles, kw);
+    svo::VoxelizeStats stats;
+    const auto mask = runField(
+        settings, [&](const svo::VoxelizeOptions& o) { return v.band(r.mesh, r.grid, ls.exteriorBand, o, r.xform); },
+        &stats);
+    return maskResult(mask, r, stats, kw.get<bool>("report"));
 }
 
 /// Voxelizer.write_nanovdb: a kind's NanoVDB grids laid out by the library's
@@ -1607,13 +1633,20 @@ PYBIND11_MODULE(_svo, m)
                        "level_set(). Arrays as voxelize().",
                        kSolidCall)
                  .c_str())
+        .def("band", &bandWith, py::arg("vertices"), py::arg("triangles"),
+             docstring("The voxels whose centres are nearer than exterior_band voxels to a triangle, in an svo.Result\n"
+                       "whose .grid is a BoolGrid 'band': exactly the active voxels of level_set(unsigned=True) with\n"
+                       "that band, without distances; any mesh. Arrays as voxelize().",
+                       kBandCall)
+                 .c_str())
         .def("write_nanovdb", &writeNanoVdbWith, py::arg("path"), py::arg("vertices"), py::arg("triangles"),
              docstring("Write a mesh's grids of one kind straight to a NanoVDB file (.nvdb), as svo voxelize -o\n"
                        "x.nvdb: laid out with no OpenVDB tree, on the GPU where the backend runs there (surfaces'\n"
                        "topology and fog, unsigned fields, level sets of closed meshes), the same bytes as on the\n"
                        "CPU; atomically (a temporary file renamed). Grids: 'surface' (topology, 'density' with\n"
                        "fog=True, the attributes' channels), 'surface' (class LEVEL_SET) or 'distance' and\n"
-                       "'closest_triangle', or 'solid'. Returns the file's size in bytes.",
+                       "'closest_triangle', 'solid', or 'band' (the voxels nearer than exterior_band to a triangle).\n"
+                       "Returns the file's size in bytes.",
                        kWriteNanoVdbCall)
                  .c_str())
         .def("device", &svo::Voxelizer::deviceDescription, "The GPU's vendor, renderer and version.");

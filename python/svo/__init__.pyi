@@ -119,6 +119,20 @@ class Voxelizer:
         region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
         report: bool = False,
     ) -> Result: ...
+    def band(
+        self,
+        vertices: ArrayLike,
+        triangles: ArrayLike,
+        *,
+        resolution: Optional[int] = None,
+        voxel_size: Optional[float] = None,
+        transform: Optional[Union[Transform, ArrayLike]] = None,
+        exterior_band: float = 3.0,
+        backend: str = "auto",
+        gpu_memory: Optional[int] = None,
+        region: Optional[Tuple[Tuple[int, int, int], Tuple[int, int, int]]] = None,
+        report: bool = False,
+    ) -> Result: ...
     def write_nanovdb(
         self,
         path: PathLike,

@@ -634,6 +634,24 @@ def test_solid_of_a_tetrahedron_is_its_inside_and_surface(voxelizer):
         voxelizer.solid(v, t, resolution=40, sign="nearest")
 
 
+def test_a_band_is_the_unsigned_fields_active_voxels(voxelizer):
+    # band(): the voxels nearer than exterior_band to a triangle, exactly
+    # level_set(unsigned=True)'s active voxels, on either backend, for an
+    # open mesh too; a BoolGrid named 'band'.
+    v, t = tetrahedron()
+    for tris in (t, t[:3]):
+        for backend in ("compute", "cpu"):
+            band = voxelizer.band(v, tris, resolution=40, exterior_band=2.5, backend=backend).grid
+            field = voxelizer.level_set(v, tris, resolution=40, unsigned=True, exterior_band=2.5).grid
+            got = as_set(svo.active_voxels(band))
+            assert got == as_set(svo.active_voxels(field)) and len(got) > 1000
+            assert band.name == "band" and band.valueTypeName == "bool"
+    with pytest.raises(ValueError, match="exterior_band 0.5"):
+        voxelizer.band(v, t, resolution=40, exterior_band=0.5)
+    with pytest.raises(TypeError, match="sign"):
+        voxelizer.band(v, t, resolution=40, sign="winding")
+
+
 def read_png_rgb(path):
     """An 8-bit RGB PNG as an (H, W, 3) array: the five row filters of the PNG standard."""
     import struct
