@@ -49,7 +49,7 @@ import numpy as np
 import svo
 from svo._svo import _grid_bytes, _grid_from_bytes, _join_region
 
-KINDS = ("surface", "sdf", "udf", "solid")
+KINDS = ("surface", "sdf", "udf", "solid", "band")
 
 
 class TileError(RuntimeError):
@@ -92,6 +92,8 @@ def _call(mesh, kind, keywords, region=None):
         return v.level_set(vertices, triangles, **keywords)
     if kind == "udf":
         return v.level_set(vertices, triangles, unsigned=True, **keywords)
+    if kind == "band":
+        return v.band(vertices, triangles, **keywords)
     return v.solid(vertices, triangles, **keywords)
 
 
@@ -153,7 +155,7 @@ def _box_task(mesh, kind, keywords):
     # What a grid holds beyond the mesh: a surface's voxels touch it (one
     # voxel); a level set's band leaves reach its band and one leaf further.
     margin = 2
-    if kind in ("sdf", "udf"):
+    if kind in ("sdf", "udf", "band"):
         margin += _band(keywords) + 8
     box_lo = tuple(_floor8(math.floor(lo[a]) - margin) for a in range(3))
     box_hi = tuple(_ceil8(math.ceil(hi[a]) + margin + 1) for a in range(3))
@@ -346,7 +348,7 @@ def plan_tiles(box, tile, leaves, weights, parts, levels=3):
 # svo:triangles, the one piece of metadata that counts the mesh, is set to
 # the whole mesh's count.
 
-PARTITIONED_KINDS = ("surface", "udf", "sdf", "solid")
+PARTITIONED_KINDS = ("surface", "udf", "sdf", "solid", "band")
 # Level sets and solids are partitioned where their signs come from parity:
 # a tile then gets its columns' triangles (see _partitioned).
 SIGNED_KINDS = ("sdf", "solid")
@@ -541,7 +543,7 @@ def _partitioned(client, vertices, triangles, kind, tile, workers, keywords, pla
     # value beyond it is the background whatever lies there. A parity sign
     # depends on the crossings of the voxel's z column below it: a signed
     # tile gets its columns' triangles, top to bottom (docs/design.md, "Regions").
-    margin = 2 + (_band(keywords) if kind in ("udf", "sdf") else 0)
+    margin = 2 + (_band(keywords) if kind in ("udf", "sdf", "band") else 0)
     columns = kind in SIGNED_KINDS
     split = [_submit(client, place, _partition_task, c, matrix, boxes, margin, columns) for c in chunks]
     meshes = [{"pieces": [_submit(client, place, _pick, s, i) for s in split], "bounding": bounding}
@@ -587,7 +589,8 @@ def voxelize(mesh, *, client=None, tile=None, kind="surface", progress=None, out
     mesh: a path every worker can read, or a (vertices, triangles) pair of
     numpy arrays (held by tasks, see _hold: they pass through the scheduler
     once). kind: "surface" (svo.voxelize),
-    "sdf" (Voxelizer.level_set), "udf" (level_set unsigned=True) or "solid".
+    "sdf" (Voxelizer.level_set), "udf" (level_set unsigned=True), "solid" or
+    "band" (Voxelizer.band: the voxels nearer than exterior_band to a triangle).
     keywords: those of that call (resolution, voxel_size, grid, backend,
     exterior_band, sign, attributes, closest_triangle, ...); not region.
     With attributes (a surface) or closest_triangle (a level set) the
@@ -1032,7 +1035,8 @@ def _main(argv=None):
     kind = p.add_mutually_exclusive_group()
     kind.add_argument("--sdf", action="store_true", help="a signed distance level set")
     kind.add_argument("--udf", action="store_true", help="an unsigned distance field")
-    kind.add_argument("--fill", choices=("solid",), help="solid: the voxels inside the mesh too")
+    kind.add_argument("--fill", choices=("solid", "band"),
+                      help="solid: the voxels inside the mesh too; band: the voxels nearer than --band to a triangle")
     p.add_argument("--grid", choices=("bool", "fog"), help="a surface's grid type (default bool)")
     p.add_argument("--band", type=float, help="level set half width in voxels, both sides (default 3)")
     p.add_argument("--backend", help="svo's backend (auto, raster, compute, cpu)")
@@ -1051,7 +1055,7 @@ def _main(argv=None):
                      "workers, and index.json naming them, written last")
     args = parser.parse_args(argv)
 
-    kind = "sdf" if args.sdf else "udf" if args.udf else "solid" if args.fill else "surface"
+    kind = "sdf" if args.sdf else "udf" if args.udf else args.fill if args.fill else "surface"
     keywords = {}
     if args.resolution is not None:
         keywords["resolution"] = args.resolution
@@ -1060,7 +1064,9 @@ def _main(argv=None):
     if args.grid:
         keywords["grid"] = args.grid
     if args.band is not None:
-        keywords["exterior_band"] = keywords["interior_band"] = args.band
+        keywords["exterior_band"] = args.band
+        if kind != "band":
+            keywords["interior_band"] = args.band
     if args.backend:
         keywords["backend"] = args.backend
 

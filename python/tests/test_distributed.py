@@ -59,6 +59,8 @@ def single(voxelizer, mesh, kind):
         return voxelizer.level_set(v, t, resolution=RESOLUTION).grid
     if kind == "udf":
         return voxelizer.level_set(v, t, resolution=RESOLUTION, unsigned=True).grid
+    if kind == "band":
+        return voxelizer.band(v, t, resolution=RESOLUTION).grid
     return voxelizer.solid(v, t, resolution=RESOLUTION).grid
 
 
@@ -94,7 +96,7 @@ def assert_same_grid(got, want):
     assert np.array_equal(values(got, lo, hi), values(want, lo, hi))
 
 
-KINDS = ("surface", "sdf", "udf", "solid")
+KINDS = ("surface", "sdf", "udf", "solid", "band")
 
 
 @pytest.mark.parametrize("kind", KINDS)
