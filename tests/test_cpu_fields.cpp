@@ -419,6 +419,58 @@ TEST(CpuFields, UnsignedFieldsAndClosestTrianglesAreTheGpus)
 #endif
 }
 
+/// The voxels of a field nearer than @a band, per brick coordinate.
+std::map<BrickCoord, Brick> nearerThan(const DistanceBricks& f, double band)
+{
+    std::map<BrickCoord, Brick> out;
+    for (size_t i = 0; i < f.bricks.size(); ++i) {
+        Brick in;
+        for (uint32_t v = 0, k = 0; v < 512; ++v)
+            if ((f.near[i].words[v >> 6] >> (v & 63)) & 1u)
+                if (f.distances[f.offsets[i] + k++] < float(band)) in.words[v >> 6] |= uint64_t(1) << (v & 63);
+        if (in.count()) out[f.bricks[i]] = in;
+    }
+    return out;
+}
+
+// A band's topology (gl::bandTopologyBricks) on the CPU and on the GPU's
+// packed path: a voxel found nearer than the band takes no more triangles,
+// so the distances need not be the least, but the voxels nearer than the
+// band are the unsigned field's exactly (the CPU's full field the
+// reference), and a distance was skipped somewhere on each.
+TEST(CpuFields, ABandsTopologyIsTheUnsignedFieldsVoxels)
+{
+    gl::Device device;
+    std::vector<TriangleMesh> meshes = {boxAndNeedles(), icosphere({0.1, -0.2, 0.3}, 1.0, 5)};
+#ifdef SVO_CGAL_MESHES
+    meshes.push_back(loadMesh(std::string(SVO_CGAL_MESHES) + "/elephant.off"));
+#endif
+    for (const TriangleMesh& m : meshes) {
+        SCOPED_TRACE(m.source);
+        const GridSpec grid = makeGrid(m, GridRequest{48, 0});
+        const double band = 2.5;
+        const auto full = levelSet(device, m, grid, options(band, band, SignMethod::Auto, false, true), Backend::Cpu);
+        const auto want = nearerThan(full.field, band);
+        ASSERT_GT(want.size(), 50u);
+        for (const Backend backend : {Backend::Cpu, Backend::Compute}) {
+            SCOPED_TRACE(backend == Backend::Cpu ? "cpu" : "compute");
+            VoxelizeSettings settings;
+            settings.backend = backend;
+            VoxelizeStats stats;
+            const DistanceBricks got = gl::bandTopologyBricks(device, m, grid, band, settings, Checkpoint{}, stats);
+            EXPECT_TRUE(nearerThan(got, band) == want) << "the voxels nearer than the band differ from the field's";
+            // Bricks in the same order on both (the band's brick list): some distance kept larger than the least.
+            ASSERT_EQ(got.bricks, full.field.bricks);
+            uint64_t larger = 0;
+            for (size_t i = 0; i < got.bricks.size(); ++i)
+                if (got.near[i] == full.field.near[i])
+                    for (uint32_t k = 0, n = got.near[i].count(); k < n; ++k)
+                        larger += got.distances[got.offsets[i] + k] > full.field.distances[full.field.offsets[i] + k];
+            EXPECT_GT(larger, 0u) << "no distance was skipped";
+        }
+    }
+}
+
 TEST(CpuFields, SolidsAreTheGpus)
 {
     gl::Device device;

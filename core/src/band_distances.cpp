@@ -144,8 +144,9 @@ constexpr int kColumnAtOnce = 2;
 ///    limits fall early.
 class BrickNearest {
 public:
-    BrickNearest(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid, float band)
-        : local_(local), mesh_(mesh), grid_(grid), band_(band)
+    BrickNearest(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid, float band,
+                 bool bandOnly)
+        : local_(local), mesh_(mesh), grid_(grid), band_(band), bandOnly_(bandOnly)
     {
     }
 
@@ -168,8 +169,8 @@ public:
             if (c) triangle<true>(org, ordered.second, d, c);
             else triangle<false>(org, ordered.second, d, c);
         }
-        if (!c)
-            for (int v = 0; v < 512; ++v) d[v] = float(std::sqrt(limit2_[v]));
+        if (!c) // a centre known to be in (bandOnly) holds the least distance it was found at
+            for (int v = 0; v < 512; ++v) d[v] = limit2_[v] < 0 ? in_[v] : float(std::sqrt(limit2_[v]));
     }
 
 private:
@@ -242,6 +243,12 @@ private:
                     if (!kClosest) {
                         limit2_[v] = d2;
                         nearer = true;
+                        // Only the set asked: a centre nearer than the band is in, whatever
+                        // its other triangles give; a negative limit leaves them all out.
+                        if (bandOnly_ && float(std::sqrt(d2)) < band_) {
+                            in_[v] = float(std::sqrt(d2));
+                            limit2_[v] = -1.0;
+                        }
                         continue;
                     }
                     const float dd = float(std::sqrt(d2));
@@ -262,6 +269,8 @@ private:
     const TriangleMesh& mesh_;
     const GridSpec& grid_;
     const float band_;
+    const bool bandOnly_;
+    float in_[512];           ///< bandOnly: the distance a centre was found in the band at
     double limit2_[512];      ///< per centre: the squared distance past which a triangle changes nothing
     double columnLimit2_[64]; ///< per column: the largest of its centres' limits
     std::vector<std::pair<double, uint32_t>> order_;
@@ -271,7 +280,7 @@ private:
 
 BandDistances bandDistances(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid,
                             const std::vector<BrickCoord>& bricks, double band, bool closestTriangle,
-                            const Checkpoint& checkpoint)
+                            const Checkpoint& checkpoint, bool bandOnly)
 {
     std::array<uint32_t, 3> limit{};
     for (int a = 0; a < 3; ++a) limit[a] = (grid.dims[a] + 7) / 8;
@@ -282,7 +291,8 @@ BandDistances bandDistances(const std::vector<Vec3d>& local, const TriangleMesh&
 
     const float bandF = float(band);
     // Made from a function: the exemplar form would copy the mesh and positions into the container.
-    tbb::enumerable_thread_specific<BrickNearest> perThread([&] { return BrickNearest(local, mesh, grid, bandF); });
+    tbb::enumerable_thread_specific<BrickNearest> perThread(
+        [&] { return BrickNearest(local, mesh, grid, bandF, bandOnly && !closestTriangle); });
     BandDistances out;
     out.near.resize(nb);
     out.offsets.resize(nb);

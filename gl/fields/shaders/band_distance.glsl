@@ -15,10 +15,11 @@ uniform uint uPass;
 uniform float uBand; // distances beyond it are not kept
 // A band's topology only (FieldRequest::bandOnly): a voxel whose kept
 // distance is already less than this is in the band, whatever its other
-// triangles give, so they are not computed there; 0 computes every one.
+// triangles give, so they are not computed there; 0 computes every one
+// (and reads no kept distance: every level set and unsigned field).
 uniform float uKnownBelow;
 
-bool knownInBand(uint i) { return uintBitsToFloat(distances[i]) < uKnownBelow; }
+bool knownInBand(uint i) { return uKnownBelow > 0.0 && uintBitsToFloat(distances[i]) < uKnownBelow; }
 
 // The distance to a triangle and the slab and box tests, one text with the
 // CPU backend's (core/src/band_distances.cpp).

@@ -333,7 +333,7 @@ std::vector<Brick> crossingsCpu(const std::vector<Vec3d>& local, const TriangleM
 /// winding_signs.h): the same bricks, distances and signs as the GPU's.
 DistanceBricks levelSetOnCpu(WindingTreeCache& trees, const TriangleMesh& mesh, const GridSpec& g, const LevelSetOptions& ls,
                              const SignChoice& sign, double band, const std::optional<IndexBox>& region,
-                             const Checkpoint& checkpoint, VoxelizeStats& stats)
+                             const Checkpoint& checkpoint, VoxelizeStats& stats, bool bandOnly)
 {
     const bool signedField = !ls.unsignedDistance;
     const bool winding = signedField && sign.method == SignMethod::Winding;
@@ -346,7 +346,8 @@ DistanceBricks levelSetOnCpu(WindingTreeCache& trees, const TriangleMesh& mesh, 
     checkpoint(0.05, "band distance");
     t0 = Clock::now();
     BandDistances field =
-        bandDistances(local, mesh, g, out.bricks, band, ls.closestTriangle, checkpoint.part(0.05, winding ? 0.3 : 0.8));
+        bandDistances(local, mesh, g, out.bricks, band, ls.closestTriangle, checkpoint.part(0.05, winding ? 0.3 : 0.8),
+                      bandOnly);
     stats.stages.push_back({"band distance (cpu)", -1, msSince(t0)});
     if (winding) {
         out.signs = windingSignsCpu(trees, mesh, local, g, out.bricks, ls.sign.windingAccuracy, region,
@@ -414,10 +415,11 @@ FieldRequest bandRequest(const TriangleMesh& mesh, const FieldSetup& f, const Le
     return request;
 }
 
-/// levelSetBricks once the field is set up.
+/// levelSetBricks once the field is set up; `bandOnly`: only the voxels
+/// nearer than the band are asked (an unsigned field's, bandTopologyBricks).
 DistanceBricks bricksOf(Device& device, const TriangleMesh& mesh, const LevelSetOptions& ls,
                         const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats,
-                        const FieldSetup& f)
+                        const FieldSetup& f, bool bandOnly = false)
 {
     const bool signedField = f.signedField, winding = f.winding;
     const GridSpec& g = f.g;
@@ -425,7 +427,7 @@ DistanceBricks bricksOf(Device& device, const TriangleMesh& mesh, const LevelSet
     if (runsOnCpu(device, settings)) { // no GL context is made
         describeBackend(device, Backend::Cpu, stats);
         DistanceBricks out =
-            levelSetOnCpu(device.windingTrees(), mesh, g, ls, f.sign, f.band, settings.region, checkpoint, stats);
+            levelSetOnCpu(device.windingTrees(), mesh, g, ls, f.sign, f.band, settings.region, checkpoint, stats, bandOnly);
         noteOpenColumns(stats, out.signs.openColumns, "signs above its last crossing count as outside");
         out.grid = g;
         out.closestTriangle = ls.closestTriangle;
@@ -437,6 +439,7 @@ DistanceBricks bricksOf(Device& device, const TriangleMesh& mesh, const LevelSet
     describeBackend(device, Backend::Compute, stats); // compute passes only, whatever the backend asked
 
     FieldRequest request = bandRequest(mesh, f, ls, settings, checkpoint, stats);
+    request.bandOnly = bandOnly;
     FieldResult field = fieldPass(device.context(), mesh, g, request, settings.region.has_value(), stats);
     DistanceBricks out;
     if (winding) {
@@ -550,12 +553,25 @@ DeviceField unsignedFieldLeaves(Device& device, const TriangleMesh& mesh, const 
     return deviceLeavesOf(device, mesh, grid, ls, settings, checkpoint, stats, f);
 }
 
-DeviceField bandTopologyLeaves(Device& device, const TriangleMesh& mesh, const GridSpec& grid, double band,
-                               const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats)
+LevelSetOptions bandFieldOptions(double band)
 {
     LevelSetOptions ls;
     ls.unsignedDistance = true;
-    ls.exteriorBand = band;
+    ls.exteriorBand = ls.interiorBand = band;
+    return ls;
+}
+
+DistanceBricks bandTopologyBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid, double band,
+                                  const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    const LevelSetOptions ls = bandFieldOptions(band);
+    return bricksOf(device, mesh, ls, settings, checkpoint, stats, setUpField(mesh, grid, ls, settings, stats), true);
+}
+
+DeviceField bandTopologyLeaves(Device& device, const TriangleMesh& mesh, const GridSpec& grid, double band,
+                               const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats)
+{
+    const LevelSetOptions ls = bandFieldOptions(band);
     if (!unsignedFieldOnDevice(device, ls, settings))
         throw InvalidInput("internal error: band leaves on the device need no region and a GL backend");
     const FieldSetup f = setUpField(mesh, grid, ls, settings, stats);

@@ -135,7 +135,7 @@ openvdb::MaskGrid::Ptr Voxelizer::band(const TriangleMesh& mesh, const GridSpec&
     const openvdb::GridPtrVec out = runFieldCall(
         call, options,
         [&](const VoxelizeOptions& part, const Checkpoint& checkpoint, VoxelizeStats& stats) {
-            return gl::levelSetBricks(device_, mesh, grid, ls, part, checkpoint, stats);
+            return gl::bandTopologyBricks(device_, mesh, grid, band, part, checkpoint, stats);
         },
         [&](const DistanceBricks& field) { return openvdb::GridPtrVec{vdb::bandGrid(field, band, xform)}; });
     return openvdb::gridPtrCast<openvdb::MaskGrid>(out.front());

@@ -230,20 +230,17 @@ std::vector<vdb::NanoHandle> bandGridOnHost(const DistanceBricks& field, const G
     return out;
 }
 
-/// A field on the call's region or cut into regions (bricksInRegions),
-/// laid out on the CPU by `layout(field)` (fieldGridsOnHost, or a band's
-/// bandGridOnHost): the whole grid's grids, or the call's region's, cut to
-/// it (clipField) as levelSet() clips its grids.
-template <typename Layout>
-std::vector<vdb::NanoHandle> fieldInRegions(gl::Device& device, const TriangleMesh& mesh, const GridSpec& grid,
-                                            const LevelSetOptions& ls, const VoxelizeOptions& options,
-                                            bool pastOneBuffer, const Checkpoint& checkpoint, VoxelizeStats& stats,
-                                            Layout&& layout)
+/// A field, `fieldOf(options, checkpoint)` (gl::levelSetBricks, or a band's
+/// gl::bandTopologyBricks), on the call's region or cut into regions
+/// (bricksInRegions), laid out on the CPU by `layout(field)`
+/// (fieldGridsOnHost, or bandGridOnHost): the whole grid's grids, or the
+/// call's region's, cut to it (clipField) as levelSet() clips its grids.
+template <typename FieldOf, typename Layout>
+std::vector<vdb::NanoHandle> fieldInRegions(FieldOf&& fieldOf, const GridSpec& grid, const LevelSetOptions& ls,
+                                            const VoxelizeOptions& options, bool pastOneBuffer,
+                                            const Checkpoint& checkpoint, VoxelizeStats& stats, Layout&& layout)
 {
-    auto bricks = [&](const VoxelizeOptions& part, const Checkpoint& progress) {
-        return gl::levelSetBricks(device, mesh, grid, ls, part, progress, stats);
-    };
-    DistanceBricks field = bricksInRegions(bricks, joinFields, options, detail::fieldBox(grid, detail::levelSetPad(ls)),
+    DistanceBricks field = bricksInRegions(fieldOf, joinFields, options, detail::fieldBox(grid, detail::levelSetPad(ls)),
                                            pastOneBuffer, checkpoint.part(0.0, 0.85), stats);
     if (options.region) clipField(field, bricksMeeting(field.grid, options.region));
     else field.region = false; // the regions make up the whole grid: a parity field's signs beyond the band are its fill's
@@ -476,7 +473,10 @@ std::vector<vdb::NanoHandle> Voxelizer::levelSetNanoVdb(const TriangleMesh& mesh
 {
     auto inRegions = [&](bool pastOneBuffer) {
         return nanoCall(mesh, grid, options, kFieldTask, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
-            return fieldInRegions(device_, mesh, grid, ls, options, pastOneBuffer, checkpoint, stats,
+            auto fieldOf = [&](const VoxelizeOptions& part, const Checkpoint& progress) {
+                return gl::levelSetBricks(device_, mesh, grid, ls, part, progress, stats);
+            };
+            return fieldInRegions(fieldOf, grid, ls, options, pastOneBuffer, checkpoint, stats,
                                   [&](const DistanceBricks& field) { return fieldGridsOnHost(field, grid, ls, stats); });
         });
     };
@@ -528,14 +528,17 @@ vdb::NanoHandle Voxelizer::bandNanoVdb(const TriangleMesh& mesh, const GridSpec&
     };
     auto inRegions = [&](bool pastOneBuffer) {
         return nanoCall(mesh, grid, options, kBandTask, [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
-            return fieldInRegions(device_, mesh, grid, ls, options, pastOneBuffer, checkpoint, stats,
+            auto fieldOf = [&](const VoxelizeOptions& part, const Checkpoint& progress) {
+                return gl::bandTopologyBricks(device_, mesh, grid, band, part, progress, stats);
+            };
+            return fieldInRegions(fieldOf, grid, ls, options, pastOneBuffer, checkpoint, stats,
                                   [&](const DistanceBricks& field) { return onHost(field, stats); });
         });
     };
     if (options.gpuMemory || options.region) return std::move(inRegions(false).front());
     auto make = [&](const Checkpoint& checkpoint, VoxelizeStats& stats) {
         if (!gl::unsignedFieldOnDevice(device_, ls, options)) {
-            const DistanceBricks field = gl::levelSetBricks(device_, mesh, grid, ls, options, checkpoint, stats);
+            const DistanceBricks field = gl::bandTopologyBricks(device_, mesh, grid, band, options, checkpoint, stats);
             checkpoint(0.85, "nanovdb grid");
             return onHost(field, stats);
         }

@@ -42,10 +42,7 @@ inline int64_t levelSetPad(const LevelSetOptions& ls)
 inline LevelSetOptions bandOptions(double band)
 {
     checkBand(band, "band");
-    LevelSetOptions ls;
-    ls.unsignedDistance = true;
-    ls.exteriorBand = ls.interiorBand = band;
-    return ls;
+    return gl::bandFieldOptions(band);
 }
 
 /// The pad of a solid's field box: its 2 voxels, in whole leaves, and a leaf.

@@ -39,11 +39,14 @@ struct BandDistances {
 ///        lists every brick a band voxel can lie in)
 /// @param band       the band's half width in voxels (> 0)
 /// @param closestTriangle also the closest triangle of every band voxel
+/// @param bandOnly   only which voxels are nearer than the band is asked (a
+///        band's topology): a centre found nearer takes no more triangles,
+///        so its kept distance is not the least (no closest triangles then)
 /// @param checkpoint polled on the calling thread between batches of bricks
 /// @return per brick its band voxels, and their values packed in list order
 /// @throw svo::Interrupted from the checkpoint; std::bad_alloc.
 BandDistances bandDistances(const std::vector<Vec3d>& local, const TriangleMesh& mesh, const GridSpec& grid,
                             const std::vector<BrickCoord>& bricks, double band, bool closestTriangle,
-                            const Checkpoint& checkpoint);
+                            const Checkpoint& checkpoint, bool bandOnly = false);
 
 } // namespace svo

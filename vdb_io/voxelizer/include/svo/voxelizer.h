@@ -267,8 +267,9 @@ public:
 
     /// @brief The voxels whose centres are nearer than @a band voxels to a
     /// triangle: the active voxels of meshToUnsignedDistanceField() with that
-    /// band, exactly (its field computed, its topology kept; bandNanoVdb()
-    /// on a GL backend computes only the set). Needs no closed mesh.
+    /// band, exactly, computed as only the set asks (a voxel found nearer
+    /// than the band takes no more triangles; gl::bandTopologyBricks), on
+    /// every backend. Needs no closed mesh.
     /// @param grid  a grid from makeGrid or makeGridOnLattice; the band may reach beyond grid.dims
     /// @param band  the band half width in voxels (checkBand: 1 to 1000)
     /// @param xform as for levelSet()

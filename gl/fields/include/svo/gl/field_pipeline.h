@@ -85,6 +85,21 @@ DeviceField unsignedFieldLeaves(Device& device, const TriangleMesh& mesh, const 
                                 const LevelSetOptions& levelSet, const VoxelizeSettings& settings,
                                 const Checkpoint& checkpoint, VoxelizeStats& stats);
 
+/// @brief The unsigned field whose active voxels are a band of @a band
+/// voxels (both bands @a band): what bandTopologyBricks and
+/// bandTopologyLeaves compute. Throws nothing (setUpField checks the band).
+LevelSetOptions bandFieldOptions(double band);
+
+/// @brief levelSetBricks for the unsigned field of @a band voxels, computed
+/// as only its voxels nearer than the band ask (a band's topology): a voxel
+/// found nearer takes no more triangles, on the GPU and the CPU alike, so
+/// DistanceBricks::near is the field's exactly and the distances are not
+/// the least.
+/// @param band the band half width in voxels (checkBand)
+/// @throw as levelSetBricks
+DistanceBricks bandTopologyBricks(Device& device, const TriangleMesh& mesh, const GridSpec& grid, double band,
+                                  const VoxelizeSettings& settings, const Checkpoint& checkpoint, VoxelizeStats& stats);
+
 /// @brief The voxels nearer than @a band to a triangle (a band's topology)
 /// left on the device as leaves without values: unsignedFieldLeaves'
 /// leaves and masks for an unsigned field of that band, computed as only
